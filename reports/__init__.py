@@ -1,0 +1,1 @@
+"""Reports for the hardware team, and the ``irnuc`` command line."""
