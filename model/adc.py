@@ -1,0 +1,64 @@
+"""Analogue-to-digital converter: N bits over [v_low, v_high], clamped at both ends."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from model.validate import ConfigError, check_choice, check_int, check_scalar
+
+ADC_ROUNDING = ("nearest", "floor")
+
+
+class NonFiniteVoltageError(ValueError):
+    """The ADC was given NaN or infinite voltages."""
+
+
+def adc_dtype(bits: int) -> type:
+    """Smallest unsigned integer dtype that holds ``bits``-bit codes."""
+    return np.uint16 if bits <= 16 else np.uint32
+
+
+def adc_convert(v: np.ndarray, bits: int, v_low: float, v_high: float,
+                rounding: str = "nearest") -> np.ndarray:
+    """Convert voltages to codes.
+
+    Parameters
+    ----------
+    v : ndarray
+        Input voltages, V; every value must be finite.
+    bits : int
+        Resolution, 1..24. The LSB is (v_high - v_low) / 2**bits.
+    v_low, v_high : float
+        Input range, V; v_low maps to code 0, voltages at or above
+        v_high - LSB/2 map to the top code 2**bits - 1.
+    rounding : str
+        ``nearest`` (round half up) or ``floor``.
+
+    Returns
+    -------
+    ndarray
+        Codes, uint16 for bits <= 16 else uint32, clamped to [0, 2**bits - 1].
+
+    Raises
+    ------
+    NonFiniteVoltageError
+        If any voltage is NaN or infinite (the reference implementation turned those into
+        full-scale codes).
+    """
+    bits = check_int("adc.bits", bits, 1, 24)
+    v_low = check_scalar("adc.v_low", v_low, unit="V")
+    v_high = check_scalar("adc.v_high", v_high, unit="V")
+    if not v_low < v_high:
+        raise ConfigError(f"adc.v_low = {v_low:g} V must be below adc.v_high = {v_high:g} V")
+    check_choice("adc.rounding", rounding, ADC_ROUNDING)
+    v = np.asarray(v, dtype=np.float64)
+    finite = np.isfinite(v)
+    if not finite.all():
+        idx = tuple(int(i) for i in np.argwhere(~finite)[0])
+        raise NonFiniteVoltageError(
+            f"ADC input has {int((~finite).sum())} non-finite voltage(s); first {v[idx]!r} at "
+            f"index {idx}")
+    top = (1 << bits) - 1
+    x = (v - v_low) * ((1 << bits) / (v_high - v_low))
+    x = np.floor(x + 0.5) if rounding == "nearest" else np.floor(x)
+    return np.clip(x, 0, top).astype(adc_dtype(bits))

@@ -1,0 +1,267 @@
+"""Sensor configuration: presets (TOML), overrides, and validation before any work.
+
+A configuration is a nested table of sections. :data:`SCHEMA` lists every scalar field with
+its type, allowed range and unit; :func:`validate` checks a whole table against it and
+raises :class:`~model.validate.ConfigError` naming the dotted field, the value and the
+allowed range. The FPA defect table is checked by :class:`model.defects.DefectSpec`.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from model.validate import ConfigError, check_choice, check_int, check_scalar
+
+PRESET_DIR = Path(__file__).with_name("presets")
+
+
+@dataclass(frozen=True)
+class Field:
+    """One scalar configuration field."""
+
+    kind: str  # "float", "int", "bool", "choice", "band", "rings", "tolerances", "table"
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    hi_open: bool = False
+    unit: str = ""
+    choices: tuple[str, ...] = ()
+    optional: bool = False  # may be absent or None
+
+
+_POS = {"lo": 0.0, "lo_open": True}
+
+#: Every field of a sensor configuration. Sections are the first part of the dotted name.
+SCHEMA: dict[str, Field] = {
+    # radiometry (paper section 3.1)
+    "radiometry.band": Field("band", unit="m"),
+    "radiometry.rtol": Field("float", 1e-15, 0.1),
+    "radiometry.method": Field("choice", choices=("hybrid", "series")),
+    "radiometry.scene_emissivity": Field("float", 0.0, 1.0),
+    # optics (section 3.2)
+    "optics.cone_method": Field("choice", choices=("f_number", "paper_fov")),
+    "optics.f_number": Field("float", 0.5, 100.0),
+    "optics.fov": Field("float", 0.0, math.pi, lo_open=True, hi_open=True, unit="rad",
+                        optional=True),
+    "optics.focal_length": Field("float", 0.0, 10.0, lo_open=True, unit="m", optional=True),
+    "optics.transmission": Field("float", 0.0, 1.0),
+    # focal-plane array (section 3.3)
+    "fpa.active_rows": Field("int", 1, 16384),
+    "fpa.active_cols": Field("int", 1, 16384),
+    "fpa.boundary": Field("rings"),
+    "fpa.blind": Field("rings"),
+    "fpa.pitch": Field("float", 0.0, 1e-3, lo_open=True, unit="m"),
+    "fpa.fill_factor": Field("float", 0.0, 1.0, lo_open=True),
+    "fpa.absorptance": Field("float", 0.0, 1.0),
+    "fpa.spread": Field("choice", choices=("lognormal", "gamma")),
+    "fpa.tolerance": Field("tolerances"),
+    "fpa.defects": Field("table"),
+    # bolometer (section 3.4)
+    "bolometer.R_ref": Field("float", unit="ohm", **_POS),
+    "bolometer.T_ref": Field("float", unit="K", **_POS),
+    "bolometer.tcr": Field("float", -1.0, 1.0, unit="1/K"),
+    "bolometer.g": Field("float", unit="W/K", **_POS),
+    "bolometer.C": Field("float", unit="J/K", **_POS),
+    "bolometer.bias_current": Field("float", 0.0, 1.0, unit="A"),
+    "bolometer.t_int": Field("float", 0.0, 10.0, lo_open=True, unit="s"),
+    "bolometer.variant": Field("choice", choices=("equilibrium", "paper")),
+    "bolometer.net_radiation": Field("bool"),
+    "bolometer.rtol": Field("float", 1e-15, 1e-3),
+    "bolometer.max_iter": Field("int", 1, 10000),
+    "bolometer.runaway_temperature": Field("float", unit="K", **_POS),
+    # environment
+    "environment.T_substrate": Field("float", unit="K", **_POS),
+    "environment.T_cam": Field("float", unit="K", **_POS),
+    # readout (section 3.5)
+    "readout.skimming": Field("choice", choices=("none", "row", "column")),
+    "readout.gain": Field("float", 0.0, 1e6, lo_open=True, unit="V/V"),
+    "readout.v_reset": Field("float", -100.0, 100.0, unit="V"),
+    "readout.v_low": Field("float", -100.0, 100.0, unit="V"),
+    "readout.v_high": Field("float", -100.0, 100.0, unit="V"),
+    "readout.v_skim": Field("float", -1e3, 1e3, unit="V", optional=True),
+    # ADC
+    "adc.bits": Field("int", 1, 24),
+    "adc.v_low": Field("float", -100.0, 100.0, unit="V"),
+    "adc.v_high": Field("float", -100.0, 100.0, unit="V"),
+    "adc.rounding": Field("choice", choices=("nearest", "floor")),
+    # temporal noise
+    "noise.enabled": Field("bool"),
+    "noise.johnson": Field("bool"),
+    "noise.readout_sigma": Field("float", 0.0, 10.0, unit="V"),
+    "noise.flicker_sigma": Field("float", 0.0, 10.0, unit="V"),
+    # batching
+    "run.chunk_frames": Field("int", 1, 100000),
+}
+
+TOLERANCE_KEYS = ("R_ref", "g", "C")
+
+
+def _check_field(name: str, spec: Field, value: Any) -> Any:
+    if value is None:
+        if spec.optional:
+            return None
+        raise ConfigError(f"{name} is required")
+    if spec.kind == "float":
+        return check_scalar(name, value, spec.lo, spec.hi, lo_open=spec.lo_open,
+                            hi_open=spec.hi_open, unit=spec.unit)
+    if spec.kind == "int":
+        return check_int(name, value, int(spec.lo) if spec.lo is not None else None,
+                         int(spec.hi) if spec.hi is not None else None)
+    if spec.kind == "bool":
+        if not isinstance(value, bool):
+            raise ConfigError(f"{name} = {value!r} must be true or false")
+        return value
+    if spec.kind == "choice":
+        return check_choice(name, value, spec.choices)
+    if spec.kind == "band":
+        from model.radiometry import check_band
+
+        return list(check_band(tuple(value) if isinstance(value, list) else value, name))
+    if spec.kind == "rings":
+        if not isinstance(value, (list, tuple)) or len(value) != 4:
+            raise ConfigError(f"{name} = {value!r} must be 4 ring sizes [top, bottom, left, right]")
+        return [check_int(f"{name}[{i}]", v, 0, 4096) for i, v in enumerate(value)]
+    if spec.kind == "tolerances":
+        if not isinstance(value, Mapping):
+            raise ConfigError(f"{name} must be a table of relative tolerances")
+        unknown = set(value) - set(TOLERANCE_KEYS)
+        if unknown:
+            raise ConfigError(f"{name}: unknown key(s) {sorted(unknown)}; known {TOLERANCE_KEYS}")
+        return {k: check_scalar(f"{name}.{k}", value.get(k, 0.0), 0.0, 1.0)
+                for k in TOLERANCE_KEYS}
+    if spec.kind == "table":
+        if not isinstance(value, Mapping):
+            raise ConfigError(f"{name} must be a table")
+        return dict(value)
+    raise AssertionError(spec.kind)
+
+
+def validate(cfg: Mapping[str, Any]) -> dict[str, Any]:
+    """Check every field of a nested configuration; return a normalised deep copy.
+
+    Raises
+    ------
+    ConfigError
+        Naming the dotted field, the value and the allowed range, for the first bad field.
+    """
+    if not isinstance(cfg, Mapping):
+        raise ConfigError("a sensor configuration must be a table")
+    sections = {name.split(".")[0] for name in SCHEMA}
+    unknown_sections = set(cfg) - sections
+    if unknown_sections:
+        raise ConfigError(f"unknown section(s) {sorted(unknown_sections)}; known {sorted(sections)}")
+    out: dict[str, dict[str, Any]] = {s: {} for s in sections}
+    for section in sections:
+        table = cfg.get(section, {})
+        if not isinstance(table, Mapping):
+            raise ConfigError(f"{section} must be a table")
+        known = {n.split(".", 1)[1] for n in SCHEMA if n.startswith(section + ".")}
+        unknown = set(table) - known
+        if unknown:
+            raise ConfigError(
+                f"{section}: unknown field(s) {sorted(unknown)}; known {sorted(known)}")
+    for name, spec in SCHEMA.items():
+        section, key = name.split(".", 1)
+        out[section][key] = _check_field(name, spec, cfg.get(section, {}).get(key))
+    _check_relations(out)
+    return out
+
+
+def _check_relations(c: dict[str, dict[str, Any]]) -> None:
+    """Checks that involve more than one field."""
+    o = c["optics"]
+    if o["fov"] is None and o["focal_length"] is None:
+        raise ConfigError("optics: give either fov (rad) or focal_length (m)")
+    if o["cone_method"] == "paper_fov" and o["fov"] is None:
+        raise ConfigError("optics.fov is required with optics.cone_method = 'paper_fov'")
+    for section in ("readout", "adc"):
+        lo, hi = c[section]["v_low"], c[section]["v_high"]
+        if not lo < hi:
+            raise ConfigError(f"{section}.v_low = {lo:g} V must be below {section}.v_high = {hi:g} V")
+    r = c["readout"]
+    if not r["v_low"] <= r["v_reset"] <= r["v_high"]:
+        raise ConfigError(
+            f"readout.v_reset = {r['v_reset']:g} V is outside the rails "
+            f"[{r['v_low']:g}, {r['v_high']:g}] V")
+    blind = c["fpa"]["blind"]
+    if r["skimming"] == "row" and blind[2] + blind[3] == 0:
+        raise ConfigError("readout.skimming = 'row' needs blind columns: fpa.blind[2] + fpa.blind[3] >= 1")
+    if r["skimming"] == "column" and blind[0] + blind[1] == 0:
+        raise ConfigError("readout.skimming = 'column' needs blind rows: fpa.blind[0] + fpa.blind[1] >= 1")
+    from model.defects import DefectSpec
+
+    spec = DefectSpec.from_dict(c["fpa"]["defects"], path="fpa.defects")
+    h, w = c["fpa"]["active_rows"], c["fpa"]["active_cols"]
+    for i, row in enumerate(spec.rows):
+        if not 0 <= row < h:
+            raise ConfigError(f"fpa.defects.rows[{i}] = {row} is outside the active rows 0..{h - 1}")
+    for i, col in enumerate(spec.cols):
+        if not 0 <= col < w:
+            raise ConfigError(f"fpa.defects.cols[{i}] = {col} is outside the active columns 0..{w - 1}")
+
+
+def _set_dotted(cfg: dict[str, Any], dotted: str, value: Any) -> None:
+    parts = dotted.split(".")
+    node = cfg
+    for p in parts[:-1]:
+        node = node.setdefault(p, {})
+        if not isinstance(node, dict):
+            raise ConfigError(f"override {dotted!r}: {p} is not a table")
+    node[parts[-1]] = value
+
+
+def apply_overrides(cfg: Mapping[str, Any], overrides: Mapping[str, Any] | None) -> dict[str, Any]:
+    """A deep copy of ``cfg`` with dotted-key overrides, e.g. {"fpa.active_rows": 48}."""
+    out = copy.deepcopy(dict(cfg))
+    for key, value in (overrides or {}).items():
+        _set_dotted(out, key, value)
+    return out
+
+
+def load_toml(path: str | Path) -> dict[str, Any]:
+    """Read a TOML file; a preset may name a ``base`` preset that it changes."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"configuration file {str(path)!r} does not exist")
+    with path.open("rb") as fh:
+        data = tomllib.load(fh)
+    base = data.pop("base", None)
+    if base is not None:
+        merged = load_toml(PRESET_DIR / f"{base}.toml")
+        for section, table in data.items():
+            if isinstance(table, dict):
+                merged.setdefault(section, {}).update(table)
+            else:
+                merged[section] = table
+        data = merged
+    return data
+
+
+def preset_names() -> list[str]:
+    """Names of the presets shipped with irnuc."""
+    return sorted(p.stem for p in PRESET_DIR.glob("*.toml"))
+
+
+def load_preset(name: str, overrides: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """A validated configuration from a named preset plus dotted-key overrides."""
+    if name not in preset_names():
+        raise ConfigError(f"preset = {name!r} is not one of {preset_names()}")
+    return validate(apply_overrides(load_toml(PRESET_DIR / f"{name}.toml"), overrides))
+
+
+def load_config(path: str | Path, overrides: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """A validated configuration from a TOML file plus dotted-key overrides."""
+    return validate(apply_overrides(load_toml(path), overrides))
+
+
+def config_digest(cfg: Mapping[str, Any]) -> str:
+    """Short hash of a validated configuration (for provenance and caches)."""
+    return hashlib.sha256(json.dumps(cfg, sort_keys=True).encode()).hexdigest()[:16]

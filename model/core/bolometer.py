@@ -1,0 +1,160 @@
+"""Kernels for the bolometer electro-thermal readout (paper eq. 14-19).
+
+Resistance (eq. 17): R(T) = R_ref exp(B (1/T - 1/T_ref)), with B = Ea / k (K) and the
+temperature coefficient of resistance at T_ref alpha = -B / T_ref^2 (B > 0: negative TCR).
+
+The pixel temperature that the integrator sees is T = T_s + dT with
+
+    dT = a + b R(T_s + dT),   a = Q f_Q / g,   b = I^2 f / g,
+
+where f = 1 - (1 - e^(-u)) / u, u = t_int / tau, tau = C / g, is the time average of the
+heating transient 1 - e^(-t/tau) over the integration window (eq. 19), and f_Q is f in the
+``paper`` variant (scene power switched on together with the bias) and 1 in the default
+``equilibrium`` variant (the pixel has long been in equilibrium with the scene; only the
+bias heating is a transient).
+
+For B > 0 (negative TCR) h(dT) = dT - a - b R(T_s + dT) is strictly increasing: exactly one
+root, bracketed by [a, a + b R(T_s + a)], found by Newton's method safeguarded by bisection.
+For B < 0 (positive TCR) the electro-thermal feedback is positive: the monotone fixed-point
+iteration from dT = a converges to the lowest (stable) root if one exists; when it does
+not converge, or the temperature passes the runaway limit, the pixel is reported as a
+thermal runaway.
+"""
+
+import math
+
+from numba import njit, prange
+
+STATUS_OK = 0
+STATUS_NO_CONVERGENCE = 1
+STATUS_RUNAWAY = 2
+STATUS_INVALID = 3  # the temperature would be <= 0 K
+
+#: Iteration budget multiplier of the (linearly convergent) positive-TCR fixed point.
+FIXED_POINT_FACTOR = 100
+
+
+@njit(cache=True)
+def self_heating_factor(u):
+    """f(u) = 1 + (e^(-u) - 1) / u for u = t_int / tau >= 0, without cancellation.
+
+    Small u: the alternating series u/2 - u^2/6 + u^3/24 - ... (cancellation-free).
+    Otherwise expm1, which keeps e^(-u) - 1 exact to rounding. f(0) = 0, f(inf) = 1.
+    """
+    if u < 0.25:
+        term = 0.5 * u
+        s = term
+        k = 2
+        while abs(term) > 1e-18 * s and k < 40:
+            term *= -u / (k + 1)
+            s += term
+            k += 1
+        return s
+    if u == math.inf:
+        return 1.0
+    return 1.0 + math.expm1(-u) / u
+
+
+@njit(cache=True)
+def self_heating_factor_naive(u):
+    """The reference implementation's form 1 + tau/t (e^(-t/tau) - 1): cancels for large tau."""
+    return 1.0 + (math.exp(-u) - 1.0) / u
+
+
+@njit(cache=True)
+def resistance(T, R_ref, B, T_ref):
+    """Bolometer resistance at temperature T (eq. 17), ohm."""
+    return R_ref * math.exp(B * (1.0 / T - 1.0 / T_ref))
+
+
+@njit(cache=True)
+def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
+    """Root dT of dT = a + b R(T_s + dT). Returns (dT, status, iterations).
+
+    x0 is an initial guess (NaN for none); it is used only if it lies inside the bracket.
+    Convergence: |last Newton step| <= rtol |dT| + rtol * 1e-3 K.
+    """
+    atol = rtol * 1e-3
+    Ta = T_s + a
+    if not Ta > 0.0:
+        return math.nan, STATUS_INVALID, 0
+    if b == 0.0:
+        return a, STATUS_OK, 0
+    if B == 0.0:
+        return a + b * R_ref, STATUS_OK, 0
+    if B > 0.0:
+        lo = a
+        hi = a + b * resistance(Ta, R_ref, B, T_ref)
+        x = x0 if (lo < x0 < hi) else 0.5 * (lo + hi)
+        for it in range(1, max_iter + 1):
+            T = T_s + x
+            R = resistance(T, R_ref, B, T_ref)
+            h = x - a - b * R
+            if h > 0.0:
+                hi = x
+            elif h < 0.0:
+                lo = x
+            else:
+                return x, STATUS_OK, it
+            xn = x - h / (1.0 + b * R * B / (T * T))
+            if not (lo < xn < hi):
+                xn = 0.5 * (lo + hi)
+            if abs(xn - x) <= rtol * abs(xn) + atol:
+                return xn, STATUS_OK, it
+            x = xn
+        return x, STATUS_NO_CONVERGENCE, max_iter
+    # Positive TCR: monotone fixed point from below converges to the lowest root.
+    x = a
+    for it in range(1, FIXED_POINT_FACTOR * max_iter + 1):
+        T = T_s + x
+        R = resistance(T, R_ref, B, T_ref)
+        xn = a + b * R
+        if not (T_s + xn <= T_max):
+            return xn, STATUS_RUNAWAY, it
+        gain = -b * R * B / (T * T)  # electro-thermal loop gain (> 0 here)
+        if gain >= 1.0:
+            return xn, STATUS_RUNAWAY, it
+        # Linear convergence at rate `gain`: the error is about step * gain / (1 - gain).
+        if abs(xn - x) * gain <= (rtol * abs(xn) + atol) * (1.0 - gain):
+            return xn, STATUS_OK, it
+        x = xn
+    return x, STATUS_RUNAWAY, FIXED_POINT_FACTOR * max_iter
+
+
+@njit(cache=True)
+def solve_row(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, T_max,
+              dT_out, v_out, status_out, iters_out):
+    """Solve one row of pixels; each pixel starts from its left neighbour's solution."""
+    x0 = math.nan
+    for j in range(Q.shape[0]):
+        gj = g[j]
+        f = self_heating_factor(t_int * gj / C[j])
+        fq = f if variant == 1 else 1.0
+        a = Q[j] * fq / gj
+        b = I * I * f / gj
+        x, st, it = solve_delta_t(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0, T_max)
+        dT_out[j] = x
+        status_out[j] = st
+        iters_out[j] = it
+        if st == STATUS_OK or st == STATUS_NO_CONVERGENCE or st == STATUS_RUNAWAY:
+            v_out[j] = I * resistance(T_s + x, R_ref[j], B, T_ref)
+        else:
+            v_out[j] = math.nan
+        x0 = x if st == STATUS_OK else math.nan
+
+
+@njit(cache=True, parallel=True)
+def solve_frames(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, T_max,
+                 dT_out, v_out, status_out, iters_out):
+    """Batch over frames and rows: Q (N, rows, cols) W; parameters (rows, cols).
+
+    Writes the temperature rise dT (K), the bolometer voltage I R(T) (V), the status and
+    the iteration count of every pixel of every frame.
+    """
+    n_frames, rows, _ = Q.shape
+    for k in prange(n_frames * rows):
+        n = k // rows
+        i = k - n * rows
+        solve_row(Q[n, i], R_ref[i], g[i], C[i], B, T_ref, T_s, I, t_int, variant, rtol,
+                  max_iter, T_max, dT_out[n, i], v_out[n, i], status_out[n, i],
+                  iters_out[n, i])

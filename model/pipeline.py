@@ -1,0 +1,492 @@
+"""The sensor pipeline: a small graph of stages with declared inputs and outputs.
+
+A request for some outputs runs only the stages those outputs need, each once: the stages
+that do not depend on the scene (per-pixel parameters, defects, cos^4, housing radiance,
+optical coupling) once per run, the others once per chunk of frames. The graph itself is
+built from the configuration, so only the configured skimming mode is computed and the
+noise stage exists only when noise is configured. :attr:`Pipeline.counts` records how often
+each stage ran and how many temperatures the radiance series was evaluated at; the tests
+check "computes only what it needs" with these counts.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from collections import Counter
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from model import adc as _adc
+from model import noise as _noise
+from model import readout as _readout
+from model.config import config_digest
+from model.core import bolometer as _kb
+from model.defects import DefectKind, DefectMap, DefectSpec, apply_voltage_defects, inject_defects, noisy_sigma
+from model.fpa import ArrayLayout, draw_pixel_parameters
+from model.optics import cone_factor, cos4_map, focal_length_from_fov
+from model.radiometry import band_radiance
+from model.scenes import Scene, check_temps, scene_temperatures
+from model.validate import ConfigError, check_int
+
+BOLOMETER_VARIANTS = {"equilibrium": 0, "paper": 1}
+
+#: Names a caller can request from :func:`simulate`, and the product each one is.
+OUTPUTS: dict[str, str] = {
+    "codes": "codes",                 # (N, H, W) ADC codes
+    "voltage": "v_out",               # (N, H, W) integrator output at the ADC input, V
+    "bolometer_voltage": "v_bolo",    # (N, rows, cols) I R(T), V, full array
+    "temperature_rise": "dT",         # (N, rows, cols) T - T_substrate, K
+    "status": "status",               # (N, rows, cols) solver status codes
+    "power": "Q",                     # (N, rows, cols) absorbed power, W
+    "scene_radiance": "L_scene",      # (N,) or (N, rows, cols) W m^-2 sr^-1
+    "scene_temperature": "T_scene",   # (N,) or (N, H, W) K
+    "params": "params",               # per-pixel R_ref, g, C over the full array
+    "defects": "defects",             # DefectMap (ground truth)
+    "cos4": "cos4",                   # (rows, cols)
+}
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One node of the graph: ``fn(ctx, inputs) -> outputs`` (dicts keyed by product)."""
+
+    name: str
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+    per_chunk: bool
+    fn: Callable[[RunContext, dict[str, Any]], dict[str, Any]]
+
+
+@dataclass
+class RunContext:
+    """What a stage may read besides its inputs."""
+
+    cfg: Mapping[str, Any]
+    layout: ArrayLayout
+    scene: Scene
+    seed: int
+    temps: np.ndarray = field(default_factory=lambda: np.empty(0))
+    first_frame: int = 0
+    counts: Counter = field(default_factory=Counter)
+    flicker: _noise.FlickerState | None = None
+
+
+# ---- static stages ---------------------------------------------------------------------
+
+def _stage_params(ctx: RunContext, _: dict) -> dict:
+    b = ctx.cfg["bolometer"]
+    f = ctx.cfg["fpa"]
+    nominal = {"R_ref": b["R_ref"], "g": b["g"], "C": b["C"]}
+    return {"params": draw_pixel_parameters(ctx.layout, nominal, f["tolerance"], ctx.seed,
+                                            f["spread"])}
+
+
+def _defect_spec(cfg: Mapping[str, Any]) -> DefectSpec:
+    return DefectSpec.from_dict(cfg["fpa"]["defects"], path="fpa.defects")
+
+
+def _stage_defects(ctx: RunContext, _: dict) -> dict:
+    return {"defects": inject_defects(ctx.layout.active_shape, _defect_spec(ctx.cfg), ctx.seed)}
+
+
+def focal_length(cfg: Mapping[str, Any], layout: ArrayLayout) -> float:
+    """Focal length, m: given, or from the FOV across the active width (eq. 7)."""
+    o = cfg["optics"]
+    if o["focal_length"] is not None:
+        return float(o["focal_length"])
+    return focal_length_from_fov(o["fov"], layout.active_cols * cfg["fpa"]["pitch"])
+
+
+def _stage_cos4(ctx: RunContext, _: dict) -> dict:
+    lay = ctx.layout
+    return {"cos4": cos4_map(lay.rows, lay.cols, ctx.cfg["fpa"]["pitch"],
+                             focal_length(ctx.cfg, lay), lay.optical_centre)}
+
+
+def _radiance(ctx: RunContext, temps: np.ndarray) -> np.ndarray:
+    r = ctx.cfg["radiometry"]
+    ctx.counts["radiance_points"] += int(np.size(temps))
+    return band_radiance(temps, tuple(r["band"]), rtol=r["rtol"], method=r["method"])
+
+
+def _stage_env_radiance(ctx: RunContext, _: dict) -> dict:
+    env = ctx.cfg["environment"]
+    L = _radiance(ctx, np.array([env["T_cam"], env["T_substrate"]]))
+    return {"L_env": (float(L[0]), float(L[1]))}
+
+
+def _stage_coupling(ctx: RunContext, inp: dict) -> dict:
+    """Per-pixel optical coupling: Q = k_scene * L_scene + q_env (W).
+
+    The pixel (absorptance eps, sensitive area A) sees, over the projected solid angle
+    pi sin^2(theta) cos^4(beta), the scene through the optics (transmission tau), and the
+    housing and optics at T_cam over the rest of the hemisphere. With ``net_radiation``
+    it also emits at the substrate temperature (linearised emission is part of g), so a
+    scene, housing and substrate all at one temperature heat the pixel by exactly 0.
+    Blind pixels see only the shield at T_cam.
+    """
+    cfg, lay = ctx.cfg, ctx.layout
+    f, o = cfg["fpa"], cfg["optics"]
+    L_cam, L_s = inp["L_env"]
+    net = 1.0 if cfg["bolometer"]["net_radiation"] else 0.0
+    area = f["pitch"] ** 2 * f["fill_factor"]
+    cone = cone_factor(o["cone_method"], f_number=o["f_number"], fov=o["fov"])
+    base = f["absorptance"] * area * math.pi
+    seen = o["transmission"] * cone * inp["cos4"]
+    seen[lay.kind_map() == 2] = 0.0  # blind pixels: no scene
+    return {"k_scene": base * seen, "q_env": base * ((1.0 - seen) * L_cam - net * L_s)}
+
+
+def _stage_v_skim(ctx: RunContext, inp: dict) -> dict:
+    """Reference voltage for ``skimming = none`` and the fallback of a failed blind row:
+    the configured value, or a nominal blind pixel at the substrate temperature."""
+    r, b = ctx.cfg["readout"], ctx.cfg["bolometer"]
+    if r["v_skim"] is not None:
+        return {"v_skim": float(r["v_skim"])}
+    L_cam, L_s = inp["L_env"]
+    f = ctx.cfg["fpa"]
+    net = 1.0 if b["net_radiation"] else 0.0
+    q = f["absorptance"] * f["pitch"] ** 2 * f["fill_factor"] * math.pi * (L_cam - net * L_s)
+    v = _solve(ctx, np.full((1, 1, 1), q), {k: np.full((1, 1), b[k]) for k in ("R_ref", "g", "C")})
+    return {"v_skim": float(v["v_bolo"][0, 0, 0])}
+
+
+# ---- per-chunk stages ------------------------------------------------------------------
+
+def _stage_scene(ctx: RunContext, _: dict) -> dict:
+    return {"T_scene": scene_temperatures(ctx.scene, ctx.temps, ctx.layout.active_shape)}
+
+
+def _stage_scene_radiance(ctx: RunContext, inp: dict) -> dict:
+    t = inp["T_scene"]
+    if t.ndim == 1:  # uniform: once per frame
+        return {"L_scene": _radiance(ctx, t)}
+    # Per-pixel scenes: evaluate each distinct temperature once.
+    uniq, inv = np.unique(t, return_inverse=True)
+    L_act = _radiance(ctx, uniq)[inv.reshape(t.shape)]
+    lay = ctx.layout
+    rs, cs = lay.active_slice
+    # Boundary pixels see the nearest active value: pad by edge replication.
+    pad = ((0, 0), (rs.start, lay.rows - rs.stop), (cs.start, lay.cols - cs.stop))
+    return {"L_scene": np.pad(L_act, pad, mode="edge")}
+
+
+def _stage_power(ctx: RunContext, inp: dict) -> dict:
+    L = inp["L_scene"]
+    if L.ndim == 1:
+        L = L[:, None, None]
+    Q = inp["k_scene"][None] * L + inp["q_env"][None]
+    defects: DefectMap = inp["defects"]
+    if (defects.resp != 1.0).any():
+        Q[(slice(None), *ctx.layout.active_slice)] *= defects.resp
+    return {"Q": Q}
+
+
+def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray]) -> dict:
+    b = ctx.cfg["bolometer"]
+    B = -b["tcr"] * b["T_ref"] ** 2  # activation energy over k, K (alpha = -B / T_ref^2)
+    shape = Q.shape
+    dT = np.empty(shape)
+    v = np.empty(shape)
+    status = np.empty(shape, np.uint8)
+    iters = np.empty(shape, np.int32)
+    _kb.solve_frames(np.ascontiguousarray(Q), params["R_ref"], params["g"], params["C"], B,
+                     b["T_ref"], ctx.cfg["environment"]["T_substrate"], b["bias_current"],
+                     b["t_int"], BOLOMETER_VARIANTS[b["variant"]], b["rtol"], b["max_iter"],
+                     b["runaway_temperature"], dT, v, status, iters)
+    return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
+
+
+def _stage_bolometer(ctx: RunContext, inp: dict) -> dict:
+    return _solve(ctx, inp["Q"], inp["params"])
+
+
+def _make_skim_stage(mode: str) -> Stage:
+    fn = _readout.SKIMMING_MODES[mode]
+
+    def run(ctx: RunContext, inp: dict) -> dict:
+        return {"v_ref": fn(inp["v_bolo"], inp["status"], ctx.layout, inp["v_skim"])}
+
+    return Stage(f"skimming_{mode}", ("v_bolo", "status", "v_skim"), ("v_ref",), True, run)
+
+
+def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
+    r = ctx.cfg["readout"]
+    act = (slice(None), *ctx.layout.active_slice)
+    v = _readout.integrate(inp["v_bolo"][act], inp["v_ref"], r["gain"], r["v_reset"])
+    v = apply_voltage_defects(v, inp["defects"], r["v_low"], r["v_high"], r["v_reset"])
+    failed = inp["status"][act] != _kb.STATUS_OK
+    if failed.any():
+        # A runaway or unsolved pixel drives its integrator into the high rail; it is
+        # counted in Frames.diagnostics, never passed on as NaN.
+        v[failed] = r["v_high"]
+    return {"v_int": v}
+
+
+def _stage_noise(ctx: RunContext, inp: dict) -> dict:
+    cfg = ctx.cfg
+    n, r, b = cfg["noise"], cfg["readout"], cfg["bolometer"]
+    sigma2: np.ndarray | float = 0.0
+    flicker = 0.0
+    if n["enabled"]:
+        sigma2 = n["readout_sigma"] ** 2
+        if n["johnson"]:
+            act = (slice(None), *ctx.layout.active_slice)
+            T = cfg["environment"]["T_substrate"] + inp["dT"][act]
+            sj = _noise.johnson_sigma(np.abs(inp["v_bolo"][act]), np.maximum(T, 0.0),
+                                      max(b["bias_current"], 1e-30), b["t_int"], r["gain"])
+            sigma2 = sigma2 + np.nan_to_num(sj) ** 2
+        flicker = n["flicker_sigma"]
+    extra = noisy_sigma(inp["defects"], r["v_low"], r["v_high"])
+    if extra is not None:
+        sigma2 = sigma2 + extra**2
+    if np.all(np.asarray(sigma2) == 0.0) and flicker == 0.0:
+        return {"v_out": inp["v_int"]}  # nothing configured: no draws
+    if flicker > 0.0 and ctx.flicker is None:
+        ctx.flicker = _noise.FlickerState(ctx.layout.active_shape)
+    v = _noise.add_noise(inp["v_int"], np.sqrt(sigma2), ctx.seed, ctx.first_frame, flicker,
+                         ctx.flicker)
+    ctx.counts["noise_frames"] += v.shape[0]
+    return {"v_out": v}
+
+
+def _stage_adc(ctx: RunContext, inp: dict) -> dict:
+    r, a = ctx.cfg["readout"], ctx.cfg["adc"]
+    v = np.clip(inp["v_out"], r["v_low"], r["v_high"])  # integrator rails
+    return {"codes": _adc.adc_convert(v, a["bits"], a["v_low"], a["v_high"], a["rounding"])}
+
+
+def _noise_configured(cfg: Mapping[str, Any]) -> bool:
+    if cfg["noise"]["enabled"]:
+        return True
+    spec = _defect_spec(cfg)
+    kinds = set(spec.cluster_kinds) | {spec.line_kind} if (spec.clusters or spec.rows or spec.cols) else set()
+    kinds |= {k for k, rate in spec.rates.items() if rate > 0}
+    kinds |= {str(p.get("kind")) for p in spec.listed}
+    return DefectKind.NOISY.name.lower() in {str(k).lower() for k in kinds}
+
+
+def build_stages(cfg: Mapping[str, Any]) -> list[Stage]:
+    """The stage graph for one validated configuration."""
+    stages = [
+        Stage("params", (), ("params",), False, _stage_params),
+        Stage("defects", (), ("defects",), False, _stage_defects),
+        Stage("cos4", (), ("cos4",), False, _stage_cos4),
+        Stage("env_radiance", (), ("L_env",), False, _stage_env_radiance),
+        Stage("coupling", ("cos4", "L_env"), ("k_scene", "q_env"), False, _stage_coupling),
+        Stage("v_skim", ("L_env",), ("v_skim",), False, _stage_v_skim),
+        Stage("scene", (), ("T_scene",), True, _stage_scene),
+        Stage("scene_radiance", ("T_scene",), ("L_scene",), True, _stage_scene_radiance),
+        Stage("power", ("L_scene", "k_scene", "q_env", "defects"), ("Q",), True, _stage_power),
+        Stage("bolometer", ("Q", "params"), ("v_bolo", "dT", "status", "iters"), True,
+              _stage_bolometer),
+        _make_skim_stage(cfg["readout"]["skimming"]),
+        Stage("integrator", ("v_bolo", "v_ref", "defects", "status"), ("v_int",), True,
+              _stage_integrator),
+    ]
+    if _noise_configured(cfg):
+        stages.append(Stage("noise", ("v_int", "v_bolo", "dT", "defects"), ("v_out",), True,
+                            _stage_noise))
+    else:
+        stages.append(Stage("no_noise", ("v_int",), ("v_out",), True,
+                            lambda ctx, inp: {"v_out": inp["v_int"]}))
+    stages.append(Stage("adc", ("v_out",), ("codes",), True, _stage_adc))
+    return stages
+
+
+def plan(stages: Sequence[Stage], products: Iterable[str]) -> list[Stage]:
+    """The stages needed for ``products``, each once, in dependency order."""
+    producer = {out: s for s in stages for out in s.outputs}
+    order: list[Stage] = []
+    seen: set[str] = set()
+
+    def visit(product: str) -> None:
+        if product not in producer:
+            raise ConfigError(f"no stage produces {product!r}")
+        stage = producer[product]
+        if stage.name in seen:
+            return
+        for dep in stage.inputs:
+            visit(dep)
+        seen.add(stage.name)
+        order.append(stage)
+
+    for p in products:
+        visit(p)
+    return order
+
+
+@dataclass
+class Frames:
+    """Result of :func:`simulate`.
+
+    Attributes
+    ----------
+    codes : ndarray or None
+        (N, H, W) raw ADC codes (uint16 up to 16 bits).
+    temps : ndarray
+        (N,) scene base temperature of every frame, K.
+    defect_kind, defect_pattern : ndarray or None
+        (H, W) ground truth (model.defects.DefectKind / DefectPattern codes).
+    outputs : dict
+        Every requested output by name (see :data:`OUTPUTS`).
+    diagnostics : dict
+        Self-heating, solver failures, clipped codes.
+    counts : dict
+        Stage executions and radiance evaluations of this run.
+    """
+
+    codes: np.ndarray | None
+    temps: np.ndarray
+    defect_kind: np.ndarray | None
+    defect_pattern: np.ndarray | None
+    adc_bits: int
+    config: dict[str, Any]
+    seed: int
+    scene: Scene
+    outputs: dict[str, Any]
+    diagnostics: dict[str, Any]
+    counts: dict[str, int]
+
+    def config_json(self) -> str:
+        return json.dumps({"config": self.config, "scene": {"kind": self.scene.kind,
+                           "params": _jsonable(self.scene.params)}, "seed": self.seed,
+                           "config_digest": config_digest(self.config)}, sort_keys=True)
+
+
+def _jsonable(params: Mapping[str, Any]) -> dict[str, Any]:
+    return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in params.items()}
+
+
+class Pipeline:
+    """A configured sensor, ready to produce frames for batches of scene temperatures."""
+
+    def __init__(self, cfg: Mapping[str, Any], scene: Scene | None = None, seed: int = 0) -> None:
+        self.cfg = cfg
+        self.seed = check_int("seed", seed, 0, 2**63 - 1)
+        self.scene = scene or Scene()
+        f = cfg["fpa"]
+        self.layout = ArrayLayout(f["active_rows"], f["active_cols"], tuple(f["boundary"]),
+                                  tuple(f["blind"]))
+        self.stages = build_stages(cfg)
+        self.counts: Counter = Counter()
+
+    def run(self, temps: np.ndarray, products: Sequence[str],
+            progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+        """Compute ``products`` for the frames of ``temps``; per-chunk products stacked."""
+        order = plan(self.stages, products)
+        static = [s for s in order if not s.per_chunk]
+        chunked = [s for s in order if s.per_chunk]
+        ctx = RunContext(self.cfg, self.layout, self.scene, self.seed, counts=self.counts)
+        values: dict[str, Any] = {}
+        for stage in static:
+            self.counts[stage.name] += 1
+            values.update(stage.fn(ctx, {k: values[k] for k in stage.inputs}))
+        per_chunk: dict[str, list] = {p: [] for p in products}
+        n = len(temps)
+        step = self.cfg["run"]["chunk_frames"] if chunked else max(n, 1)
+        for start in range(0, n, step):
+            ctx.temps = temps[start:start + step]
+            ctx.first_frame = start
+            chunk = dict(values)
+            for stage in chunked:
+                self.counts[stage.name] += 1
+                chunk.update(stage.fn(ctx, {k: chunk[k] for k in stage.inputs}))
+            for p in products:
+                per_chunk[p].append(chunk[p])
+            if progress is not None:
+                progress(min(start + step, n), n)
+        out: dict[str, Any] = {}
+        chunk_products = {o for s in chunked for o in s.outputs}
+        for p in products:
+            if p in chunk_products:
+                parts = per_chunk[p]
+                out[p] = np.concatenate(parts) if len(parts) > 1 else parts[0]
+            else:
+                out[p] = values[p]
+        return out
+
+
+def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform",
+             *, seed: int = 0, repeats: int = 1, outputs: Sequence[str] = ("codes",),
+             scene_params: Mapping[str, Any] | None = None,
+             progress: Callable[[int, int], None] | None = None) -> Frames:
+    """Sensor frames for a batch of scene temperatures.
+
+    Parameters
+    ----------
+    cfg : dict
+        A validated configuration (:func:`model.load_preset` / :func:`model.load_config`).
+    temps : sequence of float
+        Scene base temperature of each frame, K (> 0).
+    scene : str or Scene
+        Scene kind (``uniform``, ``gradient``, ``disk``, ``map``) or a :class:`Scene`.
+    seed : int
+        Seed of every random draw (spread, defects, noise); same config and seed give the
+        same bits.
+    repeats : int
+        Frames per temperature (temperature-major order), e.g. for calibration stacks.
+    outputs : sequence of str
+        Keys of :data:`OUTPUTS`; only the stages they need run.
+    scene_params : dict, optional
+        Parameters of the scene kind when ``scene`` is a name.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each chunk of frames.
+    """
+    if isinstance(scene, str):
+        scene = Scene(scene, dict(scene_params or {}))
+    t = check_temps(temps)
+    repeats = check_int("repeats", repeats, 1, 1_000_000)
+    t = np.repeat(t, repeats)
+    unknown = [o for o in outputs if o not in OUTPUTS]
+    if unknown:
+        raise ConfigError(f"outputs: unknown name(s) {unknown}; known {sorted(OUTPUTS)}")
+    pipe = Pipeline(cfg, scene, seed)
+    products = list(dict.fromkeys([OUTPUTS[o] for o in outputs] + ["defects", "status", "dT"]
+                                  if "codes" in outputs else [OUTPUTS[o] for o in outputs]))
+    values = pipe.run(t, products, progress)
+    diagnostics = _diagnostics(pipe, values) if "status" in values else {}
+    defects = values.get("defects")
+    codes = values.get("codes")
+    return Frames(
+        codes=codes,
+        temps=t,
+        defect_kind=defects.kind if defects is not None else None,
+        defect_pattern=defects.pattern if defects is not None else None,
+        adc_bits=cfg["adc"]["bits"],
+        config=dict(cfg),
+        seed=pipe.seed,
+        scene=scene,
+        outputs={o: values[OUTPUTS[o]] for o in outputs},
+        diagnostics=diagnostics,
+        counts=dict(pipe.counts),
+    )
+
+
+def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
+    status = values["status"]
+    act = (slice(None), *pipe.layout.active_slice)
+    dT = values["dT"][act]
+    diag: dict[str, Any] = {
+        "temperature_rise_K": {"min": float(np.nanmin(dT)), "mean": float(np.nanmean(dT)),
+                               "max": float(np.nanmax(dT))},
+        "solver_failures": {name: int((status == code).sum()) for name, code in (
+            ("no_convergence", _kb.STATUS_NO_CONVERGENCE), ("runaway", _kb.STATUS_RUNAWAY),
+            ("invalid", _kb.STATUS_INVALID))},
+    }
+    if "codes" in values:
+        top = (1 << pipe.cfg["adc"]["bits"]) - 1
+        codes = values["codes"]
+        diag["clipped_low"] = int((codes == 0).sum())
+        diag["clipped_high"] = int((codes == top).sum())
+    failures = sum(diag["solver_failures"].values())
+    if failures:
+        warnings.warn(f"{failures} pixel solve(s) failed (thermal runaway or no convergence): "
+                      f"{diag['solver_failures']}; those pixels read the high rail",
+                      RuntimeWarning, stacklevel=3)
+    return diag

@@ -1,0 +1,57 @@
+"""Readout: blind-pixel skimming and the integrator (paper section 3.5, Table 1).
+
+The ROIC subtracts, from every active pixel, a reference from the blind (skimming)
+bolometers, which see only the shield at the housing temperature and so follow the substrate
+temperature without the scene. The reference is taken per row (blind columns at the ends of
+the row), per column (blind rows at the top and bottom) or is a fixed voltage (``none``).
+The integrator turns the difference into a voltage around ``v_reset``; the readout is
+inverting, so a hotter scene (lower resistance for a negative TCR) gives a higher output.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from model.core.bolometer import STATUS_OK
+
+
+def _blind_mean(values: np.ndarray, ok: np.ndarray, axis: int, fallback: float) -> np.ndarray:
+    """Mean over the blind pixels along ``axis``, leaving out pixels whose solve failed."""
+    if ok.all():
+        return values.mean(axis=axis)
+    w = ok.astype(np.float64)
+    total = np.where(ok, values, 0.0).sum(axis=axis)
+    count = w.sum(axis=axis)
+    return np.where(count > 0, total / np.maximum(count, 1.0), fallback)
+
+
+def skim_none(v_bolo, status, layout, v_skim):
+    """A fixed reference voltage for every pixel, V: shape (N, 1, 1)."""
+    return np.full((v_bolo.shape[0], 1, 1), v_skim)
+
+
+def skim_row(v_bolo, status, layout, v_skim):
+    """Per-row reference: mean of the blind columns of each active row, V: (N, H, 1)."""
+    rows = layout.active_slice[0]
+    cols = layout.blind_col_indices
+    ref = _blind_mean(v_bolo[:, rows][:, :, cols], status[:, rows][:, :, cols] == STATUS_OK,
+                      axis=2, fallback=v_skim)
+    return ref[:, :, None]
+
+
+def skim_column(v_bolo, status, layout, v_skim):
+    """Per-column reference: mean of the blind rows of each active column, V: (N, 1, W)."""
+    cols = layout.active_slice[1]
+    rows = layout.blind_row_indices
+    ref = _blind_mean(v_bolo[:, rows][:, :, cols], status[:, rows][:, :, cols] == STATUS_OK,
+                      axis=1, fallback=v_skim)
+    return ref[:, None, :]
+
+
+#: Skimming modes, selected by name (paper Table 1: "rows" and "columns").
+SKIMMING_MODES = {"none": skim_none, "row": skim_row, "column": skim_column}
+
+
+def integrate(v_active: np.ndarray, v_ref: np.ndarray, gain: float, v_reset: float) -> np.ndarray:
+    """Integrator output, V: ``v_reset + gain * (v_ref - v_active)`` (not yet clipped)."""
+    return v_reset + gain * (v_ref - v_active)

@@ -1,0 +1,102 @@
+"""Input checks shared by every API function of the model.
+
+A bad value is reported before any work, as a :class:`ConfigError` whose message names
+the field, the value and the allowed range.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+
+class ConfigError(ValueError):
+    """A configuration or argument value is missing, of the wrong type or out of range."""
+
+
+def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
+    left = "(" if lo_open else "["
+    right = ")" if hi_open else "]"
+    lo_s = "-inf" if lo is None else f"{lo:g}"
+    hi_s = "inf" if hi is None else f"{hi:g}"
+    return f"{left}{lo_s}, {hi_s}{right}"
+
+
+def check_scalar(
+    field: str,
+    value: Any,
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    unit: str = "",
+) -> float:
+    """Return ``value`` as a float if it is finite and inside the interval, else raise."""
+    unit_s = f" {unit}" if unit else ""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{field} = {value!r} is not a number") from None
+    allowed = _interval(lo, hi, lo_open, hi_open)
+    if not math.isfinite(x):
+        raise ConfigError(f"{field} = {value!r}{unit_s} is not finite; allowed range {allowed}{unit_s}")
+    if (lo is not None and (x < lo or (lo_open and x == lo))) or (
+        hi is not None and (x > hi or (hi_open and x == hi))
+    ):
+        raise ConfigError(f"{field} = {x:g}{unit_s} is outside the allowed range {allowed}{unit_s}")
+    return x
+
+
+def check_int(field: str, value: Any, lo: int | None = None, hi: int | None = None) -> int:
+    """Return ``value`` as an int if it is an integer inside [lo, hi], else raise."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ConfigError(f"{field} = {value!r} is not an integer")
+    v = int(value)
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        raise ConfigError(
+            f"{field} = {v} is outside the allowed range {_interval(lo, hi, False, False)}"
+        )
+    return v
+
+
+def check_array(
+    field: str,
+    value: Any,
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    unit: str = "",
+) -> np.ndarray:
+    """Return ``value`` as a float64 array if every element is finite and in range."""
+    unit_s = f" {unit}" if unit else ""
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{field} = {value!r} is not numeric") from None
+    allowed = _interval(lo, hi, lo_open, hi_open)
+    bad = ~np.isfinite(arr)
+    if lo is not None:
+        bad |= (arr <= lo) if lo_open else (arr < lo)
+    if hi is not None:
+        bad |= (arr >= hi) if hi_open else (arr > hi)
+    if bad.any():
+        idx = tuple(int(i) for i in np.argwhere(bad)[0]) if arr.ndim else ()
+        first = float(arr[idx] if arr.ndim else arr[()])
+        where = f" at index {idx}" if arr.ndim else ""
+        raise ConfigError(
+            f"{field} = {first:g}{unit_s}{where} is outside the allowed range {allowed}{unit_s}"
+            f" ({int(bad.sum())} bad value(s))"
+        )
+    return arr
+
+
+def check_choice(field: str, value: Any, choices: dict[str, Any] | tuple[str, ...]) -> str:
+    """Return ``value`` if it names one of ``choices``, else raise listing them."""
+    if value not in choices:
+        raise ConfigError(f"{field} = {value!r} is not one of {sorted(choices)}")
+    return str(value)
