@@ -78,8 +78,8 @@ SCHEMA: dict[str, Field] = {
     "bolometer.max_iter": Field("int", 1, 10000),
     "bolometer.runaway_temperature": Field("float", unit="K", **_POS),
     # environment
-    "environment.T_substrate": Field("float", unit="K", **_POS),
-    "environment.T_cam": Field("float", unit="K", **_POS),
+    "environment.T_substrate": Field("float", 100.0, 500.0, unit="K"),
+    "environment.T_cam": Field("float", 100.0, 500.0, unit="K"),
     # readout (section 3.5)
     "readout.skimming": Field("choice", choices=("none", "row", "column")),
     "readout.gain": Field("float", 0.0, 1e6, lo_open=True, unit="V/V"),

@@ -26,7 +26,14 @@ from model import noise as _noise
 from model import readout as _readout
 from model.config import config_digest
 from model.core import bolometer as _kb
-from model.defects import DefectKind, DefectMap, DefectSpec, apply_voltage_defects, inject_defects, noisy_sigma
+from model.defects import (
+    DefectKind,
+    DefectMap,
+    DefectSpec,
+    apply_voltage_defects,
+    inject_defects,
+    noisy_sigma,
+)
 from model.fpa import ArrayLayout, draw_pixel_parameters
 from model.optics import cone_factor, cos4_map, focal_length_from_fov
 from model.radiometry import band_radiance

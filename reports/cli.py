@@ -13,7 +13,7 @@ import importlib
 import sys
 from collections.abc import Callable, Sequence
 
-COMMAND_MODULES: tuple[str, ...] = ("model.cli",)
+COMMAND_MODULES: tuple[str, ...] = ("model.cli", "nuc_fixed.cli")
 
 Command = tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]
 

@@ -18,7 +18,7 @@ class ProgressBar:
 
     def __call__(self, done: int, total: int) -> None:
         frac = done / total if total else 1.0
-        filled = int(round(frac * self.width))
+        filled = round(frac * self.width)
         elapsed = time.perf_counter() - self.start
         bar = "#" * filled + "." * (self.width - filled)
         self.stream.write(f"\r{self.label} [{bar}] {done}/{total} {elapsed:6.1f} s")

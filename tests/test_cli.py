@@ -1,0 +1,60 @@
+"""The irnuc command line: frames written atomically, errors as one line with exit status 2."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from reports.cli import main
+
+SMALL = ["--set", "fpa.active_rows=10", "--set", "fpa.active_cols=12"]
+
+
+def test_frames_npz_contents(tmp_path, capsys):
+    out = tmp_path / "sub" / "f.npz"
+    assert main(["frames", *SMALL, "--temps", "300,350,400", "--seed", "4", "--params",
+                 "--out", str(out)]) == 0
+    with np.load(out) as z:
+        assert z["codes"].shape == (3, 10, 12) and z["codes"].dtype == np.uint16
+        np.testing.assert_array_equal(z["temps"], [300.0, 350.0, 400.0])
+        assert z["defect_kind"].shape == (10, 12) and int(z["adc_bits"]) == 14
+        meta = json.loads(str(z["config_json"]))
+        assert meta["seed"] == 4 and meta["config"]["fpa"]["active_rows"] == 10
+        assert z["param_R_ref"].shape == (10 + 6, 12 + 6)
+    assert [p.name for p in out.parent.iterdir()] == ["f.npz"]  # no temporary left behind
+    assert "wrote" in capsys.readouterr().out
+
+
+def test_same_seed_same_file_contents(tmp_path):
+    for name in ("a", "b"):
+        assert main(["frames", *SMALL, "--temps", "310", "--seed", "9", "--out",
+                     str(tmp_path / f"{name}.npz")]) == 0
+    with np.load(tmp_path / "a.npz") as a, np.load(tmp_path / "b.npz") as b:
+        np.testing.assert_array_equal(a["codes"], b["codes"])
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (["--temps", "0,300"], "temps = 0 K"),
+        (["--temps", "warm"], "--temps"),
+        (["--set", "bolometer.t_int=0"], "bolometer.t_int = 0 s"),
+        (["--set", "fpa.tolerance={R_ref=-0.5}"], "fpa.tolerance.R_ref = -0.5"),
+        (["--preset", "nope"], "preset = 'nope'"),
+        (["--config", "/nonexistent.toml"], "does not exist"),
+    ],
+)
+def test_errors_are_one_line_with_status_2(tmp_path, capsys, args, fragment):
+    out = tmp_path / "x.npz"
+    assert main(["frames", *SMALL, *args, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert fragment in err and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_progress_bar_on_long_batches(tmp_path, capsys):
+    assert main(["frames", *SMALL, "--set", "run.chunk_frames=2", "--temps",
+                 "300,301,302,303,304", "--out", str(tmp_path / "p.npz")]) == 0
+    assert "frames [" in capsys.readouterr().err
