@@ -61,7 +61,7 @@ SCHEMA: dict[str, Field] = {
     "fpa.pitch": Field("float", 0.0, 1e-3, lo_open=True, unit="m"),
     "fpa.fill_factor": Field("float", 0.0, 1.0, lo_open=True),
     "fpa.absorptance": Field("float", 0.0, 1.0),
-    "fpa.spread": Field("choice", choices=("lognormal", "gamma")),
+    "fpa.spread": Field("choice", choices=("lognormal", "gamma", "normal_truncated")),
     "fpa.tolerance": Field("tolerances"),
     "fpa.defects": Field("table"),
     # bolometer (section 3.4)

@@ -82,3 +82,18 @@ def add_noise(v: np.ndarray, sigma: np.ndarray | float, seed: int, first_frame: 
         if flicker is not None and flicker_sigma > 0.0:
             out[k] += flicker_sigma * flicker.step(rng)
     return out
+
+
+def add_noise_at(v: np.ndarray, sigma: np.ndarray, mask: np.ndarray, seed: int,
+                 first_frame: int) -> np.ndarray:
+    """v plus white noise on the pixels of ``mask`` only (one draw per such pixel and frame).
+
+    Used when temporal noise is off but some pixels have a NOISY defect: the other pixels
+    need no draw at all. ``sigma`` is (H, W), V; frames are seeded as in :func:`add_noise`.
+    """
+    out = v.copy()
+    s = sigma[mask]
+    for k in range(v.shape[0]):
+        rng = frame_rng(seed, first_frame + k)
+        out[k][mask] += s * rng.standard_normal(s.size)
+    return out

@@ -238,28 +238,28 @@ def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
 def _stage_noise(ctx: RunContext, inp: dict) -> dict:
     cfg = ctx.cfg
     n, r, b = cfg["noise"], cfg["readout"], cfg["bolometer"]
-    sigma2: np.ndarray | float = 0.0
-    flicker = 0.0
-    if n["enabled"]:
-        sigma2 = n["readout_sigma"] ** 2
-        if n["johnson"]:
-            act = (slice(None), *ctx.layout.active_slice)
-            T = cfg["environment"]["T_substrate"] + inp["dT"][act]
-            sj = _noise.johnson_sigma(np.abs(inp["v_bolo"][act]), np.maximum(T, 0.0),
-                                      max(b["bias_current"], 1e-30), b["t_int"], r["gain"])
-            sigma2 = sigma2 + np.nan_to_num(sj) ** 2
-        flicker = n["flicker_sigma"]
     extra = noisy_sigma(inp["defects"], r["v_low"], r["v_high"])
+    if not n["enabled"]:
+        if extra is None:
+            return {"v_out": inp["v_int"]}
+        ctx.counts["noise_frames"] += inp["v_int"].shape[0]
+        return {"v_out": _noise.add_noise_at(inp["v_int"], extra, extra > 0, ctx.seed,
+                                             ctx.first_frame)}
+    sigma2: np.ndarray | float = n["readout_sigma"] ** 2
+    if n["johnson"]:
+        act = (slice(None), *ctx.layout.active_slice)
+        T = cfg["environment"]["T_substrate"] + inp["dT"][act]
+        sj = _noise.johnson_sigma(np.abs(inp["v_bolo"][act]), np.maximum(T, 0.0),
+                                  max(b["bias_current"], 1e-30), b["t_int"], r["gain"])
+        sigma2 = sigma2 + np.nan_to_num(sj) ** 2
     if extra is not None:
         sigma2 = sigma2 + extra**2
-    if np.all(np.asarray(sigma2) == 0.0) and flicker == 0.0:
-        return {"v_out": inp["v_int"]}  # nothing configured: no draws
+    flicker = n["flicker_sigma"]
     if flicker > 0.0 and ctx.flicker is None:
         ctx.flicker = _noise.FlickerState(ctx.layout.active_shape)
-    v = _noise.add_noise(inp["v_int"], np.sqrt(sigma2), ctx.seed, ctx.first_frame, flicker,
-                         ctx.flicker)
-    ctx.counts["noise_frames"] += v.shape[0]
-    return {"v_out": v}
+    ctx.counts["noise_frames"] += inp["v_int"].shape[0]
+    return {"v_out": _noise.add_noise(inp["v_int"], np.sqrt(sigma2), ctx.seed, ctx.first_frame,
+                                      flicker, ctx.flicker)}
 
 
 def _stage_adc(ctx: RunContext, inp: dict) -> dict:
@@ -371,36 +371,40 @@ def _jsonable(params: Mapping[str, Any]) -> dict[str, Any]:
 
 
 class Pipeline:
-    """A configured sensor, ready to produce frames for batches of scene temperatures."""
+    """A configured sensor: per-pixel parameters, defects and optics fixed by (config, seed).
 
-    def __init__(self, cfg: Mapping[str, Any], scene: Scene | None = None, seed: int = 0) -> None:
+    The scene-independent products are computed on first use and kept, so a sensor that
+    produces frames call after call pays for them once. They depend only on the
+    configuration and the seed, both fixed for the lifetime of the object.
+    """
+
+    def __init__(self, cfg: Mapping[str, Any], seed: int = 0) -> None:
         self.cfg = cfg
         self.seed = check_int("seed", seed, 0, 2**63 - 1)
-        self.scene = scene or Scene()
         f = cfg["fpa"]
         self.layout = ArrayLayout(f["active_rows"], f["active_cols"], tuple(f["boundary"]),
                                   tuple(f["blind"]))
         self.stages = build_stages(cfg)
         self.counts: Counter = Counter()
+        self._static: dict[str, Any] = {}
 
-    def run(self, temps: np.ndarray, products: Sequence[str],
+    def run(self, temps: np.ndarray, products: Sequence[str], scene: Scene | None = None,
             progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
         """Compute ``products`` for the frames of ``temps``; per-chunk products stacked."""
         order = plan(self.stages, products)
-        static = [s for s in order if not s.per_chunk]
         chunked = [s for s in order if s.per_chunk]
-        ctx = RunContext(self.cfg, self.layout, self.scene, self.seed, counts=self.counts)
-        values: dict[str, Any] = {}
-        for stage in static:
-            self.counts[stage.name] += 1
-            values.update(stage.fn(ctx, {k: values[k] for k in stage.inputs}))
+        ctx = RunContext(self.cfg, self.layout, scene or Scene(), self.seed, counts=self.counts)
+        for stage in order:
+            if not stage.per_chunk and not all(o in self._static for o in stage.outputs):
+                self.counts[stage.name] += 1
+                self._static.update(stage.fn(ctx, {k: self._static[k] for k in stage.inputs}))
         per_chunk: dict[str, list] = {p: [] for p in products}
         n = len(temps)
         step = self.cfg["run"]["chunk_frames"] if chunked else max(n, 1)
         for start in range(0, n, step):
             ctx.temps = temps[start:start + step]
             ctx.first_frame = start
-            chunk = dict(values)
+            chunk = dict(self._static)
             for stage in chunked:
                 self.counts[stage.name] += 1
                 chunk.update(stage.fn(ctx, {k: chunk[k] for k in stage.inputs}))
@@ -415,15 +419,48 @@ class Pipeline:
                 parts = per_chunk[p]
                 out[p] = np.concatenate(parts) if len(parts) > 1 else parts[0]
             else:
-                out[p] = values[p]
+                out[p] = self._static[p]
         return out
+
+    def simulate(self, temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform", *,
+                 repeats: int = 1, outputs: Sequence[str] = ("codes",),
+                 scene_params: Mapping[str, Any] | None = None,
+                 progress: Callable[[int, int], None] | None = None) -> Frames:
+        """Frames of this sensor; see :func:`simulate` for the parameters."""
+        if isinstance(scene, str):
+            scene = Scene(scene, dict(scene_params or {}))
+        t = check_temps(temps)
+        repeats = check_int("repeats", repeats, 1, 1_000_000)
+        t = np.repeat(t, repeats)
+        unknown = [o for o in outputs if o not in OUTPUTS]
+        if unknown:
+            raise ConfigError(f"outputs: unknown name(s) {unknown}; known {sorted(OUTPUTS)}")
+        wanted = [OUTPUTS[o] for o in outputs]
+        if "codes" in outputs:
+            wanted += ["defects", "status", "dT"]  # ground truth and diagnostics
+        before = Counter(self.counts)
+        values = self.run(t, list(dict.fromkeys(wanted)), scene, progress)
+        defects = values.get("defects")
+        return Frames(
+            codes=values.get("codes"),
+            temps=t,
+            defect_kind=defects.kind if defects is not None else None,
+            defect_pattern=defects.pattern if defects is not None else None,
+            adc_bits=self.cfg["adc"]["bits"],
+            config=dict(self.cfg),
+            seed=self.seed,
+            scene=scene,
+            outputs={o: values[OUTPUTS[o]] for o in outputs},
+            diagnostics=_diagnostics(self, values) if "status" in values else {},
+            counts=dict(self.counts - before),
+        )
 
 
 def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform",
              *, seed: int = 0, repeats: int = 1, outputs: Sequence[str] = ("codes",),
              scene_params: Mapping[str, Any] | None = None,
              progress: Callable[[int, int], None] | None = None) -> Frames:
-    """Sensor frames for a batch of scene temperatures.
+    """Sensor frames for a batch of scene temperatures (a one-shot :class:`Pipeline`).
 
     Parameters
     ----------
@@ -445,34 +482,8 @@ def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene:
     progress : callable, optional
         Called as ``progress(done, total)`` after each chunk of frames.
     """
-    if isinstance(scene, str):
-        scene = Scene(scene, dict(scene_params or {}))
-    t = check_temps(temps)
-    repeats = check_int("repeats", repeats, 1, 1_000_000)
-    t = np.repeat(t, repeats)
-    unknown = [o for o in outputs if o not in OUTPUTS]
-    if unknown:
-        raise ConfigError(f"outputs: unknown name(s) {unknown}; known {sorted(OUTPUTS)}")
-    pipe = Pipeline(cfg, scene, seed)
-    products = list(dict.fromkeys([OUTPUTS[o] for o in outputs] + ["defects", "status", "dT"]
-                                  if "codes" in outputs else [OUTPUTS[o] for o in outputs]))
-    values = pipe.run(t, products, progress)
-    diagnostics = _diagnostics(pipe, values) if "status" in values else {}
-    defects = values.get("defects")
-    codes = values.get("codes")
-    return Frames(
-        codes=codes,
-        temps=t,
-        defect_kind=defects.kind if defects is not None else None,
-        defect_pattern=defects.pattern if defects is not None else None,
-        adc_bits=cfg["adc"]["bits"],
-        config=dict(cfg),
-        seed=pipe.seed,
-        scene=scene,
-        outputs={o: values[OUTPUTS[o]] for o in outputs},
-        diagnostics=diagnostics,
-        counts=dict(pipe.counts),
-    )
+    return Pipeline(cfg, seed).simulate(temps, scene, repeats=repeats, outputs=outputs,
+                                        scene_params=scene_params, progress=progress)
 
 
 def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:

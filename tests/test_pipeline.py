@@ -152,3 +152,14 @@ def test_solver_status_ok_on_presets():
         cfg = model.load_preset(name, {"fpa.active_rows": 8, "fpa.active_cols": 8})
         fr = model.simulate(cfg, [300.0, 400.0], outputs=["codes", "status"])
         assert (fr.outputs["status"] == STATUS_OK).all()
+
+
+def test_a_sensor_keeps_its_static_products_and_matches_one_shot_runs(small_cfg):
+    cfg = small_cfg(**{"fpa.defects": {"rates": {"hot": 0.05}}})
+    sensor = model.Pipeline(cfg, seed=3)
+    first = sensor.simulate([300.0])
+    second = sensor.simulate([350.0])
+    assert first.counts["params"] == 1 and "params" not in second.counts
+    assert second.counts["bolometer"] == 1
+    np.testing.assert_array_equal(second.codes, model.simulate(cfg, [350.0], seed=3).codes)
+    np.testing.assert_array_equal(first.defect_kind, second.defect_kind)

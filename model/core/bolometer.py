@@ -34,22 +34,25 @@ STATUS_INVALID = 3  # the temperature would be <= 0 K
 FIXED_POINT_FACTOR = 100
 
 
+#: Taylor coefficients of f(u) = sum_{k>=1} (-1)^(k+1) u^k / (k+1)!, for u < 0.25; 14 terms
+#: leave a remainder below 0.25^14 / 15! ~ 3e-21 of f ~ u / 2.
+_SH_COEF = tuple((-1.0) ** (k + 1) / math.factorial(k + 1) for k in range(1, 15))
+
+
 @njit(cache=True)
 def self_heating_factor(u):
     """f(u) = 1 + (e^(-u) - 1) / u for u = t_int / tau >= 0, without cancellation.
 
-    Small u: the alternating series u/2 - u^2/6 + u^3/24 - ... (cancellation-free).
-    Otherwise expm1, which keeps e^(-u) - 1 exact to rounding. f(0) = 0, f(inf) = 1.
+    Small u: the alternating Taylor series u/2 - u^2/6 + u^3/24 - ... in Horner form
+    (no cancellation). Otherwise expm1, which keeps e^(-u) - 1 exact to rounding.
+    f(0) = 0, f(inf) = 1.
     """
     if u < 0.25:
-        term = 0.5 * u
-        s = term
-        k = 2
-        while abs(term) > 1e-18 * s and k < 40:
-            term *= -u / (k + 1)
-            s += term
-            k += 1
-        return s
+        c = _SH_COEF
+        s = c[13]
+        for k in range(12, -1, -1):
+            s = s * u + c[k]
+        return s * u
     if u == math.inf:
         return 1.0
     return 1.0 + math.expm1(-u) / u
@@ -68,6 +71,64 @@ def resistance(T, R_ref, B, T_ref):
 
 
 @njit(cache=True)
+def exp_small(z):
+    """e^z, by a 5-term Taylor series when |z| < 1e-3 (error < 1e-17), else math.exp."""
+    if abs(z) < 1e-3:
+        return 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z * (1.0 / 24.0))))
+    return math.exp(z)
+
+
+@njit(cache=True)
+def newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0):
+    """Root of h(x) = x - a - b R(T_s + x) for B > 0. Returns (x, status, iterations, R(x)).
+
+    h is increasing and concave, so Newton steps from below never overshoot the root; the
+    bracket [lo, hi] (hi computed only when a step would leave it) guards the rest.
+    """
+    atol = rtol * 1e-3
+    inv_Tref = 1.0 / T_ref
+    lo = a
+    hi = math.inf
+    if x0 > lo:
+        x = x0
+    else:
+        hi = a + b * resistance(T_s + a, R_ref, B, T_ref)
+        x = 0.5 * (lo + hi)
+    for it in range(1, max_iter + 1):
+        T = T_s + x
+        inv_T = 1.0 / T
+        R = R_ref * math.exp(B * (inv_T - inv_Tref))
+        h = x - a - b * R
+        if h > 0.0:
+            hi = x
+        elif h < 0.0:
+            lo = x
+        else:
+            return x, STATUS_OK, it, R
+        bRB = b * R * B * inv_T * inv_T  # -d(b R)/dT > 0
+        dh = 1.0 + bRB
+        step = h / dh
+        xn = x - step
+        if not (lo < xn < hi):
+            if hi == math.inf:
+                hi = a + b * resistance(T_s + a, R_ref, B, T_ref)
+            xn = 0.5 * (lo + hi)
+            step = x - xn
+        tol = rtol * abs(xn) + atol
+        done = abs(step) <= tol
+        if not done and abs(step) < 1e-4 * (abs(x) + 1.0):
+            # Quadratic regime: the error after this step is about K step^2 with
+            # K = |h''| / (2 h'), h'' = -b R (B^2/T^4 + 2B/T^3).
+            K = abs(bRB * (B * inv_T + 2.0) * inv_T) / (2.0 * dh)
+            done = K * step * step <= 0.01 * tol
+        if done:
+            Tn = T_s + xn
+            return xn, STATUS_OK, it, R * exp_small(B * step / (T * Tn))
+        x = xn
+    return x, STATUS_NO_CONVERGENCE, max_iter, resistance(T_s + x, R_ref, B, T_ref)
+
+
+@njit(cache=True)
 def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
     """Root dT of dT = a + b R(T_s + dT). Returns (dT, status, iterations).
 
@@ -83,26 +144,8 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
     if B == 0.0:
         return a + b * R_ref, STATUS_OK, 0
     if B > 0.0:
-        lo = a
-        hi = a + b * resistance(Ta, R_ref, B, T_ref)
-        x = x0 if (lo < x0 < hi) else 0.5 * (lo + hi)
-        for it in range(1, max_iter + 1):
-            T = T_s + x
-            R = resistance(T, R_ref, B, T_ref)
-            h = x - a - b * R
-            if h > 0.0:
-                hi = x
-            elif h < 0.0:
-                lo = x
-            else:
-                return x, STATUS_OK, it
-            xn = x - h / (1.0 + b * R * B / (T * T))
-            if not (lo < xn < hi):
-                xn = 0.5 * (lo + hi)
-            if abs(xn - x) <= rtol * abs(xn) + atol:
-                return xn, STATUS_OK, it
-            x = xn
-        return x, STATUS_NO_CONVERGENCE, max_iter
+        x, status, it, _ = newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0)
+        return x, status, it
     # Positive TCR: monotone fixed point from below converges to the lowest root.
     x = a
     for it in range(1, FIXED_POINT_FACTOR * max_iter + 1):
@@ -132,14 +175,18 @@ def solve_row(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, 
         fq = f if variant == 1 else 1.0
         a = Q[j] * fq / gj
         b = I * I * f / gj
-        x, st, it = solve_delta_t(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0, T_max)
+        if B > 0.0 and T_s + a > 0.0 and b > 0.0:
+            x, st, it, R = newton_negative_tcr(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0)
+            v_out[j] = I * R
+        else:
+            x, st, it = solve_delta_t(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0, T_max)
+            if st == STATUS_INVALID:
+                v_out[j] = math.nan
+            else:
+                v_out[j] = I * resistance(T_s + x, R_ref[j], B, T_ref)
         dT_out[j] = x
         status_out[j] = st
         iters_out[j] = it
-        if st == STATUS_OK or st == STATUS_NO_CONVERGENCE or st == STATUS_RUNAWAY:
-            v_out[j] = I * resistance(T_s + x, R_ref[j], B, T_ref)
-        else:
-            v_out[j] = math.nan
         x0 = x if st == STATUS_OK else math.nan
 
 

@@ -131,12 +131,35 @@ def band_integral(x1, x2, rtol, coef):
     return j1 - j2, n1 + n2
 
 
+@njit(cache=True)
+def _band_integral_one(x1, x2, rtol, coef, method, n_fixed):
+    if method == 0:
+        v, n = band_integral(x1, x2, rtol, coef)
+        return v, n, 0
+    return band_series_paper(x1, x2, rtol, n_fixed)
+
+
+@njit(cache=True)
+def band_integral_serial(x1, x2, rtol, coef, method, n_fixed, out, terms, status):
+    """Band integrals over flat arrays (method 0 hybrid, 1 paper series), one thread."""
+    for i in range(x1.shape[0]):
+        out[i], terms[i], status[i] = _band_integral_one(x1[i], x2[i], rtol, coef, method,
+                                                         n_fixed)
+
+
 @njit(cache=True, parallel=True)
-def band_integral_batch(x1, x2, rtol, coef, method, n_fixed, out, terms, status):
-    """Batch of band integrals over flat arrays x1, x2 (method 0 hybrid, 1 paper series)."""
+def band_integral_parallel(x1, x2, rtol, coef, method, n_fixed, out, terms, status):
+    """As :func:`band_integral_serial`, over threads (for per-pixel scenes)."""
     for i in prange(x1.shape[0]):
-        if method == 0:
-            out[i], terms[i] = band_integral(x1[i], x2[i], rtol, coef)
-            status[i] = 0
-        else:
-            out[i], terms[i], status[i] = band_series_paper(x1[i], x2[i], rtol, n_fixed)
+        out[i], terms[i], status[i] = _band_integral_one(x1[i], x2[i], rtol, coef, method,
+                                                         n_fixed)
+
+
+#: Below this many temperatures, waking the thread pool costs more than it saves.
+PARALLEL_MIN = 256
+
+
+def band_integral_batch(x1, x2, rtol, coef, method, n_fixed, out, terms, status):
+    """Batch dispatcher: serial for a few temperatures, parallel for many."""
+    kernel = band_integral_parallel if x1.shape[0] >= PARALLEL_MIN else band_integral_serial
+    kernel(x1, x2, rtol, coef, method, n_fixed, out, terms, status)
