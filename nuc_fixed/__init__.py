@@ -1,5 +1,41 @@
-"""Bit-accurate fixed-point golden model of the irnuc NUC + DPC pipeline."""
+"""Bit-accurate fixed-point golden model of the irnuc NUC + DPC pipeline.
 
-from nuc_fixed.config import PipelineConfig, load_pipeline, pipeline_names
+One function per RTL module (``nuc_core``, ``dpc_core``, ``nuc_dpc_top``); the bit-exact
+contract is ``docs/datapath.md`` and the user guide ``docs/golden_model.md``.
+"""
 
-__all__ = ["PipelineConfig", "load_pipeline", "pipeline_names"]
+from nuc_fixed.config import ConfigError, PipelineConfig, load_pipeline, pipeline_names
+from nuc_fixed.dpc import dpc_core
+from nuc_fixed.fixed import FixedFormat, apply_overflow, gain_format, offset_format, round_shift
+from nuc_fixed.memimage import (
+    MemImageError,
+    pack_words,
+    read_memimage,
+    unpack_words,
+    write_memimage,
+)
+from nuc_fixed.nuc import NucIntermediates, nuc_core
+from nuc_fixed.top import nuc_dpc_top
+from nuc_fixed.validate import InputError
+
+__all__ = [
+    "ConfigError",
+    "FixedFormat",
+    "InputError",
+    "MemImageError",
+    "NucIntermediates",
+    "PipelineConfig",
+    "apply_overflow",
+    "dpc_core",
+    "gain_format",
+    "load_pipeline",
+    "nuc_core",
+    "nuc_dpc_top",
+    "offset_format",
+    "pack_words",
+    "pipeline_names",
+    "read_memimage",
+    "round_shift",
+    "unpack_words",
+    "write_memimage",
+]

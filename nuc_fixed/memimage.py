@@ -1,0 +1,287 @@
+"""Per-pixel coefficient words and the memory image files (docs/datapath.md, version 1).
+
+Word layout, WW = GW + OW + 1 bits: gain in [GW-1:0], offset (two's complement) in
+[GW+OW-1:GW], bad flag in bit GW+OW. Files: ``$readmemh`` hex, raw little-endian binary and
+a JSON manifest carrying every format field and the SHA-256 of the binary.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from nuc_fixed.config import ConfigError, PipelineConfig
+from nuc_fixed.nuc import check_coefficients
+from nuc_fixed.validate import InputError, as_config, bool_array, int_array
+
+MEMIMAGE_VERSION = 1
+HEX_NAME = "coeffs.hex"
+BIN_NAME = "coeffs.bin"
+MANIFEST_NAME = "manifest.json"
+
+# Format fields recorded in (and checked from) the manifest.
+_FORMAT_FIELDS = (
+    "adc_bits", "gain_int_bits", "gain_frac_bits", "offset_int_bits", "offset_frac_bits",
+    "out_bits", "rounding", "overflow", "max_width", "max_height",
+)
+
+
+class MemImageError(ValueError):
+    """A memory image file is malformed, inconsistent or fails its checksum."""
+
+
+def _check_word_bits(cfg: PipelineConfig) -> None:
+    if cfg.word_bits > 64:
+        raise ConfigError(
+            f"pipeline {cfg.name!r}: word_bits = {cfg.word_bits} is outside the range 1..64 "
+            "that the golden model's uint64 coefficient words hold"
+        )
+
+
+def pack_words(gain: np.ndarray, offset: np.ndarray, bad: np.ndarray,
+               cfg: PipelineConfig | str) -> np.ndarray:
+    """Pack gain codes (unsigned), offset codes (signed) and bad flags into uint64 words.
+
+    Parameters
+    ----------
+    gain, offset : integer array_like, same shape
+        Codes of the gain (U Gi.Gf) and offset (S Oi.Of) formats.
+    bad : bool array_like, same shape
+        Defective-pixel flags.
+    cfg : PipelineConfig or str
+
+    Returns
+    -------
+    uint64 ndarray of the same shape.
+    """
+    cfg = as_config(cfg)
+    _check_word_bits(cfg)
+    g, o = check_coefficients(gain, offset, cfg)
+    b = bool_array("bad", bad)
+    if b.shape != g.shape:
+        raise InputError(f"bad has shape {b.shape} but gain has shape {g.shape}; they must match")
+    gw, ow = cfg.gain_bits, cfg.offset_bits
+    o_field = o.astype(np.int64) & np.int64((1 << ow) - 1)  # two's complement in OW bits
+    return (g.astype(np.uint64)
+            | (o_field.astype(np.uint64) << np.uint64(gw))
+            | (b.astype(np.uint64) << np.uint64(gw + ow)))
+
+
+def check_words(words: np.ndarray, cfg: PipelineConfig) -> np.ndarray:
+    """Validate coefficient words (integers in [0, 2^WW - 1]); return them as uint64."""
+    _check_word_bits(cfg)
+    w = np.asarray(words)
+    if w.dtype == np.uint64:
+        hi = (1 << cfg.word_bits) - 1
+        if w.size and int(w.max()) > hi:
+            idx = tuple(int(i) for i in np.argwhere(w > np.uint64(hi))[0])
+            raise InputError(
+                f"words[{', '.join(map(str, idx))}] = {int(w[idx])} is outside the allowed "
+                f"range [0, {hi}] (word_bits = {cfg.word_bits})"
+            )
+        return w
+    return int_array("words", w, 0, (1 << cfg.word_bits) - 1).astype(np.uint64)
+
+
+def unpack_words(words: np.ndarray, cfg: PipelineConfig | str
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split coefficient words into (gain int64, offset int64 sign-extended, bad bool)."""
+    cfg = as_config(cfg)
+    w = check_words(words, cfg)
+    gw, ow = cfg.gain_bits, cfg.offset_bits
+    gain = (w & np.uint64((1 << gw) - 1)).astype(np.int64)
+    o_field = ((w >> np.uint64(gw)) & np.uint64((1 << ow) - 1)).astype(np.int64)
+    sign = np.int64(1 << (ow - 1))
+    offset = (o_field ^ sign) - sign
+    bad = ((w >> np.uint64(gw + ow)) & np.uint64(1)).astype(bool)
+    return gain, offset, bad
+
+
+# ---- files ---------------------------------------------------------------------------
+
+def _atomic_write(path: Path, data: bytes) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def word_bytes(cfg: PipelineConfig) -> int:
+    """Bytes per word in the raw binary, ceil(WW / 8)."""
+    return (cfg.word_bits + 7) // 8
+
+
+def hex_digits(cfg: PipelineConfig) -> int:
+    """Hex digits per line of the ``$readmemh`` file, ceil(WW / 4)."""
+    return (cfg.word_bits + 3) // 4
+
+
+def to_hex(words: np.ndarray, cfg: PipelineConfig) -> str:
+    """``$readmemh`` text: one zero-padded lower-case word per line, raster order."""
+    nd = hex_digits(cfg)
+    return "".join(f"{int(v):0{nd}x}\n" for v in np.asarray(words).reshape(-1))
+
+
+def to_bin(words: np.ndarray, cfg: PipelineConfig) -> bytes:
+    """Raw binary: each word little-endian in ceil(WW/8) bytes, raster order, no header."""
+    nb = word_bytes(cfg)
+    le = np.ascontiguousarray(np.asarray(words, dtype=np.uint64).reshape(-1)).astype("<u8")
+    return le.view(np.uint8).reshape(-1, 8)[:, :nb].tobytes()
+
+
+def write_memimage(directory: str | os.PathLike, words: np.ndarray,
+                   cfg: PipelineConfig | str) -> dict[str, object]:
+    """Write ``coeffs.hex``, ``coeffs.bin`` and ``manifest.json`` into ``directory``.
+
+    Returns the manifest.
+    """
+    cfg = as_config(cfg)
+    w = check_words(words, cfg)
+    if w.ndim != 2:
+        raise InputError(f"words has shape {w.shape}; (H, W) is required")
+    h, wd = w.shape
+    if not (1 <= h <= cfg.max_height and 1 <= wd <= cfg.max_width):
+        raise InputError(
+            f"words frame size is {h} x {wd}; pipeline {cfg.name!r} allows up to "
+            f"{cfg.max_height} x {cfg.max_width}"
+        )
+    d = Path(directory)
+    d.mkdir(parents=True, exist_ok=True)
+    raw = to_bin(w, cfg)
+    manifest: dict[str, object] = {
+        "version": MEMIMAGE_VERSION,
+        "config": cfg.name,
+        "description": cfg.description,
+        **{k: getattr(cfg, k) for k in _FORMAT_FIELDS},
+        "word_bits": cfg.word_bits,
+        "word_layout": {
+            "gain": [cfg.gain_bits - 1, 0],
+            "offset": [cfg.gain_bits + cfg.offset_bits - 1, cfg.gain_bits],
+            "bad": [cfg.gain_bits + cfg.offset_bits, cfg.gain_bits + cfg.offset_bits],
+        },
+        "width": wd,
+        "height": h,
+        "hex_file": HEX_NAME,
+        "bin_file": BIN_NAME,
+        "bin_bytes_per_word": word_bytes(cfg),
+        "sha256": hashlib.sha256(raw).hexdigest(),
+    }
+    _atomic_write(d / BIN_NAME, raw)
+    _atomic_write(d / HEX_NAME, to_hex(w, cfg).encode("ascii"))
+    _atomic_write(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
+    return manifest
+
+
+def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
+    path = Path(directory) / MANIFEST_NAME
+    try:
+        manifest = json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise MemImageError(f"{path}: not valid JSON ({exc})") from None
+    if manifest.get("version") != MEMIMAGE_VERSION:
+        raise MemImageError(
+            f"{path}: version = {manifest.get('version')!r}; this reader supports "
+            f"{MEMIMAGE_VERSION}"
+        )
+    return manifest
+
+
+def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
+    """The pipeline configuration recorded in a manifest."""
+    missing = [k for k in ("config", *_FORMAT_FIELDS) if k not in manifest]
+    if missing:
+        raise MemImageError(f"manifest is missing field(s) {missing}")
+    return PipelineConfig(name=str(manifest["config"]),
+                          description=str(manifest.get("description", "")),
+                          **{k: manifest[k] for k in _FORMAT_FIELDS})  # type: ignore[arg-type]
+
+
+def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
+                  source: str = "bin") -> tuple[np.ndarray, PipelineConfig]:
+    """Read a memory image back as (H, W) uint64 words and its configuration.
+
+    Parameters
+    ----------
+    directory : path
+        Folder written by :func:`write_memimage`.
+    cfg : PipelineConfig, str or None
+        If given, every format field of the manifest must match it.
+    source : {"bin", "hex"}
+        Which file to read. The SHA-256 of the manifest is checked against the binary in
+        both cases, and the hex words against it when ``source="hex"``.
+    """
+    if source not in ("bin", "hex"):
+        raise ConfigError(f"source = {source!r} is not one of ['bin', 'hex']")
+    d = Path(directory)
+    manifest = read_manifest(d)
+    mcfg = manifest_config(manifest)
+    if cfg is not None:
+        cfg = as_config(cfg)
+        diff = {k: (manifest[k], getattr(cfg, k)) for k in _FORMAT_FIELDS
+                if manifest[k] != getattr(cfg, k)}
+        if diff:
+            raise MemImageError(
+                f"{d / MANIFEST_NAME}: format fields differ from pipeline {cfg.name!r} "
+                f"(manifest, expected): {diff}"
+            )
+    if manifest.get("word_bits") != mcfg.word_bits:
+        raise MemImageError(
+            f"manifest word_bits = {manifest.get('word_bits')!r} but the formats give "
+            f"{mcfg.word_bits}"
+        )
+    h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
+    n = h * w
+    raw = (d / BIN_NAME).read_bytes()
+    digest = hashlib.sha256(raw).hexdigest()
+    if digest != manifest.get("sha256"):
+        raise MemImageError(
+            f"{d / BIN_NAME}: SHA-256 {digest} does not match the manifest "
+            f"({manifest.get('sha256')}); the file is corrupt or from another image"
+        )
+    nb = word_bytes(mcfg)
+    if len(raw) != n * nb:
+        raise MemImageError(
+            f"{d / BIN_NAME}: {len(raw)} bytes, expected {n} words x {nb} bytes = {n * nb}"
+        )
+    buf = np.zeros((n, 8), dtype=np.uint8)
+    buf[:, :nb] = np.frombuffer(raw, dtype=np.uint8).reshape(n, nb)
+    words = buf.view("<u8").reshape(h, w).astype(np.uint64)
+    if source == "hex":
+        hex_words = _parse_hex(d / HEX_NAME, mcfg, n).reshape(h, w)
+        if not np.array_equal(hex_words, words):
+            idx = tuple(int(i) for i in np.argwhere(hex_words != words)[0])
+            raise MemImageError(
+                f"{d / HEX_NAME}: word at (row, col) {idx} = {int(hex_words[idx]):x} differs "
+                f"from the binary ({int(words[idx]):x})"
+            )
+        words = hex_words
+    try:
+        check_words(words, mcfg)
+    except InputError as exc:
+        raise MemImageError(f"{d}: {exc}") from None
+    return words, mcfg
+
+
+def _parse_hex(path: Path, cfg: PipelineConfig, n: int) -> np.ndarray:
+    nd = hex_digits(cfg)
+    lines = path.read_text().splitlines()
+    if len(lines) != n:
+        raise MemImageError(f"{path}: {len(lines)} lines, expected {n} words")
+    out = np.empty(n, dtype=np.uint64)
+    for i, line in enumerate(lines):
+        if len(line) != nd:
+            raise MemImageError(f"{path}: line {i + 1} = {line!r} is not {nd} hex digits")
+        try:
+            out[i] = int(line, 16)
+        except ValueError:
+            raise MemImageError(f"{path}: line {i + 1} = {line!r} is not hexadecimal") from None
+    return out

@@ -1,0 +1,135 @@
+"""Coefficient words and memory image files: layout, round trips, corruption detection."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from nuc_fixed import (
+    ConfigError,
+    InputError,
+    MemImageError,
+    load_pipeline,
+    pack_words,
+    pipeline_names,
+    read_memimage,
+    unpack_words,
+    write_memimage,
+)
+
+NAMES = pipeline_names()
+
+
+def _coeffs(cfg, h: int, w: int, seed: int):
+    rng = np.random.default_rng(seed)
+    g = rng.integers(0, 2**cfg.gain_bits, (h, w))
+    ow = cfg.offset_bits
+    o = rng.integers(-(2 ** (ow - 1)), 2 ** (ow - 1), (h, w))
+    # Put the extremes in.
+    g.flat[:2] = [0, 2**cfg.gain_bits - 1]
+    o.flat[:2] = [-(2 ** (ow - 1)), 2 ** (ow - 1) - 1]
+    return g, o, rng.random((h, w)) < 0.2
+
+
+@pytest.mark.parametrize("name", NAMES)
+@settings(max_examples=60, deadline=None)
+@given(g=st.integers(0), o=st.integers(), bad=st.booleans())
+def test_word_layout_matches_python_ints(name: str, g: int, o: int, bad: bool) -> None:
+    cfg = load_pipeline(name)
+    gw, ow = cfg.gain_bits, cfg.offset_bits
+    g %= 2**gw
+    o = o % 2**ow - 2 ** (ow - 1)
+    # Independent layout: concatenate bit strings, MSB first.
+    bits = ("1" if bad else "0") + format(o % 2**ow, f"0{ow}b") + format(g, f"0{gw}b")
+    word = pack_words(np.array([g]), np.array([o]), np.array([bad]), cfg)
+    assert int(word[0]) == int(bits, 2) and len(bits) == cfg.word_bits
+    g2, o2, b2 = unpack_words(word, cfg)
+    assert (int(g2[0]), int(o2[0]), bool(b2[0])) == (g, o, bad)
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("source", ["bin", "hex"])
+def test_round_trip(tmp_path: Path, name: str, source: str) -> None:
+    cfg = load_pipeline(name)
+    g, o, bad = _coeffs(cfg, 5, 9, 1)
+    words = pack_words(g, o, bad, cfg)
+    manifest = write_memimage(tmp_path, words, cfg)
+    back, mcfg = read_memimage(tmp_path, cfg, source=source)
+    assert back.dtype == np.uint64 and np.array_equal(back, words)
+    assert mcfg == cfg
+    g2, o2, b2 = unpack_words(back, mcfg)
+    assert np.array_equal(g2, g) and np.array_equal(o2, o) and np.array_equal(b2, bad)
+    # File formats as documented.
+    lines = (tmp_path / "coeffs.hex").read_text().splitlines()
+    assert len(lines) == 45 and all(len(s) == -(-cfg.word_bits // 4) for s in lines)
+    assert [int(s, 16) for s in lines] == [int(v) for v in words.ravel()]
+    assert lines[0] == lines[0].lower()
+    raw = (tmp_path / "coeffs.bin").read_bytes()
+    nb = -(-cfg.word_bits // 8)
+    assert len(raw) == 45 * nb
+    assert [int.from_bytes(raw[i * nb:(i + 1) * nb], "little") for i in range(45)] == lines_int(
+        lines)
+    assert manifest["version"] == 1 and manifest["word_bits"] == cfg.word_bits
+    assert (manifest["width"], manifest["height"]) == (9, 5)
+    assert json.loads((tmp_path / "manifest.json").read_text()) == manifest
+
+
+def lines_int(lines: list[str]) -> list[int]:
+    return [int(s, 16) for s in lines]
+
+
+def _written(tmp_path: Path, name: str = "typical14") -> None:
+    cfg = load_pipeline(name)
+    write_memimage(tmp_path, pack_words(*_coeffs(cfg, 4, 4, 2), cfg), cfg)
+
+
+def test_checksum_mismatch_detected(tmp_path: Path) -> None:
+    _written(tmp_path)
+    data = bytearray((tmp_path / "coeffs.bin").read_bytes())
+    data[3] ^= 0x01
+    (tmp_path / "coeffs.bin").write_bytes(bytes(data))
+    with pytest.raises(MemImageError, match="SHA-256"):
+        read_memimage(tmp_path)
+
+
+def test_hex_corruption_detected(tmp_path: Path) -> None:
+    _written(tmp_path)
+    path = tmp_path / "coeffs.hex"
+    lines = path.read_text().splitlines()
+    lines[5] = format(int(lines[5], 16) ^ 1, f"0{len(lines[5])}x")
+    path.write_text("\n".join(lines) + "\n")
+    read_memimage(tmp_path, source="bin")  # the binary is intact
+    with pytest.raises(MemImageError, match=r"\(row, col\) \(1, 1\)"):
+        read_memimage(tmp_path, source="hex")
+    path.write_text("\n".join(lines[:-1]) + "\n")
+    with pytest.raises(MemImageError, match="15 lines, expected 16"):
+        read_memimage(tmp_path, source="hex")
+
+
+def test_manifest_mismatch_detected(tmp_path: Path) -> None:
+    _written(tmp_path)
+    with pytest.raises(MemImageError, match="format fields differ"):
+        read_memimage(tmp_path, "wide16")
+    m = json.loads((tmp_path / "manifest.json").read_text())
+    m["version"] = 2
+    (tmp_path / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(MemImageError, match="version = 2"):
+        read_memimage(tmp_path)
+
+
+def test_pack_errors() -> None:
+    cfg = load_pipeline("minimal")
+    with pytest.raises(InputError, match=r"gain\[1\] = 16 .*\[0, 15\]"):
+        pack_words(np.array([0, 16]), np.array([0, 0]), np.array([False, False]), cfg)
+    with pytest.raises(InputError, match=r"bad has shape"):
+        pack_words(np.array([0]), np.array([0]), np.array([False, True]), cfg)
+    with pytest.raises(InputError, match=r"words\[0\] = 2048"):
+        unpack_words(np.array([2048], dtype=np.uint64), cfg)
+    too_wide = load_pipeline("wide16").replace(offset_int_bits=32, offset_frac_bits=10)
+    with pytest.raises(ConfigError, match="word_bits = 67"):
+        pack_words(np.array([0]), np.array([0]), np.array([False]), too_wide)
