@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from model.core import adc as _k
 from model.validate import ConfigError, check_choice, check_int, check_scalar
 
 ADC_ROUNDING = ("nearest", "floor")
@@ -19,7 +20,7 @@ def adc_dtype(bits: int) -> type:
 
 
 def adc_convert(v: np.ndarray, bits: int, v_low: float, v_high: float,
-                rounding: str = "nearest") -> np.ndarray:
+                rounding: str = "nearest", rails: tuple[float, float] | None = None) -> np.ndarray:
     """Convert voltages to codes.
 
     Parameters
@@ -33,6 +34,8 @@ def adc_convert(v: np.ndarray, bits: int, v_low: float, v_high: float,
         v_high - LSB/2 map to the top code 2**bits - 1.
     rounding : str
         ``nearest`` (round half up) or ``floor``.
+    rails : (float, float), optional
+        Rails of the stage that drives the ADC, V; the input is clipped to them first.
 
     Returns
     -------
@@ -51,14 +54,15 @@ def adc_convert(v: np.ndarray, bits: int, v_low: float, v_high: float,
     if not v_low < v_high:
         raise ConfigError(f"adc.v_low = {v_low:g} V must be below adc.v_high = {v_high:g} V")
     check_choice("adc.rounding", rounding, ADC_ROUNDING)
-    v = np.asarray(v, dtype=np.float64)
-    finite = np.isfinite(v)
-    if not finite.all():
+    lo, hi = rails if rails is not None else (-np.inf, np.inf)
+    v = np.ascontiguousarray(v, dtype=np.float64)
+    out = np.empty(v.shape, adc_dtype(bits))
+    bad = _k.convert(v.reshape(-1), float(lo), float(hi), v_low, (1 << bits) / (v_high - v_low),
+                     float((1 << bits) - 1), rounding == "nearest", out.reshape(-1))
+    if bad:
+        finite = np.isfinite(v)
         idx = tuple(int(i) for i in np.argwhere(~finite)[0])
         raise NonFiniteVoltageError(
             f"ADC input has {int((~finite).sum())} non-finite voltage(s); first {v[idx]!r} at "
             f"index {idx}")
-    top = (1 << bits) - 1
-    x = (v - v_low) * ((1 << bits) / (v_high - v_low))
-    x = np.floor(x + 0.5) if rounding == "nearest" else np.floor(x)
-    return np.clip(x, 0, top).astype(adc_dtype(bits))
+    return out

@@ -264,8 +264,8 @@ def _stage_noise(ctx: RunContext, inp: dict) -> dict:
 
 def _stage_adc(ctx: RunContext, inp: dict) -> dict:
     r, a = ctx.cfg["readout"], ctx.cfg["adc"]
-    v = np.clip(inp["v_out"], r["v_low"], r["v_high"])  # integrator rails
-    return {"codes": _adc.adc_convert(v, a["bits"], a["v_low"], a["v_high"], a["rounding"])}
+    return {"codes": _adc.adc_convert(inp["v_out"], a["bits"], a["v_low"], a["v_high"],
+                                      a["rounding"], rails=(r["v_low"], r["v_high"]))}
 
 
 def _noise_configured(cfg: Mapping[str, Any]) -> bool:
@@ -490,18 +490,22 @@ def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
     status = values["status"]
     act = (slice(None), *pipe.layout.active_slice)
     dT = values["dT"][act]
+    counts = np.bincount(status.reshape(-1), minlength=4)
+    if counts[_kb.STATUS_INVALID]:
+        dT = dT[np.isfinite(dT)]
     diag: dict[str, Any] = {
-        "temperature_rise_K": {"min": float(np.nanmin(dT)), "mean": float(np.nanmean(dT)),
-                               "max": float(np.nanmax(dT))},
-        "solver_failures": {name: int((status == code).sum()) for name, code in (
-            ("no_convergence", _kb.STATUS_NO_CONVERGENCE), ("runaway", _kb.STATUS_RUNAWAY),
-            ("invalid", _kb.STATUS_INVALID))},
+        "temperature_rise_K": {"min": float(dT.min()) if dT.size else math.nan,
+                               "mean": float(dT.mean()) if dT.size else math.nan,
+                               "max": float(dT.max()) if dT.size else math.nan},
+        "solver_failures": {"no_convergence": int(counts[_kb.STATUS_NO_CONVERGENCE]),
+                            "runaway": int(counts[_kb.STATUS_RUNAWAY]),
+                            "invalid": int(counts[_kb.STATUS_INVALID])},
     }
     if "codes" in values:
         top = (1 << pipe.cfg["adc"]["bits"]) - 1
-        codes = values["codes"]
-        diag["clipped_low"] = int((codes == 0).sum())
-        diag["clipped_high"] = int((codes == top).sum())
+        hist_ends = values["codes"].reshape(-1)
+        diag["clipped_low"] = int(np.count_nonzero(hist_ends == 0))
+        diag["clipped_high"] = int(np.count_nonzero(hist_ends == top))
     failures = sum(diag["solver_failures"].values())
     if failures:
         warnings.warn(f"{failures} pixel solve(s) failed (thermal runaway or no convergence): "

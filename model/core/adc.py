@@ -1,0 +1,27 @@
+"""Kernel of the ADC: rails, scaling, rounding and clamping in one pass."""
+
+import math
+
+from numba import njit, prange
+
+
+@njit(cache=True, parallel=True)
+def convert(v, rail_low, rail_high, v_low, scale, top, nearest, out):
+    """Codes of a flat voltage array; returns the number of non-finite values.
+
+    v is first clipped to the integrator rails [rail_low, rail_high], then scaled by
+    ``scale`` = 2^bits / (v_high - v_low), rounded (half up when ``nearest``, else floor)
+    and clamped to [0, top].
+    """
+    bad = 0
+    for i in prange(v.shape[0]):
+        x = v[i]
+        if not math.isfinite(x):
+            bad += 1  # a reduction; the caller locates them
+            out[i] = 0
+            continue
+        x = min(max(x, rail_low), rail_high)
+        c = (x - v_low) * scale
+        c = math.floor(c + 0.5) if nearest else math.floor(c)
+        out[i] = int(min(max(c, 0.0), top))
+    return bad
