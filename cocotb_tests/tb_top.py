@@ -1,0 +1,211 @@
+"""cocotb tests of ``nuc_dpc_top`` (run through ``cocotb_tests/test_nuc_dpc_top.py``).
+
+Every output pixel is compared bit for bit, in order, with ``nuc_fixed.nuc_dpc_top``.
+"""
+
+from __future__ import annotations
+
+import cocotb
+import numpy as np
+from cocotb.triggers import ClockCycles, RisingEdge
+
+from cocotb_tests import tb_lib
+from cocotb_tests.directed import corner_coefficients, dpc_bad_patterns
+from cocotb_tests.tb_lib import Frame, golden_frame
+from nuc_fixed import nuc_core, unpack_words
+
+
+def _sizes(cfg) -> list[tuple[int, int]]:
+    """(H, W) frame sizes: small, single row/column/pixel and the widest line buffer."""
+    h, w = min(cfg.max_height, 9), min(cfg.max_width, 14)
+    return [(h, w), (1, 1), (1, min(cfg.max_width, 7)), (min(cfg.max_height, 6), 1),
+            (2, cfg.max_width), (min(cfg.max_height, 3), 2)]
+
+
+def _random_frames(rng, cfg, gcfg, n, h, w, bad_fraction=0.05):
+    words = tb_lib.random_coefficients(rng, cfg, h, w, bad_fraction)
+    out = []
+    for _ in range(n):
+        raw = rng.integers(0, 1 << cfg.adc_bits, size=(h, w), dtype=np.int64)
+        out.append(golden_frame(raw, words, gcfg))
+    return out
+
+
+async def _check(dut, frames, rng, gcfg, **kw):
+    got, cycles, sink = await tb_lib.run_top_frames(dut, frames, rng, **kw)
+    tb_lib.assert_no_mismatch(tb_lib.check_frames(frames, got, gcfg), dut._log)
+    assert int(dut.frame_err_o.value) == 0, "frame_err_o set on a well-formed stream"
+    return got, cycles, sink
+
+
+@cocotb.test()
+async def random_frames_full_rate(dut) -> None:
+    """Back-to-back random frames at valid=1/ready=1: exact, and no bubble anywhere."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    tb_lib.check_top_widths(dut, cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env())
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 12), min(cfg.max_width, 20)
+    frames = _random_frames(rng, cfg, gcfg, 3, h, w)
+    _, _, sink = await _check(dut, frames, rng, gcfg)
+    n = 3 * h * w
+    assert sink.last_cycle - sink.first_cycle == n - 1, (
+        f"{n} outputs took {sink.last_cycle - sink.first_cycle + 1} cycles: bubbles")
+
+
+@cocotb.test()
+async def random_gaps_backpressure(dut) -> None:
+    """Random idle cycles on both inputs and random output backpressure, many sizes."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 1)
+    await tb_lib.start_clock_and_reset(dut)
+    for i, (h, w) in enumerate(_sizes(cfg)):
+        frames = _random_frames(rng, cfg, gcfg, 2, h, w, bad_fraction=0.2)
+        idle = (0.3, 0.1, 0.5)[i % 3]
+        await _check(dut, frames, rng, gcfg, idle_pix=idle, idle_coef=(0.2, 0.4, 0.0)[i % 3],
+                     backpressure=(0.3, 0.5, 0.1)[i % 3])
+
+
+@cocotb.test()
+async def corner_codes(dut) -> None:
+    """Largest code x largest gain, saturation at both ends, rounding ties."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 2)
+    await tb_lib.start_clock_and_reset(dut)
+    x, g, o, kinds = corner_coefficients(cfg, rng)
+    w = min(cfg.max_width, 16)
+    n = len(x)
+    h = -(-n // w)
+    if h > cfg.max_height:
+        raise AssertionError("corner set does not fit the largest frame")
+    pad = h * w - n
+    x = np.concatenate([x, np.zeros(pad, np.int64)]).reshape(h, w)
+    g = np.concatenate([g, np.zeros(pad, np.int64)]).reshape(h, w)
+    o = np.concatenate([o, np.zeros(pad, np.int64)]).reshape(h, w)
+    words = tb_lib.pack_words(g, o, np.zeros((h, w), bool), cfg)
+    frame = golden_frame(x, words, gcfg)
+    await _check(dut, [frame], rng, gcfg, idle_pix=0.1, backpressure=0.1)
+    # The set really covers what it claims (golden intermediates).
+    it = nuc_core(x, g, o, gcfg, intermediates=True)
+    kinds_present = set(kinds)
+    ymax = (1 << cfg.out_bits) - 1
+    if "sat_low" in kinds_present:
+        assert (it.r < 0).any()
+    if "sat_high" in kinds_present:
+        assert (it.r > ymax).any()
+    if cfg.frac_bits > 0:
+        f = cfg.frac_bits
+        ties = (it.s & ((1 << f) - 1)) == (1 << (f - 1))
+        assert ties.sum() >= 8, "no rounding ties in the corner set"
+        ints = it.s[ties] >> f
+        assert (ints % 2 == 0).any() and (ints % 2 == 1).any(), "ties lack both parities"
+
+
+@cocotb.test()
+async def dpc_patterns(dut) -> None:
+    """Flagged pixels at borders, corners, in clusters, whole rows/columns, all bad."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 3)
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 10), min(cfg.max_width, 12)
+    for bad in dpc_bad_patterns(h, w):
+        hh, ww = bad.shape
+        # Gain near one, small offsets: outputs spread over the range, not saturated.
+        gain = 1.0 + 0.1 * rng.standard_normal((hh, ww))
+        offset = rng.normal(0.0, 4.0, (hh, ww))
+        words = tb_lib.unity_coefficients(cfg, gain * 2.0 ** (cfg.out_bits - cfg.adc_bits),
+                                          offset, bad)
+        raw = rng.integers(0, 1 << cfg.adc_bits, size=(hh, ww), dtype=np.int64)
+        await _check(dut, [golden_frame(raw, words, gcfg)], rng, gcfg, idle_pix=0.2,
+                     backpressure=0.2)
+
+
+@cocotb.test()
+async def reset_mid_frame(dut) -> None:
+    """Reset in the middle of a frame, then a clean frame is exact."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 4)
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 8), min(cfg.max_width, 10)
+    frames = _random_frames(rng, cfg, gcfg, 1, h, w)
+    dut.frame_width_i.value = w
+    dut.frame_height_i.value = h
+    pix, coef = tb_lib.top_sources(dut, frames, 0.1, 0.1)
+    sink = tb_lib.top_sink(dut, 0.2)
+    await tb_lib.run_streams(dut, [pix, coef], sink, (h * w) // 3, rng)
+    # Abort: reset while pixels are in flight in both cores.
+    await tb_lib.reset(dut, 2)
+    assert int(dut.m_pix_valid_o.value) == 0, "output valid right after reset"
+    await ClockCycles(dut.clk_i, 3)
+    frames = _random_frames(rng, cfg, gcfg, 2, h, w)
+    await _check(dut, frames, rng, gcfg, idle_pix=0.1, backpressure=0.2)
+
+
+@cocotb.test()
+async def checker_detects_mismatch(dut) -> None:
+    """The checker fails when the golden model differs (another rounding mode)."""
+    cfg = tb_lib.config_from_env()
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 5)
+    await tb_lib.start_clock_and_reset(dut)
+    if cfg.frac_bits > 0:
+        other = cfg.replace(rounding={"truncate": "half_up"}.get(cfg.rounding, "truncate"))
+    else:
+        other = cfg.replace(overflow={"saturate": "wrap"}.get(cfg.overflow, "saturate"))
+    h, w = min(cfg.max_height, 8), min(cfg.max_width, 16)
+    frames = _random_frames(rng, cfg, cfg, 1, h, w)
+    wrong = [golden_frame(f.raw, f.words, other) for f in frames]
+    assert any((a.expected != b.expected).any() for a, b in zip(frames, wrong, strict=True)), \
+        "the deliberately different golden model predicts the same frame"
+    got, _, _ = await tb_lib.run_top_frames(dut, frames, rng)
+    mism = tb_lib.check_frames(wrong, got, other)
+    assert mism, "checker reported no mismatch against a different golden configuration"
+    text = mism[0].text
+    for key in ("frame", "x", "y", "raw", "gain", "offset", "expected", "got", " p ", " s ",
+                " r "):
+        assert key in text, f"mismatch report lacks {key!r}: {text}"
+    # ... and the same outputs pass against the right configuration.
+    assert not tb_lib.check_frames(frames, got, cfg)
+
+
+@cocotb.test()
+async def framing_error_flag(dut) -> None:
+    """A missing end-of-line marker sets the sticky frame_err_o; reset clears it."""
+    cfg = tb_lib.config_from_env()
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 6)
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 4), min(cfg.max_width, 5)
+    frames = _random_frames(rng, cfg, cfg, 1, h, w)
+    dut.frame_width_i.value = w
+    dut.frame_height_i.value = h
+    pix, coef = tb_lib.top_sources(dut, frames)
+    pix.values[w - 1][2] = 0  # drop eol of row 0
+    sink = tb_lib.top_sink(dut)
+    await tb_lib.run_streams(dut, [pix, coef], sink, h * w, rng)
+    assert int(dut.frame_err_o.value) == 1
+    await tb_lib.reset(dut)
+    assert int(dut.frame_err_o.value) == 0
+    await RisingEdge(dut.clk_i)
+
+
+@cocotb.test()
+async def model_frames(dut) -> None:
+    """Frames of the physics model (with defects), calibrated by nuc_fixed."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    from cocotb_tests.model_frames import calibrated_model_frames
+
+    frames_raw, words = calibrated_model_frames(cfg, seed=tb_lib.seed_from_env())
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 7)
+    await tb_lib.start_clock_and_reset(dut)
+    frames = [golden_frame(f, words, gcfg) for f in frames_raw]
+    _, _, bad = unpack_words(words, cfg)
+    assert bad.any(), "the model frames carry no defect"
+    await _check(dut, frames, rng, gcfg, idle_pix=0.05, idle_coef=0.05, backpressure=0.05)
+
+
+__all__ = ["Frame"]

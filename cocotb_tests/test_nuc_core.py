@@ -1,0 +1,37 @@
+"""Co-simulation of ``nuc_core`` against the golden model.
+
+Every named configuration, plus variants of the smallest one so that every rounding mode
+and both overflow modes are built and checked (rounding ties included).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+from nuc_fixed import PipelineConfig, load_pipeline, pipeline_names
+
+MODULE = "cocotb_tests.tb_nuc"
+
+pytestmark = [pytest.mark.cosim, pytest.mark.slow]
+
+# name -> configuration; variants change only the modes of a named configuration.
+_VARIANTS: dict[str, tuple[str, dict[str, str]]] = {
+    **{name: (name, {}) for name in pipeline_names()},
+    "minimal+truncate": ("minimal", {"rounding": "truncate"}),
+    "minimal+half_up": ("minimal", {"rounding": "half_up"}),
+    "minimal+wrap": ("minimal", {"overflow": "wrap", "rounding": "truncate"}),
+    "typical14+half_even+wrap": ("typical14", {"rounding": "half_even", "overflow": "wrap"}),
+}
+
+
+def _config(variant: str) -> PipelineConfig:
+    base, changes = _VARIANTS[variant]
+    cfg = load_pipeline(base)
+    return cfg.replace(**changes) if changes else cfg
+
+
+@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
+@pytest.mark.parametrize("variant", list(_VARIANTS))
+def test_nuc_core(variant: str, case: str) -> None:
+    check_case(cosim("nuc_core", _config(variant), MODULE), case)

@@ -1,0 +1,18 @@
+"""Co-simulation of ``nuc_dpc_top`` against the golden model, every named configuration."""
+
+from __future__ import annotations
+
+import pytest
+
+from cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+from nuc_fixed import load_pipeline, pipeline_names
+
+MODULE = "cocotb_tests.tb_top"
+
+pytestmark = [pytest.mark.cosim, pytest.mark.slow]
+
+
+@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
+@pytest.mark.parametrize("config", pipeline_names())
+def test_nuc_dpc_top(config: str, case: str) -> None:
+    check_case(cosim("nuc_dpc_top", load_pipeline(config), MODULE), case)

