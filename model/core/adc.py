@@ -22,6 +22,8 @@ def convert(v, rail_low, rail_high, v_low, scale, top, nearest, out):
             continue
         x = min(max(x, rail_low), rail_high)
         c = (x - v_low) * scale
+        # Clamp first: numba's math.floor returns int64, which wraps beyond 9.2e18.
+        c = min(max(c, -1.0), top + 1.0)
         c = math.floor(c + 0.5) if nearest else math.floor(c)
         out[i] = int(min(max(c, 0.0), top))
     return bad

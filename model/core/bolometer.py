@@ -109,15 +109,17 @@ def newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0):
         dh = 1.0 + bRB
         step = h / dh
         xn = x - step
-        if not (lo < xn < hi):
+        bisected = not (lo < xn < hi)
+        if bisected:
             if hi == math.inf:
                 hi = a + b * resistance(T_s + a, R_ref, B, T_ref)
             xn = 0.5 * (lo + hi)
             step = x - xn
         tol = rtol * abs(xn) + atol
         done = abs(step) <= tol
-        if not done and abs(step) < 1e-4 * (abs(x) + 1.0):
-            # Quadratic regime: the error after this step is about K step^2 with
+        if not done and not bisected and abs(step) < 1e-4 * (abs(x) + 1.0):
+            # Quadratic regime (Newton steps only: a bisection step says nothing about
+            # it): the error after this step is about K step^2 with
             # K = |h''| / (2 h'), h'' = -b R (B^2/T^4 + 2B/T^3).
             K = abs(bRB * (B * inv_T + 2.0) * inv_T) / (2.0 * dh)
             done = K * step * step <= 0.01 * tol
@@ -184,6 +186,8 @@ def solve_row(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, 
                 v_out[j] = math.nan
             else:
                 v_out[j] = I * resistance(T_s + x, R_ref[j], B, T_ref)
+        if st == STATUS_OK and not T_s + x <= T_max:
+            st = STATUS_RUNAWAY  # hotter than the runaway limit (e.g. g -> 0): not OK
         dT_out[j] = x
         status_out[j] = st
         iters_out[j] = it
