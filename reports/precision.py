@@ -102,6 +102,7 @@ def write_report(result: dict[str, Any], out_dir: str | Path = DEFAULT_OUT) -> t
     from model.io import write_text_atomic
 
     out = Path(out_dir)
+    result = {**result, "code_digest": code_digest()}
     j = write_text_atomic(out / JSON_NAME, json.dumps(result, indent=1, sort_keys=True))
     h = write_text_atomic(out / HTML_NAME, render_html(result))
     return j, h
@@ -109,18 +110,36 @@ def write_report(result: dict[str, Any], out_dir: str | Path = DEFAULT_OUT) -> t
 
 def precision_summary(out_dir: str | Path = DEFAULT_OUT, *, run_if_missing: bool = True,
                       quick: bool = True) -> dict[str, Any]:
-    """The summary for ``irnuc report``: from ``out_dir/precision.json`` if present, else
-    from a fresh (quick by default) run, which is also written there."""
+    """The summary for ``irnuc report``: from ``out_dir/precision.json`` if that file holds a
+    run of the current model code at the same depth (``quick``), else from a fresh run,
+    which is also written there."""
     from model.precision import run_precision, summarize
 
     path = Path(out_dir) / JSON_NAME
     if path.is_file():
-        return summarize(json.loads(path.read_text()))
+        cached = json.loads(path.read_text())
+        # Reuse a stored run only if it measured this very code at the same depth.
+        if cached.get("code_digest") == code_digest() and cached.get("quick") == quick:
+            return summarize(cached)
     if not run_if_missing:
-        raise FileNotFoundError(f"{path} does not exist; run `irnuc precision` first")
+        raise FileNotFoundError(f"{path} holds no run of the current code; run `irnuc precision`")
     result = run_precision(quick=quick)
     write_report(result, out_dir)
     return summarize(result)
+
+
+def code_digest() -> str:
+    """Hash of the model's source files: a stored precision run is valid for this code only."""
+    import hashlib
+
+    import model
+
+    root = Path(model.__file__).parent
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        h.update(path.relative_to(root).as_posix().encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()[:16]
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

@@ -20,8 +20,10 @@ Integrator codes (see :data:`model.transient.INTEGRATORS`):
   raises instead of returning a frame.
 1 ``backward_euler``: implicit, L-stable, order 1; Newton on every step.
 2 ``trapezoidal``: implicit, A-stable, order 2; Newton on every step.
-3 ``exponential``: exponential Rosenbrock-Euler, order 2, exact whenever the right-hand side
-  is linear in theta (TCR = 0 or zero bias): theta+ = theta + h phi1(h J) f(theta).
+3 ``exponential``: the exponential Rosenbrock method exprb32 (order 3, embedded order-2
+  error estimate), with the exact Jacobian, applied to theta and the two integrals; exact
+  whenever the right-hand side is linear in theta (TCR = 0 or zero bias), so its cost does
+  not grow with the stiffness t_int / tau.
 
 An implicit step whose Newton iteration fails (no convergence, the residual derivative not
 positive, T <= 0) is retried with half the step; so is an exponential step that would grow
@@ -37,7 +39,6 @@ import numpy as np
 from numba import njit, prange
 
 from model.core.bolometer import (
-    STATUS_INVALID,
     STATUS_NO_CONVERGENCE,
     STATUS_OK,
     STATUS_RUNAWAY,
@@ -56,6 +57,10 @@ NEWTON_MAX_ITER = 60
 NEWTON_RTOL = 1e-14
 NEWTON_ATOL = 1e-15
 
+#: Absolute scale of the temperature error test: rtol (|theta| + THETA_FLOOR), K. Scene
+#: signals are millikelvin rises, so the floor is a microkelvin.
+THETA_FLOOR = 1e-6
+
 M_RK4 = 0
 M_BACKWARD_EULER = 1
 M_TRAPEZOIDAL = 2
@@ -68,25 +73,33 @@ def _resistance(T, R_ref, B, T_ref):
 
 
 @njit(cache=True)
-def phi1(z):
-    """(e^z - 1) / z, stable for every z (1 at z = 0)."""
-    if abs(z) < 1e-5:
-        return 1.0 + z * (0.5 + z / 6.0)
-    return math.expm1(z) / z
+def _phi_series(z, k):
+    """phi_k(z) by its Taylor series; 22 terms reach 1e-21 for |z| < 1."""
+    fact = 1.0
+    for j in range(2, k + 1):
+        fact *= j
+    term = 1.0 / fact
+    s = term
+    for m in range(1, 23):
+        term *= z / (m + k)
+        s += term
+    return s
 
 
 @njit(cache=True)
-def phi2(z):
-    """(e^z - 1 - z) / z^2, stable for every z (1/2 at z = 0)."""
+def phi_functions(z):
+    """(phi1, phi2, phi3, phi4)(z), phi_k(z) = sum_m z^m / (m + k)!, stable for every z.
+
+    |z| < 1: the Taylor series (no cancellation); otherwise the recursion
+    phi_(k+1)(z) = (phi_k(z) - 1/k!) / z from phi1 = expm1(z) / z.
+    """
     if abs(z) < 1.0:
-        # sum_k z^k / (k + 2)!: 20 terms reach 1e-19 for |z| < 1.
-        term = 0.5
-        s = term
-        for k in range(1, 20):
-            term *= z / (k + 2)
-            s += term
-        return s
-    return (math.expm1(z) - z) / (z * z)
+        return _phi_series(z, 1), _phi_series(z, 2), _phi_series(z, 3), _phi_series(z, 4)
+    p1 = math.expm1(z) / z
+    p2 = (p1 - 1.0) / z
+    p3 = (p2 - 0.5) / z
+    p4 = (p3 - 1.0 / 6.0) / z
+    return p1, p2, p3, p4
 
 
 @njit(cache=True)
@@ -154,92 +167,190 @@ def _step_implicit(th, f0, R0, h, c, Ts, Q, I, R_ref, B, T_ref, g, C):
 
 
 @njit(cache=True)
+def _attempt(method, th, f0, R0, dR0, hs, Ts, Q, I, R_ref, B, T_ref, g, C):
+    """One step of ``method`` from theta = th (f0, R0, dR0 at th) over hs.
+
+    Returns (theta+, int V, int theta, ok, f+, R+, dR+, err theta, err int V); the error
+    estimates are those of the embedded pair (exponential only, else 0).
+    """
+    I2 = I * I
+    new = th
+    dV = 0.0
+    dT = 0.0
+    f1 = f0
+    R1 = R0
+    dR1 = dR0
+    err_th = 0.0
+    err_V = 0.0
+    ok = True
+    if method == M_RK4:
+        new, dV, dT = _step_rk4(th, hs, Ts, Q, I, R_ref, B, T_ref, g, C)
+        ok = math.isfinite(new) and Ts + new > 0.0
+        if ok:
+            f1, R1, dR1 = _rhs(new, Ts, Q, I2, R_ref, B, T_ref, g, C)
+    elif method == M_EXPONENTIAL:
+        # exprb32 (Hochbruck, Ostermann, Schweitzer 2009) on y = (theta, int V, int theta)
+        # with F(y) = (f, I R, theta) and its exact Jacobian M = h J3, J3 = [[J, 0, 0],
+        # [I R', 0, 0], [1, 0, 0]]. M^k = a^(k-1) M (a = h J), so for any vector v
+        # phi_j(M) v = v / j! + v0 phi_(j+1)(a) (a, h I R', h): every phi of the 3x3 matrix
+        # is a scalar phi. Order 3, exact when F is linear (TCR = 0 or no bias); the
+        # order-2 internal stage gives the error estimate 2 h phi3(M) D.
+        J = (I2 * dR0 - g) / C
+        a = hs * J
+        ok = a <= EXP_MAX_GROWTH
+        if ok:
+            p1, p2, _p3, p4 = phi_functions(a)
+            V0 = I * R0
+            bI = hs * I * dR0
+            # Stage U = y + h phi1(M) F(y)
+            u_th = th + hs * f0 * p1
+            u_V = hs * (V0 + f0 * p2 * bI)
+            u_T = hs * (th + f0 * p2 * hs)
+            ok = math.isfinite(u_th) and Ts + u_th > 0.0
+            if ok:
+                fu, Ru, _dRu = _rhs(u_th, Ts, Q, I2, R_ref, B, T_ref, g, C)
+                d_th = u_th - th
+                D0 = fu - f0 - J * d_th
+                D1 = I * (Ru - R0) - I * dR0 * d_th
+                # y+ = U + 2 h phi3(M) D, phi3(M) D = D / 6 + D0 phi4(a) (a, h I R', h)
+                e_th = 2.0 * hs * (D0 / 6.0 + D0 * p4 * a)
+                e_V = 2.0 * hs * (D1 / 6.0 + D0 * p4 * bI)
+                e_T = 2.0 * hs * (D0 * p4 * hs)
+                new = u_th + e_th
+                dV = u_V + e_V
+                dT = u_T + e_T
+                ok = math.isfinite(new) and Ts + new > 0.0
+                if ok:
+                    f1, R1, dR1 = _rhs(new, Ts, Q, I2, R_ref, B, T_ref, g, C)
+                    err_th = e_th
+                    err_V = e_V
+    else:
+        c = 1.0 if method == M_BACKWARD_EULER else 0.5
+        new, f1, R1, ok = _step_implicit(th, f0, R0, hs, c, Ts, Q, I, R_ref, B, T_ref, g, C)
+        if ok:
+            if method == M_BACKWARD_EULER:
+                dV = hs * I * R1
+                dT = hs * new
+            else:
+                dV = 0.5 * hs * I * (R0 + R1)
+                dT = 0.5 * hs * (th + new)
+            dR1 = -B * R1 / ((Ts + new) * (Ts + new))
+    return new, dV, dT, ok, f1, R1, dR1, err_th, err_V
+
+
+@njit(cache=True)
+def _order(method):
+    if method == M_RK4:
+        return 4
+    if method == M_BACKWARD_EULER:
+        return 1
+    if method == M_EXPONENTIAL:
+        return 3
+    return 2
+
+
+@njit(cache=True)
 def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_max,
-          refuse_unstable):
+          refuse_unstable, rtol):
     """Integrate one bias pulse of length t_int from theta = th.
+
+    Fixed steps (rtol <= 0): ``steps`` equal steps, split where stability (RK4) or a failed
+    step (others) needs it. Adaptive (rtol > 0): the exponential method uses its embedded
+    error estimate, the others step doubling with local Richardson extrapolation. A step is
+    accepted when the error estimate is within rtol (theta against |theta| + THETA_FLOOR,
+    the voltage integral against itself); ``steps`` sets the first step t_int / steps.
 
     Returns (theta_end, int V dt, int theta dt, status, substeps).
     """
     I2 = I * I
-    h_nom = t_int / steps
     iV = 0.0
     iT = 0.0
     sub = 0
     f0, R0, dR0 = _rhs(th, Ts, Q, I2, R_ref, B, T_ref, g, C)
-    for _ in range(steps):
-        rem = h_nom
-        hs = h_nom
-        while rem > 0.0:
-            new = th
-            dV = 0.0
-            dT = 0.0
-            if sub >= max_sub:
-                st = STATUS_STEP_LIMIT if method == M_RK4 else STATUS_NO_CONVERGENCE
-                return th, iV, iT, st, sub
-            if method == M_RK4:
-                lam = abs((I2 * dR0 - g) / C)
+    adaptive = rtol > 0.0
+    p = _order(method)
+    rich = 1.0 / (2.0**p - 1.0)
+    fail_status = STATUS_STEP_LIMIT if method == M_RK4 else STATUS_NO_CONVERGENCE
+    h_nom = t_int / steps
+    hs = h_nom
+    t = 0.0
+    k_nom = 1  # fixed mode: index of the nominal step being integrated
+    while t < t_int:
+        if sub >= max_sub:
+            return th, iV, iT, fail_status, sub
+        end = t_int if (adaptive or k_nom >= steps) else k_nom * h_nom
+        rem = end - t
+        hs = min(hs, rem)
+        if method == M_RK4:
+            lam = abs((I2 * dR0 - g) / C)
+            if lam * hs > RK4_STABILITY:
                 m = math.ceil(rem * lam / RK4_STABILITY)
-                if m > 1 and (refuse_unstable or m > max_sub - sub):
+                if refuse_unstable or m > max_sub - sub:
                     return th, iV, iT, STATUS_STEP_LIMIT, sub + m
-                hs = rem / m if m > 1 else rem
-                new, dV, dT = _step_rk4(th, hs, Ts, Q, I, R_ref, B, T_ref, g, C)
+                hs = min(hs, rem / m)
+        new, dV, dT, ok, f1, R1, dR1, e_th, e_v = _attempt(method, th, f0, R0, dR0, hs, Ts, Q,
+                                                           I, R_ref, B, T_ref, g, C)
+        sub += 1
+        hs_next = hs
+        if ok and adaptive and method == M_EXPONENTIAL:
+            # Embedded pair: the estimate is that of the order-2 stage (local error h^3).
+            err = max(abs(e_th) / (rtol * (abs(new) + THETA_FLOOR)),
+                      abs(e_v) / (rtol * abs(dV) + 1e-300))
+            fac = min(5.0, max(0.2, 0.9 * (err + 1e-300) ** (-1.0 / 3.0)))
+            if err > 1.0:
+                hs *= fac
+                continue
+            hs_next = hs * fac
+        elif ok and adaptive:
+            hh = 0.5 * hs
+            m1, dV1, dT1, ok, fa, Ra, dRa, _, _ = _attempt(method, th, f0, R0, dR0, hh, Ts, Q, I,
+                                                     R_ref, B, T_ref, g, C)
+            if ok:
+                m2, dV2, dT2, ok, _fb, _Rb, _dRb, _, _ = _attempt(method, m1, fa, Ra, dRa, hh, Ts, Q,
+                                                         I, R_ref, B, T_ref, g, C)
+            sub += 2
+            if ok:
+                # Local Richardson extrapolation: two half steps plus their error estimate.
+                e_th = (m2 - new) * rich
+                e_v = (dV1 + dV2 - dV) * rich
+                err = max(abs(e_th) / (rtol * (abs(m2) + THETA_FLOOR)),
+                          abs(e_v) / (rtol * abs(dV1 + dV2) + 1e-300))
+                fac = min(5.0, max(0.2, 0.9 * (err + 1e-300) ** (-1.0 / (p + 1.0))))
+                if err > 1.0:
+                    hs *= fac
+                    continue
+                hs_next = hs * fac
+                dT = dT1 + dT2 + (dT1 + dT2 - dT) * rich
+                dV = dV1 + dV2 + e_v
+                new = m2 + e_th
                 ok = math.isfinite(new) and Ts + new > 0.0
                 if ok:
-                    f0, R0, dR0 = _rhs(new, Ts, Q, I2, R_ref, B, T_ref, g, C)
-            elif method == M_EXPONENTIAL:
-                hs = min(hs, rem)
-                J = (I2 * dR0 - g) / C
-                z = hs * J
-                ok = z <= EXP_MAX_GROWTH
-                if ok:
-                    p1 = phi1(z)
-                    p2 = phi2(z)
-                    new = th + hs * p1 * f0
-                    ok = math.isfinite(new) and Ts + new > 0.0
-                if ok:
                     f1, R1, dR1 = _rhs(new, Ts, Q, I2, R_ref, B, T_ref, g, C)
-                    # int theta of the linearised trajectory is exact; V is taken linear
-                    # in theta between the step's ends (the secant), exact when R is.
-                    dT = hs * th + hs * hs * p2 * f0
-                    w = p2 / p1
-                    dV = hs * I * (R0 + (R1 - R0) * w)
-                    f0, R0, dR0 = f1, R1, dR1
-            else:
-                hs = min(hs, rem)
-                c = 1.0 if method == M_BACKWARD_EULER else 0.5
-                new, f1, R1, ok = _step_implicit(th, f0, R0, hs, c, Ts, Q, I, R_ref, B,
-                                                 T_ref, g, C)
-                if ok:
-                    if method == M_BACKWARD_EULER:
-                        dV = hs * I * R1
-                        dT = hs * new
-                    else:
-                        dV = 0.5 * hs * I * (R0 + R1)
-                        dT = 0.5 * hs * (th + new)
-                    f0, R0 = f1, R1
-                    dR0 = -B * R1 / ((Ts + new) * (Ts + new))
-            sub += 1
-            if not ok:
-                if method == M_RK4:
-                    return th, iV, iT, STATUS_STEP_LIMIT, sub
-                hs *= 0.5
-                continue
-            th = new
-            iV += dV
-            iT += dT
-            rem -= hs
-            if rem <= 1e-12 * h_nom:
-                rem = 0.0
-            if method != M_RK4 and hs < rem:
-                hs *= 2.0  # grow back after a halving
-            if not Ts + th <= T_max:
-                return th, iV, iT, STATUS_RUNAWAY, sub
+        if not ok:
+            if method == M_RK4 and not adaptive:
+                return th, iV, iT, STATUS_STEP_LIMIT, sub
+            hs *= 0.5
+            continue
+        if not adaptive:
+            hs_next = h_nom if method == M_RK4 else min(2.0 * hs, h_nom)
+        th = new
+        f0, R0, dR0 = f1, R1, dR1
+        iV += dV
+        iT += dT
+        t_new = t + hs
+        if end - t_new <= 1e-12 * t_int:
+            t_new = end
+            k_nom += 1
+        t = t_new
+        hs = hs_next
+        if not Ts + th <= T_max:
+            return th, iV, iT, STATUS_RUNAWAY, sub
     return th, iV, iT, STATUS_OK, sub
 
 
 @njit(cache=True, parallel=True)
 def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_period,
-                     pulse_start, warmup, method, steps, max_sub, T_max, refuse_unstable,
+                     pulse_start, warmup, method, steps, max_sub, T_max, refuse_unstable, rtol,
                      v_out, dT_out, dTend_out, status_out, sub_out):
     """A sequence of frames for a flat array of pixels.
 
@@ -274,7 +385,7 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
                 th = relax(th, q, gp, Cp, pulse_start)
                 th_end, iV, iT, st_p, nsub = pulse(th, Ts[n], q, I, Rp, B, T_ref, gp, Cp,
                                                    t_int, method, steps, max_sub, T_max,
-                                                   refuse_unstable)
+                                                   refuse_unstable, rtol)
                 if st_p == STATUS_OK:
                     last_v = iV / t_int
                     last_mean = iT / t_int

@@ -1,0 +1,281 @@
+"""Extreme-case suite: every case ends in a correct finite result or a clear error.
+
+The table of cases is docs/extreme_cases.md; ``test_every_documented_case_has_a_test``
+keeps it true (each row names its test here).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tracemalloc
+import warnings
+from pathlib import Path
+
+import mpmath as mp
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import model
+from model.adc import NonFiniteVoltageError, adc_convert
+from model.core.bolometer import (
+    STATUS_INVALID,
+    STATUS_OK,
+    STATUS_RUNAWAY,
+    self_heating_factor,
+    self_heating_factor_naive,
+)
+from model.fpa import SPREAD_DISTRIBUTIONS, ArrayLayout, draw_pixel_parameters
+from model.precision import band_radiance_mp
+from model.validate import ConfigError
+
+DOC = Path(__file__).resolve().parents[1] / "docs" / "extreme_cases.md"
+SMALL = {"fpa.active_rows": 8, "fpa.active_cols": 10}
+
+
+def _cfg(**over):
+    return model.load_preset("default", {**SMALL, **over})
+
+
+def _sim(cfg, temps=(300.0, 400.0), **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # solver-failure warnings
+        return model.simulate(cfg, list(temps), **kw)
+
+
+# ---- temperatures --------------------------------------------------------------------
+
+TEMPS = [1.0, 2.0, 5.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 5000.0, 10000.0]
+
+
+def test_radiance_1K_to_10000K_against_mpmath():
+    # Stated tolerance: 1e-12 relative; radiances below 1e-300 W m^-2 sr^-1 (scenes of a
+    # few kelvin in the LWIR) are exactly 0 (documented underflow), never NaN.
+    L = model.band_radiance(np.array(TEMPS))
+    assert np.isfinite(L).all() and (L >= 0).all()
+    for T, got in zip(TEMPS, L, strict=True):
+        ref = band_radiance_mp(T)
+        if ref < 1e-300:
+            assert got == 0.0 or got == pytest.approx(ref, rel=1e-12)
+        else:
+            assert got == pytest.approx(ref, rel=1e-12), T
+
+
+@pytest.mark.parametrize("bad", [0.0, -5.0, math.nan, math.inf, -math.inf])
+def test_bad_temperatures_are_clear_errors(bad):
+    with pytest.raises(ConfigError, match=r"^T = .*allowed range|^T = .*not finite"):
+        model.band_radiance(np.array([300.0, bad]))
+    with pytest.raises(ConfigError, match="temps"):
+        model.simulate(_cfg(), [300.0, bad])
+    with pytest.raises(ConfigError, match="T_substrate"):
+        model.load_preset("default", {"environment.T_substrate": bad})
+
+
+# ---- tolerances ------------------------------------------------------------------------
+
+@pytest.mark.parametrize("dist", sorted(SPREAD_DISTRIBUTIONS))
+def test_tolerance_up_to_one_never_gives_nonpositive_parameters(dist):
+    lay = ArrayLayout(200, 200)
+    p = draw_pixel_parameters(lay, {"R_ref": 1e5, "g": 1e-8, "C": 1e-10},
+                              {"R_ref": 1.0, "g": 1.0, "C": 1.0}, seed=5, distribution=dist)
+    for v in p.values():
+        assert np.isfinite(v).all() and (v > 0).all()
+
+
+def test_tolerance_one_gives_finite_frames():
+    cfg = _cfg(**{"fpa.tolerance": {"R_ref": 1.0, "g": 1.0, "C": 1.0}})
+    fr = _sim(cfg)
+    assert fr.codes.dtype == np.uint16 and fr.codes.max() < 2**14
+    with pytest.raises(ConfigError, match=r"fpa\.tolerance\.g"):
+        _cfg(**{"fpa.tolerance": {"g": 1.5}})
+
+
+# ---- self-heating factor: tau -> 0 and tau -> inf --------------------------------------
+
+def _f_mp(u):
+    with mp.workdps(50):
+        um = mp.mpf(u)
+        return float(1 + mp.expm1(-um) / um)
+
+
+@pytest.mark.parametrize("u", [1e-300, 1e-16, 1e-12, 1e-8, 1e-4, 0.01, 0.2499, 0.25, 1.0,
+                               30.0, 1e4, 1e12, 1e300])
+def test_self_heating_factor_stable_for_every_tau(u):
+    assert self_heating_factor(u) == pytest.approx(_f_mp(u), rel=1e-14)
+
+
+def test_naive_self_heating_factor_cancels_where_ours_does_not():
+    # tau = 1e6 t_int (u = 1e-6): the naive 1 + (e^-u - 1)/u loses ~10 digits, and at
+    # u = 1e-17 it is not even positive; the expm1 form stays at full precision.
+    for u in (1e-6, 1e-9):
+        naive = self_heating_factor_naive(u)
+        assert abs(naive - _f_mp(u)) / _f_mp(u) > 1e-8
+        assert self_heating_factor(u) == pytest.approx(_f_mp(u), rel=1e-14)
+    # u = 1e-17: e^-u rounds to 1 and the naive form returns 1 instead of 5e-18.
+    assert abs(self_heating_factor_naive(1e-17) - _f_mp(1e-17)) > 1e3 * _f_mp(1e-17)
+    assert self_heating_factor(1e-17) == pytest.approx(_f_mp(1e-17), rel=1e-14)
+    assert self_heating_factor(0.0) == 0.0 and self_heating_factor(math.inf) == 1.0
+
+
+@pytest.mark.parametrize("C", [1e-30, 1e30])
+def test_tau_extremes_give_finite_frames(C):
+    fr = _sim(_cfg(**{"bolometer.C": C}), outputs=("codes", "status"))
+    assert np.isfinite(fr.codes).all()
+    assert (fr.outputs["status"] == STATUS_OK).all()
+
+
+def test_integration_time_zero_is_an_error():
+    with pytest.raises(ConfigError, match=r"bolometer\.t_int = 0"):
+        _cfg(**{"bolometer.t_int": 0.0})
+    from model.transient import integrate_pixels
+
+    with pytest.raises(ConfigError, match=r"bolometer\.t_int"):
+        integrate_pixels(np.ones((1, 1)) * 1e-9, 300.0, 1e5, 1e-8, 1e-10, tcr=-0.02,
+                         T_ref=300.0, bias_current=1e-5, t_int=0.0)
+
+
+@pytest.mark.parametrize("g", [1e-15, 1e-30])
+def test_g_to_zero_reports_failed_pixels_not_garbage(g):
+    # Q / g grows without bound: pixels past the runaway temperature (or below 0 K for a
+    # net emitter) are reported per pixel; the frames stay finite codes.
+    fr = _sim(_cfg(**{"bolometer.g": g}), outputs=("codes", "status", "temperature_rise"))
+    s = fr.outputs["status"]
+    T = 300.0 + fr.outputs["temperature_rise"]
+    ok = s == STATUS_OK
+    assert (T[ok] <= 1000.0).all()
+    assert fr.diagnostics["solver_failures"]["runaway"] + \
+        fr.diagnostics["solver_failures"]["invalid"] == int((~ok).sum()) > 0
+    assert np.isfinite(fr.codes).all()
+
+
+def test_positive_tcr_runaway_detected_per_pixel():
+    cfg = _cfg(**{"bolometer.tcr": 0.02, "bolometer.bias_current": 1e-4})
+    with pytest.warns(RuntimeWarning, match="runaway"):
+        fr = model.simulate(cfg, [300.0], outputs=("codes", "status"))
+    assert (fr.outputs["status"] == STATUS_RUNAWAY).all()
+    assert fr.diagnostics["solver_failures"]["runaway"] == fr.outputs["status"].size
+    assert (fr.codes == 2**14 - 1).all()  # the high rail, never NaN
+
+
+# ---- ADC and calibration -----------------------------------------------------------------
+
+def test_adc_rails_and_nan():
+    codes = adc_convert(np.array([-1e30, -1.0, 0.0, 1.65, 3.3, 1e30]), 14, 0.0, 3.3)
+    assert codes.dtype == np.uint16
+    assert codes.tolist() == [0, 0, 0, 8192, 2**14 - 1, 2**14 - 1]
+    huge = adc_convert(np.array([1e18, 1e19, 1e300, -1e300]), 14, 0.0, 3.3)
+    assert huge.tolist() == [2**14 - 1] * 3 + [0]
+    for bad in (math.nan, math.inf, -math.inf):
+        with pytest.raises(NonFiniteVoltageError, match="non-finite"):
+            adc_convert(np.array([1.0, bad]), 14, 0.0, 3.3)
+
+
+def test_calibration_with_equal_frames_flags_pixels_without_inf():
+    nf = pytest.importorskip("nuc_fixed.calibrate")
+    rng = np.random.default_rng(1)
+    lo = rng.integers(3000, 3100, (4, 6, 8))
+    hi = lo + 1500 + rng.integers(-20, 20, (4, 6, 8))
+    hi[:, 2, 3] = lo[:, 2, 3]  # the same frames at both temperatures
+    cal = nf.calibrate(lo, hi, "typical14")
+    assert cal.bad[2, 3]
+    assert np.isfinite(cal.gain).all() and np.isfinite(cal.offset).all()
+    from nuc_fixed.badpix import Reason
+
+    assert cal.reasons[2, 3] & (Reason.EQUAL_RESPONSE | Reason.STUCK | Reason.UNRESPONSIVE)
+
+
+def test_calibration_coefficient_overflow_is_saturated_and_counted():
+    nf = pytest.importorskip("nuc_fixed.calibrate")
+    lo = np.full((4, 6, 8), 3000)
+    hi = np.full((4, 6, 8), 4500)
+    hi[:, 1, 1] = 3001  # a response 1500 times weaker: its gain overflows U2.14
+    cal = nf.calibrate(lo, hi, "typical14")
+    assert cal.summary["gain_saturated_all"] >= 1
+    assert cal.bad[1, 1]
+    gmax = (1 << (cal.cfg.gain_int_bits + cal.cfg.gain_frac_bits)) - 1
+    assert 0 <= cal.gain_code.max() <= gmax
+
+
+# ---- frame sizes ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("shape", [(1, 1), (1, 7), (7, 1)])
+def test_tiny_frames(shape):
+    cfg = _cfg(**{"fpa.active_rows": shape[0], "fpa.active_cols": shape[1],
+                  "fpa.defects": {}})
+    fr = _sim(cfg)
+    assert fr.codes.shape == (2, *shape) and fr.codes.min() > 0
+    from model.transient import simulate_transient
+
+    tf = simulate_transient(cfg, [300.0, 400.0])
+    assert tf.codes.shape == (2, *shape)
+
+
+#: Stated memory bound of one 4096 x 4096 frame (plus rings) through the steady pipeline:
+#: measured peak 2.0 GB (tracemalloc), about 15 full-array float64 products of 134 MB.
+HUGE_MEMORY_BOUND = 3.0e9
+
+
+def test_huge_frame_4096_within_memory_bound():  # ~12 s: under the 20 s "slow" limit
+    cfg = model.load_preset("default", {"fpa.active_rows": 4096, "fpa.active_cols": 4096})
+    tracemalloc.start()
+    try:
+        fr = _sim(cfg, [320.0])
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert fr.codes.shape == (1, 4096, 4096)
+    assert peak < HUGE_MEMORY_BOUND, f"peak {peak / 1e9:.2f} GB"
+
+
+# ---- fuzzing --------------------------------------------------------------------------------
+
+FUZZ_FIELDS = {
+    "bolometer.tcr": st.floats(-2.0, 2.0),
+    "bolometer.g": st.floats(-1e-8, 1e-6),
+    "bolometer.C": st.floats(-1e-10, 1e-8),
+    "bolometer.bias_current": st.floats(-1e-5, 5e-5),
+    "bolometer.t_int": st.floats(-1e-5, 1e-3),
+    "environment.T_substrate": st.floats(-10.0, 500.0),
+    "environment.T_cam": st.floats(-10.0, 500.0),
+    "fpa.fill_factor": st.floats(-0.1, 1.2),
+    "readout.gain": st.floats(-1.0, 200.0),
+    "adc.bits": st.integers(-2, 30),
+    "fpa.tolerance": st.fixed_dictionaries({"g": st.floats(-0.5, 1.5)}),
+    "radiometry.rtol": st.floats(0.0, 0.2),
+}
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.dictionaries(st.sampled_from(sorted(FUZZ_FIELDS)), st.none(), max_size=4).flatmap(
+    lambda keys: st.fixed_dictionaries({k: FUZZ_FIELDS[k] for k in keys})))
+def test_fuzzed_configs_give_finite_frames_or_name_the_field(over):
+    over = {**SMALL, "fpa.active_rows": 3, "fpa.active_cols": 4, **over}
+    try:
+        cfg = model.load_preset("default", over)
+    except ConfigError as exc:
+        fields = [k for k in over if k in str(exc)]
+        assert fields, f"error {exc} names none of {sorted(over)}"
+        return
+    fr = _sim(cfg, [280.0, 390.0], outputs=("codes", "status"))
+    assert fr.codes.shape == (2, 3, 4)
+    assert fr.codes.max() < 2 ** cfg["adc"]["bits"]
+    failed = int((fr.outputs["status"] != STATUS_OK).sum())
+    assert sum(fr.diagnostics["solver_failures"].values()) == failed
+    assert STATUS_INVALID >= 0
+
+
+# ---- the table in docs/extreme_cases.md ----------------------------------------------------
+
+def test_every_documented_case_has_a_test():
+    text = DOC.read_text()
+    named = re.findall(r"`((?:test_)\w+)`", text)
+    assert len(named) >= 15
+    here = {n for n in globals() if n.startswith("test_")}
+    other = (Path(__file__).parent / "test_transient.py").read_text()
+    for name in named:
+        assert name in here or f"def {name}(" in other, f"{name} is in the table but not a test"
+    for name in here:
+        if name != "test_every_documented_case_has_a_test":
+            assert name in named, f"{name} is not in docs/extreme_cases.md"
