@@ -31,6 +31,11 @@ def write_atomic(path: str | Path, write: Callable[[IO[bytes]], Any]) -> Path:
     return path
 
 
+def write_bytes_atomic(path: str | Path, data: bytes) -> Path:
+    """Write a bytes file atomically."""
+    return write_atomic(path, lambda fh: fh.write(data))
+
+
 def write_text_atomic(path: str | Path, text: str) -> Path:
     """Write a text file atomically (UTF-8)."""
     return write_atomic(path, lambda fh: fh.write(text.encode()))

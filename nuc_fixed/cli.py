@@ -9,21 +9,9 @@ from __future__ import annotations
 import argparse
 import io
 import json
-import os
-import tempfile
 from pathlib import Path
 
-
-def _atomic_bytes(path: Path, data: bytes) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+from model.io import write_bytes_atomic
 
 
 def _save_npz(path: Path, **arrays: object) -> None:
@@ -31,7 +19,7 @@ def _save_npz(path: Path, **arrays: object) -> None:
 
     buf = io.BytesIO()
     np.savez_compressed(buf, **arrays)
-    _atomic_bytes(path, buf.getvalue())
+    write_bytes_atomic(path, buf.getvalue())
 
 
 def _load_frames(path: str) -> dict[str, object]:
@@ -146,12 +134,12 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     for r, c in np.argwhere(cal.bad).tolist():
         code = int(cal.reasons[r, c])
         rows.append(f"{r},{c},{code},{'|'.join(reason_names(code))}")
-    _atomic_bytes(out / "badpix.csv", ("\n".join(rows) + "\n").encode())
+    write_bytes_atomic(out / "badpix.csv", ("\n".join(rows) + "\n").encode())
     summary = dict(cal.summary) | {"frames_file": str(args.frames), "t_low": t_lo,
                                    "t_high": t_hi}
-    _atomic_bytes(out / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
+    write_bytes_atomic(out / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
     text = summary_text(cal)
-    _atomic_bytes(out / "summary.txt", text.encode())
+    write_bytes_atomic(out / "summary.txt", text.encode())
     print(text, end="")
     print(f"wrote {out}/: coeffs.npz, badpix.csv, coeffs.hex, coeffs.bin, manifest.json, "
           "summary.json, summary.txt")

@@ -10,11 +10,11 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from model.io import write_bytes_atomic
 from nuc_fixed.config import ConfigError, PipelineConfig
 from nuc_fixed.nuc import check_coefficients
 from nuc_fixed.validate import InputError, as_config, bool_array, int_array
@@ -104,17 +104,6 @@ def unpack_words(words: np.ndarray, cfg: PipelineConfig | str
 
 # ---- files ---------------------------------------------------------------------------
 
-def _atomic_write(path: Path, data: bytes) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def word_bytes(cfg: PipelineConfig) -> int:
     """Bytes per word in the raw binary, ceil(WW / 8)."""
     return (cfg.word_bits + 7) // 8
@@ -175,9 +164,9 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
         "bin_bytes_per_word": word_bytes(cfg),
         "sha256": hashlib.sha256(raw).hexdigest(),
     }
-    _atomic_write(d / BIN_NAME, raw)
-    _atomic_write(d / HEX_NAME, to_hex(w, cfg).encode("ascii"))
-    _atomic_write(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
+    write_bytes_atomic(d / BIN_NAME, raw)
+    write_bytes_atomic(d / HEX_NAME, to_hex(w, cfg).encode("ascii"))
+    write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
     return manifest
 
 
