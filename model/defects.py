@@ -573,22 +573,22 @@ def apply_voltage_defects(
         raise ConfigError(
             f"v has shape {out.shape}; expected (..., {defects.shape[0]}, {defects.shape[1]})"
         )
+    # Work on the defective pixels only: a handful out of a frame.
+    flat = out.reshape(*out.shape[:-2], -1)
+    idx = np.flatnonzero(defects.kind)
+    if idx.size == 0:
+        return out
+    kind = defects.kind.reshape(-1)[idx]
+    level = defects.level.reshape(-1)[idx]
     span = hi - lo
-    kind = defects.kind
-    for k, fixed in (
-        (DefectKind.DEAD, vr),
-        (DefectKind.STUCK_LOW, lo),
-        (DefectKind.STUCK_HIGH, hi),
-    ):
-        m = kind == k
-        if m.any():
-            out[..., m] = fixed
-    m = kind == DefectKind.STUCK_VALUE
-    if m.any():
-        out[..., m] = lo + defects.level[m] * span
-    m = (kind == DefectKind.HOT) | (kind == DefectKind.COLD)
-    if m.any():
-        out[..., m] += defects.level[m] * span
+    vals = flat[..., idx]
+    vals = np.where(kind == DefectKind.DEAD, vr, vals)
+    vals = np.where(kind == DefectKind.STUCK_LOW, lo, vals)
+    vals = np.where(kind == DefectKind.STUCK_HIGH, hi, vals)
+    vals = np.where(kind == DefectKind.STUCK_VALUE, lo + level * span, vals)
+    offset = (kind == DefectKind.HOT) | (kind == DefectKind.COLD)
+    vals = np.where(offset, vals + level * span, vals)
+    flat[..., idx] = vals
     return out
 
 

@@ -235,10 +235,16 @@ def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
     return {"v_int": v}
 
 
+def _stage_noisy_pixels(ctx: RunContext, inp: dict) -> dict:
+    """Extra noise of NOISY defect pixels, V (None without any): fixed per sensor."""
+    r = ctx.cfg["readout"]
+    return {"noisy_sigma": noisy_sigma(inp["defects"], r["v_low"], r["v_high"])}
+
+
 def _stage_noise(ctx: RunContext, inp: dict) -> dict:
     cfg = ctx.cfg
     n, r, b = cfg["noise"], cfg["readout"], cfg["bolometer"]
-    extra = noisy_sigma(inp["defects"], r["v_low"], r["v_high"])
+    extra = inp["noisy_sigma"]
     if not n["enabled"]:
         if extra is None:
             return {"v_out": inp["v_int"]}
@@ -297,7 +303,9 @@ def build_stages(cfg: Mapping[str, Any]) -> list[Stage]:
               _stage_integrator),
     ]
     if _noise_configured(cfg):
-        stages.append(Stage("noise", ("v_int", "v_bolo", "dT", "defects"), ("v_out",), True,
+        stages.append(Stage("noisy_pixels", ("defects",), ("noisy_sigma",), False,
+                            _stage_noisy_pixels))
+        stages.append(Stage("noise", ("v_int", "v_bolo", "dT", "noisy_sigma"), ("v_out",), True,
                             _stage_noise))
     else:
         stages.append(Stage("no_noise", ("v_int",), ("v_out",), True,

@@ -2,10 +2,10 @@
 
 import math
 
-from numba import njit, prange
+from numba import njit
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def convert(v, rail_low, rail_high, v_low, scale, top, nearest, out):
     """Codes of a flat voltage array; returns the number of non-finite values.
 
@@ -14,10 +14,11 @@ def convert(v, rail_low, rail_high, v_low, scale, top, nearest, out):
     and clamped to [0, top].
     """
     bad = 0
-    for i in prange(v.shape[0]):
+    # One thread: a single streaming pass is cheaper than waking the pool.
+    for i in range(v.shape[0]):
         x = v[i]
         if not math.isfinite(x):
-            bad += 1  # a reduction; the caller locates them
+            bad += 1  # the caller locates them
             out[i] = 0
             continue
         x = min(max(x, rail_low), rail_high)

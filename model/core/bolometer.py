@@ -23,6 +23,7 @@ thermal runaway.
 
 import math
 
+import numpy as np
 from numba import njit, prange
 
 STATUS_OK = 0
@@ -34,8 +35,7 @@ STATUS_INVALID = 3  # the temperature would be <= 0 K
 FIXED_POINT_FACTOR = 100
 
 
-#: Taylor coefficients of f(u) = sum_{k>=1} (-1)^(k+1) u^k / (k+1)!, for u < 0.25; 14 terms
-#: leave a remainder below 0.25^14 / 15! ~ 3e-21 of f ~ u / 2.
+#: Taylor coefficients of f(u) = sum_{k>=1} (-1)^(k+1) u^k / (k+1)!, for u < 0.25.
 _SH_COEF = tuple((-1.0) ** (k + 1) / math.factorial(k + 1) for k in range(1, 15))
 
 
@@ -43,14 +43,16 @@ _SH_COEF = tuple((-1.0) ** (k + 1) / math.factorial(k + 1) for k in range(1, 15)
 def self_heating_factor(u):
     """f(u) = 1 + (e^(-u) - 1) / u for u = t_int / tau >= 0, without cancellation.
 
-    Small u: the alternating Taylor series u/2 - u^2/6 + u^3/24 - ... in Horner form
-    (no cancellation). Otherwise expm1, which keeps e^(-u) - 1 exact to rounding.
-    f(0) = 0, f(inf) = 1.
+    Small u: the alternating Taylor series u/2 - u^2/6 + u^3/24 - ... in Horner form (no
+    cancellation), with as many terms as u needs: n terms leave a relative remainder below
+    2 u^n / (n+2)!, under 1e-18 for (u < 1e-3, n = 5), (u < 0.03, n = 8), (u < 0.25, n = 13).
+    Otherwise expm1, which keeps e^(-u) - 1 exact to rounding. f(0) = 0, f(inf) = 1.
     """
     if u < 0.25:
         c = _SH_COEF
-        s = c[13]
-        for k in range(12, -1, -1):
+        n = 5 if u < 1e-3 else (8 if u < 0.03 else 13)
+        s = c[n - 1]
+        for k in range(n - 2, -1, -1):
             s = s * u + c[k]
         return s * u
     if u == math.inf:
@@ -85,6 +87,16 @@ def newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0):
     h is increasing and concave, so Newton steps from below never overshoot the root; the
     bracket [lo, hi] (hi computed only when a step would leave it) guards the rest.
     """
+    return newton_negative_tcr_warm(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, math.nan)
+
+
+@njit(cache=True)
+def newton_negative_tcr_warm(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, e0):
+    """:func:`newton_negative_tcr` with e0 = exp(B (1/(T_s + x0) - 1/T_ref)) known.
+
+    A neighbour's solution gives both x0 and e0 (its R over its R_ref), so the first Newton
+    step needs no exponential.
+    """
     atol = rtol * 1e-3
     inv_Tref = 1.0 / T_ref
     lo = a
@@ -97,7 +109,10 @@ def newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0):
     for it in range(1, max_iter + 1):
         T = T_s + x
         inv_T = 1.0 / T
-        R = R_ref * math.exp(B * (inv_T - inv_Tref))
+        if it == 1 and x == x0 and e0 > 0.0:
+            R = R_ref * e0
+        else:
+            R = R_ref * math.exp(B * (inv_T - inv_Tref))
         h = x - a - b * R
         if h > 0.0:
             hi = x
@@ -107,7 +122,8 @@ def newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0):
             return x, STATUS_OK, it, R
         bRB = b * R * B * inv_T * inv_T  # -d(b R)/dT > 0
         dh = 1.0 + bRB
-        step = h / dh
+        inv_dh = 1.0 / dh
+        step = h * inv_dh
         xn = x - step
         bisected = not (lo < xn < hi)
         if bisected:
@@ -121,7 +137,7 @@ def newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0):
             # Quadratic regime (Newton steps only: a bisection step says nothing about
             # it): the error after this step is about K step^2 with
             # K = |h''| / (2 h'), h'' = -b R (B^2/T^4 + 2B/T^3).
-            K = abs(bRB * (B * inv_T + 2.0) * inv_T) / (2.0 * dh)
+            K = abs(bRB * (B * inv_T + 2.0) * inv_T) * 0.5 * inv_dh
             done = K * step * step <= 0.01 * tol
         if done:
             Tn = T_s + xn
@@ -166,22 +182,35 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
     return x, STATUS_RUNAWAY, FIXED_POINT_FACTOR * max_iter
 
 
+#: Independent warm-start chains per row: pixel j starts from pixel j - WARM_CHAINS, so the
+#: CPU can overlap that many pixels instead of waiting for each left neighbour.
+WARM_CHAINS = 4
+
+
 @njit(cache=True)
 def solve_row(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, T_max,
               dT_out, v_out, status_out, iters_out):
-    """Solve one row of pixels; each pixel starts from its left neighbour's solution."""
-    x0 = math.nan
+    """Solve one row of pixels; pixel j starts from the solution of pixel j - WARM_CHAINS."""
+    x0s = np.full(WARM_CHAINS, math.nan)
+    e0s = np.full(WARM_CHAINS, math.nan)
     for j in range(Q.shape[0]):
+        slot = j % WARM_CHAINS
+        x0 = x0s[slot]
+        e0 = e0s[slot]
         gj = g[j]
+        inv_g = 1.0 / gj
         f = self_heating_factor(t_int * gj / C[j])
         fq = f if variant == 1 else 1.0
-        a = Q[j] * fq / gj
-        b = I * I * f / gj
+        a = Q[j] * fq * inv_g
+        b = I * I * f * inv_g
         if B > 0.0 and T_s + a > 0.0 and b > 0.0:
-            x, st, it, R = newton_negative_tcr(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0)
+            x, st, it, R = newton_negative_tcr_warm(a, b, R_ref[j], B, T_ref, T_s, rtol,
+                                                    max_iter, x0, e0)
             v_out[j] = I * R
+            e0 = R / R_ref[j]
         else:
             x, st, it = solve_delta_t(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0, T_max)
+            e0 = math.nan
             if st == STATUS_INVALID:
                 v_out[j] = math.nan
             else:
@@ -191,7 +220,8 @@ def solve_row(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, 
         dT_out[j] = x
         status_out[j] = st
         iters_out[j] = it
-        x0 = x if st == STATUS_OK else math.nan
+        x0s[slot] = x if st == STATUS_OK else math.nan
+        e0s[slot] = e0 if st == STATUS_OK else math.nan
 
 
 @njit(cache=True, parallel=True)
