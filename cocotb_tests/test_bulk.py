@@ -1,0 +1,135 @@
+"""Bulk co-simulation (C++ harness, raw binary files) of ``nuc_dpc_top`` against the golden model.
+
+The harness (``cocotb_tests/harness/bulk_main.cpp``) streams whole frames through the
+Verilated RTL; ``nuc_fixed.rtl.check_bulk`` compares every output code and marker with
+``nuc_fixed.nuc_dpc_top`` in numpy. Every named configuration, several frame shapes
+(back-to-back frames, the widest line buffer, 1 x 1 frames), full rate (no bubble) and
+random idle gaps with backpressure, and a deliberately wrong golden configuration that
+must be caught.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import numpy as np
+import pytest
+
+from nuc_fixed import InputError, load_pipeline, nuc_dpc_top, pack_words, pipeline_names, rtl
+
+pytestmark = [pytest.mark.cosim, pytest.mark.slow]
+
+
+@functools.cache
+def _build(config: str) -> rtl.Build:
+    return rtl.build_bulk(load_pipeline(config))
+
+
+def _shapes(config: str) -> dict[str, tuple[int, int, int]]:
+    """name -> (frames, H, W)."""
+    cfg = load_pipeline(config)
+    return {
+        "3x_small": (3, min(cfg.max_height, 9), min(cfg.max_width, 14)),
+        "max_width": (1, 3, cfg.max_width),
+        "column": (2, min(cfg.max_height, 40), 1),
+        "1x1": (3, 1, 1),
+    }
+
+
+def _stimulus(config: str, frames: int, h: int, w: int, seed: int):
+    """Random raw codes over the full range, random words, 5 % bad pixels."""
+    cfg = load_pipeline(config)
+    rng = np.random.default_rng(seed)
+    raw = rng.integers(0, 1 << cfg.adc_bits, size=(frames, h, w), dtype=np.int64)
+    g = rng.integers(0, 1 << cfg.gain_bits, size=(h, w), dtype=np.int64)
+    half = 1 << (cfg.offset_bits - 1)
+    o = rng.integers(-half, half, size=(h, w), dtype=np.int64)
+    bad = rng.random((h, w)) < 0.05
+    return raw, pack_words(g, o, bad, cfg)
+
+
+@pytest.mark.parametrize("shape", ["3x_small", "max_width", "column", "1x1"])
+@pytest.mark.parametrize("config", pipeline_names())
+def test_bulk_full_rate_matches_golden(config: str, shape: str) -> None:
+    """Bit exact at valid = 1 / ready = 1, and one output per cycle without a bubble."""
+    cfg = load_pipeline(config)
+    frames, h, w = _shapes(config)[shape]
+    raw, words = _stimulus(config, frames, h, w, seed=3)
+    res = rtl.run_bulk(_build(config), raw, words)
+    chk = rtl.check_bulk(res, raw, words, cfg)
+    assert chk.passed, f"{chk.mismatches} mismatches:\n" + "\n".join(chk.report)
+    assert res.data.size == raw.size
+    assert res.inputs_taken == (raw.size, raw.size)
+    assert res.last_out_cycle - res.first_out_cycle + 1 == raw.size, "bubble in the output"
+
+
+@pytest.mark.parametrize("config", pipeline_names())
+def test_bulk_gaps_and_backpressure(config: str) -> None:
+    """Random idle gaps on both inputs and output backpressure: still exact, and slower."""
+    cfg = load_pipeline(config)
+    frames, h, w = _shapes(config)["3x_small"]
+    raw, words = _stimulus(config, frames, h, w, seed=4)
+    res = rtl.run_bulk(_build(config), raw, words, idle_percent=30, stall_percent=40, seed=9)
+    chk = rtl.check_bulk(res, raw, words, cfg)
+    assert chk.passed, f"{chk.mismatches} mismatches:\n" + "\n".join(chk.report)
+    assert res.cycles > 1.5 * raw.size  # the gaps really happened
+    again = rtl.run_bulk(_build(config), raw, words, idle_percent=30, stall_percent=40, seed=9)
+    assert again.cycles == res.cycles  # same seed, same schedule
+    np.testing.assert_array_equal(again.data, res.data)
+
+
+@pytest.mark.parametrize("config", pipeline_names())
+def test_bulk_checker_detects_wrong_golden(config: str) -> None:
+    """Against another rounding mode the comparison must report mismatches with positions."""
+    cfg = load_pipeline(config)
+    other = cfg.replace(rounding="truncate" if cfg.rounding != "truncate" else "half_up")
+    raw, words = _stimulus(config, 2, min(cfg.max_height, 16), min(cfg.max_width, 16), seed=5)
+    res = rtl.run_bulk(_build(config), raw, words)
+    assert rtl.check_bulk(res, raw, words, cfg).passed
+    wrong = nuc_dpc_top(raw, words, other).astype(np.int64).ravel()
+    n_diff = int((wrong != nuc_dpc_top(raw, words, cfg).astype(np.int64).ravel()).sum())
+    assert n_diff > 0, "the two golden configurations must differ on this stimulus"
+    chk = rtl.check_bulk(res, raw, words, other)
+    assert chk.mismatches == n_diff
+    assert not chk.passed
+    assert chk.report and chk.report[0].startswith("frame ")
+    assert "expected" in chk.report[0] and "golden p" in chk.report[0]
+
+
+def test_bulk_checker_detects_markers_and_missing_outputs() -> None:
+    """A wrong marker, a missing output and an extra output are each reported."""
+    cfg = load_pipeline("minimal")
+    raw, words = _stimulus("minimal", 1, 4, 5, seed=6)
+    res = rtl.run_bulk(_build("minimal"), raw, words)
+    assert rtl.check_bulk(res, raw, words, cfg).passed
+    eol = res.eol.copy()
+    eol[4] = ~eol[4]  # last column of row 0
+    chk = rtl.check_bulk(dataclasses.replace(res, eol=eol), raw, words, cfg)
+    assert chk.mismatches == 1
+    assert "frame 0 x 4 y 0" in chk.report[0] and "eol 0 (expected 1)" in chk.report[0]
+    short = dataclasses.replace(res, data=res.data[:-1], sof=res.sof[:-1], eol=res.eol[:-1])
+    chk = rtl.check_bulk(short, raw, words, cfg)
+    assert chk.mismatches == 1 and "1 output pixels missing" in chk.report[0]
+    chk = rtl.check_bulk(dataclasses.replace(res, extra=2), raw, words, cfg)
+    assert chk.mismatches == 2 and "2 extra output pixels" in chk.report[0]
+
+
+def test_bulk_rejects_bad_arguments() -> None:
+    bld = _build("minimal")
+    raw, words = _stimulus("minimal", 1, 4, 5, seed=7)
+    with pytest.raises(ValueError, match=r"idle_percent = 100 .*0\.\.99"):
+        rtl.run_bulk(bld, raw, words, idle_percent=100)
+    with pytest.raises(ValueError, match=r"stall_percent = -1 .*0\.\.99"):
+        rtl.run_bulk(bld, raw, words, stall_percent=-1)
+    with pytest.raises(ValueError, match=r"seed = -3"):
+        rtl.run_bulk(bld, raw, words, seed=-3)
+    with pytest.raises(InputError, match="raw"):
+        rtl.run_bulk(bld, raw + 256, words)  # minimal: 8-bit codes
+    with pytest.raises(InputError, match="frame size"):
+        rtl.run_bulk(bld, np.zeros((65, 2), dtype=np.int64), np.zeros((65, 2), np.uint64))
+    with pytest.raises(InputError, match="words has shape"):
+        rtl.run_bulk(bld, raw, words[:, :3])
+    with pytest.raises(rtl.RtlError, match="not a bulk build"):
+        rtl.run_bulk(rtl.Build("nuc_dpc_top", bld.cfg, bld.build_dir.parent, {}, False),
+                     raw, words)
