@@ -84,16 +84,18 @@ def add_noise(v: np.ndarray, sigma: np.ndarray | float, seed: int, first_frame: 
     return out
 
 
-def add_noise_at(v: np.ndarray, sigma: np.ndarray, mask: np.ndarray, seed: int,
+def add_noise_at(v: np.ndarray, index: np.ndarray, sigma: np.ndarray, seed: int,
                  first_frame: int) -> np.ndarray:
-    """v plus white noise on the pixels of ``mask`` only (one draw per such pixel and frame).
+    """v plus white noise on some pixels only (one draw per such pixel and frame).
 
     Used when temporal noise is off but some pixels have a NOISY defect: the other pixels
-    need no draw at all. ``sigma`` is (H, W), V; frames are seeded as in :func:`add_noise`.
+    need no draw at all. ``index`` holds the flat (row-major) positions of those pixels in
+    a frame and ``sigma`` their standard deviations, V; frames are seeded as in
+    :func:`add_noise`.
     """
     out = v.copy()
-    s = sigma[mask]
+    flat = out.reshape(v.shape[0], -1)
     for k in range(v.shape[0]):
         rng = frame_rng(seed, first_frame + k)
-        out[k][mask] += s * rng.standard_normal(s.size)
+        flat[k, index] += sigma * rng.standard_normal(index.size)
     return out

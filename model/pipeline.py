@@ -227,8 +227,8 @@ def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
     act = (slice(None), *ctx.layout.active_slice)
     v = _readout.integrate(inp["v_bolo"][act], inp["v_ref"], r["gain"], r["v_reset"])
     v = apply_voltage_defects(v, inp["defects"], r["v_low"], r["v_high"], r["v_reset"])
-    failed = inp["status"][act] != _kb.STATUS_OK
-    if failed.any():
+    failed = (inp["status"][act] != _kb.STATUS_OK) if np.count_nonzero(inp["status"]) else None
+    if failed is not None and failed.any():
         # A runaway or unsolved pixel drives its integrator into the high rail; it is
         # counted in Frames.diagnostics, never passed on as NaN.
         v[failed] = r["v_high"]
@@ -238,18 +238,23 @@ def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
 def _stage_noisy_pixels(ctx: RunContext, inp: dict) -> dict:
     """Extra noise of NOISY defect pixels, V (None without any): fixed per sensor."""
     r = ctx.cfg["readout"]
-    return {"noisy_sigma": noisy_sigma(inp["defects"], r["v_low"], r["v_high"])}
+    sigma = noisy_sigma(inp["defects"], r["v_low"], r["v_high"])
+    if sigma is None:
+        return {"noisy_sigma": None}
+    idx = np.flatnonzero(sigma)
+    return {"noisy_sigma": (sigma, idx, sigma.reshape(-1)[idx])}
 
 
 def _stage_noise(ctx: RunContext, inp: dict) -> dict:
     cfg = ctx.cfg
     n, r, b = cfg["noise"], cfg["readout"], cfg["bolometer"]
-    extra = inp["noisy_sigma"]
+    noisy = inp["noisy_sigma"]
+    extra = noisy[0] if noisy is not None else None
     if not n["enabled"]:
-        if extra is None:
+        if noisy is None:
             return {"v_out": inp["v_int"]}
         ctx.counts["noise_frames"] += inp["v_int"].shape[0]
-        return {"v_out": _noise.add_noise_at(inp["v_int"], extra, extra > 0, ctx.seed,
+        return {"v_out": _noise.add_noise_at(inp["v_int"], noisy[1], noisy[2], ctx.seed,
                                              ctx.first_frame)}
     sigma2: np.ndarray | float = n["readout_sigma"] ** 2
     if n["johnson"]:
@@ -498,7 +503,9 @@ def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
     status = values["status"]
     act = (slice(None), *pipe.layout.active_slice)
     dT = values["dT"][act]
-    counts = np.bincount(status.reshape(-1), minlength=4)
+    # Failures are rare: count them only when there are any.
+    counts = (np.bincount(status.reshape(-1), minlength=4) if np.count_nonzero(status)
+              else np.zeros(4, np.int64))
     if counts[_kb.STATUS_INVALID]:
         dT = dT[np.isfinite(dT)]
     diag: dict[str, Any] = {
