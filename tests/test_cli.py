@@ -58,3 +58,21 @@ def test_progress_bar_on_long_batches(tmp_path, capsys):
     assert main(["frames", *SMALL, "--set", "run.chunk_frames=2", "--temps",
                  "300,301,302,303,304", "--out", str(tmp_path / "p.npz")]) == 0
     assert "frames [" in capsys.readouterr().err
+
+
+def test_progress_bar_redraws_on_a_terminal_and_logs_quarters_otherwise():
+    import io
+
+    from reports.progress import ProgressBar
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    tty, log = Tty(), io.StringIO()
+    for stream in (tty, log):
+        bar = ProgressBar("x", stream)
+        for k in range(1, 101):
+            bar(k, 100)
+    assert tty.getvalue().count("\r") == 100 and "[" + "#" * 30 + "]" in tty.getvalue()
+    assert log.getvalue().count("\n") == 5 and "\r" not in log.getvalue()
