@@ -57,7 +57,7 @@ def main() -> None:
     v = sensor.run(np.array([300.0]), ["Q", "params", "dT"])
     Q, p = v["Q"], v["params"]
     b, env = cfg["bolometer"], cfg["environment"]
-    B = -b["tcr"] * b["T_ref"] ** 2
+    B = kb.activation_temperature(b["tcr"], b["T_ref"])
     args = (B, b["T_ref"], env["T_substrate"], b["bias_current"], b["t_int"],
             BOLOMETER_VARIANTS[b["variant"]], b["rtol"], b["max_iter"], b["runaway_temperature"])
     shape = Q.shape

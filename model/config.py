@@ -199,13 +199,7 @@ def _check_relations(c: dict[str, dict[str, Any]]) -> None:
     from model.defects import DefectSpec
 
     spec = DefectSpec.from_dict(c["fpa"]["defects"], path="fpa.defects")
-    h, w = c["fpa"]["active_rows"], c["fpa"]["active_cols"]
-    for i, row in enumerate(spec.rows):
-        if not 0 <= row < h:
-            raise ConfigError(f"fpa.defects.rows[{i}] = {row} is outside the active rows 0..{h - 1}")
-    for i, col in enumerate(spec.cols):
-        if not 0 <= col < w:
-            raise ConfigError(f"fpa.defects.cols[{i}] = {col} is outside the active columns 0..{w - 1}")
+    spec.check_frame((c["fpa"]["active_rows"], c["fpa"]["active_cols"]))
 
 
 def _set_dotted(cfg: dict[str, Any], dotted: str, value: Any) -> None:

@@ -260,6 +260,23 @@ class DefectSpec:
                 )
         return cls(**_normalise(d, path))
 
+    def check_frame(self, shape: tuple[int, int], path: str = "fpa.defects") -> None:
+        """Raise ConfigError if a row, column, listed pixel or cluster does not fit a
+        frame of ``shape`` = (H, W)."""
+        h, w = shape
+        for i, r in enumerate(self.rows):
+            check_int(f"{path}.rows[{i}]", r, 0, h - 1)
+        for i, c in enumerate(self.cols):
+            check_int(f"{path}.cols[{i}]", c, 0, w - 1)
+        for i, item in enumerate(self.listed):
+            check_int(f"{path}.listed[{i}].row", item["row"], 0, h - 1)
+            check_int(f"{path}.listed[{i}].col", item["col"], 0, w - 1)
+        if self.clusters > 0 and self.cluster_size[0] > h * w:
+            raise ConfigError(
+                f"{path}.cluster_size[0] = {self.cluster_size[0]} is outside the allowed range "
+                f"[1, {h * w}] for a {h}x{w} frame"
+            )
+
     @property
     def is_empty(self) -> bool:
         """True when the spec places no defect at all (then no random draw happens)."""
@@ -427,19 +444,7 @@ def inject_defects(shape: tuple[int, int], spec: DefectSpec, seed: int) -> Defec
     if not isinstance(spec, DefectSpec):
         raise ConfigError(f"spec = {spec!r} is not a DefectSpec")
     seed = check_int("seed", seed, 0)
-    path = "fpa.defects"
-    for i, r in enumerate(spec.rows):
-        check_int(f"{path}.rows[{i}]", r, 0, h - 1)
-    for i, c in enumerate(spec.cols):
-        check_int(f"{path}.cols[{i}]", c, 0, w - 1)
-    for i, item in enumerate(spec.listed):
-        check_int(f"{path}.listed[{i}].row", item["row"], 0, h - 1)
-        check_int(f"{path}.listed[{i}].col", item["col"], 0, w - 1)
-    if spec.clusters > 0 and spec.cluster_size[0] > h * w:
-        raise ConfigError(
-            f"{path}.cluster_size[0] = {spec.cluster_size[0]} is outside the allowed range "
-            f"[1, {h * w}] for a {h}x{w} frame"
-        )
+    spec.check_frame((h, w))
 
     kind = np.zeros((h, w), dtype=np.uint8)
     pattern = np.zeros((h, w), dtype=np.uint8)

@@ -196,7 +196,7 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
 
 def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray]) -> dict:
     b = ctx.cfg["bolometer"]
-    B = -b["tcr"] * b["T_ref"] ** 2  # activation energy over k, K (alpha = -B / T_ref^2)
+    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
     shape = Q.shape
     dT = np.empty(shape)
     v = np.empty(shape)

@@ -202,7 +202,7 @@ def _electro_problem(quick: bool) -> dict[str, Any]:
     got = pipe.run(np.array([300.0, 400.0]), ["Q", "params"])
     b = cfg["bolometer"]
     p = got["params"]
-    B = -b["tcr"] * b["T_ref"] ** 2
+    B = kb.activation_temperature(b["tcr"], b["T_ref"])
     Q = np.ascontiguousarray(got["Q"])
     f = np.vectorize(kb.self_heating_factor)(b["t_int"] * p["g"] / p["C"])
     fq = f if b["variant"] == "paper" else 1.0
@@ -319,7 +319,9 @@ def reference_transient(Q: Sequence[float], T_s: Sequence[float], R_ref: float, 
     """
     from scipy.integrate import solve_ivp
 
-    B = -tcr * T_ref**2
+    from model.core import bolometer as kb
+
+    B = kb.activation_temperature(tcr, T_ref)
     th = float(theta0)
     means_v, means_t, ends = [], [], []
 

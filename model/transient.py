@@ -258,7 +258,7 @@ def integrate_pixels(
             check_array("theta0", theta0, unit="K"), shape), dtype=np.float64).ravel()
     if not (Ts[0] + th0 > 0.0).all():
         raise ConfigError("theta0: the initial pixel temperature T_s + theta0 must be > 0 K")
-    B = -tcr * T_ref * T_ref
+    B = _kb.activation_temperature(tcr, T_ref)
     method = INTEGRATORS[s.integrator]
     refuse = s.explicit_policy == "refuse"
     if method == _kt.M_RK4:

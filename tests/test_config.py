@@ -45,6 +45,8 @@ def test_presets_validate(name):
         ({"bolometer.typo": 1.0}, "bolometer: unknown field(s) ['typo']"),
         ({"fpa.defects": {"rates": {"dead": 2.0}}}, "fpa.defects.rates.dead"),
         ({"fpa.defects": {"rows": [500]}}, "fpa.defects.rows[0] = 500"),
+        ({"fpa.defects": {"listed": [{"row": 3, "col": 640, "kind": "dead"}]}},
+         "fpa.defects.listed[0].col = 640"),
         ({"fpa.blind": [0, 0, 0, 0]}, "readout.skimming = 'row' needs blind columns"),
         ({"radiometry.band": [14e-6, 8e-6]}, "radiometry.band"),
     ],

@@ -26,6 +26,12 @@ import math
 import numpy as np
 from numba import njit, prange
 
+
+def activation_temperature(tcr, T_ref):
+    """B = E_a / k, K, from the TCR alpha (1/K) at T_ref (K): alpha = -B / T_ref^2 (eq. 17)."""
+    return -tcr * T_ref * T_ref
+
+
 STATUS_OK = 0
 STATUS_NO_CONVERGENCE = 1
 STATUS_RUNAWAY = 2
