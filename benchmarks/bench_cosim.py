@@ -39,7 +39,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from nuc_fixed import (
+from irnuc.nuc_fixed import (
     load_pipeline,
     nuc_dpc_top,
     pack_words,
@@ -66,7 +66,7 @@ def bench_per_cycle(cfg, raw, words, expected, seed: int, work: Path) -> dict:
     inp, outp = work / "bench_in.npz", work / "bench_out.json"
     np.savez(inp, raw=raw, words=words, expected=expected)
     t0 = time.perf_counter()
-    xml = rtl.run(bld, "cocotb_tests.tb_bench", seed=seed,
+    xml = rtl.run(bld, "irnuc.cocotb_tests.tb_bench", seed=seed,
                   env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp),
                        "IRNUC_SEED": str(seed)},
                   results_xml=work / "bench_per_cycle.xml")

@@ -14,9 +14,8 @@ import os
 import time
 
 import numpy as np
-
-from nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
-from nuc_fixed.fixed import gain_format, offset_format
+from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
+from irnuc.nuc_fixed.fixed import gain_format, offset_format
 
 
 def numpy_reference(raw: np.ndarray, words: np.ndarray, cfg) -> np.ndarray:

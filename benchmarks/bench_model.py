@@ -29,11 +29,11 @@ import time
 from pathlib import Path
 
 import numpy as np
+from irnuc.model.core import bolometer as kb
+from irnuc.model.pipeline import BOLOMETER_VARIANTS, Pipeline
 from scipy.optimize import fsolve
 
-import model
-from model.core import bolometer as kb
-from model.pipeline import BOLOMETER_VARIANTS, Pipeline
+from irnuc import model
 
 
 def best_of(fn, repeats: int) -> float:

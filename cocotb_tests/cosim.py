@@ -6,7 +6,8 @@ from __future__ import annotations
 import functools
 import os
 
-from nuc_fixed import PipelineConfig, rtl
+from irnuc.cosim import rtl
+from irnuc.nuc_fixed import PipelineConfig
 
 
 def waves_requested() -> bool:

@@ -8,8 +8,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
-
-from nuc_fixed import PipelineConfig
+from irnuc.nuc_fixed import PipelineConfig
 
 
 def corner_coefficients(cfg: PipelineConfig, rng: np.random.Generator

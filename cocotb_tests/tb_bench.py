@@ -25,8 +25,7 @@ import cocotb
 import numpy as np
 from cocotb.handle import SimHandleBase
 from cocotb.triggers import RisingEdge
-
-from cocotb_tests import tb_lib
+from irnuc.cocotb_tests import tb_lib
 
 
 def _gpi(handle: SimHandleBase):

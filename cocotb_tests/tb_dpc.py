@@ -9,10 +9,9 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
-
-from cocotb_tests import tb_lib
-from cocotb_tests.directed import dpc_bad_patterns
-from nuc_fixed import dpc_core
+from irnuc.cocotb_tests import tb_lib
+from irnuc.cocotb_tests.directed import dpc_bad_patterns
+from irnuc.nuc_fixed import dpc_core
 
 
 def _frame_rows(y: np.ndarray, bad: np.ndarray) -> np.ndarray:

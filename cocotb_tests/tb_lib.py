@@ -21,8 +21,7 @@ import numpy as np
 from cocotb.clock import Clock
 from cocotb.handle import SimHandleBase
 from cocotb.triggers import ClockCycles, RisingEdge, Timer
-
-from nuc_fixed import (
+from irnuc.nuc_fixed import (
     PipelineConfig,
     dpc_core,
     nuc_core,

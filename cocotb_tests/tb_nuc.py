@@ -8,10 +8,9 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
-
-from cocotb_tests import tb_lib
-from cocotb_tests.directed import corner_coefficients
-from nuc_fixed import nuc_core
+from irnuc.cocotb_tests import tb_lib
+from irnuc.cocotb_tests.directed import corner_coefficients
+from irnuc.nuc_fixed import nuc_core
 
 
 def _check(x, g, o, user, got, gcfg, max_report=10):

@@ -8,11 +8,10 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
-
-from cocotb_tests import tb_lib
-from cocotb_tests.directed import corner_coefficients, dpc_bad_patterns
-from cocotb_tests.tb_lib import Frame, golden_frame
-from nuc_fixed import nuc_core, unpack_words
+from irnuc.cocotb_tests import tb_lib
+from irnuc.cocotb_tests.directed import corner_coefficients, dpc_bad_patterns
+from irnuc.cocotb_tests.tb_lib import Frame, golden_frame
+from irnuc.nuc_fixed import nuc_core, unpack_words
 
 
 def _sizes(cfg) -> list[tuple[int, int]]:
@@ -197,7 +196,7 @@ async def model_frames(dut) -> None:
     """Frames of the physics model (with defects), calibrated by nuc_fixed."""
     cfg = tb_lib.config_from_env()
     gcfg = tb_lib.golden_config(cfg)
-    from cocotb_tests.model_frames import calibrated_model_frames
+    from irnuc.cocotb_tests.model_frames import calibrated_model_frames
 
     frames_raw, words = calibrated_model_frames(cfg, seed=tb_lib.seed_from_env())
     rng = np.random.default_rng(tb_lib.seed_from_env() + 7)

@@ -15,8 +15,8 @@ import functools
 
 import numpy as np
 import pytest
-
-from nuc_fixed import InputError, load_pipeline, nuc_dpc_top, pack_words, pipeline_names, rtl
+from irnuc.cosim import rtl
+from irnuc.nuc_fixed import InputError, load_pipeline, nuc_dpc_top, pack_words, pipeline_names
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 

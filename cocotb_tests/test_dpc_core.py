@@ -5,12 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from irnuc.cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+from irnuc.cosim.rtl import reciprocal_table
+from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
-from cocotb_tests.cosim import check_case, cocotb_test_names, cosim
-from nuc_fixed import load_pipeline, pipeline_names
-from nuc_fixed.rtl import reciprocal_table
-
-MODULE = "cocotb_tests.tb_dpc"
+MODULE = "irnuc.cocotb_tests.tb_dpc"
 
 
 @pytest.mark.cosim
@@ -47,7 +46,7 @@ def test_reciprocal_division_exact(out_bits: int) -> None:
 
 def test_reciprocal_table_matches_rtl_source() -> None:
     """The table formula written in hdl/dpc_core.sv is the one proven above."""
-    from nuc_fixed.rtl import HDL_DIR
+    from irnuc.cosim.rtl import HDL_DIR
 
     text = (HDL_DIR / "dpc_core.sv").read_text()
     assert "localparam int unsigned RecShift = NumBits + 3;" in text

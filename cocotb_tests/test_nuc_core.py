@@ -7,11 +7,10 @@ and both overflow modes are built and checked (rounding ties included).
 from __future__ import annotations
 
 import pytest
+from irnuc.cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+from irnuc.nuc_fixed import PipelineConfig, load_pipeline, pipeline_names
 
-from cocotb_tests.cosim import check_case, cocotb_test_names, cosim
-from nuc_fixed import PipelineConfig, load_pipeline, pipeline_names
-
-MODULE = "cocotb_tests.tb_nuc"
+MODULE = "irnuc.cocotb_tests.tb_nuc"
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 

@@ -10,8 +10,8 @@ import json
 
 import numpy as np
 import pytest
-
-from nuc_fixed import load_pipeline, nuc_dpc_top, pack_words, rtl
+from irnuc.cosim import rtl
+from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
@@ -30,7 +30,7 @@ def _run(tmp_path, expected_cfg_changes: dict[str, str], public_api: str = "0"
     expected = nuc_dpc_top(raw, words, gcfg).astype(np.int64)
     inp, outp = tmp_path / "in.npz", tmp_path / "out.json"
     np.savez(inp, raw=raw, words=words, expected=expected)
-    xml = rtl.run(rtl.build("nuc_dpc_top", cfg), "cocotb_tests.tb_bench",
+    xml = rtl.run(rtl.build("nuc_dpc_top", cfg), "irnuc.cocotb_tests.tb_bench",
                   env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp),
                        "IRNUC_BENCH_PUBLIC_API": public_api},
                   results_xml=tmp_path / "bench.xml")

@@ -2,19 +2,19 @@
 
 Public API::
 
-    import model
+    from irnuc import model
     cfg = model.load_preset("default", overrides={"fpa.active_rows": 48})
     frames = model.simulate(cfg, temps=[300, 350, 400], scene="uniform", seed=1)
     frames.codes  # (3, 48, W) uint16
 """
 
-from model.config import load_config, load_preset, preset_names, validate
-from model.defects import DefectKind, DefectPattern
-from model.optics import cone_factor, cos4_map
-from model.pipeline import OUTPUTS, Frames, Pipeline, simulate
-from model.radiometry import BAND_RADIANCE_METHODS, band_radiance
-from model.scenes import Scene
-from model.validate import ConfigError
+from irnuc.model.config import load_config, load_preset, preset_names, validate
+from irnuc.model.defects import DefectKind, DefectPattern
+from irnuc.model.optics import cone_factor, cos4_map
+from irnuc.model.pipeline import OUTPUTS, Frames, Pipeline, simulate
+from irnuc.model.radiometry import BAND_RADIANCE_METHODS, band_radiance
+from irnuc.model.scenes import Scene
+from irnuc.model.validate import ConfigError
 
 __all__ = [
     "BAND_RADIANCE_METHODS",

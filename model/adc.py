@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-
-from model.core import adc as _k
-from model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.model.core import adc as _k
+from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 ADC_ROUNDING = ("nearest", "floor")
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 PRESET_DIR = Path(__file__).with_name("presets")
 
@@ -122,7 +122,7 @@ def _check_field(name: str, spec: Field, value: Any) -> Any:
     if spec.kind == "choice":
         return check_choice(name, value, spec.choices)
     if spec.kind == "band":
-        from model.radiometry import check_band
+        from irnuc.model.radiometry import check_band
 
         return list(check_band(tuple(value) if isinstance(value, list) else value, name))
     if spec.kind == "rings":
@@ -196,7 +196,7 @@ def _check_relations(c: dict[str, dict[str, Any]]) -> None:
         raise ConfigError("readout.skimming = 'row' needs blind columns: fpa.blind[2] + fpa.blind[3] >= 1")
     if r["skimming"] == "column" and blind[0] + blind[1] == 0:
         raise ConfigError("readout.skimming = 'column' needs blind rows: fpa.blind[0] + fpa.blind[1] >= 1")
-    from model.defects import DefectSpec
+    from irnuc.model.defects import DefectSpec
 
     spec = DefectSpec.from_dict(c["fpa"]["defects"], path="fpa.defects")
     spec.check_frame((c["fpa"]["active_rows"], c["fpa"]["active_cols"]))

@@ -21,8 +21,7 @@ from enum import IntEnum
 from typing import Any
 
 import numpy as np
-
-from model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 __all__ = [
     "KIND_NAMES",

@@ -17,8 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-
-from model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 __all__ = [
     "ACTIVE",

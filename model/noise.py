@@ -18,8 +18,7 @@ so the bits do not depend on how a batch is split into chunks.
 from __future__ import annotations
 
 import numpy as np
-
-from model.core.constants import K_BOLTZMANN
+from irnuc.model.core.constants import K_BOLTZMANN
 
 FLICKER_OCTAVES = 8
 #: Stream key that separates noise draws from the other seeded stages.

@@ -11,9 +11,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
-from model.core import optics as _k
-from model.validate import check_choice, check_int, check_scalar
+from irnuc.model.core import optics as _k
+from irnuc.model.validate import check_choice, check_int, check_scalar
 
 #: Cone (projected solid angle / pi) methods, selected by name.
 CONE_METHODS = {"f_number": _k.cone_factor_f_number, "paper_fov": _k.cone_factor_paper_fov}

@@ -20,13 +20,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-
-from model import adc as _adc
-from model import noise as _noise
-from model import readout as _readout
-from model.config import config_digest
-from model.core import bolometer as _kb
-from model.defects import (
+from irnuc.model import adc as _adc
+from irnuc.model import noise as _noise
+from irnuc.model import readout as _readout
+from irnuc.model.config import config_digest
+from irnuc.model.core import bolometer as _kb
+from irnuc.model.defects import (
     DefectKind,
     DefectMap,
     DefectSpec,
@@ -34,11 +33,11 @@ from model.defects import (
     inject_defects,
     noisy_sigma,
 )
-from model.fpa import ArrayLayout, draw_pixel_parameters
-from model.optics import cone_factor, cos4_map, focal_length_from_fov
-from model.radiometry import band_radiance
-from model.scenes import Scene, check_temps, scene_temperatures
-from model.validate import ConfigError, check_int
+from irnuc.model.fpa import ArrayLayout, draw_pixel_parameters
+from irnuc.model.optics import cone_factor, cos4_map, focal_length_from_fov
+from irnuc.model.radiometry import band_radiance
+from irnuc.model.scenes import Scene, check_temps, scene_temperatures
+from irnuc.model.validate import ConfigError, check_int
 
 BOLOMETER_VARIANTS = {"equilibrium": 0, "paper": 1}
 

@@ -12,10 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
-from model.core import radiometry as _k
-from model.core.constants import C2, RADIANCE_PREFACTOR
-from model.validate import ConfigError, check_array, check_choice, check_int, check_scalar
+from irnuc.model.core import radiometry as _k
+from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
+from irnuc.model.validate import ConfigError, check_array, check_choice, check_int, check_scalar
 
 #: Methods of :func:`band_radiance`, selected by name.
 #: ``hybrid``: the paper's tail series (eq. 3-4) where it converges fast, the Bernoulli

@@ -11,8 +11,7 @@ inverting, so a hotter scene (lower resistance for a negative TCR) gives a highe
 from __future__ import annotations
 
 import numpy as np
-
-from model.core.bolometer import STATUS_OK
+from irnuc.model.core.bolometer import STATUS_OK
 
 
 def _blind_mean(values: np.ndarray, ok: np.ndarray, axis: int, fallback: float) -> np.ndarray:

@@ -26,13 +26,12 @@ from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
-
-from model import pipeline as _pl
-from model.config import apply_overrides, validate
-from model.core import bolometer as _kb
-from model.core import transient as _kt
-from model.scenes import Scene, check_temps
-from model.validate import ConfigError, check_array, check_choice, check_int, check_scalar
+from irnuc.model import pipeline as _pl
+from irnuc.model.config import apply_overrides, validate
+from irnuc.model.core import bolometer as _kb
+from irnuc.model.core import transient as _kt
+from irnuc.model.scenes import Scene, check_temps
+from irnuc.model.validate import ConfigError, check_array, check_choice, check_int, check_scalar
 
 #: Integrators by name (codes of :mod:`model.core.transient`).
 INTEGRATORS: dict[str, int] = {

@@ -4,19 +4,19 @@ One function per RTL module (``nuc_core``, ``dpc_core``, ``nuc_dpc_top``); the b
 contract is ``docs/datapath.md`` and the user guide ``docs/golden_model.md``.
 """
 
-from nuc_fixed.config import ConfigError, PipelineConfig, load_pipeline, pipeline_names
-from nuc_fixed.dpc import dpc_core
-from nuc_fixed.fixed import FixedFormat, apply_overflow, gain_format, offset_format, round_shift
-from nuc_fixed.memimage import (
+from irnuc.nuc_fixed.config import ConfigError, PipelineConfig, load_pipeline, pipeline_names
+from irnuc.nuc_fixed.dpc import dpc_core
+from irnuc.nuc_fixed.fixed import FixedFormat, apply_overflow, gain_format, offset_format, round_shift
+from irnuc.nuc_fixed.memimage import (
     MemImageError,
     pack_words,
     read_memimage,
     unpack_words,
     write_memimage,
 )
-from nuc_fixed.nuc import NucIntermediates, nuc_core
-from nuc_fixed.top import nuc_dpc_top
-from nuc_fixed.validate import InputError
+from irnuc.nuc_fixed.nuc import NucIntermediates, nuc_core
+from irnuc.nuc_fixed.top import nuc_dpc_top
+from irnuc.nuc_fixed.validate import InputError
 
 __all__ = [
     "ConfigError",

@@ -12,8 +12,7 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
 import numpy as np
-
-from nuc_fixed.config import ConfigError
+from irnuc.nuc_fixed.config import ConfigError
 
 DETECTION_TOML = Path(__file__).with_name("detection.toml")
 

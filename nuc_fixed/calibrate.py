@@ -12,8 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-
-from nuc_fixed.badpix import (
+from irnuc.nuc_fixed.badpix import (
     DetectionThresholds,
     Reason,
     detect_offset_outliers,
@@ -22,12 +21,12 @@ from nuc_fixed.badpix import (
     reason_names,
     stack_stats,
 )
-from nuc_fixed.config import ROUNDING_MODES, ConfigError, PipelineConfig
-from nuc_fixed.dpc import uncorrectable
-from nuc_fixed.fixed import gain_format, offset_format
-from nuc_fixed.memimage import pack_words
-from nuc_fixed.nuc import nuc_core
-from nuc_fixed.validate import InputError, as_config, check_frame_shape, int_array
+from irnuc.nuc_fixed.config import ROUNDING_MODES, ConfigError, PipelineConfig
+from irnuc.nuc_fixed.dpc import uncorrectable
+from irnuc.nuc_fixed.fixed import gain_format, offset_format
+from irnuc.nuc_fixed.memimage import pack_words
+from irnuc.nuc_fixed.nuc import nuc_core
+from irnuc.nuc_fixed.validate import InputError, as_config, check_frame_shape, int_array
 
 # Reasons that make the float coefficients meaningless (excluded from the needed range).
 _NOT_CALIBRATABLE = (Reason.STUCK | Reason.RAIL | Reason.EQUAL_RESPONSE | Reason.UNRESPONSIVE

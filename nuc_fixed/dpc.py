@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import numpy as np
-
-from nuc_fixed import _kernels
-from nuc_fixed.config import PipelineConfig
-from nuc_fixed.nuc import out_dtype
-from nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
+from irnuc.nuc_fixed import _kernels
+from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.nuc import out_dtype
+from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
 
 
 def dpc_core(y: np.ndarray, bad: np.ndarray, cfg: PipelineConfig | str) -> np.ndarray:

@@ -10,8 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
-from nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES, ConfigError, PipelineConfig
+from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES, ConfigError, PipelineConfig
 
 
 def _check_mode(field: str, value: str, modes: dict[str, int]) -> str:

@@ -13,11 +13,11 @@ import os
 from pathlib import Path
 
 import numpy as np
+from irnuc.nuc_fixed.config import ConfigError, PipelineConfig
+from irnuc.nuc_fixed.nuc import check_coefficients
+from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, int_array
 
-from model.io import write_bytes_atomic
-from nuc_fixed.config import ConfigError, PipelineConfig
-from nuc_fixed.nuc import check_coefficients
-from nuc_fixed.validate import InputError, as_config, bool_array, int_array
+from irnuc.common.io import write_bytes_atomic
 
 MEMIMAGE_VERSION = 1
 HEX_NAME = "coeffs.hex"

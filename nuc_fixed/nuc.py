@@ -5,11 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
-from nuc_fixed import _kernels
-from nuc_fixed.config import PipelineConfig
-from nuc_fixed.fixed import gain_format, offset_format
-from nuc_fixed.validate import InputError, as_config, int_array
+from irnuc.nuc_fixed import _kernels
+from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.fixed import gain_format, offset_format
+from irnuc.nuc_fixed.validate import InputError, as_config, int_array
 
 
 @dataclass(frozen=True)

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
-
-from nuc_fixed import _kernels
-from nuc_fixed.config import PipelineConfig
-from nuc_fixed.memimage import check_words
-from nuc_fixed.nuc import datapath_constants, out_dtype
-from nuc_fixed.validate import InputError, as_config, check_frame_shape, int_array
+from irnuc.nuc_fixed import _kernels
+from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.memimage import check_words
+from irnuc.nuc_fixed.nuc import datapath_constants, out_dtype
+from irnuc.nuc_fixed.validate import InputError, as_config, check_frame_shape, int_array
 
 
 def nuc_dpc_top(raw: np.ndarray, words: np.ndarray, cfg: PipelineConfig | str) -> np.ndarray:

@@ -9,8 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-
-from nuc_fixed.config import ConfigError, PipelineConfig, load_pipeline
+from irnuc.nuc_fixed.config import ConfigError, PipelineConfig, load_pipeline
 
 
 class InputError(ValueError):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-import model
+from irnuc import model
 
 
 @pytest.fixture

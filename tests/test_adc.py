@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from model.adc import NonFiniteVoltageError, adc_convert
-from model.validate import ConfigError
+from irnuc.model.adc import NonFiniteVoltageError, adc_convert
+from irnuc.model.validate import ConfigError
 
 
 def test_codes_by_hand():

@@ -5,11 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from nuc_fixed import ConfigError, load_pipeline
-from nuc_fixed.badpix import Reason, load_thresholds, local_median, reason_names
-from nuc_fixed.calibrate import calibrate
-from nuc_fixed.synth import DefectKind, synth_frames
+from irnuc.nuc_fixed import ConfigError, load_pipeline
+from irnuc.nuc_fixed.badpix import Reason, load_thresholds, local_median, reason_names
+from irnuc.nuc_fixed.calibrate import calibrate
+from irnuc.nuc_fixed.synthetic import DefectKind, synth_frames
 
 CFG = load_pipeline("typical14")
 
@@ -68,7 +67,7 @@ def test_model_precision_recall() -> None:
     assert precision >= 0.95 and recall >= 0.9, (precision, recall)
     # Every kind except the offset ones (whose size is comparable to the fixed-pattern
     # spread, and which the two-point NUC corrects anyway) is found completely.
-    from model.defects import DefectKind as ModelKind
+    from irnuc.model.defects import DefectKind as ModelKind
 
     for kind in ModelKind:
         sel = res.defect_kind == kind

@@ -7,9 +7,8 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
+from irnuc.model.core import bolometer as kb
 from scipy.optimize import brentq
-
-from model.core import bolometer as kb
 
 mp.mp.dps = 40
 

@@ -7,11 +7,10 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-
-from nuc_fixed import ConfigError, InputError, load_pipeline, nuc_core
-from nuc_fixed.badpix import Reason, load_thresholds
-from nuc_fixed.calibrate import calibrate, summary_text
-from nuc_fixed.synth import synth_frames
+from irnuc.nuc_fixed import ConfigError, InputError, load_pipeline, nuc_core
+from irnuc.nuc_fixed.badpix import Reason, load_thresholds
+from irnuc.nuc_fixed.calibrate import calibrate, summary_text
+from irnuc.nuc_fixed.synthetic import synth_frames
 
 CFG = load_pipeline("typical14")
 

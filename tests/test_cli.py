@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from reports.cli import main
+from irnuc.cli import main
 
 SMALL = ["--set", "fpa.active_rows=10", "--set", "fpa.active_cols=12"]
 
@@ -63,7 +63,7 @@ def test_progress_bar_on_long_batches(tmp_path, capsys):
 def test_progress_bar_redraws_on_a_terminal_and_logs_quarters_otherwise():
     import io
 
-    from reports.progress import ProgressBar
+    from irnuc.common.progress import ProgressBar
 
     class Tty(io.StringIO):
         def isatty(self):

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import pytest
+from irnuc.model.config import SCHEMA, apply_overrides, load_toml, validate
 
-import model
-from model.config import SCHEMA, apply_overrides, load_toml, validate
+from irnuc import model
 
 
 @pytest.mark.parametrize("name", ["default", "paper"])
@@ -58,8 +58,7 @@ def test_bad_field_is_named(override, fragment):
 
 
 def test_bad_field_fails_before_any_work(monkeypatch):
-    import model.pipeline as p
-
+    import irnuc.model.pipeline as p
     monkeypatch.setattr(p, "build_stages", lambda cfg: pytest.fail("work started"))
     with pytest.raises(model.ConfigError):
         model.load_preset("default", {"bolometer.t_int": 0.0})

@@ -9,10 +9,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from scipy import ndimage
-
-from model import defects as dm
-from model.defects import (
+from irnuc.model import defects as dm
+from irnuc.model.defects import (
     KIND_NAMES,
     DefectKind,
     DefectMap,
@@ -22,7 +20,8 @@ from model.defects import (
     inject_defects,
     noisy_sigma,
 )
-from model.validate import ConfigError
+from irnuc.model.validate import ConfigError
+from scipy import ndimage
 
 K = DefectKind
 P = DefectPattern

@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from nuc_fixed import InputError, dpc_core, load_pipeline
-from nuc_fixed.dpc import uncorrectable
+from irnuc.nuc_fixed import InputError, dpc_core, load_pipeline
+from irnuc.nuc_fixed.dpc import uncorrectable
 
 CFG = load_pipeline("minimal")  # 6-bit output, max 64 x 64
 

@@ -17,19 +17,19 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-
-import model
-from model.adc import NonFiniteVoltageError, adc_convert
-from model.core.bolometer import (
+from irnuc.model.adc import NonFiniteVoltageError, adc_convert
+from irnuc.model.core.bolometer import (
     STATUS_INVALID,
     STATUS_OK,
     STATUS_RUNAWAY,
     self_heating_factor,
     self_heating_factor_naive,
 )
-from model.fpa import SPREAD_DISTRIBUTIONS, ArrayLayout, draw_pixel_parameters
-from model.precision import band_radiance_mp
-from model.validate import ConfigError
+from irnuc.model.fpa import SPREAD_DISTRIBUTIONS, ArrayLayout, draw_pixel_parameters
+from irnuc.model.validate import ConfigError
+from irnuc.reports.studies.precision import band_radiance_mp
+
+from irnuc import model
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "extreme_cases.md"
 SMALL = {"fpa.active_rows": 8, "fpa.active_cols": 10}
@@ -129,7 +129,7 @@ def test_tau_extremes_give_finite_frames(C):
 def test_integration_time_zero_is_an_error():
     with pytest.raises(ConfigError, match=r"bolometer\.t_int = 0"):
         _cfg(**{"bolometer.t_int": 0.0})
-    from model.transient import integrate_pixels
+    from irnuc.model.transient import integrate_pixels
 
     with pytest.raises(ConfigError, match=r"bolometer\.t_int"):
         integrate_pixels(np.ones((1, 1)) * 1e-9, 300.0, 1e5, 1e-8, 1e-10, tcr=-0.02,
@@ -173,7 +173,7 @@ def test_adc_rails_and_nan():
 
 
 def test_calibration_with_equal_frames_flags_pixels_without_inf():
-    nf = pytest.importorskip("nuc_fixed.calibrate")
+    nf = pytest.importorskip("irnuc.nuc_fixed.calibrate")
     rng = np.random.default_rng(1)
     lo = rng.integers(3000, 3100, (4, 6, 8))
     hi = lo + 1500 + rng.integers(-20, 20, (4, 6, 8))
@@ -181,13 +181,13 @@ def test_calibration_with_equal_frames_flags_pixels_without_inf():
     cal = nf.calibrate(lo, hi, "typical14")
     assert cal.bad[2, 3]
     assert np.isfinite(cal.gain).all() and np.isfinite(cal.offset).all()
-    from nuc_fixed.badpix import Reason
+    from irnuc.nuc_fixed.badpix import Reason
 
     assert cal.reasons[2, 3] & (Reason.EQUAL_RESPONSE | Reason.STUCK | Reason.UNRESPONSIVE)
 
 
 def test_calibration_coefficient_overflow_is_saturated_and_counted():
-    nf = pytest.importorskip("nuc_fixed.calibrate")
+    nf = pytest.importorskip("irnuc.nuc_fixed.calibrate")
     lo = np.full((4, 6, 8), 3000)
     hi = np.full((4, 6, 8), 4500)
     hi[:, 1, 1] = 3001  # a response 1500 times weaker: its gain overflows U2.14
@@ -206,7 +206,7 @@ def test_tiny_frames(shape):
                   "fpa.defects": {}})
     fr = _sim(cfg)
     assert fr.codes.shape == (2, *shape) and fr.codes.min() > 0
-    from model.transient import simulate_transient
+    from irnuc.model.transient import simulate_transient
 
     tf = simulate_transient(cfg, [300.0, 400.0])
     assert tf.codes.shape == (2, *shape)

@@ -8,10 +8,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from scipy import optimize, stats
-
-from model import fpa
-from model.fpa import (
+from irnuc.model import fpa
+from irnuc.model.fpa import (
     ACTIVE,
     BLIND,
     BOUNDARY,
@@ -19,7 +17,8 @@ from model.fpa import (
     ArrayLayout,
     draw_pixel_parameters,
 )
-from model.validate import ConfigError
+from irnuc.model.validate import ConfigError
+from scipy import optimize, stats
 
 # ---------------------------------------------------------------------------------------
 # Layout

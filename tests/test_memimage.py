@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from nuc_fixed import (
+from irnuc.nuc_fixed import (
     ConfigError,
     InputError,
     MemImageError,

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, read_memimage, unpack_words
+from irnuc.nuc_fixed.synthetic import synth_frames
 
-from nuc_fixed import load_pipeline, nuc_dpc_top, read_memimage, unpack_words
-from nuc_fixed.synth import synth_frames
-from reports.cli import main
+from irnuc.cli import main
 
 
 @pytest.fixture

@@ -6,10 +6,9 @@ import math
 
 import numpy as np
 import pytest
-
-from model import ConfigError, cone_factor, cos4_map
-from model.fpa import ArrayLayout
-from model.optics import centre_pixel_power, focal_length_from_fov
+from irnuc.model import ConfigError, cone_factor, cos4_map
+from irnuc.model.fpa import ArrayLayout
+from irnuc.model.optics import centre_pixel_power, focal_length_from_fov
 
 
 def angle_reference(rows, cols, pitch, f, centre):

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 import pytest
+from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
+from irnuc.reports.studies import precision as P
 from scipy.integrate import quad
 
-from model import precision as P
-from model.core.constants import C2, RADIANCE_PREFACTOR
-from reports import precision as R
+from irnuc.cli import precision as R
 
 
 def test_mpmath_reference_matches_scipy_quad():
@@ -90,7 +90,7 @@ def test_report_files_and_summary(quick_result, tmp_path):
 
 
 def test_cli_writes_the_report(tmp_path, capsys):
-    from reports.cli import main
+    from irnuc.cli import main
 
     rc = main(["precision", "--quick", "--only", "band_radiance", "--out", str(tmp_path),
                "--no-progress"])

@@ -5,10 +5,9 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
-
-from model import ConfigError, band_radiance
-from model.core.constants import C_LIGHT, H_PLANCK, K_BOLTZMANN
-from model.radiometry import band_radiance_detailed
+from irnuc.model import ConfigError, band_radiance
+from irnuc.model.core.constants import C_LIGHT, H_PLANCK, K_BOLTZMANN
+from irnuc.model.radiometry import band_radiance_detailed
 
 mp.mp.dps = 50
 

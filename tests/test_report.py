@@ -12,9 +12,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from irnuc.reports import report
 
-from reports import report
-from reports.cli import main
+from irnuc.cli import main
 
 SMALL = Path(report.__file__).with_name("report_small.toml")
 
@@ -205,7 +205,7 @@ def test_quick_overrides_apply() -> None:
 
 
 def test_report_imports_no_dev_only_package() -> None:
-    code = ("import sys, reports.report, reports.sweep, reports.commands; "
+    code = ("import sys, irnuc.reports.report, irnuc.reports.studies.sweep, irnuc.cli.commands; "
             "bad = [m for m in ('jsonschema', 'distributed', 'dask', 'pytest', 'hypothesis') "
             "if m in sys.modules]; print(bad); sys.exit(1 if bad else 0)")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from model import ConfigError, Scene
-from model.scenes import scene_temperatures
+from irnuc.model import ConfigError, Scene
+from irnuc.model.scenes import scene_temperatures
 
 
 def test_uniform_is_one_value_per_frame():

@@ -14,9 +14,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from reports import metrics
-from reports.sweep import (
+from irnuc.reports.studies import metrics
+from irnuc.reports.studies.sweep import (
     SensorSpec,
     SweepAxes,
     SweepError,
@@ -173,12 +172,11 @@ def test_too_wide_point_is_refused_before_evaluation(default_sets) -> None:
 # ---- the quantized NUC against the golden model --------------------------------------------
 def test_quantization_matches_golden_calibration(default_sets) -> None:
     """Per-point codes equal nuc_fixed.calibrate's at the same widths (good pixels)."""
-    from nuc_fixed.calibrate import calibrate
+    from irnuc.nuc_fixed.calibrate import calibrate
 
     axes, sets = default_sets
     cs = sets[(None, None)]
-    import model
-
+    from irnuc import model
     cfgm = DEFAULT.model_config()
     pipe = model.Pipeline(cfgm, seed=DEFAULT.seed)
     fr = pipe.simulate([DEFAULT.t_low, DEFAULT.t_high], repeats=DEFAULT.repeats)
@@ -188,7 +186,7 @@ def test_quantization_matches_golden_calibration(default_sets) -> None:
         cal = calibrate(fr.codes[:m], fr.codes[m:], cfg, rounding=point.coeff_rounding)
         y, info = quantized_nuc(cs, point)
         both = cs.good & ~cal.bad  # calibrate may flag more (range) at narrow widths
-        from nuc_fixed import nuc_core
+        from irnuc.nuc_fixed import nuc_core
 
         y_gold = nuc_core(cs.raw_eval, cal.gain_code, cal.offset_code, cfg)
         assert np.array_equal(y[:, both], y_gold[:, both]), point
@@ -295,7 +293,7 @@ def test_same_seed_same_bits() -> None:
 
 
 def test_sweep_cli(tmp_path, capsys) -> None:
-    from reports.cli import main
+    from irnuc.cli import main
 
     out = tmp_path / "sw"
     rc = main(["sweep", "--preset", "paper", "--rows", "24", "--cols", "32", "--t-eval", "350",

@@ -18,9 +18,8 @@ import math
 from fractions import Fraction
 
 import numpy as np
+from irnuc.model.core.constants import PI4_OVER_15
 from numba import njit, prange
-
-from model.core.constants import PI4_OVER_15
 
 #: Below this x the lower (Bernoulli) series replaces the tail series.
 X_SWITCH = 2.0

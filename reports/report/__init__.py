@@ -218,7 +218,7 @@ class Report:
 def _progress(label: str, enabled: bool) -> Callable[[int, int], None] | None:
     if not enabled:
         return None
-    from reports.progress import ProgressBar
+    from irnuc.common.progress import ProgressBar
 
     return ProgressBar(label)
 
@@ -231,14 +231,15 @@ def _sensor_overrides(s: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def phase_frames_and_calibration(rep: Report) -> None:
-    import model
-    from model.config import config_digest
-    from model.defects import DefectKind
-    from nuc_fixed import load_pipeline, nuc_dpc_top
-    from nuc_fixed.calibrate import calibrate
-    from nuc_fixed.dpc import uncorrectable
-    from reports import figures
-    from reports.metrics import nonuniformity, precision_recall
+    from irnuc.model.config import config_digest
+    from irnuc.model.defects import DefectKind
+    from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top
+    from irnuc.nuc_fixed.calibrate import calibrate
+    from irnuc.nuc_fixed.dpc import uncorrectable
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.metrics import nonuniformity, precision_recall
+
+    from irnuc import model
 
     s = rep.config["sensor"]
     with rep.phase("frames"):
@@ -312,7 +313,7 @@ def _point_key(p: Mapping[str, Any]) -> str:
 
 
 def sweep_specs(s: Mapping[str, Any]):
-    from reports.sweep import SensorSpec, SweepAxes
+    from irnuc.reports.studies.sweep import SensorSpec, SweepAxes
 
     sensor = SensorSpec(preset=s["preset"], overrides=_sensor_overrides(s), seed=s["seed"],
                         t_low=float(s["t_low"]), t_high=float(s["t_high"]),
@@ -328,8 +329,8 @@ def sweep_specs(s: Mapping[str, Any]):
 
 
 def phase_sweep(rep: Report, scheduler: str | None, progress: bool) -> None:
-    from reports import figures
-    from reports.sweep import run_sweep
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.sweep import run_sweep
 
     s = rep.config["sweep"]
     metric = s.get("error_metric", "err_max_lsb")
@@ -381,7 +382,7 @@ PAPER_VARIANTS: tuple[tuple[str, str, dict[str, Any], str, int], ...] = (
 
 
 def _paper_sets(p: Mapping[str, Any], overrides: Mapping[str, Any], seed_offset: int = 0):
-    from reports.sweep import SensorSpec, simulate_set
+    from irnuc.reports.studies.sweep import SensorSpec, simulate_set
 
     temps = tuple(float(t) for t in p["grid_temps"])
     sensor = SensorSpec(preset=p["preset"], overrides={"fpa.active_rows": p["rows"],
@@ -393,8 +394,14 @@ def _paper_sets(p: Mapping[str, Any], overrides: Mapping[str, Any], seed_offset:
 
 
 def phase_paper(rep: Report, progress: bool) -> None:
-    from reports import figures
-    from reports.sweep import SweepAxes, open_executor, quantized_nuc, resolve_points, run_points
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.sweep import (
+        SweepAxes,
+        open_executor,
+        quantized_nuc,
+        resolve_points,
+        run_points,
+    )
 
     p = rep.config["paper"]
     bits = [int(b) for b in p["frac_bits"]]
@@ -435,7 +442,7 @@ def phase_paper(rep: Report, progress: bool) -> None:
         cs = main_set
         ys = [quantized_nuc(cs, pt)[0] for pt, _ in main_points]
         good = cs.good
-        from reports.metrics import nonuniformity
+        from irnuc.reports.studies.metrics import nonuniformity
 
         imgs, notes = [], []
         for i in range(len(cs.t_eval)):
@@ -468,9 +475,10 @@ def phase_paper(rep: Report, progress: bool) -> None:
 
 
 def _paper_table1(rep: Report, p: Mapping[str, Any]) -> dict[str, Any] | None:
-    import model
-    from reports import figures
-    from reports.metrics import nonuniformity
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.metrics import nonuniformity
+
+    from irnuc import model
 
     t1 = p.get("table1")
     if not t1:
@@ -567,7 +575,7 @@ def run_cosim(cfg: Mapping[str, Any], junit_out: Path) -> dict[str, Any] | None:
 
 
 def phase_cosim(rep: Report, out: Path, junit: str | None, no_cosim: bool) -> None:
-    from model.io import write_atomic
+    from irnuc.common.io import write_atomic
 
     res = None
     with rep.phase("cosim"):
@@ -608,9 +616,9 @@ def _flatten(prefix: str, obj: Any, out: dict[str, float | int]) -> None:
 
 
 def phase_precision(rep: Report) -> None:
-    if "precision" not in rep.config or importlib.util.find_spec("reports.precision") is None:
+    if "precision" not in rep.config or importlib.util.find_spec("irnuc.cli.precision") is None:
         return
-    mod = importlib.import_module("reports.precision")
+    mod = importlib.import_module("irnuc.cli.precision")
     fn = next((getattr(mod, n) for n in PRECISION_FUNCTIONS if callable(getattr(mod, n, None))), None)
     if fn is None:
         rep.notes.append("reports/precision.py offers no summary function "
@@ -653,7 +661,7 @@ def _git(*args: str) -> str | None:
 
 def verilator_version() -> str | None:
     try:
-        from nuc_fixed import rtl
+        from irnuc.cosim import rtl
 
         return str(rtl.verilator_version())
     except Exception:
@@ -1171,8 +1179,9 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
 
 
 def write_outputs(rep: Report, summary: dict[str, Any], out: Path) -> None:
-    from model.io import write_text_atomic
-    from reports import figures
+    from irnuc.reports.studies import figures
+
+    from irnuc.common.io import write_text_atomic
 
     rep.figure("times", "Run time per phase", figures.phase_times(summary["phases"]))
     summary["schema_validation"] = validate_summary(summary)

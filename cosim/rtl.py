@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import fcntl
 import hashlib
+import importlib
 import importlib.metadata
 import json
 import os
 import subprocess
-import sys
 import time
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
@@ -35,13 +35,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from irnuc.nuc_fixed.config import PipelineConfig
 
-from nuc_fixed.config import PipelineConfig
+from irnuc.common.cache import cache_dir
 
-REPO_ROOT = Path(__file__).resolve().parent.parent
-HDL_DIR = REPO_ROOT / "hdl"
-OUT_DIR = REPO_ROOT / "out"
-SIM_BUILD_DIR = OUT_DIR / "sim_build"
+HDL_DIR = Path(importlib.import_module("irnuc.hdl").__file__).resolve().parent
+OUT_DIR = cache_dir()
+SIM_BUILD_DIR = cache_dir("sim_build")
 
 #: Module -> the HDL files it needs, in dependency order (one module per file).
 MODULE_FILES: dict[str, tuple[str, ...]] = {
@@ -251,9 +251,6 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     ``waves`` (needs a build with ``waves=True``) writes ``<results stem>.fst`` next to
     the results file (``.vcd`` when the lz4 headers that FST needs are missing).
     """
-    if str(REPO_ROOT) not in sys.path:
-        # The simulator's embedded Python gets sys.path as PYTHONPATH (cocotb runner).
-        sys.path.append(str(REPO_ROOT))
     if waves and not bld.waves:
         raise RtlError("waveforms need a build made with waves=True")
     results_xml = results_xml or (OUT_DIR / "cocotb_results" / f"{bld.cfg.name}-{bld.top}.xml")
@@ -325,7 +322,7 @@ def reciprocal_table(out_bits: int) -> tuple[int, list[int]]:
 
 #: The harness (Verilator ``--cc --exe``): reads raw binary stimulus, clocks the model
 #: itself, writes raw binary outputs. No cocotb, no VPI.
-BULK_HARNESS = REPO_ROOT / "cocotb_tests" / "harness" / "bulk_main.cpp"
+BULK_HARNESS = Path(__file__).resolve().with_name("harness") / "bulk_main.cpp"
 #: Name of the bulk executable inside its build folder.
 BULK_EXE = "nuc_dpc_bulk"
 #: Verilator options of the speed builds (bulk harness, per-cycle benchmark): full
@@ -435,8 +432,8 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
     """
     import tempfile
 
-    from nuc_fixed.memimage import check_words
-    from nuc_fixed.validate import InputError, check_frame_shape, int_array
+    from irnuc.nuc_fixed.memimage import check_words
+    from irnuc.nuc_fixed.validate import InputError, check_frame_shape, int_array
 
     if not isinstance(bld, Build) or not (bld.build_dir / BULK_EXE).is_file():
         raise RtlError(f"{bld!r} is not a bulk build; use rtl.build_bulk(cfg)")
@@ -524,7 +521,7 @@ def check_bulk(res: BulkResult, raw: np.ndarray, words: np.ndarray, golden: Pipe
     max_report : int
         Mismatches described in full (the count is always complete).
     """
-    from nuc_fixed import nuc_core, nuc_dpc_top, unpack_words
+    from irnuc.nuc_fixed import nuc_core, nuc_dpc_top, unpack_words
 
     h, w = res.frame_shape
     if expected is None:

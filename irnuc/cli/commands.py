@@ -52,10 +52,10 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     import json
     from pathlib import Path
 
-    from model.cli import parse_assignments, parse_temps
-    from model.io import write_atomic, write_text_atomic
-    from reports.progress import ProgressBar
-    from reports.sweep import SensorSpec, SweepAxes, check_metric, parse_int_list, run_sweep
+    from irnuc.cli.frames import parse_assignments, parse_temps
+    from irnuc.common.io import write_atomic, write_text_atomic
+    from irnuc.common.progress import ProgressBar
+    from irnuc.reports.studies.sweep import SensorSpec, SweepAxes, check_metric, parse_int_list, run_sweep
 
     check_metric(args.error_metric)
     words = ("truncate", "half_up", "half_even")
@@ -102,7 +102,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         wr.writerow([p[c] for c in cols])
     write_text_atomic(out / "sweep.csv", buf.getvalue())
     if not args.no_figures:
-        from reports import figures
+        from irnuc.reports.studies import figures
 
         front = res.pareto(args.error_metric)
         for name, data in (("error_vs_bits.png", figures.error_vs_bits(res.points, args.error_metric,
@@ -143,7 +143,7 @@ def add_report_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run_report_command(args: argparse.Namespace) -> int:
-    from reports.report import run_report
+    from irnuc.reports.report import run_report
 
     # The options as given (for the provenance), whether called from the console or from main([...]).
     args.argv = [f"--{k.replace('_', '-')}" + ("" if v is True else f" {v}")

@@ -146,8 +146,7 @@ def tail_integral_mp(x: float, dps: int = 40):
 def band_radiance_mp(T: float, band: tuple[float, float] = (8e-6, 14e-6), dps: int = 40) -> float:
     """In-band radiance (W m^-2 sr^-1) of a blackbody at T (K) by the polylog closed form."""
     import mpmath as mp
-
-    from model.core.constants import C2, RADIANCE_PREFACTOR
+    from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
 
     with mp.workdps(dps):
         Tm = mp.mpf(T)
@@ -159,7 +158,7 @@ def band_radiance_mp(T: float, band: tuple[float, float] = (8e-6, 14e-6), dps: i
 
 
 def band_radiance_study(quick: bool = False, repeats: int = 5) -> dict[str, Any]:
-    from model.radiometry import band_radiance_detailed
+    from irnuc.model.radiometry import band_radiance_detailed
 
     temps = np.geomspace(50.0, 10000.0, 24 if quick else 120)
     ref = np.array([band_radiance_mp(t) for t in temps])
@@ -192,8 +191,9 @@ def band_radiance_study(quick: bool = False, repeats: int = 5) -> dict[str, Any]
 # ---- electro-thermal solve ---------------------------------------------------------------
 
 def _electro_problem(quick: bool) -> dict[str, Any]:
-    import model
-    from model.core import bolometer as kb
+    from irnuc.model.core import bolometer as kb
+
+    from irnuc import model
 
     cfg = model.load_preset("paper", {"fpa.active_rows": 12 if quick else 40,
                                       "fpa.active_cols": 16 if quick else 48,
@@ -232,8 +232,8 @@ def _brentq_reference(prob: dict[str, Any], idx: np.ndarray) -> np.ndarray:
 
 
 def electro_thermal_study(quick: bool = False, repeats: int = 5) -> dict[str, Any]:
-    from model.core import bolometer as kb
-    from model.core import solve32 as k32
+    from irnuc.model.core import bolometer as kb
+    from irnuc.model.core import solve32 as k32
 
     prob = _electro_problem(quick)
     b = prob["cfg"]["bolometer"]
@@ -317,9 +317,8 @@ def reference_transient(Q: Sequence[float], T_s: Sequence[float], R_ref: float, 
 
     Returns the mean voltage (V), the mean rise and the rise at the end of each pulse (K).
     """
+    from irnuc.model.core import bolometer as kb
     from scipy.integrate import solve_ivp
-
-    from model.core import bolometer as kb
 
     B = kb.activation_temperature(tcr, T_ref)
     th = float(theta0)
@@ -373,9 +372,10 @@ TRANSIENT_PROBLEMS: dict[str, dict[str, Any]] = {
 
 def transient_problem(kind: str, quick: bool = False) -> dict[str, Any]:
     """Absorbed power, parameters and settings of a transient test problem."""
-    import model
-    from model.scenes import Scene
-    from model.transient import absorbed_power
+    from irnuc.model.scenes import Scene
+    from irnuc.model.transient import absorbed_power
+
+    from irnuc import model
 
     ov = {"fpa.active_rows": 6 if quick else 12, "fpa.active_cols": 8 if quick else 16,
           **TRANSIENT_PROBLEMS[kind]}
@@ -387,7 +387,7 @@ def transient_problem(kind: str, quick: bool = False) -> dict[str, Any]:
 
 
 def transient_study(kind: str, quick: bool = False, repeats: int = 3) -> dict[str, Any]:
-    from model import transient as tr
+    from irnuc.model import transient as tr
 
     prob = transient_problem(kind, quick)
     cfg, Q, Ts, p = prob["cfg"], prob["Q"], prob["T_s"], prob["params"]
@@ -463,7 +463,7 @@ def run_precision(quick: bool = False, components: Sequence[str] | None = None,
     names = list(components or COMPONENTS)
     unknown = [n for n in names if n not in COMPONENTS]
     if unknown:
-        from model.validate import ConfigError
+        from irnuc.model.validate import ConfigError
 
         raise ConfigError(f"components: unknown {unknown}; known {sorted(COMPONENTS)}")
     out = []

@@ -99,7 +99,7 @@ def render_html(result: dict[str, Any]) -> str:
 
 def write_report(result: dict[str, Any], out_dir: str | Path = DEFAULT_OUT) -> tuple[Path, Path]:
     """Write ``precision.json`` and ``precision.html`` atomically into ``out_dir``."""
-    from model.io import write_text_atomic
+    from irnuc.common.io import write_text_atomic
 
     out = Path(out_dir)
     result = {**result, "code_digest": code_digest()}
@@ -113,7 +113,7 @@ def precision_summary(out_dir: str | Path = DEFAULT_OUT, *, run_if_missing: bool
     """The summary for ``irnuc report``: from ``out_dir/precision.json`` if that file holds a
     run of the current model code at the same depth (``quick``), else from a fresh run,
     which is also written there."""
-    from model.precision import run_precision, summarize
+    from irnuc.reports.studies.precision import run_precision, summarize
 
     path = Path(out_dir) / JSON_NAME
     if path.is_file():
@@ -132,8 +132,7 @@ def code_digest() -> str:
     """Hash of the model's source files: a stored precision run is valid for this code only."""
     import hashlib
 
-    import model
-
+    from irnuc import model
     root = Path(model.__file__).parent
     h = hashlib.sha256()
     for path in sorted(root.rglob("*.py")):
@@ -154,8 +153,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from model.precision import run_precision, summarize
-    from reports.progress import ProgressBar
+    from irnuc.common.progress import ProgressBar
+    from irnuc.reports.studies.precision import run_precision, summarize
 
     progress = None if args.no_progress else ProgressBar("precision")
     result = run_precision(quick=args.quick, components=args.only, progress=progress)

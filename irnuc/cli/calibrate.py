@@ -11,7 +11,7 @@ import io
 import json
 from pathlib import Path
 
-from model.io import write_bytes_atomic
+from irnuc.common.io import write_bytes_atomic
 
 
 def _save_npz(path: Path, **arrays: object) -> None:
@@ -25,7 +25,7 @@ def _save_npz(path: Path, **arrays: object) -> None:
 def _load_frames(path: str) -> dict[str, object]:
     import numpy as np
 
-    from reports.cli import UsageError
+    from irnuc.cli import UsageError
 
     p = Path(path)
     if not p.is_file():
@@ -43,7 +43,7 @@ def _load_frames(path: str) -> dict[str, object]:
 
 
 def _check_adc(data: dict[str, object], cfg: object, path: str) -> None:
-    from reports.cli import UsageError
+    from irnuc.cli import UsageError
 
     adc = int(data["adc_bits"])  # type: ignore[call-overload]
     if adc != cfg.adc_bits:  # type: ignore[attr-defined]
@@ -54,7 +54,7 @@ def _check_adc(data: dict[str, object], cfg: object, path: str) -> None:
 def _pick(temps: object, wanted: float | None, default: float, flag: str) -> object:
     import numpy as np
 
-    from reports.cli import UsageError
+    from irnuc.cli import UsageError
 
     t = float(default if wanted is None else wanted)
     sel = np.isclose(temps, t, rtol=0.0, atol=1e-6)  # type: ignore[arg-type]
@@ -85,11 +85,11 @@ def _add_calibrate(p: argparse.ArgumentParser) -> None:
 def _run_calibrate(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from nuc_fixed.badpix import load_thresholds, reason_names
-    from nuc_fixed.calibrate import calibrate, summary_text
-    from nuc_fixed.config import load_pipeline
-    from nuc_fixed.memimage import write_memimage
-    from reports.cli import UsageError
+    from irnuc.cli import UsageError
+    from irnuc.nuc_fixed.badpix import load_thresholds, reason_names
+    from irnuc.nuc_fixed.calibrate import calibrate, summary_text
+    from irnuc.nuc_fixed.config import load_pipeline
+    from irnuc.nuc_fixed.memimage import write_memimage
 
     cfg = load_pipeline(args.config)
     overrides: dict[str, float] = {}
@@ -159,8 +159,8 @@ def _add_correct(p: argparse.ArgumentParser) -> None:
 def _run_correct(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from nuc_fixed.memimage import read_memimage
-    from nuc_fixed.top import nuc_dpc_top
+    from irnuc.nuc_fixed.memimage import read_memimage
+    from irnuc.nuc_fixed.top import nuc_dpc_top
 
     if not (Path(args.coeffs) / "manifest.json").is_file():
         raise FileNotFoundError(f"--coeffs {args.coeffs}: no manifest.json (run irnuc calibrate)")
@@ -169,7 +169,7 @@ def _run_correct(args: argparse.Namespace) -> int:
     _check_adc(data, cfg, args.frames)
     codes = data["codes"]
     if codes.shape[1:] != words.shape:
-        from reports.cli import UsageError
+        from irnuc.cli import UsageError
 
         raise UsageError(f"--frames frames are {codes.shape[1:]} (H, W) but the coefficients "
                          f"in {args.coeffs} are {words.shape}")

@@ -54,9 +54,9 @@ def run_frames(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    import model
-    from model.io import write_atomic
-    from reports.progress import ProgressBar
+    from irnuc import model
+    from irnuc.common.io import write_atomic
+    from irnuc.common.progress import ProgressBar
 
     overrides = parse_assignments(args.set, "--set")
     cfg = (model.load_config(args.config, overrides) if args.config

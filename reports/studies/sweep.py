@@ -95,8 +95,7 @@ class SensorSpec:
                 raise SweepError(f"sensor.t_eval holds {t!r} K, outside the allowed range (0, 1e5)")
 
     def model_config(self, adc_bits: int | None = None) -> dict[str, Any]:
-        import model
-
+        from irnuc import model
         ov = dict(self.overrides)
         if adc_bits is not None:
             ov["adc.bits"] = adc_bits
@@ -150,7 +149,7 @@ class SweepAxes:
             for v in values:
                 if v not in ROUNDINGS and not (v is None and name == "rounding"):
                     raise SweepError(f"axes.{name} holds {v!r}, not one of {list(ROUNDINGS)}")
-        from nuc_fixed import load_pipeline
+        from irnuc.nuc_fixed import load_pipeline
 
         try:
             load_pipeline(self.pipeline)
@@ -181,7 +180,7 @@ class SweepPoint:
     pipeline: str
 
     def config(self, height: int, width: int):  # -> nuc_fixed.PipelineConfig
-        from nuc_fixed import load_pipeline
+        from irnuc.nuc_fixed import load_pipeline
 
         base = load_pipeline(self.pipeline)
         return base.replace(
@@ -243,7 +242,7 @@ class CalibrationSet:
 
 def reference_config(adc_bits: int, out_bits: int, height: int, width: int, base: str = "typical14"):
     """A wide pipeline configuration for the float reference calibration."""
-    from nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed import load_pipeline
 
     b = load_pipeline(base)
     return b.replace(name="sweep_reference", adc_bits=adc_bits, out_bits=out_bits,
@@ -257,7 +256,7 @@ def calibration_set(frames_lo: np.ndarray, frames_hi: np.ndarray, raw_eval: np.n
                     out_bits: int, truth: np.ndarray | None = None,
                     pipeline: str = "typical14") -> CalibrationSet:
     """Float two-point NUC and bad-pixel map of two raw stacks (golden-model calibration)."""
-    from nuc_fixed.calibrate import calibrate
+    from irnuc.nuc_fixed.calibrate import calibrate
 
     h, w = frames_lo.shape[-2:]
     ref = reference_config(adc_bits, out_bits, h, w, pipeline)
@@ -275,8 +274,7 @@ def calibration_set(frames_lo: np.ndarray, frames_hi: np.ndarray, raw_eval: np.n
 def simulate_set(sensor: SensorSpec, adc_bits: int | None, out_bits: int | None,
                  pipeline: str = "typical14") -> CalibrationSet:
     """Simulate the calibration stacks and evaluation frames and calibrate them (float)."""
-    import model
-
+    from irnuc import model
     cfg = sensor.model_config(adc_bits)
     a = int(cfg["adc"]["bits"])
     b = a if out_bits is None else int(out_bits)
@@ -297,7 +295,7 @@ def prepare(sensor: SensorSpec, axes: SweepAxes) -> dict[tuple[int | None, int |
 
 
 def _auto_int_bits(lo: float, hi: float, frac_bits: int, signed: bool) -> int:
-    from nuc_fixed import FixedFormat
+    from irnuc.nuc_fixed import FixedFormat
 
     fmt = FixedFormat(1, frac_bits, signed)
     if not signed and lo < 0:
@@ -308,7 +306,7 @@ def _auto_int_bits(lo: float, hi: float, frac_bits: int, signed: bool) -> int:
 def resolve_points(axes: SweepAxes, sets: Mapping[tuple[int | None, int | None], CalibrationSet]
                    ) -> list[tuple[SweepPoint, tuple[int | None, int | None]]]:
     """Every point of the axes with ``auto`` / ``same`` / ``None`` resolved, validated."""
-    from nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed import load_pipeline
 
     base = load_pipeline(axes.pipeline)
     out: list[tuple[SweepPoint, tuple[int | None, int | None]]] = []
@@ -344,7 +342,7 @@ def quantized_nuc(cs: CalibrationSet, point: SweepPoint) -> tuple[np.ndarray, di
     rounding, saturating (as :func:`nuc_fixed.calibrate.calibrate` does); bad pixels get
     the median codes of the good pixels.
     """
-    from nuc_fixed import gain_format, nuc_core, offset_format
+    from irnuc.nuc_fixed import gain_format, nuc_core, offset_format
 
     h, w = cs.gain.shape
     cfg = point.config(h, w)
@@ -377,7 +375,7 @@ def evaluate_point(cs: CalibrationSet, point: SweepPoint, threads: int | None = 
     ``threads`` limits numba's threads for the duration (1 in pool workers, so two
     workers on two cores do not oversubscribe them).
     """
-    from reports.metrics import frame_metrics
+    from irnuc.reports.studies.metrics import frame_metrics
 
     old = None
     if threads is not None:
@@ -521,7 +519,7 @@ class SweepResult:
         return next(iter(self.sets.values())).gain.shape
 
     def pareto(self, metric: str = "err_max_lsb") -> list[dict[str, Any]]:
-        from reports.metrics import pareto_front
+        from irnuc.reports.studies.metrics import pareto_front
 
         check_metric(metric)
         cost = np.array([p["bits_per_pixel"] for p in self.points], dtype=float)

@@ -13,8 +13,8 @@ import importlib
 import sys
 from collections.abc import Callable, Sequence
 
-COMMAND_MODULES: tuple[str, ...] = ("model.cli", "nuc_fixed.cli", "reports.commands",
-                                      "reports.precision")
+COMMAND_MODULES: tuple[str, ...] = ("irnuc.cli.frames", "irnuc.cli.calibrate",
+                                      "irnuc.cli.commands", "irnuc.cli.precision")
 
 Command = tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]
 
