@@ -14,7 +14,7 @@ Two modes:
   Mpixel/s, timed end to end (validation, files written, harness process, files read,
   comparison).
 
-Both use Verilator builds with ``nuc_fixed.rtl.FAST_ARGS`` (``-O3``, ``--x-assign fast``,
+Both use Verilator builds with ``nuc_fixed.cosim.FAST_ARGS`` (``-O3``, ``--x-assign fast``,
 ``--x-initial fast``, ``-O2`` C++, assertions on, no tracing). Baseline measured in the
 same run: the golden model (``nuc_fixed.nuc_dpc_top``) on the same frame; its output is
 computed once before the co-simulations (also reported: bulk including that time).
@@ -30,21 +30,15 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-from irnuc.nuc_fixed import (
-    load_pipeline,
-    nuc_dpc_top,
-    pack_words,
-    rtl,
-)
+from irnuc import cosim
+from irnuc.common.cache import cache_dir
+from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
 
 H, W = 480, 640
 PER_CYCLE_GOAL = 100e3
@@ -62,18 +56,18 @@ def stimulus(cfg, seed: int):
 
 
 def bench_per_cycle(cfg, raw, words, expected, seed: int, work: Path) -> dict:
-    bld = rtl.build("nuc_dpc_top", cfg, extra_args=rtl.FAST_ARGS)
+    bld = cosim.build("nuc_dpc_top", cfg, extra_args=cosim.FAST_ARGS)
     inp, outp = work / "bench_in.npz", work / "bench_out.json"
     np.savez(inp, raw=raw, words=words, expected=expected)
     t0 = time.perf_counter()
-    xml = rtl.run(bld, "irnuc.cocotb_tests.tb_bench", seed=seed,
+    xml = cosim.run(bld, "irnuc.cocotb_tests.tb_bench", seed=seed,
                   env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp),
                        "IRNUC_SEED": str(seed)},
                   results_xml=work / "bench_per_cycle.xml")
     wall = time.perf_counter() - t0
-    res = rtl.read_results(xml)
+    res = cosim.read_results(xml)
     if not outp.is_file():
-        raise rtl.RtlError(f"per-cycle benchmark wrote no result: {res}")
+        raise cosim.RtlError(f"per-cycle benchmark wrote no result: {res}")
     info = json.loads(outp.read_text())
     outp.unlink()
     loop = info["sim_seconds"] + info["check_seconds"]
@@ -83,12 +77,12 @@ def bench_per_cycle(cfg, raw, words, expected, seed: int, work: Path) -> dict:
 
 
 def bench_bulk(cfg, raw, words, expected, work: Path) -> dict:
-    bld = rtl.build_bulk(cfg)
+    bld = cosim.build_bulk(cfg)
     t0 = time.perf_counter()
-    res = rtl.run_bulk(bld, raw, words, work_dir=work)
-    chk = rtl.check_bulk(res, raw, words, cfg, expected=expected)
+    res = cosim.run_bulk(bld, raw, words, work_dir=work)
+    chk = cosim.check_bulk(res, raw, words, cfg, expected=expected)
     dt = time.perf_counter() - t0
-    return {"mismatches": chk.mismatches, "report": chk.report[:3],
+    return {"mismatches": chk.errors, "report": chk.lines[:3],
             "frame_err": res.frame_err, "cycles": res.cycles,
             "bubbles": res.last_out_cycle - res.first_out_cycle + 1 - raw.size,
             "seconds": dt, "sim_seconds": res.sim_seconds,
@@ -116,12 +110,11 @@ def main() -> None:
         golden_times.append(time.perf_counter() - t0)
     golden_s = min(golden_times)
     golden_rate = raw.size / golden_s
-    rtl.OUT_DIR.mkdir(exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=rtl.OUT_DIR, prefix="bench_cosim.") as tmp:
+    with tempfile.TemporaryDirectory(dir=cache_dir("bench"), prefix="bench_cosim.") as tmp:
         work = Path(tmp)
         # Builds first (cached; not part of the timings).
-        rtl.build("nuc_dpc_top", cfg, extra_args=rtl.FAST_ARGS)
-        rtl.build_bulk(cfg)
+        cosim.build("nuc_dpc_top", cfg, extra_args=cosim.FAST_ARGS)
+        cosim.build_bulk(cfg)
         pers = [bench_per_cycle(cfg, raw, words, expected, args.seed, work)
                 for _ in range(args.repeat)]
         bulks = [bench_bulk(cfg, raw, words, expected, work) for _ in range(args.repeat)]

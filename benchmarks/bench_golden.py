@@ -14,6 +14,7 @@ import os
 import time
 
 import numpy as np
+
 from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
 from irnuc.nuc_fixed.fixed import gain_format, offset_format
 

@@ -29,11 +29,11 @@ import time
 from pathlib import Path
 
 import numpy as np
-from irnuc.model.core import bolometer as kb
-from irnuc.model.pipeline import BOLOMETER_VARIANTS, Pipeline
 from scipy.optimize import fsolve
 
 from irnuc import model
+from irnuc.model.core import bolometer as kb
+from irnuc.model.pipeline import BOLOMETER_VARIANTS, Pipeline
 
 
 def best_of(fn, repeats: int) -> float:

@@ -8,6 +8,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
+
 from irnuc.nuc_fixed import PipelineConfig
 
 

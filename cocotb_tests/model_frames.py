@@ -9,6 +9,7 @@ calibration; the frames to correct are a non-uniform scene in between.
 from __future__ import annotations
 
 import numpy as np
+
 from irnuc.nuc_fixed import PipelineConfig, pack_words
 
 
@@ -16,9 +17,8 @@ def calibrated_model_frames(cfg: PipelineConfig, seed: int = 1, rows: int = 12,
                             cols: int = 20, n_frames: int = 2
                             ) -> tuple[list[np.ndarray], np.ndarray]:
     """Raw scene frames (each (H, W) int64) and their coefficient words (H, W) uint64."""
-    from irnuc.nuc_fixed.calibrate import calibrate
-
     from irnuc import model
+    from irnuc.nuc_fixed.calibrate import calibrate
 
     rows, cols = min(rows, cfg.max_height), min(cols, cfg.max_width)
     rates = {"dead": 0.01, "stuck_high": 0.005, "stuck_low": 0.005, "hot": 0.01,

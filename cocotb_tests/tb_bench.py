@@ -25,6 +25,7 @@ import cocotb
 import numpy as np
 from cocotb.handle import SimHandleBase
 from cocotb.triggers import RisingEdge
+
 from irnuc.cocotb_tests import tb_lib
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
+
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.directed import dpc_bad_patterns
 from irnuc.nuc_fixed import dpc_core

@@ -21,20 +21,15 @@ import numpy as np
 from cocotb.clock import Clock
 from cocotb.handle import SimHandleBase
 from cocotb.triggers import ClockCycles, RisingEdge, Timer
-from irnuc.nuc_fixed import (
-    PipelineConfig,
-    dpc_core,
-    nuc_core,
-    nuc_dpc_top,
-    pack_words,
-    unpack_words,
-)
+
+from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
+from irnuc.nuc_fixed import PipelineConfig, dpc_core, nuc_dpc_top, pack_words
 
 CLK_PERIOD_NS = 10
 
 
 def config_from_env(var: str = "IRNUC_CONFIG_JSON") -> PipelineConfig:
-    """The configuration the DUT was built with (set by ``nuc_fixed.rtl.run``)."""
+    """The configuration the DUT was built with (set by ``irnuc.cosim.run``)."""
     return PipelineConfig(**json.loads(os.environ[var]))
 
 
@@ -105,62 +100,23 @@ def golden_frame(raw: np.ndarray, words: np.ndarray, gcfg: PipelineConfig) -> Fr
     return Frame(raw=raw, words=words, expected=nuc_dpc_top(raw, words, gcfg).astype(np.int64))
 
 
-@dataclass
-class Mismatch:
-    frame: int
-    x: int
-    y: int
-    text: str
+def check_frames(frames: list[Frame], got: list[tuple[int, ...]], gcfg: PipelineConfig,
+                 max_report: int = 10) -> ScoreResult:
+    """In-order check of the output stream (data, sof, eol) against the golden frames,
+    with the one scoreboard of irnuc (``irnuc.cosim.TopScoreboard``)."""
+    sb = TopScoreboard(gcfg, max_report=max_report)
+    for fr in frames:
+        sb.expect_frames(fr.raw, fr.words, fr.expected)
+    for d, sof, eol in got:
+        sb.observe(data=d, sof=sof, eol=eol)
+    return sb.result()
 
 
-def describe_pixel(frame: Frame, fi: int, x: int, y: int, got: int | str,
-                   gcfg: PipelineConfig) -> str:
-    """A mismatch line with the inputs, expected, got and golden intermediates."""
-    gain, offset, bad = unpack_words(frame.words, gcfg)
-    it = nuc_core(frame.raw, gain, offset, gcfg, intermediates=True)
-    return (f"frame {fi} x {x} y {y}: raw {int(frame.raw[y, x])} gain {int(gain[y, x])} "
-            f"offset {int(offset[y, x])} bad {int(bad[y, x])} | expected "
-            f"{int(frame.expected[y, x])} got {got} | golden p {int(it.p[y, x])} "
-            f"s {int(it.s[y, x])} r {int(it.r[y, x])} y_nuc {int(it.y[y, x])}")
-
-
-def check_frames(frames: list[Frame], got: list[tuple[int, int, int]],
-                 gcfg: PipelineConfig, max_report: int = 10) -> list[Mismatch]:
-    """In-order check of the output stream (data, sof, eol) against the golden frames.
-
-    Markers are checked too: sof exactly on (0, 0), eol exactly on the last column.
-    Returns the mismatches (at most ``max_report`` carry a full description).
-    """
-    out: list[Mismatch] = []
-    k = 0
-    for fi, fr in enumerate(frames):
-        h, w = fr.expected.shape
-        for y in range(h):
-            for x in range(w):
-                if k >= len(got):
-                    out.append(Mismatch(fi, x, y, f"frame {fi} x {x} y {y}: missing output "
-                                        f"(stream ended after {len(got)} pixels)"))
-                    return out
-                d, sof, eol = got[k]
-                k += 1
-                exp_sof, exp_eol = int(x == 0 and y == 0), int(x == w - 1)
-                if d != fr.expected[y, x] or sof != exp_sof or eol != exp_eol:
-                    txt = (describe_pixel(fr, fi, x, y, d, gcfg)
-                           + f" | sof {sof} (expected {exp_sof}) eol {eol} (expected {exp_eol})"
-                           if len(out) < max_report else "")
-                    out.append(Mismatch(fi, x, y, txt))
-    if k < len(got):
-        out.append(Mismatch(len(frames), 0, 0, f"{len(got) - k} extra output pixels"))
-    return out
-
-
-def assert_no_mismatch(mism: list[Mismatch], log) -> None:
-    if mism:
-        lines = [m.text for m in mism if m.text]
-        for line in lines:
+def assert_no_mismatch(res: ScoreResult, log) -> None:
+    if not res.passed:
+        for line in res.lines:
             log.error(line)
-        raise AssertionError(f"{len(mism)} mismatching output pixels; first:\n"
-                             + "\n".join(lines[:10]))
+        raise AssertionError(res.report())
 
 
 # ---- the per-cycle stream engine ---------------------------------------------------------

@@ -8,6 +8,7 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles
+
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.directed import corner_coefficients
 from irnuc.nuc_fixed import nuc_core

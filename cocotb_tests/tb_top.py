@@ -8,6 +8,7 @@ from __future__ import annotations
 import cocotb
 import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
+
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.directed import corner_coefficients, dpc_bad_patterns
 from irnuc.cocotb_tests.tb_lib import Frame, golden_frame
@@ -162,13 +163,13 @@ async def checker_detects_mismatch(dut) -> None:
         "the deliberately different golden model predicts the same frame"
     got, _, _ = await tb_lib.run_top_frames(dut, frames, rng)
     mism = tb_lib.check_frames(wrong, got, other)
-    assert mism, "checker reported no mismatch against a different golden configuration"
-    text = mism[0].text
+    assert not mism.passed, "checker reported no mismatch against a different golden configuration"
+    text = mism.lines[0]
     for key in ("frame", "x", "y", "raw", "gain", "offset", "expected", "got", " p ", " s ",
                 " r "):
         assert key in text, f"mismatch report lacks {key!r}: {text}"
     # ... and the same outputs pass against the right configuration.
-    assert not tb_lib.check_frames(frames, got, cfg)
+    assert tb_lib.check_frames(frames, got, cfg).passed
 
 
 @cocotb.test()

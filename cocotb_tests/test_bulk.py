@@ -1,7 +1,7 @@
 """Bulk co-simulation (C++ harness, raw binary files) of ``nuc_dpc_top`` against the golden model.
 
 The harness (``cocotb_tests/harness/bulk_main.cpp``) streams whole frames through the
-Verilated RTL; ``nuc_fixed.rtl.check_bulk`` compares every output code and marker with
+Verilated RTL; ``nuc_fixed.cosim.check_bulk`` compares every output code and marker with
 ``nuc_fixed.nuc_dpc_top`` in numpy. Every named configuration, several frame shapes
 (back-to-back frames, the widest line buffer, 1 x 1 frames), full rate (no bubble) and
 random idle gaps with backpressure, and a deliberately wrong golden configuration that
@@ -15,15 +15,17 @@ import functools
 
 import numpy as np
 import pytest
-from irnuc.cosim import rtl
+
+from irnuc import cosim
+from irnuc.common.errors import UserError
 from irnuc.nuc_fixed import InputError, load_pipeline, nuc_dpc_top, pack_words, pipeline_names
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 
 @functools.cache
-def _build(config: str) -> rtl.Build:
-    return rtl.build_bulk(load_pipeline(config))
+def _build(config: str) -> cosim.Build:
+    return cosim.build_bulk(load_pipeline(config))
 
 
 def _shapes(config: str) -> dict[str, tuple[int, int, int]]:
@@ -56,9 +58,9 @@ def test_bulk_full_rate_matches_golden(config: str, shape: str) -> None:
     cfg = load_pipeline(config)
     frames, h, w = _shapes(config)[shape]
     raw, words = _stimulus(config, frames, h, w, seed=3)
-    res = rtl.run_bulk(_build(config), raw, words)
-    chk = rtl.check_bulk(res, raw, words, cfg)
-    assert chk.passed, f"{chk.mismatches} mismatches:\n" + "\n".join(chk.report)
+    res = cosim.run_bulk(_build(config), raw, words)
+    chk = cosim.check_bulk(res, raw, words, cfg)
+    assert chk.passed, chk.report()
     assert res.data.size == raw.size
     assert res.inputs_taken == (raw.size, raw.size)
     assert res.last_out_cycle - res.first_out_cycle + 1 == raw.size, "bubble in the output"
@@ -70,11 +72,11 @@ def test_bulk_gaps_and_backpressure(config: str) -> None:
     cfg = load_pipeline(config)
     frames, h, w = _shapes(config)["3x_small"]
     raw, words = _stimulus(config, frames, h, w, seed=4)
-    res = rtl.run_bulk(_build(config), raw, words, idle_percent=30, stall_percent=40, seed=9)
-    chk = rtl.check_bulk(res, raw, words, cfg)
-    assert chk.passed, f"{chk.mismatches} mismatches:\n" + "\n".join(chk.report)
+    res = cosim.run_bulk(_build(config), raw, words, idle_percent=30, stall_percent=40, seed=9)
+    chk = cosim.check_bulk(res, raw, words, cfg)
+    assert chk.passed, chk.report()
     assert res.cycles > 1.5 * raw.size  # the gaps really happened
-    again = rtl.run_bulk(_build(config), raw, words, idle_percent=30, stall_percent=40, seed=9)
+    again = cosim.run_bulk(_build(config), raw, words, idle_percent=30, stall_percent=40, seed=9)
     assert again.cycles == res.cycles  # same seed, same schedule
     np.testing.assert_array_equal(again.data, res.data)
 
@@ -85,51 +87,51 @@ def test_bulk_checker_detects_wrong_golden(config: str) -> None:
     cfg = load_pipeline(config)
     other = cfg.replace(rounding="truncate" if cfg.rounding != "truncate" else "half_up")
     raw, words = _stimulus(config, 2, min(cfg.max_height, 16), min(cfg.max_width, 16), seed=5)
-    res = rtl.run_bulk(_build(config), raw, words)
-    assert rtl.check_bulk(res, raw, words, cfg).passed
+    res = cosim.run_bulk(_build(config), raw, words)
+    assert cosim.check_bulk(res, raw, words, cfg).passed
     wrong = nuc_dpc_top(raw, words, other).astype(np.int64).ravel()
     n_diff = int((wrong != nuc_dpc_top(raw, words, cfg).astype(np.int64).ravel()).sum())
     assert n_diff > 0, "the two golden configurations must differ on this stimulus"
-    chk = rtl.check_bulk(res, raw, words, other)
+    chk = cosim.check_bulk(res, raw, words, other)
     assert chk.mismatches == n_diff
     assert not chk.passed
-    assert chk.report and chk.report[0].startswith("frame ")
-    assert "expected" in chk.report[0] and "golden p" in chk.report[0]
+    assert chk.lines and chk.lines[0].startswith("frame ")
+    assert "expected" in chk.lines[0] and "golden p" in chk.lines[0]
 
 
 def test_bulk_checker_detects_markers_and_missing_outputs() -> None:
     """A wrong marker, a missing output and an extra output are each reported."""
     cfg = load_pipeline("minimal")
     raw, words = _stimulus("minimal", 1, 4, 5, seed=6)
-    res = rtl.run_bulk(_build("minimal"), raw, words)
-    assert rtl.check_bulk(res, raw, words, cfg).passed
+    res = cosim.run_bulk(_build("minimal"), raw, words)
+    assert cosim.check_bulk(res, raw, words, cfg).passed
     eol = res.eol.copy()
     eol[4] = ~eol[4]  # last column of row 0
-    chk = rtl.check_bulk(dataclasses.replace(res, eol=eol), raw, words, cfg)
+    chk = cosim.check_bulk(dataclasses.replace(res, eol=eol), raw, words, cfg)
     assert chk.mismatches == 1
-    assert "frame 0 x 4 y 0" in chk.report[0] and "eol 0 (expected 1)" in chk.report[0]
+    assert "frame 0 x 4 y 0" in chk.lines[0] and "eol 0 (expected 1)" in chk.lines[0]
     short = dataclasses.replace(res, data=res.data[:-1], sof=res.sof[:-1], eol=res.eol[:-1])
-    chk = rtl.check_bulk(short, raw, words, cfg)
-    assert chk.mismatches == 1 and "1 output pixels missing" in chk.report[0]
-    chk = rtl.check_bulk(dataclasses.replace(res, extra=2), raw, words, cfg)
-    assert chk.mismatches == 2 and "2 extra output pixels" in chk.report[0]
+    chk = cosim.check_bulk(short, raw, words, cfg)
+    assert chk.missing == 1 and chk.errors == 1 and "1 output(s) missing" in chk.lines[0]
+    chk = cosim.check_bulk(dataclasses.replace(res, extra=2), raw, words, cfg)
+    assert chk.extra == 2 and chk.errors == 2 and "2 extra output(s)" in chk.lines[0]
 
 
 def test_bulk_rejects_bad_arguments() -> None:
     bld = _build("minimal")
     raw, words = _stimulus("minimal", 1, 4, 5, seed=7)
     with pytest.raises(ValueError, match=r"idle_percent = 100 .*0\.\.99"):
-        rtl.run_bulk(bld, raw, words, idle_percent=100)
+        cosim.run_bulk(bld, raw, words, idle_percent=100)
     with pytest.raises(ValueError, match=r"stall_percent = -1 .*0\.\.99"):
-        rtl.run_bulk(bld, raw, words, stall_percent=-1)
+        cosim.run_bulk(bld, raw, words, stall_percent=-1)
     with pytest.raises(ValueError, match=r"seed = -3"):
-        rtl.run_bulk(bld, raw, words, seed=-3)
+        cosim.run_bulk(bld, raw, words, seed=-3)
     with pytest.raises(InputError, match="raw"):
-        rtl.run_bulk(bld, raw + 256, words)  # minimal: 8-bit codes
+        cosim.run_bulk(bld, raw + 256, words)  # minimal: 8-bit codes
     with pytest.raises(InputError, match="frame size"):
-        rtl.run_bulk(bld, np.zeros((65, 2), dtype=np.int64), np.zeros((65, 2), np.uint64))
+        cosim.run_bulk(bld, np.zeros((65, 2), dtype=np.int64), np.zeros((65, 2), np.uint64))
     with pytest.raises(InputError, match="words has shape"):
-        rtl.run_bulk(bld, raw, words[:, :3])
-    with pytest.raises(rtl.RtlError, match="not a bulk build"):
-        rtl.run_bulk(rtl.Build("nuc_dpc_top", bld.cfg, bld.build_dir.parent, {}, False),
+        cosim.run_bulk(bld, raw, words[:, :3])
+    with pytest.raises(UserError, match="not a bulk build"):
+        cosim.run_bulk(cosim.Build("nuc_dpc_top", bld.cfg, bld.build_dir.parent, {}, False),
                      raw, words)

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from irnuc.cocotb_tests.cosim import check_case, cocotb_test_names, cosim
-from irnuc.cosim.rtl import reciprocal_table
+
+from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
+from irnuc.nuc_fixed.dpc import reciprocal_table
 
 MODULE = "irnuc.cocotb_tests.tb_dpc"
 
@@ -17,7 +18,7 @@ MODULE = "irnuc.cocotb_tests.tb_dpc"
 @pytest.mark.parametrize("case", cocotb_test_names(MODULE))
 @pytest.mark.parametrize("config", pipeline_names())
 def test_dpc_core(config: str, case: str) -> None:
-    check_case(cosim("dpc_core", load_pipeline(config), MODULE), case)
+    check_case(run_module("dpc_core", load_pipeline(config), MODULE), case)
 
 
 def _out_bits_to_prove() -> list[int]:
@@ -42,14 +43,3 @@ def test_reciprocal_division_exact(out_bits: int) -> None:
         bad = np.flatnonzero(got != want)
         assert bad.size == 0, f"n={n}: first failing S={int(s[bad[0]])}"
         assert int(m.max()) * table[n] < (1 << 64), "numpy uint64 product overflowed"
-
-
-def test_reciprocal_table_matches_rtl_source() -> None:
-    """The table formula written in hdl/dpc_core.sv is the one proven above."""
-    from irnuc.cosim.rtl import HDL_DIR
-
-    text = (HDL_DIR / "dpc_core.sv").read_text()
-    assert "localparam int unsigned RecShift = NumBits + 3;" in text
-    assert "localparam int unsigned NumBits  = OutBits + 3;" in text
-    assert "num = (longint'(1) << RecShift) + longint'(n) - 1;" in text
-    assert "return rec_t'(num / longint'(n));" in text

@@ -7,7 +7,8 @@ and both overflow modes are built and checked (rounding ties included).
 from __future__ import annotations
 
 import pytest
-from irnuc.cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+
+from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
 from irnuc.nuc_fixed import PipelineConfig, load_pipeline, pipeline_names
 
 MODULE = "irnuc.cocotb_tests.tb_nuc"
@@ -33,4 +34,4 @@ def _config(variant: str) -> PipelineConfig:
 @pytest.mark.parametrize("case", cocotb_test_names(MODULE))
 @pytest.mark.parametrize("variant", list(_VARIANTS))
 def test_nuc_core(variant: str, case: str) -> None:
-    check_case(cosim("nuc_core", _config(variant), MODULE), case)
+    check_case(run_module("nuc_core", _config(variant), MODULE), case)

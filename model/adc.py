@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from irnuc.model.core import adc as _k
 from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 

@@ -9,16 +9,15 @@ allowed range. The FPA defect table is checked by :class:`model.defects.DefectSp
 from __future__ import annotations
 
 import copy
-import hashlib
-import json
 import math
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.common import schema
+from irnuc.common.digest import digest
+from irnuc.model.validate import ConfigError
 
 PRESET_DIR = Path(__file__).with_name("presets")
 
@@ -104,73 +103,83 @@ SCHEMA: dict[str, Field] = {
 TOLERANCE_KEYS = ("R_ref", "g", "C")
 
 
-def _check_field(name: str, spec: Field, value: Any) -> Any:
-    if value is None:
-        if spec.optional:
-            return None
-        raise ConfigError(f"{name} is required")
-    if spec.kind == "float":
-        return check_scalar(name, value, spec.lo, spec.hi, lo_open=spec.lo_open,
-                            hi_open=spec.hi_open, unit=spec.unit)
-    if spec.kind == "int":
-        return check_int(name, value, int(spec.lo) if spec.lo is not None else None,
-                         int(spec.hi) if spec.hi is not None else None)
-    if spec.kind == "bool":
-        if not isinstance(value, bool):
-            raise ConfigError(f"{name} = {value!r} must be true or false")
-        return value
-    if spec.kind == "choice":
-        return check_choice(name, value, spec.choices)
-    if spec.kind == "band":
-        from irnuc.model.radiometry import check_band
+def _field_schema(spec: Field) -> dict[str, Any]:
+    """The JSON Schema of one field (types, ranges, units; values checked before use)."""
+    from irnuc.model.defects import KNOWN_KEYS as DEFECT_KEYS
 
-        return list(check_band(tuple(value) if isinstance(value, list) else value, name))
+    if spec.kind in ("float", "int"):
+        return schema.number(spec.lo, spec.hi, lo_open=spec.lo_open, hi_open=spec.hi_open,
+                             integer=spec.kind == "int", unit=spec.unit, nullable=spec.optional)
+    if spec.kind == "bool":
+        return {"type": "boolean"}
+    if spec.kind == "choice":
+        return {"enum": list(spec.choices)}
+    if spec.kind == "band":
+        return {"type": "array", "minItems": 2, "maxItems": 2,
+                "items": schema.number(1e-7, 1e-3, unit="m")}
     if spec.kind == "rings":
-        if not isinstance(value, (list, tuple)) or len(value) != 4:
-            raise ConfigError(f"{name} = {value!r} must be 4 ring sizes [top, bottom, left, right]")
-        return [check_int(f"{name}[{i}]", v, 0, 4096) for i, v in enumerate(value)]
+        return {"type": "array", "minItems": 4, "maxItems": 4,
+                "items": schema.number(0, 4096, integer=True, unit="pixels")}
     if spec.kind == "tolerances":
-        if not isinstance(value, Mapping):
-            raise ConfigError(f"{name} must be a table of relative tolerances")
-        unknown = set(value) - set(TOLERANCE_KEYS)
-        if unknown:
-            raise ConfigError(f"{name}: unknown key(s) {sorted(unknown)}; known {TOLERANCE_KEYS}")
-        return {k: check_scalar(f"{name}.{k}", value.get(k, 0.0), 0.0, 1.0)
-                for k in TOLERANCE_KEYS}
-    if spec.kind == "table":
-        if not isinstance(value, Mapping):
-            raise ConfigError(f"{name} must be a table")
-        return dict(value)
+        return schema.table({k: schema.number(0.0, 1.0) for k in TOLERANCE_KEYS})
+    if spec.kind == "table":  # the defect table: keys here, values in DefectSpec
+        return {"type": "object", "propertyNames": {"enum": list(DEFECT_KEYS)}}
     raise AssertionError(spec.kind)
 
 
-def validate(cfg: Mapping[str, Any]) -> dict[str, Any]:
+def sensor_schema() -> dict[str, Any]:
+    """The JSON Schema of a whole sensor configuration, built from :data:`SCHEMA`."""
+    sections: dict[str, dict[str, Any]] = {}
+    required: dict[str, list[str]] = {}
+    for name, spec in SCHEMA.items():
+        section, key = name.split(".", 1)
+        sections.setdefault(section, {})[key] = _field_schema(spec)
+        if not spec.optional:
+            required.setdefault(section, []).append(key)
+    return schema.table({sec: schema.table(props, required=required.get(sec, []))
+                         for sec, props in sections.items()}, required=list(sections))
+
+
+_SENSOR_SCHEMA: dict[str, Any] = {}
+
+
+def validate(cfg: Mapping[str, Any], source: str = "sensor configuration") -> dict[str, Any]:
     """Check every field of a nested configuration; return a normalised deep copy.
+
+    Parameters
+    ----------
+    cfg : mapping
+        Sections of fields (a parsed sensor TOML with its overrides).
+    source : str
+        Named first in error messages (the file, or the preset and its overrides).
 
     Raises
     ------
     ConfigError
-        Naming the dotted field, the value and the allowed range, for the first bad field.
+        One line naming the dotted field, the value and the allowed range, for the first
+        bad field; an unknown field or section is refused with the nearest known name.
     """
-    if not isinstance(cfg, Mapping):
-        raise ConfigError("a sensor configuration must be a table")
-    sections = {name.split(".")[0] for name in SCHEMA}
-    unknown_sections = set(cfg) - sections
-    if unknown_sections:
-        raise ConfigError(f"unknown section(s) {sorted(unknown_sections)}; known {sorted(sections)}")
-    out: dict[str, dict[str, Any]] = {s: {} for s in sections}
-    for section in sections:
-        table = cfg.get(section, {})
-        if not isinstance(table, Mapping):
-            raise ConfigError(f"{section} must be a table")
-        known = {n.split(".", 1)[1] for n in SCHEMA if n.startswith(section + ".")}
-        unknown = set(table) - known
-        if unknown:
-            raise ConfigError(
-                f"{section}: unknown field(s) {sorted(unknown)}; known {sorted(known)}")
+    if not _SENSOR_SCHEMA:
+        _SENSOR_SCHEMA.update(sensor_schema())
+    try:
+        schema.check(cfg, _SENSOR_SCHEMA, source=source)
+    except schema.SchemaError as exc:
+        raise ConfigError(str(exc)) from None
+    out: dict[str, dict[str, Any]] = {}
     for name, spec in SCHEMA.items():
         section, key = name.split(".", 1)
-        out[section][key] = _check_field(name, spec, cfg.get(section, {}).get(key))
+        value = copy.deepcopy(cfg.get(section, {}).get(key))
+        if spec.kind == "float" and value is not None:
+            value = float(value)
+        elif spec.kind == "band":
+            from irnuc.model.radiometry import check_band
+
+            value = list(check_band(tuple(value), name))
+        elif spec.kind == "tolerances":
+            value = {k: float(value.get(k, 0.0)) for k in TOLERANCE_KEYS}
+        elif spec.kind == "table":
+            value = dict(value)
+        out.setdefault(section, {})[key] = value
     _check_relations(out)
     return out
 
@@ -223,12 +232,12 @@ def apply_overrides(cfg: Mapping[str, Any], overrides: Mapping[str, Any] | None)
 def load_toml(path: str | Path) -> dict[str, Any]:
     """Read a TOML file; a preset may name a ``base`` preset that it changes."""
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"configuration file {str(path)!r} does not exist")
-    with path.open("rb") as fh:
-        data = tomllib.load(fh)
+    data = schema.read_toml(path)
     base = data.pop("base", None)
     if base is not None:
+        if base not in preset_names():
+            raise ConfigError(f"{path}: base = {base!r} is not one of the presets "
+                              f"({', '.join(preset_names())})")
         merged = load_toml(PRESET_DIR / f"{base}.toml")
         for section, table in data.items():
             if isinstance(table, dict):
@@ -247,15 +256,18 @@ def preset_names() -> list[str]:
 def load_preset(name: str, overrides: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """A validated configuration from a named preset plus dotted-key overrides."""
     if name not in preset_names():
-        raise ConfigError(f"preset = {name!r} is not one of {preset_names()}")
-    return validate(apply_overrides(load_toml(PRESET_DIR / f"{name}.toml"), overrides))
+        raise ConfigError(f"preset = {name!r} is not one of {preset_names()}"
+                          f"{schema.nearest(name, preset_names())}")
+    source = f"preset {name!r}" + (" with overrides" if overrides else "")
+    return validate(apply_overrides(load_toml(PRESET_DIR / f"{name}.toml"), overrides), source)
 
 
 def load_config(path: str | Path, overrides: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """A validated configuration from a TOML file plus dotted-key overrides."""
-    return validate(apply_overrides(load_toml(path), overrides))
+    source = str(path) + (" with overrides" if overrides else "")
+    return validate(apply_overrides(load_toml(path), overrides), source)
 
 
 def config_digest(cfg: Mapping[str, Any]) -> str:
     """Short hash of a validated configuration (for provenance and caches)."""
-    return hashlib.sha256(json.dumps(cfg, sort_keys=True).encode()).hexdigest()[:16]
+    return digest(cfg)

@@ -21,6 +21,7 @@ from enum import IntEnum
 from typing import Any
 
 import numpy as np
+
 from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 __all__ = [
@@ -67,7 +68,7 @@ KIND_NAMES: tuple[str, ...] = tuple(k.name.lower() for k in DefectKind if k != D
 _HIGH_RESP_MAX = 100.0
 _MAX_CLUSTER_SIZE = 1 << 20
 
-_KNOWN_KEYS = (
+KNOWN_KEYS = (
     "rates",
     "clusters",
     "cluster_size",
@@ -240,7 +241,7 @@ class DefectSpec:
     noise: float = 0.02
 
     def __post_init__(self) -> None:
-        values = _normalise({k: getattr(self, k) for k in _KNOWN_KEYS}, "fpa.defects")
+        values = _normalise({k: getattr(self, k) for k in KNOWN_KEYS}, "fpa.defects")
         for k, v in values.items():
             object.__setattr__(self, k, v)
 
@@ -253,9 +254,9 @@ class DefectSpec:
         if not isinstance(d, Mapping):
             raise ConfigError(f"{path} = {d!r} is not a table")
         for key in d:
-            if key not in _KNOWN_KEYS:
+            if key not in KNOWN_KEYS:
                 raise ConfigError(
-                    f"{path}.{key} is not a known key; known keys: {list(_KNOWN_KEYS)}"
+                    f"{path}.{key} is not a known key; known keys: {list(KNOWN_KEYS)}"
                 )
         return cls(**_normalise(d, path))
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+
 from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 __all__ = [

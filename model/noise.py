@@ -18,6 +18,7 @@ so the bits do not depend on how a batch is split into chunks.
 from __future__ import annotations
 
 import numpy as np
+
 from irnuc.model.core.constants import K_BOLTZMANN
 
 FLICKER_OCTAVES = 8

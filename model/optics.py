@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 from irnuc.model.core import optics as _k
 from irnuc.model.validate import check_choice, check_int, check_scalar
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+
 from irnuc.model import adc as _adc
 from irnuc.model import noise as _noise
 from irnuc.model import readout as _readout

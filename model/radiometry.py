@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from irnuc.model.core import radiometry as _k
 from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
 from irnuc.model.validate import ConfigError, check_array, check_choice, check_int, check_scalar

@@ -11,6 +11,7 @@ inverting, so a hotter scene (lower resistance for a negative TCR) gives a highe
 from __future__ import annotations
 
 import numpy as np
+
 from irnuc.model.core.bolometer import STATUS_OK
 
 

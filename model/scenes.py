@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
 from irnuc.model.validate import ConfigError, check_array, check_choice, check_int, check_scalar
 
 SCENE_KINDS = ("uniform", "gradient", "disk", "map")

@@ -26,6 +26,7 @@ from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
+
 from irnuc.model import pipeline as _pl
 from irnuc.model.config import apply_overrides, validate
 from irnuc.model.core import bolometer as _kb

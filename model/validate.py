@@ -11,8 +11,10 @@ from typing import Any
 
 import numpy as np
 
+from irnuc.common.errors import UserError
 
-class ConfigError(ValueError):
+
+class ConfigError(UserError):
     """A configuration or argument value is missing, of the wrong type or out of range."""
 
 

@@ -1,7 +1,11 @@
 """numba kernels of the NUC and DPC datapaths (docs/datapath.md); no input checks here.
 
-All arithmetic is int64. The API layer (``nuc_fixed.nuc``, ``nuc_fixed.dpc``,
-``nuc_fixed.top``) validates the arguments and passes the derived constants in.
+Every formula of the datapath is written once, as a scalar kernel:
+:func:`round_code` (ROUND_F), :func:`out_code` (OUT, saturate or wrap), :func:`nuc_pixel`
+(the whole NUC of one pixel), :func:`field` (a coefficient-word field) and
+:func:`good_neighbours` (the DPC neighbourhood). The array kernels loop over them; the
+exact-arithmetic tests check these same functions. All arithmetic is int64. The API layer
+(``nuc``, ``dpc``, ``top``, ``fixed``) validates the arguments and passes the constants in.
 """
 
 from __future__ import annotations
@@ -11,58 +15,100 @@ from numba import njit, prange
 
 
 @njit(cache=True, inline="always")
-def _round_sat(s, frac, mode, half, wrap, ymax):
-    # mode: 0 floor, 1 half up, 2 half even; the caller maps F = 0 to mode 0 (identity).
-    if mode == 0:
-        r = s >> frac
-    elif mode == 1:
-        r = (s + half) >> frac
-    else:
-        r = (s + half - 1 + ((s >> frac) & 1)) >> frac
-    if wrap:
-        y = r & ymax
-    elif r < 0:
-        y = np.int64(0)
-    elif r > ymax:
-        y = ymax
-    else:
-        y = r
-    return r, y
+def round_code(s, frac, mode):
+    """ROUND_F(s): remove ``frac`` fraction bits; mode 0 floor, 1 half up, 2 half even.
+
+    ``frac = 0`` is the identity in every mode.
+    """
+    if frac == 0 or mode == 0:
+        return s >> frac
+    half = np.int64(1) << (frac - 1)
+    if mode == 1:
+        return (s + half) >> frac
+    return (s + half - 1 + ((s >> frac) & 1)) >> frac
 
 
 @njit(cache=True, inline="always")
-def _nuc_pixel(x, g, o, gsh, osh, frac, mode, half, wrap, ymax):
-    s = ((x * g) << gsh) + (o << osh)
-    return _round_sat(s, frac, mode, half, wrap, ymax)[1]
+def out_code(r, wrap, ymax):
+    """OUT(r): saturate to [0, ymax] or keep the low bits (ymax = 2^B - 1)."""
+    if wrap:
+        return r & ymax
+    if r < 0:
+        return np.int64(0)
+    if r > ymax:
+        return ymax
+    return r
+
+
+@njit(cache=True, inline="always")
+def nuc_pixel(x, g, o, gsh, osh, frac, mode, wrap, ymax):
+    """The NUC of one pixel: (p, s, r, y) of docs/datapath.md."""
+    p = x * g
+    s = (p << gsh) + (o << osh)
+    r = round_code(s, frac, mode)
+    return p, s, r, out_code(r, wrap, ymax)
+
+
+@njit(cache=True, inline="always")
+def field(word, lsb, width, signed):
+    """Field ``[lsb + width - 1 : lsb]`` of a coefficient word, sign-extended if ``signed``."""
+    v = (word >> lsb) & ((np.int64(1) << width) - 1)
+    if signed:
+        sign = np.int64(1) << (width - 1)
+        v = (v ^ sign) - sign
+    return v
+
+
+@njit(cache=True, inline="always")
+def good_neighbours(vals, bad, row, c):
+    """Sum and count of the good in-frame 8-neighbours of (row, c) (no padding)."""
+    h, w = bad.shape
+    acc = np.int64(0)
+    n = np.int64(0)
+    for dr in range(-1, 2):
+        rr = row + dr
+        if rr < 0 or rr >= h:
+            continue
+        for dc in range(-1, 2):
+            cc = c + dc
+            if cc < 0 or cc >= w or (dr == 0 and dc == 0) or bad[rr, cc]:
+                continue
+            acc += np.int64(vals[rr, cc])
+            n += 1
+    return acc, n
+
+
+@njit(cache=True)
+def round_codes(s, frac, mode, out):
+    """:func:`round_code` of every element of the int64 array ``s`` into ``out``."""
+    flat_s = s.ravel()
+    flat_o = out.ravel()
+    for i in range(flat_s.size):
+        flat_o[i] = round_code(flat_s[i], frac, mode)
 
 
 @njit(cache=True, parallel=True)
-def nuc_flat(x, g, o, out, gsh, osh, frac, mode, half, wrap, ymax):
+def nuc_flat(x, g, o, out, gsh, osh, frac, mode, wrap, ymax):
     """NUC of ``x`` (n_frames, n_pix) with per-pixel ``g``, ``o`` (n_pix,) into ``out``."""
     n_frames, n_pix = x.shape
     for i in prange(n_pix):
         gi = np.int64(g[i])
         oi = np.int64(o[i])
         for f in range(n_frames):
-            out[f, i] = _nuc_pixel(np.int64(x[f, i]), gi, oi, gsh, osh, frac, mode, half, wrap,
-                                   ymax)
+            out[f, i] = nuc_pixel(np.int64(x[f, i]), gi, oi, gsh, osh, frac, mode, wrap,
+                                  ymax)[3]
 
 
 @njit(cache=True, parallel=True)
-def nuc_flat_intermediates(x, g, o, p, s, r, y, gsh, osh, frac, mode, half, wrap, ymax):
+def nuc_flat_intermediates(x, g, o, p, s, r, y, gsh, osh, frac, mode, wrap, ymax):
     """As :func:`nuc_flat`, also storing the product p, aligned sum s and rounded r."""
     n_frames, n_pix = x.shape
     for i in prange(n_pix):
         gi = np.int64(g[i])
         oi = np.int64(o[i])
         for f in range(n_frames):
-            pv = np.int64(x[f, i]) * gi
-            sv = (pv << gsh) + (oi << osh)
-            rv, yv = _round_sat(sv, frac, mode, half, wrap, ymax)
-            p[f, i] = pv
-            s[f, i] = sv
-            r[f, i] = rv
-            y[f, i] = yv
+            p[f, i], s[f, i], r[f, i], y[f, i] = nuc_pixel(np.int64(x[f, i]), gi, oi, gsh, osh,
+                                                           frac, mode, wrap, ymax)
 
 
 @njit(cache=True, parallel=True)
@@ -75,31 +121,28 @@ def dpc_inplace(out, bad):
     for k in prange(n_frames * h):
         f = k // h
         row = k - f * h
+        frame = out[f]
         for c in range(w):
             if bad[row, c]:
-                acc = np.int64(0)
-                n = np.int64(0)
-                for dr in range(-1, 2):
-                    rr = row + dr
-                    if rr < 0 or rr >= h:
-                        continue
-                    for dc in range(-1, 2):
-                        cc = c + dc
-                        if cc < 0 or cc >= w or (dr == 0 and dc == 0) or bad[rr, cc]:
-                            continue
-                        acc += np.int64(out[f, rr, cc])
-                        n += 1
+                acc, n = good_neighbours(frame, bad, row, c)
                 if n > 0:
-                    out[f, row, c] = (2 * acc + n) // (2 * n)
+                    frame[row, c] = (2 * acc + n) // (2 * n)
 
 
 @njit(cache=True, parallel=True)
-def top_frames(raw, words, out, gw, gmask, ow, omask, osign, bshift,
-               gsh, osh, frac, mode, half, wrap, ymax):
-    """NUC + DPC of ``raw`` (N, H, W) with coefficient words (H, W) into ``out``.
+def neighbour_counts(bad, counts):
+    """Number of good in-frame neighbours of every pixel of ``bad`` (H, W) into ``counts``."""
+    h, w = bad.shape
+    for row in prange(h):
+        for c in range(w):
+            counts[row, c] = good_neighbours(bad, bad, row, c)[1]
 
-    One pass: a bad pixel recomputes the NUC of its good neighbours (a pure function of
-    their raw code and word), so rows are independent and run in parallel.
+
+@njit(cache=True, parallel=True)
+def nuc_words(raw, words, out, gain_f, offset_f, gsh, osh, frac, mode, wrap, ymax):
+    """NUC of ``raw`` (N, H, W) with coefficient words (H, W) into ``out``.
+
+    ``gain_f`` and ``offset_f`` are the (lsb, width) of the word fields.
     """
     n_frames, h, w = raw.shape
     for k in prange(n_frames * h):
@@ -107,27 +150,7 @@ def top_frames(raw, words, out, gw, gmask, ow, omask, osign, bshift,
         row = k - f * h
         for c in range(w):
             wd = np.int64(words[row, c])
-            if (wd >> bshift) & 1:
-                acc = np.int64(0)
-                n = np.int64(0)
-                for dr in range(-1, 2):
-                    rr = row + dr
-                    if rr < 0 or rr >= h:
-                        continue
-                    for dc in range(-1, 2):
-                        cc = c + dc
-                        if cc < 0 or cc >= w or (dr == 0 and dc == 0):
-                            continue
-                        wn = np.int64(words[rr, cc])
-                        if (wn >> bshift) & 1:
-                            continue
-                        on = (((wn >> gw) & omask) ^ osign) - osign
-                        acc += _nuc_pixel(np.int64(raw[f, rr, cc]), wn & gmask, on, gsh, osh,
-                                          frac, mode, half, wrap, ymax)
-                        n += 1
-                if n > 0:
-                    out[f, row, c] = (2 * acc + n) // (2 * n)
-                    continue
-            o = (((wd >> gw) & omask) ^ osign) - osign
-            out[f, row, c] = _nuc_pixel(np.int64(raw[f, row, c]), wd & gmask, o, gsh, osh, frac,
-                                        mode, half, wrap, ymax)
+            g = field(wd, gain_f[0], gain_f[1], False)
+            o = field(wd, offset_f[0], offset_f[1], True)
+            out[f, row, c] = nuc_pixel(np.int64(raw[f, row, c]), g, o, gsh, osh, frac, mode,
+                                       wrap, ymax)[3]

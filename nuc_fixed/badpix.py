@@ -7,11 +7,13 @@ as uint16 per pixel. Thresholds live in ``nuc_fixed/detection.toml``.
 from __future__ import annotations
 
 import enum
-import tomllib
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+
+from irnuc.common import schema
 from irnuc.nuc_fixed.config import ConfigError
 
 DETECTION_TOML = Path(__file__).with_name("detection.toml")
@@ -36,6 +38,24 @@ def reason_names(code: int) -> list[str]:
     return [r.name for r in Reason if code & r]  # type: ignore[misc]
 
 
+#: Schema of a thresholds table (``detection.toml``; meanings and units there).
+THRESHOLDS_SCHEMA: dict[str, Any] = schema.table(
+    {
+        "low_response": schema.number(0.0, 1.0, unit="x median response"),
+        "high_response": schema.number(1.0, 1e6, unit="x median response"),
+        "noisy_factor": schema.number(1.0, 1e6, unit="x median std"),
+        "noisy_min_std": schema.number(0.0, 1e9, unit="ADC codes"),
+        "offset_sigma": schema.number(0.0, 1e6, unit="robust sigma"),
+        "offset_min": schema.number(0.0, 1.0, unit="of 2^B"),
+        "offset_window": {**schema.number(3, 15, integer=True, unit="pixels"),
+                          "enum": [3, 5, 7, 9, 11, 13, 15]},
+        "rail_fraction": schema.number(0.0, 1.0),
+    },
+    required=["low_response", "high_response", "noisy_factor", "noisy_min_std",
+              "offset_sigma", "offset_min", "offset_window", "rail_fraction"],
+)
+
+
 @dataclass(frozen=True)
 class DetectionThresholds:
     """Detection thresholds (see ``detection.toml`` for meanings and units)."""
@@ -50,21 +70,10 @@ class DetectionThresholds:
     rail_fraction: float
 
     def __post_init__(self) -> None:
-        limits = {
-            "low_response": (0.0, 1.0), "high_response": (1.0, 1e6),
-            "noisy_factor": (1.0, 1e6), "noisy_min_std": (0.0, 1e9),
-            "offset_sigma": (0.0, 1e6), "offset_min": (0.0, 1.0), "offset_window": (3, 15),
-            "rail_fraction": (0.0, 1.0),
-        }
-        for name, (lo, hi) in limits.items():
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
-                raise ConfigError(f"detection threshold {name} = {v!r} is outside the allowed "
-                                  f"range [{lo:g}, {hi:g}]")
-
-        if not isinstance(self.offset_window, int) or self.offset_window % 2 == 0:
-            raise ConfigError(f"detection threshold offset_window = {self.offset_window!r} "
-                              "must be an odd integer in [3, 15]")
+        try:
+            schema.check(self.to_dict(), THRESHOLDS_SCHEMA, source="detection thresholds")
+        except schema.SchemaError as exc:
+            raise ConfigError(str(exc)) from None
 
     def to_dict(self) -> dict[str, float]:
         return asdict(self)
@@ -72,18 +81,22 @@ class DetectionThresholds:
 
 def load_thresholds(path: str | Path | None = None, section: str = "default",
                     overrides: dict[str, float] | None = None) -> DetectionThresholds:
-    """Read thresholds from a TOML file (default: ``nuc_fixed/detection.toml``)."""
+    """Read thresholds from a TOML file (default: ``nuc_fixed/detection.toml``).
+
+    ``overrides`` (``{field: value}``) change single entries; every field is checked
+    against :data:`THRESHOLDS_SCHEMA`, unknown ones refused with the nearest known name.
+    """
     p = Path(path) if path is not None else DETECTION_TOML
-    with p.open("rb") as fh:
-        table = tomllib.load(fh)
+    table = schema.read_toml(p)
     if section not in table:
-        raise ConfigError(f"{p}: no [{section}] table; found {list(table)}")
-    entry = dict(table[section]) | dict(overrides or {})
-    names = {f.name for f in fields(DetectionThresholds)}
-    unknown, missing = set(entry) - names, names - set(entry)
-    if unknown or missing:
-        raise ConfigError(f"{p} [{section}]: unknown field(s) {sorted(unknown)}, "
-                          f"missing field(s) {sorted(missing)}; expected {sorted(names)}")
+        raise ConfigError(f"{p}: no [{section}] table; found {', '.join(table) or 'none'}")
+    entry = dict(table[section])
+    try:
+        schema.check(entry, THRESHOLDS_SCHEMA, source=str(p), prefix=section)
+        entry |= dict(overrides or {})
+        schema.check(entry, THRESHOLDS_SCHEMA, source="--set", prefix="")
+    except schema.SchemaError as exc:
+        raise ConfigError(str(exc)) from None
     return DetectionThresholds(**entry)
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+
 from irnuc.nuc_fixed.badpix import (
     DetectionThresholds,
     Reason,

@@ -1,19 +1,23 @@
-"""Named pipeline configurations, read from ``nuc_fixed/pipelines.toml``.
+"""Pipeline configurations: the named ones of ``nuc_fixed/pipelines.toml`` and user files.
 
-This is the single reader of that file: the golden model, the RTL build (which turns a
+This is the single reader of those files: the golden model, the RTL build (which turns a
 configuration into Verilator ``-G`` parameters with :meth:`PipelineConfig.rtl_parameters`)
-and the tests all go through :func:`load_pipeline`. Widths derived from a configuration
-are properties here and nowhere else; ``docs/datapath.md`` defines them.
+and the tests all go through :func:`load_pipeline`. Every field is checked against
+:data:`PIPELINE_SCHEMA` (unknown fields are refused with the nearest known name). Widths
+derived from a configuration are properties here and nowhere else; ``docs/datapath.md``
+defines them.
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
-import tomllib
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, fields
 from functools import cache
 from pathlib import Path
+from typing import Any
+
+from irnuc.common import schema
+from irnuc.common.digest import digest
+from irnuc.common.errors import UserError
 
 PIPELINES_TOML = Path(__file__).with_name("pipelines.toml")
 
@@ -33,7 +37,21 @@ _RANGES: dict[str, tuple[int, int]] = {
 }
 
 
-class ConfigError(ValueError):
+#: The schema of one pipeline table (docs/datapath.md, "Symbols").
+PIPELINE_SCHEMA: dict[str, Any] = schema.table(
+    {
+        **{k: schema.number(lo, hi, integer=True, unit="bits" if k.endswith("bits") else "pixels")
+           for k, (lo, hi) in _RANGES.items()},
+        "rounding": {"enum": list(ROUNDING_MODES)},
+        "overflow": {"enum": list(OVERFLOW_MODES)},
+        "description": {"type": "string"},
+        "name": {"type": "string", "minLength": 1},
+    },
+    required=[*_RANGES, "rounding", "overflow"],
+)
+
+
+class ConfigError(UserError):
     """A configuration field is missing or outside its legal range."""
 
 
@@ -55,27 +73,14 @@ class PipelineConfig:
     description: str = ""
 
     def __post_init__(self) -> None:
-        for field, (lo, hi) in _RANGES.items():
-            value = getattr(self, field)
-            if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
-                raise ConfigError(
-                    f"pipeline {self.name!r}: {field} = {value!r} is outside the allowed "
-                    f"range {lo}..{hi} (integer)"
-                )
+        try:
+            schema.check(self.to_dict(), PIPELINE_SCHEMA, source=f"pipeline {self.name!r}")
+        except schema.SchemaError as exc:
+            raise ConfigError(str(exc)) from None
         if self.gain_bits < 1:
             raise ConfigError(
                 f"pipeline {self.name!r}: gain_int_bits + gain_frac_bits = {self.gain_bits} "
                 "must be at least 1"
-            )
-        if self.rounding not in ROUNDING_MODES:
-            raise ConfigError(
-                f"pipeline {self.name!r}: rounding = {self.rounding!r} is not one of "
-                f"{sorted(ROUNDING_MODES)}"
-            )
-        if self.overflow not in OVERFLOW_MODES:
-            raise ConfigError(
-                f"pipeline {self.name!r}: overflow = {self.overflow!r} is not one of "
-                f"{sorted(OVERFLOW_MODES)}"
             )
         if self.sum_bits > 62:
             # The golden model computes in int64; keep one bit of headroom for rounding.
@@ -117,6 +122,16 @@ class PipelineConfig:
         return self.gain_bits + self.offset_bits + 1
 
     @property
+    def word_fields(self) -> dict[str, tuple[int, int]]:
+        """Coefficient word layout (docs/datapath.md): field -> (lsb, width).
+
+        The one place the layout is written: packing, unpacking, the kernels, the manifest
+        and the RTL's word struct (checked in simulation) all follow it.
+        """
+        gw, ow = self.gain_bits, self.offset_bits
+        return {"gain": (0, gw), "offset": (gw, ow), "bad": (gw + ow, 1)}
+
+    @property
     def rounding_code(self) -> int:
         return ROUNDING_MODES[self.rounding]
 
@@ -144,8 +159,7 @@ class PipelineConfig:
 
     def digest(self) -> str:
         """A short hash of every field, for build caches and report provenance."""
-        text = json.dumps(self.to_dict(), sort_keys=True)
-        return hashlib.sha256(text.encode()).hexdigest()[:16]
+        return digest(self.to_dict())
 
     def replace(self, **changes: object) -> PipelineConfig:
         """A validated copy with some fields changed (used by bit-width sweeps)."""
@@ -156,11 +170,19 @@ class PipelineConfig:
         data.update(changes)
         return PipelineConfig(**data)  # type: ignore[arg-type]
 
+    def to_toml(self) -> str:
+        """This configuration as a pipeline TOML table (``load_pipeline`` reads it back)."""
+        lines = [f"[{self.name}]"]
+        for k, v in self.to_dict().items():
+            if k == "name":
+                continue
+            lines.append(f"{k} = {v!r}".replace("'", '"') if isinstance(v, str) else f"{k} = {v}")
+        return "\n".join(lines) + "\n"
+
 
 @cache
 def _read_table(path: Path) -> dict[str, dict[str, object]]:
-    with path.open("rb") as fh:
-        return tomllib.load(fh)
+    return schema.read_toml(path)
 
 
 def pipeline_names(path: Path = PIPELINES_TOML) -> list[str]:
@@ -168,17 +190,44 @@ def pipeline_names(path: Path = PIPELINES_TOML) -> list[str]:
     return list(_read_table(path))
 
 
-def load_pipeline(name: str, path: Path = PIPELINES_TOML) -> PipelineConfig:
-    """Load and validate one named configuration."""
-    table = _read_table(path)
-    if name not in table:
-        raise ConfigError(f"unknown pipeline configuration {name!r}; known: {list(table)}")
-    entry = dict(table[name])
-    expected = set(PipelineConfig.__dataclass_fields__) - {"name"}
-    unknown = set(entry) - expected
-    if unknown:
-        raise ConfigError(f"pipeline {name!r}: unknown field(s) {sorted(unknown)}")
-    missing = expected - set(entry) - {"description"}
-    if missing:
-        raise ConfigError(f"pipeline {name!r}: missing field(s) {sorted(missing)}")
-    return PipelineConfig(name=name, **entry)  # type: ignore[arg-type]
+def _from_table(name: str, entry: Any, source: str) -> PipelineConfig:
+    if not isinstance(entry, dict):
+        raise ConfigError(f"{source}: [{name}] must be a table of pipeline fields")
+    try:
+        schema.check(entry, PIPELINE_SCHEMA, source=source, prefix=name)
+    except schema.SchemaError as exc:
+        raise ConfigError(str(exc)) from None
+    known = {f.name for f in fields(PipelineConfig)}
+    return PipelineConfig(**{"name": name, **{k: v for k, v in entry.items() if k in known}})
+
+
+def load_pipeline(name: str | Path, path: Path = PIPELINES_TOML) -> PipelineConfig:
+    """Load and validate one configuration.
+
+    Parameters
+    ----------
+    name : str or Path
+        A name in ``pipelines.toml`` (``typical14``), or a TOML file of the same form:
+        ``my.toml`` (its only table) or ``my.toml:NAME`` (one of its tables).
+    path : Path
+        The file of named configurations (the shipped one by default).
+    """
+    text = str(name)
+    file, sep, table = text.partition(":") if text.count(":") == 1 else (text, "", "")
+    if isinstance(name, Path) or file.endswith(".toml") or "/" in file:
+        tables = schema.read_toml(file)
+        if not tables:
+            raise ConfigError(f"{file}: holds no pipeline table")
+        if not sep:
+            if len(tables) != 1:
+                raise ConfigError(f"{file}: holds {len(tables)} pipelines "
+                                  f"({', '.join(tables)}); name one: {file}:NAME")
+            table = next(iter(tables))
+        if table not in tables:
+            raise ConfigError(f"{file}: no pipeline [{table}]; found {', '.join(tables)}")
+        return _from_table(table, tables[table], str(file))
+    known = _read_table(path)
+    if text not in known:
+        raise ConfigError(f"pipeline {text!r} is neither a named configuration "
+                          f"({', '.join(known)}) nor a .toml file{schema.nearest(text, list(known))}")
+    return _from_table(text, known[text], str(path))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from irnuc.nuc_fixed import _kernels
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.nuc import out_dtype
@@ -41,13 +42,31 @@ def dpc_core(y: np.ndarray, bad: np.ndarray, cfg: PipelineConfig | str) -> np.nd
     return out.reshape(ya.shape)
 
 
+def neighbour_counts(bad: np.ndarray) -> np.ndarray:
+    """Number of good in-frame 8-neighbours of every pixel (0..8), as DPC counts them."""
+    b = np.ascontiguousarray(bool_array("bad", bad))
+    if b.ndim != 2:
+        raise InputError(f"bad has shape {b.shape}; (H, W) is required")
+    counts = np.empty(b.shape, dtype=np.int64)
+    _kernels.neighbour_counts(b, counts)
+    return counts
+
+
 def uncorrectable(bad: np.ndarray) -> np.ndarray:
     """Bad pixels with no good in-frame neighbour (DPC passes them through uncorrected)."""
-    b = np.asarray(bad, dtype=bool)
-    h, w = b.shape
-    good = np.zeros((h + 2, w + 2), dtype=np.int64)
-    good[1:-1, 1:-1] = ~b
-    # Zero border = absent neighbours: counts only in-frame good pixels.
-    n = sum(good[1 + dr:h + 1 + dr, 1 + dc:w + 1 + dc]
-            for dr in (-1, 0, 1) for dc in (-1, 0, 1) if dr or dc)
-    return b & (n == 0)
+    b = bool_array("bad", bad)
+    return b & (neighbour_counts(b) == 0)
+
+
+def reciprocal_table(out_bits: int) -> tuple[int, list[int]]:
+    """The RTL's DPC division: shift K and table ``R[n] = ceil(2^K / n)``, n = 0..8.
+
+    ``dpc_core`` divides M = S + floor(n/2) (< 2^(B+3)) by n as ``(M * R[n]) >> K`` with
+    K = B + 6 (docs/datapath.md); ``R[0]`` is unused (0). Exact because
+    M * (R[n] n - 2^K) < 2^(B+3) * 8 = 2^K. The golden model divides exactly; the tests
+    prove this table equal for every M and read the RTL's table back from the simulator.
+    """
+    if isinstance(out_bits, bool) or not isinstance(out_bits, int) or not 1 <= out_bits <= 24:
+        raise InputError(f"out_bits = {out_bits!r} is outside the allowed range 1..24 (int)")
+    shift = out_bits + 6
+    return shift, [0] + [-(-(1 << shift) // n) for n in range(1, 9)]

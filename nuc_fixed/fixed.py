@@ -10,6 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
+from irnuc.nuc_fixed import _kernels
 from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES, ConfigError, PipelineConfig
 
 
@@ -22,24 +24,29 @@ def _check_mode(field: str, value: str, modes: dict[str, int]) -> str:
 def round_shift(s: np.ndarray | int, shift: int, rounding: str) -> np.ndarray | int:
     """Exact integer ``ROUND(s / 2**shift)`` as written in ``docs/datapath.md``.
 
+    This is the datapath's own kernel (:func:`irnuc.nuc_fixed._kernels.round_code`), so
+    the exact-arithmetic tests of this function check the code that runs.
+
     Parameters
     ----------
     s : int or integer ndarray
-        Value with ``shift`` fraction bits (int64 arrays must leave one bit of headroom).
+        Value with ``shift`` fraction bits, in the int64 range with one bit of headroom.
     shift : int
-        Number of fraction bits to remove, >= 0. ``shift = 0`` is the identity.
+        Number of fraction bits to remove, 0..62. ``shift = 0`` is the identity.
     rounding : {"truncate", "half_up", "half_even"}
         Floor, ties toward +inf, or ties to even.
     """
-    _check_mode("rounding", rounding, ROUNDING_MODES)
-    if shift < 0:
-        raise ConfigError(f"shift = {shift} is outside the allowed range [0, inf)")
-    if shift == 0 or rounding == "truncate":
-        return s >> shift
-    half = 1 << (shift - 1)
-    if rounding == "half_up":
-        return (s + half) >> shift
-    return (s + half - 1 + ((s >> shift) & 1)) >> shift
+    mode = ROUNDING_MODES[_check_mode("rounding", rounding, ROUNDING_MODES)]
+    if isinstance(shift, bool) or not isinstance(shift, int) or not 0 <= shift <= 62:
+        raise ConfigError(f"shift = {shift!r} is outside the allowed range 0..62 (integer)")
+    if isinstance(s, np.ndarray):
+        arr = np.ascontiguousarray(s, dtype=np.int64)
+        out = np.empty_like(arr)
+        _kernels.round_codes(arr, shift, mode, out)
+        return out
+    if not -(2**62) <= int(s) < 2**62:
+        raise ConfigError(f"s = {s!r} is outside the allowed range -2^62..2^62-1")
+    return int(_kernels.round_code(np.int64(s), shift, mode))
 
 
 def apply_overflow(r: np.ndarray | int, lo: int, hi: int, overflow: str) -> np.ndarray | int:

@@ -13,11 +13,13 @@ import os
 from pathlib import Path
 
 import numpy as np
+
+from irnuc.common.digest import file_sha256
+from irnuc.common.errors import UserError
+from irnuc.common.io import write_bytes_atomic
 from irnuc.nuc_fixed.config import ConfigError, PipelineConfig
 from irnuc.nuc_fixed.nuc import check_coefficients
 from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, int_array
-
-from irnuc.common.io import write_bytes_atomic
 
 MEMIMAGE_VERSION = 1
 HEX_NAME = "coeffs.hex"
@@ -31,7 +33,7 @@ _FORMAT_FIELDS = (
 )
 
 
-class MemImageError(ValueError):
+class MemImageError(UserError):
     """A memory image file is malformed, inconsistent or fails its checksum."""
 
 
@@ -65,11 +67,11 @@ def pack_words(gain: np.ndarray, offset: np.ndarray, bad: np.ndarray,
     b = bool_array("bad", bad)
     if b.shape != g.shape:
         raise InputError(f"bad has shape {b.shape} but gain has shape {g.shape}; they must match")
-    gw, ow = cfg.gain_bits, cfg.offset_bits
-    o_field = o.astype(np.int64) & np.int64((1 << ow) - 1)  # two's complement in OW bits
-    return (g.astype(np.uint64)
-            | (o_field.astype(np.uint64) << np.uint64(gw))
-            | (b.astype(np.uint64) << np.uint64(gw + ow)))
+    f = cfg.word_fields
+    o_field = o.astype(np.int64) & np.int64((1 << f["offset"][1]) - 1)  # two's complement
+    return ((g.astype(np.uint64) << np.uint64(f["gain"][0]))
+            | (o_field.astype(np.uint64) << np.uint64(f["offset"][0]))
+            | (b.astype(np.uint64) << np.uint64(f["bad"][0])))
 
 
 def check_words(words: np.ndarray, cfg: PipelineConfig) -> np.ndarray:
@@ -93,13 +95,13 @@ def unpack_words(words: np.ndarray, cfg: PipelineConfig | str
     """Split coefficient words into (gain int64, offset int64 sign-extended, bad bool)."""
     cfg = as_config(cfg)
     w = check_words(words, cfg)
-    gw, ow = cfg.gain_bits, cfg.offset_bits
-    gain = (w & np.uint64((1 << gw) - 1)).astype(np.int64)
-    o_field = ((w >> np.uint64(gw)) & np.uint64((1 << ow) - 1)).astype(np.int64)
-    sign = np.int64(1 << (ow - 1))
-    offset = (o_field ^ sign) - sign
-    bad = ((w >> np.uint64(gw + ow)) & np.uint64(1)).astype(bool)
-    return gain, offset, bad
+
+    def get(name: str) -> np.ndarray:
+        lsb, width = cfg.word_fields[name]
+        return ((w >> np.uint64(lsb)) & np.uint64((1 << width) - 1)).astype(np.int64)
+
+    sign = np.int64(1 << (cfg.offset_bits - 1))
+    return get("gain"), (get("offset") ^ sign) - sign, get("bad").astype(bool)
 
 
 # ---- files ---------------------------------------------------------------------------
@@ -127,11 +129,23 @@ def to_bin(words: np.ndarray, cfg: PipelineConfig) -> bytes:
     return le.view(np.uint8).reshape(-1, 8)[:, :nb].tobytes()
 
 
+def format_fields(cfg: PipelineConfig) -> dict[str, object]:
+    """The fields that give the words their meaning (recorded and hashed in the manifest)."""
+    return {k: getattr(cfg, k) for k in _FORMAT_FIELDS}
+
+
+def _format_sha256(fields: dict[str, object]) -> str:
+    return hashlib.sha256(json.dumps(fields, sort_keys=True).encode()).hexdigest()
+
+
 def write_memimage(directory: str | os.PathLike, words: np.ndarray,
-                   cfg: PipelineConfig | str) -> dict[str, object]:
+                   cfg: PipelineConfig | str, extra_files: tuple[str, ...] = ()
+                   ) -> dict[str, object]:
     """Write ``coeffs.hex``, ``coeffs.bin`` and ``manifest.json`` into ``directory``.
 
-    Returns the manifest.
+    The manifest records every format field (and their SHA-256) and the SHA-256 of every
+    file it names: the two memory images and ``extra_files`` (names of files already in
+    ``directory``, e.g. the calibration's ``coeffs.npz``). Returns the manifest.
     """
     cfg = as_config(cfg)
     w = check_words(words, cfg)
@@ -146,42 +160,71 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     raw = to_bin(w, cfg)
+    write_bytes_atomic(d / BIN_NAME, raw)
+    write_bytes_atomic(d / HEX_NAME, to_hex(w, cfg).encode("ascii"))
+    fmt = format_fields(cfg)
+    files = {name: file_sha256(d / name) for name in (BIN_NAME, HEX_NAME, *extra_files)}
     manifest: dict[str, object] = {
         "version": MEMIMAGE_VERSION,
         "config": cfg.name,
         "description": cfg.description,
-        **{k: getattr(cfg, k) for k in _FORMAT_FIELDS},
+        **fmt,
+        "format_sha256": _format_sha256(fmt),
         "word_bits": cfg.word_bits,
-        "word_layout": {
-            "gain": [cfg.gain_bits - 1, 0],
-            "offset": [cfg.gain_bits + cfg.offset_bits - 1, cfg.gain_bits],
-            "bad": [cfg.gain_bits + cfg.offset_bits, cfg.gain_bits + cfg.offset_bits],
-        },
+        "word_layout": {k: [lsb + width - 1, lsb] for k, (lsb, width) in cfg.word_fields.items()},
         "width": wd,
         "height": h,
         "hex_file": HEX_NAME,
         "bin_file": BIN_NAME,
         "bin_bytes_per_word": word_bytes(cfg),
-        "sha256": hashlib.sha256(raw).hexdigest(),
+        "sha256": files[BIN_NAME],
+        "files": files,
     }
-    write_bytes_atomic(d / BIN_NAME, raw)
-    write_bytes_atomic(d / HEX_NAME, to_hex(w, cfg).encode("ascii"))
     write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
     return manifest
 
 
 def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
+    """The manifest of a memory image folder, its structure checked."""
     path = Path(directory) / MANIFEST_NAME
     try:
         manifest = json.loads(path.read_text())
-    except json.JSONDecodeError as exc:
+    except FileNotFoundError:
+        raise MemImageError(f"{path}: no such file (run irnuc calibrate)") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise MemImageError(f"{path}: not valid JSON ({exc})") from None
+    if not isinstance(manifest, dict):
+        raise MemImageError(f"{path}: the top level is a {type(manifest).__name__}; a JSON "
+                            "object is required")
     if manifest.get("version") != MEMIMAGE_VERSION:
         raise MemImageError(
             f"{path}: version = {manifest.get('version')!r}; this reader supports "
             f"{MEMIMAGE_VERSION}"
         )
+    for key, kind in (("files", dict), ("height", int), ("width", int), ("sha256", str),
+                      ("format_sha256", str)):
+        if not isinstance(manifest.get(key), kind) or isinstance(manifest.get(key), bool):
+            raise MemImageError(f"{path}: field {key!r} is missing or not a {kind.__name__}")
+    fmt = {k: manifest.get(k) for k in _FORMAT_FIELDS}
+    if _format_sha256(fmt) != manifest["format_sha256"]:
+        raise MemImageError(f"{path}: the format fields ({', '.join(_FORMAT_FIELDS)}) do not "
+                            "match their recorded SHA-256; the manifest was edited")
     return manifest
+
+
+def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> None:
+    """Every file the manifest names exists and has its recorded SHA-256."""
+    d = Path(directory)
+    for name, want in manifest["files"].items():  # type: ignore[union-attr]
+        f = d / str(name)
+        if Path(str(name)).name != str(name):
+            raise MemImageError(f"{d / MANIFEST_NAME}: file name {name!r} is not a plain name")
+        if not f.is_file():
+            raise MemImageError(f"{f}: named by the manifest but missing")
+        got = file_sha256(f)
+        if got != want:
+            raise MemImageError(f"{f}: SHA-256 {got} does not match the manifest ({want}); "
+                                "the file is corrupt or from another run")
 
 
 def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
@@ -205,14 +248,18 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     cfg : PipelineConfig, str or None
         If given, every format field of the manifest must match it.
     source : {"bin", "hex"}
-        Which file to read. The SHA-256 of the manifest is checked against the binary in
-        both cases, and the hex words against it when ``source="hex"``.
+        Which file the words are taken from. Either way every file the manifest names is
+        checked against its SHA-256, the format fields against theirs, and the hex words
+        against the binary ones.
     """
     if source not in ("bin", "hex"):
         raise ConfigError(f"source = {source!r} is not one of ['bin', 'hex']")
     d = Path(directory)
     manifest = read_manifest(d)
-    mcfg = manifest_config(manifest)
+    try:
+        mcfg = manifest_config(manifest)
+    except ConfigError as exc:
+        raise MemImageError(f"{d / MANIFEST_NAME}: {exc}") from None
     if cfg is not None:
         cfg = as_config(cfg)
         diff = {k: (manifest[k], getattr(cfg, k)) for k in _FORMAT_FIELDS
@@ -227,15 +274,12 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
             f"manifest word_bits = {manifest.get('word_bits')!r} but the formats give "
             f"{mcfg.word_bits}"
         )
+    check_files(d, manifest)
     h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
     n = h * w
     raw = (d / BIN_NAME).read_bytes()
-    digest = hashlib.sha256(raw).hexdigest()
-    if digest != manifest.get("sha256"):
-        raise MemImageError(
-            f"{d / BIN_NAME}: SHA-256 {digest} does not match the manifest "
-            f"({manifest.get('sha256')}); the file is corrupt or from another image"
-        )
+    if manifest["sha256"] != manifest["files"].get(BIN_NAME):  # type: ignore[union-attr]
+        raise MemImageError(f"{d / MANIFEST_NAME}: sha256 and files[{BIN_NAME!r}] disagree")
     nb = word_bytes(mcfg)
     if len(raw) != n * nb:
         raise MemImageError(
@@ -244,15 +288,14 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     buf = np.zeros((n, 8), dtype=np.uint8)
     buf[:, :nb] = np.frombuffer(raw, dtype=np.uint8).reshape(n, nb)
     words = buf.view("<u8").reshape(h, w).astype(np.uint64)
-    if source == "hex":
-        hex_words = _parse_hex(d / HEX_NAME, mcfg, n).reshape(h, w)
-        if not np.array_equal(hex_words, words):
-            idx = tuple(int(i) for i in np.argwhere(hex_words != words)[0])
-            raise MemImageError(
-                f"{d / HEX_NAME}: word at (row, col) {idx} = {int(hex_words[idx]):x} differs "
-                f"from the binary ({int(words[idx]):x})"
-            )
-        words = hex_words
+    # The hex image is read and compared in both modes: it is what $readmemh loads.
+    hex_words = _parse_hex(d / HEX_NAME, mcfg, n).reshape(h, w)
+    if not np.array_equal(hex_words, words):
+        idx = tuple(int(i) for i in np.argwhere(hex_words != words)[0])
+        raise MemImageError(
+            f"{d / HEX_NAME}: word at (row, col) {idx} = {int(hex_words[idx]):x} differs "
+            f"from the binary ({int(words[idx]):x})"
+        )
     try:
         check_words(words, mcfg)
     except InputError as exc:

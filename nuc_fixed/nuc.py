@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from irnuc.nuc_fixed import _kernels
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.fixed import gain_format, offset_format
@@ -34,20 +35,14 @@ def out_dtype(cfg: PipelineConfig) -> type[np.unsignedinteger]:
     return np.uint16 if cfg.out_bits <= 16 else np.uint32
 
 
-def datapath_constants(cfg: PipelineConfig) -> tuple[int, int, int, int, int, bool, int]:
-    """Kernel constants (gain shift, offset shift, F, rounding code, 2^(F-1), wrap, 2^B-1).
-
-    F = 0 makes every rounding mode the identity, so it is mapped to truncate.
-    """
+def datapath_constants(cfg: PipelineConfig) -> tuple[int, int, int, int, bool, int]:
+    """Kernel constants: gain shift F-Gf, offset shift F-Of, F, rounding code, wrap, 2^B-1."""
     f = cfg.frac_bits
-    mode = cfg.rounding_code if f > 0 else 0
-    half = (1 << (f - 1)) if f > 0 else 0
     return (
         f - cfg.gain_frac_bits,
         f - cfg.offset_frac_bits,
         f,
-        mode,
-        half,
+        cfg.rounding_code,
         cfg.overflow == "wrap",
         (1 << cfg.out_bits) - 1,
     )

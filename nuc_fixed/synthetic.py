@@ -2,28 +2,16 @@
 
 A linear sensor: code = offset_i + gain_i * k * (T - T0) + noise, with per-pixel gain and
 offset spread, Gaussian temporal noise and defects of the kinds the physics model plants
-(names as in ``model.defects.DefectKind``; the numeric codes here are this module's own).
+(``irnuc.model.DefectKind``, the physics model's ground-truth codes).
 """
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 
 import numpy as np
 
-
-class DefectKind(enum.IntEnum):
-    GOOD = 0
-    DEAD = 1
-    STUCK_LOW = 2
-    STUCK_HIGH = 3
-    STUCK_VALUE = 4
-    HOT = 5
-    COLD = 6
-    LOW_RESP = 7
-    HIGH_RESP = 8
-    NOISY = 9
+from irnuc.model.defects import DefectKind
 
 
 @dataclass(frozen=True)

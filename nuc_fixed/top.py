@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from irnuc.nuc_fixed import _kernels
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.memimage import check_words
@@ -34,9 +35,11 @@ def nuc_dpc_top(raw: np.ndarray, words: np.ndarray, cfg: PipelineConfig | str) -
     wd = check_words(words, cfg)
     if wd.shape != (h, w):
         raise InputError(f"words has shape {wd.shape} but the frames of raw are {(h, w)}")
-    gw, ow = cfg.gain_bits, cfg.offset_bits
     x3 = np.ascontiguousarray(x.reshape(-1, h, w))
     out = np.empty(x3.shape, dtype=out_dtype(cfg))
-    _kernels.top_frames(x3, np.ascontiguousarray(wd), out, gw, (1 << gw) - 1, ow, (1 << ow) - 1,
-                        1 << (ow - 1), gw + ow, *datapath_constants(cfg))
+    fields = cfg.word_fields
+    _kernels.nuc_words(x3, np.ascontiguousarray(wd), out, fields["gain"], fields["offset"],
+                       *datapath_constants(cfg))
+    lsb = np.uint64(fields["bad"][0])
+    _kernels.dpc_inplace(out, np.ascontiguousarray(((wd >> lsb) & np.uint64(1)).astype(bool)))
     return out.reshape(x.shape)

@@ -9,10 +9,12 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+
+from irnuc.common.errors import UserError
 from irnuc.nuc_fixed.config import ConfigError, PipelineConfig, load_pipeline
 
 
-class InputError(ValueError):
+class InputError(UserError):
     """An array argument has the wrong shape, dtype or values out of range."""
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
 from irnuc.model.adc import NonFiniteVoltageError, adc_convert
 from irnuc.model.validate import ConfigError
 

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
+from irnuc.model.defects import DefectKind
 from irnuc.nuc_fixed import ConfigError, load_pipeline
 from irnuc.nuc_fixed.badpix import Reason, load_thresholds, local_median, reason_names
 from irnuc.nuc_fixed.calibrate import calibrate
-from irnuc.nuc_fixed.synthetic import DefectKind, synth_frames
+from irnuc.nuc_fixed.synthetic import synth_frames
 
 CFG = load_pipeline("typical14")
 
@@ -67,11 +69,9 @@ def test_model_precision_recall() -> None:
     assert precision >= 0.95 and recall >= 0.9, (precision, recall)
     # Every kind except the offset ones (whose size is comparable to the fixed-pattern
     # spread, and which the two-point NUC corrects anyway) is found completely.
-    from irnuc.model.defects import DefectKind as ModelKind
-
-    for kind in ModelKind:
+    for kind in DefectKind:
         sel = res.defect_kind == kind
-        if kind == ModelKind.GOOD or not sel.any():
+        if kind == DefectKind.GOOD or not sel.any():
             continue
         found = cal.bad[sel].mean()
         assert found >= (0.75 if kind.name in ("HOT", "COLD") else 1.0), (kind.name, found)
@@ -117,10 +117,12 @@ def test_thresholds_file_and_errors(tmp_path) -> None:
     assert 0 < th.low_response < 1 < th.high_response
     p = tmp_path / "t.toml"
     p.write_text("[default]\nlow_response = 0.4\n")
-    with pytest.raises(ConfigError, match="missing field"):
+    with pytest.raises(ConfigError, match=r"default\.high_response is required but missing"):
         load_thresholds(p)
     with pytest.raises(ConfigError, match="offset_window = 4"):
         load_thresholds(overrides={"offset_window": 4})
-    with pytest.raises(ConfigError, match="unknown field"):
+    with pytest.raises(ConfigError, match="bogus is not a known field"):
         load_thresholds(overrides={"bogus": 1.0})
+    with pytest.raises(ConfigError, match="did you mean 'noisy_factor'"):
+        load_thresholds(overrides={"noisy_facter": 1.0})
     assert reason_names(int(Reason.RAIL | Reason.NOISY)) == ["RAIL", "NOISY"]

@@ -7,8 +7,9 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
-from irnuc.model.core import bolometer as kb
 from scipy.optimize import brentq
+
+from irnuc.model.core import bolometer as kb
 
 mp.mp.dps = 40
 

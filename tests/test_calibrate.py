@@ -7,6 +7,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+
 from irnuc.nuc_fixed import ConfigError, InputError, load_pipeline, nuc_core
 from irnuc.nuc_fixed.badpix import Reason, load_thresholds
 from irnuc.nuc_fixed.calibrate import calibrate, summary_text

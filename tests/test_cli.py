@@ -13,9 +13,10 @@ SMALL = ["--set", "fpa.active_rows=10", "--set", "fpa.active_cols=12"]
 
 
 def test_frames_npz_contents(tmp_path, capsys):
-    out = tmp_path / "sub" / "f.npz"
+    folder = tmp_path / "sub" / "f"
     assert main(["frames", *SMALL, "--temps", "300,350,400", "--seed", "4", "--params",
-                 "--out", str(out)]) == 0
+                 "--out", str(folder)]) == 0
+    out = folder / "frames.npz"
     with np.load(out) as z:
         assert z["codes"].shape == (3, 10, 12) and z["codes"].dtype == np.uint16
         np.testing.assert_array_equal(z["temps"], [300.0, 350.0, 400.0])
@@ -23,15 +24,19 @@ def test_frames_npz_contents(tmp_path, capsys):
         meta = json.loads(str(z["config_json"]))
         assert meta["seed"] == 4 and meta["config"]["fpa"]["active_rows"] == 10
         assert z["param_R_ref"].shape == (10 + 6, 12 + 6)
-    assert [p.name for p in out.parent.iterdir()] == ["f.npz"]  # no temporary left behind
+    assert [p.name for p in folder.iterdir()] == ["frames.npz"]
+    # Nothing but the result and its lock beside it: no temporary left behind.
+    assert sorted(p.name for p in folder.parent.iterdir()) == [".f.lock", "f"]
     assert "wrote" in capsys.readouterr().out
+    assert main(["frames", "-q", *SMALL, "--out", str(folder)]) == 0
+    assert capsys.readouterr().out == ""
 
 
 def test_same_seed_same_file_contents(tmp_path):
     for name in ("a", "b"):
         assert main(["frames", *SMALL, "--temps", "310", "--seed", "9", "--out",
-                     str(tmp_path / f"{name}.npz")]) == 0
-    with np.load(tmp_path / "a.npz") as a, np.load(tmp_path / "b.npz") as b:
+                     str(tmp_path / name)]) == 0
+    with np.load(tmp_path / "a" / "frames.npz") as a, np.load(tmp_path / "b" / "frames.npz") as b:
         np.testing.assert_array_equal(a["codes"], b["codes"])
 
 
@@ -42,12 +47,13 @@ def test_same_seed_same_file_contents(tmp_path):
         (["--temps", "warm"], "--temps"),
         (["--set", "bolometer.t_int=0"], "bolometer.t_int = 0 s"),
         (["--set", "fpa.tolerance={R_ref=-0.5}"], "fpa.tolerance.R_ref = -0.5"),
-        (["--preset", "nope"], "preset = 'nope'"),
-        (["--config", "/nonexistent.toml"], "does not exist"),
+        (["--sensor", "nope"], "--sensor 'nope' is neither a preset"),
+        (["--sensor", "/nonexistent.toml"], "/nonexistent.toml: no such file"),
+        (["--set", "fpa.activ_rows=3"], "did you mean 'active_rows'"),
     ],
 )
 def test_errors_are_one_line_with_status_2(tmp_path, capsys, args, fragment):
-    out = tmp_path / "x.npz"
+    out = tmp_path / "x"
     assert main(["frames", *SMALL, *args, "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert fragment in err and "Traceback" not in err
@@ -56,7 +62,7 @@ def test_errors_are_one_line_with_status_2(tmp_path, capsys, args, fragment):
 
 def test_progress_bar_on_long_batches(tmp_path, capsys):
     assert main(["frames", *SMALL, "--set", "run.chunk_frames=2", "--temps",
-                 "300,301,302,303,304", "--out", str(tmp_path / "p.npz")]) == 0
+                 "300,301,302,303,304", "--out", str(tmp_path / "p")]) == 0
     assert "frames [" in capsys.readouterr().err
 
 
@@ -74,5 +80,24 @@ def test_progress_bar_redraws_on_a_terminal_and_logs_quarters_otherwise():
         bar = ProgressBar("x", stream)
         for k in range(1, 101):
             bar(k, 100)
-    assert tty.getvalue().count("\r") == 100 and "[" + "#" * 30 + "]" in tty.getvalue()
+    # A tqdm bar on the terminal: redrawn in place, ending at 100/100.
+    assert tty.getvalue().count("\r") >= 100 and "100/100" in tty.getvalue()
+    assert tty.getvalue().endswith("\n") and tty.getvalue().count("\n") == 1
     assert log.getvalue().count("\n") == 5 and "\r" not in log.getvalue()
+
+
+def test_version_and_verbosity_flags(capsys):
+    from irnuc import __version__
+
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0 and capsys.readouterr().out.strip() == f"irnuc {__version__}"
+
+
+def test_out_that_is_a_file_is_refused_before_work(tmp_path, capsys):
+    target = tmp_path / "file"
+    target.write_text("keep")
+    assert main(["frames", *SMALL, "--out", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert "--out" in err and "not a folder" in err and "Traceback" not in err
+    assert target.read_text() == "keep"

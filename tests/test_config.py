@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import pytest
-from irnuc.model.config import SCHEMA, apply_overrides, load_toml, validate
 
 from irnuc import model
+from irnuc.common.errors import UserError
+from irnuc.model.config import SCHEMA, apply_overrides, load_toml, validate
 
 
 @pytest.mark.parametrize("name", ["default", "paper"])
@@ -26,7 +27,7 @@ def test_presets_validate(name):
         ({"radiometry.rtol": 0.0}, "radiometry.rtol"),
         ({"fpa.tolerance": {"R_ref": -0.1}}, "fpa.tolerance.R_ref = -0.1"),
         ({"fpa.tolerance": {"g": 1.5}}, "fpa.tolerance.g = 1.5"),
-        ({"fpa.tolerance": {"Z": 0.1}}, "fpa.tolerance: unknown key"),
+        ({"fpa.tolerance": {"Z": 0.1}}, "fpa.tolerance.Z is not a known field"),
         ({"fpa.blind": [1, 1, 1]}, "fpa.blind"),
         ({"fpa.blind": [5000, 1, 1, 1]}, "fpa.blind[0] = 5000"),
         ({"fpa.boundary": [0, -1, 0, 0]}, "fpa.boundary[1] = -1"),
@@ -42,7 +43,8 @@ def test_presets_validate(name):
         ({"adc.bits": 0}, "adc.bits = 0"),
         ({"adc.v_low": 4.0}, "adc.v_low"),
         ({"noise.enabled": "yes"}, "noise.enabled"),
-        ({"bolometer.typo": 1.0}, "bolometer: unknown field(s) ['typo']"),
+        ({"bolometer.typo": 1.0}, "bolometer.typo is not a known field"),
+        ({"bolometer.tcrr": 1e-3}, "bolometer.tcrr is not a known field; did you mean 'tcr'?"),
         ({"fpa.defects": {"rates": {"dead": 2.0}}}, "fpa.defects.rates.dead"),
         ({"fpa.defects": {"rows": [500]}}, "fpa.defects.rows[0] = 500"),
         ({"fpa.defects": {"listed": [{"row": 3, "col": 640, "kind": "dead"}]}},
@@ -65,8 +67,10 @@ def test_bad_field_fails_before_any_work(monkeypatch):
 
 
 def test_unknown_section_and_preset():
-    with pytest.raises(model.ConfigError, match="unknown section"):
+    with pytest.raises(model.ConfigError, match="lens is not a known field"):
         validate({**model.load_preset("default"), "lens": {}})
+    with pytest.raises(model.ConfigError, match="did you mean 'optics'"):
+        validate({**model.load_preset("default"), "opticz": {}})
     with pytest.raises(model.ConfigError, match="preset = 'nope'"):
         model.load_preset("nope")
 
@@ -92,5 +96,8 @@ def test_config_file_with_base(tmp_path):
     assert cfg["fpa"]["active_rows"] == 20 and cfg["bolometer"]["R_ref"] == 1e5
     assert load_toml(path)["fpa"]["pitch"] == 17e-6
     assert apply_overrides(cfg, {"fpa.pitch": 12e-6})["fpa"]["pitch"] == 12e-6
-    with pytest.raises(FileNotFoundError):
+    with pytest.raises(UserError, match=r"missing\.toml: no such file"):
         model.load_config(tmp_path / "missing.toml")
+    (tmp_path / "bad.toml").write_text("[fpa\n")
+    with pytest.raises(UserError, match=r"bad\.toml: not valid TOML"):
+        model.load_config(tmp_path / "bad.toml")

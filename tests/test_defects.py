@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy import ndimage
+
 from irnuc.model import defects as dm
 from irnuc.model.defects import (
     KIND_NAMES,
@@ -21,7 +23,6 @@ from irnuc.model.defects import (
     noisy_sigma,
 )
 from irnuc.model.validate import ConfigError
-from scipy import ndimage
 
 K = DefectKind
 P = DefectPattern

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
 from irnuc.nuc_fixed import InputError, dpc_core, load_pipeline
 from irnuc.nuc_fixed.dpc import uncorrectable
 

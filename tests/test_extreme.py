@@ -17,6 +17,8 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+
+from irnuc import model
 from irnuc.model.adc import NonFiniteVoltageError, adc_convert
 from irnuc.model.core.bolometer import (
     STATUS_INVALID,
@@ -28,8 +30,6 @@ from irnuc.model.core.bolometer import (
 from irnuc.model.fpa import SPREAD_DISTRIBUTIONS, ArrayLayout, draw_pixel_parameters
 from irnuc.model.validate import ConfigError
 from irnuc.reports.studies.precision import band_radiance_mp
-
-from irnuc import model
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "extreme_cases.md"
 SMALL = {"fpa.active_rows": 8, "fpa.active_cols": 10}

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
 from irnuc.nuc_fixed import ConfigError, FixedFormat, apply_overflow, round_shift
 from irnuc.nuc_fixed.config import load_pipeline
 from irnuc.nuc_fixed.fixed import gain_format, offset_format

@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy import optimize, stats
+
 from irnuc.model import fpa
 from irnuc.model.fpa import (
     ACTIVE,
@@ -18,7 +20,6 @@ from irnuc.model.fpa import (
     draw_pixel_parameters,
 )
 from irnuc.model.validate import ConfigError
-from scipy import optimize, stats
 
 # ---------------------------------------------------------------------------------------
 # Layout

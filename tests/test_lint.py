@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import pytest
-from irnuc.cosim.rtl import HDL_DIR, lint
+
+from irnuc.cosim import HDL_DIR, lint
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
 MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top")
@@ -39,7 +40,7 @@ def test_lint_catches_a_warning(tmp_path) -> None:
     """The lint check can fail: an unused input is reported under -Wall."""
     import subprocess
 
-    from irnuc.cosim.rtl import verilator_env, verilator_executable
+    from irnuc.cosim.verilator import verilator_env, verilator_executable
 
     src = tmp_path / "bad.sv"
     src.write_text("module bad (input logic a_i, output logic b_o);\n"

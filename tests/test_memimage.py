@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import json
 from pathlib import Path
 
@@ -9,6 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
 from irnuc.nuc_fixed import (
     ConfigError,
     InputError,
@@ -102,12 +104,30 @@ def test_hex_corruption_detected(tmp_path: Path) -> None:
     lines = path.read_text().splitlines()
     lines[5] = format(int(lines[5], 16) ^ 1, f"0{len(lines[5])}x")
     path.write_text("\n".join(lines) + "\n")
-    read_memimage(tmp_path, source="bin")  # the binary is intact
+    # The manifest hashes the hex file too: it is checked whichever file is read.
+    for source in ("bin", "hex"):
+        with pytest.raises(MemImageError, match=r"coeffs\.hex: SHA-256"):
+            read_memimage(tmp_path, source=source)
+    # A hex file that matches its (re-made) hash but not the binary is caught word by word.
+    manifest = json.loads((tmp_path / "manifest.json").read_text())
+    manifest["files"]["coeffs.hex"] = hashlib.sha256(path.read_bytes()).hexdigest()
+    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
     with pytest.raises(MemImageError, match=r"\(row, col\) \(1, 1\)"):
         read_memimage(tmp_path, source="hex")
     path.write_text("\n".join(lines[:-1]) + "\n")
+    manifest["files"]["coeffs.hex"] = hashlib.sha256(path.read_bytes()).hexdigest()
+    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
     with pytest.raises(MemImageError, match="15 lines, expected 16"):
         read_memimage(tmp_path, source="hex")
+
+
+def test_edited_format_field_detected(tmp_path: Path) -> None:
+    _written(tmp_path)
+    manifest = json.loads((tmp_path / "manifest.json").read_text())
+    manifest["rounding"] = "truncate"
+    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    with pytest.raises(MemImageError, match=r"format fields .* do not match"):
+        read_memimage(tmp_path)
 
 
 def test_manifest_mismatch_detected(tmp_path: Path) -> None:

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from irnuc.model.noise import FlickerState, add_noise, frame_rng, johnson_sigma
 
 from irnuc import model
+from irnuc.model.noise import FlickerState, add_noise, frame_rng, johnson_sigma
 
 
 def test_johnson_sigma_formula():

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
 from irnuc.nuc_fixed import InputError, load_pipeline, nuc_core, pipeline_names
 
 CONFIGS = pipeline_names()

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, read_memimage, unpack_words
-from irnuc.nuc_fixed.synthetic import synth_frames
 
 from irnuc.cli import main
+from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, read_memimage, unpack_words
+from irnuc.nuc_fixed.synthetic import synth_frames
 
 
 @pytest.fixture
@@ -26,7 +26,7 @@ def frames_npz(tmp_path: Path) -> Path:
 def test_calibrate_then_correct(tmp_path: Path, frames_npz: Path,
                                 capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "cal"
-    assert main(["calibrate", "--frames", str(frames_npz), "--config", "typical14",
+    assert main(["calibrate", "--frames", str(frames_npz), "--pipeline", "typical14",
                  "--out", str(out)]) == 0
     assert "bad pixels" in capsys.readouterr().out
     for name in ("coeffs.npz", "badpix.csv", "coeffs.hex", "coeffs.bin", "manifest.json",
@@ -45,10 +45,10 @@ def test_calibrate_then_correct(tmp_path: Path, frames_npz: Path,
     r, c, code, _ = csv[1].split(",")
     assert reasons[int(r), int(c)] == int(code) != 0
 
-    corr = tmp_path / "corr.npz"
+    corr = tmp_path / "corr"
     assert main(["correct", "--frames", str(frames_npz), "--coeffs", str(out),
                  "--out", str(corr)]) == 0
-    with np.load(frames_npz) as f, np.load(corr) as z:
+    with np.load(frames_npz) as f, np.load(corr / "corrected.npz") as z:
         want = nuc_dpc_top(f["codes"], words, cfg)
         assert np.array_equal(z["corrected"], want)
         assert np.array_equal(z["temps"], f["temps"])
@@ -59,9 +59,9 @@ def test_calibrate_then_correct(tmp_path: Path, frames_npz: Path,
 
 def test_calibrate_options(tmp_path: Path, frames_npz: Path) -> None:
     out = tmp_path / "cal2"
-    assert main(["calibrate", "--frames", str(frames_npz), "--config", "typical14",
+    assert main(["calibrate", "--frames", str(frames_npz), "--pipeline", "typical14",
                  "--out", str(out), "--t-low", "350", "--targets", "4000,6000",
-                 "--set", "noisy_factor=5", "--rounding", "truncate"]) == 0
+                 "--set", "noisy_factor=5", "--coeff-rounding", "truncate"]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["targets"] == [4000.0, 6000.0] and s["t_low"] == 350.0
     assert s["thresholds"]["noisy_factor"] == 5 and s["rounding"] == "truncate"
@@ -70,11 +70,12 @@ def test_calibrate_options(tmp_path: Path, frames_npz: Path) -> None:
 @pytest.mark.parametrize(
     ("extra", "match"),
     [
-        (["--config", "minimal"], "adc_bits = 14 but pipeline 'minimal'"),
-        (["--config", "typical14", "--t-low", "310"], "--t-low = 310 K matches no frame"),
-        (["--config", "typical14", "--t-low", "400", "--t-high", "300"], "must be below"),
-        (["--config", "nope"], "unknown pipeline configuration 'nope'"),
-        (["--config", "typical14", "--set", "low_response"], "expected KEY=NUMBER"),
+        (["--pipeline", "minimal"], "adc_bits = 14 but pipeline 'minimal'"),
+        (["--pipeline", "typical14", "--t-low", "310"], "--t-low 310 K matches no frame"),
+        (["--pipeline", "typical14", "--t-low", "400", "--t-high", "300"], "must be below"),
+        (["--pipeline", "nope"], "pipeline 'nope' is neither a named configuration"),
+        (["--pipeline", "typical14", "--set", "low_response"], "must look like KEY=VALUE"),
+        (["--pipeline", "typical14", "--set", "low_respons=0.3"], "did you mean 'low_response'"),
     ],
 )
 def test_calibrate_errors(tmp_path: Path, frames_npz: Path, extra: list[str], match: str,
@@ -87,15 +88,20 @@ def test_calibrate_errors(tmp_path: Path, frames_npz: Path, extra: list[str], ma
 def test_correct_errors(tmp_path: Path, frames_npz: Path,
                         capsys: pytest.CaptureFixture[str]) -> None:
     rc = main(["correct", "--frames", str(frames_npz), "--coeffs", str(tmp_path / "none"),
-               "--out", str(tmp_path / "o.npz")])
+               "--out", str(tmp_path / "o")])
+    assert rc == 2 and "not a folder" in capsys.readouterr().err
+    (tmp_path / "empty").mkdir()
+    rc = main(["correct", "--frames", str(frames_npz), "--coeffs", str(tmp_path / "empty"),
+               "--out", str(tmp_path / "o")])
     assert rc == 2 and "no manifest.json" in capsys.readouterr().err
     out = tmp_path / "cal"
-    assert main(["calibrate", "--frames", str(frames_npz), "--config", "typical14",
+    assert main(["calibrate", "--frames", str(frames_npz), "--pipeline", "typical14",
                  "--out", str(out)]) == 0
     data = bytearray((out / "coeffs.bin").read_bytes())
     data[0] ^= 0xFF
     (out / "coeffs.bin").write_bytes(bytes(data))
     rc = main(["correct", "--frames", str(frames_npz), "--coeffs", str(out),
-               "--out", str(tmp_path / "o.npz")])
+               "--out", str(tmp_path / "o")])
     assert rc == 2 and "SHA-256" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()
     assert load_pipeline("typical14")  # the configuration file is untouched

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from irnuc.model import ConfigError, cone_factor, cos4_map
 from irnuc.model.fpa import ArrayLayout
 from irnuc.model.optics import centre_pixel_power, focal_length_from_fov

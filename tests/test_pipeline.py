@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from irnuc.model.core.bolometer import STATUS_OK, STATUS_RUNAWAY
-from irnuc.model.defects import DefectKind
 
 from irnuc import model
+from irnuc.model.core.bolometer import STATUS_OK, STATUS_RUNAWAY
+from irnuc.model.defects import DefectKind
 
 
 def test_uniform_scene_evaluates_radiance_once_per_temperature(small_cfg):

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 import pytest
-from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
-from irnuc.reports.studies import precision as P
 from scipy.integrate import quad
 
 from irnuc.cli import precision as R
+from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
+from irnuc.reports.studies import precision as P
 
 
 def test_mpmath_reference_matches_scipy_quad():

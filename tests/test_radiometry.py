@@ -5,6 +5,7 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
+
 from irnuc.model import ConfigError, band_radiance
 from irnuc.model.core.constants import C_LIGHT, H_PLANCK, K_BOLTZMANN
 from irnuc.model.radiometry import band_radiance_detailed

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
+from irnuc import model
 from irnuc.model.core.bolometer import STATUS_OK, STATUS_RUNAWAY
 from irnuc.model.fpa import ArrayLayout
 from irnuc.model.readout import integrate, skim_column, skim_none, skim_row
-
-from irnuc import model
 
 
 @pytest.fixture

@@ -12,9 +12,9 @@ import sys
 from pathlib import Path
 
 import pytest
-from irnuc.reports import report
 
 from irnuc.cli import main
+from irnuc.reports import report
 
 SMALL = Path(report.__file__).with_name("report_small.toml")
 
@@ -46,7 +46,7 @@ def small_run(tmp_path_factory):
     junit.write_text(JUNIT_PASS)
     cfg = _config(tmp)
     out = tmp / "out"
-    rc = main(["report", "--config", str(cfg), "--out", str(out), "--junit", str(junit), "--no-progress"])
+    rc = main(["report", "--config", str(cfg), "--out", str(out), "--junit", str(junit)])
     return rc, out, cfg, junit
 
 
@@ -118,7 +118,7 @@ def test_planted_regression_is_caught(small_run, tmp_path, capsys) -> None:
     bpath.write_text(json.dumps(base))
     out2 = tmp_path / "out2"
     rc = main(["report", "--config", str(cfg), "--out", str(out2), "--junit", str(junit),
-               "--baseline", str(bpath), "--no-progress"])
+               "--baseline", str(bpath)])
     assert rc == 1
     s = json.loads((out2 / "summary.json").read_text())
     regressed = {e["metric"] for e in s["baseline"]["regressions"]}
@@ -135,7 +135,7 @@ def test_failing_cosim_fails_the_report_and_sections_follow_data(tmp_path) -> No
     cfg = tmp_path / "only_cosim.toml"
     cfg.write_text('name = "only-cosim"\n')
     out = tmp_path / "o"
-    rc = main(["report", "--config", str(cfg), "--out", str(out), "--junit", str(junit), "--no-progress"])
+    rc = main(["report", "--config", str(cfg), "--out", str(out), "--junit", str(junit)])
     assert rc == 1
     s = json.loads((out / "summary.json").read_text())
     assert set(s["sections"]) == {"cosim"} and set(s["phases"]) == {"cosim"}
@@ -149,7 +149,7 @@ def test_no_cosim_means_no_section_and_no_junit(tmp_path) -> None:
     cfg = tmp_path / "empty.toml"
     cfg.write_text('name = "empty"\n[cosim]\nk = "x"\ntimeout = 10.0\n')
     out = tmp_path / "o"
-    assert main(["report", "--config", str(cfg), "--out", str(out), "--no-cosim", "--no-progress"]) == 0
+    assert main(["report", "--config", str(cfg), "--out", str(out), "--no-cosim"]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["sections"] == {} and not (out / "junit.xml").exists()
 
@@ -205,8 +205,8 @@ def test_quick_overrides_apply() -> None:
 
 
 def test_report_imports_no_dev_only_package() -> None:
-    code = ("import sys, irnuc.reports.report, irnuc.reports.studies.sweep, irnuc.cli.commands; "
-            "bad = [m for m in ('jsonschema', 'distributed', 'dask', 'pytest', 'hypothesis') "
+    code = ("import sys, irnuc.reports.report, irnuc.reports.studies.sweep, irnuc.cli; "
+            "bad = [m for m in ('distributed', 'dask', 'pytest', 'hypothesis') "
             "if m in sys.modules]; print(bad); sys.exit(1 if bad else 0)")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+
 from irnuc.model import ConfigError, Scene
 from irnuc.model.scenes import scene_temperatures
 

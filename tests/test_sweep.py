@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
 from irnuc.reports.studies import metrics
 from irnuc.reports.studies.sweep import (
     SensorSpec,
@@ -296,14 +297,14 @@ def test_sweep_cli(tmp_path, capsys) -> None:
     from irnuc.cli import main
 
     out = tmp_path / "sw"
-    rc = main(["sweep", "--preset", "paper", "--rows", "24", "--cols", "32", "--t-eval", "350",
+    rc = main(["sweep", "--sensor", "paper", "--rows", "24", "--cols", "32", "--t-eval", "350",
                "--repeats", "1", "--gain-frac", "10:14:2", "--offset-frac", "same", "--workers", "0",
-               "--max-error", "2", "--out", str(out), "--no-progress"])
+               "--max-error", "2", "--out", str(out)])
     assert rc == 0
     d = json.loads((out / "sweep.json").read_text())
     assert d["n_points"] == 3 and len((out / "sweep.csv").read_text().splitlines()) == 4
     assert (out / "pareto.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "smallest widths" in capsys.readouterr().out
-    rc = main(["sweep", "--gain-frac", "40", "--out", str(out), "--no-progress"])
+    rc = main(["sweep", "--gain-frac", "40", "--out", str(out)])
     assert rc == 2
     assert "axes.gain_frac_bits holds 40" in capsys.readouterr().err

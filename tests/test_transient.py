@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 import pytest
+
+from irnuc import model
 from irnuc.model import transient as tr
 from irnuc.model.core.bolometer import STATUS_OK, STATUS_RUNAWAY
 from irnuc.model.validate import ConfigError
 from irnuc.reports.studies.precision import reference_transient, transient_problem
-
-from irnuc import model
 
 INTEGRATORS = list(tr.INTEGRATORS)
 T_INT = 60e-6

@@ -1,26 +1,38 @@
-"""The ``irnuc`` command line: one entry point, sub-commands contributed by the packages.
+"""The ``irnuc`` command line: the top layer (docs/architecture.md).
 
-Each module listed in :data:`COMMAND_MODULES` defines ``COMMANDS``, a mapping from a
-sub-command name to ``(help, add_arguments, run)``. Those modules import only the
-standard library at top level, so ``irnuc --help`` stays fast; the heavy imports (numba,
-scipy, matplotlib) happen inside ``run``.
+Each module in :data:`COMMAND_MODULES` defines ``COMMANDS``, a mapping from a sub-command
+name to ``(help, add_arguments, run)``. Those modules import only the standard library at
+top level, so ``irnuc --help`` stays fast; the heavy imports happen inside ``run``.
+
+:func:`main` is the boundary between the user and irnuc: a
+:class:`~irnuc.common.errors.UserError` (bad flag, value, file or configuration field),
+or an operating-system error on a path the user gave, becomes ONE line on stderr and exit
+status 2; a failing external tool (:class:`~irnuc.common.errors.ToolError`) one line and
+status 3; anything else is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
 
 import argparse
+import errno
 import importlib
 import sys
 from collections.abc import Callable, Sequence
 
-COMMAND_MODULES: tuple[str, ...] = ("irnuc.cli.frames", "irnuc.cli.calibrate",
-                                      "irnuc.cli.commands", "irnuc.cli.precision")
+from irnuc.cli._args import add_verbosity, set_verbosity
+from irnuc.common.errors import ToolError, UserError
+
+COMMAND_MODULES: tuple[str, ...] = (
+    "irnuc.cli.frames", "irnuc.cli.calibrate", "irnuc.cli.sweep", "irnuc.cli.report",
+    "irnuc.cli.precision",
+)
 
 Command = tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]
 
+def _version() -> str:
+    from irnuc import __version__
 
-class UsageError(Exception):
-    """A user error found before any work: printed as one line, exit status 2."""
+    return __version__
 
 
 def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
@@ -28,6 +40,8 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
         prog="irnuc",
         description="Infrared NUC hardware co-simulation and fixed-point exploration toolkit.",
     )
+    parser.add_argument("--version", action="version", version=f"irnuc {_version()}")
+    add_verbosity(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     commands: dict[str, Command] = {}
@@ -35,21 +49,51 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
         module = importlib.import_module(module_name)
         for name, command in module.COMMANDS.items():
             help_text, add_arguments, _ = command
-            add_arguments(sub.add_parser(name, help=help_text, description=help_text))
+            sp = sub.add_parser(name, help=help_text, description=help_text)
+            add_verbosity(sp)
+            add_arguments(sp)
             commands[name] = command
     return parser, commands
+
+
+def _os_error_line(exc: OSError) -> str | None:
+    """One line for an OS error on a user's path; None when it is not about a path."""
+    if exc.filename is None:
+        return None
+    what = {errno.ENOENT: "no such file or folder", errno.EACCES: "permission denied",
+            errno.EPERM: "operation not permitted", errno.EISDIR: "is a folder",
+            errno.ENOTDIR: "a part of the path is not a folder", errno.ENOSPC: "no space left",
+            errno.EROFS: "read-only file system", errno.EEXIST: "already exists"}
+    return f"{exc.filename}: {what.get(exc.errno, exc.strerror or 'cannot be used')}"
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser, commands = build_parser()
     args = parser.parse_args(argv)
+    set_verbosity(getattr(args, "verbosity", 1))
     _, _, run = commands[args.command]
+    prefix = f"irnuc {args.command}: error:"
     try:
         return int(run(args) or 0)
-    except (UsageError, ValueError, FileNotFoundError) as exc:
-        # Configuration and input errors are reported as one clear line, not a traceback.
-        print(f"irnuc {args.command}: error: {exc}", file=sys.stderr)
+    except UserError as exc:
+        print(f"{prefix} {exc}", file=sys.stderr)
         return 2
+    except ToolError as exc:
+        print(f"{prefix} {exc}", file=sys.stderr)
+        return 3
+    except OSError as exc:
+        line = _os_error_line(exc)
+        if line is None:
+            raise
+        print(f"{prefix} {line}", file=sys.stderr)
+        return 2
+    except MemoryError:
+        print(f"{prefix} out of memory; use a smaller frame, fewer frames or fewer points",
+              file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"irnuc {args.command}: interrupted; outputs left as they were", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -18,8 +18,9 @@ import math
 from fractions import Fraction
 
 import numpy as np
-from irnuc.model.core.constants import PI4_OVER_15
 from numba import njit, prange
+
+from irnuc.model.core.constants import PI4_OVER_15
 
 #: Below this x the lower (Bernoulli) series replaces the tail series.
 X_SWITCH = 2.0

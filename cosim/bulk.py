@@ -1,0 +1,207 @@
+"""Bulk co-simulation: a C++ harness around the Verilated ``nuc_dpc_top``.
+
+The harness (``harness/bulk_main.cpp``, Verilator ``--cc --exe``, no cocotb, no VPI)
+reads raw binary stimulus, clocks the model itself and writes raw binary outputs; the
+outputs are checked by the one scoreboard (:class:`~irnuc.cosim.scoreboard.TopScoreboard`).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from irnuc.common.cache import cache_dir
+from irnuc.common.errors import UserError
+from irnuc.cosim.build import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
+from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
+from irnuc.cosim.sources import hdl_sources, top_parameters
+from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
+from irnuc.nuc_fixed import PipelineConfig
+from irnuc.nuc_fixed.memimage import check_words
+from irnuc.nuc_fixed.validate import InputError, check_frame_shape, int_array
+
+#: The harness source.
+BULK_HARNESS = Path(__file__).resolve().with_name("harness") / "bulk_main.cpp"
+#: Name of the bulk executable inside its build folder.
+BULK_EXE = "nuc_dpc_bulk"
+#: Output word of the harness: bit 31 sof, bit 30 eol, low bits the corrected code.
+_SOF_BIT, _EOL_BIT = 31, 30
+
+
+def build_bulk(cfg: PipelineConfig) -> Build:
+    """Build (cached) the bulk harness of ``nuc_dpc_top`` for ``cfg``.
+
+    The executable is ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness
+    source. A build takes about 10-15 s on 2 cores.
+    """
+    top = "nuc_dpc_top"
+    params = top_parameters(top, cfg)
+    key = build_digest(top, params, [*BUILD_ARGS, *FAST_ARGS, "--exe"], [BULK_HARNESS])
+
+    def make(build_dir: Path) -> None:
+        log = build_dir / "build.log"
+        cmd = [str(verilator_executable()), "--cc", "--exe", "--build", "-Mdir", str(build_dir),
+               "--top-module", top, "-o", BULK_EXE, *BUILD_ARGS, *FAST_ARGS,
+               *[f"-G{k}={v}" for k, v in params.items()],
+               *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
+        from irnuc.common.process import run_child
+
+        proc = run_child(cmd, env=verilator_env(), log=log)
+        if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
+            raise RtlError(f"Verilator build of the bulk harness failed (exit "
+                           f"{proc.returncode}); see {log}")
+
+    build_dir = cached_build(f"{cfg.name}-bulk-{key}",
+                             {"top": top, "harness": BULK_HARNESS.name, "config": cfg.to_dict(),
+                              "params": params, "args": list(FAST_ARGS)}, make)
+    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
+
+
+@dataclass(frozen=True)
+class BulkResult:
+    """Outputs of one bulk run, in stream order (frames back to back, raster order).
+
+    ``data`` holds the corrected codes (int64), ``sof`` and ``eol`` the output markers
+    (bool). ``cycles`` counts clock cycles from reset release to the last output;
+    ``first_out_cycle``/``last_out_cycle`` bracket the outputs (at full rate without
+    bubbles ``last - first + 1`` equals the number of outputs); ``extra`` counts outputs
+    that still appeared in ``W + 16`` idle cycles after the last expected one (must be 0);
+    ``frame_err`` is the DUT's sticky ``frame_err_o``; ``sim_seconds`` is the wall time of
+    the harness process (reading stimulus, simulating, writing outputs).
+    """
+
+    data: np.ndarray
+    sof: np.ndarray
+    eol: np.ndarray
+    frame_shape: tuple[int, int]
+    cycles: int
+    first_out_cycle: int
+    last_out_cycle: int
+    extra: int
+    frame_err: bool
+    inputs_taken: tuple[int, int]
+    sim_seconds: float
+
+
+def _check_percent(name: str, value: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
+        raise UserError(f"{name} = {value!r} is outside the allowed range 0..99 (percent, int)")
+    return value
+
+
+def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: int = 0,
+             stall_percent: int = 0, seed: int = 1,
+             work_dir: Path | None = None) -> BulkResult:
+    """Stream frames through the bulk harness of :func:`build_bulk` and read the outputs.
+
+    Parameters
+    ----------
+    bld : Build
+        From :func:`build_bulk`; its configuration fixes the widths.
+    raw : integer array_like, (H, W) or (N, H, W)
+        Raw codes in [0, 2^A - 1]; N frames are streamed back to back.
+    words : integer array_like, (H, W)
+        Coefficient words (docs/datapath.md layout), sent again for every frame.
+    idle_percent, stall_percent : int
+        Percent (0..99) of cycles each input source stays idle / the output is
+        back-pressured, drawn in the harness from ``seed``. 0 = full rate.
+    seed : int
+        Seed (0..2^64-1) of the harness's generator; same inputs and seed -> same cycles.
+    work_dir : Path, optional
+        Folder for the binary files; a temporary folder in the irnuc cache by default.
+
+    Returns
+    -------
+    BulkResult
+        Compare it with :func:`check_bulk`.
+    """
+    if not isinstance(bld, Build) or not (bld.build_dir / BULK_EXE).is_file():
+        raise UserError(f"{bld!r} is not a bulk build; use cosim.build_bulk(cfg)")
+    cfg = bld.cfg
+    x = int_array("raw", raw, 0, (1 << cfg.adc_bits) - 1)
+    h, w = check_frame_shape("raw", x.shape, cfg)
+    wd = check_words(words, cfg)
+    if wd.shape != (h, w):
+        raise InputError(f"words has shape {wd.shape} but the frames of raw are {(h, w)}")
+    _check_percent("idle_percent", idle_percent)
+    _check_percent("stall_percent", stall_percent)
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 1 << 64:
+        raise UserError(f"seed = {seed!r} is outside the allowed range 0..2^64-1 (int)")
+    if work_dir is None:
+        with tempfile.TemporaryDirectory(dir=cache_dir("bulk")) as tmp:
+            return run_bulk(bld, x, wd, idle_percent=idle_percent, stall_percent=stall_percent,
+                            seed=seed, work_dir=Path(tmp))
+    frames = x.reshape(-1, h, w)
+    n = frames.size
+    pix_dtype = np.uint16 if cfg.adc_bits <= 16 else np.uint32
+    work_dir = Path(work_dir)
+    work_dir.mkdir(parents=True, exist_ok=True)
+    pix_file, coef_file, out_file = (work_dir / f for f in ("pix.bin", "coef.bin", "out.bin"))
+    out_file.unlink(missing_ok=True)  # never read a previous run's outputs
+    np.ascontiguousarray(frames, dtype=pix_dtype).tofile(pix_file)
+    nf = frames.shape[0]
+    coef = wd if nf == 1 else np.broadcast_to(wd, (nf, h, w))
+    np.ascontiguousarray(coef, dtype="<u8").tofile(coef_file)
+    cmd = [str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
+           str(n), str(w), str(h), str(np.dtype(pix_dtype).itemsize), str(idle_percent),
+           str(stall_percent), str(seed)]
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    sim_seconds = time.perf_counter() - t0
+    lines = proc.stdout.strip().splitlines()
+    info = json.loads(lines[-1]) if lines and lines[-1].startswith("{") else {}
+    if proc.returncode != 0 or "error" in info:
+        raise RtlError(f"bulk harness failed (exit {proc.returncode}): {info or proc.stdout}"
+                       f"\n{proc.stderr}")
+    out = np.fromfile(out_file, dtype="<u4")
+    mask = np.uint32((1 << cfg.out_bits) - 1)
+    return BulkResult(
+        data=(out & mask).astype(np.int64),
+        sof=(out >> np.uint32(_SOF_BIT)).astype(bool),
+        eol=((out >> np.uint32(_EOL_BIT)) & np.uint32(1)).astype(bool),
+        frame_shape=(h, w), cycles=int(info["cycles"]),
+        first_out_cycle=int(info["first_out_cycle"]), last_out_cycle=int(info["last_out_cycle"]),
+        extra=int(info["extra"]), frame_err=bool(info["frame_err"]),
+        inputs_taken=(int(info["inputs_taken"][0]), int(info["inputs_taken"][1])),
+        sim_seconds=sim_seconds,
+    )
+
+
+def check_bulk(res: BulkResult, raw: np.ndarray, words: np.ndarray, golden: PipelineConfig,
+               expected: np.ndarray | None = None, max_report: int = 10) -> ScoreResult:
+    """Check a bulk run with the scoreboard, bit for bit.
+
+    Every output's code, ``sof`` and ``eol`` are compared in stream order; outputs that
+    came after the expected ones (also during the harness's idle tail) count as extra,
+    and a set ``frame_err_o`` is reported as an error line.
+
+    Parameters
+    ----------
+    res : BulkResult
+    raw, words : ndarray
+        The stimulus given to :func:`run_bulk`.
+    golden : PipelineConfig
+        Configuration of the golden model (normally the DUT's).
+    expected : ndarray, optional
+        ``irnuc.nuc_fixed.nuc_dpc_top(raw, words, golden)`` if already computed.
+    max_report : int
+        Mismatches described in full (the counts are always complete).
+    """
+    sb = TopScoreboard(golden, max_report=max_report)
+    sb.expect_frames(raw, words, expected)
+    sb.observe_arrays(data=res.data, sof=res.sof, eol=res.eol)
+    r = sb.result()
+    lines = list(r.lines)
+    if res.extra:
+        lines.append(f"{res.extra} extra output(s) in the idle cycles after the stream")
+    if res.frame_err:
+        lines.append("frame_err_o is set (an input marker or the frame size was wrong)")
+    return ScoreResult(compared=r.compared, mismatches=r.mismatches, missing=r.missing,
+                       extra=r.extra + res.extra, lines=lines, first_index=r.first_index,
+                       flag_errors=int(res.frame_err))

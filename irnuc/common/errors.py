@@ -1,0 +1,24 @@
+"""The error classes every layer raises, so the command line can tell them apart.
+
+* :class:`UserError` (a ``ValueError``): bad input the user can fix: an argument, a
+  value, a file, a configuration field. The command line prints its message as one line
+  and exits with status 2. Messages name the flag, file or dotted field and what is
+  allowed.
+* :class:`ToolError` (a ``RuntimeError``): an external tool (Verilator, the C++
+  compiler, Yosys, nextpnr) failed; the message names the log. Exit status 3.
+* Anything else is a bug in irnuc and keeps its traceback.
+"""
+
+from __future__ import annotations
+
+
+class IrnucError(Exception):
+    """Base class of the errors irnuc raises on purpose."""
+
+
+class UserError(IrnucError, ValueError):
+    """A user-caused error: printed as one line, exit status 2."""
+
+
+class ToolError(IrnucError, RuntimeError):
+    """An external tool failed: printed as one line naming its log, exit status 3."""

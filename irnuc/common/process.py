@@ -1,0 +1,95 @@
+"""Child processes that die with their parent and can be stopped as a whole.
+
+Every child runs in its own session (process group), so a timeout kills it and whatever
+it started (a simulator, a compiler). On Linux it also gets ``PR_SET_PDEATHSIG``: if the
+irnuc process that started it is killed (even with SIGKILL), the child receives SIGTERM,
+and :func:`die_with_parent` (called by irnuc's own child entry points) turns that into a
+kill of the child's whole group.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+import signal
+import subprocess
+import threading
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+_PR_SET_PDEATHSIG = 1
+
+
+def _set_pdeathsig() -> None:  # runs in the child between fork and exec
+    name = ctypes.util.find_library("c")
+    if name:
+        ctypes.CDLL(name, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
+class ChildTimeout(RuntimeError):
+    """A child process group ran past its time limit and was killed."""
+
+
+def run_child(cmd: Sequence[str], *, timeout: float | None = None,
+              env: Mapping[str, str] | None = None, cwd: str | Path | None = None,
+              log: str | Path | None = None, capture: bool = False
+              ) -> subprocess.CompletedProcess:
+    """Run ``cmd`` in its own process group; kill the group on timeout or interrupt.
+
+    Output goes to ``log`` (stdout and stderr together) or is captured. Raises
+    :class:`ChildTimeout` after killing the group when ``timeout`` seconds pass.
+    """
+    out = open(log, "w") if log is not None else (subprocess.PIPE if capture else None)
+    try:
+        proc = subprocess.Popen(list(map(str, cmd)), stdout=out,
+                                stderr=subprocess.STDOUT if log is not None else
+                                (subprocess.PIPE if capture else None),
+                                env=dict(env) if env is not None else None, cwd=cwd,
+                                start_new_session=True, preexec_fn=_set_pdeathsig, text=True)
+        try:
+            stdout, stderr = proc.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            _kill_group(proc)
+            raise ChildTimeout(f"{Path(cmd[0]).name} ran longer than {timeout:g} s and was "
+                               "stopped") from None
+        except BaseException:
+            _kill_group(proc)
+            raise
+    finally:
+        if log is not None:
+            out.close()
+    return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
+
+
+def _kill_group(proc: subprocess.Popen) -> None:
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    proc.wait()
+
+
+def die_with_parent() -> None:
+    """In an irnuc child process: when the parent dies, kill this whole process group.
+
+    The parent set ``PR_SET_PDEATHSIG`` to SIGTERM; the handler kills the group (this
+    process and, say, the simulator it started). A watchdog thread covers a parent that
+    died before the signal was armed.
+    """
+    parent = os.getppid()
+
+    def kill_group(*_: object) -> None:
+        os.killpg(os.getpgrp(), signal.SIGKILL)
+
+    signal.signal(signal.SIGTERM, kill_group)
+
+    def watch() -> None:
+        import time
+
+        while True:
+            if os.getppid() != parent:
+                kill_group()
+            time.sleep(1.0)
+
+    threading.Thread(target=watch, daemon=True).start()
