@@ -6,7 +6,17 @@ Subpackages, each importing only the ones listed after it (docs/architecture.md)
 ``irnuc.nuc_fixed`` -> ``irnuc.model`` -> ``irnuc.common``.
 """
 
+import os
+import sys
 from importlib.metadata import PackageNotFoundError, version
+
+from irnuc.common.cache import cache_dir
+
+# numba's compiled-kernel cache goes to the irnuc cache, not beside the sources.
+if "NUMBA_CACHE_DIR" not in os.environ:
+    os.environ["NUMBA_CACHE_DIR"] = str(cache_dir("numba"))
+    if "numba" in sys.modules:  # imported before irnuc: its config was already read
+        sys.modules["numba"].config.CACHE_DIR = os.environ["NUMBA_CACHE_DIR"]
 
 try:
     __version__ = version("irnuc")

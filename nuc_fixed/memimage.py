@@ -16,7 +16,7 @@ import numpy as np
 
 from irnuc.common.digest import file_sha256
 from irnuc.common.errors import UserError
-from irnuc.common.io import write_bytes_atomic
+from irnuc.common.io import read_json_object, write_bytes_atomic
 from irnuc.nuc_fixed.config import ConfigError, PipelineConfig
 from irnuc.nuc_fixed.nuc import check_coefficients
 from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, int_array
@@ -188,14 +188,9 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
     """The manifest of a memory image folder, its structure checked."""
     path = Path(directory) / MANIFEST_NAME
     try:
-        manifest = json.loads(path.read_text())
-    except FileNotFoundError:
-        raise MemImageError(f"{path}: no such file (run irnuc calibrate)") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise MemImageError(f"{path}: not valid JSON ({exc})") from None
-    if not isinstance(manifest, dict):
-        raise MemImageError(f"{path}: the top level is a {type(manifest).__name__}; a JSON "
-                            "object is required")
+        manifest = read_json_object(path)
+    except UserError as exc:
+        raise MemImageError(f"{exc} (a manifest written by irnuc calibrate is needed)") from None
     if manifest.get("version") != MEMIMAGE_VERSION:
         raise MemImageError(
             f"{path}: version = {manifest.get('version')!r}; this reader supports "

@@ -6,7 +6,6 @@ what is allowed.
 
 from __future__ import annotations
 
-import json
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -86,20 +85,4 @@ def load_frames(value: str, flag: str = "--frames") -> dict[str, Any]:
                         f" of adc_bits = {adc_bits}")
     data["temps"] = t
     data["adc_bits"] = adc_bits
-    return data
-
-
-def load_json_object(path: Path, flag: str) -> dict[str, Any]:
-    """A JSON file whose top level is an object."""
-    try:
-        data = json.loads(path.read_text())
-    except FileNotFoundError:
-        raise UserError(f"{flag} {path}: no such file") from None
-    except IsADirectoryError:
-        raise UserError(f"{flag} {path}: is a folder, not a JSON file") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise UserError(f"{flag} {path}: not a readable JSON file ({exc})") from None
-    if not isinstance(data, dict):
-        raise UserError(f"{flag} {path}: the top level is a {type(data).__name__}; a JSON "
-                        "object is required")
     return data

@@ -66,6 +66,29 @@ def write_text_atomic(path: str | Path, text: str) -> Path:
     return write_atomic(path, lambda fh: fh.write(text.encode()))
 
 
+def read_json_object(path: str | Path, what: str = "") -> dict[str, Any]:
+    """A JSON file whose top level is an object; one-line :class:`UserError` otherwise.
+
+    ``what`` (e.g. the flag that named the file) is put before the path in messages.
+    """
+    import json
+
+    path = Path(path)
+    name = f"{what} {path}" if what else str(path)
+    try:
+        data = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise UserError(f"{name}: no such file") from None
+    except IsADirectoryError:
+        raise UserError(f"{name}: is a folder, not a JSON file") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise UserError(f"{name}: not a readable JSON file ({exc})") from None
+    if not isinstance(data, dict):
+        raise UserError(f"{name}: the top level is a {type(data).__name__}; a JSON object is "
+                        "required")
+    return data
+
+
 @contextlib.contextmanager
 def file_lock(path: str | Path, *, wait: bool = True, what: str = "") -> Iterator[None]:
     """Hold an exclusive advisory lock on ``path`` (created if missing).
