@@ -15,15 +15,6 @@ def waves_requested() -> bool:
     return os.environ.get("IRNUC_WAVES", "0") not in ("", "0")
 
 
-def cocotb_test_names(module: str) -> list[str]:
-    """Names of the cocotb tests defined in a testbench module (imported, not run)."""
-    import importlib
-
-    mod = importlib.import_module(module)
-    return [name for name, obj in vars(mod).items()
-            if type(obj).__name__ == "TestGenerator" and getattr(obj, "module", None) == module]
-
-
 @functools.cache
 def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
                ) -> dict[str, cosim.CaseResult]:

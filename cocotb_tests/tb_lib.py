@@ -23,6 +23,7 @@ from cocotb.handle import SimHandleBase
 from cocotb.triggers import ClockCycles, RisingEdge, Timer
 
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
+from irnuc.cosim.suite import METRICS_ENV
 from irnuc.nuc_fixed import PipelineConfig, dpc_core, nuc_dpc_top, pack_words
 
 CLK_PERIOD_NS = 10
@@ -100,16 +101,29 @@ def golden_frame(raw: np.ndarray, words: np.ndarray, gcfg: PipelineConfig) -> Fr
     return Frame(raw=raw, words=words, expected=nuc_dpc_top(raw, words, gcfg).astype(np.int64))
 
 
+def record(**metrics: object) -> None:
+    """Append one JSON line of metrics for the suite runner (``irnuc.cosim.suite``), if it
+    asked for them (``$IRNUC_TB_METRICS``)."""
+    path = os.environ.get(METRICS_ENV)
+    if path:
+        with open(path, "a") as fh:
+            fh.write(json.dumps(metrics, default=int) + "\n")
+
+
 def check_frames(frames: list[Frame], got: list[tuple[int, ...]], gcfg: PipelineConfig,
                  max_report: int = 10) -> ScoreResult:
     """In-order check of the output stream (data, sof, eol) against the golden frames,
-    with the one scoreboard of irnuc (``irnuc.cosim.TopScoreboard``)."""
+    with the one scoreboard of irnuc (``irnuc.cosim.TopScoreboard``); the result is also
+    recorded for the suite runner."""
     sb = TopScoreboard(gcfg, max_report=max_report)
     for fr in frames:
         sb.expect_frames(fr.raw, fr.words, fr.expected)
     for d, sof, eol in got:
         sb.observe(data=d, sof=sof, eol=eol)
-    return sb.result()
+    res = sb.result()
+    record(compared=res.compared, errors=res.errors, mismatches=res.mismatches,
+           missing=res.missing, extra=res.extra, lines=res.lines[:10])
+    return res
 
 
 def assert_no_mismatch(res: ScoreResult, log) -> None:

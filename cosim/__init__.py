@@ -4,6 +4,8 @@
 * :mod:`~irnuc.cosim.build` caches Verilator builds and runs cocotb test modules on them in
   a child process group (timeouts; children die with the parent);
 * :mod:`~irnuc.cosim.bulk` drives the C++ bulk harness;
+* :mod:`~irnuc.cosim.suite` runs a co-simulation suite as a Python API (builds first,
+  one timer per test, partial results kept);
 * :mod:`~irnuc.cosim.scoreboard` is the one in-order scoreboard of every testbench, the
   bulk check and the report;
 * :mod:`~irnuc.cosim._cocotb_adapter` holds the only use of cocotb internals.
@@ -26,6 +28,7 @@ from irnuc.cosim.build import (
 from irnuc.cosim.bulk import BulkResult, build_bulk, check_bulk, run_bulk
 from irnuc.cosim.scoreboard import Scoreboard, ScoreResult, TopScoreboard
 from irnuc.cosim.sources import HDL_DIR, MODULE_FILES, hdl_sources, top_parameters
+from irnuc.cosim.suite import SuiteCase, SuiteResult, TestOutcome, cocotb_test_names, run_suite
 from irnuc.cosim.verilator import (
     RtlError,
     fst_supported,
@@ -48,11 +51,15 @@ __all__ = [
     "ScoreResult",
     "Scoreboard",
     "SimulationTimeout",
+    "SuiteCase",
+    "SuiteResult",
+    "TestOutcome",
     "TopScoreboard",
     "build",
     "build_binary",
     "build_bulk",
     "check_bulk",
+    "cocotb_test_names",
     "fst_supported",
     "hdl_sources",
     "lint",
@@ -60,6 +67,7 @@ __all__ = [
     "results_dir",
     "run",
     "run_bulk",
+    "run_suite",
     "top_parameters",
     "verilator_executable",
     "verilator_root",

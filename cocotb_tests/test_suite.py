@@ -1,0 +1,62 @@
+"""The co-simulation suite as a Python API (``irnuc.cosim.run_suite``): results per test,
+metrics from the scoreboard, JUnit, and a timeout that stops only its own test and leaves
+no simulator running."""
+
+from __future__ import annotations
+
+import os
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from irnuc import cosim
+from irnuc.nuc_fixed import load_pipeline
+
+pytestmark = [pytest.mark.cosim, pytest.mark.slow]
+
+TB_TOP = "irnuc.cocotb_tests.tb_top"
+
+
+def _simulators() -> list[int]:
+    """PIDs of running Verilated cocotb models (their executable is the top's name)."""
+    pids = []
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                exe = os.readlink(f"/proc/{d}/exe")
+            except OSError:
+                continue
+            if exe.endswith("/nuc_dpc_top"):
+                pids.append(int(d))
+    return pids
+
+
+def test_suite_runs_each_test_and_keeps_metrics(tmp_path) -> None:
+    case = cosim.SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB_TOP,
+                           tests=("corner_codes", "checker_detects_mismatch"))
+    res = cosim.run_suite([case], tmp_path)
+    assert [o.test for o in res.outcomes] == ["corner_codes", "checker_detects_mismatch"]
+    assert res.passed, [(o.test, o.status, o.message) for o in res.outcomes]
+    corner = res.outcomes[0]
+    assert corner.metrics and corner.metrics[0]["compared"] > 0
+    assert corner.metrics[0]["errors"] == 0 and corner.log is not None
+    # The deliberately wrong golden model was caught, and recorded with triage lines.
+    wrong = [m for m in res.outcomes[1].metrics if m["errors"] > 0]
+    assert wrong and wrong[0]["lines"][0].startswith("frame ")
+    tot = res.totals()
+    assert tot["tests"] == 2 and tot["passed"] == 2 and tot["pixels"] > 0
+    junit = res.write_junit(tmp_path / "junit.xml")
+    cases = ET.parse(junit).getroot().findall(".//testcase")
+    assert {c.get("name") for c in cases} == {"corner_codes", "checker_detects_mismatch"}
+
+
+def test_timeout_stops_only_that_test_and_its_simulator(tmp_path) -> None:
+    cfg = load_pipeline("minimal")
+    case = cosim.SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=("model_frames",))
+    cosim.build("nuc_dpc_top", cfg)  # built outside the timer, as run_suite does
+    before = set(_simulators())
+    # A limit far below what the test needs: it must end as "timeout", not hang.
+    res = cosim.run_suite([case], tmp_path, timeout_base=0.3)
+    assert [o.status for o in res.outcomes] == ["timeout"]
+    assert "stopped" in res.outcomes[0].message
+    assert set(_simulators()) <= before, "a simulator survived the timeout"

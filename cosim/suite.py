@@ -1,0 +1,228 @@
+"""A co-simulation suite as a Python API: builds first, then every test on its own timer.
+
+The report, the mutation runner and anyone else who wants co-simulation results without
+pytest call :func:`run_suite`:
+
+1. every distinct build the cases need is made first (cached; no test timer runs);
+2. every cocotb test then runs in its own simulator process (a child process group),
+   with a wall-time limit that scales with the size of the design built
+   (:func:`test_timeout`), so one slow or hung test costs only itself;
+3. each outcome is kept as it comes (passed, failed, error, timeout), with its log, its
+   waveform (if asked for), the metrics the testbench recorded (pixels compared,
+   mismatches, triage lines, cycles) and the assertion failures found in the log;
+4. :meth:`SuiteResult.write_junit` writes one JUnit XML of everything that ran.
+
+The testbench side of the metrics: a testbench appends JSON lines to the file named by
+``$IRNUC_TB_METRICS`` (``irnuc.cocotb_tests.tb_lib.record``).
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import re
+import time
+import xml.etree.ElementTree as ET
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from irnuc.common.io import write_text_atomic
+from irnuc.cosim.build import Build, SimulationTimeout, build, read_results, run
+from irnuc.cosim.verilator import RtlError, waves_suffix
+from irnuc.nuc_fixed import PipelineConfig
+
+#: Environment variable naming the JSON-lines file a testbench records metrics into.
+METRICS_ENV = "IRNUC_TB_METRICS"
+#: How Verilator reports a failed immediate or concurrent assertion in the simulator log.
+_ASSERT_RE = re.compile(r"(Assertion failed|%Error: .*assert)", re.IGNORECASE)
+
+
+def cocotb_test_names(module: str) -> list[str]:
+    """Names of the cocotb tests defined in a testbench module (imported, not run)."""
+    mod = importlib.import_module(module)
+    return [name for name, obj in vars(mod).items()
+            if type(obj).__name__ == "TestGenerator" and getattr(obj, "module", None) == module]
+
+
+@dataclass(frozen=True)
+class SuiteCase:
+    """One testbench module on one top module and configuration."""
+
+    top: str
+    cfg: PipelineConfig
+    module: str
+    tests: tuple[str, ...] | None = None  # None: every cocotb test of the module
+    seed: int = 1
+    env: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def label(self) -> str:
+        return f"{self.cfg.name}/{self.top}/{self.module.rsplit('.', 1)[-1]}"
+
+
+@dataclass
+class TestOutcome:
+    """What one cocotb test did."""
+
+    case: SuiteCase
+    test: str
+    status: str  # passed, failed, error, timeout
+    seconds: float
+    message: str = ""
+    log: Path | None = None
+    waves: Path | None = None
+    metrics: list[dict[str, Any]] = field(default_factory=list)
+    assertion_failures: list[str] = field(default_factory=list)
+
+    @property
+    def name(self) -> str:
+        return f"{self.case.label}::{self.test}"
+
+
+@dataclass
+class SuiteResult:
+    """Every outcome of a suite run, and the time spent building and running."""
+
+    outcomes: list[TestOutcome]
+    build_seconds: float
+    run_seconds: float
+    builds: list[str]
+
+    def count(self, status: str) -> int:
+        return sum(o.status == status for o in self.outcomes)
+
+    @property
+    def passed(self) -> bool:
+        return bool(self.outcomes) and all(o.status == "passed" for o in self.outcomes)
+
+    def totals(self) -> dict[str, Any]:
+        pixels = sum(int(m.get("compared", 0)) for o in self.outcomes for m in o.metrics)
+        errors = sum(int(m.get("errors", 0)) for o in self.outcomes for m in o.metrics)
+        return {"tests": len(self.outcomes), "passed": self.count("passed"),
+                "failed": self.count("failed"), "error": self.count("error"),
+                "timeout": self.count("timeout"), "pixels": pixels, "mismatches": errors,
+                "assertion_failures": sum(len(o.assertion_failures) for o in self.outcomes),
+                "build_seconds": round(self.build_seconds, 3),
+                "run_seconds": round(self.run_seconds, 3)}
+
+    def write_junit(self, path: Path) -> Path:
+        """One JUnit XML file (a ``testsuite`` per case) of every outcome."""
+        root = ET.Element("testsuites")
+        by_case: dict[str, list[TestOutcome]] = {}
+        for o in self.outcomes:
+            by_case.setdefault(o.case.label, []).append(o)
+        for label, outs in by_case.items():
+            suite = ET.SubElement(root, "testsuite", name=label, tests=str(len(outs)),
+                                  failures=str(sum(o.status == "failed" for o in outs)),
+                                  errors=str(sum(o.status in ("error", "timeout") for o in outs)))
+            for o in outs:
+                tc = ET.SubElement(suite, "testcase", classname=label, name=o.test,
+                                   time=f"{o.seconds:.3f}")
+                if o.status == "failed":
+                    ET.SubElement(tc, "failure", message=o.message[:200]).text = o.message
+                elif o.status in ("error", "timeout"):
+                    ET.SubElement(tc, "error", message=f"{o.status}: {o.message[:200]}").text = \
+                        o.message
+        ET.indent(root)
+        write_text_atomic(path, ET.tostring(root, encoding="unicode") + "\n")
+        return path
+
+
+def test_timeout(cfg: PipelineConfig, base: float = 120.0) -> float:
+    """Wall-time limit of one test: ``base`` seconds for a design of up to 1024 pixels per
+    line, growing with the line-buffer length (a longer line means longer frames and a
+    slower model)."""
+    return base * max(1.0, cfg.max_width / 1024)
+
+
+def _read_metrics(path: Path) -> list[dict[str, Any]]:
+    if not path.is_file():
+        return []
+    out = []
+    for line in path.read_text().splitlines():
+        try:
+            out.append(json.loads(line))
+        except json.JSONDecodeError:
+            continue  # a line cut by a killed simulator
+    return out
+
+
+def _assertions(log: Path) -> list[str]:
+    if not log.is_file():
+        return []
+    return [ln.strip() for ln in log.read_text(errors="replace").splitlines()
+            if _ASSERT_RE.search(ln)][:50]
+
+
+def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
+              timeout_base: float = 120.0, build_args: Sequence[str] = (),
+              progress: Callable[[int, int], None] | None = None) -> SuiteResult:
+    """Build everything, then run every test of every case on its own timer.
+
+    Parameters
+    ----------
+    cases : sequence of SuiteCase
+    out_dir : Path
+        Folder for result files, simulator logs, metrics and waveforms (one sub-folder
+        per test).
+    waves : bool
+        Record a waveform of every test.
+    timeout_base : float
+        Seconds per test for a design of up to 1024 pixels per line (see
+        :func:`test_timeout`).
+    build_args : sequence of str
+        Extra Verilator options for every build.
+    progress : callable, optional
+        ``progress(done, total)`` after every test.
+    """
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    builds: dict[tuple[str, str], Build] = {}
+    for c in cases:
+        key = (c.top, c.cfg.digest())
+        if key not in builds:
+            builds[key] = build(c.top, c.cfg, waves=waves, extra_args=build_args)
+    build_seconds = time.perf_counter() - t0
+    plan = [(c, t) for c in cases for t in (c.tests or tuple(cocotb_test_names(c.module)))]
+    outcomes: list[TestOutcome] = []
+    t1 = time.perf_counter()
+    for i, (c, test) in enumerate(plan):
+        bld = builds[(c.top, c.cfg.digest())]
+        tag = re.sub(r"[^A-Za-z0-9_.-]", "_", f"{c.cfg.name}-{c.cfg.digest()[:8]}-{c.top}-"
+                                               f"{c.module.rsplit('.', 1)[-1]}-{test}")
+        xml = out_dir / f"{tag}.xml"
+        run_dir = out_dir / f"{tag}.run"
+        metrics_file = run_dir / "metrics.jsonl"
+        run_dir.mkdir(parents=True, exist_ok=True)
+        metrics_file.unlink(missing_ok=True)
+        env = {"IRNUC_SEED": str(c.seed), METRICS_ENV: str(metrics_file), **dict(c.env)}
+        start = time.perf_counter()
+        status, message = "error", ""
+        try:
+            res = read_results(run(bld, c.module, env=env, testcase=test, seed=c.seed,
+                                   results_xml=xml, waves=waves,
+                                   timeout=test_timeout(c.cfg, timeout_base)))
+            r = res.get(test)
+            if r is None:
+                status, message = "error", f"cocotb test {test!r} did not run"
+            else:
+                status, message = ("passed" if r.passed else "failed"), r.message
+        except SimulationTimeout as exc:
+            status, message = "timeout", str(exc)
+        except RtlError as exc:
+            status, message = "error", str(exc)
+        log = run_dir / "sim.log"
+        wave = xml.with_suffix(waves_suffix())
+        outcomes.append(TestOutcome(
+            case=c, test=test, status=status, seconds=time.perf_counter() - start,
+            message=message, log=log if log.is_file() else None,
+            waves=wave if waves and wave.is_file() else None,
+            metrics=_read_metrics(metrics_file), assertion_failures=_assertions(log)))
+        if progress is not None:
+            progress(i + 1, len(plan))
+    return SuiteResult(outcomes=outcomes, build_seconds=build_seconds,
+                       run_seconds=time.perf_counter() - t1,
+                       builds=[str(b.build_dir) for b in builds.values()])
