@@ -78,9 +78,13 @@ def check_words(words: np.ndarray, cfg: PipelineConfig) -> np.ndarray:
     """Validate coefficient words (integers in [0, 2^WW - 1]); return them as uint64."""
     _check_word_bits(cfg)
     w = np.asarray(words)
+    if w.dtype.byteorder not in ("=", "|"):
+        w = w.astype(w.dtype.newbyteorder("="))
     if w.dtype == np.uint64:
         hi = (1 << cfg.word_bits) - 1
-        if w.size and int(w.max()) > hi:
+        if w.size == 0:
+            raise InputError(f"words is empty (shape {w.shape}); one word per pixel is required")
+        if int(w.max()) > hi:
             idx = tuple(int(i) for i in np.argwhere(w > np.uint64(hi))[0])
             raise InputError(
                 f"words[{', '.join(map(str, idx))}] = {int(w[idx])} is outside the allowed "

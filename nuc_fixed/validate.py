@@ -41,7 +41,13 @@ def int_array(name: str, value: Any, lo: int, hi: int, *, allow_bool: bool = Fal
     allow_bool : bool
         Accept a boolean array (read as 0/1).
     """
-    arr = np.asarray(value)
+    try:
+        arr = np.asarray(value)
+    except (ValueError, TypeError) as exc:  # ragged nested lists and the like
+        raise InputError(f"{name} is not an array of integers ({exc})") from None
+    if arr.dtype.byteorder not in ("=", "|"):
+        # A big- or little-endian array of the other order: convert once, here.
+        arr = arr.astype(arr.dtype.newbyteorder("="))
     if arr.dtype == np.bool_:
         if not allow_bool:
             raise InputError(f"{name} has dtype bool; an integer dtype is required")
@@ -57,7 +63,8 @@ def int_array(name: str, value: Any, lo: int, hi: int, *, allow_bool: bool = Fal
             f"{name} has dtype {arr.dtype}; an integer dtype with codes in [{lo}, {hi}] is required"
         )
     if arr.size == 0:
-        return arr
+        raise InputError(f"{name} is empty (shape {arr.shape}); at least one code in "
+                         f"[{lo}, {hi}] is required")
     amin, amax = arr.min(), arr.max()
     if int(amin) < lo or int(amax) > hi:
         bad = (arr < lo) | (arr > hi)
@@ -73,6 +80,8 @@ def bool_array(name: str, value: Any) -> np.ndarray:
     """Return ``value`` as a bool ndarray; integer arrays must hold only 0 and 1."""
     arr = np.asarray(value)
     if arr.dtype == np.bool_:
+        if arr.size == 0:
+            raise InputError(f"{name} is empty (shape {arr.shape}); a bad-pixel map is required")
         return arr
     return int_array(name, arr, 0, 1).astype(np.bool_)
 

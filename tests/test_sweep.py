@@ -15,6 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from irnuc.common.errors import UserError
 from irnuc.reports.studies import metrics
 from irnuc.reports.studies.sweep import (
     SensorSpec,
@@ -281,7 +282,7 @@ def test_dask_local_cluster_same_results(default_sets) -> None:
 
 def test_scheduler_without_dask_is_a_clear_error(monkeypatch) -> None:
     monkeypatch.setitem(sys.modules, "distributed", None)
-    with pytest.raises(SweepError, match=r"needs Dask distributed.*pip install"), open_executor(
+    with pytest.raises(UserError, match=r"needs Dask distributed.*pip install"), open_executor(
             scheduler="tcp://127.0.0.1:1"):
         pass
 

@@ -25,17 +25,16 @@ applied, so the figures measure the coefficient precision alone.
 from __future__ import annotations
 
 import concurrent.futures as cf
-import contextlib
 import itertools
-import multiprocessing
 import time
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
 
 from irnuc.common.errors import UserError
+from irnuc.common.executor import ExecutorHandle, open_executor
 
 ROUNDINGS = ("truncate", "half_up", "half_even")
 # The reference calibration's wide formats: no good pixel's coefficient saturates there.
@@ -419,74 +418,6 @@ def evaluate_point(cs: CalibrationSet, point: SweepPoint, threads: int | None = 
 # ---------------------------------------------------------------------------------------
 # Executors: processes, in-process, or Dask through the same submit/collect code
 # ---------------------------------------------------------------------------------------
-class InlineExecutor(cf.Executor):
-    """Runs each task at submit time in the calling thread (workers = 0; debugging)."""
-
-    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> cf.Future:
-        fut: cf.Future = cf.Future()
-        try:
-            fut.set_result(fn(*args, **kwargs))
-        except BaseException as exc:
-            fut.set_exception(exc)
-        return fut
-
-
-@dataclass
-class ExecutorHandle:
-    """An executor, how to hand it large shared data, and per-task numba threads."""
-
-    executor: cf.Executor
-    kind: str  # "process", "inline" or "dask"
-    share: Callable[[Any], Any]
-    threads: int | None
-    description: str
-
-
-def _mp_context() -> multiprocessing.context.BaseContext:
-    # Fresh interpreters (not a fork of a parent whose numba thread pool is running).
-    methods = multiprocessing.get_all_start_methods()
-    return multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-
-
-@contextlib.contextmanager
-def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[ExecutorHandle]:
-    """A ``concurrent.futures``-style executor for the sweep points.
-
-    Parameters
-    ----------
-    workers : int
-        Worker processes (default 2); 0 runs in-process. Ignored with ``scheduler``.
-    scheduler : str, optional
-        Address of a Dask distributed scheduler (``tcp://host:8786``, or the
-        ``scheduler_address`` of a ``LocalCluster``). Needs ``dask[distributed]``.
-    """
-    if scheduler:
-        try:
-            from distributed import Client
-        except ImportError:
-            raise SweepError(
-                f"--scheduler {scheduler!r} needs Dask distributed, which is not installed; "
-                "install it with: pip install 'dask[distributed]' (or run without --scheduler)"
-            ) from None
-        client = Client(scheduler)
-        try:
-            n = len(client.scheduler_info().get("workers", {}))
-            yield ExecutorHandle(
-                executor=client.get_executor(), kind="dask",
-                share=lambda obj: client.scatter(obj, broadcast=True),
-                threads=None, description=f"dask {scheduler} ({n} worker(s))")
-        finally:
-            client.close()
-        return
-    if not isinstance(workers, int) or workers < 0 or workers > 256:
-        raise SweepError(f"workers = {workers!r} is outside the allowed range 0..256")
-    if workers == 0:
-        yield ExecutorHandle(InlineExecutor(), "inline", lambda obj: obj, None, "in-process")
-        return
-    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context()) as ex:
-        yield ExecutorHandle(ex, "process", lambda obj: obj, 1, f"{workers} process(es)")
-
-
 def run_points(handle: ExecutorHandle,
                tasks: Sequence[tuple[SweepPoint, tuple[int | None, int | None]]],
                sets: Mapping[tuple[int | None, int | None], CalibrationSet],
@@ -593,21 +524,29 @@ def run_sweep(sensor: SensorSpec, axes: SweepAxes, *, workers: int = 2, schedule
     if axes.n_points() > 100_000:
         raise SweepError(f"the axes give {axes.n_points()} points; the allowed maximum is 100000")
     seconds: dict[str, float] = {}
-    t0 = time.perf_counter()
-    sets = dict(sets) if sets is not None else prepare(sensor, axes)
-    seconds["frames_and_calibration"] = time.perf_counter() - t0
-    tasks = resolve_points(axes, sets)
-    t0 = time.perf_counter()
+    # The executor first: a cluster that cannot be reached is an error before any work.
     with open_executor(workers, scheduler) as handle:
+        t0 = time.perf_counter()
+        sets = dict(sets) if sets is not None else prepare(sensor, axes)
+        seconds["frames_and_calibration"] = time.perf_counter() - t0
+        tasks = resolve_points(axes, sets)
+        t0 = time.perf_counter()
         points = run_points(handle, tasks, sets, progress)
         desc = handle.description
-    seconds["points"] = time.perf_counter() - t0
+        seconds["points"] = time.perf_counter() - t0
     return SweepResult(sensor=sensor, axes=axes, points=points, sets=dict(sets), executor=desc,
                        seconds=seconds)
 
 
+#: The most values one list argument may expand to (a sweep of more is a typo).
+MAX_LIST = 4096
+
+
 def parse_int_list(text: str, name: str, extra: tuple[str, ...] = ()) -> tuple[Any, ...]:
-    """``"3:6"`` -> (3, 4, 5, 6); ``"0:8:2"``; ``"3,5,auto"``; words in ``extra`` pass through."""
+    """``"3:6"`` -> (3, 4, 5, 6); ``"0:8:2"``; ``"3,5,auto"``; words in ``extra`` pass through.
+
+    At most :data:`MAX_LIST` values (checked before any list is built).
+    """
     out: list[Any] = []
     for part in (s.strip() for s in text.split(",")):
         if not part:
@@ -620,14 +559,17 @@ def parse_int_list(text: str, name: str, extra: tuple[str, ...] = ()) -> tuple[A
                 bits = [int(v) for v in part.split(":")]
                 if len(bits) not in (2, 3) or (len(bits) == 3 and bits[2] <= 0):
                     raise ValueError
-                lo, hi = bits[0], bits[1]
-                step = bits[2] if len(bits) == 3 else 1
-                out.extend(range(lo, hi + 1, step))
+                span: range | list[int] = range(bits[0], bits[1] + 1,
+                                                bits[2] if len(bits) == 3 else 1)
             else:
-                out.append(int(part))
+                span = [int(part)]
         except ValueError:
             allowed = "integers, LO:HI or LO:HI:STEP" + (f", or {', '.join(extra)}" if extra else "")
             raise SweepError(f"{name} = {text!r}: {part!r} is not one of {allowed}") from None
+        if len(out) + len(span) > MAX_LIST:
+            raise SweepError(f"{name} = {text!r} gives {len(out) + len(span)} values; at most "
+                             f"{MAX_LIST} are allowed")
+        out.extend(span)
     if not out:
         raise SweepError(f"{name} = {text!r} gives no value")
     return tuple(out)

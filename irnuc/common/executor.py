@@ -1,0 +1,97 @@
+"""The one executor of everything that runs many independent tasks (sweep points,
+syntheses, mutants): worker processes, in-process, or a Dask distributed cluster, behind
+the same ``concurrent.futures`` interface.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import contextlib
+import multiprocessing
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from irnuc.common.errors import UserError
+
+#: Seconds to wait for a Dask scheduler before giving up with a clear message.
+CONNECT_TIMEOUT = 10
+
+
+class ExecutorError(UserError):
+    """The executor asked for cannot be had (a bad worker count, an unreachable cluster)."""
+
+
+class InlineExecutor(cf.Executor):
+    """Runs each task at submit time in the calling thread (workers = 0; debugging)."""
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> cf.Future:
+        fut: cf.Future = cf.Future()
+        try:
+            fut.set_result(fn(*args, **kwargs))
+        except BaseException as exc:
+            fut.set_exception(exc)
+        return fut
+
+
+@dataclass
+class ExecutorHandle:
+    """An executor, how to hand it large shared data, and per-task numba threads."""
+
+    executor: cf.Executor
+    kind: str  # "process", "inline" or "dask"
+    share: Callable[[Any], Any]
+    threads: int | None
+    description: str
+
+
+def _mp_context() -> multiprocessing.context.BaseContext:
+    # Fresh interpreters (not a fork of a parent whose numba thread pool is running).
+    methods = multiprocessing.get_all_start_methods()
+    return multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+
+
+@contextlib.contextmanager
+def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[ExecutorHandle]:
+    """A ``concurrent.futures``-style executor for the sweep points.
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes (default 2, started by forkserver so that they do not inherit a
+        running numba thread pool); 0 runs in-process. Ignored with ``scheduler``.
+    scheduler : str, optional
+        Address of a Dask distributed scheduler (``tcp://host:8786``, or the
+        ``scheduler_address`` of a ``LocalCluster``). Needs ``dask[distributed]``.
+    """
+    if scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise ExecutorError(
+                f"--scheduler {scheduler!r} needs Dask distributed, which is not installed; "
+                "install it with: pip install 'dask[distributed]' (or run without --scheduler)"
+            ) from None
+        try:
+            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise ExecutorError(f"--scheduler {scheduler}: no Dask scheduler answered within "
+                                f"{CONNECT_TIMEOUT} s ({type(exc).__name__}: {exc})") from None
+        try:
+            n = len(client.scheduler_info().get("workers", {}))
+            yield ExecutorHandle(
+                executor=client.get_executor(), kind="dask",
+                share=lambda obj: client.scatter(obj, broadcast=True),
+                threads=None, description=f"dask {scheduler} ({n} worker(s))")
+        finally:
+            client.close()
+        return
+    if not isinstance(workers, int) or workers < 0 or workers > 256:
+        raise ExecutorError(f"workers = {workers!r} is outside the allowed range 0..256")
+    if workers == 0:
+        yield ExecutorHandle(InlineExecutor(), "inline", lambda obj: obj, None, "in-process")
+        return
+    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context()) as ex:
+        yield ExecutorHandle(ex, "process", lambda obj: obj, 1, f"{workers} process(es)")
+
+
