@@ -163,7 +163,7 @@ def band_quadrature(x2, dx, gx, gw):
     Returns (value, integrand evaluations). dx > 0 is passed separately so that a narrow
     band never forms x1 - x2 from two rounded numbers.
     """
-    panels = max(1, int(math.ceil(dx)))
+    panels = max(1, math.ceil(dx))
     h = dx / panels
     s = 0.0
     for k in range(panels):
