@@ -334,8 +334,14 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
                 # Local Richardson extrapolation: two half steps plus their error estimate.
                 e_th = (m2 - new) * rich
                 e_v = (dV1 + dV2 - dV) * rich
+                e_test = abs(e_v)
+                if cur == M_BACKWARD_EULER:
+                    # The right-rectangle voltage integral misses a transient shorter than
+                    # the step, and so does step doubling (both halves land on the same
+                    # equilibrium); the rectangle's own error h (V1 - V0) / 2 sees it.
+                    e_test = max(e_test, 0.5 * hs * I * abs(R1 - R0))
                 err = max(abs(e_th) / (rtol * (abs(m2) + THETA_FLOOR)),
-                          abs(e_v) / (rtol * abs(dV1 + dV2) + 1e-300))
+                          e_test / (rtol * abs(dV1 + dV2) + 1e-300))
                 fac = min(5.0, max(0.2, 0.9 * (err + 1e-300) ** (-1.0 / (p + 1.0))))
                 if err > 1.0:
                     hs *= fac
