@@ -304,8 +304,8 @@ def _stiff_message(s: TransientSettings, t_int: float, lam: float, count: int,
     return (f"transient.integrator = 'rk4' refuses: {count} pixel pulse(s) would need about "
             f"{need:.3g} steps (t_int |lambda| / {_kt.RK4_STABILITY}, |lambda| = {lam:.3g} 1/s, "
             f"tau = {1 / lam:.3g} s, first at frame/pixel {where}) to stay stable, more than "
-            f"{limit}; use transient.integrator = 'exponential' or 'backward_euler' for this "
-            "stiff problem")
+            f"{limit}; use transient.integrator = 'auto' (the default: RK4 where it is cheapest, "
+            "the exponential integrator on stiff pixels) or 'exponential'")
 
 
 def _precheck_rk4(th0, Ts0, Q0, I, R, B, T_ref, g, C, t_int, s) -> None:

@@ -176,7 +176,7 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
 
 @njit(cache=True)
 def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
-    """(h, dh/dx) of h(x) = x - a - b R(T_s + x)."""
+    """(h in K, dh/dx dimensionless) of h(x) = x - a - b R(T_s + x), x in K."""
     T = T_s + x
     bR = b * resistance(T, R_ref, B, T_ref)
     return x - a - bR, 1.0 + bR * B / (T * T)
@@ -184,8 +184,12 @@ def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
 
 @njit(cache=True)
 def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
-    """Root of h in [lo, hi] with h(lo) < 0 < h(hi) and exactly one root between:
-    Newton from x, bisection whenever a step leaves the bracket. Returns (x, status, it)."""
+    """Root of h in [lo, hi] (K) with h(lo) < 0 < h(hi) and exactly one root between:
+    Newton from x (K), bisection whenever a step leaves the bracket.
+
+    a (K), b (K/ohm), R_ref (ohm), B (K), T_ref and T_s (K) as in :func:`solve_delta_t`.
+    Returns (x in K, status, iterations).
+    """
     atol = rtol * 1e-3
     for it in range(1, max_iter + 1):
         h, dh = _h_positive(x, a, b, R_ref, B, T_ref, T_s)
@@ -206,7 +210,9 @@ def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
 
 @njit(cache=True)
 def solve_positive_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, T_max):
-    """Lowest root of h(x) = x - a - b R(T_s + x) below T_max for B < 0 (positive TCR).
+    """Lowest root x (K) of h(x) = x - a - b R(T_s + x) with T_s + x <= T_max (K), for
+    B < 0 (positive TCR); a (K), b (K/ohm), R_ref (ohm), B (K), T_ref, T_s (K) as in
+    :func:`solve_delta_t` (paper eq. 16-19).
 
     h(a) < 0. Concave part (T_s + x < |B|/2): Newton from the left never overshoots; a
     derivative <= 0 there (loop gain >= 1) proves h < 0 up to the inflection point, and a
