@@ -84,6 +84,7 @@ def quick_result():
                            repeats=1)
 
 
+@pytest.mark.slow  # shares a ~9 s quick study
 def test_quick_run_structure(quick_result):
     names = [c["name"] for c in quick_result["components"]]
     assert names == ["band_radiance_narrow", "electro_thermal", "transient_nonstiff",
@@ -107,6 +108,7 @@ def test_quick_run_structure(quick_result):
     json.dumps(quick_result)
 
 
+@pytest.mark.slow  # shares a ~9 s quick study
 def test_very_stiff_default_within_1e_9_and_rk4_refuses(quick_result):
     c = {c["name"]: c for c in quick_result["components"]}["transient_stiff_1e5"]
     assert c["stiffness"] > 1e4
@@ -117,6 +119,7 @@ def test_very_stiff_default_within_1e_9_and_rk4_refuses(quick_result):
     assert c["default"]["work"] < 2000
 
 
+@pytest.mark.slow  # shares a ~9 s quick study
 def test_known_failures_are_failed_points_with_reasons(quick_result):
     comps = {c["name"]: c for c in quick_result["components"]}
     et = {(p["method"], p["setting"]): p for p in comps["electro_thermal"]["points"]}
@@ -130,6 +133,7 @@ def test_known_failures_are_failed_points_with_reasons(quick_result):
     assert br[("series", 1e-15)]["error"] > 1e4 * br[("hybrid", 1e-12)]["error"]
 
 
+@pytest.mark.slow  # shares a ~9 s quick study
 def test_figures_and_summary(quick_result):
     figs = P.figures(quick_result)
     assert len(figs) == len(quick_result["components"])
@@ -142,6 +146,7 @@ def test_figures_and_summary(quick_result):
     json.dumps(s)
 
 
+@pytest.mark.slow  # shares a ~9 s quick study
 def test_report_files_and_summary(quick_result, tmp_path):
     j, h = R.write_report(quick_result, tmp_path)
     text = h.read_text()

@@ -932,7 +932,7 @@ def figure_png(component: dict[str, Any]) -> bytes:
     ok = [p for p in pts if p["error"] is not None]
     errs = [max(p["error"], 1e-17) for p in ok] or [1.0]
     top = max(errs) * 20
-    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.8), sharey=True)
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 5.2), sharey=True)
     methods = list(dict.fromkeys(p["method"] for p in pts))
     color = {m: f"C{k % 10}" for k, m in enumerate(methods)}
     marker = {m: "osD^v<>ph*"[k % 10] for k, m in enumerate(methods)}
@@ -968,9 +968,11 @@ def figure_png(component: dict[str, Any]) -> bytes:
         ax.set_xlabel(xlabel)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("max relative error (above the red line: failed)")
-    axes[0].legend(fontsize=6, loc="lower left")
+    handles, labels = axes[1].get_legend_handles_labels()
+    # Below the axes: inside, it would hide the points near the best errors.
+    fig.legend(handles, labels, loc="lower center", ncol=6, fontsize=7, frameon=False)
     fig.suptitle(component["title"], fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.09, 1, 1))
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=90)
     plt.close(fig)
