@@ -576,7 +576,8 @@ def _pulse_exact_mp(th0: Any, q: Any, ts: Any, I: Any, R_ref: Any, B: Any, T_ref
         return th0, I * R(th0) * t_int, th0 * t_int, mp.mpf(0)
     sgn = 1 if f0 > 0 else -1
     # theta*: the first sign change of f from th0 in the direction of motion (a scan with
-    # steps growing by 1.2, fine enough to separate the roots of a positive-TCR pixel).
+    # steps growing by 1.2 up to 0.5 K: two roots of a positive-TCR pixel closer than that
+    # would be missed; the study's problems have them tens of kelvin apart).
     step = mp.mpf("1e-3") * (1 + abs(th0))
     a = th0
     while True:
@@ -586,7 +587,7 @@ def _pulse_exact_mp(th0: Any, q: Any, ts: Any, I: Any, R_ref: Any, B: Any, T_ref
         if f(b) * sgn <= 0:
             break
         a = b
-        step *= mp.mpf("1.2")
+        step = min(step * mp.mpf("1.2"), mp.mpf("0.5"))
         if abs(b - th0) > 1e4:
             raise ValueError("reference: no equilibrium within 1e4 K (runaway)")
     star = mp.findroot(f, (a, b), solver="anderson")
