@@ -81,6 +81,9 @@ class RunContext:
     first_frame: int = 0
     counts: Counter = field(default_factory=Counter)
     flicker: _noise.FlickerState | None = None
+    #: ``demand(product)`` computes (once) and returns a product no stage input declared:
+    #: for results needed only on a rare path, like the skimming fallback voltage.
+    demand: Callable[[str], Any] | None = None
 
 
 # ---- static stages ---------------------------------------------------------------------
@@ -215,11 +218,22 @@ def _stage_bolometer(ctx: RunContext, inp: dict) -> dict:
 
 def _make_skim_stage(mode: str) -> Stage:
     fn = _readout.SKIMMING_MODES[mode]
+    if mode == "none":
+        def run_fixed(ctx: RunContext, inp: dict) -> dict:
+            return {"v_ref": fn(inp["v_bolo"], inp["status"], ctx.layout, inp["v_skim"])}
 
+        return Stage("skimming_none", ("v_bolo", "status", "v_skim"), ("v_ref",), True,
+                     run_fixed)
+
+    # Row/column skimming needs the nominal reference voltage (a solve) only as the
+    # fallback of a row or column whose blind pixels all failed: asked for on demand.
     def run(ctx: RunContext, inp: dict) -> dict:
-        return {"v_ref": fn(inp["v_bolo"], inp["status"], ctx.layout, inp["v_skim"])}
+        assert ctx.demand is not None
+        demand = ctx.demand
+        return {"v_ref": fn(inp["v_bolo"], inp["status"], ctx.layout,
+                            lambda: demand("v_skim"))}
 
-    return Stage(f"skimming_{mode}", ("v_bolo", "status", "v_skim"), ("v_ref",), True, run)
+    return Stage(f"skimming_{mode}", ("v_bolo", "status"), ("v_ref",), True, run)
 
 
 def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
@@ -280,7 +294,10 @@ def _stage_adc(ctx: RunContext, inp: dict) -> dict:
 
 
 def _noise_configured(cfg: Mapping[str, Any]) -> bool:
-    if cfg["noise"]["enabled"]:
+    """True if some noise source is non-zero: noise enabled with every sigma 0 (and no
+    Johnson noise) adds exactly nothing, so it gets no stage and draws nothing."""
+    n = cfg["noise"]
+    if n["enabled"] and (n["johnson"] or n["readout_sigma"] > 0 or n["flicker_sigma"] > 0):
         return True
     spec = _defect_spec(cfg)
     kinds = set(spec.cluster_kinds) | {spec.line_kind} if (spec.clusters or spec.rows or spec.cols) else set()
@@ -319,13 +336,18 @@ def build_stages(cfg: Mapping[str, Any]) -> list[Stage]:
     return stages
 
 
-def plan(stages: Sequence[Stage], products: Iterable[str]) -> list[Stage]:
-    """The stages needed for ``products``, each once, in dependency order."""
+def plan(stages: Sequence[Stage], products: Iterable[str],
+         have: Iterable[str] = ()) -> list[Stage]:
+    """The stages needed for ``products``, each once, in dependency order; products in
+    ``have`` are already known and need no stage."""
     producer = {out: s for s in stages for out in s.outputs}
     order: list[Stage] = []
     seen: set[str] = set()
+    known = set(have)
 
     def visit(product: str) -> None:
+        if product in known:
+            return
         if product not in producer:
             raise ConfigError(f"no stage produces {product!r}")
         stage = producer[product]
@@ -339,6 +361,22 @@ def plan(stages: Sequence[Stage], products: Iterable[str]) -> list[Stage]:
     for p in products:
         visit(p)
     return order
+
+
+def run_planned(stages: Sequence[Stage], ctx: RunContext, values: dict[str, Any],
+                products: Sequence[str]) -> None:
+    """Run the stages that ``products`` need beyond the products already in ``values``,
+    counting each in ``ctx.counts``; results are added to ``values``. Stages asking for a
+    product on demand get it computed into ``values`` the same way."""
+    if ctx.demand is None:
+        def demand(product: str) -> Any:
+            run_planned(stages, ctx, values, [product])
+            return values[product]
+
+        ctx.demand = demand
+    for stage in plan(stages, products, values):
+        ctx.counts[stage.name] += 1
+        values.update(stage.fn(ctx, {k: values[k] for k in stage.inputs}))
 
 
 @dataclass
@@ -407,6 +445,13 @@ class Pipeline:
         order = plan(self.stages, products)
         chunked = [s for s in order if s.per_chunk]
         ctx = RunContext(self.cfg, self.layout, scene or Scene(), self.seed, counts=self.counts)
+        static = [s for s in self.stages if not s.per_chunk]
+
+        def demand(product: str) -> Any:  # a static product needed only on a rare path
+            run_planned(static, ctx, self._static, [product])
+            return self._static[product]
+
+        ctx.demand = demand
         for stage in order:
             if not stage.per_chunk and not all(o in self._static for o in stage.outputs):
                 self.counts[stage.name] += 1

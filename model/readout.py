@@ -10,27 +10,38 @@ inverting, so a hotter scene (lower resistance for a negative TCR) gives a highe
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from irnuc.model.core.bolometer import STATUS_OK
 
+Fallback = float | Callable[[], float]
 
-def _blind_mean(values: np.ndarray, ok: np.ndarray, axis: int, fallback: float) -> np.ndarray:
-    """Mean over the blind pixels along ``axis``, leaving out pixels whose solve failed."""
+
+def _blind_mean(values: np.ndarray, ok: np.ndarray, axis: int, fallback: Fallback) -> np.ndarray:
+    """Mean over the blind pixels along ``axis``, leaving out pixels whose solve failed.
+
+    ``fallback`` (V) replaces a reference whose blind pixels all failed; a callable is
+    called only then (the nominal skim voltage costs a solve that is rarely needed).
+    """
     if ok.all():
         return values.mean(axis=axis)
     w = ok.astype(np.float64)
     total = np.where(ok, values, 0.0).sum(axis=axis)
     count = w.sum(axis=axis)
-    return np.where(count > 0, total / np.maximum(count, 1.0), fallback)
+    if (count > 0).all():
+        return total / count
+    fb = fallback() if callable(fallback) else fallback
+    return np.where(count > 0, total / np.maximum(count, 1.0), fb)
 
 
-def skim_none(v_bolo, status, layout, v_skim):
+def skim_none(v_bolo, status, layout, v_skim: Fallback):
     """A fixed reference voltage for every pixel, V: shape (N, 1, 1)."""
-    return np.full((v_bolo.shape[0], 1, 1), v_skim)
+    return np.full((v_bolo.shape[0], 1, 1), v_skim() if callable(v_skim) else v_skim)
 
 
-def skim_row(v_bolo, status, layout, v_skim):
+def skim_row(v_bolo, status, layout, v_skim: Fallback):
     """Per-row reference: mean of the blind columns of each active row, V: (N, H, 1)."""
     rows = layout.active_slice[0]
     cols = layout.blind_col_indices
@@ -39,7 +50,7 @@ def skim_row(v_bolo, status, layout, v_skim):
     return ref[:, :, None]
 
 
-def skim_column(v_bolo, status, layout, v_skim):
+def skim_column(v_bolo, status, layout, v_skim: Fallback):
     """Per-column reference: mean of the blind rows of each active column, V: (N, 1, W)."""
     cols = layout.active_slice[1]
     rows = layout.blind_row_indices

@@ -21,6 +21,7 @@ and ``docs/transient.md``.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 from typing import Any
@@ -40,14 +41,17 @@ INTEGRATORS: dict[str, int] = {
     "backward_euler": _kt.M_BACKWARD_EULER,
     "trapezoidal": _kt.M_TRAPEZOIDAL,
     "exponential": _kt.M_EXPONENTIAL,
+    "auto": _kt.M_AUTO,
 }
+#: Integrator names by code (``auto`` reports the one that finished each pulse).
+INTEGRATOR_NAMES: dict[int, str] = {v: k for k, v in INTEGRATORS.items()}
 #: Order of accuracy of each integrator (for documentation and convergence tests).
 INTEGRATOR_ORDER: dict[str, int] = {"rk4": 4, "backward_euler": 1, "trapezoidal": 2,
                                     "exponential": 3}
 #: Defaults, chosen from the work-precision study (``irnuc precision``, docs/transient.md):
-#: adaptive RK4 is the cheapest at 1e-10-level accuracy on both the realistic (non-stiff)
-#: and the stiff test problem; its stability limit keeps it safe on stiff pixels.
-DEFAULT_INTEGRATOR = "rk4"
+#: ``auto`` is adaptive RK4 on non-stiff pixels (the cheapest at 1e-10-level accuracy) and
+#: the exponential integrator on stiff ones (exact on the linear part, no stability limit).
+DEFAULT_INTEGRATOR = "auto"
 DEFAULT_STEPS = 4
 DEFAULT_RTOL = 1e-9
 #: Initial state of the first frame: in equilibrium with its scene without bias, or at the
@@ -76,7 +80,8 @@ class TransientSettings:
     Attributes
     ----------
     integrator : str
-        Key of :data:`INTEGRATORS`.
+        Key of :data:`INTEGRATORS`; ``auto`` (default) picks RK4 or the exponential method
+        per pixel and pulse from the local stiffness.
     steps : int
         Steps per bias pulse, 1..1e6 (substeps are added where stability or Newton needs them).
     frame_period : float
@@ -160,6 +165,8 @@ class TransientResult:
         3 invalid); failed pixels hold their last finite values.
     substeps : ndarray
         Integrator substeps used in the pulse.
+    method : ndarray or None
+        uint8 code (:data:`INTEGRATORS`) of the integrator that finished each pulse.
     """
 
     v_bolo: np.ndarray
@@ -167,6 +174,14 @@ class TransientResult:
     dT_end: np.ndarray
     status: np.ndarray
     substeps: np.ndarray
+    method: np.ndarray | None = None
+
+    def integrators_used(self) -> dict[str, int]:
+        """Pixel pulses finished by each integrator (``auto`` splits into two)."""
+        if self.method is None:
+            return {}
+        codes, counts = np.unique(self.method, return_counts=True)
+        return {INTEGRATOR_NAMES[int(c)]: int(k) for c, k in zip(codes, counts, strict=True)}
 
 
 def _as_pixels(name: str, value: Any, shape: tuple[int, ...], unit: str) -> np.ndarray:
@@ -263,11 +278,12 @@ def integrate_pixels(
     refuse = s.explicit_policy == "refuse"
     if method == _kt.M_RK4:
         _precheck_rk4(th0, Ts[0], Qf[0], I, Rr, B, T_ref, gg, CC, t_int, s)
-    v, dm, de, st, sub = _kt.empty_outputs((n, npix))
+    v, dm, de, st, sub, used = _kt.empty_outputs((n, npix))
     _kt.integrate_frames(Qf, Ts, Rr, gg, CC, np.ascontiguousarray(th0), B, T_ref, I, t_int,
                          s.frame_period, s.pulse_start, s.warmup_frames, method, s.steps,
                          s.max_substeps, T_max, refuse,
-                         float(s.rtol) if s.rtol is not None else 0.0, v, dm, de, st, sub)
+                         float(s.rtol) if s.rtol is not None else 0.0, v, dm, de, st, sub,
+                         used)
     bad = st == STATUS_STEP_LIMIT
     if bad.any():
         f, p = (int(i) for i in np.argwhere(bad)[0])
@@ -276,7 +292,7 @@ def integrate_pixels(
                                             (f, *np.unravel_index(p, shape))))
     full = (n, *shape)
     return TransientResult(v.reshape(full), dm.reshape(full), de.reshape(full),
-                           st.reshape(full), sub.reshape(full))
+                           st.reshape(full), sub.reshape(full), used.reshape(full))
 
 
 def _stiff_message(s: TransientSettings, t_int: float, lam: float, count: int,
@@ -289,8 +305,8 @@ def _stiff_message(s: TransientSettings, t_int: float, lam: float, count: int,
     return (f"transient.integrator = 'rk4' refuses: {count} pixel pulse(s) would need about "
             f"{need:.3g} steps (t_int |lambda| / {_kt.RK4_STABILITY}, |lambda| = {lam:.3g} 1/s, "
             f"tau = {1 / lam:.3g} s, first at frame/pixel {where}) to stay stable, more than "
-            f"{limit}; use transient.integrator = 'exponential' or 'backward_euler' for this "
-            "stiff problem")
+            f"{limit}; use transient.integrator = 'auto' (the default: RK4 where it is cheapest, "
+            "the exponential integrator on stiff pixels) or 'exponential'")
 
 
 def _precheck_rk4(th0, Ts0, Q0, I, R, B, T_ref, g, C, t_int, s) -> None:
@@ -309,20 +325,26 @@ def _precheck_rk4(th0, Ts0, Q0, I, R, B, T_ref, g, C, t_int, s) -> None:
 # ---- frames ----------------------------------------------------------------------------
 
 def absorbed_power(cfg: Mapping[str, Any], temps: np.ndarray, scene: Scene, seed: int,
-                   substrate: np.ndarray) -> tuple[np.ndarray, dict[str, Any], _pl.Pipeline]:
-    """Absorbed power Q (N, rows, cols) by the steady pipeline's stages, per substrate
+                   substrate: np.ndarray, pipes: dict[float, _pl.Pipeline] | None = None
+                   ) -> tuple[np.ndarray, dict[str, Any], _pl.Pipeline]:
+    """Absorbed power Q (N, rows, cols) W by the steady pipeline's stages, per substrate
     temperature (the emission and blind-pixel terms depend on it).
 
+    ``pipes`` (optional) collects the configured sensor of each substrate temperature (K),
+    so a caller can reuse their static products and stage counts.
     Returns Q, the static products (params, defects) and the pipeline at the first T_s.
     """
     n = temps.shape[0]
     Q: np.ndarray | None = None
     first: _pl.Pipeline | None = None
     static: dict[str, Any] = {}
+    pipes = {} if pipes is None else pipes
     for value in np.unique(substrate):
         idx = np.flatnonzero(substrate == value)
-        c = validate(apply_overrides(cfg, {"environment.T_substrate": float(value)}))
-        pipe = _pl.Pipeline(c, seed)
+        pipe = pipes.get(float(value))
+        if pipe is None:
+            c = validate(apply_overrides(cfg, {"environment.T_substrate": float(value)}))
+            pipe = pipes[float(value)] = _pl.Pipeline(c, seed)
         got = pipe.run(temps[idx], ["Q", "params", "defects"] if first is None else ["Q"],
                        scene)
         if Q is None:
@@ -333,26 +355,6 @@ def absorbed_power(cfg: Mapping[str, Any], temps: np.ndarray, scene: Scene, seed
             static = {"params": got["params"], "defects": got["defects"]}
     assert Q is not None and first is not None
     return Q, static, first
-
-
-def _run_from(pipe: _pl.Pipeline, ctx: _pl.RunContext, values: dict[str, Any],
-              products: Sequence[str]) -> None:
-    """Run the stages that ``products`` need beyond the products already in ``values``."""
-    producer = {out: st for st in pipe.stages for out in st.outputs}
-
-    def need(product: str) -> None:
-        if product in values:
-            return
-        if product not in producer:
-            raise ConfigError(f"no stage produces {product!r}")
-        stage = producer[product]
-        for dep in stage.inputs:
-            need(dep)
-        pipe.counts[stage.name] += 1
-        values.update(stage.fn(ctx, {k: values[k] for k in stage.inputs}))
-
-    for p in products:
-        need(p)
 
 
 def simulate_transient(
@@ -392,9 +394,12 @@ def simulate_transient(
     Returns
     -------
     model.pipeline.Frames
-        Like the steady model's; ``diagnostics["transient"]`` adds the integrator, the
-        substeps used and the stiffness (t_int / tau) range, and the solver-failure counts
-        include the runaway pixels.
+        Like the steady model's; ``diagnostics["transient"]`` adds the settings, the pixel
+        pulses finished by each integrator (``integrators_used``), the substeps used and the
+        stiffness (t_int / tau) range, and the solver-failure counts include the runaway
+        pixels. ``counts`` holds the stage executions of every configured sensor used
+        (one per substrate temperature) plus ``transient`` (integration runs) and
+        ``transient_pulses`` (pixel pulses integrated).
     """
     if isinstance(scene, str):
         scene = Scene(scene, dict(scene_params or {}))
@@ -412,33 +417,43 @@ def simulate_transient(
         Ts = np.broadcast_to(Ts, t.shape).copy() if Ts.ndim == 0 else Ts
         if Ts.shape != t.shape:
             raise ConfigError(f"substrate has {Ts.size} value(s); give one per frame ({t.size})")
-    Q, static, _ = absorbed_power(cfg, t, scene, seed, Ts)
+    # One configured sensor per substrate temperature; the one at the configured T_s also
+    # does the readout, so its static products (housing radiance, skim voltage) are shared.
+    T_cfg = float(cfg["environment"]["T_substrate"])
+    pipes: dict[float, _pl.Pipeline] = {T_cfg: _pl.Pipeline(cfg, seed)}
+    Q, static, _ = absorbed_power(cfg, t, scene, seed, Ts, pipes)
     p = static["params"]
     res = integrate_pixels(Q, Ts, p["R_ref"], p["g"], p["C"], tcr=b["tcr"], T_ref=b["T_ref"],
                            bias_current=b["bias_current"], t_int=b["t_int"],
                            runaway_temperature=b["runaway_temperature"], settings=s)
     if progress is not None:
         progress(1, 2)
-    pipe = _pl.Pipeline(cfg, seed)
+    pipe = pipes[T_cfg]
+    pipe.counts["transient"] += 1
+    pipe.counts["transient_pulses"] += int(res.status.size)
     ctx = _pl.RunContext(cfg, pipe.layout, scene, seed, temps=t, first_frame=0,
                          counts=pipe.counts)
-    values: dict[str, Any] = {**static, "Q": Q, "v_bolo": res.v_bolo, "dT": res.dT_mean,
-                              "status": res.status, "iters": res.substeps,
+    values: dict[str, Any] = {**pipe._static, **static, "Q": Q, "v_bolo": res.v_bolo,
+                              "dT": res.dT_mean, "status": res.status, "iters": res.substeps,
                               "dT_end": res.dT_end, "substeps": res.substeps}
     products = [TRANSIENT_OUTPUTS[o] for o in outputs]
-    _run_from(pipe, ctx, values, products)
+    _pl.run_planned(pipe.stages, ctx, values, products)
     if progress is not None:
         progress(2, 2)
     diagnostics = _pl._diagnostics(pipe, values)
     tau = p["C"] / p["g"]
     diagnostics["transient"] = {
         **{k: v for k, v in asdict(s).items()},
+        "integrators_used": res.integrators_used(),
         "substeps": {"min": int(res.substeps.min()), "max": int(res.substeps.max()),
                      "mean": float(res.substeps.mean())},
         "pulse_over_tau": {"min": float(b["t_int"] / tau.max()),
                            "max": float(b["t_int"] / tau.min())},
         "runaway_pixels": int((res.status == _kb.STATUS_RUNAWAY).any(axis=0).sum()),
     }
+    counts: Counter = Counter()
+    for q in pipes.values():
+        counts.update(q.counts)
     defects = static["defects"]
     return _pl.Frames(
         codes=values.get("codes"),
@@ -451,7 +466,7 @@ def simulate_transient(
         scene=scene,
         outputs={o: values[TRANSIENT_OUTPUTS[o]] for o in outputs},
         diagnostics=diagnostics,
-        counts=dict(pipe.counts),
+        counts=dict(counts),
     )
 
 

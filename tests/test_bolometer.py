@@ -136,3 +136,59 @@ def test_solve_frames_every_pixel_satisfies_the_balance():
         assert dT[n, i, j] == pytest.approx(ref, rel=1e-11)
         assert v[n, i, j] == pytest.approx(I * R[i, j] * math.exp(B * (1 / (300 + ref) - 1 / 300)),
                                            rel=1e-11)
+
+
+def _lowest_root_by_scan(a, bR, B, T_s=300.0, T_max=1000.0):
+    """Independent reference: the first sign change of h on a 20001-point grid up to
+    T_max, refined by brentq; None if h < 0 everywhere (no equilibrium below T_max)."""
+    def h(x):
+        return x - a - bR * math.exp(B * (1 / (T_s + x) - 1 / 300.0))
+
+    xs = np.linspace(a, T_max - T_s, 20001)
+    hv = xs - a - bR * np.exp(B * (1 / (T_s + xs) - 1 / 300.0))
+    up = np.flatnonzero(hv >= 0)
+    if up.size == 0:
+        return None
+    k = up[0]
+    return brentq(h, xs[k - 1], xs[k], xtol=1e-300, rtol=8.9e-16) if k else a
+
+
+def test_positive_tcr_stable_root_beyond_a_loop_gain_of_one_is_not_a_runaway():
+    # The loop gain b |R'| exceeds 1 between a and the root, then falls (R ~ exp(-|B|/T)
+    # is concave above |B|/2): the old fixed point reported runaway at the first iterate
+    # with gain >= 1. The stable equilibrium is at 888 K with a loop gain of 0.42.
+    a, bR, B = 4.559087501773518, 166.92007922578986, -566.9835795851737
+    x, status, _ = kb.solve_delta_t(a, bR / 1e5, 1e5, B, 300.0, 300.0, 1e-12, 100, math.nan,
+                                    1000.0)
+    ref = _lowest_root_by_scan(a, bR, B)
+    assert status == kb.STATUS_OK
+    assert x == pytest.approx(ref, rel=1e-12)
+    T = 300.0 + ref
+    gain = -bR * math.exp(B * (1 / T - 1 / 300.0)) * B / T**2
+    assert 0.3 < gain < 0.5
+    xs = np.linspace(a, ref, 1000)
+    gains = -bR * np.exp(B * (1 / (300 + xs) - 1 / 300.0)) * B / (300 + xs) ** 2
+    assert gains.max() > 1.0  # the case the fixed point got wrong
+
+
+def test_positive_tcr_random_draws_against_a_scan():
+    # 3000 seeded draws of TCR, bias heating and scene heating: the status and the root
+    # agree with the grid scan (runaway exactly when no root lies below T_max).
+    rng = np.random.default_rng(1)
+    n = 3000
+    B = -rng.uniform(0.001, 0.05, n) * 300.0**2
+    bR = 10 ** rng.uniform(-2, 3, n)
+    a = rng.uniform(0, 50, n)
+    counts = {"ok": 0, "runaway": 0}
+    for i in range(n):
+        ref = _lowest_root_by_scan(a[i], bR[i], B[i])
+        x, status, _ = kb.solve_delta_t(a[i], bR[i] / 1e5, 1e5, B[i], 300.0, 300.0, 1e-12, 100,
+                                        math.nan, 1000.0)
+        if ref is None:
+            assert status == kb.STATUS_RUNAWAY, i
+            counts["runaway"] += 1
+        else:
+            assert status == kb.STATUS_OK, i
+            assert abs(x - ref) <= 1e-11 * abs(ref) + 1e-13, i
+            counts["ok"] += 1
+    assert min(counts.values()) > 100  # both outcomes are exercised

@@ -163,3 +163,43 @@ def test_a_sensor_keeps_its_static_products_and_matches_one_shot_runs(small_cfg)
     assert second.counts["bolometer"] == 1
     np.testing.assert_array_equal(second.codes, model.simulate(cfg, [350.0], seed=3).codes)
     np.testing.assert_array_equal(first.defect_kind, second.defect_kind)
+
+
+def test_noise_enabled_with_every_sigma_zero_runs_no_noise_stage(small_cfg):
+    quiet = {"noise.enabled": True, "noise.johnson": False, "noise.readout_sigma": 0.0,
+             "noise.flicker_sigma": 0.0, "fpa.defects": {}}
+    fr = model.simulate(small_cfg(**quiet), [300.0, 350.0], seed=2)
+    off = model.simulate(small_cfg(**{**quiet, "noise.enabled": False}), [300.0, 350.0], seed=2)
+    assert "noise" not in fr.counts and fr.counts["no_noise"] == 1
+    assert "noise_frames" not in fr.counts
+    np.testing.assert_array_equal(fr.codes, off.codes)
+
+
+@pytest.mark.parametrize("mode", ["row", "column"])
+def test_row_and_column_skimming_solve_no_reference_pixel(small_cfg, mode):
+    # The nominal skim voltage (one steady solve) is only the fallback of a blind line
+    # whose pixels all failed: with every blind pixel solved it is never computed.
+    fr = model.simulate(small_cfg(**{"readout.skimming": mode}), [300.0], seed=1)
+    assert f"skimming_{mode}" in fr.counts and "v_skim" not in fr.counts
+    none = model.simulate(small_cfg(**{"readout.skimming": "none"}), [300.0], seed=1)
+    assert none.counts["v_skim"] == 1
+
+
+def test_skimming_fallback_is_computed_only_when_a_blind_line_failed():
+    from irnuc.model.fpa import ArrayLayout
+    from irnuc.model.readout import skim_row
+
+    lay = ArrayLayout(3, 4, (0, 0, 0, 0), (0, 0, 2, 2))
+    v = np.ones((1, 3, 8))
+    status = np.zeros((1, 3, 8), np.uint8)
+    calls = []
+
+    def fallback():
+        calls.append(1)
+        return 7.0
+
+    assert skim_row(v, status, lay, fallback)[0, :, 0].tolist() == [1.0, 1.0, 1.0]
+    assert calls == []
+    status[0, 1, lay.blind_col_indices] = STATUS_RUNAWAY
+    assert skim_row(v, status, lay, fallback)[0, :, 0].tolist() == [1.0, 7.0, 1.0]
+    assert calls == [1]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import mpmath as mp
 import numpy as np
 import pytest
@@ -143,3 +145,69 @@ def test_bad_input_names_the_field(kwargs, field):
     with pytest.raises(ConfigError) as info:
         band_radiance(**kwargs)
     assert str(info.value).startswith(field + " ") or f" {field} " in str(info.value)
+
+
+# ---- narrow bands, cold and hot limits (against the study's mpmath references) -----------
+
+NARROW_BANDS = [(8e-6 - 1e-12, 8e-6 + 1e-12), (7.999e-6, 8.001e-6), (10e-6, 10.05e-6)]
+
+
+@pytest.mark.parametrize("band", NARROW_BANDS)
+@pytest.mark.parametrize("T", [20.0, 77.0, 300.0, 3000.0, 1e5])
+def test_narrow_band_relative_error_below_1e_12(band, T):
+    # A 1 pm band loses 7 digits when formed as the difference of two tails; the hybrid
+    # method integrates it directly. Reference: 80-digit mpmath series (independent).
+    from irnuc.reports.studies.precision import band_radiance_mp
+
+    ref = band_radiance_mp(T, band, as_mpf=True)
+    got = float(band_radiance(T, band=band))
+    assert abs((mp.mpf(got) - ref) / ref) < 1e-12
+
+
+def test_narrow_band_cancels_in_the_paper_series():
+    # The paper's difference of tails loses digits on a 1 pm band: the reason for quadrature.
+    from irnuc.reports.studies.precision import band_radiance_mp
+
+    band = NARROW_BANDS[0]
+    ref = band_radiance_mp(300.0, band, as_mpf=True)
+    err = abs(float((mp.mpf(float(band_radiance(300.0, band=band, method="series"))) - ref)
+                    / ref))
+    assert err > 1e-11
+
+
+@pytest.mark.parametrize("T", [1e-300, 1e-100, 1e-5, 0.5, 1.0, 1.4, 1.5, 2.0, 3.0])
+def test_cold_limit_is_zero_or_the_right_tiny_value(T):
+    # 0 < T <= 1e-100 used to give 0 * inf = NaN. Where the true radiance is a normal
+    # float64 the relative error is <= 1e-12; below, 0 or the nearest subnormal.
+    from irnuc.reports.studies.precision import band_radiance_mp
+
+    got = float(band_radiance(T))
+    ref = band_radiance_mp(T, as_mpf=True)
+    assert math.isfinite(got) and got >= 0.0
+    if ref >= 2.2250738585072014e-308:
+        assert abs((mp.mpf(got) - ref) / ref) < 1e-12
+    else:
+        assert abs(mp.mpf(got) - ref) <= 2 * 4.95e-324
+
+
+@pytest.mark.parametrize("T", [1e5, 1e7, 1e9])
+def test_hot_limit_against_mpmath(T):
+    from irnuc.reports.studies.precision import band_radiance_mp
+
+    ref = band_radiance_mp(T, as_mpf=True)
+    assert abs((mp.mpf(float(band_radiance(T))) - ref) / ref) < 1e-12
+
+
+def test_hotter_than_the_allowed_range_is_an_error():
+    with pytest.raises(ConfigError, match=r"^T = 2e\+09 K .*allowed range"):
+        band_radiance(2e9)
+
+
+def test_study_reference_agrees_with_quadrature_where_polylog_underflows():
+    # Below ~15 K mpmath's polylog(1, q) underflows to 0; the series reference does not.
+    from irnuc.reports.studies.precision import band_radiance_mp, band_radiance_quad_mp
+
+    for T in (1.0, 5.0, 12.0):
+        a = band_radiance_mp(T, as_mpf=True)
+        b = band_radiance_quad_mp(T)
+        assert abs((a - b) / a) < mp.mpf(10) ** -30

@@ -276,3 +276,100 @@ def test_simulate_transient_rejects_bad_substrate_and_outputs():
         tr.simulate_transient(cfg, [300.0, 310.0], substrate=[300.0])
     with pytest.raises(ConfigError, match="outputs"):
         tr.simulate_transient(cfg, [300.0], outputs=("nope",))
+
+
+# ---- the auto default: stiffness detection ---------------------------------------------------
+
+def test_default_is_auto_and_matches_rk4_exactly_on_non_stiff_pixels(nonstiff):
+    assert tr.DEFAULT_INTEGRATOR == "auto" and tr.TransientSettings().integrator == "auto"
+    a = _run_problem(nonstiff)
+    r = _run_problem(nonstiff, integrator="rk4")
+    assert a.integrators_used() == {"rk4": a.status.size}
+    np.testing.assert_array_equal(a.v_bolo, r.v_bolo)
+    np.testing.assert_array_equal(a.substeps, r.substeps)
+
+
+@pytest.mark.parametrize("C", [1e-14, 1e-15])
+def test_very_stiff_pixels_are_solved_by_default(C):
+    # Stiffness ~1e5 and ~1e6: RK4 needs 1.5e5 substeps or refuses; the default switches
+    # to the exponential integrator after the fast transient. Reference: 60-digit
+    # phase-variable quadrature (independent of any ODE solver).
+    from irnuc.reports.studies.precision import reference_transient_exact
+
+    g, I = 1e-5, 1.5e-4
+    Q = np.array([[1e-9], [3e-9]])
+    Ts = np.array([300.0, 300.0])
+    v, _m, _e, _ = reference_transient_exact(Q[:, 0], Ts, 1e5, g, C, tcr=-0.025, T_ref=300.0,
+                                             bias_current=I, t_int=T_INT, frame_period=FRAME,
+                                             pulse_start=0.0, theta0=Q[0, 0] / g)
+    r = tr.integrate_pixels(Q, Ts, 1e5, g, C, tcr=-0.025, T_ref=300.0, bias_current=I,
+                            t_int=T_INT)
+    assert (r.status == STATUS_OK).all()
+    assert r.integrators_used() == {"exponential": 2}
+    np.testing.assert_allclose(r.v_bolo[:, 0], v[0] + v[1], rtol=1e-9)
+    assert r.substeps.max() < 2000
+    with pytest.raises(tr.StiffnessError):
+        tr.integrate_pixels(Q, Ts, 1e5, g, C, tcr=-0.025, T_ref=300.0, bias_current=I,
+                            t_int=T_INT, settings={"integrator": "rk4", "max_substeps": 20000})
+
+
+def test_auto_near_runaway_positive_tcr_against_reference():
+    from irnuc.reports.studies.precision import reference_transient_exact
+
+    kw = _feedback_problem(21.0)
+    kw["C"] = 1e-14  # stiff: loop gain 0.72 leaves a decay rate of 2.8e8 /s
+    Q = np.array([[1e-9], [5e-9]])
+    Ts = np.array([300.0, 300.0])
+    v, _m, _e, _ = reference_transient_exact(Q[:, 0], Ts, kw["R_ref"], kw["g"], kw["C"],
+                                             tcr=kw["tcr"], T_ref=300.0,
+                                             bias_current=kw["bias_current"], t_int=T_INT,
+                                             frame_period=FRAME, pulse_start=0.0,
+                                             theta0=Q[0, 0] / kw["g"])
+    r = tr.integrate_pixels(Q, Ts, kw["R_ref"], kw["g"], kw["C"], tcr=kw["tcr"], T_ref=300.0,
+                            bias_current=kw["bias_current"], t_int=T_INT)
+    assert (r.status == STATUS_OK).all()
+    np.testing.assert_allclose(r.v_bolo[:, 0], v[0] + v[1], rtol=1e-9)
+
+
+def test_transient_frames_report_stage_counts_and_integrators():
+    cfg = model.load_preset("default", {"fpa.active_rows": 4, "fpa.active_cols": 5})
+    fr = tr.simulate_transient(cfg, [300.0, 350.0], outputs=("codes",))
+    c = fr.counts
+    # Housing radiance once (shared by the power and readout), one integration run.
+    assert c["env_radiance"] == 1 and c["params"] == 1 and c["transient"] == 1
+    assert c["transient_pulses"] == 2 * 10 * 11
+    assert c["skimming_row"] == 1 and c["adc"] == 1 and "v_skim" not in c
+    assert fr.diagnostics["transient"]["integrators_used"] == {"rk4": 2 * 10 * 11}
+    two = tr.simulate_transient(cfg, [300.0, 350.0], substrate=[300.0, 301.0])
+    assert two.counts["env_radiance"] == 2  # one configured sensor per substrate temperature
+
+
+def test_backward_euler_limits_are_as_documented():
+    # docs/transient.md: (1) adaptive backward Euler resolves a stiff pixel's fast
+    # transient (its rectangle-rule estimate sees it) and meets the tolerance; (2) it is
+    # first order, substeps grow ~10x per decade of rtol; (3) fixed steps much longer than
+    # 1/lambda skip the transient: an error of ~0.2 / stiffness whatever the step count.
+    from irnuc.reports.studies.precision import reference_transient_exact
+
+    g, I, C = 1e-5, 1.5e-4, 1e-15
+    Q = np.array([[1e-9]])
+    v, _m, _e, _ = reference_transient_exact(Q[:, 0], [300.0], 1e5, g, C, tcr=-0.025,
+                                             T_ref=300.0, bias_current=I, t_int=T_INT,
+                                             frame_period=FRAME, pulse_start=0.0,
+                                             theta0=Q[0, 0] / g)
+    ref = v[0] + v[1]
+
+    def run(C=C, **st):
+        return tr.integrate_pixels(Q, 300.0, 1e5, g, C, tcr=-0.025, T_ref=300.0,
+                                   bias_current=I, t_int=T_INT,
+                                   settings={"integrator": "backward_euler", **st})
+
+    ad = run(rtol=1e-3)
+    assert ad.status[0, 0] == STATUS_OK
+    assert abs(ad.v_bolo[0, 0] - ref[0]) / ref[0] < 1e-9
+    for steps in (16, 4096):
+        err = abs(run(rtol=None, steps=steps).v_bolo[0, 0] - ref[0]) / ref[0]
+        assert 5e-8 < err < 5e-7  # stiffness ~1.2e6
+    n3 = run(C=1e-10, rtol=1e-3).substeps[0, 0]
+    n4 = run(C=1e-10, rtol=1e-4).substeps[0, 0]
+    assert 7 < n4 / n3 < 13

@@ -1,7 +1,8 @@
 """``irnuc precision``: work-precision diagrams (error against run time) as HTML + JSON.
 
-Only the standard library is imported at module level; the measurements
-(:mod:`model.precision`), numpy and matplotlib are imported inside the functions.
+Only the standard library is imported at module level; the measurements and figures
+(:mod:`irnuc.reports.studies.precision`), numpy and matplotlib are imported inside the
+functions.
 """
 
 from __future__ import annotations
@@ -9,7 +10,6 @@ from __future__ import annotations
 import argparse
 import base64
 import html
-import io
 import json
 from pathlib import Path
 from typing import Any
@@ -19,80 +19,71 @@ JSON_NAME = "precision.json"
 HTML_NAME = "precision.html"
 
 
-def _figure_png(component: dict[str, Any]) -> bytes:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(7.0, 4.6))
-    by_method: dict[str, list[dict[str, Any]]] = {}
-    for p in component["points"]:
-        by_method.setdefault(p["method"], []).append(p)
-    markers = "osD^v<>ph*"
-    for k, (method, pts) in enumerate(by_method.items()):
-        ok = [p for p in pts if p["error"] is not None]
-        if not ok:
-            continue
-        ax.loglog([p["time_s"] for p in ok], [max(p["error"], 1e-17) for p in ok],
-                  marker=markers[k % len(markers)], ms=4, lw=1, label=method)
-    d = [p for p in component["points"] if p["default"] and p["error"] is not None]
-    if d:
-        ax.loglog([d[0]["time_s"]], [max(d[0]["error"], 1e-17)], marker="*", ms=16,
-                  mfc="none", mec="k", mew=1.5, ls="none", label="default")
-    ax.set_xlabel("run time, s (minimum of several runs, after JIT warm-up)")
-    ax.set_ylabel("max relative error")
-    ax.set_title(component["title"], fontsize=10)
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="best")
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100)
-    plt.close(fig)
-    return buf.getvalue()
-
-
 def _fmt(x: float | None) -> str:
     return "-" if x is None else f"{x:.3g}"
 
 
 def render_html(result: dict[str, Any]) -> str:
-    """The HTML report: one log-log figure and one table per component."""
+    """The HTML report: per component two log-log figures (error against time and against
+    work), the table of points and the table of omitted (failed) settings."""
+    from irnuc.reports.studies.precision import failure_label, figures
+
     esc = html.escape
+    figs = figures(result)
+    secs = result.get("seconds")
     parts = [
         "<!DOCTYPE html><html><head><meta charset='utf-8'><title>irnuc work-precision</title>",
-        "<style>body{font-family:sans-serif;max-width:1000px;margin:auto}"
+        "<style>body{font-family:sans-serif;max-width:1150px;margin:auto}"
         "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;"
-        "padding:2px 6px}.def{font-weight:bold;background:#ffd}</style></head><body>",
+        "padding:2px 6px}.def{font-weight:bold;background:#ffd}.bad{color:#a00}</style>"
+        "</head><body>",
         "<h1>Work-precision diagrams</h1>",
-        f"<p>Run time is the minimum of several runs after a JIT warm-up, on one numba "
-        f"thread. A point is on the Pareto front unless another is both at least "
-        f"{result['time_margin']}&times; faster and {result['error_margin']}&times; more "
-        f"accurate (margins against timing noise). {'Quick run.' if result['quick'] else ''}"
-        "</p>",
+        f"<p>Run time is the minimum of a few runs after a JIT warm-up, on one numba "
+        f"thread; the work axis (series terms, Newton iterations, substeps) is free of timing "
+        f"noise. A point is on the Pareto front unless another is both at least "
+        f"{result['time_margin']}&times; faster (cheaper) and {result['error_margin']}&times; "
+        f"more accurate. Failed settings are red crosses above the data, at the time and "
+        f"work they took to fail, and listed under each figure. "
+        f"{'Quick run. ' if result['quick'] else ''}"
+        f"{'Study time ' + format(secs, '.0f') + ' s.' if secs is not None else ''}</p>",
     ]
-    for c in result["components"]:
-        png = base64.b64encode(_figure_png(c)).decode()
+    for c, (caption, png) in zip(result["components"], figs, strict=True):
         d = c["default"]
+        b64 = base64.b64encode(png).decode()
         parts += [
             f"<h2>{esc(c['title'])}</h2>",
-            f"<p>Problem: {esc(c['problem'])}.<br>Reference: {esc(c['reference'])}.<br>"
-            f"Error: {esc(c['error_metric'])}.<br>Default: {esc(str(d['method']))}, "
+            f"<p>Problem: {esc(c['problem'])}.<br>Reference: {esc(c['reference'])}; its own "
+            f"error estimate {_fmt(c['reference_error'])}.<br>Error: "
+            f"{esc(c['error_metric'])}.<br>Default: {esc(str(d['method']))}, "
             f"{esc(d['setting_name'])} = {d['setting']:g}: error {_fmt(d['error'])}, "
-            f"time {_fmt(d['time_s'])} s, <b>{'on' if d['on_pareto_front'] else 'NOT on'} "
-            "the Pareto front</b>.</p>",
-            f"<img alt='{esc(c['name'])}' src='data:image/png;base64,{png}'>",
+            f"time {_fmt(d['time_s'])} s, work {_fmt(d['work'])}, "
+            f"<b>{'on' if d['on_pareto_front'] else 'NOT on'} the Pareto front</b> "
+            f"(by work: {'on' if d['on_front_work'] else 'not on'}).</p>",
+            f"<figure><img alt='{esc(c['name'])}' src='data:image/png;base64,{b64}'>"
+            f"<figcaption>{esc(caption)}</figcaption></figure>",
             "<table><tr><th>method</th><th>setting</th><th>error</th><th>time (s)</th>"
-            "<th>work</th><th>front</th><th>missing: reason</th></tr>",
+            "<th>work</th><th>front (time)</th><th>front (work)</th></tr>",
         ]
         for p in c["points"]:
+            if p["failed"]:
+                continue
             cls = " class='def'" if p["default"] else ""
-            front = "" if p["on_front"] is None else ("yes" if p["on_front"] else "no")
+            yn = {None: "", True: "yes", False: "no"}
             parts.append(
                 f"<tr{cls}><td>{esc(p['method'])}</td><td>{esc(p['setting_name'])} = "
                 f"{p['setting']:g}</td><td>{_fmt(p['error'])}</td><td>{_fmt(p['time_s'])}</td>"
-                f"<td>{_fmt(p['work'])}</td><td>{front}</td><td>{esc(p['reason'] or '')}</td></tr>")
+                f"<td>{_fmt(p['work'])}</td><td>{yn[p['on_front']]}</td>"
+                f"<td>{yn[p['on_front_work']]}</td></tr>")
         parts.append("</table>")
+        if c["missing"]:
+            parts.append("<h3>Omitted (failed) settings</h3><table><tr><th>method</th>"
+                         "<th>setting</th><th>label</th><th>reason</th></tr>")
+            for m in c["missing"]:
+                parts.append(f"<tr class='bad'><td>{esc(m['method'])}</td><td>"
+                             f"{esc(m['setting_name'])} = {m['setting']:g}</td><td>"
+                             f"{esc(failure_label(m['reason']))}</td><td>"
+                             f"{esc(m['reason'] or '')}</td></tr>")
+            parts.append("</table>")
     parts.append("</body></html>")
     return "\n".join(parts)
 
@@ -145,28 +136,28 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", default=str(DEFAULT_OUT),
                    help="output folder (default: %(default)s)")
     p.add_argument("--quick", action="store_true",
-                   help="fewer settings and samples (about a minute)")
+                   help="fewer settings and samples (well under a minute)")
     p.add_argument("--only", action="append", metavar="COMPONENT",
-                   help="measure only this component (band_radiance, electro_thermal, "
-                        "transient_nonstiff, transient_stiff); repeatable")
+                   help="measure only this component (band_radiance, band_radiance_narrow, "
+                        "electro_thermal, transient_nonstiff, transient_stiff_1e3, ...) or "
+                        "group (radiance, transient, transient_stiff); repeatable")
     p.add_argument("--no-progress", action="store_true")
 
 
 def run(args: argparse.Namespace) -> int:
     from irnuc.common.progress import ProgressBar
-    from irnuc.reports.studies.precision import run_precision, summarize
+    from irnuc.reports.studies.precision import run_precision
 
     progress = None if args.no_progress else ProgressBar("precision")
     result = run_precision(quick=args.quick, components=args.only, progress=progress)
     j, h = write_report(result, args.out)
-    s = summarize(result)
-    for c in s["components"]:
+    for c in result["components"]:
         d = c["default"]
-        print(f"{c['name']:20s} default {d['method']} {d['setting_name']}={d['setting']:g}: "
-              f"error {_fmt(d['error'])}, {_fmt(d['time_s'])} s, "
+        print(f"{c['name']:22s} default {d['method']} {d['setting_name']}={d['setting']:g}: "
+              f"error {_fmt(d['error'])}, {_fmt(d['time_s'])} s, work {_fmt(d['work'])}, "
               f"{'on' if d['on_pareto_front'] else 'NOT on'} the Pareto front; "
-              f"{c['missing']} missing point(s)")
-    print(f"wrote {h} and {j}")
+              f"{len(c['missing'])} failed setting(s)")
+    print(f"study time {result['seconds']:.0f} s; wrote {h} and {j}")
     return 0
 
 

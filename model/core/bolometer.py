@@ -15,10 +15,14 @@ bias heating is a transient).
 
 For B > 0 (negative TCR) h(dT) = dT - a - b R(T_s + dT) is strictly increasing: exactly one
 root, bracketed by [a, a + b R(T_s + a)], found by Newton's method safeguarded by bisection.
-For B < 0 (positive TCR) the electro-thermal feedback is positive: the monotone fixed-point
-iteration from dT = a converges to the lowest (stable) root if one exists; when it does
-not converge, or the temperature passes the runaway limit, the pixel is reported as a
-thermal runaway.
+For B < 0 (positive TCR) the electro-thermal feedback is positive and h may have up to three
+roots. The physical equilibrium is the lowest one (h < 0 below it, so it is stable: the
+loop gain b |dR/dT| is <= 1 there). R(T) ~ exp(-|B|/T) is convex below T = |B|/2 and
+concave above, so h is concave and then convex: the lowest root is found by Newton from
+the left on the concave part (monotone, no overshoot) and, if the concave part holds none,
+by a bracketed Newton on the convex part, where h(T_max) > 0 brackets exactly one root.
+The pixel is a thermal runaway only when h < 0 all the way to the runaway temperature,
+i.e. when no equilibrium exists below it.
 """
 
 import math
@@ -37,8 +41,6 @@ STATUS_NO_CONVERGENCE = 1
 STATUS_RUNAWAY = 2
 STATUS_INVALID = 3  # the temperature would be <= 0 K
 
-#: Iteration budget multiplier of the (linearly convergent) positive-TCR fixed point.
-FIXED_POINT_FACTOR = 100
 
 
 #: Taylor coefficients of f(u) = sum_{k>=1} (-1)^(k+1) u^k / (k+1)!, for u < 0.25.
@@ -159,7 +161,6 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
     x0 is an initial guess (NaN for none); it is used only if it lies inside the bracket.
     Convergence: |last Newton step| <= rtol |dT| + rtol * 1e-3 K.
     """
-    atol = rtol * 1e-3
     Ta = T_s + a
     if not Ta > 0.0:
         return math.nan, STATUS_INVALID, 0
@@ -170,22 +171,93 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
     if B > 0.0:
         x, status, it, _ = newton_negative_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0)
         return x, status, it
-    # Positive TCR: monotone fixed point from below converges to the lowest root.
-    x = a
-    for it in range(1, FIXED_POINT_FACTOR * max_iter + 1):
-        T = T_s + x
-        R = resistance(T, R_ref, B, T_ref)
-        xn = a + b * R
-        if not (T_s + xn <= T_max):
-            return xn, STATUS_RUNAWAY, it
-        gain = -b * R * B / (T * T)  # electro-thermal loop gain (> 0 here)
-        if gain >= 1.0:
-            return xn, STATUS_RUNAWAY, it
-        # Linear convergence at rate `gain`: the error is about step * gain / (1 - gain).
-        if abs(xn - x) * gain <= (rtol * abs(xn) + atol) * (1.0 - gain):
+    return solve_positive_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, T_max)
+
+
+@njit(cache=True)
+def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
+    """(h in K, dh/dx dimensionless) of h(x) = x - a - b R(T_s + x), x in K."""
+    T = T_s + x
+    bR = b * resistance(T, R_ref, B, T_ref)
+    return x - a - bR, 1.0 + bR * B / (T * T)
+
+
+@njit(cache=True)
+def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
+    """Root of h in [lo, hi] (K) with h(lo) < 0 < h(hi) and exactly one root between:
+    Newton from x (K), bisection whenever a step leaves the bracket.
+
+    a (K), b (K/ohm), R_ref (ohm), B (K), T_ref and T_s (K) as in :func:`solve_delta_t`.
+    Returns (x in K, status, iterations).
+    """
+    atol = rtol * 1e-3
+    for it in range(1, max_iter + 1):
+        h, dh = _h_positive(x, a, b, R_ref, B, T_ref, T_s)
+        if h == 0.0:
+            return x, STATUS_OK, it
+        if h < 0.0:
+            lo = x
+        else:
+            hi = x
+        xn = x - h / dh if dh != 0.0 else math.nan
+        if not lo < xn < hi:
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= rtol * abs(xn) + atol or hi - lo <= rtol * abs(xn) + atol:
             return xn, STATUS_OK, it
         x = xn
-    return x, STATUS_RUNAWAY, FIXED_POINT_FACTOR * max_iter
+    return x, STATUS_NO_CONVERGENCE, max_iter
+
+
+@njit(cache=True)
+def solve_positive_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, T_max):
+    """Lowest root x (K) of h(x) = x - a - b R(T_s + x) with T_s + x <= T_max (K), for
+    B < 0 (positive TCR); a (K), b (K/ohm), R_ref (ohm), B (K), T_ref, T_s (K) as in
+    :func:`solve_delta_t` (paper eq. 16-19).
+
+    h(a) < 0. Concave part (T_s + x < |B|/2): Newton from the left never overshoots; a
+    derivative <= 0 there (loop gain >= 1) proves h < 0 up to the inflection point, and a
+    Newton step past it is checked against h at the inflection point. Convex part: h < 0
+    at its left end, so exactly one root if h(x_max) > 0 (Newton bracketed), else none:
+    STATUS_RUNAWAY. Returns (x, status, iterations).
+    """
+    x_max = T_max - T_s
+    if not a < x_max:
+        return a, STATUS_RUNAWAY, 0
+    atol = rtol * 1e-3
+    x_inf = -0.5 * B - T_s  # inflection of R(T_s + x)
+    x = a
+    it = 0
+    if x_inf > a:
+        e = min(x_inf, x_max)
+        while it < max_iter:
+            it += 1
+            h, dh = _h_positive(x, a, b, R_ref, B, T_ref, T_s)
+            if h >= 0.0:
+                return x, STATUS_OK, it
+            if dh <= 0.0:
+                break  # loop gain >= 1: h decreases up to the inflection point, no root
+            xn = x - h / dh
+            if xn >= e:
+                he, _ = _h_positive(e, a, b, R_ref, B, T_ref, T_s)
+                if he >= 0.0:  # the one root of the concave part lies in (x, e]
+                    xr, st, k = bracketed_newton(x, e, 0.5 * (x + e), a, b, R_ref, B, T_ref,
+                                                 T_s, rtol, max_iter)
+                    return xr, st, it + k
+                break  # tangent above h and negative up to e: no root in the concave part
+            if xn - x <= rtol * abs(xn) + atol:
+                return xn, STATUS_OK, it
+            x = xn
+        else:
+            return x, STATUS_NO_CONVERGENCE, it
+        if x_inf >= x_max:
+            return x_max, STATUS_RUNAWAY, it
+        x = x_inf
+    hm, _ = _h_positive(x_max, a, b, R_ref, B, T_ref, T_s)
+    if not hm > 0.0:
+        return x_max, STATUS_RUNAWAY, it + 1  # h < 0 up to T_max: no equilibrium below it
+    # Convex part: Newton from the right converges monotonically; the bracket guards.
+    xr, st, k = bracketed_newton(x, x_max, x_max, a, b, R_ref, B, T_ref, T_s, rtol, max_iter)
+    return xr, st, it + 1 + k
 
 
 #: Independent warm-start chains per row: pixel j starts from pixel j - WARM_CHAINS, so the

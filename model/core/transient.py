@@ -24,6 +24,10 @@ Integrator codes (see :data:`model.transient.INTEGRATORS`):
   error estimate), with the exact Jacobian, applied to theta and the two integrals; exact
   whenever the right-hand side is linear in theta (TCR = 0 or zero bias), so its cost does
   not grow with the stiffness t_int / tau.
+4 ``auto`` (the default): RK4 while it is cheapest; per pixel and pulse it switches to
+  the exponential method as soon as the local decay rate times the step says the pixel is
+  stiff (h |lambda| > AUTO_SWITCH * RK4_STABILITY for the step RK4's accuracy control
+  wants, which RK4 would have to cut by that factor), and it never refuses.
 
 An implicit step whose Newton iteration fails (no convergence, the residual derivative not
 positive, T <= 0) is retried with half the step; so is an exponential step that would grow
@@ -42,6 +46,7 @@ from irnuc.model.core.bolometer import (
     STATUS_NO_CONVERGENCE,
     STATUS_OK,
     STATUS_RUNAWAY,
+    resistance,
 )
 
 #: The explicit method needed more substeps than allowed (the API refuses the run).
@@ -65,11 +70,13 @@ M_RK4 = 0
 M_BACKWARD_EULER = 1
 M_TRAPEZOIDAL = 2
 M_EXPONENTIAL = 3
+M_AUTO = 4
 
-
-@njit(cache=True)
-def _resistance(T, R_ref, B, T_ref):
-    return R_ref * math.exp(B * (1.0 / T - 1.0 / T_ref))
+#: ``auto`` leaves RK4 for the exponential integrator once RK4's stability limit cuts the
+#: step its accuracy control asks for by more than this factor (h |lambda| above
+#: AUTO_SWITCH * RK4_STABILITY): from then on the pixel is stiff and RK4 would pay for
+#: stability, not accuracy, while the exponential method is exact on the linear part.
+AUTO_SWITCH = 4.0
 
 
 @njit(cache=True)
@@ -115,7 +122,7 @@ def relax(theta, Q, g, C, dt):
 def _rhs(theta, Ts, Q, I2, R_ref, B, T_ref, g, C):
     """(f, R, dR/dT) at theta: f = (I^2 R + Q - g theta) / C."""
     T = Ts + theta
-    R = _resistance(T, R_ref, B, T_ref)
+    R = resistance(T, R_ref, B, T_ref)
     return (I2 * R + Q - g * theta) / C, R, -B * R / (T * T)
 
 
@@ -259,8 +266,9 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
     error estimate, the others step doubling with local Richardson extrapolation. A step is
     accepted when the error estimate is within rtol (theta against |theta| + THETA_FLOOR,
     the voltage integral against itself); ``steps`` sets the first step t_int / steps.
+    ``method`` M_AUTO starts with RK4 and switches to M_EXPONENTIAL where the pixel is stiff.
 
-    Returns (theta_end, int V dt, int theta dt, status, substeps).
+    Returns (theta_end, int V dt, int theta dt, status, substeps, method used last).
     """
     I2 = I * I
     iV = 0.0
@@ -268,31 +276,45 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
     sub = 0
     f0, R0, dR0 = _rhs(th, Ts, Q, I2, R_ref, B, T_ref, g, C)
     adaptive = rtol > 0.0
-    p = _order(method)
+    cur = M_RK4 if method == M_AUTO else method
+    p = _order(cur)
     rich = 1.0 / (2.0**p - 1.0)
     fail_status = STATUS_STEP_LIMIT if method == M_RK4 else STATUS_NO_CONVERGENCE
     h_nom = t_int / steps
     hs = h_nom
     t = 0.0
     k_nom = 1  # fixed mode: index of the nominal step being integrated
+    settled = not adaptive
     while t < t_int:
         if sub >= max_sub:
-            return th, iV, iT, fail_status, sub
+            return th, iV, iT, fail_status, sub, cur
         end = t_int if (adaptive or k_nom >= steps) else k_nom * h_nom
         rem = end - t
         hs = min(hs, rem)
-        if method == M_RK4:
+        if cur == M_RK4:
             lam = abs((I2 * dR0 - g) / C)
             if lam * hs > RK4_STABILITY:
                 m = math.ceil(rem * lam / RK4_STABILITY)
-                if refuse_unstable or m > max_sub - sub:
-                    return th, iV, iT, STATUS_STEP_LIMIT, sub + m
-                hs = min(hs, rem / m)
-        new, dV, dT, ok, f1, R1, dR1, e_th, e_v = _attempt(method, th, f0, R0, dR0, hs, Ts, Q,
+                # Only a step the accuracy control asked for (adaptive: after the first
+                # accepted step; fixed: the nominal step) can prove the pixel stiff; the
+                # first guess t_int / steps says nothing about accuracy.
+                if method == M_AUTO:
+                    if settled and lam * hs > AUTO_SWITCH * RK4_STABILITY:
+                        # Stiff here: the exponential method takes the step RK4 cannot.
+                        cur = M_EXPONENTIAL
+                        p = _order(cur)
+                        rich = 1.0 / (2.0**p - 1.0)
+                    else:  # the fast transient: RK4 at its stability limit resolves it
+                        hs = RK4_STABILITY / lam
+                else:
+                    if method == M_RK4 and (refuse_unstable or m > max_sub - sub):
+                        return th, iV, iT, STATUS_STEP_LIMIT, sub + m, cur
+                    hs = min(hs, rem / m)
+        new, dV, dT, ok, f1, R1, dR1, e_th, e_v = _attempt(cur, th, f0, R0, dR0, hs, Ts, Q,
                                                            I, R_ref, B, T_ref, g, C)
         sub += 1
         hs_next = hs
-        if ok and adaptive and method == M_EXPONENTIAL:
+        if ok and adaptive and cur == M_EXPONENTIAL:
             # Embedded pair: the estimate is that of the order-2 stage (local error h^3).
             err = max(abs(e_th) / (rtol * (abs(new) + THETA_FLOOR)),
                       abs(e_v) / (rtol * abs(dV) + 1e-300))
@@ -303,18 +325,24 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
             hs_next = hs * fac
         elif ok and adaptive:
             hh = 0.5 * hs
-            m1, dV1, dT1, ok, fa, Ra, dRa, _, _ = _attempt(method, th, f0, R0, dR0, hh, Ts, Q, I,
-                                                     R_ref, B, T_ref, g, C)
+            m1, dV1, dT1, ok, fa, Ra, dRa, _, _ = _attempt(cur, th, f0, R0, dR0, hh, Ts, Q, I,
+                                                           R_ref, B, T_ref, g, C)
             if ok:
-                m2, dV2, dT2, ok, _fb, _Rb, _dRb, _, _ = _attempt(method, m1, fa, Ra, dRa, hh, Ts, Q,
-                                                         I, R_ref, B, T_ref, g, C)
+                m2, dV2, dT2, ok, _fb, _Rb, _dRb, _, _ = _attempt(cur, m1, fa, Ra, dRa, hh, Ts,
+                                                                  Q, I, R_ref, B, T_ref, g, C)
             sub += 2
             if ok:
                 # Local Richardson extrapolation: two half steps plus their error estimate.
                 e_th = (m2 - new) * rich
                 e_v = (dV1 + dV2 - dV) * rich
+                e_test = abs(e_v)
+                if cur == M_BACKWARD_EULER:
+                    # The right-rectangle voltage integral misses a transient shorter than
+                    # the step, and so does step doubling (both halves land on the same
+                    # equilibrium); the rectangle's own error h (V1 - V0) / 2 sees it.
+                    e_test = max(e_test, 0.5 * hs * I * abs(R1 - R0))
                 err = max(abs(e_th) / (rtol * (abs(m2) + THETA_FLOOR)),
-                          abs(e_v) / (rtol * abs(dV1 + dV2) + 1e-300))
+                          e_test / (rtol * abs(dV1 + dV2) + 1e-300))
                 fac = min(5.0, max(0.2, 0.9 * (err + 1e-300) ** (-1.0 / (p + 1.0))))
                 if err > 1.0:
                     hs *= fac
@@ -328,11 +356,11 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
                     f1, R1, dR1 = _rhs(new, Ts, Q, I2, R_ref, B, T_ref, g, C)
         if not ok:
             if method == M_RK4 and not adaptive:
-                return th, iV, iT, STATUS_STEP_LIMIT, sub
+                return th, iV, iT, STATUS_STEP_LIMIT, sub, cur
             hs *= 0.5
             continue
         if not adaptive:
-            hs_next = h_nom if method == M_RK4 else min(2.0 * hs, h_nom)
+            hs_next = h_nom if cur == M_RK4 else min(2.0 * hs, h_nom)
         th = new
         f0, R0, dR0 = f1, R1, dR1
         iV += dV
@@ -343,15 +371,16 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
             k_nom += 1
         t = t_new
         hs = hs_next
+        settled = True
         if not Ts + th <= T_max:
-            return th, iV, iT, STATUS_RUNAWAY, sub
-    return th, iV, iT, STATUS_OK, sub
+            return th, iV, iT, STATUS_RUNAWAY, sub, cur
+    return th, iV, iT, STATUS_OK, sub, cur
 
 
 @njit(cache=True, parallel=True)
 def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_period,
                      pulse_start, warmup, method, steps, max_sub, T_max, refuse_unstable, rtol,
-                     v_out, dT_out, dTend_out, status_out, sub_out):
+                     v_out, dT_out, dTend_out, status_out, sub_out, meth_out):
     """A sequence of frames for a flat array of pixels.
 
     Parameters: Q (N, P) W, Ts (N,) K, R_ref, g, C, theta0 (P,) (theta0 relative to Ts[0],
@@ -361,7 +390,8 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
     copies of frame 0 run first without output.
 
     Writes per frame and pixel: the mean bolometer voltage over the pulse (V), the mean
-    rise over the pulse and the rise at its end (K), the status and the substeps used.
+    rise over the pulse and the rise at its end (K), the status, the substeps used and the
+    integrator code that finished the pulse (``auto`` reports RK4 or exponential).
     """
     n_frames = Q.shape[0]
     n_pix = Q.shape[1]
@@ -374,7 +404,8 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
         st = STATUS_OK
         th_end = th
         nsub = 0
-        last_v = I * _resistance(Ts[0] + th, Rp, B, T_ref) if Ts[0] + th > 0.0 else 0.0
+        used = method
+        last_v = I * resistance(Ts[0] + th, Rp, B, T_ref) if Ts[0] + th > 0.0 else 0.0
         last_mean = th
         for k in range(warmup + n_frames):
             n = k - warmup if k >= warmup else 0
@@ -383,9 +414,9 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
             if st == STATUS_OK:
                 q = Q[n, p]
                 th = relax(th, q, gp, Cp, pulse_start)
-                th_end, iV, iT, st_p, nsub = pulse(th, Ts[n], q, I, Rp, B, T_ref, gp, Cp,
-                                                   t_int, method, steps, max_sub, T_max,
-                                                   refuse_unstable, rtol)
+                th_end, iV, iT, st_p, nsub, used = pulse(th, Ts[n], q, I, Rp, B, T_ref, gp,
+                                                         Cp, t_int, method, steps, max_sub,
+                                                         T_max, refuse_unstable, rtol)
                 if st_p == STATUS_OK:
                     last_v = iV / t_int
                     last_mean = iT / t_int
@@ -393,7 +424,7 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
                 else:
                     st = st_p
                     if math.isfinite(th_end) and Ts[n] + th_end > 0.0:
-                        last_v = I * _resistance(Ts[n] + th_end, Rp, B, T_ref)
+                        last_v = I * resistance(Ts[n] + th_end, Rp, B, T_ref)
                         last_mean = th_end
             else:
                 nsub = 0
@@ -403,6 +434,7 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
                 dTend_out[n, p] = th_end if st == STATUS_OK else last_mean
                 status_out[n, p] = st
                 sub_out[n, p] = nsub
+                meth_out[n, p] = used
 
 
 @njit(cache=True)
@@ -415,4 +447,4 @@ def rhs_jacobian(theta, Ts, Q, I, R_ref, B, T_ref, g, C):
 def empty_outputs(shape):
     """Output arrays of :func:`integrate_frames` for a (N, P) problem."""
     return (np.empty(shape), np.empty(shape), np.empty(shape), np.empty(shape, np.uint8),
-            np.empty(shape, np.int64))
+            np.empty(shape, np.int64), np.empty(shape, np.uint8))
