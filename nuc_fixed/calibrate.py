@@ -157,7 +157,7 @@ def calibrate(
     bad = reasons != 0
     good = ~bad
     if not good.any():
-        raise ValueError("every pixel was flagged bad; check the thresholds and the frames")
+        raise InputError("every pixel was flagged bad; check the thresholds and the frames")
 
     # Flagged pixels get the median codes, so an uncorrectable pixel still looks plausible.
     gfill = int(np.median(gcode[good]))

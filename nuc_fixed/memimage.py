@@ -204,6 +204,10 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
                       ("format_sha256", str)):
         if not isinstance(manifest.get(key), kind) or isinstance(manifest.get(key), bool):
             raise MemImageError(f"{path}: field {key!r} is missing or not a {kind.__name__}")
+    unhashed = [n for n in (BIN_NAME, HEX_NAME) if n not in manifest["files"]]  # type: ignore[operator]
+    if unhashed:
+        raise MemImageError(f"{path}: files names no SHA-256 of {', '.join(unhashed)}; every "
+                            "memory image file must be hashed")
     fmt = {k: manifest.get(k) for k in _FORMAT_FIELDS}
     if _format_sha256(fmt) != manifest["format_sha256"]:
         raise MemImageError(f"{path}: the format fields ({', '.join(_FORMAT_FIELDS)}) do not "
