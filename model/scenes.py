@@ -76,6 +76,10 @@ def _load_map(params: Mapping[str, Any]) -> np.ndarray:
     if not path.is_file():
         raise ConfigError(f"scene.path = {str(path)!r}: no such file (an .npy map in K or an image)")
     if path.suffix == ".npy":
+        with path.open("rb") as fh:
+            if fh.read(6) != b"\x93NUMPY":  # the .npy magic: text or garbage is named as such
+                raise ConfigError(f"scene.path = {str(path)!r} is not a readable .npy array "
+                                  "(no .npy header; write it with numpy.save)")
         try:
             arr = np.load(path, allow_pickle=False)
         except (OSError, ValueError, EOFError) as exc:

@@ -200,10 +200,11 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
             f"{path}: version = {manifest.get('version')!r}; this reader supports "
             f"{MEMIMAGE_VERSION}"
         )
+    words = {dict: "a JSON object", int: "an integer", str: "a string"}
     for key, kind in (("files", dict), ("height", int), ("width", int), ("sha256", str),
                       ("format_sha256", str)):
         if not isinstance(manifest.get(key), kind) or isinstance(manifest.get(key), bool):
-            raise MemImageError(f"{path}: field {key!r} is missing or not a {kind.__name__}")
+            raise MemImageError(f"{path}: field {key!r} is missing or not {words[kind]}")
     unhashed = [n for n in (BIN_NAME, HEX_NAME) if n not in manifest["files"]]  # type: ignore[operator]
     if unhashed:
         raise MemImageError(f"{path}: files names no SHA-256 of {', '.join(unhashed)}; every "
@@ -234,7 +235,7 @@ def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
     """The pipeline configuration recorded in a manifest."""
     missing = [k for k in ("config", *_FORMAT_FIELDS) if k not in manifest]
     if missing:
-        raise MemImageError(f"manifest is missing field(s) {missing}")
+        raise MemImageError(f"{MANIFEST_NAME} is missing field(s) {missing}")
     return PipelineConfig(name=str(manifest["config"]),
                           description=str(manifest.get("description", "")),
                           **{k: manifest[k] for k in _FORMAT_FIELDS})  # type: ignore[arg-type]
@@ -274,8 +275,8 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
             )
     if manifest.get("word_bits") != mcfg.word_bits:
         raise MemImageError(
-            f"manifest word_bits = {manifest.get('word_bits')!r} but the formats give "
-            f"{mcfg.word_bits}"
+            f"{d / MANIFEST_NAME}: word_bits = {manifest.get('word_bits')!r} but the formats "
+            f"give {mcfg.word_bits}"
         )
     check_files(d, manifest)
     h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
