@@ -243,6 +243,7 @@ def claim_output_folder(path: str | Path, flag: str = "--out", *, kind: str | No
         raise OutputError(f"{flag} {given}: another irnuc run is writing it; wait for it to "
                           "finish or choose another output folder") from None
     _CLAIMS[p] = fh
+    _remove_stale(p)
     return given
 
 
@@ -257,6 +258,12 @@ def _release(p: Path) -> None:
     fh = _CLAIMS.pop(p, None)
     if fh is not None:
         fh.close()  # closing the file releases the flock
+
+
+def _remove_stale(p: Path) -> None:
+    """Under the lock of ``p`` every temporary folder of its name is a killed run's."""
+    for stale in p.parent.glob(f".{p.name}.tmp-*"):
+        _remove_tree(stale)
 
 
 def _remove_tree(path: Path) -> None:
@@ -285,9 +292,7 @@ def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = N
             file_lock(parent / f".{p.name}.lock", wait=False, what=f"{flag} {given}"))
     try:
         with lock:
-            # Under the lock every temporary folder of this name is a killed run's.
-            for stale in parent.glob(f".{p.name}.tmp-*"):
-                _remove_tree(stale)
+            _remove_stale(p)
             tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
             os.chmod(tmp, 0o777 & ~_umask())
             try:
