@@ -216,19 +216,27 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
     return manifest
 
 
-def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> None:
-    """Every file the manifest names exists and has its recorded SHA-256."""
+def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> dict[str, bytes]:
+    """Every file the manifest names exists and has its recorded SHA-256.
+
+    Returns the bytes that were checked, by name: a caller parses exactly those, so a folder
+    replaced while it is being read cannot mix two runs.
+    """
     d = Path(directory)
+    contents: dict[str, bytes] = {}
     for name, want in manifest["files"].items():  # type: ignore[union-attr]
         f = d / str(name)
         if Path(str(name)).name != str(name):
             raise MemImageError(f"{d / MANIFEST_NAME}: file name {name!r} is not a plain name")
         if not f.is_file():
             raise MemImageError(f"{f}: named by the manifest but missing")
-        got = file_sha256(f)
+        data = f.read_bytes()
+        got = hashlib.sha256(data).hexdigest()
         if got != want:
             raise MemImageError(f"{f}: SHA-256 {got} does not match the manifest ({want}); "
                                 "the file is corrupt or from another run")
+        contents[str(name)] = data
+    return contents
 
 
 def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
@@ -278,10 +286,10 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
             f"{d / MANIFEST_NAME}: word_bits = {manifest.get('word_bits')!r} but the formats "
             f"give {mcfg.word_bits}"
         )
-    check_files(d, manifest)
+    contents = check_files(d, manifest)
     h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
     n = h * w
-    raw = (d / BIN_NAME).read_bytes()
+    raw = contents[BIN_NAME]
     if manifest["sha256"] != manifest["files"].get(BIN_NAME):  # type: ignore[union-attr]
         raise MemImageError(f"{d / MANIFEST_NAME}: sha256 and files[{BIN_NAME!r}] disagree")
     nb = word_bytes(mcfg)
@@ -293,7 +301,7 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     buf[:, :nb] = np.frombuffer(raw, dtype=np.uint8).reshape(n, nb)
     words = buf.view("<u8").reshape(h, w).astype(np.uint64)
     # The hex image is read and compared in both modes: it is what $readmemh loads.
-    hex_words = _parse_hex(d / HEX_NAME, mcfg, n).reshape(h, w)
+    hex_words = _parse_hex(d / HEX_NAME, contents[HEX_NAME], mcfg, n).reshape(h, w)
     if not np.array_equal(hex_words, words):
         idx = tuple(int(i) for i in np.argwhere(hex_words != words)[0])
         raise MemImageError(
@@ -307,17 +315,24 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     return words, mcfg
 
 
-def _parse_hex(path: Path, cfg: PipelineConfig, n: int) -> np.ndarray:
+def _parse_hex(path: Path, data: bytes, cfg: PipelineConfig, n: int) -> np.ndarray:
     nd = hex_digits(cfg)
-    lines = path.read_text().splitlines()
+    try:
+        lines = data.decode("ascii").splitlines()
+    except UnicodeDecodeError as exc:
+        raise MemImageError(f"{path}: not ASCII text ({exc}); one hex word per line is "
+                            "required") from None
     if len(lines) != n:
         raise MemImageError(f"{path}: {len(lines)} lines, expected {n} words")
     out = np.empty(n, dtype=np.uint64)
     for i, line in enumerate(lines):
         if len(line) != nd:
             raise MemImageError(f"{path}: line {i + 1} = {line!r} is not {nd} hex digits")
-        try:
-            out[i] = int(line, 16)
-        except ValueError:
-            raise MemImageError(f"{path}: line {i + 1} = {line!r} is not hexadecimal") from None
+        # Digits only: int() would also take a sign, "0x" or "_" separators.
+        if line.strip(_HEX_DIGITS):
+            raise MemImageError(f"{path}: line {i + 1} = {line!r} is not hexadecimal")
+        out[i] = int(line, 16)
     return out
+
+
+_HEX_DIGITS = "0123456789abcdefABCDEF"
