@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import zipfile
 import zlib
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -58,13 +59,30 @@ def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]
     return out
 
 
+Headers = dict[str, tuple[tuple[int, ...], Any]]
+
+
+def arrays_bytes(headers: Headers) -> float:
+    """Bytes of every array of an ``.npz``, from its headers."""
+    import math
+
+    return float(sum(math.prod(shape) * dtype.itemsize for shape, dtype in headers.values()))
+
+
+def frames_work_bytes(shape: tuple[int, ...], per_code: float, per_pixel: float) -> float:
+    """Memory of the work on frames of ``shape`` (N, H, W) besides the frames themselves."""
+    import math
+
+    return per_code * math.prod(shape) + per_pixel * math.prod(shape[1:])
+
+
 def load_npz(path: Path, flag: str, required: tuple[str, ...],
-             bytes_per_element: dict[str, float] | None = None) -> dict[str, Any]:
+             work_bytes: Callable[[Headers], float] | None = None) -> dict[str, Any]:
     """Every array of an ``.npz`` file (no pickles), checked for the required keys.
 
-    ``bytes_per_element`` (``{key: bytes}``): the work that follows needs that much memory
-    per element of the array besides the array itself; checked, with every array's size,
-    against the available memory before anything is loaded.
+    ``work_bytes(headers)``: the memory the work that follows needs besides the arrays;
+    checked, with every array's size, against the available memory before anything is
+    loaded.
     """
     import math
 
@@ -81,10 +99,7 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     if objects:
         raise UserError(f"{flag} {path}: {objects[0]} is an object array (it would need "
                         "pickle); only numeric and text arrays are read")
-    need = 0.0
-    for key, (shape, dtype) in headers.items():
-        n = math.prod(shape)
-        need += n * (dtype.itemsize + (bytes_per_element or {}).get(key, 0.0))
+    need = arrays_bytes(headers) + (work_bytes(headers) if work_bytes is not None else 0.0)
     big = max(headers, key=lambda k: math.prod(headers[k][0]), default="")
     check_memory(need, f"{flag} {path}" + (f" ({big} {headers[big][0]} {headers[big][1]})"
                                            if big else ""),
@@ -96,15 +111,19 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
         raise UserError(f"{flag} {path}: damaged or truncated .npz ({exc})") from None
 
 
-def load_frames(value: str, flag: str = "--frames", work_bytes_per_code: float = 0.0
-                ) -> dict[str, Any]:
+def load_frames(value: str, flag: str = "--frames", work_per_code: float = 0.0,
+                work_per_pixel: float = 0.0) -> dict[str, Any]:
     """Frames written by ``irnuc frames``: codes (N, H, W) integers, temps (N,) kelvin,
-    adc_bits; every field checked. ``work_bytes_per_code``: memory the command needs per
-    code besides the frames (checked before loading)."""
+    adc_bits; every field checked. The work that follows needs ``work_per_code`` bytes per
+    code and ``work_per_pixel`` per pixel of a frame besides the frames (checked against
+    the available memory before loading)."""
     import numpy as np
 
+    def work(headers: Headers) -> float:
+        return frames_work_bytes(headers["codes"][0], work_per_code, work_per_pixel)
+
     path = frames_path(value, flag)
-    data = load_npz(path, flag, FRAMES_KEYS, {"codes": work_bytes_per_code})
+    data = load_npz(path, flag, FRAMES_KEYS, work)
     codes, temps, adc = data["codes"], data["temps"], data["adc_bits"]
     if not np.issubdtype(codes.dtype, np.integer):
         raise UserError(f"{flag} {path}: codes has dtype {codes.dtype}; integer ADC codes "

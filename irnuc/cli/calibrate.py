@@ -68,11 +68,12 @@ def _pipeline_file(value: str | None) -> str | None:
     return file if Path(file).exists() else None
 
 
-#: Memory per ADC code of the work after loading (docs/robustness.md): calibrate selects the
-#: two stacks and takes float64 statistics (a cast and a squared deviation per code);
-#: correct makes the output codes and their compressed file.
-CALIBRATE_BYTES_PER_CODE = 28.0
-CORRECT_BYTES_PER_CODE = 16.0
+#: Memory of the work after loading, per ADC code and per pixel of a frame, above measured
+#: peaks (docs/robustness.md): calibrate selects the two stacks and takes float64
+#: statistics (per code), then some twenty float64 maps (per pixel); correct makes the
+#: output codes and their compressed file.
+CALIBRATE_BYTES = {"per_code": 12.0, "per_pixel": 1500.0}
+CORRECT_BYTES = {"per_code": 8.0, "per_pixel": 128.0}
 
 
 def _run_calibrate(args: argparse.Namespace) -> int:
@@ -114,7 +115,8 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     for flag, v in (("--t-low", args.t_low), ("--t-high", args.t_high)):
         if v is not None and not (np.isfinite(v) and v > 0):
             raise UserError(f"{flag} {v}: must be a finite temperature above 0 K")
-    data = load_frames(args.frames, work_bytes_per_code=CALIBRATE_BYTES_PER_CODE)
+    data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
+                       work_per_pixel=CALIBRATE_BYTES["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     temps = data["temps"]
     sel_lo = _pick(temps, args.t_low, float(np.min(temps)), "--t-low")
@@ -195,7 +197,8 @@ def _run_correct(args: argparse.Namespace) -> int:
         words, cfg = read_memimage(coeffs, want, source=args.source)
     except UserError as exc:
         raise flagged("--coeffs", args.coeffs, exc) from None
-    data = load_frames(args.frames, work_bytes_per_code=CORRECT_BYTES_PER_CODE)
+    data = load_frames(args.frames, work_per_code=CORRECT_BYTES["per_code"],
+                       work_per_pixel=CORRECT_BYTES["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     codes = data["codes"]
     if codes.shape[1:] != words.shape:

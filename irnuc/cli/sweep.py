@@ -155,28 +155,36 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     return 0
 
 
+def sweep_bytes(cfg: dict, n_cal: int, n_eval: int, sets: int, workers: int) -> float:
+    """Estimated peak memory of a sweep (bytes, above measured peaks, docs/robustness.md):
+    the simulation of the calibration frames, then per (ADC, output) set the evaluation
+    codes and float coefficients, and per worker a copy of a set and the float NUC of the
+    evaluation frames."""
+    from irnuc.cli.calibrate import CALIBRATE_BYTES
+    from irnuc.model.pipeline import simulation_bytes
+
+    pixels = cfg["fpa"]["active_rows"] * cfg["fpa"]["active_cols"]
+    calibration = pixels * (CALIBRATE_BYTES["per_pixel"]
+                            + n_cal * (2 + CALIBRATE_BYTES["per_code"]))
+    per_set = pixels * (2 * n_eval + 64)
+    per_worker = per_set + pixels * n_eval * 40
+    return (max(simulation_bytes(cfg, n_cal), calibration) + sets * per_set
+            + max(workers, 1) * per_worker)
+
+
 def _check_sweep_memory(args: argparse.Namespace, sensor, axes) -> None:
     """Validate the sensor for every ADC width and check, before any work, that the frames
     of the sweep fit in memory (estimate in the message)."""
     from irnuc.common.memory import check_memory
-    from irnuc.model.pipeline import simulation_bytes
 
-    n_cal = 2 * sensor.repeats
     n_eval = len(sensor.t_eval)
-    sets, sim = 0, 0.0
-    for adc in dict.fromkeys(axes.adc_bits):
-        cfg = sensor.model_config(adc)  # the sensor itself was checked: names the field
-        f = cfg["fpa"]
-        pixels = f["active_rows"] * f["active_cols"]
-        sim = max(sim, simulation_bytes(cfg, n_cal))
-        sets += len(dict.fromkeys(axes.out_bits))
-    # Kept per calibration set: evaluation codes and float coefficients; per worker: a
-    # copy of a set and the float NUC of the evaluation frames.
-    per_set = pixels * (2 * n_eval + 64)
-    per_worker = per_set + pixels * n_eval * 40
-    need = sim + sets * per_set + max(args.workers, 1) * per_worker
+    sets = len(dict.fromkeys(axes.out_bits))
+    need = max(sweep_bytes(sensor.model_config(adc), 2 * sensor.repeats, n_eval,
+                           sets * len(dict.fromkeys(axes.adc_bits)), args.workers)
+               for adc in dict.fromkeys(axes.adc_bits))
     check_memory(need, f"--rows x --cols = {args.rows} x {args.cols} with --repeats "
-                       f"{args.repeats}, {n_eval} --t-eval value(s), {sets} (ADC, output) width "
+                       f"{args.repeats}, {n_eval} --t-eval value(s), "
+                       f"{sets * len(dict.fromkeys(axes.adc_bits))} (ADC, output) width "
                        f"pair(s) and --workers {args.workers}",
                  "use a smaller frame, fewer frames or fewer workers")
 
