@@ -98,11 +98,12 @@ def _run_calibrate(args: argparse.Namespace) -> int:
             raise UserError(f"--thresholds {args.thresholds}: is a folder, not a TOML file")
         if not Path(args.thresholds).is_file():
             raise UserError(f"--thresholds {args.thresholds}: no such file")
-        try:
-            th = load_thresholds(args.thresholds)
-        except UserError as exc:
-            raise flagged("--thresholds", args.thresholds, exc) from None
-    th = load_thresholds(args.thresholds, overrides=overrides)
+    try:
+        th = load_thresholds(args.thresholds, overrides=overrides)
+    except UserError as exc:
+        if args.thresholds is None or str(exc).startswith("--set"):
+            raise  # the message names --set or the shipped file
+        raise flagged("--thresholds", args.thresholds, exc) from None
     targets = None
     if args.targets is not None:
         targets = tuple(parse_floats(args.targets, "--targets", "output codes"))
