@@ -137,8 +137,6 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
 
 def build_binary(top: str, cfg: PipelineConfig, args: Sequence[str] = ()) -> Path:
     """A standalone Verilator ``--binary`` build of ``top`` (no cocotb); its executable."""
-    import subprocess
-
     params = top_parameters(top, cfg)
     options = [*BUILD_ARGS, *args, "--binary"]
     key = build_digest(top, params, options)
@@ -148,9 +146,8 @@ def build_binary(top: str, cfg: PipelineConfig, args: Sequence[str] = ()) -> Pat
         cmd = [str(verilator_executable()), "--binary", "-Mdir", str(build_dir),
                "--top-module", top, "-o", top, *BUILD_ARGS, *args,
                *[f"-G{k}={v}" for k, v in params.items()], *[str(p) for p in hdl_sources(top)]]
-        with log.open("w") as fh:
-            proc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT,
-                                  env=verilator_env(), check=False)
+        # In its own process group, dying with irnuc (irnuc.common.process).
+        proc = run_child(cmd, env=verilator_env(), log=log)
         if proc.returncode != 0:
             raise RtlError(f"Verilator build of {top} failed (exit {proc.returncode}); see {log}")
 

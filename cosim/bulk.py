@@ -8,7 +8,6 @@ outputs are checked by the one scoreboard (:class:`~irnuc.cosim.scoreboard.TopSc
 from __future__ import annotations
 
 import json
-import subprocess
 import tempfile
 import time
 from dataclasses import dataclass
@@ -152,7 +151,9 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
            str(n), str(w), str(h), str(np.dtype(pix_dtype).itemsize), str(idle_percent),
            str(stall_percent), str(seed)]
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    from irnuc.common.process import run_child
+
+    proc = run_child(cmd, capture=True)  # its own process group; dies with irnuc
     sim_seconds = time.perf_counter() - t0
     lines = proc.stdout.strip().splitlines()
     info = json.loads(lines[-1]) if lines and lines[-1].startswith("{") else {}

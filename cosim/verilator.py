@@ -72,4 +72,6 @@ def lint(top: str, cfg: PipelineConfig) -> subprocess.CompletedProcess[str]:
         *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],
         *[str(p) for p in hdl_sources(top)],
     ]
-    return subprocess.run(cmd, capture_output=True, text=True, env=verilator_env(), check=False)
+    from irnuc.common.process import run_child
+
+    return run_child(cmd, env=verilator_env(), capture=True)  # dies with irnuc

@@ -14,7 +14,18 @@ from irnuc.common.cache import cache_dir
 
 # numba's compiled-kernel cache goes to the irnuc cache, not beside the sources.
 if "NUMBA_CACHE_DIR" not in os.environ:
-    os.environ["NUMBA_CACHE_DIR"] = str(cache_dir("numba"))
+    try:
+        os.environ["NUMBA_CACHE_DIR"] = str(cache_dir("numba"))
+    except OSError:
+        # An unwritable cache (read-only home, $IRNUC_CACHE_DIR a file) must not stop every
+        # command at import: compile into a private temporary folder instead.
+        import tempfile
+
+        _tmp = os.path.join(tempfile.gettempdir(), f"irnuc-numba-{os.getuid()}")
+        os.makedirs(_tmp, mode=0o700, exist_ok=True)
+        if os.stat(_tmp).st_uid != os.getuid():  # someone else's: never load their code
+            _tmp = tempfile.mkdtemp(prefix="irnuc-numba-")
+        os.environ["NUMBA_CACHE_DIR"] = _tmp
     if "numba" in sys.modules:  # imported before irnuc: its config was already read
         sys.modules["numba"].config.CACHE_DIR = os.environ["NUMBA_CACHE_DIR"]
 

@@ -9,11 +9,12 @@ the sine condition, sin(theta) = 1 / (2 N) with N the working F-number. The defa
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from irnuc.model.core import optics as _k
-from irnuc.model.validate import check_choice, check_int, check_scalar
+from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 #: Cone (projected solid angle / pi) methods, selected by name.
 CONE_METHODS = {"f_number": _k.cone_factor_f_number, "paper_fov": _k.cone_factor_paper_fov}
@@ -93,6 +94,27 @@ def cos4_map(rows: int, cols: int, pitch: float, focal_length: float,
     pitch = check_scalar("fpa.pitch", pitch, 0.0, 1e-3, lo_open=True, unit="m")
     focal_length = check_scalar("optics.focal_length", focal_length, 0.0, 10.0, lo_open=True,
                                 unit="m")
-    cr, cc = centre if centre is not None else ((rows - 1) / 2.0, (cols - 1) / 2.0)
+    cr, cc = _check_centre(centre, rows, cols)
+    _check_cos4_memory(rows, cols)
     out = np.empty((rows, cols), np.float64)
     return _k.cos4_map(rows, cols, float(cr), float(cc), pitch, focal_length, out)
+
+
+def _check_centre(centre: Any, rows: int, cols: int) -> tuple[float, float]:
+    """The optical centre (row, col): two finite numbers, default the geometric centre."""
+    if centre is None:
+        return (rows - 1) / 2.0, (cols - 1) / 2.0
+    try:
+        cr, cc = centre
+    except (TypeError, ValueError):
+        raise ConfigError(f"centre = {centre!r} must be two numbers (row, col) in pixel-index "
+                          "units") from None
+    return check_scalar("centre[0]", cr), check_scalar("centre[1]", cc)
+
+
+def _check_cos4_memory(rows: int, cols: int) -> None:
+    from irnuc.common.memory import check_memory
+
+    # The map itself (float64) and its temporaries in the callers (coupling products).
+    check_memory(rows * cols * 8 * 3, f"cos4_map: rows x cols = {rows} x {cols}",
+                 "use a smaller array")

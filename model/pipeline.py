@@ -430,6 +430,7 @@ class Pipeline:
     """
 
     def __init__(self, cfg: Mapping[str, Any], seed: int = 0) -> None:
+        cfg = checked_config(cfg)
         self.cfg = cfg
         self.seed = check_int("seed", seed, 0, 2**63 - 1)
         f = cfg["fpa"]
@@ -493,6 +494,7 @@ class Pipeline:
         unknown = [o for o in outputs if o not in OUTPUTS]
         if unknown:
             raise ConfigError(f"outputs: unknown name(s) {unknown}; known {sorted(OUTPUTS)}")
+        check_simulation_memory(self.cfg, t.size, outputs)
         wanted = [OUTPUTS[o] for o in outputs]
         if "codes" in outputs:
             wanted += ["defects", "status", "dT"]  # ground truth and diagnostics
@@ -512,6 +514,53 @@ class Pipeline:
             diagnostics=_diagnostics(self, values) if "status" in values else {},
             counts=dict(self.counts - before),
         )
+
+
+# ---- argument and size checks at the API boundary ---------------------------------------
+
+def checked_config(cfg: Any) -> dict[str, Any]:
+    """``cfg`` validated (a no-op copy for a configuration from ``load_preset``/``load_config``);
+    a bare dict, ``None`` or a half-filled mapping is one :class:`ConfigError` naming ``cfg``
+    and the field, instead of a ``KeyError`` deep inside a stage."""
+    from irnuc.model.config import validate
+
+    if not isinstance(cfg, Mapping):
+        raise ConfigError(f"cfg = {cfg!r:.60} is not a sensor configuration; use "
+                          "model.load_preset(...) or model.load_config(...)")
+    return validate(cfg, source="cfg")
+
+
+#: Generous bytes per pixel of the full array: kept per run (parameters, defects, optics),
+#: per frame of a chunk (the stages' float64 products and temporaries), and per frame of
+#: the result for codes (uint16 + status + dT kept for the diagnostics) and for each other
+#: per-frame output (float64). Checked against measured peaks (docs/robustness.md).
+_BYTES_STATIC, _BYTES_CHUNK, _BYTES_CODES = 200, 160, 11
+_PER_FRAME_OUTPUTS = ("voltage", "bolometer_voltage", "power", "scene_radiance", "scene_temperature")
+
+
+def simulation_bytes(cfg: Mapping[str, Any], n_frames: int, outputs: Sequence[str] = ("codes",)
+                     ) -> int:
+    """Estimated peak memory of simulating ``n_frames`` frames of ``cfg`` (bytes)."""
+    f = cfg["fpa"]
+    b, k = f["boundary"], f["blind"]
+    pixels = (f["active_rows"] + b[0] + b[1] + k[0] + k[1]) * (f["active_cols"] + b[2] + b[3]
+                                                             + k[2] + k[3])
+    chunk = min(int(cfg["run"]["chunk_frames"]), n_frames)
+    per_frame = _BYTES_CODES + 8 * sum(o in outputs for o in _PER_FRAME_OUTPUTS)
+    # The result is concatenated from its chunks: twice its size at the peak.
+    return pixels * (_BYTES_STATIC + _BYTES_CHUNK * chunk + 2 * n_frames * per_frame)
+
+
+def check_simulation_memory(cfg: Mapping[str, Any], n_frames: int,
+                            outputs: Sequence[str] = ("codes",), what: str = "") -> None:
+    """:class:`~irnuc.common.memory.ResourceError` before any work when the frames would not fit."""
+    from irnuc.common.memory import check_memory
+
+    f = cfg["fpa"]
+    check_memory(simulation_bytes(cfg, n_frames, outputs),
+                 what or (f"simulate: {n_frames} frame(s) (temps x repeats) of fpa.active_rows x "
+                          f"fpa.active_cols = {f['active_rows']} x {f['active_cols']} pixels"),
+                 "use fewer or smaller frames")
 
 
 def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform",

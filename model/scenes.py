@@ -74,12 +74,25 @@ def _load_map(params: Mapping[str, Any]) -> np.ndarray:
         raise ConfigError("scene 'map' needs either map (array, K) or path (file)")
     path = Path(params["path"])
     if not path.is_file():
-        raise FileNotFoundError(f"scene.path {str(path)!r} does not exist")
+        raise ConfigError(f"scene.path = {str(path)!r}: no such file (an .npy map in K or an image)")
     if path.suffix == ".npy":
-        return check_array("scene.path", np.load(path), 0.0, 1e5, lo_open=True, unit="K")
+        with path.open("rb") as fh:
+            if fh.read(6) != b"\x93NUMPY":  # the .npy magic: text or garbage is named as such
+                raise ConfigError(f"scene.path = {str(path)!r} is not a readable .npy array "
+                                  "(no .npy header; write it with numpy.save)")
+        try:
+            arr = np.load(path, allow_pickle=False)
+        except (OSError, ValueError, EOFError) as exc:
+            raise ConfigError(f"scene.path = {str(path)!r} is not a readable .npy array ({exc})"
+                              ) from None
+        return check_array("scene.path", arr, 0.0, 1e5, lo_open=True, unit="K")
     import matplotlib.image as mpimg
 
-    img = np.asarray(mpimg.imread(path), dtype=np.float64)
+    try:
+        img = np.asarray(mpimg.imread(path), dtype=np.float64)
+    except Exception as exc:  # PIL raises its own classes for a file that is not an image
+        raise ConfigError(f"scene.path = {str(path)!r} is not a readable image or .npy map "
+                          f"({type(exc).__name__}: {exc})") from None
     if img.ndim == 3:
         img = img[..., :3].mean(axis=2)
     t_min = check_scalar("scene.t_min", params.get("t_min", 280.0), 0.0, 1e5, lo_open=True, unit="K")

@@ -15,6 +15,7 @@ import numpy as np
 
 from irnuc.common import schema
 from irnuc.nuc_fixed.config import ConfigError
+from irnuc.nuc_fixed.validate import InputError
 
 DETECTION_TOML = Path(__file__).with_name("detection.toml")
 
@@ -90,6 +91,9 @@ def load_thresholds(path: str | Path | None = None, section: str = "default",
     table = schema.read_toml(p)
     if section not in table:
         raise ConfigError(f"{p}: no [{section}] table; found {', '.join(table) or 'none'}")
+    if not isinstance(table[section], dict):
+        raise ConfigError(f"{p}: [{section}] must be a table of thresholds, not "
+                          f"{type(table[section]).__name__}")
     entry = dict(table[section])
     try:
         schema.check(entry, THRESHOLDS_SCHEMA, source=str(p), prefix=section)
@@ -149,10 +153,10 @@ def detect_response(stats: StackStats, th: DetectionThresholds) -> tuple[np.ndar
     reasons[resp == 0] |= np.uint16(Reason.EQUAL_RESPONSE)
     usable = reasons == 0
     if not usable.any():
-        raise ValueError("no usable pixel: every pixel is stuck, at a rail or of equal response")
+        raise InputError("no usable pixel: every pixel is stuck, at a rail or of equal response")
     med = float(np.median(resp[usable]))
     if not med > 0:
-        raise ValueError(
+        raise InputError(
             f"median response (mean high - mean low) = {med:g} codes; it must be positive: "
             "are the low and high temperature frames swapped?"
         )

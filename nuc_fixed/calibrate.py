@@ -130,9 +130,13 @@ def calibrate(
         t_lo = float(stats.mean_lo[pre_good].mean()) * scale
         t_hi = float(stats.mean_hi[pre_good].mean()) * scale
     else:
-        if len(targets) != 2 or not all(np.isfinite(targets)):
+        try:
+            tv = np.asarray(targets, dtype=np.float64)
+        except (TypeError, ValueError):
+            tv = np.array([np.nan])
+        if tv.shape != (2,) or not np.isfinite(tv).all():
             raise ConfigError(f"targets = {targets!r} must be two finite numbers (output codes)")
-        t_lo, t_hi = (float(t) for t in targets)
+        t_lo, t_hi = (float(t) for t in tv)
     full_out = float(2**cfg.out_bits)
     for nm, t in (("target low", t_lo), ("target high", t_hi)):
         if not 0.0 <= t <= full_out - 1:
@@ -157,7 +161,7 @@ def calibrate(
     bad = reasons != 0
     good = ~bad
     if not good.any():
-        raise ValueError("every pixel was flagged bad; check the thresholds and the frames")
+        raise InputError("every pixel was flagged bad; check the thresholds and the frames")
 
     # Flagged pixels get the median codes, so an uncorrectable pixel still looks plausible.
     gfill = int(np.median(gcode[good]))

@@ -200,10 +200,15 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
             f"{path}: version = {manifest.get('version')!r}; this reader supports "
             f"{MEMIMAGE_VERSION}"
         )
+    words = {dict: "a JSON object", int: "an integer", str: "a string"}
     for key, kind in (("files", dict), ("height", int), ("width", int), ("sha256", str),
                       ("format_sha256", str)):
         if not isinstance(manifest.get(key), kind) or isinstance(manifest.get(key), bool):
-            raise MemImageError(f"{path}: field {key!r} is missing or not a {kind.__name__}")
+            raise MemImageError(f"{path}: field {key!r} is missing or not {words[kind]}")
+    unhashed = [n for n in (BIN_NAME, HEX_NAME) if n not in manifest["files"]]  # type: ignore[operator]
+    if unhashed:
+        raise MemImageError(f"{path}: files names no SHA-256 of {', '.join(unhashed)}; every "
+                            "memory image file must be hashed")
     fmt = {k: manifest.get(k) for k in _FORMAT_FIELDS}
     if _format_sha256(fmt) != manifest["format_sha256"]:
         raise MemImageError(f"{path}: the format fields ({', '.join(_FORMAT_FIELDS)}) do not "
@@ -211,26 +216,34 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
     return manifest
 
 
-def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> None:
-    """Every file the manifest names exists and has its recorded SHA-256."""
+def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> dict[str, bytes]:
+    """Every file the manifest names exists and has its recorded SHA-256.
+
+    Returns the bytes that were checked, by name: a caller parses exactly those, so a folder
+    replaced while it is being read cannot mix two runs.
+    """
     d = Path(directory)
+    contents: dict[str, bytes] = {}
     for name, want in manifest["files"].items():  # type: ignore[union-attr]
         f = d / str(name)
         if Path(str(name)).name != str(name):
             raise MemImageError(f"{d / MANIFEST_NAME}: file name {name!r} is not a plain name")
         if not f.is_file():
             raise MemImageError(f"{f}: named by the manifest but missing")
-        got = file_sha256(f)
+        data = f.read_bytes()
+        got = hashlib.sha256(data).hexdigest()
         if got != want:
             raise MemImageError(f"{f}: SHA-256 {got} does not match the manifest ({want}); "
                                 "the file is corrupt or from another run")
+        contents[str(name)] = data
+    return contents
 
 
 def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
     """The pipeline configuration recorded in a manifest."""
     missing = [k for k in ("config", *_FORMAT_FIELDS) if k not in manifest]
     if missing:
-        raise MemImageError(f"manifest is missing field(s) {missing}")
+        raise MemImageError(f"{MANIFEST_NAME} is missing field(s) {missing}")
     return PipelineConfig(name=str(manifest["config"]),
                           description=str(manifest.get("description", "")),
                           **{k: manifest[k] for k in _FORMAT_FIELDS})  # type: ignore[arg-type]
@@ -270,13 +283,13 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
             )
     if manifest.get("word_bits") != mcfg.word_bits:
         raise MemImageError(
-            f"manifest word_bits = {manifest.get('word_bits')!r} but the formats give "
-            f"{mcfg.word_bits}"
+            f"{d / MANIFEST_NAME}: word_bits = {manifest.get('word_bits')!r} but the formats "
+            f"give {mcfg.word_bits}"
         )
-    check_files(d, manifest)
+    contents = check_files(d, manifest)
     h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
     n = h * w
-    raw = (d / BIN_NAME).read_bytes()
+    raw = contents[BIN_NAME]
     if manifest["sha256"] != manifest["files"].get(BIN_NAME):  # type: ignore[union-attr]
         raise MemImageError(f"{d / MANIFEST_NAME}: sha256 and files[{BIN_NAME!r}] disagree")
     nb = word_bytes(mcfg)
@@ -288,7 +301,7 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     buf[:, :nb] = np.frombuffer(raw, dtype=np.uint8).reshape(n, nb)
     words = buf.view("<u8").reshape(h, w).astype(np.uint64)
     # The hex image is read and compared in both modes: it is what $readmemh loads.
-    hex_words = _parse_hex(d / HEX_NAME, mcfg, n).reshape(h, w)
+    hex_words = _parse_hex(d / HEX_NAME, contents[HEX_NAME], mcfg, n).reshape(h, w)
     if not np.array_equal(hex_words, words):
         idx = tuple(int(i) for i in np.argwhere(hex_words != words)[0])
         raise MemImageError(
@@ -302,17 +315,24 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     return words, mcfg
 
 
-def _parse_hex(path: Path, cfg: PipelineConfig, n: int) -> np.ndarray:
+def _parse_hex(path: Path, data: bytes, cfg: PipelineConfig, n: int) -> np.ndarray:
     nd = hex_digits(cfg)
-    lines = path.read_text().splitlines()
+    try:
+        lines = data.decode("ascii").splitlines()
+    except UnicodeDecodeError as exc:
+        raise MemImageError(f"{path}: not ASCII text ({exc}); one hex word per line is "
+                            "required") from None
     if len(lines) != n:
         raise MemImageError(f"{path}: {len(lines)} lines, expected {n} words")
     out = np.empty(n, dtype=np.uint64)
     for i, line in enumerate(lines):
         if len(line) != nd:
             raise MemImageError(f"{path}: line {i + 1} = {line!r} is not {nd} hex digits")
-        try:
-            out[i] = int(line, 16)
-        except ValueError:
-            raise MemImageError(f"{path}: line {i + 1} = {line!r} is not hexadecimal") from None
+        # Digits only: int() would also take a sign, "0x" or "_" separators.
+        if line.strip(_HEX_DIGITS):
+            raise MemImageError(f"{path}: line {i + 1} = {line!r} is not hexadecimal")
+        out[i] = int(line, 16)
     return out
+
+
+_HEX_DIGITS = "0123456789abcdefABCDEF"

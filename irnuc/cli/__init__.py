@@ -18,6 +18,7 @@ import errno
 import importlib
 import sys
 from collections.abc import Callable, Sequence
+from typing import NoReturn
 
 from irnuc.cli._args import add_verbosity, set_verbosity
 from irnuc.common.errors import ToolError, UserError
@@ -35,8 +36,16 @@ def _version() -> str:
     return __version__
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse, but a usage error is ONE line (flag, problem, where to look), exit 2,
+    like every other user error."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="irnuc",
         description="Infrared NUC hardware co-simulation and fixed-point exploration toolkit.",
     )
@@ -52,6 +61,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
             sp = sub.add_parser(name, help=help_text, description=help_text)
             add_verbosity(sp)
             add_arguments(sp)
+            sp.set_defaults(_parser=sp)  # so a stray argument is reported by its command
             commands[name] = command
     return parser, commands
 
@@ -67,25 +77,35 @@ def _os_error_line(exc: OSError) -> str | None:
     return f"{exc.filename}: {what.get(exc.errno, exc.strerror or 'cannot be used')}"
 
 
+def _one_line(text: object) -> str:
+    """A message as one line (a file's own text quoted in it may hold line breaks)."""
+    return " ".join(str(text).split())
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser, commands = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    sub = args.__dict__.pop("_parser")
+    if extra:
+        sub.error(f"unrecognized arguments: {' '.join(extra)}")
     set_verbosity(getattr(args, "verbosity", 1))
     _, _, run = commands[args.command]
     prefix = f"irnuc {args.command}: error:"
+    from irnuc.common.io import release_claims
+
     try:
         return int(run(args) or 0)
     except UserError as exc:
-        print(f"{prefix} {exc}", file=sys.stderr)
+        print(f"{prefix} {_one_line(exc)}", file=sys.stderr)
         return 2
     except ToolError as exc:
-        print(f"{prefix} {exc}", file=sys.stderr)
+        print(f"{prefix} {_one_line(exc)}", file=sys.stderr)
         return 3
     except OSError as exc:
         line = _os_error_line(exc)
         if line is None:
             raise
-        print(f"{prefix} {line}", file=sys.stderr)
+        print(f"{prefix} {_one_line(line)}", file=sys.stderr)
         return 2
     except MemoryError:
         print(f"{prefix} out of memory; use a smaller frame, fewer frames or fewer points",
@@ -94,6 +114,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"irnuc {args.command}: interrupted; outputs left as they were", file=sys.stderr)
         return 130
+    finally:
+        release_claims()  # the --out lock of a command that ended before its output
 
 
 if __name__ == "__main__":

@@ -112,14 +112,24 @@ def parse_floats(text: str, flag: str, unit: str = "") -> list[float]:
     return vals
 
 
+def flagged(flag: str, value: str, exc: Exception) -> UserError:
+    """``exc`` as a one-line :class:`UserError` that starts with the flag and its value."""
+    msg = str(exc)
+    if msg.startswith(flag):
+        return UserError(msg)
+    if msg.startswith(f"{value}:") or msg.startswith(f"{value} "):
+        return UserError(f"{flag} {msg}")
+    return UserError(f"{flag} {value}: {msg}")
+
+
 def load_pipeline_arg(value: str, flag: str = "--pipeline"):
     """The pipeline configuration a ``--pipeline`` value names (name or TOML file)."""
-    from irnuc.nuc_fixed.config import ConfigError, load_pipeline
+    from irnuc.nuc_fixed.config import load_pipeline
 
     try:
         return load_pipeline(value)
-    except ConfigError as exc:
-        raise UserError(f"{flag} {value}: {exc}") from None
+    except UserError as exc:
+        raise flagged(flag, value, exc) from None
 
 
 def load_sensor_arg(value: str, overrides: dict[str, Any], flag: str = "--sensor"):
@@ -127,7 +137,10 @@ def load_sensor_arg(value: str, overrides: dict[str, Any], flag: str = "--sensor
     from irnuc import model
 
     if value.endswith(".toml") or "/" in value:
-        return model.load_config(value, overrides)
+        try:
+            return model.load_config(value, overrides)
+        except UserError as exc:
+            raise flagged(flag, value, exc) from None
     if value not in model.preset_names():
         raise UserError(f"{flag} {value!r} is neither a preset ({', '.join(model.preset_names())}) "
                         "nor a .toml file")

@@ -60,32 +60,64 @@ def _add_calibrate(p: argparse.ArgumentParser) -> None:
                    help="override one detection threshold (repeatable)")
 
 
+def _pipeline_file(value: str | None) -> str | None:
+    """The file a ``--pipeline`` value reads, if it names one (``FILE.toml[:NAME]``)."""
+    if value is None:
+        return None
+    file = value.partition(":")[0] if value.count(":") == 1 else value
+    return file if Path(file).exists() else None
+
+
+#: Memory of the work after loading, per ADC code and per pixel of a frame, above measured
+#: peaks (docs/robustness.md): calibrate selects the two stacks and takes float64
+#: statistics (per code), then some twenty float64 maps (per pixel); correct makes the
+#: output codes and their compressed file.
+CALIBRATE_BYTES = {"per_code": 12.0, "per_pixel": 1500.0}
+CORRECT_BYTES = {"per_code": 8.0, "per_pixel": 128.0}
+
+
 def _run_calibrate(args: argparse.Namespace) -> int:
     import json
 
     import numpy as np
 
-    from irnuc.cli._args import parse_floats
+    from irnuc.cli._args import flagged, parse_floats
     from irnuc.cli._files import load_frames
-    from irnuc.common.io import check_output_folder, output_folder, write_bytes_atomic
+    from irnuc.common.io import claim_output_folder, output_folder, write_bytes_atomic
     from irnuc.nuc_fixed.badpix import load_thresholds, reason_names
     from irnuc.nuc_fixed.calibrate import calibrate, summary_text
     from irnuc.nuc_fixed.memimage import write_memimage
 
-    out = check_output_folder(args.out)
+    out = claim_output_folder(args.out, kind="calibrate", inputs={
+        "--frames": args.frames, "--pipeline": _pipeline_file(args.pipeline),
+        "--thresholds": args.thresholds})
     cfg = load_pipeline_arg(args.pipeline)
-    if args.thresholds is not None and not Path(args.thresholds).is_file():
-        raise UserError(f"--thresholds {args.thresholds}: no such file")
-    th = load_thresholds(args.thresholds, overrides=parse_assignments(args.set, "--set"))
+    overrides = parse_assignments(args.set, "--set")
+    if args.thresholds is not None:
+        if Path(args.thresholds).is_dir():
+            raise UserError(f"--thresholds {args.thresholds}: is a folder, not a TOML file")
+        if not Path(args.thresholds).is_file():
+            raise UserError(f"--thresholds {args.thresholds}: no such file")
+    try:
+        th = load_thresholds(args.thresholds, overrides=overrides)
+    except UserError as exc:
+        if args.thresholds is None or str(exc).startswith("--set"):
+            raise  # the message names --set or the shipped file
+        raise flagged("--thresholds", args.thresholds, exc) from None
     targets = None
     if args.targets is not None:
         targets = tuple(parse_floats(args.targets, "--targets", "output codes"))
         if len(targets) != 2:
             raise UserError(f"--targets {args.targets!r}: expected two numbers LOW,HIGH")
+        top = (1 << cfg.out_bits) - 1
+        if not all(0 <= t <= top for t in targets):
+            raise UserError(f"--targets {args.targets!r}: each level must lie in 0..{top} (the "
+                            f"output codes of out_bits = {cfg.out_bits})")
     for flag, v in (("--t-low", args.t_low), ("--t-high", args.t_high)):
         if v is not None and not (np.isfinite(v) and v > 0):
             raise UserError(f"{flag} {v}: must be a finite temperature above 0 K")
-    data = load_frames(args.frames)
+    data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
+                       work_per_pixel=CALIBRATE_BYTES["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     temps = data["temps"]
     sel_lo = _pick(temps, args.t_low, float(np.min(temps)), "--t-low")
@@ -96,8 +128,11 @@ def _run_calibrate(args: argparse.Namespace) -> int:
         raise UserError(f"--t-low {t_lo:g} K must be below --t-high {t_hi:g} K (the frames "
                         "need two temperatures)")
     codes = data["codes"]
-    cal = calibrate(codes[sel_lo], codes[sel_hi], cfg, thresholds=th, targets=targets,
-                    rounding=args.coeff_rounding)
+    try:
+        cal = calibrate(codes[sel_lo], codes[sel_hi], cfg, thresholds=th, targets=targets,
+                        rounding=args.coeff_rounding)
+    except UserError as exc:  # frames the calibration cannot use (too large, no good pixel)
+        raise flagged("--frames", args.frames, exc) from None
 
     words = cal.words()
     rows = ["row,col,reason_code,reasons"]
@@ -107,7 +142,7 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     summary = dict(cal.summary) | {"frames_file": str(args.frames), "t_low": t_lo,
                                    "t_high": t_hi}
     text = summary_text(cal)
-    with output_folder(out) as tmp:
+    with output_folder(out, kind="calibrate") as tmp:
         write_bytes_atomic(tmp / "coeffs.npz", _npz_bytes(
             gain_code=cal.gain_code, offset_code=cal.offset_code, bad=cal.bad,
             reasons=cal.reasons, gain=cal.gain, offset=cal.offset, words=words,
@@ -143,12 +178,15 @@ def _add_correct(p: argparse.ArgumentParser) -> None:
 def _run_correct(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from irnuc.cli._args import flagged
     from irnuc.cli._files import load_frames
-    from irnuc.common.io import check_output_folder, output_folder, write_bytes_atomic
+    from irnuc.common.io import claim_output_folder, output_folder, write_bytes_atomic
     from irnuc.nuc_fixed.memimage import read_memimage
     from irnuc.nuc_fixed.top import nuc_dpc_top
 
-    out = check_output_folder(args.out)
+    out = claim_output_folder(args.out, kind="correct", inputs={
+        "--frames": args.frames, "--coeffs": args.coeffs,
+        "--pipeline": _pipeline_file(args.pipeline)})
     coeffs = Path(args.coeffs)
     if not coeffs.is_dir():
         raise UserError(f"--coeffs {args.coeffs}: not a folder (give the --out folder of "
@@ -156,8 +194,12 @@ def _run_correct(args: argparse.Namespace) -> int:
     if not (coeffs / "manifest.json").is_file():
         raise UserError(f"--coeffs {args.coeffs}: no manifest.json (run irnuc calibrate)")
     want = load_pipeline_arg(args.pipeline) if args.pipeline else None
-    words, cfg = read_memimage(coeffs, want, source=args.source)
-    data = load_frames(args.frames)
+    try:
+        words, cfg = read_memimage(coeffs, want, source=args.source)
+    except UserError as exc:
+        raise flagged("--coeffs", args.coeffs, exc) from None
+    data = load_frames(args.frames, work_per_code=CORRECT_BYTES["per_code"],
+                       work_per_pixel=CORRECT_BYTES["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     codes = data["codes"]
     if codes.shape[1:] != words.shape:
@@ -166,7 +208,7 @@ def _run_correct(args: argparse.Namespace) -> int:
                         f"{words.shape[0]} x {words.shape[1]}")
     corrected = nuc_dpc_top(codes, words, cfg)
     extra = {"defect_kind": data["defect_kind"]} if "defect_kind" in data else {}
-    with output_folder(out) as tmp:
+    with output_folder(out, kind="correct") as tmp:
         write_bytes_atomic(tmp / CORRECTED_NAME, _npz_bytes(
             corrected=corrected, temps=data["temps"], out_bits=np.int64(cfg.out_bits),
             config=np.str_(cfg.name), **extra))

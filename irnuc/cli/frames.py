@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 from typing import Any
 
 from irnuc.cli._args import (
@@ -37,18 +38,36 @@ def run_frames(args: argparse.Namespace) -> int:
 
     from irnuc import model
     from irnuc.common.errors import UserError
-    from irnuc.common.io import check_output_folder, output_folder, write_atomic
+    from irnuc.common.io import claim_output_folder, output_folder, write_atomic
+    from irnuc.model.pipeline import check_simulation_memory
+    from irnuc.model.scenes import check_temps, scene_temperatures
 
-    out = check_output_folder(args.out)
+    scene_params = parse_assignments(args.scene_param, "--scene-param")
+    out = claim_output_folder(args.out, kind="frames", inputs={
+        "--sensor": args.sensor if Path(args.sensor).exists() else None,
+        "--scene-param path": scene_params.get("path")})
     if not 1 <= args.repeats <= 100_000:
         raise UserError(f"--repeats {args.repeats} is outside the allowed range 1..100000")
-    if args.seed < 0:
+    if args.seed < 0 or args.seed > 2**63 - 1:
         raise UserError(f"--seed {args.seed} is outside the allowed range 0..2^63-1")
     cfg = load_sensor_arg(args.sensor, parse_assignments(args.set, "--set"))
     temps = parse_floats(args.temps, "--temps", "K")
-    scene = model.Scene(args.scene, parse_assignments(args.scene_param, "--scene-param"))
+    try:
+        check_temps(temps)
+    except model.ConfigError as exc:
+        raise UserError(f"--temps {args.temps}: {exc}") from None
+    scene = model.Scene(args.scene, scene_params)
     outputs = ["codes", "params"] if args.params else ["codes"]
     n = len(temps) * args.repeats
+    f = cfg["fpa"]
+    check_simulation_memory(cfg, n, outputs, what=(
+        f"--temps ({len(temps)}) x --repeats ({args.repeats}) = {n} frame(s) of "
+        f"fpa.active_rows x fpa.active_cols = {f['active_rows']} x {f['active_cols']} pixels"))
+    # The scene's parameters and files are read now, on one frame, not after the others.
+    try:
+        scene_temperatures(scene, np.asarray(temps[:1]), (f["active_rows"], f["active_cols"]))
+    except model.ConfigError as exc:
+        raise UserError(f"--scene {args.scene} --scene-param: {exc}") from None
     bar = progress("frames") if n > cfg["run"]["chunk_frames"] else None
     fr = model.simulate(cfg, temps, scene, seed=args.seed, repeats=args.repeats,
                         outputs=outputs, progress=bar)
@@ -65,7 +84,7 @@ def run_frames(args: argparse.Namespace) -> int:
     if args.params:
         for key, value in fr.outputs["params"].items():
             arrays[f"param_{key}"] = value
-    with output_folder(out) as tmp:
+    with output_folder(out, kind="frames") as tmp:
         write_atomic(tmp / FRAMES_NAME, lambda fh: np.savez_compressed(fh, **arrays))
     d = fr.diagnostics
     say(f"wrote {out / FRAMES_NAME}: {fr.codes.shape[0]} frame(s) of {fr.codes.shape[1]}x"

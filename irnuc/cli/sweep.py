@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from irnuc.cli._args import (
     add_out,
     add_pipeline,
     add_sensor,
     load_pipeline_arg,
+    load_sensor_arg,
     parse_assignments,
     parse_floats,
     progress,
@@ -58,9 +60,10 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     import csv
     import io
     import json
+    import math
 
     from irnuc.common.errors import UserError
-    from irnuc.common.io import check_output_folder, output_folder, write_bytes_atomic
+    from irnuc.common.io import claim_output_folder, output_folder, write_bytes_atomic
     from irnuc.reports.studies.sweep import (
         SensorSpec,
         SweepAxes,
@@ -69,8 +72,12 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         run_sweep,
     )
 
-    out = check_output_folder(args.out)
+    out = claim_output_folder(args.out, kind="sweep", inputs={
+        "--sensor": args.sensor if Path(args.sensor).exists() else None,
+        "--pipeline": args.pipeline if Path(args.pipeline).exists() else None})
     check_metric(args.error_metric)
+    if not (math.isfinite(args.max_error) and args.max_error > 0):
+        raise UserError(f"--max-error {args.max_error}: must be a finite number above 0")
     words = ("truncate", "half_up", "half_even")
 
     def roundings(text: str | None, name: str) -> tuple:
@@ -82,9 +89,13 @@ def run_sweep_command(args: argparse.Namespace) -> int:
             raise UserError(f"{name} {text!r}: each value must be one of {', '.join(words)}")
         return vals
 
+    for flag, v in (("--rows", args.rows), ("--cols", args.cols)):
+        if not 1 <= v <= 16384:
+            raise UserError(f"{flag} {v} is outside the allowed range 1..16384")
     load_pipeline_arg(args.pipeline)
     overrides = {"fpa.active_rows": args.rows, "fpa.active_cols": args.cols,
                  **parse_assignments(args.set, "--set")}
+    load_sensor_arg(args.sensor, overrides)  # the sensor's own errors, named by --sensor
     sensor = SensorSpec(preset=args.sensor, overrides=overrides, seed=args.seed,
                         t_low=args.t_low, t_high=args.t_high,
                         t_eval=tuple(parse_floats(args.t_eval, "--t-eval", "K")),
@@ -103,6 +114,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     axes.check()
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
+    _check_sweep_memory(args, sensor, axes)
     res = run_sweep(sensor, axes, workers=args.workers, scheduler=args.scheduler,
                     progress=progress("sweep"))
     d = res.to_dict(max_error=args.max_error, metric=args.error_metric)
@@ -125,7 +137,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         files["error_vs_bits.png"] = figures.error_vs_bits(res.points, args.error_metric,
                                                            args.max_error)
         files["pareto.png"] = figures.pareto(res.points, front, args.error_metric, d["smallest"])
-    with output_folder(out) as tmp:
+    with output_folder(out, kind="sweep") as tmp:
         for name, data in files.items():
             write_bytes_atomic(tmp / name, data)
     sm = d["smallest"]
@@ -141,6 +153,40 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     else:
         print(f"no swept width meets {args.error_metric} <= {args.max_error:g}", file=sys.stderr)
     return 0
+
+
+def sweep_bytes(cfg: dict, n_cal: int, n_eval: int, sets: int, workers: int) -> float:
+    """Estimated peak memory of a sweep (bytes, above measured peaks, docs/robustness.md):
+    the simulation of the calibration frames, then per (ADC, output) set the evaluation
+    codes and float coefficients, and per worker a copy of a set and the float NUC of the
+    evaluation frames."""
+    from irnuc.cli.calibrate import CALIBRATE_BYTES
+    from irnuc.model.pipeline import simulation_bytes
+
+    pixels = cfg["fpa"]["active_rows"] * cfg["fpa"]["active_cols"]
+    calibration = pixels * (CALIBRATE_BYTES["per_pixel"]
+                            + n_cal * (2 + CALIBRATE_BYTES["per_code"]))
+    per_set = pixels * (2 * n_eval + 64)
+    per_worker = per_set + pixels * n_eval * 40
+    return (max(simulation_bytes(cfg, n_cal), calibration) + sets * per_set
+            + max(workers, 1) * per_worker)
+
+
+def _check_sweep_memory(args: argparse.Namespace, sensor, axes) -> None:
+    """Validate the sensor for every ADC width and check, before any work, that the frames
+    of the sweep fit in memory (estimate in the message)."""
+    from irnuc.common.memory import check_memory
+
+    n_eval = len(sensor.t_eval)
+    sets = len(dict.fromkeys(axes.out_bits))
+    need = max(sweep_bytes(sensor.model_config(adc), 2 * sensor.repeats, n_eval,
+                           sets * len(dict.fromkeys(axes.adc_bits)), args.workers)
+               for adc in dict.fromkeys(axes.adc_bits))
+    check_memory(need, f"--rows x --cols = {args.rows} x {args.cols} with --repeats "
+                       f"{args.repeats}, {n_eval} --t-eval value(s), "
+                       f"{sets * len(dict.fromkeys(axes.adc_bits))} (ADC, output) width "
+                       f"pair(s) and --workers {args.workers}",
+                 "use a smaller frame, fewer frames or fewer workers")
 
 
 COMMANDS = {

@@ -51,6 +51,29 @@ def _mp_context() -> multiprocessing.context.BaseContext:
     return multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
 
 
+def _probe(scheduler: str) -> None:
+    """Fail at once on a ``tcp://`` scheduler address that refuses connections (Dask itself
+    retries for the whole timeout); other addresses are left to Dask."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if not scheduler.startswith("tcp://"):
+        return
+    try:
+        parts = urlsplit(scheduler)
+        host, port = parts.hostname, parts.port
+    except ValueError:
+        host = port = None
+    if not host or port is None:
+        raise ExecutorError(f"--scheduler {scheduler}: expected tcp://HOST:PORT")
+    try:
+        socket.create_connection((host, port), timeout=CONNECT_TIMEOUT).close()
+    except OSError as exc:
+        raise ExecutorError(f"--scheduler {scheduler}: no Dask scheduler answered "
+                            f"({exc.strerror or exc}); start one or run without --scheduler"
+                            ) from None
+
+
 @contextlib.contextmanager
 def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[ExecutorHandle]:
     """A ``concurrent.futures``-style executor for the sweep points.
@@ -72,6 +95,7 @@ def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[Ex
                 f"--scheduler {scheduler!r} needs Dask distributed, which is not installed; "
                 "install it with: pip install 'dask[distributed]' (or run without --scheduler)"
             ) from None
+        _probe(scheduler)
         try:
             client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
         except (OSError, TimeoutError, ValueError) as exc:

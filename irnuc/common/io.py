@@ -5,7 +5,11 @@
   into place as a unit (``renameat2(RENAME_EXCHANGE)`` on Linux), under a lock so that two
   runs on one folder cannot interleave; the previous result stays whole until the swap.
   Hidden leftovers of killed runs (``.NAME.tmp-*``) are removed by the next run that holds
-  the lock.
+  the lock. It replaces only what irnuc wrote: an existing folder must be empty or carry
+  the marker file (``.irnuc-output``) of the same command, so a careless ``--out ~`` never
+  deletes a user's files.
+* :func:`claim_output_folder` takes that lock before the work, so a second run on one
+  folder fails at once instead of after its work.
 * :func:`file_lock` is the advisory lock both use (``fcntl.flock``).
 """
 
@@ -132,53 +136,181 @@ def _exchange(a: Path, b: Path) -> bool:
     raise OSError(err, os.strerror(err), str(b))
 
 
-def check_output_folder(path: str | Path, flag: str = "--out") -> Path:
+#: Name of the marker file every output folder holds: "irnuc <command>". An existing
+#: folder without it (and not empty) is not irnuc's to replace.
+MARKER_NAME = ".irnuc-output"
+
+#: Output folders this process has claimed (path -> open lock file), see
+#: :func:`claim_output_folder`.
+_CLAIMS: dict[Path, IO[str]] = {}
+
+
+def _absolute(path: Path) -> Path:
+    """``path`` made absolute with ``.``/``..`` removed and the parent's links resolved
+    (the last component is kept, so a link there is seen as a link)."""
+    a = Path(os.path.abspath(path))
+    return Path(os.path.realpath(a.parent)) / a.name if a.name else a
+
+
+def _marker_text(kind: str | None) -> str:
+    return f"irnuc {kind or 'output'}\n"
+
+
+def _read_marker(folder: Path) -> str | None:
+    try:
+        return (folder / MARKER_NAME).read_text(errors="replace").strip()
+    except OSError:
+        return None
+
+
+def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = None,
+                        inputs: dict[str, str | Path | None] | None = None) -> Path:
     """Check, before any work, that ``path`` can become an output folder.
 
-    It may be missing or an existing folder (replaced as a whole); it may not be a file,
-    and its parent must be writable.
+    It may be missing, an empty folder, or a folder irnuc wrote before for the same
+    ``kind`` (command), as its marker file says: that one is replaced as a whole. Anything
+    else is refused, so that irnuc never deletes a user's own files: a file, a link, a
+    folder with other content, a folder holding the current folder or one of the
+    ``inputs`` (``{flag: path}`` of what the command reads). Its parent must be writable.
     """
-    path = Path(path)
-    if path.exists() and not path.is_dir():
-        raise OutputError(f"{flag} {path}: exists and is not a folder; give a folder path")
-    parent = path.absolute().parent
+    given = Path(path)
+    name = f"{flag} {given}"
+    if not str(path).strip():
+        raise OutputError(f"{flag} is empty; give a folder path")
+    p = _absolute(given)
+    if not p.name or p == Path(p.anchor):
+        raise OutputError(f"{name}: is the root folder; give a folder of its own")
+    if p.is_symlink():
+        raise OutputError(f"{name}: is a symbolic link; give the folder it points to "
+                          f"({os.path.realpath(p)}) or a new folder")
+    if p.exists() and not p.is_dir():
+        raise OutputError(f"{name}: exists and is not a folder; give a folder path")
+    cwd = Path(os.path.realpath(os.getcwd()))
+    if cwd == p or cwd.is_relative_to(p):
+        raise OutputError(f"{name}: holds the current folder, which irnuc would replace as a "
+                          "whole; give another folder")
+    for in_flag, value in (inputs or {}).items():
+        if value is None or not str(value):
+            continue
+        q = Path(os.path.realpath(os.path.abspath(value)))
+        if q == p or q.is_relative_to(p):
+            raise OutputError(f"{name}: holds {in_flag} {value}, which this command reads and "
+                              "would replace; give another output folder")
+    if p.is_dir():
+        try:
+            entries = [e.name for e in os.scandir(p)]
+        except OSError as exc:
+            raise OutputError(f"{name}: cannot be read ({exc.strerror})") from None
+        if entries:
+            marker = _read_marker(p)
+            if marker is None:
+                raise OutputError(
+                    f"{name}: is a folder with other content (no {MARKER_NAME} marker of an "
+                    "irnuc output); irnuc replaces --out as a whole, so give a new or empty "
+                    "folder")
+            if kind is not None and marker not in (_marker_text(kind).strip(), "irnuc output"):
+                raise OutputError(f"{name}: holds the output of `{marker}`, not of `irnuc "
+                                  f"{kind}`; give another folder")
+    parent = p.parent
     probe = parent
     while not probe.exists():
         probe = probe.parent
     if not probe.is_dir():
-        raise OutputError(f"{flag} {path}: {probe} is not a folder")
+        raise OutputError(f"{name}: {probe} is not a folder")
     if not os.access(probe, os.W_OK | os.X_OK):
-        raise OutputError(f"{flag} {path}: no permission to write in {probe}")
-    return path
+        raise OutputError(f"{name}: no permission to write in {probe}")
+    return given
+
+
+def claim_output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = None,
+                        inputs: dict[str, str | Path | None] | None = None) -> Path:
+    """:func:`check_output_folder`, then take the folder's lock before the work starts.
+
+    A second run on the same folder then fails at once (not after its work). The lock is
+    held until :func:`output_folder` on the same path finishes, :func:`release_claims` is
+    called, or the process ends.
+    """
+    given = check_output_folder(path, flag, kind=kind, inputs=inputs)
+    p = _absolute(given)
+    if p in _CLAIMS:
+        return given
+    p.parent.mkdir(parents=True, exist_ok=True)
+    fh = (p.parent / f".{p.name}.lock").open("a")
+    try:
+        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        fh.close()
+        raise OutputError(f"{flag} {given}: another irnuc run is writing it; wait for it to "
+                          "finish or choose another output folder") from None
+    _CLAIMS[p] = fh
+    _remove_stale(p)
+    return given
+
+
+def release_claims() -> None:
+    """Release every output folder lock this process holds (the command line calls it
+    when a command ends, however it ends)."""
+    for p in list(_CLAIMS):
+        _release(p)
+
+
+def _release(p: Path) -> None:
+    fh = _CLAIMS.pop(p, None)
+    if fh is not None:
+        fh.close()  # closing the file releases the flock
+
+
+def _remove_stale(p: Path) -> None:
+    """Under the lock of ``p`` every temporary folder of its name is a killed run's."""
+    for stale in p.parent.glob(f".{p.name}.tmp-*"):
+        _remove_tree(stale)
+
+
+def _remove_tree(path: Path) -> None:
+    """Remove a folder, or a link or file left where a temporary folder was."""
+    if path.is_symlink() or not path.is_dir():
+        path.unlink(missing_ok=True)
+    else:
+        shutil.rmtree(path, ignore_errors=True)
 
 
 @contextlib.contextmanager
-def output_folder(path: str | Path, flag: str = "--out") -> Iterator[Path]:
+def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = None
+                  ) -> Iterator[Path]:
     """Yield an empty hidden sibling folder to fill; on success swap it in as ``path``.
 
     On an exception (or a kill) ``path`` keeps its previous content, whole. Two runs on
-    one ``path`` do not interleave: the second fails at once with a clear message.
+    one ``path`` do not interleave: the second fails at once with a clear message. The
+    folder gets the marker file of ``kind`` (see :func:`check_output_folder`).
     """
-    path = check_output_folder(path, flag)
-    parent = path.absolute().parent
+    given = check_output_folder(path, flag, kind=kind)
+    p = _absolute(given)
+    parent = p.parent
     parent.mkdir(parents=True, exist_ok=True)
-    with file_lock(parent / f".{path.name}.lock", wait=False, what=f"{flag} {path}"):
-        for stale in parent.glob(f".{path.name}.tmp-*"):
-            shutil.rmtree(stale, ignore_errors=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=parent))
-        os.chmod(tmp, 0o777 & ~_umask())
-        try:
-            yield tmp
-            if path.is_dir():
-                if _exchange(tmp, path):
-                    shutil.rmtree(tmp, ignore_errors=True)  # now the previous result
+    held = p in _CLAIMS
+    lock = (contextlib.nullcontext() if held else
+            file_lock(parent / f".{p.name}.lock", wait=False, what=f"{flag} {given}"))
+    try:
+        with lock:
+            _remove_stale(p)
+            tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
+            os.chmod(tmp, 0o777 & ~_umask())
+            try:
+                yield tmp
+                (tmp / MARKER_NAME).write_text(_marker_text(kind))
+                if p.is_dir():
+                    if _exchange(tmp, p):
+                        shutil.rmtree(tmp, ignore_errors=True)  # now the previous result
+                    else:
+                        old = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
+                        os.rename(p, old / "previous")
+                        os.rename(tmp, p)
+                        shutil.rmtree(old, ignore_errors=True)
                 else:
-                    old = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=parent))
-                    os.rename(path, old / "previous")
-                    os.rename(tmp, path)
-                    shutil.rmtree(old, ignore_errors=True)
-            else:
-                os.rename(tmp, path)
-        except BaseException:
-            shutil.rmtree(tmp, ignore_errors=True)
-            raise
+                    os.rename(tmp, p)
+            except BaseException:
+                shutil.rmtree(tmp, ignore_errors=True)
+                raise
+    finally:
+        if held:
+            _release(p)
