@@ -171,11 +171,14 @@ def test_groups_expand_and_unknown_names_are_errors():
 def test_cli_writes_the_report(tmp_path, capsys):
     from irnuc.cli import main
 
-    rc = main(["precision", "--quick", "--only", "band_radiance", "--out", str(tmp_path),
-               "--no-progress"])
+    out = tmp_path / "p"
+    rc = main(["precision", "-q", "--quick", "--only", "band_radiance", "--out", str(out)])
     assert rc == 0
-    assert (tmp_path / "precision.html").is_file() and (tmp_path / "precision.json").is_file()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["precision.html", "precision.json"]
+    assert (out / "precision.html").is_file() and (out / "precision.json").is_file()
+    assert sorted(p.name for p in out.iterdir() if p.name != ".irnuc-output") == [
+        "precision.html", "precision.json"]
+    assert capsys.readouterr().out == ""  # -q
+    assert main(["precision", "--quick", "--only", "band_radiance", "--out", str(out)]) == 0
     assert "band_radiance" in capsys.readouterr().out
     with pytest.raises(FileNotFoundError):
         R.precision_summary(tmp_path / "nothing", run_if_missing=False)

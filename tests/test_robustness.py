@@ -47,7 +47,6 @@ import pytest
 REPO = Path(__file__).resolve().parents[1]
 DOC = REPO / "docs" / "robustness.md"
 XFAIL_REPORT = "report rewrite (issue 10)"
-XFAIL_PRECISION = "precision rewrite (irnuc precision is being rewritten)"
 
 # ---------------------------------------------------------------------------------------
 # The command-line table
@@ -717,13 +716,12 @@ Q = "precision"
 case("precision-unknown-flag", Q, "--fast", ("--fast", "unrecognized"), "an unknown flag")
 case("precision-only-no-value", Q, "--only", ("--only", "expected one argument"), "--only without value")
 case("precision-extra-argument", Q, "--quick now", ("now", "unrecognized"), "a stray argument")
-case("precision-only-unknown", Q, "--quick --only radiance", ("--only", "band_radiance"),
-     "an unknown component", xfail=XFAIL_PRECISION)
-case("precision-out-file", Q, "--quick --out {t}/out", ("--out",),
-     "--out is a file (noticed after the study)",
-     setup=_out_is_file, xfail=XFAIL_PRECISION)
+case("precision-only-unknown", Q, "--quick --only radiancee", ("--only", "band_radiance"),
+     "an unknown component")
+case("precision-out-file", Q, "--quick --out {t}/out", ("--out",), "--out is a file",
+     setup=_out_is_file)
 case("precision-out-user-folder", Q, "--quick --out {t}/out", ("--out",), "--out is a user's folder",
-     setup=_user_folder, xfail=XFAIL_PRECISION)
+     setup=_user_folder)
 
 # ---------------------------------------------------------------------------------------
 # The shared input files
@@ -1559,7 +1557,7 @@ def test_meminfo_is_read(tmp_path: Path) -> None:
 _COMMAND_TITLES = {
     "frames": "irnuc frames", "calibrate": "irnuc calibrate", "correct": "irnuc correct",
     "sweep": "irnuc sweep", "report": "irnuc report (command-line level; internals being rewritten)",
-    "precision": "irnuc precision (argument level; being rewritten)",
+    "precision": "irnuc precision",
 }
 
 

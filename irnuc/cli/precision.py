@@ -14,6 +14,8 @@ import json
 from pathlib import Path
 from typing import Any
 
+from irnuc.cli._args import add_out, progress, say
+
 DEFAULT_OUT = Path("out/precision")
 JSON_NAME = "precision.json"
 HTML_NAME = "precision.html"
@@ -133,31 +135,35 @@ def code_digest() -> str:
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--out", default=str(DEFAULT_OUT),
-                   help="output folder (default: %(default)s)")
+    add_out(p, str(DEFAULT_OUT))
     p.add_argument("--quick", action="store_true",
                    help="fewer settings and samples (well under a minute)")
     p.add_argument("--only", action="append", metavar="COMPONENT",
                    help="measure only this component (band_radiance, band_radiance_narrow, "
                         "electro_thermal, transient_nonstiff, transient_stiff_1e3, ...) or "
                         "group (radiance, transient, transient_stiff); repeatable")
-    p.add_argument("--no-progress", action="store_true")
 
 
 def run(args: argparse.Namespace) -> int:
-    from irnuc.common.progress import ProgressBar
-    from irnuc.reports.studies.precision import run_precision
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import claim_output_folder, output_folder
+    from irnuc.reports.studies.precision import component_names, run_precision
 
-    progress = None if args.no_progress else ProgressBar("precision")
-    result = run_precision(quick=args.quick, components=args.only, progress=progress)
-    j, h = write_report(result, args.out)
+    out = claim_output_folder(args.out, kind="precision")
+    try:
+        component_names(args.only)
+    except UserError as exc:
+        raise UserError(f"--only: {exc}") from None
+    result = run_precision(quick=args.quick, components=args.only, progress=progress("precision"))
+    with output_folder(out, kind="precision") as tmp:
+        write_report(result, tmp)
     for c in result["components"]:
         d = c["default"]
-        print(f"{c['name']:22s} default {d['method']} {d['setting_name']}={d['setting']:g}: "
-              f"error {_fmt(d['error'])}, {_fmt(d['time_s'])} s, work {_fmt(d['work'])}, "
-              f"{'on' if d['on_pareto_front'] else 'NOT on'} the Pareto front; "
-              f"{len(c['missing'])} failed setting(s)")
-    print(f"study time {result['seconds']:.0f} s; wrote {h} and {j}")
+        say(f"{c['name']:22s} default {d['method']} {d['setting_name']}={d['setting']:g}: "
+            f"error {_fmt(d['error'])}, {_fmt(d['time_s'])} s, work {_fmt(d['work'])}, "
+            f"{'on' if d['on_pareto_front'] else 'NOT on'} the Pareto front; "
+            f"{len(c['missing'])} failed setting(s)")
+    say(f"study time {result['seconds']:.0f} s; wrote {out / HTML_NAME} and {out / JSON_NAME}")
     return 0
 
 
