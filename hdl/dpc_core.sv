@@ -247,7 +247,7 @@ module dpc_core
 
   // ---- division by n: M * R[n], then >> K ------------------------------------------------
   logic                          mul_valid;
-  logic [Parts-1:0][MulBits-1:0] mul_parts_q;
+  logic [Parts-1:0][MulBits-1:0] prod_parts;
   logic [CtrBits-1:0]            mul_ctr;
 
   irnuc_mul_parts #(
@@ -263,7 +263,7 @@ module dpc_core
     .b_i    (sum_recip),
     .side_i (sum_ctr),
     .valid_o(mul_valid),
-    .parts_o(mul_parts_q),
+    .parts_o(prod_parts),
     .side_o (mul_ctr)
   );
 
@@ -280,7 +280,7 @@ module dpc_core
     .rst_ni  (rst_ni),
     .en_i    (en),
     .valid_i (mul_valid),
-    .leaves_i(mul_parts_q),
+    .leaves_i(prod_parts),
     .side_i  (mul_ctr),
     .valid_o (prod_valid),
     .sum_o   (prod),

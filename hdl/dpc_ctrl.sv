@@ -4,7 +4,7 @@
 // Items: every cycle with en_i high, at most one item enters the window: the waiting
 // pixel, or a "phantom" (an item outside the frame, value 0) that the core makes itself
 // to push the last outputs of a frame out. The window is centred one row and one column
-// behind the newest item, so the first W+1 items after dpc_idle emit nothing and every
+// behind the newest item, so the first W+1 items after Idle emit nothing and every
 // further item emits exactly one output, in raster order.
 //
 // FSM (irnuc_pkg::dpc_state_e):
@@ -77,7 +77,7 @@ module dpc_ctrl
   // ---- registered frame size and its flags --------------------------------------------
   logic [WidthBits-1:0]  fw_q, fw_m2_q;
   logic [HeightBits-1:0] fh_q, fh_m2_q;
-  logic                  fw_is1_q, fw_is2_q, fw_is3_q, fw_bad_q;
+  logic                  fw_is1_q, fw_is2_q, fw_is3_q, fw_is4_q, fw_bad_q;
   logic                  fh_is1_q, fh_is2_q, fh_bad_q;
   logic                  w_over, h_over;
 
@@ -100,6 +100,7 @@ module dpc_ctrl
       fw_is1_q <= 1'b1;
       fw_is2_q <= 1'b0;
       fw_is3_q <= 1'b0;
+      fw_is4_q <= 1'b0;
       fw_bad_q <= 1'b0;
       fh_q     <= HeightBits'(1);
       fh_m2_q  <= '1;
@@ -112,6 +113,7 @@ module dpc_ctrl
       fw_is1_q <= (frame_width_i == WidthBits'(1));
       fw_is2_q <= (frame_width_i == WidthBits'(2));
       fw_is3_q <= (frame_width_i == WidthBits'(3));
+      fw_is4_q <= (frame_width_i == WidthBits'(4));
       fw_bad_q <= (frame_width_i == '0) || w_over;
       fh_q     <= frame_height_i;
       fh_m2_q  <= frame_height_i - HeightBits'(2);
@@ -283,22 +285,40 @@ module dpc_ctrl
   end
 
   // ---- line buffer read address: the item after the next one ----------------------------
-  // The read is two items ahead: its data pass a register before they are used (see
-  // dpc_core). After the last phantom the next frame's size is not known yet: its first
-  // items lie in row 0, whose rows above are masked, so that read is never used.
-  logic [AddrBits-1:0] rd_col;
+  // The read is two items ahead (its data pass a register before they are used, see
+  // dpc_core), so the address has a counter of its own, ahead_q, two columns ahead of col_q
+  // and a register, like its "last column" flag. In Idle the next frame's size is that of
+  // the size inputs; at the frame start the counter jumps to column 3 mod W.
+  logic [WidthBits-1:0] ahead_q;
+  logic                 ahead_last_q;
+  logic [AddrBits-1:0]  rd_col;
 
-  always_comb begin : p_read_address
-    if (flush && ph_wrapped_q) begin
-      rd_col = '0;
-    end else if (cur_col_last) begin
-      rd_col = (idle ? fw_is1_q : geo_w_is1_q) ? AddrBits'(0) : AddrBits'(1);
-    end else if (col_next_last) begin
-      rd_col = '0;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_address
+    if (!rst_ni) begin
+      ahead_q      <= '0;
+      ahead_last_q <= 1'b0;
     end else begin
-      rd_col = AddrBits'(col_q + WidthBits'(2));
+      if (sample) begin
+        ahead_q      <= fw_is1_q ? WidthBits'(0) : fw_is2_q ? WidthBits'(1) :
+                        fw_is3_q ? WidthBits'(0) : WidthBits'(3);
+        ahead_last_q <= fw_is1_q || fw_is2_q || fw_is4_q;
+      end else if (take) begin
+        if (ahead_last_q) begin
+          ahead_q      <= '0;
+          ahead_last_q <= geo_w_is1_q;
+        end else begin
+          ahead_q      <= ahead_q + WidthBits'(1);
+          ahead_last_q <= (ahead_q == geo_wm2_q);
+        end
+      end
     end
   end
+
+  // In Idle: column 2 of the new frame (0 when W <= 2). The reads of the last two phantoms
+  // of a flush, for the next frame's items 0 and 1 (row 0: the rows above are masked), use
+  // the old size; their data are never used.
+  assign rd_col = idle ? ((fw_is1_q || fw_is2_q) ? AddrBits'(0) : AddrBits'(2))
+                       : AddrBits'(ahead_q);
 
   // ---- output position (one step per emitting item) ---------------------------------------
   logic win_valid_q, win_top_q, win_bottom_q, win_left_q, win_right_q, win_sof_q, win_eol_q;
@@ -387,5 +407,15 @@ module dpc_ctrl
   assign win_sof_o     = win_sof_q;
   assign win_eol_o     = win_eol_q;
   assign frame_err_o   = err_q;
+
+`ifdef IRNUC_ASSERT
+  irnuc_stream_assert #(.DataBits(2)) u_assert_pix (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(pix_valid_i),
+    .ready_i(pix_ready_o),
+    .data_i ({pix_sof_i, pix_eol_i})
+  );
+`endif
 
 endmodule

@@ -58,16 +58,22 @@ module irnuc_mul_parts
     end
   end
 
+  logic                valid_q;
+  logic [SideBits-1:0] side_q;
+
   always_ff @(posedge clk_i) begin : p_side
-    if (en_i) side_o <= side_i;
+    if (en_i) side_q <= side_i;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_valid
     if (!rst_ni) begin
-      valid_o <= 1'b0;
+      valid_q <= 1'b0;
     end else if (en_i) begin
-      valid_o <= valid_i;
+      valid_q <= valid_i;
     end
   end
+
+  assign valid_o = valid_q;
+  assign side_o  = side_q;
 
 endmodule

@@ -109,7 +109,7 @@ module nuc_core
 
   // ---- product: registered partial products ------------------------------------------
   logic                               mul_valid;
-  logic [Parts-1:0][ProdBits-1:0]     mul_parts_q;
+  logic [Parts-1:0][ProdBits-1:0]     prod_parts;
   logic [OffsetBits-1:0]              mul_offset;
   logic [UserBits-1:0]                mul_user;
 
@@ -126,7 +126,7 @@ module nuc_core
     .b_i    (in_gain),
     .side_i ({in_user, in_offset}),
     .valid_o(mul_valid),
-    .parts_o(mul_parts_q),
+    .parts_o(prod_parts),
     .side_o ({mul_user, mul_offset})
   );
 
@@ -135,7 +135,7 @@ module nuc_core
 
   for (genvar k = 0; k < Parts; k++) begin : gen_leaf
     // p is unsigned: zero extension.
-    assign leaves[k] = SumBits'(mul_parts_q[k]) << (FracBits - GainFracBits);
+    assign leaves[k] = SumBits'(prod_parts[k]) << (FracBits - GainFracBits);
   end
   // o is two's complement: sign extension.
   assign leaves[Parts] = SumBits'($signed(mul_offset)) << (FracBits - OffsetFracBits);
