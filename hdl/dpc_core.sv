@@ -311,20 +311,8 @@ module dpc_core
   );
 
 `ifdef IRNUC_ASSERT
-  irnuc_stream_assert #(.DataBits(InBits)) u_assert_s (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(s_valid_i),
-    .ready_i(s_ready_o),
-    .data_i ({s_eol_i, s_sof_i, s_bad_i, s_pix_data_i})
-  );
-  irnuc_stream_assert #(.DataBits(OutBits + 2)) u_assert_m (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(m_valid_o),
-    .ready_i(m_ready_i),
-    .data_i ({m_sof_o, m_eol_o, m_pix_data_o})
-  );
+  // Protocol assertions of s_* and m_*: in u_in and u_out (irnuc_spill_register), whose
+  // ports these are; the frame size at a frame start:
   irnuc_frame_assert #(
     .MaxWidth (MaxWidth),
     .MaxHeight(MaxHeight)

@@ -408,14 +408,4 @@ module dpc_ctrl
   assign win_eol_o     = win_eol_q;
   assign frame_err_o   = err_q;
 
-`ifdef IRNUC_ASSERT
-  irnuc_stream_assert #(.DataBits(2)) u_assert_pix (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(pix_valid_i),
-    .ready_i(pix_ready_o),
-    .data_i ({pix_sof_i, pix_eol_i})
-  );
-`endif
-
 endmodule

@@ -1,7 +1,9 @@
 // Protocol checker of one valid/ready stream (simulation only, no logic).
 //
-// Every module instantiates one per stream port under `ifdef IRNUC_ASSERT (the
-// co-simulation builds define it, synthesis does not). Concurrent assertions, sampled
+// irnuc_spill_register instantiates one on each of its two sides under `ifdef IRNUC_ASSERT
+// (the co-simulation builds define it, synthesis does not); every stream port of
+// nuc_core, dpc_core and nuc_dpc_top is a port of such a register, so every one is
+// checked, and so is every internal register boundary. Concurrent assertions, sampled
 // on the rising clock edge from the first edge after reset (armed_q):
 //   a_known       valid and ready are never X/Z
 //   a_valid_held  valid, once high, stays high until a transfer (AXI-Stream rule)

@@ -253,21 +253,7 @@ module nuc_core
     .data_o ({m_user_o, m_pix_data_o})
   );
 
-`ifdef IRNUC_ASSERT
-  irnuc_stream_assert #(.DataBits(InBits)) u_assert_s (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(s_valid_i),
-    .ready_i(s_ready_o),
-    .data_i ({s_user_i, s_offset_i, s_gain_i, s_pix_data_i})
-  );
-  irnuc_stream_assert #(.DataBits(UserBits + OutBits)) u_assert_m (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(m_valid_o),
-    .ready_i(m_ready_i),
-    .data_i ({m_user_o, m_pix_data_o})
-  );
-`endif
+  // Protocol assertions of s_* and m_* (irnuc_stream_assert, `ifdef IRNUC_ASSERT): in u_in
+  // and u_out, whose ports these are.
 
 endmodule

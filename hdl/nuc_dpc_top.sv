@@ -159,27 +159,9 @@ module nuc_dpc_top
   );
 
 `ifdef IRNUC_ASSERT
-  irnuc_stream_assert #(.DataBits(AdcBits + 2)) u_assert_s_pix (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(s_pix_valid_i),
-    .ready_i(s_pix_ready_o),
-    .data_i ({s_pix_sof_i, s_pix_eol_i, s_pix_data_i})
-  );
-  irnuc_stream_assert #(.DataBits(WordBits)) u_assert_s_coef (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(s_coef_valid_i),
-    .ready_i(s_coef_ready_o),
-    .data_i (s_coef_data_i)
-  );
-  irnuc_stream_assert #(.DataBits(OutBits + 2)) u_assert_m_pix (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(m_pix_valid_o),
-    .ready_i(m_pix_ready_i),
-    .data_i ({m_pix_sof_o, m_pix_eol_o, m_pix_data_o})
-  );
+  // Protocol assertions of s_pix_*, s_coef_* and m_pix_*: in u_pix_in, u_coef_in and
+  // u_dpc.u_out (irnuc_spill_register), whose ports these are; the frame size at a frame
+  // start:
   irnuc_frame_assert #(
     .MaxWidth (MaxWidth),
     .MaxHeight(MaxHeight)

@@ -61,7 +61,7 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "nuc_core": (*_PKG, *_NUC),
     "dpc_core": (*_PKG, *_DPC),
     "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_DPC, "nuc_dpc_top.sv"))),
-    "dpc_ctrl": (*_PKG, *_ASSERT, "dpc_ctrl.sv"),
+    "dpc_ctrl": (*_PKG, "dpc_ctrl.sv"),
     "irnuc_spill_register": _SPILL,
     "irnuc_stream_assert": _ASSERT,
     "irnuc_frame_assert": _FRAME,
