@@ -17,6 +17,12 @@ module irnuc_frame_assert #(
 );
 
 `ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (MaxWidth >= 1 && MaxWidth <= 65535 && MaxHeight >= 1 && MaxHeight <= 65535)
+      else $fatal(1, "irnuc_frame_assert: MaxWidth = %0d, MaxHeight = %0d outside 1..65535",
+                  MaxWidth, MaxHeight);
+  end
+
   // Off in reset, on from the first edge after it (rst_ni stays a pure asynchronous reset).
   logic armed_q;
 

@@ -21,6 +21,11 @@ module irnuc_stream_assert #(
 );
 
 `ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (DataBits >= 1)
+      else $fatal(1, "irnuc_stream_assert: DataBits = %0d must be at least 1", DataBits);
+  end
+
   // Off in reset, on from the first edge after it (rst_ni stays a pure asynchronous reset).
   logic armed_q;
 
