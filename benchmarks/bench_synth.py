@@ -34,8 +34,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from cosim import synth
-from nuc_fixed import load_pipeline, pipeline_names, rtl
+from irnuc.cosim import synth
+from irnuc.nuc_fixed import load_pipeline, pipeline_names, rtl
 
 TOP = "nuc_dpc_top"
 BASELINE_DIR = Path(__file__).resolve().parent / "rtl_baseline"

@@ -6,7 +6,7 @@ from __future__ import annotations
 import functools
 import os
 
-from nuc_fixed import PipelineConfig, rtl
+from irnuc.nuc_fixed import PipelineConfig, rtl
 
 
 def waves_requested() -> bool:

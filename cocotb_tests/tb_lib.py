@@ -22,7 +22,7 @@ from cocotb.clock import Clock
 from cocotb.handle import SimHandleBase
 from cocotb.triggers import ClockCycles, RisingEdge, Timer
 
-from nuc_fixed import (
+from irnuc.nuc_fixed import (
     PipelineConfig,
     dpc_core,
     nuc_core,

@@ -13,10 +13,10 @@ import cocotb
 import numpy as np
 from cocotb.triggers import Timer
 
-from cocotb_tests import tb_lib
-from nuc_fixed import pack_words, unpack_words
-from nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
-from nuc_fixed.rtl import reciprocal_table
+from irnuc.cocotb_tests import tb_lib
+from irnuc.nuc_fixed import pack_words, unpack_words
+from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
+from irnuc.cosim.rtl import reciprocal_table
 
 
 async def _settle() -> None:

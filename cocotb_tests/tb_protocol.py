@@ -21,7 +21,7 @@ import numpy as np
 from cocotb.handle import SimHandleBase
 from cocotb.triggers import ClockCycles, RisingEdge, Timer
 
-from cocotb_tests import tb_lib
+from irnuc.cocotb_tests import tb_lib
 
 #: Message of a violation test whose violation went unnoticed.
 NOT_FIRED = "no assertion fired"

@@ -7,11 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cocotb_tests.cosim import check_case, cocotb_test_names, cosim
-from nuc_fixed import load_pipeline, pipeline_names
-from nuc_fixed.rtl import reciprocal_table
+from irnuc.cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+from irnuc.nuc_fixed import load_pipeline, pipeline_names
+from irnuc.cosim.rtl import reciprocal_table
 
-MODULE = "cocotb_tests.tb_dpc"
+MODULE = "irnuc.cocotb_tests.tb_dpc"
 
 
 @pytest.mark.cosim

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import pytest
 
-from cocotb_tests.cosim import check_case, cocotb_test_names, cosim
-from nuc_fixed import load_pipeline, pipeline_names
+from irnuc.cocotb_tests.cosim import check_case, cocotb_test_names, cosim
+from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
-MODULE = "cocotb_tests.tb_pkg"
+MODULE = "irnuc.cocotb_tests.tb_pkg"
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 

@@ -18,11 +18,11 @@ import functools
 
 import pytest
 
-from cocotb_tests.cosim import check_case
-from cocotb_tests.tb_protocol import NOT_FIRED
-from nuc_fixed import load_pipeline, pipeline_names, rtl
+from irnuc.cocotb_tests.cosim import check_case
+from irnuc.cocotb_tests.tb_protocol import NOT_FIRED
+from irnuc.nuc_fixed import load_pipeline, pipeline_names, rtl
 
-MODULE = "cocotb_tests.tb_protocol"
+MODULE = "irnuc.cocotb_tests.tb_protocol"
 TOPS = ("nuc_core", "dpc_core", "nuc_dpc_top")
 #: cocotb tests that must pass (one simulation runs them all).
 PASSING = ("registered_outputs", "clean_stall")

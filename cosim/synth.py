@@ -31,8 +31,8 @@ Functions
 Typical use (parameters are the RTL's SystemVerilog parameters, e.g. from
 ``nuc_fixed.load_pipeline(name).rtl_parameters()``)::
 
-    from cosim import synth
-    from nuc_fixed import load_pipeline, rtl
+    from irnuc.cosim import synth
+    from irnuc.nuc_fixed import load_pipeline, rtl
     srcs = rtl.hdl_sources("nuc_dpc_top")
     params = load_pipeline("typical14").rtl_parameters()
     xc7 = synth.synth_xc7(srcs, "nuc_dpc_top", params, "out/synth/xc7")

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.config import PipelineConfig
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 HDL_DIR = REPO_ROOT / "hdl"
@@ -502,8 +502,8 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
     """
     import tempfile
 
-    from nuc_fixed.memimage import check_words
-    from nuc_fixed.validate import InputError, check_frame_shape, int_array
+    from irnuc.nuc_fixed.memimage import check_words
+    from irnuc.nuc_fixed.validate import InputError, check_frame_shape, int_array
 
     if not isinstance(bld, Build) or not (bld.build_dir / BULK_EXE).is_file():
         raise RtlError(f"{bld!r} is not a bulk build; use rtl.build_bulk(cfg)")
@@ -591,7 +591,7 @@ def check_bulk(res: BulkResult, raw: np.ndarray, words: np.ndarray, golden: Pipe
     max_report : int
         Mismatches described in full (the count is always complete).
     """
-    from nuc_fixed import nuc_core, nuc_dpc_top, unpack_words
+    from irnuc.nuc_fixed import nuc_core, nuc_dpc_top, unpack_words
 
     h, w = res.frame_shape
     if expected is None:

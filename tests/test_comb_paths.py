@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import pytest
 
-from cosim import synth
-from nuc_fixed import load_pipeline, pipeline_names, rtl
+from irnuc.cosim import synth
+from irnuc.nuc_fixed import load_pipeline, pipeline_names, rtl
 
 pytestmark = pytest.mark.slow
 

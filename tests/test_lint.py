@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from nuc_fixed import load_pipeline, pipeline_names
-from nuc_fixed.rtl import HDL_DIR, MODULE_FILES, SIM_HDL_DIR, lint
+from irnuc.nuc_fixed import load_pipeline, pipeline_names
+from irnuc.cosim.rtl import HDL_DIR, MODULE_FILES, SIM_HDL_DIR, lint
 
 #: Every design module (the building blocks with the sizes they get in nuc_dpc_top, see
 #: nuc_fixed.rtl.top_parameters) and the simulation-only package probe.
@@ -50,7 +50,7 @@ def test_lint_catches_a_warning(tmp_path) -> None:
     """The lint check can fail: an unused input is reported under -Wall."""
     import subprocess
 
-    from nuc_fixed.rtl import verilator_env, verilator_executable
+    from irnuc.cosim.rtl import verilator_env, verilator_executable
 
     src = tmp_path / "bad.sv"
     src.write_text("module bad (input logic a_i, output logic b_o);\n"

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import pytest
 
-from cosim import synth
-from nuc_fixed import load_pipeline, rtl
+from irnuc.cosim import synth
+from irnuc.nuc_fixed import load_pipeline, rtl
 
 pytestmark = pytest.mark.slow
 
