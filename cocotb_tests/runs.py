@@ -7,7 +7,10 @@ import functools
 import os
 
 from irnuc import cosim
+from irnuc.cosim.suite import cocotb_test_names
 from irnuc.nuc_fixed import PipelineConfig
+
+__all__ = ["check_case", "cocotb_test_names", "run_module", "waves_requested"]
 
 
 def waves_requested() -> bool:
@@ -18,13 +21,23 @@ def waves_requested() -> bool:
 @functools.cache
 def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
                ) -> dict[str, cosim.CaseResult]:
-    """Build (cached) and run every cocotb test of ``module`` on ``top``; parse the XML."""
+    """Build (cached) and run every cocotb test of ``module`` on ``top``; parse the XML.
+
+    A failed RTL assertion stops the simulation: the cocotb test running then fails (and
+    those after it); its assertion lines from the simulator log are added to the message.
+    """
     waves = waves_requested()
     bld = cosim.build(top, cfg, waves=waves)
     tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
     xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed)}, seed=seed, waves=waves,
                     results_xml=cosim.results_dir() / f"{tag}.xml")
-    return cosim.read_results(xml)
+    results = cosim.read_results(xml)
+    fired = cosim.assertion_failures(xml)
+    if fired:
+        note = "\nRTL assertions failed (simulation stopped):\n" + "\n".join(fired[:10])
+        results = {k: v if v.passed else cosim.CaseResult(v.name, False, v.message + note)
+                   for k, v in results.items()}
+    return results
 
 
 def check_case(results: dict[str, cosim.CaseResult], case: str) -> None:

