@@ -117,3 +117,31 @@ def dpc_bad_patterns(h: int, w: int) -> list[np.ndarray]:
     b[0, 0] = True
     maps.append(b)
     return maps
+
+
+def neighbour_maps(h: int, w: int) -> list[np.ndarray]:
+    """One bad map per (position, n): a bad pixel at a corner, an edge, the interior and
+    in a one-pixel-wide frame with exactly n good in-frame neighbours, for every n the
+    position allows (the frames are at most h x w, at least 3 x 3 where needed)."""
+    maps: list[np.ndarray] = []
+    hh, ww = max(3, min(h, 5)), max(3, min(w, 5))
+    spots = {"corner": (0, 0), "edge": (0, ww // 2), "interior": (hh // 2, ww // 2)}
+    for r, c in spots.values():
+        nbs = [(r + dy, c + dx) for dy in (-1, 0, 1) for dx in (-1, 0, 1)
+               if (dy, dx) != (0, 0) and 0 <= r + dy < hh and 0 <= c + dx < ww]
+        for n in range(len(nbs) + 1):
+            b = np.zeros((hh, ww), dtype=bool)
+            b[r, c] = True
+            for rr, cc in nbs[n:]:
+                b[rr, cc] = True
+            maps.append(b)
+    ln = max(3, min(w, 5))
+    for pos, n_bad in ((0, 0), (0, 1), (1, 0), (1, 1), (1, 2)):
+        b = np.zeros((1, ln), dtype=bool)
+        b[0, pos] = True
+        nbs = [p for p in (pos - 1, pos + 1) if 0 <= p < ln]
+        for p in nbs[:n_bad]:
+            b[0, p] = True
+        maps.append(b)
+        maps.append(b.T.copy())
+    return maps

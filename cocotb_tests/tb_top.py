@@ -10,9 +10,15 @@ import numpy as np
 from cocotb.triggers import ClockCycles, RisingEdge
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.directed import corner_coefficients, dpc_bad_patterns
+from irnuc.cocotb_tests.directed import corner_coefficients, dpc_bad_patterns, neighbour_maps
 from irnuc.cocotb_tests.tb_lib import Frame, golden_frame
+from irnuc.cosim import coverage
 from irnuc.nuc_fixed import nuc_core, unpack_words
+
+#: Pause patterns of the inputs (idle) and of the output (backpressure), all combinations
+#: in ``stream_patterns`` (cocotb_tests/test_nuc_dpc_top.py makes each a pytest parameter).
+IDLE = coverage.IDLE_PATTERNS
+BACKPRESSURE = coverage.BACKPRESSURE_PATTERNS
 
 
 def _sizes(cfg) -> list[tuple[int, int]]:
@@ -112,7 +118,7 @@ async def dpc_patterns(dut) -> None:
     rng = np.random.default_rng(tb_lib.seed_from_env() + 3)
     await tb_lib.start_clock_and_reset(dut)
     h, w = min(cfg.max_height, 10), min(cfg.max_width, 12)
-    for bad in dpc_bad_patterns(h, w):
+    for bad in dpc_bad_patterns(h, w) + neighbour_maps(h, w):
         hh, ww = bad.shape
         # Gain near one, small offsets: outputs spread over the range, not saturated.
         gain = 1.0 + 0.1 * rng.standard_normal((hh, ww))
@@ -206,6 +212,203 @@ async def model_frames(dut) -> None:
     _, _, bad = unpack_words(words, cfg)
     assert bad.any(), "the model frames carry no defect"
     await _check(dut, frames, rng, gcfg, idle_pix=0.05, idle_coef=0.05, backpressure=0.05)
+
+
+def _cov():
+    return coverage.model("nuc_dpc_top", tb_lib.config_from_env())
+
+
+@cocotb.test()
+async def stream_patterns(dut) -> None:
+    """Every idle pattern x every backpressure pattern: exact; at full-rate input no cycle
+    is lost inside the core (outputs + sink stalls = output cycles, across frames)."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 8)
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 5), min(cfg.max_width, 9)
+    failures = []
+    for idle in IDLE:
+        for bp in BACKPRESSURE:
+            frames = _random_frames(rng, cfg, gcfg, 2, h, w, bad_fraction=0.1)
+            got, _, sink = await tb_lib.run_top_frames(dut, frames, rng, idle_pix=idle,
+                                                       idle_coef=idle, backpressure=bp)
+            res = tb_lib.check_frames(frames, got, gcfg)
+            msg = "" if res.passed else res.report(3)
+            if not msg and idle == "none":
+                try:
+                    sink.check_throughput()
+                    _cov().sample("stream.back_to_back", "frames")
+                except AssertionError as exc:
+                    msg = str(exc)
+            tb_lib.record(pattern=[idle, bp], passed=not msg, message=msg,
+                          stalls=sink.stalls, outputs=len(got))
+            if msg:
+                failures.append(f"idle {idle} / backpressure {bp}: {msg}")
+    assert int(dut.frame_err_o.value) == 0, "frame_err_o set on a well-formed stream"
+    assert not failures, "\n".join(failures)
+
+
+@cocotb.test()
+async def frame_size_changes(dut) -> None:
+    """Back-to-back frames whose size changes in width only, height only, both, or not,
+    and the extreme sizes (1x1, 1xN, Nx1, width = MaxWidth, height = MaxHeight), at full
+    rate and under backpressure: exact, frame_err_o stays 0.
+
+    A new size travels with its frame's first pixel. nuc_dpc_top samples the size in
+    dpc_core, so the previous frame's first pixel must have reached dpc_core before the
+    size changes (docs/rtl.md, frame size rule): frames changing size back to back here
+    have at least 24 pixels; the small extreme frames each follow an idle input.
+    """
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 9)
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 4), min(cfg.max_width, 6)
+    back_to_back = [(h, w), (h, w + 1), (h + 1, w + 1), (h + 2, w + 1), (h, w), (h, w)]
+    alone = [(1, 1), (1, 1), (1, min(cfg.max_width, 5)), (min(cfg.max_height, 5), 1),
+             (2, cfg.max_width), (cfg.max_height, 1), (2, 2)]
+    for bp in ("none", "random"):
+        words = {hw: tb_lib.random_coefficients(rng, cfg, *hw, 0.2)
+                 for hw in set(back_to_back + alone)}
+
+        def frame(hw, words=words):
+            return golden_frame(rng.integers(0, 1 << cfg.adc_bits, size=hw, dtype=np.int64),
+                                words[hw], gcfg)
+
+        await _check(dut, [frame(hw) for hw in back_to_back], rng, gcfg, backpressure=bp)
+        prev = back_to_back[-1]
+        for hw in alone:
+            await _check(dut, [frame(hw)], rng, gcfg, backpressure=bp)
+            _cov().sample_frames([prev, hw], [1])
+            prev = hw
+
+
+async def _inject(dut, cfg, rng, cause: str) -> int:
+    """One frame-error cause alone (or none: ``control``); returns frame_err_o after it."""
+    await tb_lib.reset(dut)
+    h, w = min(cfg.max_height, 3), min(cfg.max_width, 4)
+    gcfg = cfg
+    if cause in ("sof_missing", "sof_unexpected", "eol_missing", "eol_unexpected", "control"):
+        frames = _random_frames(rng, cfg, gcfg, 1, h, w)
+        pix, coef = tb_lib.top_sources(dut, frames)
+        row = {"sof_missing": 0, "sof_unexpected": w + 1, "eol_missing": w - 1,
+               "eol_unexpected": 1 if w > 2 else 0}.get(cause)
+        if cause.startswith("sof"):
+            pix.values[row][1] ^= 1
+        elif cause.startswith("eol"):
+            pix.values[row][2] ^= 1
+        sink = tb_lib.top_sink(dut)
+        await tb_lib.run_streams(dut, [pix, coef], sink, h * w, rng)
+        await ClockCycles(dut.clk_i, 2)
+        return int(dut.frame_err_o.value)
+    # An illegal size: legal when the frame's first pixel is taken at both ports with an
+    # assertion (top and dpc_core), made illegal while that pixel waits in dpc_core's input
+    # register for the flush of the previous frame (another size) to end.
+    wa = min(cfg.max_width, 16)
+    frames = _random_frames(rng, cfg, gcfg, 1, 1, wa) + _random_frames(rng, cfg, gcfg, 1, 1, 2)
+    pix, coef = tb_lib.top_sources(dut, frames)
+    del pix.values[wa + 1:], coef.values[wa + 1:]  # frame A and B's first pixel only
+    nuc = len(coverage.pipeline_stages("nuc_core", cfg))
+    await tb_lib.run_streams(dut, [pix, coef], tb_lib.top_sink(dut), 10**9, rng,
+                             stop=lambda c: pix.done and c >= pix.taken[-1] + nuc + 4)
+    wbits, hbits = len(dut.frame_width_i), len(dut.frame_height_i)
+    bad = {"width_zero": (0, None), "height_zero": (None, 0),
+           "width_over_max": (min(cfg.max_width + 1, (1 << wbits) - 1), None),
+           "height_over_max": (None, min(cfg.max_height + 1, (1 << hbits) - 1))}[cause]
+    if bad[0] is not None:
+        dut.frame_width_i.value = bad[0]
+    if bad[1] is not None:
+        dut.frame_height_i.value = bad[1]
+    dut.m_pix_ready_i.value = 1
+    await ClockCycles(dut.clk_i, wa + 8)
+    return int(dut.frame_err_o.value)
+
+
+@cocotb.test()
+async def frame_error_causes(dut) -> None:
+    """Every cause of frame_err_o alone sets it (sof missing or unexpected, eol missing or
+    unexpected, width or height 0 or above the maximum); a clean frame does not; reset
+    clears it."""
+    cfg = tb_lib.config_from_env()
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 10)
+    await tb_lib.start_clock_and_reset(dut)
+    assert await _inject(dut, cfg, rng, "control") == 0, "frame_err_o set by a clean frame"
+    wrong = []
+    for cause in coverage.FRAME_ERRORS:
+        if cause == "width_over_max" and cfg.max_width >= (1 << len(dut.frame_width_i)) - 1:
+            continue
+        if cause == "height_over_max" and cfg.max_height >= (1 << len(dut.frame_height_i)) - 1:
+            continue
+        err = await _inject(dut, cfg, rng, cause)
+        if err != 1:
+            wrong.append(cause)
+        else:
+            _cov().sample("frame.error", cause)
+    await tb_lib.reset(dut)
+    assert int(dut.frame_err_o.value) == 0, "reset did not clear frame_err_o"
+    coverage.export()
+    assert not wrong, f"frame_err_o stayed 0 for: {', '.join(wrong)}"
+
+
+def _stage_at(cfg, w: int, k: int) -> str:
+    """The stage of the leading item (past the window: of the leading output) k cycles
+    after a frame's first pixel was taken at full rate (coverage.pipeline_stages; the
+    window holds the leading item for W + 1 cycles)."""
+    stages = coverage.pipeline_stages("nuc_dpc_top", cfg)[:-1]
+    iw = stages.index("dpc_window")
+    if k < iw:
+        return stages[k]
+    if k <= iw + w + 1:
+        return "dpc_window"
+    return stages[min(k - w - 1, len(stages) - 1)]
+
+
+@cocotb.test()
+async def reset_each_stage(dut) -> None:
+    """Reset while the leading item is in each pipeline stage, and during the DPC's flush;
+    each time the next frame is exact. The stage model is checked first: the first output
+    leaves len(stages) + W + 1 cycles after the first pixel was taken (docs/rtl.md)."""
+    cfg = tb_lib.config_from_env()
+    gcfg = tb_lib.golden_config(cfg)
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 11)
+    await tb_lib.start_clock_and_reset(dut)
+    h, w = min(cfg.max_height, 3), min(cfg.max_width, 4)
+    stages = coverage.pipeline_stages("nuc_dpc_top", cfg)[:-1]
+    frames = _random_frames(rng, cfg, gcfg, 1, h, w)
+    pix, coef = tb_lib.top_sources(dut, frames)
+    sink = tb_lib.top_sink(dut)
+    await tb_lib.run_streams(dut, [pix, coef], sink, h * w, rng)
+    latency = sink.first_cycle - pix.taken[0]
+    assert latency == len(stages) + w + 1, (
+        f"first output {latency} cycles after the first pixel; the stage model says "
+        f"{len(stages) + w + 1}")
+    for k in range(latency + 1):
+        await tb_lib.reset(dut)
+        frames = _random_frames(rng, cfg, gcfg, 1, h, w)
+        pix, coef = tb_lib.top_sources(dut, frames)
+        await tb_lib.run_streams(dut, [pix, coef], tb_lib.top_sink(dut), 10**9, rng,
+                                 stop=lambda c, p=pix, k=k: bool(p.taken) and
+                                 c >= p.taken[0] + k)
+        await tb_lib.reset(dut)
+        _cov().sample("reset.stage", _stage_at(cfg, w, k))
+        assert int(dut.m_pix_valid_o.value) == 0
+        await _check(dut, _random_frames(rng, cfg, gcfg, 1, h, w), rng, gcfg)
+    # During the flush: a frame, no next pixel, reset while the phantoms push it out.
+    wf = min(cfg.max_width, 12)
+    nuc = len(coverage.pipeline_stages("nuc_core", cfg))
+    for k in range(1, 4):
+        await tb_lib.reset(dut)
+        frames = _random_frames(rng, cfg, gcfg, 1, 1, wf)
+        pix, coef = tb_lib.top_sources(dut, frames)
+        await tb_lib.run_streams(
+            dut, [pix, coef], tb_lib.top_sink(dut), 10**9, rng,
+            stop=lambda c, p=pix, k=k: p.done and c >= p.taken[-1] + nuc + 2
+            + k * max(1, wf // 4))
+        await tb_lib.reset(dut)
+        _cov().sample("reset.stage", "flush")
+        await _check(dut, _random_frames(rng, cfg, gcfg, 1, h, w), rng, gcfg)
+    coverage.export()
 
 
 __all__ = ["Frame"]

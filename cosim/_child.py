@@ -18,7 +18,7 @@ def main(spec_path: str) -> int:
     spec = json.loads(open(spec_path).read())
     from irnuc.cosim._cocotb_adapter import wheel_runner
 
-    runner = wheel_runner()
+    runner = wheel_runner(spec.get("visibility", "ports"))
     try:
         if "build" in spec:
             runner.build(**spec["build"])

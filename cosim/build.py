@@ -20,6 +20,7 @@ from irnuc.common.cache import cache_dir
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.io import file_lock, write_text_atomic
 from irnuc.common.process import ChildTimeout, run_child
+from irnuc.cosim._cocotb_adapter import PORTS_ONLY
 from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import (
     RtlError,
@@ -41,6 +42,9 @@ BUILD_ARGS: tuple[str, ...] = ("--assert", ASSERT_DEFINE, "-Wno-fatal", "-j", "2
 #: Verilator's default ``-Os``, so they win). Assertions stay on.
 FAST_ARGS: tuple[str, ...] = ("-O3", "--x-assign", "fast", "--x-initial", "fast",
                               "-CFLAGS", "-O2")
+#: Verilator code coverage of a ``coverage=True`` build: line (statement and branch) and
+#: toggle coverage, per module (irnuc.cosim.coverage.code_coverage reads the result).
+COVERAGE_ARGS: tuple[str, ...] = ("--coverage-line", "--coverage-toggle")
 
 
 class SimulationTimeout(RtlError):
@@ -66,12 +70,14 @@ class Build:
     build_dir: Path
     parameters: dict[str, int]
     waves: bool
+    coverage: bool = False
+    visibility: str = PORTS_ONLY
 
 
 def build_digest(top: str, params: Mapping[str, int], options: Sequence[str],
-                 extra_files: Sequence[Path] = ()) -> str:
+                 extra_files: Sequence[Path] = (), hdl_dir: Path | None = None) -> str:
     """Digest of everything a build depends on."""
-    return files_digest([*hdl_sources(top), *extra_files],
+    return files_digest([*hdl_sources(top, hdl_dir), *extra_files],
                         {"top": top, "params": dict(params), "options": list(options),
                          "verilator": verilator_version()})
 
@@ -93,7 +99,9 @@ def cached_build(name: str, stamp_info: Mapping[str, object], make) -> Path:
 
 
 def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
-          extra_args: Sequence[str] = (), defines: Mapping[str, object] | None = None) -> Build:
+          extra_args: Sequence[str] = (), defines: Mapping[str, object] | None = None,
+          coverage: bool = False, visibility: str = PORTS_ONLY,
+          hdl_dir: Path | None = None) -> Build:
     """Build ``top`` for ``cfg`` as a cocotb model (cached) and return where it is.
 
     Parameters
@@ -108,20 +116,33 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
         More Verilator options (part of the cache key).
     defines : mapping, optional
         Preprocessor defines (``-D``), part of the cache key.
+    coverage : bool
+        Verilator code coverage (line and toggle, :data:`COVERAGE_ARGS`): every run then
+        writes ``coverage.dat`` (read with :mod:`irnuc.cosim.coverage`).
+    visibility : str
+        ``"ports"`` (default): only the top module's signals are visible to cocotb;
+        ``"all"``: every signal (cocotb's ``--public-flat-rw``, much slower per cycle).
+    hdl_dir : Path, optional
+        A modified copy of ``hdl/`` to build instead (mutants); part of the cache key
+        through the files' contents.
     """
     params = top_parameters(top, cfg)
     trace = ["--trace-fst"] if waves and fst_supported() else []
     defines = dict(defines or {})
-    options = [*BUILD_ARGS, *trace, *extra_args, *(f"-D{k}={v}" for k, v in defines.items())]
-    key = build_digest(top, params, [*options, f"waves={waves_suffix() if waves else ''}"])
+    cov = list(COVERAGE_ARGS) if coverage else []
+    options = [*BUILD_ARGS, *trace, *cov, *extra_args,
+               *(f"-D{k}={v}" for k, v in defines.items())]
+    key = build_digest(top, params, [*options, f"waves={waves_suffix() if waves else ''}",
+                                     f"visibility={visibility}"], hdl_dir=hdl_dir)
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
-        spec = {"build": {"sources": [str(p) for p in hdl_sources(top)], "hdl_toplevel": top,
-                          "parameters": params, "defines": defines,
+        spec = {"visibility": visibility,
+                "build": {"sources": [str(p) for p in hdl_sources(top, hdl_dir)],
+                          "hdl_toplevel": top, "parameters": params, "defines": defines,
                           "build_dir": str(build_dir),
-                          "build_args": [*BUILD_ARGS, *trace, *extra_args], "waves": waves,
-                          "always": True, "log_file": str(log)}}
+                          "build_args": [*BUILD_ARGS, *trace, *cov, *extra_args],
+                          "waves": waves, "always": True, "log_file": str(log)}}
         spec_file = build_dir / "irnuc_build_spec.json"
         write_text_atomic(spec_file, json.dumps(spec))
         proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
@@ -133,7 +154,8 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
     build_dir = cached_build(f"{cfg.name}-{top}-{key}",
                              {"top": top, "config": cfg.to_dict(), "params": params,
                               "waves": waves, "options": options}, make)
-    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=waves)
+    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=waves,
+                 coverage=coverage, visibility=visibility)
 
 
 def build_binary(top: str, cfg: PipelineConfig, args: Sequence[str] = ()) -> Path:
@@ -174,16 +196,20 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     results_xml = Path(results_xml).resolve()
     results_xml.parent.mkdir(parents=True, exist_ok=True)
     results_xml.unlink(missing_ok=True)  # never read a previous run's results
+    coverage_file(results_xml).unlink(missing_ok=True)
     test_dir = results_xml.parent / (results_xml.stem + ".run")
     test_dir.mkdir(parents=True, exist_ok=True)
     extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()), **(env or {})}
     wave_file = results_xml.with_suffix(waves_suffix())
     test_args = ["--trace-file", str(wave_file)] if waves else []
-    spec = {"build_dir": str(bld.build_dir), "test": {
+    plusargs = ([f"+verilator+coverage+file+{coverage_file(results_xml)}"]
+                if bld.coverage else [])
+    spec = {"build_dir": str(bld.build_dir), "visibility": bld.visibility, "test": {
         "test_module": test_module, "hdl_toplevel": bld.top, "hdl_toplevel_lang": "verilog",
         "build_dir": str(bld.build_dir), "test_dir": str(test_dir),
         "results_xml": str(results_xml), "testcase": testcase, "seed": seed,
         "extra_env": extra_env, "waves": waves, "test_args": test_args,
+        "plusargs": plusargs,
         "log_file": str(test_dir / "sim.log")}}
     spec_file = test_dir / "irnuc_run.json"
     write_text_atomic(spec_file, json.dumps(spec))
@@ -219,6 +245,13 @@ def sim_log(results_xml: Path) -> Path:
     return results_xml.parent / (results_xml.stem + ".run") / "sim.log"
 
 
+def coverage_file(results_xml: Path) -> Path:
+    """Verilator's code-coverage data of the run that wrote ``results_xml`` (builds with
+    ``coverage=True``)."""
+    results_xml = Path(results_xml)
+    return results_xml.parent / (results_xml.stem + ".run") / "coverage.dat"
+
+
 def assertion_failures(results_xml: Path) -> list[str]:
     """Failed RTL assertions reported in the simulator log of a run (Verilator lines
     ``[time] %Error: file:line: Assertion failed in <instance>.<label>: <message>``)."""
@@ -243,6 +276,7 @@ def read_results(path: Path) -> dict[str, CaseResult]:
 
 __all__ = [
     "BUILD_ARGS",
+    "COVERAGE_ARGS",
     "FAST_ARGS",
     "Build",
     "CaseResult",
@@ -252,6 +286,7 @@ __all__ = [
     "build_binary",
     "build_digest",
     "cached_build",
+    "coverage_file",
     "digest",
     "read_results",
     "results_dir",

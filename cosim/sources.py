@@ -68,11 +68,16 @@ _BLOCK_PARAMETERS = {
 }
 
 
-def hdl_sources(top: str) -> list[Path]:
-    """HDL files needed to elaborate module ``top``."""
+def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
+    """HDL files needed to elaborate module ``top``.
+
+    ``hdl_dir`` replaces ``hdl/`` (a modified copy of the design, e.g. a mutant); files it
+    lacks are taken from ``cocotb_tests/hdl/``.
+    """
     if top not in MODULE_FILES:
         raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(MODULE_FILES))}")
-    return [HDL_DIR / name if (HDL_DIR / name).is_file() else SIM_HDL_DIR / name
+    base = Path(hdl_dir) if hdl_dir is not None else HDL_DIR
+    return [base / name if (base / name).is_file() else SIM_HDL_DIR / name
             for name in MODULE_FILES[top]]
 
 
