@@ -11,7 +11,8 @@ import numpy as np
 from cocotb.triggers import ClockCycles
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.directed import dpc_bad_patterns
+from irnuc.cocotb_tests.directed import dpc_bad_patterns, neighbour_maps
+from irnuc.cosim import coverage
 from irnuc.nuc_fixed import dpc_core
 
 
@@ -66,6 +67,13 @@ async def _run(dut, frames, rng, idle=0.0, bp=0.0):
         raise AssertionError(f"{len(lines)} mismatches; first:\n"
                              + "\n".join([ln for ln in lines if ln][:10]))
     assert int(dut.frame_err_o.value) == 0
+    cov = coverage.model("dpc_core", cfg)
+    for _, bad in frames:
+        cov.sample_dpc(bad)
+    cov.sample_frames([y.shape for y, _ in frames],
+                      [src.taken[int(e)] - src.taken[int(e) - 1] - 1
+                       for e in np.cumsum([y.size for y, _ in frames])[:-1]])
+    coverage.export()
     return sink
 
 
@@ -80,7 +88,7 @@ async def patterns(dut) -> None:
     rng = np.random.default_rng(tb_lib.seed_from_env())
     await tb_lib.start_clock_and_reset(dut)
     h, w = min(cfg.max_height, 9), min(cfg.max_width, 11)
-    for i, bad in enumerate(dpc_bad_patterns(h, w)):
+    for i, bad in enumerate(dpc_bad_patterns(h, w) + neighbour_maps(h, w)):
         await _run(dut, [(_y(rng, cfg, bad.shape), bad)], rng, idle=0.2 * (i % 2),
                    bp=0.3 * ((i + 1) % 2))
 

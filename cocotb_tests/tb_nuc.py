@@ -11,6 +11,7 @@ from cocotb.triggers import ClockCycles
 
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.directed import corner_coefficients
+from irnuc.cosim import coverage
 from irnuc.nuc_fixed import nuc_core
 
 
@@ -44,7 +45,12 @@ async def _run(dut, cfg, gcfg, x, g, o, rng, idle=0.0, bp=0.0):
                         np.stack([x, g, o_field, user], axis=1), idle)
     sink = tb_lib.Sink(dut.m_valid_o, dut.m_ready_i, [dut.m_pix_data_o, dut.m_user_o], bp)
     await tb_lib.run_streams(dut, [src], sink, len(x), rng)
-    return _check(x, g, o, user, sink.got, gcfg), sink
+    lines = _check(x, g, o, user, sink.got, gcfg)
+    if not lines and gcfg == cfg:
+        coverage.model("nuc_core", cfg).sample_nuc(np.asarray(x), np.asarray(g),
+                                                   np.asarray(o))
+        coverage.export()
+    return lines, sink
 
 
 def _random(cfg, rng, n):
@@ -73,6 +79,50 @@ async def random_full_rate(dut) -> None:
     if lines:
         _fail(dut, lines)
     assert sink.last_cycle - sink.first_cycle == len(x) - 1, "bubbles at full rate"
+    coverage.model("nuc_core", cfg).sample("stream.back_to_back", "frames")
+    coverage.export()
+
+
+@cocotb.test()
+async def stream_patterns(dut) -> None:
+    """Every idle x backpressure pattern: exact; at full-rate input no lost cycle."""
+    cfg = tb_lib.config_from_env()
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 5)
+    await tb_lib.start_clock_and_reset(dut)
+    for idle in coverage.IDLE_PATTERNS:
+        for bp in coverage.BACKPRESSURE_PATTERNS:
+            x, g, o = _random(cfg, rng, 60)
+            lines, sink = await _run(dut, cfg, tb_lib.golden_config(cfg), x, g, o, rng,
+                                     idle=idle, bp=bp)
+            if lines:
+                _fail(dut, lines)
+            if idle == "none":
+                sink.check_throughput()
+
+
+@cocotb.test()
+async def reset_each_stage(dut) -> None:
+    """Reset while the leading item is in each stage; the stream after it is exact."""
+    cfg = tb_lib.config_from_env()
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 6)
+    await tb_lib.start_clock_and_reset(dut)
+    stages = coverage.pipeline_stages("nuc_core", cfg)
+    for k, stage in enumerate(stages):
+        x, g, o = _random(cfg, rng, 20)
+        src = tb_lib.Source(dut.s_valid_i, dut.s_ready_o,
+                            [dut.s_pix_data_i, dut.s_gain_i, dut.s_offset_i, dut.s_user_i],
+                            np.stack([x, g, o & ((1 << cfg.offset_bits) - 1), 0 * x], axis=1))
+        sink = tb_lib.Sink(dut.m_valid_o, dut.m_ready_i, [dut.m_pix_data_o, dut.m_user_o])
+        await tb_lib.run_streams(dut, [src], sink, 10**9, rng,
+                                 stop=lambda c, s=src, k=k: bool(s.taken) and
+                                 c >= s.taken[0] + k)
+        await tb_lib.reset(dut)
+        assert int(dut.m_valid_o.value) == 0
+        coverage.model("nuc_core", cfg).sample("reset.stage", stage)
+        x, g, o = _random(cfg, rng, 30)
+        lines, _ = await _run(dut, cfg, tb_lib.golden_config(cfg), x, g, o, rng)
+        if lines:
+            _fail(dut, lines)
 
 
 @cocotb.test()

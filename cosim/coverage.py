@@ -454,7 +454,8 @@ def code_coverage(points: Mapping[tuple[str, ...], int]) -> dict[str, Any]:
         group = {"v_line": "line", "v_branch": "line", "v_toggle": "toggle"}.get(kind)
         if group is None or not module:
             continue
-        m = mods.setdefault(module, {"line": [0, 0], "toggle": [0, 0], "missed_lines": set()})
+        m = mods.setdefault(module.split("__")[0],
+                            {"line": [0, 0], "toggle": [0, 0], "missed_lines": set()})
         m[group][1] += 1
         if count > 0:
             m[group][0] += 1

@@ -34,9 +34,11 @@ from irnuc.cosim.build import (
     SimulationTimeout,
     assertion_failures,
     build,
+    coverage_file,
     read_results,
     run,
 )
+from irnuc.cosim.coverage import COVERAGE_ENV
 from irnuc.cosim.verilator import RtlError, waves_suffix
 from irnuc.nuc_fixed import PipelineConfig
 
@@ -94,6 +96,11 @@ class SuiteResult:
     build_seconds: float
     run_seconds: float
     builds: list[str]
+    #: Functional coverage (``functional``: :func:`irnuc.cosim.coverage.summarize` of the
+    #: bins merged over the tests run, per configuration) and code coverage (``code``:
+    #: configuration -> module -> line and toggle hit/total/percent); None when the suite
+    #: ran without ``coverage=True``.
+    coverage: dict[str, Any] | None = None
 
     def count(self, status: str) -> int:
         return sum(o.status == status for o in self.outcomes)
@@ -156,7 +163,9 @@ def _read_metrics(path: Path) -> list[dict[str, Any]]:
 
 def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
               timeout_base: float = 120.0, build_args: Sequence[str] = (),
-              progress: Callable[[int, int], None] | None = None) -> SuiteResult:
+              progress: Callable[[int, int], None] | None = None,
+              coverage: bool = False, hdl_dir: Path | None = None,
+              stop_on_failure: bool = False) -> SuiteResult:
     """Build everything, then run every test of every case on its own timer.
 
     Parameters
@@ -174,6 +183,14 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
         Extra Verilator options for every build.
     progress : callable, optional
         ``progress(done, total)`` after every test.
+    coverage : bool
+        Collect functional coverage (every testbench exports its bins) and code coverage
+        (builds with Verilator line and toggle coverage); merged into
+        :attr:`SuiteResult.coverage` and written to ``out_dir/coverage.json``.
+    hdl_dir : Path, optional
+        Build a modified copy of ``hdl/`` (a mutant) instead of the design.
+    stop_on_failure : bool
+        Stop after the first test that does not pass (mutation runs).
     """
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -182,10 +199,12 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
     for c in cases:
         key = (c.top, c.cfg.digest())
         if key not in builds:
-            builds[key] = build(c.top, c.cfg, waves=waves, extra_args=build_args)
+            builds[key] = build(c.top, c.cfg, waves=waves, extra_args=build_args,
+                                coverage=coverage, hdl_dir=hdl_dir)
     build_seconds = time.perf_counter() - t0
     plan = [(c, t) for c in cases for t in (c.tests or tuple(cocotb_test_names(c.module)))]
     outcomes: list[TestOutcome] = []
+    cov_files: list[tuple[SuiteCase, Path, Path]] = []
     t1 = time.perf_counter()
     for i, (c, test) in enumerate(plan):
         bld = builds[(c.top, c.cfg.digest())]
@@ -196,7 +215,11 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
         metrics_file = run_dir / "metrics.jsonl"
         run_dir.mkdir(parents=True, exist_ok=True)
         metrics_file.unlink(missing_ok=True)
+        cov_file = run_dir / "coverage.json"
+        cov_file.unlink(missing_ok=True)
         env = {"IRNUC_SEED": str(c.seed), METRICS_ENV: str(metrics_file), **dict(c.env)}
+        if coverage:
+            env[COVERAGE_ENV] = str(cov_file)
         start = time.perf_counter()
         status, message = "error", ""
         try:
@@ -219,8 +242,31 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
             message=message, log=log if log.is_file() else None,
             waves=wave if waves and wave.is_file() else None,
             metrics=_read_metrics(metrics_file), assertion_failures=assertion_failures(xml)))
+        if coverage:
+            cov_files.append((c, cov_file, coverage_file(xml)))
         if progress is not None:
             progress(i + 1, len(plan))
-    return SuiteResult(outcomes=outcomes, build_seconds=build_seconds,
-                       run_seconds=time.perf_counter() - t1,
-                       builds=[str(b.build_dir) for b in builds.values()])
+        if stop_on_failure and status != "passed":
+            break
+    result = SuiteResult(outcomes=outcomes, build_seconds=build_seconds,
+                         run_seconds=time.perf_counter() - t1,
+                         builds=[str(b.build_dir) for b in builds.values()])
+    if coverage:
+        result.coverage = suite_coverage(cov_files)
+        write_text_atomic(out_dir / "coverage.json",
+                          json.dumps(result.coverage, indent=1, sort_keys=True) + "\n")
+    return result
+
+
+def suite_coverage(files: Sequence[tuple[SuiteCase, Path, Path]]) -> dict[str, Any]:
+    """Functional coverage merged over the exported files, code coverage per configuration
+    and module merged over the ``coverage.dat`` files (see :attr:`SuiteResult.coverage`)."""
+    from irnuc.cosim import coverage as cov
+
+    functional = cov.summarize(cov.merge(f for _, f, _ in files))
+    points: dict[str, list] = {}
+    for case, _, dat in files:
+        if dat.is_file():
+            points.setdefault(cov.config_label(case.cfg), []).append(cov.read_coverage_dat(dat))
+    code = {label: cov.code_coverage(cov.merge_points(p)) for label, p in sorted(points.items())}
+    return {"functional": functional, "code": code}
