@@ -41,8 +41,8 @@ from irnuc.common.cache import cache_dir
 from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
 
 H, W = 480, 640
-PER_CYCLE_GOAL = 100e3
-BULK_GOAL = 3e6
+PER_CYCLE_GOAL = 200e3
+BULK_GOAL = 10e6
 
 
 def stimulus(cfg, seed: int):

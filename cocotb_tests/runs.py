@@ -7,10 +7,12 @@ import functools
 import os
 
 from irnuc import cosim
+from irnuc.cosim.coverage import COVERAGE_ENV
 from irnuc.cosim.suite import cocotb_test_names
 from irnuc.nuc_fixed import PipelineConfig
 
-__all__ = ["check_case", "cocotb_test_names", "run_module", "waves_requested"]
+__all__ = ["check_case", "cocotb_test_names", "coverage_json", "run_module",
+           "waves_requested"]
 
 
 def waves_requested() -> bool:
@@ -28,9 +30,10 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
     """
     waves = waves_requested()
     bld = cosim.build(top, cfg, waves=waves)
-    tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
-    xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed)}, seed=seed, waves=waves,
-                    results_xml=cosim.results_dir() / f"{tag}.xml")
+    cov = coverage_json(top, cfg, module)
+    cov.unlink(missing_ok=True)
+    xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed), COVERAGE_ENV: str(cov)},
+                    seed=seed, waves=waves, results_xml=cov.with_suffix(".xml"))
     results = cosim.read_results(xml)
     fired = cosim.assertion_failures(xml)
     if fired:
@@ -38,6 +41,12 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
         results = {k: v if v.passed else cosim.CaseResult(v.name, False, v.message + note)
                    for k, v in results.items()}
     return results
+
+
+def coverage_json(top: str, cfg: PipelineConfig, module: str):
+    """The functional-coverage file a :func:`run_module` run exports."""
+    tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
+    return cosim.results_dir() / f"{tag}.coverage.json"
 
 
 def check_case(results: dict[str, cosim.CaseResult], case: str) -> None:

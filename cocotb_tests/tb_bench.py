@@ -8,12 +8,12 @@ The driver is the lean form of ``tb_lib.run_streams``: one coroutine, one
 coefficient words) and a sink that takes every valid output (ready = 1), the stimulus
 converted to Python ints beforehand, and the outputs collected in lists and compared with
 the golden model in numpy at the end (every code, sof and eol, bit for bit). Port access
-goes through :func:`fast_reader` / :func:`fast_writer`.
+is cocotb's public API only (``handle.value``); the build makes only the top module's
+signals visible to VPI (``cosim._cocotb_adapter``), not every signal.
 """
 
 from __future__ import annotations
 
-import functools
 import json
 import os
 import time
@@ -29,76 +29,22 @@ from cocotb.triggers import RisingEdge
 from irnuc.cocotb_tests import tb_lib
 
 
-def _gpi(handle: SimHandleBase):
-    """The GPI object behind a handle, when the cheap direct path may be used.
-
-    cocotb 2.x writes a deposit through to the simulator at once when
-    ``COCOTB_TRUST_INERTIAL_WRITES=1`` (the Verilator runner sets it); a direct GPI call
-    is then the same write without the Python conversion layers (about 1-2 us saved per
-    access). Without that setting, or on another cocotb, or with
-    ``IRNUC_BENCH_PUBLIC_API=1`` (to measure the difference), ``None``: use the public API.
-    """
-    gpi = getattr(handle, "_handle", None)
-    if (os.environ.get("COCOTB_TRUST_INERTIAL_WRITES") != "1" or gpi is None
-            or os.environ.get("IRNUC_BENCH_PUBLIC_API") == "1"):
-        return None
-    if not all(hasattr(gpi, f) for f in ("get_signal_val_long", "set_signal_val_int",
-                                         "set_signal_val_binstr")):
-        return None
-    return gpi
-
-
 def fast_reader(handle: SimHandleBase) -> Callable[[], int]:
-    """A function returning the unsigned value of a port.
-
-    The GPI integer path is signed 32-bit: used up to 31 bits, the public API above.
-    """
-    gpi = _gpi(handle)
-    if gpi is not None and len(handle) <= 31:
-        return gpi.get_signal_val_long
+    """A function returning the unsigned value of a port (public API: ``handle.value``)."""
     return lambda: int(handle.value)  # Logic and LogicArray both convert
 
 
 def port_writer(handle: SimHandleBase) -> tuple[Callable[[Any], None], Callable[[int], Any]]:
-    """``(write, encode)``: ``write(encode(v))`` deposits the unsigned int ``v`` on a port.
-
-    Stimulus lists can be encoded once before the loop (a binary string above 31 bits on
-    the fast path, where the GPI integer call is signed 32-bit).
-    """
-    gpi = _gpi(handle)
-    if gpi is None:
-        def write(v: int) -> None:
-            handle.value = v
-        return write, int
-    if len(handle) <= 31:
-        return functools.partial(gpi.set_signal_val_int, 0), int  # 0: GPI deposit
-    fmt = f"0{len(handle)}b"
-    return functools.partial(gpi.set_signal_val_binstr, 0), lambda v: format(v, fmt)
+    """``(write, encode)``: ``write(encode(v))`` deposits the unsigned int ``v`` on a port
+    through the public API (``handle.value = v``)."""
+    def write(v: int) -> None:
+        handle.value = v
+    return write, int
 
 
 def fast_writer(handle: SimHandleBase) -> Callable[[int], None]:
-    """A function depositing an unsigned int on a port."""
-    write, encode = port_writer(handle)
-    return write if encode is int else (lambda v: write(encode(v)))
-
-
-async def check_fast_access(dut: SimHandleBase, values: dict[str, int]) -> None:
-    """The fast path writes and reads what the public API writes and reads.
-
-    Writes are inertial (seen after the current evaluation), hence one edge in between.
-    """
-    edge = RisingEdge(dut.clk_i)
-    for name, v in values.items():
-        fast_writer(getattr(dut, name))(v)
-    await edge
-    for name, v in values.items():
-        pub = int(getattr(dut, name).value)
-        assert pub == v, f"{name}: fast write of {v}, public read {pub}"
-        getattr(dut, name).value = v ^ 1
-    await edge
-    for name, v in values.items():
-        got = fast_reader(getattr(dut, name))()
-        assert got == v ^ 1, f"{name}: public write of {v ^ 1}, fast read {got}"
+    """A function depositing an unsigned int on a port (public API)."""
+    return port_writer(handle)[0]
 
 
 async def stream_lean(dut: SimHandleBase, raw: np.ndarray, words: np.ndarray
@@ -187,9 +133,6 @@ async def vga_frame(dut) -> None:
     dut.s_coef_valid_i.value = 0
     dut.m_pix_ready_i.value = 0
     await tb_lib.start_clock_and_reset(dut)
-    await check_fast_access(dut, {"s_pix_data_i": (1 << cfg.adc_bits) - 1,
-                                  "s_coef_data_i": (1 << cfg.word_bits) - 2,
-                                  "s_pix_sof_i": 1})
     t0 = time.perf_counter()
     got, cycles, first = await stream_lean(dut, raw, words)
     t1 = time.perf_counter()

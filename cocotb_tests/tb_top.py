@@ -267,7 +267,7 @@ async def frame_size_changes(dut) -> None:
     h, w = min(cfg.max_height, 4), min(cfg.max_width, 6)
     back_to_back = [(h, w), (h, w + 1), (h + 1, w + 1), (h + 2, w + 1), (h, w), (h, w)]
     alone = [(1, 1), (1, 1), (1, min(cfg.max_width, 5)), (min(cfg.max_height, 5), 1),
-             (2, cfg.max_width), (cfg.max_height, 1), (2, 2)]
+             (2, cfg.max_width), (cfg.max_height, 1), (2, 2), (3, 3), (4, 4), (3, 2)]
     for bp in ("none", "random"):
         words = {hw: tb_lib.random_coefficients(rng, cfg, *hw, 0.2)
                  for hw in set(back_to_back + alone)}

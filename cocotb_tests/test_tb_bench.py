@@ -17,7 +17,7 @@ from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 
-def _run(tmp_path, expected_cfg_changes: dict[str, str], public_api: str = "0"
+def _run(tmp_path, expected_cfg_changes: dict[str, str]
          ) -> tuple[dict, dict[str, cosim.CaseResult]]:
     cfg = load_pipeline("minimal")
     rng = np.random.default_rng(11)
@@ -32,18 +32,16 @@ def _run(tmp_path, expected_cfg_changes: dict[str, str], public_api: str = "0"
     inp, outp = tmp_path / "in.npz", tmp_path / "out.json"
     np.savez(inp, raw=raw, words=words, expected=expected)
     xml = cosim.run(cosim.build("nuc_dpc_top", cfg), "irnuc.cocotb_tests.tb_bench",
-                  env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp),
-                       "IRNUC_BENCH_PUBLIC_API": public_api},
+                  env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp)},
                   results_xml=tmp_path / "bench.xml")
     info = json.loads(outp.read_text())
     info["n_diff"] = int((expected != nuc_dpc_top(raw, words, cfg)).sum())
     return info, cosim.read_results(xml)
 
 
-@pytest.mark.parametrize("public_api", ["0", "1"], ids=["gpi_access", "public_api"])
-def test_lean_driver_matches_golden(tmp_path, public_api: str) -> None:
-    """Both port-access paths (direct GPI and the public cocotb API) are exact."""
-    info, res = _run(tmp_path, {}, public_api)
+def test_lean_driver_matches_golden(tmp_path) -> None:
+    """The lean driver (public cocotb API only) is exact and runs at one pixel per clock."""
+    info, res = _run(tmp_path, {})
     assert res["vga_frame"].passed, res["vga_frame"].message
     assert info["mismatches"] == 0
     # Full rate: the last output leaves exactly pixels - 1 cycles after the first.

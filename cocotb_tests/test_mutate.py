@@ -1,0 +1,73 @@
+"""``irnuc mutate`` and ``irnuc.cosim.mutate``: the catalogue, a small campaign (killed,
+equivalent), the cache and ``cached_summary``, the command line.
+
+The full campaign is not run here (see docs/verification.md for its figures): two mutants
+on the ``minimal`` pipeline, in a cache of their own.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from irnuc.cosim import mutate
+from irnuc.cosim.sources import HDL_DIR, MODULE_FILES
+
+DESIGN = {f.removesuffix(".sv") for f in MODULE_FILES["nuc_dpc_top"]} - {
+    "irnuc_stream_assert", "irnuc_frame_assert"}
+
+
+def test_catalogue_covers_every_design_module() -> None:
+    assert len(mutate.CATALOGUE) >= 30
+    assert len({m.id for m in mutate.CATALOGUE}) == len(mutate.CATALOGUE)
+    assert {m.file.removesuffix(".sv") for m in mutate.CATALOGUE} == DESIGN
+    for m in mutate.CATALOGUE:
+        text = (HDL_DIR / m.file).read_text()
+        assert text.count(m.find) == 1, m.id
+        assert m.apply(text) != text
+        assert m.pipeline() is not None
+
+
+def test_a_stale_mutant_is_a_clear_error() -> None:
+    m = mutate.Mutant("x", "nuc_core.sv", "no such text", "y", "test")
+    with pytest.raises(ValueError, match="occurs 0 times"):
+        m.apply((HDL_DIR / "nuc_core.sv").read_text())
+    with pytest.raises(ValueError, match="unknown mutant 'nope'"):
+        mutate.catalogue(["nope"])
+
+
+@pytest.mark.cosim
+@pytest.mark.slow
+def test_small_campaign_cache_and_cli(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    assert mutate.cached_summary() is None
+    picked = mutate.catalogue(["spill_ready_half_rate", "pkg_chunk_16"])
+    s = mutate.run_mutants(picked, workers=0)
+    by_id = {r["id"]: r for r in s["mutants"]}
+    # Half throughput, no data lost: only the throughput checks can see it.
+    assert by_id["spill_ready_half_rate"]["status"] == "killed"
+    assert by_id["spill_ready_half_rate"]["killed_by"]
+    assert by_id["pkg_chunk_16"]["status"] == "equivalent"
+    assert by_id["pkg_chunk_16"]["equivalent"]
+    assert (s["killed"], s["survived"], s["equivalent"], s["total"]) == (1, 0, 1, 2)
+    assert s["score"] == 1.0
+    cached = mutate.cached_summary()
+    assert cached is not None and cached["rtl_digest"] == mutate.rtl_digest()
+    assert cached["killing_tests"] == {"spill_ready_half_rate":
+                                       by_id["spill_ready_half_rate"]["killed_by"]}
+    # A second run comes from the cache.
+    again = mutate.run_mutants(picked, workers=0)
+    assert all(r["cached"] for r in again["mutants"])
+    # The command line: --out claimed, mutate.json written; a bad id is one line, exit 2.
+    from irnuc.cli import main
+
+    out = tmp_path / "out"
+    assert main(["mutate", "--only", "spill_ready_half_rate", "--only", "pkg_chunk_16",
+                 "--no-coverage", "--out", str(out), "-q"]) == 0
+    data = json.loads((out / "mutate.json").read_text())
+    assert data["killed"] == 1 and data["equivalent"] == 1
+    capsys.readouterr()
+    assert main(["mutate", "--only", "nope", "--out", str(tmp_path / "o2")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "unknown mutant 'nope'" in err[0]

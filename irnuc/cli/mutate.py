@@ -1,0 +1,77 @@
+"""``irnuc mutate``: mutation testing of the RTL against the co-simulation suite (standard
+library only at import time)."""
+
+from __future__ import annotations
+
+import argparse
+
+from irnuc.cli._args import add_out, progress, say
+
+
+def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--only", action="append", default=[], metavar="ID",
+                   help="run only this mutant of the catalogue (repeatable; see --list)")
+    p.add_argument("--list", action="store_true", help="list the catalogue and exit")
+    p.add_argument("--workers", type=int, default=1,
+                   help="worker processes (default: %(default)s); 0 = in-process")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the mutants on a Dask distributed cluster (needs "
+                        "dask[distributed])")
+    p.add_argument("--no-cache", action="store_true",
+                   help="run every mutant again even if the cache holds its result")
+    p.add_argument("--no-coverage", action="store_true",
+                   help="skip the coverage run of the unmutated design (coverage.json)")
+    add_out(p, "out/mutate")
+
+
+def run_mutate(args: argparse.Namespace) -> int:
+    import json
+
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
+    from irnuc.cosim import mutate
+
+    if args.list:
+        for m in mutate.CATALOGUE:
+            say(f"{m.id:28s} {m.file:26s} {m.what}"
+                + (" [equivalent]" if m.equivalent else ""), level=0)
+        return 0
+    if not 0 <= args.workers <= 256:
+        raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
+    mutants = mutate.catalogue(args.only)  # an unknown id is a one-line error, before work
+    out = claim_output_folder(args.out, kind="mutate")
+    summary = mutate.run_mutants(mutants, workers=args.workers, scheduler=args.scheduler,
+                                 use_cache=not args.no_cache, progress=progress("mutate"))
+    cov = None
+    if not args.no_coverage:
+        from irnuc import cosim
+        from irnuc.cosim.suite import SuiteCase
+
+        cfgs = {m.pipeline().digest(): m.pipeline() for m in mutants}
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as tmp:
+            res = cosim.run_suite([SuiteCase(mutate.SUITE_TOP, c, mutate.SUITE_MODULE)
+                                   for c in cfgs.values()], tmp, coverage=True)
+        cov = res.coverage
+    with output_folder(out, kind="mutate") as tmp:
+        write_text_atomic(tmp / "mutate.json", json.dumps(summary, indent=1) + "\n")
+        if cov is not None:
+            write_text_atomic(tmp / "coverage.json", json.dumps(cov, indent=1) + "\n")
+    for r in summary["mutants"]:
+        say(f"{r['id']:28s} {r['status']:10s} "
+            + (f"by {r['killed_by']}" if r["killed_by"] else (r["equivalent"] or "")[:60]),
+            level=2)
+    say(f"{summary['killed']} killed, {summary['survived']} survived, "
+        f"{summary['equivalent']} equivalent of {summary['total']} mutants "
+        f"(score {100 * summary['score']:.1f} % of the non-equivalent ones)"
+        + (f"; survivors: {', '.join(summary['survivors'])}" if summary["survivors"] else ""))
+    say(f"wrote {out / 'mutate.json'}")
+    return 0
+
+
+COMMANDS = {
+    "mutate": ("Mutation testing of the RTL: apply each mutant of the catalogue to a copy "
+               "of hdl/, build it and run the co-simulation suite; killed / survived / "
+               "equivalent, cached by source digest", add_mutate_arguments, run_mutate),
+}
