@@ -10,7 +10,8 @@ of ``cocotb_tests/tb_top.py``, one simulation) on the mutant's configuration:
   the first failing test is the killing test;
 * **survived**: every test passed;
 * **equivalent**: survived, and the catalogue carries the argument why no test can tell
-  the mutant from the design at the ports of ``nuc_dpc_top``.
+  the mutant from the design at the ports of ``nuc_dpc_top``;
+* **invalid**: the mutant did not build (a catalogue error, not a kill; not counted).
 
 Results are cached in the irnuc cache by the digest of the RTL sources, the mutant and
 the testbench sources; :func:`cached_summary` returns the latest campaign of the current
@@ -287,11 +288,12 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
         shutil.copytree(HDL_DIR, hdl, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
         f = hdl / m.file
         f.write_text(m.apply(f.read_text()))
-        killed_by, message = None, ""
+        killed_by, message, invalid = None, "", False
         try:
             bld = cosim.build(SUITE_TOP, cfg, hdl_dir=hdl)
         except cosim.RtlError as exc:
-            killed_by, message = "build", str(exc)
+            invalid, message = True, str(exc)[:600]
+            _remove_failed_builds(hdl)
         if bld is not None:
             xml = work / "results.xml"
             try:
@@ -306,7 +308,8 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
                 killed_by, message = "timeout", str(exc)[:600]
             except cosim.RtlError as exc:
                 killed_by, message = "simulation", str(exc)[:600]
-        status = ("killed" if killed_by else "equivalent" if m.equivalent else "survived")
+        status = ("invalid" if invalid else "killed" if killed_by else
+                  "equivalent" if m.equivalent else "survived")
         out = asdict(MutantResult(id=m.id, file=m.file, what=m.what, config=config_label(cfg),
                                   status=status, killed_by=killed_by, message=message,
                                   equivalent=m.equivalent,
@@ -340,6 +343,18 @@ def baseline_check(mutants: Sequence[Mutant]) -> None:
                                  f"{cfg.name} ({', '.join(bad) or 'no result'}); see {xml}")
 
 
+def _remove_failed_builds(hdl: Path) -> None:
+    """Remove the build folders of a mutant copy that did not build (no stamp file)."""
+    from irnuc.cosim.build import sim_build_dir
+
+    for spec in sim_build_dir().glob("*/irnuc_build_spec.json"):
+        try:
+            if str(hdl) in spec.read_text():
+                shutil.rmtree(spec.parent, ignore_errors=True)
+        except OSError:
+            continue
+
+
 def _job(m: dict, use_cache: bool) -> dict:
     return run_mutant(Mutant(**{**m, "changes": tuple(tuple(c) for c in m["changes"])}),
                       use_cache=use_cache)
@@ -350,11 +365,13 @@ def summarize(results: Sequence[dict], total_catalogue: int | None = None) -> di
     killed = [r for r in results if r["status"] == "killed"]
     survived = [r for r in results if r["status"] == "survived"]
     equivalent = [r for r in results if r["status"] == "equivalent"]
-    non_eq = len(results) - len(equivalent)
+    invalid = [r for r in results if r["status"] == "invalid"]
+    non_eq = len(killed) + len(survived)
     return {
         "rtl_digest": rtl_digest(), "total": len(results),
         "catalogue_size": total_catalogue if total_catalogue is not None else len(CATALOGUE),
         "killed": len(killed), "survived": len(survived), "equivalent": len(equivalent),
+        "invalid": [r["id"] for r in invalid],
         "score": round(len(killed) / non_eq, 4) if non_eq else 1.0,
         "survivors": [r["id"] for r in survived],
         "equivalents": {r["id"]: r["equivalent"] for r in equivalent},
