@@ -8,10 +8,10 @@ import os
 
 from irnuc import cosim
 from irnuc.cosim.coverage import COVERAGE_ENV
-from irnuc.cosim.suite import cocotb_test_names
+from irnuc.cosim.suite import METRICS_ENV, cocotb_test_names
 from irnuc.nuc_fixed import PipelineConfig
 
-__all__ = ["check_case", "cocotb_test_names", "coverage_json", "run_module",
+__all__ = ["check_case", "cocotb_test_names", "coverage_json", "module_metrics", "run_module",
            "waves_requested"]
 
 
@@ -32,7 +32,10 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
     bld = cosim.build(top, cfg, waves=waves)
     cov = coverage_json(top, cfg, module)
     cov.unlink(missing_ok=True)
-    xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed), COVERAGE_ENV: str(cov)},
+    metrics = cov.with_suffix(".metrics.jsonl")
+    metrics.unlink(missing_ok=True)
+    xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed), COVERAGE_ENV: str(cov),
+                                      METRICS_ENV: str(metrics)},
                     seed=seed, waves=waves, results_xml=cov.with_suffix(".xml"))
     results = cosim.read_results(xml)
     fired = cosim.assertion_failures(xml)
@@ -41,6 +44,17 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
         results = {k: v if v.passed else cosim.CaseResult(v.name, False, v.message + note)
                    for k, v in results.items()}
     return results
+
+
+def module_metrics(top: str, cfg: PipelineConfig, module: str) -> list[dict]:
+    """The metric lines the testbench recorded in its :func:`run_module` run."""
+    import json
+
+    run_module(top, cfg, module)
+    path = coverage_json(top, cfg, module).with_suffix(".metrics.jsonl")
+    if not path.is_file():
+        return []
+    return [json.loads(ln) for ln in path.read_text().splitlines() if ln.startswith("{")]
 
 
 def coverage_json(top: str, cfg: PipelineConfig, module: str):

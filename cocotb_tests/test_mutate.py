@@ -8,6 +8,10 @@ on the ``minimal`` pipeline, in a cache of their own.
 from __future__ import annotations
 
 import json
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -39,7 +43,7 @@ def test_a_stale_mutant_is_a_clear_error() -> None:
 
 @pytest.mark.cosim
 @pytest.mark.slow
-def test_small_campaign_cache_and_cli(tmp_path, monkeypatch, capsys) -> None:
+def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
     assert mutate.cached_summary() is None
     picked = mutate.catalogue(["spill_ready_half_rate", "pkg_chunk_16"])
@@ -59,15 +63,20 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch, capsys) -> None:
     # A second run comes from the cache.
     again = mutate.run_mutants(picked, workers=0)
     assert all(r["cached"] for r in again["mutants"])
-    # The command line: --out claimed, mutate.json written; a bad id is one line, exit 2.
-    from irnuc.cli import main
-
+    # The command line (its own process: the test layer does not import irnuc.cli):
+    # --out claimed, mutate.json written from the cache; a bad id is one line, exit 2.
+    irnuc = Path(sys.executable).with_name("irnuc")
+    env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache")}
     out = tmp_path / "out"
-    assert main(["mutate", "--only", "spill_ready_half_rate", "--only", "pkg_chunk_16",
-                 "--no-coverage", "--out", str(out), "-q"]) == 0
+    proc = subprocess.run([str(irnuc), "mutate", "--only", "spill_ready_half_rate", "--only",
+                           "pkg_chunk_16", "--no-coverage", "--out", str(out), "-q"],
+                          env=env, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
     data = json.loads((out / "mutate.json").read_text())
     assert data["killed"] == 1 and data["equivalent"] == 1
-    capsys.readouterr()
-    assert main(["mutate", "--only", "nope", "--out", str(tmp_path / "o2")]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "unknown mutant 'nope'" in err[0]
+    assert all(r["cached"] for r in data["mutants"])
+    bad = subprocess.run([str(irnuc), "mutate", "--only", "nope", "--out",
+                          str(tmp_path / "o2")], env=env, capture_output=True, text=True)
+    err = bad.stderr.strip().splitlines()
+    assert bad.returncode == 2 and len(err) == 1 and "unknown mutant 'nope'" in err[0]
+    assert not (tmp_path / "o2").exists()

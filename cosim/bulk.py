@@ -19,7 +19,7 @@ from irnuc.common.cache import cache_dir
 from irnuc.common.errors import UserError
 from irnuc.cosim.build import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
-from irnuc.cosim.sources import hdl_sources, top_parameters
+from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
 from irnuc.nuc_fixed import PipelineConfig
 from irnuc.nuc_fixed.memimage import check_words
@@ -33,20 +33,24 @@ BULK_EXE = "nuc_dpc_bulk"
 _SOF_BIT, _EOL_BIT = 31, 30
 
 
-def build_bulk(cfg: PipelineConfig) -> Build:
+def build_bulk(cfg: PipelineConfig, *, assertions: bool = True) -> Build:
     """Build (cached) the bulk harness of ``nuc_dpc_top`` for ``cfg``.
 
     The executable is ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness
-    source. A build takes about 10-15 s on 2 cores.
+    source. A build takes about 10-15 s on 2 cores. ``assertions=False`` leaves the
+    protocol assertions out: only for measuring what they cost (benchmarks/bench_cosim.py);
+    every co-simulation keeps them.
     """
     top = "nuc_dpc_top"
     params = top_parameters(top, cfg)
-    key = build_digest(top, params, [*BUILD_ARGS, *FAST_ARGS, "--exe"], [BULK_HARNESS])
+    base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
+                                                if a not in ("--assert", ASSERT_DEFINE)]
+    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe"], [BULK_HARNESS])
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
         cmd = [str(verilator_executable()), "--cc", "--exe", "--build", "-Mdir", str(build_dir),
-               "--top-module", top, "-o", BULK_EXE, *BUILD_ARGS, *FAST_ARGS,
+               "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
                *[f"-G{k}={v}" for k, v in params.items()],
                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
@@ -56,7 +60,7 @@ def build_bulk(cfg: PipelineConfig) -> Build:
             raise RtlError(f"Verilator build of the bulk harness failed (exit "
                            f"{proc.returncode}); see {log}")
 
-    build_dir = cached_build(f"{cfg.name}-bulk-{key}",
+    build_dir = cached_build(f"{cfg.name}-bulk{'' if assertions else '-noassert'}-{key}",
                              {"top": top, "harness": BULK_HARNESS.name, "config": cfg.to_dict(),
                               "params": params, "args": list(FAST_ARGS)}, make)
     return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
@@ -86,6 +90,7 @@ class BulkResult:
     frame_err: bool
     inputs_taken: tuple[int, int]
     sim_seconds: float
+    stall_cycles: int = 0  # output back-pressured between the first and the last output
 
 
 def _check_percent(name: str, value: int) -> int:
@@ -170,7 +175,7 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
         first_out_cycle=int(info["first_out_cycle"]), last_out_cycle=int(info["last_out_cycle"]),
         extra=int(info["extra"]), frame_err=bool(info["frame_err"]),
         inputs_taken=(int(info["inputs_taken"][0]), int(info["inputs_taken"][1])),
-        sim_seconds=sim_seconds,
+        sim_seconds=sim_seconds, stall_cycles=int(info.get("stall_cycles", 0)),
     )
 
 

@@ -69,11 +69,13 @@ class Scoreboard:
     describe: Callable[[int, Mapping[str, int]], str] | None = None
     max_report: int = 10
     _expected: dict[str, list[np.ndarray]] = field(default_factory=dict)
-    _observed: dict[str, list[int]] = field(default_factory=dict)
+    _observed: dict[str, list[np.ndarray]] = field(default_factory=dict)  # array chunks
+    _pending: dict[str, list[int]] = field(default_factory=dict)  # observe() since the last chunk
 
     def __post_init__(self) -> None:
         self._expected = {f: [] for f in self.fields}
         self._observed = {f: [] for f in self.fields}
+        self._pending = {f: [] for f in self.fields}
 
     # ---- feeding -------------------------------------------------------------------
     def expect(self, **arrays: np.ndarray) -> None:
@@ -87,12 +89,19 @@ class Scoreboard:
     def observe(self, **values: int) -> None:
         """Record one output as it leaves the DUT."""
         for k in self.fields:
-            self._observed[k].append(int(values[k]))
+            self._pending[k].append(int(values[k]))
+
+    def _flush(self) -> None:
+        for k in self.fields:
+            if self._pending[k]:
+                self._observed[k].append(np.asarray(self._pending[k], dtype=np.int64))
+                self._pending[k] = []
 
     def observe_arrays(self, **arrays: np.ndarray) -> None:
-        """Record many outputs at once (stream order)."""
+        """Record many outputs at once (stream order), kept as arrays."""
+        self._flush()
         for k in self.fields:
-            self._observed[k].extend(np.asarray(arrays[k], dtype=np.int64).ravel().tolist())
+            self._observed[k].append(np.asarray(arrays[k], dtype=np.int64).ravel())
 
     @property
     def n_expected(self) -> int:
@@ -100,13 +109,16 @@ class Scoreboard:
 
     @property
     def n_observed(self) -> int:
-        return len(self._observed[self.fields[0]])
+        f = self.fields[0]
+        return sum(a.size for a in self._observed[f]) + len(self._pending[f])
 
     # ---- result --------------------------------------------------------------------
     def result(self) -> ScoreResult:
         exp = {k: (np.concatenate(v) if v else np.zeros(0, np.int64))
                for k, v in self._expected.items()}
-        got = {k: np.asarray(v, dtype=np.int64) for k, v in self._observed.items()}
+        self._flush()
+        got = {k: (np.concatenate(v) if v else np.zeros(0, np.int64))
+               for k, v in self._observed.items()}
         n, m = self.n_expected, self.n_observed
         k = min(n, m)
         bad = np.zeros(k, dtype=bool)

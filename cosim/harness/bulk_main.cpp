@@ -15,7 +15,9 @@
 //   STALL_PCT percent of cycles the output is back-pressured (0 = always ready)
 //   SEED     seed of the xorshift generator behind IDLE_PCT and STALL_PCT
 // Prints one JSON line: cycles, outputs, extra outputs, first/last output cycle,
-// frame_err. Exit status 0 when the run completed (mismatches are judged in numpy).
+// frame_err, stall_cycles (cycles between the first and the last output with the output
+// back-pressured: last - first + 1 = outputs + stall_cycles when no cycle is lost).
+// Exit status 0 when the run completed (mismatches are judged in numpy).
 //
 // Timing: inputs are set while the clock is low, one eval settles the combinational
 // readies, the handshakes are decided from the values present before the edge (as the
@@ -114,6 +116,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     const uint64_t frame = uint64_t(w) * h;
     const uint64_t limit = 20 * (n + 100) + 50000;
     uint64_t pi = 0, ci = 0, oi = 0, cycle = 0, first = 0, last = 0;
+    uint64_t stalls = 0, stalls_at_last = 0;  // output not ready, counted from the first output
     bool pv = false, cv = false;  // valid held until the transfer (AXI-Stream rule)
     while (oi < n) {
         if (cycle >= limit) {
@@ -142,6 +145,9 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
                         | uint32_t(top->m_pix_data_o);
             if (oi == 1) first = cycle;
             last = cycle;
+            stalls_at_last = stalls;
+        } else if (!rdy && oi > 0) {
+            ++stalls;
         }
         top->clk_i = 1;
         top->eval();
@@ -171,8 +177,9 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     std::fclose(f);
     std::printf("{\"cycles\": %" PRIu64 ", \"outputs\": %" PRIu64 ", \"extra\": %" PRIu64
                 ", \"first_out_cycle\": %" PRIu64 ", \"last_out_cycle\": %" PRIu64
-                ", \"inputs_taken\": [%" PRIu64 ", %" PRIu64 "], \"frame_err\": %d}\n",
-                cycle, oi, extra, first, last, pi, ci, err ? 1 : 0);
+                ", \"inputs_taken\": [%" PRIu64 ", %" PRIu64 "], \"frame_err\": %d"
+                ", \"stall_cycles\": %" PRIu64 "}\n",
+                cycle, oi, extra, first, last, pi, ci, err ? 1 : 0, stalls_at_last);
     return 0;
 }
 
