@@ -1289,6 +1289,9 @@ FAULTS: dict[str, str] = {
                          "run removes the folder and writes a whole result",
     "child_dies_with_parent": "SIGKILL of a process that started a child process group with "
                               "`run_child` (the child having started a grandchild): both are gone",
+    "foreign_tool_and_its_children_die_with_parent": "SIGKILL of a process running a tool that "
+                              "is not irnuc's (a shell, as make) which started a child: both are "
+                              "gone (the reaper kills the group)",
 }
 
 _MAIN = "import sys; from irnuc.cli import main; sys.exit(main(sys.argv[1:]))"
@@ -1477,6 +1480,42 @@ def test_fault_child_dies_with_parent(tmp_path: Path) -> None:
             time.sleep(0.02)
         assert not _alive(child), "the child outlived its parent"
         assert not _alive(grandchild), "the grandchild (e.g. a simulator) outlived irnuc"
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+        if pids.is_file() and pids.read_text().strip():
+            for pid in map(int, pids.read_text().split()):
+                if _alive(pid):
+                    with contextlib.suppress(ProcessLookupError):
+                        os.kill(pid, signal.SIGKILL)
+
+
+_TOOL_PARENT = """
+import sys
+from irnuc.common.process import run_child
+# A tool that is not irnuc's own and starts a child of its own (as make starts a compiler).
+run_child(["sh", "-c", "sleep 300 & echo $$ $! > " + sys.argv[1] + "; wait"])
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
+def test_fault_foreign_tool_and_its_children_die_with_parent(tmp_path: Path) -> None:
+    pids = tmp_path / "pids"
+    parent = subprocess.Popen([sys.executable, "-c", _TOOL_PARENT, str(pids)])
+    try:
+        while not (pids.is_file() and pids.read_text().strip()):
+            assert parent.poll() is None, "the parent ended early"
+            time.sleep(0.02)
+        tool, grandchild = map(int, pids.read_text().split())
+        assert _alive(tool) and _alive(grandchild)
+        parent.kill()
+        parent.wait()
+        for _ in range(500):
+            if not (_alive(tool) or _alive(grandchild)):
+                break
+            time.sleep(0.02)
+        assert not _alive(tool), "the tool outlived irnuc"
+        assert not _alive(grandchild), "the tool's own child outlived irnuc"
     finally:
         if parent.poll() is None:
             parent.kill()
