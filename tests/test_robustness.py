@@ -1287,11 +1287,10 @@ FAULTS: dict[str, str] = {
                             "'another irnuc run is writing it'; the folder is one run's result, whole",
     "stale_tmp_removed": "a killed run's temporary folder and a stale lock beside `--out`: the next "
                          "run removes the folder and writes a whole result",
-    "child_dies_with_parent": "SIGKILL of a process that started a child process group with "
-                              "`run_child` (the child having started a grandchild): both are gone",
-    "foreign_tool_and_its_children_die_with_parent": "SIGKILL of a process running a tool that "
-                              "is not irnuc's (a shell, as make) which started a child: both are "
-                              "gone (the reaper kills the group)",
+    "children_die_with_parent": "SIGKILL of a process that started a child process group with "
+                                "`run_child`, the child having started a grandchild; the child "
+                                "either irnuc's own or a foreign tool (a shell, as make, run "
+                                "under the reaper): both are gone",
 }
 
 _MAIN = "import sys; from irnuc.cli import main; sys.exit(main(sys.argv[1:]))"
@@ -1461,10 +1460,24 @@ def _alive(pid: int) -> bool:
     return state not in ("Z", "X")  # a zombie is dead, only not yet reaped
 
 
+_TOOL_PARENT = """
+import sys
+from irnuc.common.process import run_child
+# A tool that is not irnuc's own and starts a child of its own (as make starts a compiler).
+run_child(["sh", "-c", "sleep 300 & echo $$ $! > " + sys.argv[1] + "; wait"])
+"""
+
+
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
-def test_fault_child_dies_with_parent(tmp_path: Path) -> None:
+@pytest.mark.parametrize("kind", ["irnuc_child", "foreign_tool"])
+def test_fault_children_die_with_parent(tmp_path: Path, kind: str) -> None:
+    """SIGKILL of a process that started a child group: the child and the child's own
+    child are gone, whether the child is irnuc's (it arms die_with_parent itself) or a
+    foreign tool (run under the reaper)."""
     pids = tmp_path / "pids"
-    parent = subprocess.Popen([sys.executable, "-c", _PARENT, _CHILD, str(pids)])
+    argv = ([sys.executable, "-c", _PARENT, _CHILD, str(pids)] if kind == "irnuc_child"
+            else [sys.executable, "-c", _TOOL_PARENT, str(pids)])
+    parent = subprocess.Popen(argv)
     try:
         while not (pids.is_file() and pids.read_text().strip()):
             assert parent.poll() is None, "the parent ended early"
@@ -1480,42 +1493,6 @@ def test_fault_child_dies_with_parent(tmp_path: Path) -> None:
             time.sleep(0.02)
         assert not _alive(child), "the child outlived its parent"
         assert not _alive(grandchild), "the grandchild (e.g. a simulator) outlived irnuc"
-    finally:
-        if parent.poll() is None:
-            parent.kill()
-        if pids.is_file() and pids.read_text().strip():
-            for pid in map(int, pids.read_text().split()):
-                if _alive(pid):
-                    with contextlib.suppress(ProcessLookupError):
-                        os.kill(pid, signal.SIGKILL)
-
-
-_TOOL_PARENT = """
-import sys
-from irnuc.common.process import run_child
-# A tool that is not irnuc's own and starts a child of its own (as make starts a compiler).
-run_child(["sh", "-c", "sleep 300 & echo $$ $! > " + sys.argv[1] + "; wait"])
-"""
-
-
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
-def test_fault_foreign_tool_and_its_children_die_with_parent(tmp_path: Path) -> None:
-    pids = tmp_path / "pids"
-    parent = subprocess.Popen([sys.executable, "-c", _TOOL_PARENT, str(pids)])
-    try:
-        while not (pids.is_file() and pids.read_text().strip()):
-            assert parent.poll() is None, "the parent ended early"
-            time.sleep(0.02)
-        tool, grandchild = map(int, pids.read_text().split())
-        assert _alive(tool) and _alive(grandchild)
-        parent.kill()
-        parent.wait()
-        for _ in range(500):
-            if not (_alive(tool) or _alive(grandchild)):
-                break
-            time.sleep(0.02)
-        assert not _alive(tool), "the tool outlived irnuc"
-        assert not _alive(grandchild), "the tool's own child outlived irnuc"
     finally:
         if parent.poll() is None:
             parent.kill()
