@@ -37,8 +37,10 @@ def add_sweep_arguments(p: argparse.ArgumentParser) -> None:
     ax.add_argument("--gain-int", default="auto", help="gain integer bits, or 'auto' (no good "
                     "coefficient saturates)")
     ax.add_argument("--offset-int", default="auto", help="offset integer bits incl. sign, or 'auto'")
-    ax.add_argument("--adc-bits", default=None, help="ADC bits (default: the preset's)")
-    ax.add_argument("--out-bits", default=None, help="output bits (default: = ADC bits)")
+    ax.add_argument("--adc-bits", default=None,
+                    help="ADC bits to sweep, re-simulating the sensor at each (default: the "
+                    "pipeline's adc_bits; the sensor's ADC must then match it)")
+    ax.add_argument("--out-bits", default=None, help="output bits (default: the pipeline's out_bits)")
     ax.add_argument("--rounding", default=None,
                     help="datapath rounding(s): truncate, half_up, half_even (default: the pipeline's)")
     ax.add_argument("--coeff-rounding", default="half_even", help="coefficient quantization rounding(s)")
@@ -68,6 +70,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         SensorSpec,
         SweepAxes,
         check_metric,
+        check_widths,
         parse_int_list,
         run_sweep,
     )
@@ -112,6 +115,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         pipeline=args.pipeline)
     sensor.check()
     axes.check()
+    check_widths(sensor, axes, sensor_name="--sensor", pipeline_name="--pipeline")
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
     _check_sweep_memory(args, sensor, axes)
