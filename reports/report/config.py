@@ -193,11 +193,27 @@ def _check_more(cfg: Mapping[str, Any], source: str) -> None:
         raise ReportError(f"{source}: [synth] costs the sweep's points; the configuration has no [sweep]")
 
 
+def _unknown_first(doc: Any, schema: Mapping[str, Any], source: str, where: str = "") -> None:
+    """The first unknown key in the order of the file (a misspelled section is named by
+    itself, not by a later one), with the nearest known name."""
+    if not isinstance(doc, Mapping) or schema.get("additionalProperties") is not False:
+        return
+    known = list(schema.get("properties", {}))
+    for key, value in doc.items():
+        field = f"{where}.{key}" if where else str(key)
+        if key not in known:
+            raise ReportError(f"{source}: {field} is not a known "
+                              f"{'section' if not where else 'field'}{nearest(str(key), known)} "
+                              f"(known here: {', '.join(sorted(known))})")
+        _unknown_first(value, schema["properties"][key], source, field)
+
+
 def load_report_config(name_or_path: str = "default", quick: bool = False) -> dict[str, Any]:
     """The validated report configuration (``--quick``: its ``[quick]`` overrides applied)."""
     path = config_path(name_or_path)
     source = f"--config {path}" if path.parent != REPORT_DIR else f"--config {name_or_path}"
     cfg = read_toml(path, "--config")
+    _unknown_first(cfg, SCHEMA, source)
     check(cfg, SCHEMA, source=source)
     over = dict(cfg.pop("quick", {}) or {})
     quick_cfg = copy.deepcopy(cfg)

@@ -210,6 +210,7 @@ def phase_cosim(rep: Report, out: Path, junit: dict[str, Any] | None, no_cosim: 
             section["source"] = str(junit.get("path", "--junit"))
             write_bytes_atomic(out / "junit.xml", junit["data"])
             section["junit"] = "junit.xml"
+            section["partial"] = False
     elif not no_cosim and "cosim" in rep.config:
         c = rep.config["cosim"]
         with rep.phase("cosim"):

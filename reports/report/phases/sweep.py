@@ -63,7 +63,7 @@ def recommended_config(p: Mapping[str, Any], rows: int, cols: int):
         name="recommended" if p.get("recommended") else f"sweep{p['index']}",
         max_width=cols, max_height=rows,
         description=(f"U{p['gain_int_bits']}.{p['gain_frac_bits']} gain, S{p['offset_int_bits']}."
-                     f"{p['offset_frac_bits']} offset from the report's bit-width sweep "
+                     f"{p['offset_frac_bits']} offset, from the bit-width sweep of irnuc report "
                      f"({p['bits_per_pixel']} bits per pixel)"))
 
 
