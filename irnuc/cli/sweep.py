@@ -122,6 +122,11 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     res = run_sweep(sensor, axes, workers=args.workers, scheduler=args.scheduler,
                     progress=progress("sweep"))
     d = res.to_dict(max_error=args.max_error, metric=args.error_metric)
+    from irnuc.reports.studies.hwcost import coefficient_memory
+
+    rows, cols = res.frame_shape()
+    for pt in d["points"]:  # the coefficient store of the swept frame (irnuc report adds synthesis)
+        pt["memory"] = coefficient_memory(pt["bits_per_pixel"], rows, cols)
     cols = ["index", "adc_bits", "out_bits", "gain_int_bits", "gain_frac_bits", "offset_int_bits",
             "offset_frac_bits", "rounding", "coeff_rounding", "bits_per_pixel", "bits_per_frame",
             "residual_nu", "residual_nu_adc_lsb", "err_max_lsb", "err_rms_lsb", "psnr_db",
@@ -129,9 +134,11 @@ def run_sweep_command(args: argparse.Namespace) -> int:
             "offset_saturated_fraction"]
     buf = io.StringIO()
     wr = csv.writer(buf)
-    wr.writerow(cols)
-    for pt in res.points:
-        wr.writerow([pt[c] for c in cols])
+    wr.writerow([*cols, "xc7_bram36", "ecp5_dp16kd", "external_bytes_per_frame"])
+    for pt in d["points"]:
+        m = pt["memory"]
+        wr.writerow([pt[c] for c in cols] + [m["xc7_bram36"], m["ecp5_dp16kd"],
+                                             m["external_bytes_per_frame"]])
     files = {"sweep.json": (json.dumps(d, indent=1) + "\n").encode(),
              "sweep.csv": buf.getvalue().encode()}
     if not args.no_figures:

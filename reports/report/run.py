@@ -116,7 +116,8 @@ def run_report(args: Any) -> int:
     total = time.perf_counter() - t0
     times = ", ".join(f"{k} {v:.1f} s" for k, v in rep.phases.items())
     written = [str(Path(out) / n) for n in OUTPUTS if (Path(out) / n).is_file()]
-    print(f"wrote {', '.join(written)} in {total:.1f} s ({times})")
+    if not args.no_progress:  # -q: errors only
+        print(f"wrote {', '.join(written)} in {total:.1f} s ({times})")
     if summary["status"] != "pass":
         for r in summary["status_reasons"]:
             print(f"irnuc report: FAIL: {r}", file=sys.stderr)
