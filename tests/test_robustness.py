@@ -1672,8 +1672,9 @@ def render_doc() -> str:
         f"## Command line: {len(CLI_CASES)} cases",
         "",
         f"{len(CLI_CASES) - len(xfails)} end with exit status 2 and one line naming the "
-        f"flag, file or field; {len(xfails)} are expected failures (`xfail`, strict) of commands "
-        "being rewritten by others, listed with their reason. Every case also checks that",
+        "flag, file or field"
+        + (f"; {len(xfails)} are expected failures (`xfail`, strict), listed with their reason"
+           if xfails else "") + ". Every case also checks that",
         "nothing was created or replaced at the output name and no temporary folder is left.",
         "",
     ]
