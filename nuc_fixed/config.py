@@ -10,6 +10,7 @@ defines them.
 
 from __future__ import annotations
 
+import json
 from dataclasses import asdict, dataclass, fields
 from functools import cache
 from pathlib import Path
@@ -176,7 +177,8 @@ class PipelineConfig:
         for k, v in self.to_dict().items():
             if k == "name":
                 continue
-            lines.append(f"{k} = {v!r}".replace("'", '"') if isinstance(v, str) else f"{k} = {v}")
+            # JSON string syntax is a valid TOML basic string (quotes and escapes included).
+            lines.append(f"{k} = {json.dumps(v)}" if isinstance(v, str) else f"{k} = {v}")
         return "\n".join(lines) + "\n"
 
 

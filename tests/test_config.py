@@ -101,3 +101,15 @@ def test_config_file_with_base(tmp_path):
     (tmp_path / "bad.toml").write_text("[fpa\n")
     with pytest.raises(UserError, match=r"bad\.toml: not valid TOML"):
         model.load_config(tmp_path / "bad.toml")
+
+
+def test_pipeline_to_toml_round_trips_any_description(tmp_path) -> None:
+    """A configuration written with to_toml reads back equal, quotes and backslashes too."""
+    from irnuc.nuc_fixed.config import load_pipeline
+
+    cfg = load_pipeline("minimal").replace(name="mine", out_bits=5,
+                                           description='it\'s "quoted" \\ and \u00b5m')
+    path = tmp_path / "mine.toml"
+    path.write_text(cfg.to_toml())
+    assert load_pipeline(path) == cfg
+    assert load_pipeline(f"{path}:mine") == cfg

@@ -153,9 +153,26 @@ def test_report_files_and_summary(quick_result, tmp_path):
     assert text.count("data:image/png;base64,") == len(quick_result["components"])
     assert "Omitted (failed) settings" in text
     assert json.loads(j.read_text())["components"][0]["name"] == "band_radiance_narrow"
-    s = R.precision_summary(tmp_path, run_if_missing=False)
-    assert "transient_stiff_1e5" in s["components"]
+    assert text.count("<style>") == 1 and "{{" not in text  # the report's one stylesheet
     assert not list(tmp_path.glob(".*.tmp"))  # atomic writes leave no temporaries
+
+
+@pytest.mark.slow  # shares a ~9 s quick study
+def test_cached_study_is_reused_for_its_code_only(quick_result, tmp_path, monkeypatch):
+    from irnuc.reports.studies import precision_cache as C
+
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path))
+    names = [c["name"] for c in quick_result["components"]]
+    with pytest.raises(FileNotFoundError):
+        C.cached_precision(True, names, run_if_missing=False)
+    C.store_precision(quick_result, names)
+    got = C.cached_precision(True, names, run_if_missing=False)
+    assert got["cached"] and [c["name"] for c in got["components"]] == names
+    assert "transient_stiff_1e5" in P.summarize(got)["components"]
+    # Another model code (digest) does not reuse it.
+    monkeypatch.setattr(C, "code_digest", lambda: "0" * 16)
+    with pytest.raises(FileNotFoundError):
+        C.cached_precision(True, names, run_if_missing=False)
 
 
 def test_groups_expand_and_unknown_names_are_errors():
@@ -168,7 +185,8 @@ def test_groups_expand_and_unknown_names_are_errors():
         P.component_names(["nope"])
 
 
-def test_cli_writes_the_report(tmp_path, capsys):
+def test_cli_writes_the_report(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
     from irnuc.cli import main
 
     out = tmp_path / "p"
@@ -180,8 +198,6 @@ def test_cli_writes_the_report(tmp_path, capsys):
     assert capsys.readouterr().out == ""  # -q
     assert main(["precision", "--quick", "--only", "band_radiance", "--out", str(out)]) == 0
     assert "band_radiance" in capsys.readouterr().out
-    with pytest.raises(FileNotFoundError):
-        R.precision_summary(tmp_path / "nothing", run_if_missing=False)
 
 
 def test_electro_thermal_reference_is_tighter_than_brentq():

@@ -54,7 +54,13 @@ def test_report_passes_and_writes_outputs(small_run) -> None:
     rc, out, _, _ = small_run
     assert rc == 0
     assert {p.name for p in out.iterdir() if not p.name.startswith(".")} == {
-        "index.html", "summary.json", "junit.xml"}
+        "index.html", "summary.json", "junit.xml", "recommended.toml"}
+    # The recommended widths as a pipeline configuration that loads.
+    from irnuc.nuc_fixed import load_pipeline
+
+    cfg = load_pipeline(str(out / "recommended.toml"))
+    rec = json.loads((out / "summary.json").read_text())["sections"]["sweep"]["recommended"]
+    assert (cfg.gain_frac_bits, cfg.offset_frac_bits) == (rec["gain_frac_bits"], rec["offset_frac_bits"])
 
 
 def test_html_is_self_contained_with_figures(small_run) -> None:
@@ -63,6 +69,8 @@ def test_html_is_self_contained_with_figures(small_run) -> None:
     pngs = re.findall(r"src='data:image/png;base64,([A-Za-z0-9+/=]+)'", h)
     # calibration 1, sweep 2, paper 3 (Table 2, comparison, Table 1), run times 1
     assert len(pngs) == 7
+    # One stylesheet, inlined; no f-string leftovers of an unrendered template.
+    assert h.count("<style>") == 1 and "{{" not in h and "{%" not in h
     import base64
 
     assert all(base64.b64decode(p)[:8] == b"\x89PNG\r\n\x1a\n" for p in pngs)
@@ -94,6 +102,10 @@ def test_summary_contents(small_run) -> None:
     assert s["status"] == "pass"
     assert set(s["sections"]) == {"calibration", "sweep", "paper", "cosim"}
     assert set(s["phases"]) == {"frames", "calibration", "sweep", "paper", "cosim"}
+    rec = s["sections"]["sweep"]["recommended"]
+    assert rec["bits_per_pixel"] == s["sections"]["sweep"]["smallest"]["bits_per_pixel"]
+    assert rec["cosim"] is None and rec["synth"] is None  # --junit ingested, no [synth]
+    assert rec["memory"]["bits_per_frame"] == rec["bits_per_pixel"] * 32 * 48
     prov = s["provenance"]
     assert prov["seeds"] == {"sensor": 1, "sweep": 2, "paper": 3}
     assert re.fullmatch(r"[0-9a-f]{16}", prov["config_hash"])
@@ -147,7 +159,7 @@ def test_failing_cosim_fails_the_report_and_sections_follow_data(tmp_path) -> No
 
 def test_no_cosim_means_no_section_and_no_junit(tmp_path) -> None:
     cfg = tmp_path / "empty.toml"
-    cfg.write_text('name = "empty"\n[cosim]\nk = "x"\ntimeout = 10.0\n')
+    cfg.write_text('name = "empty"\n[cosim]\npipelines = ["minimal"]\ntests = ["corner_codes"]\n')
     out = tmp_path / "o"
     assert main(["report", "--config", str(cfg), "--out", str(out), "--no-cosim"]) == 0
     s = json.loads((out / "summary.json").read_text())
@@ -168,15 +180,23 @@ def test_compare_baseline_direction_aware(better, base, now, regress) -> None:
     assert bool(cmp["regressions"]) == regress
 
 
-def test_missing_metrics_are_not_regressions() -> None:
-    cmp = report.compare_baseline({}, {"cosim.failed": {"value": 0, "better": "lower"},
-                                       "time.sweep": {"value": 1.0, "better": "info"}})
+def test_missing_and_new_metrics_are_listed_not_skipped() -> None:
+    rep = report.Report(config={})
+    rep.metric("sweep.best_err_max_lsb", 0.5, "lower")
+    cmp = report.compare_baseline(rep.metrics, {"cosim.failed": {"value": 0, "better": "lower"},
+                                                "time.sweep": {"value": 1.0, "better": "info"}})
     assert cmp["regressions"] == [] and cmp["missing"] == ["cosim.failed"]
+    assert cmp["new"] == ["sweep.best_err_max_lsb"]
 
 
 @pytest.mark.parametrize(("text", "match"), [
     ('[sweep]\npreset = "default"\nseed = -1\n', "sweep.seed = -1"),
-    ('[cosim]\nk = 3\ntimeout = 1.0\n', "cosim.k"),
+    ('[cosim]\npipelines = ["minimal"]\ntests = [3]\n', "cosim.tests[0]"),
+    ('[cosim]\npipelines = ["minimal"]\ntests = ["corner_code"]\n', "did you mean 'corner_codes'"),
+    ('[cosim]\npipelines = ["recommended"]\ntests = ["corner_codes"]\n', "no [sweep]"),
+    ('[cosim]\npipeline = ["minimal"]\ntests = ["corner_codes"]\n', "did you mean 'pipelines'"),
+    ('[precison]\nquick = true\n', "did you mean 'precision'"),
+    ('[quick]\n"sweep.rows" = 3\n', "sweep is not a table"),
     ('[paper]\npreset = "paper"\nseed = 1\nrows = 8\ncols = 8\nfrac_bits = [3, 4]\n'
      'reference_nu = [0.1]\ngrid_temps = [300.0]\n', "paper.reference_nu has 1 values"),
 ])
@@ -196,6 +216,7 @@ def test_bad_junit_and_unknown_config(tmp_path, capsys) -> None:
     assert "expected <testsuites>" in capsys.readouterr().err
     assert main(["report", "--config", "nonesuch", "--out", str(tmp_path / "o")]) == 2
     assert "neither an embedded configuration" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()
 
 
 def test_quick_overrides_apply() -> None:

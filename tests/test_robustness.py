@@ -46,7 +46,6 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 DOC = REPO / "docs" / "robustness.md"
-XFAIL_REPORT = "report rewrite (issue 10)"
 
 # ---------------------------------------------------------------------------------------
 # The command-line table
@@ -630,6 +629,8 @@ case("sweep-sensor-malformed", S, "--sensor {w}/bad.toml", ("--sensor", "not val
 case("sweep-sensor-unknown-key", S, "--sensor {w}/sensor_key.toml", ("--sensor", "fpa.activ_rows"),
      "a misspelled key in the sensor file")
 case("sweep-pipeline-unknown", S, "--pipeline nope", ("--pipeline", "nope"), "an unknown pipeline")
+case("sweep-pipeline-adc-mismatch", S, "--pipeline minimal", ("--pipeline", "adc_bits = 8", "--sensor"),
+     "a pipeline whose ADC is not the sensor's (ran silently with the preset's widths)")
 case("sweep-pipeline-malformed", S, "--pipeline {w}/bad.toml", ("--pipeline", "not valid TOML"),
      "malformed pipeline TOML")
 case("sweep-set-typo", S, "--set fpa.activ_rows=1", ("fpa.activ_rows", "did you mean"), "a misspelled --set")
@@ -641,7 +642,7 @@ case("sweep-out-other-command", S, "--out {t}/out", ("--out", "irnuc correct"),
 case("sweep-out-read-only-parent", S, "--out {t}/ro/out", ("--out", "no permission"),
      "--out inside a read-only folder", setup=_ro_parent)
 
-# ---- report (command-line level only; its internals are being rewritten) ----------------
+# ---- report -------------------------------------------------------------------------------
 
 P = "report"
 NC = "--config small --no-cosim"
@@ -652,18 +653,18 @@ case("report-config-unknown-name", P, "--config smal", ("--config", "smal"), "an
 case("report-config-folder", P, "--config {w}", ("--config",), "a folder as --config")
 case("report-config-malformed", P, "--config {w}/bad.toml", ("--config", "bad.toml"), "malformed TOML")
 case("report-config-binary", P, "--config {w}/binary.toml", ("--config", "binary.toml"),
-     "binary garbage as TOML", xfail=XFAIL_REPORT)
+     "binary garbage as TOML")
 case("report-config-section-typo", P, "--config {w}/rep_section_typo.toml --no-cosim", ("--config", "sensr"),
-     "a misspelled section (ran nothing and said PASS)", xfail=XFAIL_REPORT)
+     "a misspelled section (ran nothing and said PASS)")
 case("report-config-key-typo", P, "--config {w}/rep_key_typo.toml --no-cosim", ("--config", "sensor.rowz"),
-     "an unknown key beside the right ones", xfail=XFAIL_REPORT)
+     "an unknown key beside the right ones")
 case("report-config-missing-key", P, "--config {w}/rep_missing_key.toml --no-cosim", ("sensor.rows",),
      "a required key missing")
 case("report-config-type", P, "--config {w}/rep_type.toml --no-cosim", ("sensor.rows",), "rows as a string")
 case("report-config-range", P, "--config {w}/rep_range.toml --no-cosim", ("sensor.rows",), "rows = 1")
 case("report-config-nan", P, "--config {w}/rep_nan.toml --no-cosim", ("sensor.t_low",), "t_low = nan")
 case("report-config-section-scalar", P, "--config {w}/rep_scalar.toml --no-cosim", ("--config", "sensor"),
-     "sensor = 3", xfail=XFAIL_REPORT)
+     "sensor = 3")
 case("report-config-paper-lengths", P, "--config {w}/rep_paper.toml --no-cosim", ("paper.reference_nu",),
      "reference values and widths of different lengths")
 case("report-config-quick-bad", P, "--config {w}/rep_quick.toml --quick --no-cosim", ("quick",),
@@ -677,7 +678,7 @@ case("report-baseline-not-json", P, f"{NC} --baseline {{w}}/base_notjson.json", 
      "a baseline that is not JSON")
 case("report-baseline-empty", P, f"{NC} --baseline {{w}}/empty.npz", ("--baseline",), "an empty baseline")
 case("report-baseline-binary", P, f"{NC} --baseline {{w}}/binary.toml", ("--baseline",),
-     "binary garbage as baseline", xfail=XFAIL_REPORT)
+     "binary garbage as baseline")
 case("report-baseline-list", P, f"{NC} --baseline {{w}}/base_list.json", ("--baseline", "metrics"),
      "a baseline that is a JSON list")
 case("report-baseline-no-metrics", P, f"{NC} --baseline {{w}}/base_nometrics.json", ("--baseline", "metrics"),
@@ -686,29 +687,33 @@ case("report-baseline-metrics-list", P, f"{NC} --baseline {{w}}/base_metrics_lis
      ("--baseline", "metrics"), "metrics as a list")
 case("report-baseline-metric-number", P, f"{NC} --baseline {{w}}/base_metric_number.json",
      ("--baseline",
-     "calibration.bad_pixels"), "a metric that is a bare number (failed after the whole report)",
-     xfail=XFAIL_REPORT)
+     "calibration.bad_pixels"), "a metric that is a bare number (failed after the whole report)")
 case("report-baseline-metric-string", P, f"{NC} --baseline {{w}}/base_metric_string.json",
-     ("--baseline", "calibration.bad_pixels"), "a metric that is a string", xfail=XFAIL_REPORT)
+     ("--baseline", "calibration.bad_pixels"), "a metric that is a string")
 case("report-baseline-metric-list", P, f"{NC} --baseline {{w}}/base_metric_list.json",
-     ("--baseline", "calibration.bad_pixels"), "a metric that is a list", xfail=XFAIL_REPORT)
+     ("--baseline", "calibration.bad_pixels"), "a metric that is a list")
 case("report-baseline-value-nan", P, f"{NC} --baseline {{w}}/base_nan.json",
-     ("--baseline", "calibration.bad_pixels", "finite"), "a NaN baseline value (switched its comparison off)",
-     xfail=XFAIL_REPORT)
+     ("--baseline", "calibration.bad_pixels", "finite"), "a NaN baseline value (switched its comparison off)")
 case("report-baseline-value-text", P, f"{NC} --baseline {{w}}/base_value_text.json",
-     ("--baseline", "calibration.bad_pixels"), "a baseline value that is a string", xfail=XFAIL_REPORT)
+     ("--baseline", "calibration.bad_pixels"), "a baseline value that is a string")
 case("report-junit-missing", P, "--config small --junit {t}/none.xml", ("--junit", "none.xml"),
      "a missing JUnit file")
 case("report-junit-folder", P, "--config small --junit {w}", ("--junit",), "a folder as --junit")
 case("report-junit-malformed", P, "--config small --junit {w}/junit_bad.xml", ("--junit", "junit_bad.xml"),
-     "a JUnit file that is not XML (read after the other phases)", xfail=XFAIL_REPORT)
+     "a JUnit file that is not XML (read after the other phases)")
 case("report-junit-root", P, "--config small --junit {w}/junit_root.xml", ("--junit", "junit_root.xml"),
-     "XML that is not JUnit", xfail=XFAIL_REPORT)
+     "XML that is not JUnit")
 case("report-scheduler-refused", P, f"{NC} --scheduler tcp://127.0.0.1:1", ("--scheduler",),
-     "an unreachable Dask scheduler (noticed in the sweep phase)", xfail=XFAIL_REPORT)
+     "an unreachable Dask scheduler (noticed in the sweep phase)")
+case("report-config-cosim-test-typo", P, "--config {w}/rep_cosim_typo.toml",
+     ("--config", "cosim.tests", "corner_codes"), "a misspelled co-simulation test")
+case("report-config-sweep-adc", P, "--config {w}/rep_sweep_adc.toml --no-cosim",
+     ("--config", "sweep.pipeline", "adc_bits"), "a sweep whose sensor ADC is not the pipeline's")
+case("report-config-cosim-recommended-no-sweep", P, "--config {w}/rep_rec_nosweep.toml",
+     ("--config", "recommended", "[sweep]"), "co-simulating a recommendation without a sweep")
 case("report-out-file", P, f"{NC} --out {{t}}/out", ("out",), "--out is a file", setup=_out_is_file)
 case("report-out-user-folder", P, f"{NC} --out {{t}}/out", ("--out",),
-     "--out is a user's folder (written into)", setup=_user_folder, xfail=XFAIL_REPORT)
+     "--out is a user's folder (written into)", setup=_user_folder)
 
 # ---- precision (argument level only; being rewritten) -----------------------------------
 
@@ -899,6 +904,10 @@ def world(tmp_path_factory: pytest.TempPathFactory) -> Path:
     files["rep_paper.toml"] = sm.replace("reference_nu = [0.0348, 0.0181, 0.0092, 0.0046]",
                                          "reference_nu = [0.0348]")
     files["rep_quick.toml"] = sm.replace("[quick]", '[quick]\n"name.rows" = 3')
+    files["rep_cosim_typo.toml"] = sm.replace('tests = ["corner_codes"]', 'tests = ["corner_code"]')
+    files["rep_sweep_adc.toml"] = sm.replace('pipeline = "typical14"\ngain_frac_bits',
+                                             'pipeline = "minimal"\ngain_frac_bits')
+    files["rep_rec_nosweep.toml"] = '[cosim]\npipelines = ["recommended"]\ntests = ["corner_codes"]\n'
     files["rep_skim.toml"] = sm.replace('skimming = ["row", "column"]', 'skimming = ["diagonal"]')
     for name, content in files.items():
         (w / name).write_bytes(content if isinstance(content, bytes) else content.encode())
@@ -922,7 +931,7 @@ WORK: dict[str, tuple[tuple[str, str], ...]] = {
     "calibrate": (("irnuc.nuc_fixed.calibrate", "calibrate"),),
     "correct": (("irnuc.nuc_fixed.top", "nuc_dpc_top"),),
     "sweep": (("irnuc.reports.studies.sweep", "prepare"),),
-    "report": (("irnuc.reports.report", "build_report"),),
+    "report": (("irnuc.reports.report.run", "build_report"),),
     "precision": (("irnuc.reports.studies.precision", "run_precision"),),
     "synth": (("irnuc.cosim.synth", "synth_configs"),),
 }
@@ -1287,8 +1296,10 @@ FAULTS: dict[str, str] = {
                             "'another irnuc run is writing it'; the folder is one run's result, whole",
     "stale_tmp_removed": "a killed run's temporary folder and a stale lock beside `--out`: the next "
                          "run removes the folder and writes a whole result",
-    "child_dies_with_parent": "SIGKILL of a process that started a child process group with "
-                              "`run_child` (the child having started a grandchild): both are gone",
+    "children_die_with_parent": "SIGKILL of a process that started a child process group with "
+                                "`run_child`, the child having started a grandchild; the child "
+                                "either irnuc's own or a foreign tool (a shell, as make, run "
+                                "under the reaper): both are gone",
 }
 
 _MAIN = "import sys; from irnuc.cli import main; sys.exit(main(sys.argv[1:]))"
@@ -1458,10 +1469,24 @@ def _alive(pid: int) -> bool:
     return state not in ("Z", "X")  # a zombie is dead, only not yet reaped
 
 
+_TOOL_PARENT = """
+import sys
+from irnuc.common.process import run_child
+# A tool that is not irnuc's own and starts a child of its own (as make starts a compiler).
+run_child(["sh", "-c", "sleep 300 & echo $$ $! > " + sys.argv[1] + "; wait"])
+"""
+
+
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
-def test_fault_child_dies_with_parent(tmp_path: Path) -> None:
+@pytest.mark.parametrize("kind", ["irnuc_child", "foreign_tool"])
+def test_fault_children_die_with_parent(tmp_path: Path, kind: str) -> None:
+    """SIGKILL of a process that started a child group: the child and the child's own
+    child are gone, whether the child is irnuc's (it arms die_with_parent itself) or a
+    foreign tool (run under the reaper)."""
     pids = tmp_path / "pids"
-    parent = subprocess.Popen([sys.executable, "-c", _PARENT, _CHILD, str(pids)])
+    argv = ([sys.executable, "-c", _PARENT, _CHILD, str(pids)] if kind == "irnuc_child"
+            else [sys.executable, "-c", _TOOL_PARENT, str(pids)])
+    parent = subprocess.Popen(argv)
     try:
         while not (pids.is_file() and pids.read_text().strip()):
             assert parent.poll() is None, "the parent ended early"
@@ -1590,7 +1615,7 @@ def test_meminfo_is_read(tmp_path: Path) -> None:
 
 _COMMAND_TITLES = {
     "frames": "irnuc frames", "calibrate": "irnuc calibrate", "correct": "irnuc correct",
-    "sweep": "irnuc sweep", "report": "irnuc report (command-line level; internals being rewritten)",
+    "sweep": "irnuc sweep", "report": "irnuc report",
     "precision": "irnuc precision",
     "synth": "irnuc synth",
 }
@@ -1647,8 +1672,9 @@ def render_doc() -> str:
         f"## Command line: {len(CLI_CASES)} cases",
         "",
         f"{len(CLI_CASES) - len(xfails)} end with exit status 2 and one line naming the "
-        f"flag, file or field; {len(xfails)} are expected failures (`xfail`, strict) of commands "
-        "being rewritten by others, listed with their reason. Every case also checks that",
+        "flag, file or field"
+        + (f"; {len(xfails)} are expected failures (`xfail`, strict), listed with their reason"
+           if xfails else "") + ". Every case also checks that",
         "nothing was created or replaced at the output name and no temporary folder is left.",
         "",
     ]

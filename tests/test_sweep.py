@@ -309,3 +309,20 @@ def test_sweep_cli(tmp_path, capsys) -> None:
     rc = main(["sweep", "--gain-frac", "40", "--out", str(out)])
     assert rc == 2
     assert "axes.gain_frac_bits holds 40" in capsys.readouterr().err
+
+
+def test_widths_come_from_the_pipeline_and_a_mismatch_is_refused() -> None:
+    from irnuc.reports.studies.sweep import SensorSpec, SweepAxes, SweepError, run_sweep
+
+    small = {"fpa.active_rows": 8, "fpa.active_cols": 10}
+    axes = SweepAxes(gain_frac_bits=(5,), offset_frac_bits=(1,), pipeline="minimal")
+    with pytest.raises(SweepError, match=r"14-bit ADC .* adc_bits = 8"):
+        run_sweep(SensorSpec(overrides=small, repeats=1), axes, workers=0)
+    res = run_sweep(SensorSpec(overrides={**small, "adc.bits": 8}, repeats=1), axes, workers=0)
+    p = res.points[0]
+    assert (p["adc_bits"], p["out_bits"]) == (8, 6)  # minimal: 8-bit ADC, 6-bit output
+    # Explicit ADC widths are swept as asked (the sensor re-simulated at each).
+    res = run_sweep(SensorSpec(overrides=small, repeats=1),
+                    SweepAxes(gain_frac_bits=(5,), offset_frac_bits=(1,), adc_bits=(8,),
+                              pipeline="minimal"), workers=0)
+    assert (res.points[0]["adc_bits"], res.points[0]["out_bits"]) == (8, 6)

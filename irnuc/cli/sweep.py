@@ -37,8 +37,10 @@ def add_sweep_arguments(p: argparse.ArgumentParser) -> None:
     ax.add_argument("--gain-int", default="auto", help="gain integer bits, or 'auto' (no good "
                     "coefficient saturates)")
     ax.add_argument("--offset-int", default="auto", help="offset integer bits incl. sign, or 'auto'")
-    ax.add_argument("--adc-bits", default=None, help="ADC bits (default: the preset's)")
-    ax.add_argument("--out-bits", default=None, help="output bits (default: = ADC bits)")
+    ax.add_argument("--adc-bits", default=None,
+                    help="ADC bits to sweep, re-simulating the sensor at each (default: the "
+                    "pipeline's adc_bits; the sensor's ADC must then match it)")
+    ax.add_argument("--out-bits", default=None, help="output bits (default: the pipeline's out_bits)")
     ax.add_argument("--rounding", default=None,
                     help="datapath rounding(s): truncate, half_up, half_even (default: the pipeline's)")
     ax.add_argument("--coeff-rounding", default="half_even", help="coefficient quantization rounding(s)")
@@ -68,6 +70,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         SensorSpec,
         SweepAxes,
         check_metric,
+        check_widths,
         parse_int_list,
         run_sweep,
     )
@@ -112,12 +115,18 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         pipeline=args.pipeline)
     sensor.check()
     axes.check()
+    check_widths(sensor, axes, sensor_name="--sensor", pipeline_name="--pipeline")
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
     _check_sweep_memory(args, sensor, axes)
     res = run_sweep(sensor, axes, workers=args.workers, scheduler=args.scheduler,
                     progress=progress("sweep"))
     d = res.to_dict(max_error=args.max_error, metric=args.error_metric)
+    from irnuc.reports.studies.hwcost import coefficient_memory
+
+    rows, cols = res.frame_shape()
+    for pt in d["points"]:  # the coefficient store of the swept frame (irnuc report adds synthesis)
+        pt["memory"] = coefficient_memory(pt["bits_per_pixel"], rows, cols)
     cols = ["index", "adc_bits", "out_bits", "gain_int_bits", "gain_frac_bits", "offset_int_bits",
             "offset_frac_bits", "rounding", "coeff_rounding", "bits_per_pixel", "bits_per_frame",
             "residual_nu", "residual_nu_adc_lsb", "err_max_lsb", "err_rms_lsb", "psnr_db",
@@ -125,9 +134,11 @@ def run_sweep_command(args: argparse.Namespace) -> int:
             "offset_saturated_fraction"]
     buf = io.StringIO()
     wr = csv.writer(buf)
-    wr.writerow(cols)
-    for pt in res.points:
-        wr.writerow([pt[c] for c in cols])
+    wr.writerow([*cols, "xc7_bram36", "ecp5_dp16kd", "external_bytes_per_frame"])
+    for pt in d["points"]:
+        m = pt["memory"]
+        wr.writerow([pt[c] for c in cols] + [m["xc7_bram36"], m["ecp5_dp16kd"],
+                                             m["external_bytes_per_frame"]])
     files = {"sweep.json": (json.dumps(d, indent=1) + "\n").encode(),
              "sweep.csv": buf.getvalue().encode()}
     if not args.no_figures:

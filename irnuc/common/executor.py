@@ -74,6 +74,28 @@ def _probe(scheduler: str) -> None:
                             ) from None
 
 
+def _die_with(pid: int) -> None:
+    """Worker initializer: end this worker as soon as the process that opened the pool is
+    gone (even killed with SIGKILL). Workers are children of the forkserver, not of that
+    process, so its death is not signalled to them; their own children (a Yosys or
+    nextpnr run through ``run_child``) then die with them (``PR_SET_PDEATHSIG``)."""
+    import os
+    import threading
+    import time
+
+    def watch() -> None:
+        while True:
+            try:
+                os.kill(pid, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:
+                pass
+            time.sleep(0.5)
+
+    threading.Thread(target=watch, daemon=True, name="irnuc-die-with-parent").start()
+
+
 @contextlib.contextmanager
 def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[ExecutorHandle]:
     """A ``concurrent.futures``-style executor for the sweep points.
@@ -115,7 +137,10 @@ def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[Ex
     if workers == 0:
         yield ExecutorHandle(InlineExecutor(), "inline", lambda obj: obj, None, "in-process")
         return
-    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context()) as ex:
+    import os
+
+    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(),
+                                initializer=_die_with, initargs=(os.getpid(),)) as ex:
         yield ExecutorHandle(ex, "process", lambda obj: obj, 1, f"{workers} process(es)")
 
 

@@ -4,7 +4,9 @@ Every child runs in its own session (process group), so a timeout kills it and w
 it started (a simulator, a compiler). On Linux it also gets ``PR_SET_PDEATHSIG``: if the
 irnuc process that started it is killed (even with SIGKILL), the child receives SIGTERM,
 and :func:`die_with_parent` (called by irnuc's own child entry points) turns that into a
-kill of the child's whole group.
+kill of the child's whole group. A command that is not irnuc's own (Verilator, make, a
+harness, nextpnr) runs under a small reaper (``irnuc.common._reaper``) that does the same
+for it, so the compilers ``make`` starts die too.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import ctypes.util
 import os
 import signal
 import subprocess
+import sys
 import threading
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -31,6 +34,12 @@ class ChildTimeout(RuntimeError):
     """A child process group ran past its time limit and was killed."""
 
 
+def _is_irnuc_child(cmd: Sequence[str]) -> bool:
+    """An irnuc entry point that arms :func:`die_with_parent` itself."""
+    return (len(cmd) >= 3 and str(cmd[0]) == sys.executable and str(cmd[1]) == "-m"
+            and str(cmd[2]).startswith("irnuc."))
+
+
 def run_child(cmd: Sequence[str], *, timeout: float | None = None,
               env: Mapping[str, str] | None = None, cwd: str | Path | None = None,
               log: str | Path | None = None, capture: bool = False
@@ -38,11 +47,15 @@ def run_child(cmd: Sequence[str], *, timeout: float | None = None,
     """Run ``cmd`` in its own process group; kill the group on timeout or interrupt.
 
     Output goes to ``log`` (stdout and stderr together) or is captured. Raises
-    :class:`ChildTimeout` after killing the group when ``timeout`` seconds pass.
+    :class:`ChildTimeout` after killing the group when ``timeout`` seconds pass. The
+    group also dies when this process dies (see the module docstring).
     """
+    args = [str(c) for c in cmd]
+    if not _is_irnuc_child(args):
+        args = [sys.executable, "-m", "irnuc.common._reaper", *args]
     out = open(log, "w") if log is not None else (subprocess.PIPE if capture else None)
     try:
-        proc = subprocess.Popen(list(map(str, cmd)), stdout=out,
+        proc = subprocess.Popen(args, stdout=out,
                                 stderr=subprocess.STDOUT if log is not None else
                                 (subprocess.PIPE if capture else None),
                                 env=dict(env) if env is not None else None, cwd=cwd,

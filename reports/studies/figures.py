@@ -179,3 +179,68 @@ def phase_times(seconds: Mapping[str, float]) -> bytes:
     ax.set_xlabel("seconds")
     ax.grid(True, axis="x", alpha=0.3)
     return png(fig)
+
+
+def hardware_fronts(points: Sequence[Mapping[str, Any]], metric: str, max_error: float,
+                    recommended: int | None, front_memory: Sequence[int],
+                    front_datapath: Sequence[int]) -> bytes:
+    """Error against coefficient memory (left) and against the datapath cost (right).
+
+    Every point is a grey dot; synthesized points are black squares (the others' datapath
+    cost is the cost model's); the Pareto fronts are lines; the recommendation is a star.
+    """
+    plt = _plt()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
+    by_index = {p["index"]: p for p in points}
+    err = {p["index"]: max(p[metric], 1e-12) if p[metric] is not None else np.nan for p in points}
+    for ax, key, label, front in (
+            (axes[0], "bits_per_pixel", "coefficient memory, bits per pixel", front_memory),
+            (axes[1], "datapath_cost", "datapath: xc7 LUT + DSP48E1 x LUT equivalent", front_datapath)):
+        pts = [p for p in points if p.get(key) is not None]
+        ax.semilogy([p[key] for p in pts], [err[p["index"]] for p in pts], ".", color="0.6",
+                    label="sweep points")
+        syn = [p for p in pts if (p.get("hw") or {}).get("source") == "synthesized"]
+        if syn:
+            ax.semilogy([p[key] for p in syn], [err[p["index"]] for p in syn], "s", mfc="none",
+                        color="k", ms=7, label="synthesized")
+        fr = [by_index[i] for i in front if by_index[i].get(key) is not None]
+        fr.sort(key=lambda p: p[key])
+        ax.semilogy([p[key] for p in fr], [err[p["index"]] for p in fr], "o-", color="C0", ms=4,
+                    label="Pareto front")
+        ax.axhline(max_error, color="k", ls="--", lw=0.8, label=f"tolerance {max_error:g}")
+        if recommended is not None and by_index[recommended].get(key) is not None:
+            r = by_index[recommended]
+            ax.semilogy([r[key]], [err[recommended]], "*", ms=15, color="C3",
+                        label=f"recommended U{r['gain_int_bits']}.{r['gain_frac_bits']} / "
+                              f"S{r['offset_int_bits']}.{r['offset_frac_bits']}")
+        ax.set_xlabel(label)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel(metric.replace("_", " "))
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Pareto fronts: error against coefficient memory and against datapath cost")
+    return png(fig)
+
+
+def cost_model_check(names: Sequence[str], synthesized: Sequence[float],
+                     predicted: Sequence[float], used_for_fit: Sequence[bool], what: str) -> bytes:
+    """Predicted against synthesized values of one figure (the cost model's error)."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(4.8, 4))
+    s = np.asarray(synthesized, float)
+    p = np.asarray(predicted, float)
+    fit = np.asarray(used_for_fit, bool)
+    if fit.any():
+        ax.plot(s[fit], p[fit], "o", color="C0", label="fit points")
+    if (~fit).any():
+        ax.plot(s[~fit], p[~fit], "D", color="C3", label="held out")
+    if len(s):
+        lo, hi = float(min(s.min(), p.min())), float(max(s.max(), p.max()))
+        pad = 0.05 * (hi - lo or 1.0)
+        ax.plot([lo - pad, hi + pad], [lo - pad, hi + pad], "k:", lw=0.8)
+    for name, a, b in zip(names, s, p, strict=True):
+        ax.annotate(name, (a, b), fontsize=6, xytext=(3, 3), textcoords="offset points")
+    ax.set_xlabel(f"synthesized {what}")
+    ax.set_ylabel(f"cost model {what}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    return png(fig)

@@ -114,7 +114,8 @@ class SweepAxes:
     bits (offset: sign included) that hold every good pixel's coefficient at the point's
     fraction bits, so no good coefficient saturates. ``offset_frac_bits`` entries may be
     ``"same"`` (equal to the gain fraction bits, as in the paper). ``adc_bits`` ``None`` is
-    the sensor preset's ADC; ``out_bits`` ``None`` equals the ADC bits; ``rounding``
+    the pipeline's ADC (the sensor's must match it); ``out_bits`` ``None`` is the pipeline's
+    output width; ``rounding``
     ``None`` is the base pipeline's datapath rounding. ``coeff_rounding`` is the rounding
     of the float coefficients to codes.
     """
@@ -275,13 +276,38 @@ def calibration_set(frames_lo: np.ndarray, frames_hi: np.ndarray, raw_eval: np.n
                                              "bad_fraction", "reasons", "gain_good", "offset_good")})
 
 
+def check_widths(sensor: SensorSpec, axes: SweepAxes, *, sensor_name: str = "the sensor",
+                 pipeline_name: str = "pipeline") -> None:
+    """The ADC and output widths come from the named pipeline: a sensor whose ADC differs
+    from the pipeline's ``adc_bits`` is refused (unless ADC widths are swept explicitly),
+    before any frame is simulated."""
+    from irnuc.nuc_fixed import load_pipeline
+
+    base = load_pipeline(axes.pipeline)
+    if None not in axes.adc_bits:
+        return
+    a = int(sensor.model_config()["adc"]["bits"])
+    if a != base.adc_bits:
+        raise SweepError(
+            f"{sensor_name} {sensor.preset!r} has a {a}-bit ADC but {pipeline_name} "
+            f"{axes.pipeline!r} has adc_bits = {base.adc_bits} (and out_bits = {base.out_bits}); "
+            f"use a sensor with a {base.adc_bits}-bit ADC (e.g. --set adc.bits={base.adc_bits}), "
+            "a pipeline for this sensor, or sweep ADC widths explicitly (--adc-bits)")
+
+
 def simulate_set(sensor: SensorSpec, adc_bits: int | None, out_bits: int | None,
                  pipeline: str = "typical14") -> CalibrationSet:
-    """Simulate the calibration stacks and evaluation frames and calibrate them (float)."""
+    """Simulate the calibration stacks and evaluation frames and calibrate them (float).
+
+    ``adc_bits`` / ``out_bits`` ``None``: the pipeline's (the sensor's ADC must match it,
+    :func:`check_widths`)."""
     from irnuc import model
+    from irnuc.nuc_fixed import load_pipeline
+
+    base = load_pipeline(pipeline)
     cfg = sensor.model_config(adc_bits)
     a = int(cfg["adc"]["bits"])
-    b = a if out_bits is None else int(out_bits)
+    b = base.out_bits if out_bits is None else int(out_bits)
     pipe = model.Pipeline(cfg, seed=sensor.seed)
     cal = pipe.simulate([sensor.t_low, sensor.t_high], repeats=sensor.repeats)
     ev = pipe.simulate(list(sensor.t_eval))
@@ -521,6 +547,7 @@ def run_sweep(sensor: SensorSpec, axes: SweepAxes, *, workers: int = 2, schedule
     """
     sensor.check()
     axes.check()
+    check_widths(sensor, axes)
     if axes.n_points() > 100_000:
         raise SweepError(f"the axes give {axes.n_points()} points; the allowed maximum is 100000")
     seconds: dict[str, float] = {}

@@ -1,0 +1,232 @@
+"""The report configuration (``report_<name>.toml`` or a TOML file): read, ``[quick]``
+overrides applied, validated with the project's one schema library (jsonschema through
+:mod:`irnuc.common.schema`).
+
+Every section and key is known: a misspelled one is an error naming the file, the dotted
+field and the nearest known name (never a PASS with no metrics). The ``[quick]`` overrides
+are applied to a copy and validated too, also when ``--quick`` is not given, so a typo in
+them is found at once.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from irnuc.common.errors import UserError
+from irnuc.common.schema import check, nearest, number, read_toml, table
+
+REPORT_DIR = Path(__file__).resolve().parent
+
+
+class ReportError(UserError):
+    """A report configuration or input is invalid (names the field and the allowed values)."""
+
+
+# ---------------------------------------------------------------------------------------
+# Schema
+# ---------------------------------------------------------------------------------------
+_KELVIN = number(1.0, 1e4, unit="K")
+_SEED = number(0, 2**63 - 1, integer=True)
+_ROUNDING = {"enum": ["truncate", "half_up", "half_even"]}
+
+
+def _ints(lo: int, hi: int, extra: tuple[str, ...] = ()) -> dict[str, Any]:
+    item: dict[str, Any] = number(lo, hi, integer=True)
+    if extra:
+        item = {"anyOf": [item, {"enum": list(extra)}]}
+    return {"type": "array", "items": item, "minItems": 1, "maxItems": 64}
+
+
+_FRAMES = {
+    "preset": {"type": "string", "minLength": 1},
+    "seed": _SEED,
+    "rows": number(3, 4096, integer=True),
+    "cols": number(3, 4096, integer=True),
+    "repeats": number(1, 1000, integer=True),
+    "t_low": _KELVIN,
+    "t_high": _KELVIN,
+    "t_eval": {"type": "array", "items": _KELVIN, "minItems": 1, "maxItems": 32},
+    "pipeline": {"type": "string", "minLength": 1},
+    "overrides": {"type": "object"},
+}
+_FRAMES_REQUIRED = ("preset", "seed", "rows", "cols", "repeats", "t_low", "t_high", "t_eval",
+                    "pipeline")
+
+SCHEMA: dict[str, Any] = table({
+    "name": {"type": "string"},
+    "sensor": table(_FRAMES, _FRAMES_REQUIRED),
+    "sweep": table({
+        **_FRAMES,
+        "gain_frac_bits": _ints(0, 32),
+        "offset_frac_bits": _ints(0, 32, ("same",)),
+        "gain_int_bits": _ints(0, 16, ("auto",)),
+        "offset_int_bits": _ints(1, 32, ("auto",)),
+        "coeff_rounding": {"type": "array", "items": _ROUNDING, "minItems": 1},
+        "rounding": {"type": "array", "items": _ROUNDING, "minItems": 1},
+        "max_error": number(0.0, 1e12, lo_open=True),
+        "error_metric": {"enum": ["err_max_lsb", "err_rms_lsb", "residual_nu",
+                                  "residual_nu_adc_lsb", "radial_rms_lsb"]},
+        "workers": number(0, 256, integer=True),
+        "frame_rate_hz": number(0.0, 1e5, lo_open=True, unit="Hz"),
+    }, (*_FRAMES_REQUIRED, "gain_frac_bits", "offset_frac_bits", "max_error")),
+    "synth": table({
+        "fit_points": number(3, 16, integer=True),
+        "workers": number(0, 16, integer=True),
+        "speed": {"enum": [6, 7, 8]},
+        "freq_mhz": number(1.0, 1000.0, unit="MHz"),
+        "seed": number(0, 2**31 - 1, integer=True),
+        "dsp_lut_equivalent": number(0, 100_000),
+    }),
+    "paper": table({
+        "preset": {"type": "string", "minLength": 1},
+        "seed": _SEED,
+        "rows": number(3, 4096, integer=True),
+        "cols": number(3, 4096, integer=True),
+        "frac_bits": _ints(0, 32),
+        "grid_temps": {"type": "array", "items": _KELVIN, "minItems": 1, "maxItems": 16},
+        "t_low": _KELVIN,
+        "t_high": _KELVIN,
+        "reference_nu": {"type": "array", "items": number(0.0, 1e6), "minItems": 1},
+        "table1": table({
+            "rows": number(3, 4096, integer=True),
+            "cols": number(3, 4096, integer=True),
+            "temps": {"type": "array", "items": _KELVIN, "minItems": 1, "maxItems": 16},
+            "tolerances": {"type": "array", "items": number(0.0, 1.0, lo_open=True),
+                           "minItems": 1, "maxItems": 16},
+            "skimming": {"type": "array", "items": {"enum": ["row", "column", "none"]},
+                         "minItems": 1},
+        }, ("rows", "cols", "temps", "tolerances", "skimming")),
+    }, ("preset", "seed", "rows", "cols", "frac_bits", "grid_temps", "reference_nu")),
+    "cosim": table({
+        "pipelines": {"type": "array", "minItems": 1, "maxItems": 8,
+                      "items": {"type": "string", "minLength": 1}},
+        "tests": {"type": "array", "minItems": 1, "maxItems": 32,
+                  "items": {"type": "string", "minLength": 1}},
+        "timeout_base": number(1.0, 86400.0, unit="s"),
+        "jobs": number(1, 16, integer=True),
+        "waves": {"type": "boolean"},
+        "seed": number(0, 2**31 - 1, integer=True),
+    }, ("pipelines", "tests")),
+    "precision": table({
+        "quick": {"type": "boolean"},
+        "components": {"type": "array", "items": {"type": "string"}, "minItems": 1},
+    }),
+    "quick": {"type": "object"},
+})
+
+SECTIONS = tuple(k for k in SCHEMA["properties"] if k not in ("name", "quick"))
+
+
+# ---------------------------------------------------------------------------------------
+# Loading
+# ---------------------------------------------------------------------------------------
+def embedded_names() -> list[str]:
+    return sorted(p.stem.removeprefix("report_") for p in REPORT_DIR.glob("report_*.toml"))
+
+
+def config_path(name_or_path: str) -> Path:
+    """The file of an embedded configuration name, or the path given."""
+    path = REPORT_DIR / f"report_{name_or_path}.toml"
+    if "/" not in name_or_path and path.is_file():
+        return path
+    p = Path(name_or_path)
+    if p.suffix == ".toml" or p.exists() or "/" in name_or_path:
+        return p
+    known = embedded_names()
+    raise ReportError(f"--config {name_or_path!r} is neither an embedded configuration "
+                      f"({', '.join(known)}){nearest(name_or_path, known)} nor a TOML file")
+
+
+def _set_dotted(d: dict[str, Any], dotted: str, value: Any, source: str) -> None:
+    keys = dotted.split(".")
+    cur = d
+    for i, k in enumerate(keys[:-1]):
+        nxt = cur.get(k)
+        if not isinstance(nxt, dict):
+            where = ".".join(keys[:i + 1])
+            raise ReportError(f"{source}: quick override {dotted!r}: {where} is not a table "
+                              "of the configuration")
+        cur = nxt
+    cur[keys[-1]] = value
+
+
+def _check_more(cfg: Mapping[str, Any], source: str) -> None:
+    """What a schema cannot say: relations between fields."""
+    for sec in ("sensor", "sweep", "paper"):
+        s = cfg.get(sec)
+        if s and "t_low" in s and "t_high" in s and not s["t_low"] < s["t_high"]:
+            raise ReportError(f"{source}: {sec}.t_low = {s['t_low']:g} K must be below "
+                              f"{sec}.t_high = {s['t_high']:g} K")
+    p = cfg.get("paper")
+    if p and len(p["reference_nu"]) != len(p["frac_bits"]):
+        raise ReportError(f"{source}: paper.reference_nu has {len(p['reference_nu'])} values but "
+                          f"paper.frac_bits has {len(p['frac_bits'])}")
+    c = cfg.get("cosim")
+    if c:
+        from irnuc.nuc_fixed import load_pipeline
+
+        for name in c["pipelines"]:
+            if name == "recommended":
+                if "sweep" not in cfg:
+                    raise ReportError(f"{source}: cosim.pipelines holds 'recommended' but the "
+                                      "configuration has no [sweep] to recommend widths")
+                continue
+            try:
+                load_pipeline(name)
+            except (ValueError, UserError) as exc:
+                raise ReportError(f"{source}: cosim.pipelines: {exc}") from None
+        from irnuc.cocotb_tests import tb_top  # noqa: F401  (the names below are its tests)
+        from irnuc.cosim import cocotb_test_names
+
+        known = cocotb_test_names("irnuc.cocotb_tests.tb_top")
+        for t in c["tests"]:
+            if t not in known:
+                raise ReportError(f"{source}: cosim.tests holds {t!r}, not a test of "
+                                  f"irnuc.cocotb_tests.tb_top{nearest(t, known)} (known: "
+                                  f"{', '.join(known)})")
+    if "synth" in cfg and "sweep" not in cfg:
+        raise ReportError(f"{source}: [synth] costs the sweep's points; the configuration has no [sweep]")
+
+
+def _unknown_first(doc: Any, schema: Mapping[str, Any], source: str, where: str = "") -> None:
+    """The first unknown key in the order of the file (a misspelled section is named by
+    itself, not by a later one), with the nearest known name."""
+    if not isinstance(doc, Mapping) or schema.get("additionalProperties") is not False:
+        return
+    known = list(schema.get("properties", {}))
+    for key, value in doc.items():
+        field = f"{where}.{key}" if where else str(key)
+        if key not in known:
+            raise ReportError(f"{source}: {field} is not a known "
+                              f"{'section' if not where else 'field'}{nearest(str(key), known)} "
+                              f"(known here: {', '.join(sorted(known))})")
+        _unknown_first(value, schema["properties"][key], source, field)
+
+
+def load_report_config(name_or_path: str = "default", quick: bool = False) -> dict[str, Any]:
+    """The validated report configuration (``--quick``: its ``[quick]`` overrides applied)."""
+    path = config_path(name_or_path)
+    source = f"--config {path}" if path.parent != REPORT_DIR else f"--config {name_or_path}"
+    cfg = read_toml(path, "--config")
+    _unknown_first(cfg, SCHEMA, source)
+    check(cfg, SCHEMA, source=source)
+    over = dict(cfg.pop("quick", {}) or {})
+    quick_cfg = copy.deepcopy(cfg)
+    for k, v in over.items():
+        _set_dotted(quick_cfg, k, v, source)
+    check(quick_cfg, SCHEMA, source=f"{source} [quick]")
+    _check_more(cfg, source)
+    _check_more(quick_cfg, f"{source} [quick]")
+    out = quick_cfg if quick else cfg
+    out.setdefault("name", path.stem.removeprefix("report_"))
+    out["quick"] = bool(quick)
+    return out
+
+
+def config_hash(cfg: Mapping[str, Any]) -> str:
+    return hashlib.sha256(json.dumps(cfg, sort_keys=True, default=str).encode()).hexdigest()[:16]

@@ -1,0 +1,244 @@
+"""Phase: the RTL co-simulation, run as a Python API (``irnuc.cosim.run_suite`` with the
+testbench module ``irnuc.cocotb_tests.tb_top``; never pytest), or an ingested JUnit XML
+(``--junit``).
+
+Every Verilator build is made first (no test timer runs during a build); then every test
+runs in its own simulator process with its own time limit, scaled with the size of the
+design built (``cosim.suite.test_timeout``), ``jobs`` tests at a time. A test that runs out
+of time is one ``timeout`` outcome; the others are kept, and a suite cut short is reported
+as partial. The section holds, per test: status, time, pixels compared, mismatches with
+their triage lines (frame, x, y, inputs, expected, got, intermediate values), assertion
+failures, the paths of the log and waveform; and throughput, coverage and mutation
+results where measured (:func:`measured_coverage`, :func:`measured_mutation`).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import time
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from irnuc.reports.report.base import Report
+from irnuc.reports.report.config import ReportError
+
+TB_TOP = "irnuc.cocotb_tests.tb_top"
+#: Tests that compare against a deliberately wrong golden model (their mismatches are the
+#: checker working, not the RTL failing).
+NEGATIVE_CONTROLS = ("checker_detects_mismatch",)
+
+
+# ---- JUnit ingest -------------------------------------------------------------------------
+def parse_junit(path: str | Path) -> dict[str, Any]:
+    """Counts and per-test results of a JUnit XML file (pytest's or any xunit2 writer)."""
+    p = Path(path)
+    if not p.exists():
+        raise ReportError(f"--junit {path}: no such file")
+    if p.is_dir():
+        raise ReportError(f"--junit {path}: is a folder, not a JUnit XML file")
+    try:
+        root = ET.parse(p).getroot()
+    except (ET.ParseError, OSError, UnicodeDecodeError) as exc:
+        raise ReportError(f"--junit {path}: not a readable JUnit XML file ({exc})") from None
+    if root.tag not in ("testsuite", "testsuites"):
+        raise ReportError(f"--junit {path}: root element is <{root.tag}>, "
+                          "expected <testsuites> or <testsuite>")
+    suites = [root] if root.tag == "testsuite" else root.findall("testsuite")
+    cases = []
+    for suite in suites:
+        for tc in suite.iter("testcase"):
+            status, message = "passed", ""
+            for tag in ("failure", "error", "skipped"):
+                el = tc.find(tag)
+                if el is not None:
+                    status = {"failure": "failed", "error": "error", "skipped": "skipped"}[tag]
+                    message = (el.get("message") or el.text or "").strip()[:500]
+                    break
+            try:
+                seconds = float(tc.get("time", 0) or 0)
+            except ValueError:
+                raise ReportError(f"--junit {path}: testcase {tc.get('name')!r} has time = "
+                                  f"{tc.get('time')!r}, not a number") from None
+            cases.append({"name": tc.get("name", ""), "classname": tc.get("classname", ""),
+                          "time": seconds, "status": status, "message": message})
+    counts = {k: sum(c["status"] == k for c in cases) for k in ("passed", "failed", "error", "skipped")}
+    return {"tests": len(cases), **counts, "timeout": 0,
+            "time": round(sum(c["time"] for c in cases), 3), "cases": cases,
+            "data": p.read_bytes()}
+
+
+# ---- hooks for coverage and mutation (measured by irnuc.cosim when present) ----------------
+def measured_coverage(results: list[Any]) -> dict[str, Any] | None:
+    """Coverage the suite measured: ``getattr(suite_result, "coverage", None)`` of each
+    suite run (a dict; merged), or None when not measured."""
+    found: dict[str, Any] = {}
+    for r in results:
+        cov = getattr(r, "coverage", None)
+        if isinstance(cov, Mapping) and cov:
+            found.update(dict(cov))
+    return found or None
+
+
+def measured_mutation() -> dict[str, Any] | None:
+    """The cached summary of ``irnuc mutate`` (``irnuc.cosim.mutate.cached_summary()``), or
+    None when that module or function does not exist or holds nothing."""
+    try:
+        from irnuc.cosim import mutate  # type: ignore[attr-defined]
+
+        summary = mutate.cached_summary()
+    except (ImportError, AttributeError):
+        return None
+    return dict(summary) if isinstance(summary, Mapping) and summary else None
+
+
+# ---- running the suite --------------------------------------------------------------------
+def _relative(path: Path | None, root: Path) -> str | None:
+    if path is None:
+        return None
+    try:
+        return str(Path(path).relative_to(root))
+    except ValueError:
+        return str(path)
+
+
+def _case_entry(o: Any, root: Path) -> dict[str, Any]:
+    pixels = sum(int(m.get("compared", 0)) for m in o.metrics)
+    errors = sum(int(m.get("errors", 0)) for m in o.metrics)
+    lines = [ln for m in o.metrics if int(m.get("errors", 0)) for ln in m.get("lines", [])][:10]
+    negative = o.test in NEGATIVE_CONTROLS
+    return {
+        "name": o.test, "classname": o.case.label, "configuration": o.case.cfg.name,
+        "status": o.status, "time": round(o.seconds, 3), "message": o.message[:2000],
+        "pixels": pixels, "mismatches": 0 if negative else errors,
+        "negative_control": negative, "detected": errors if negative else None,
+        "triage": lines, "assertion_failures": list(o.assertion_failures)[:20],
+        "log": _relative(o.log, root), "waves": _relative(o.waves, root),
+    }
+
+
+def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) -> dict[str, Any]:
+    """Build every configuration, then run the tests ``jobs`` at a time; the section."""
+    from irnuc import cosim
+    from irnuc.cosim.suite import SuiteResult, test_timeout
+
+    tests = tuple(c["tests"])
+    waves = bool(c.get("waves", False))
+    jobs = int(c.get("jobs", 2))
+    base = float(c.get("timeout_base", 120.0))
+    seed = int(c.get("seed", 1))
+    work = out / "cosim"
+    t0 = time.perf_counter()
+    for cfg in configs:  # builds before any test timer starts
+        cosim.build("nuc_dpc_top", cfg, waves=waves)
+    build_seconds = time.perf_counter() - t0
+    plan = [(cfg, t) for cfg in configs for t in tests]
+
+    def run_one(item: tuple[Any, str]) -> Any:
+        cfg, t = item
+        case = cosim.SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=(t,), seed=seed)
+        return cosim.run_suite([case], work, waves=waves, timeout_base=base)
+
+    t1 = time.perf_counter()
+    # Each test is one task: the ``jobs`` simulators take the next test as they finish.
+    with cf.ThreadPoolExecutor(max_workers=max(1, min(jobs, len(plan)))) as pool:
+        parts = list(pool.map(run_one, plan))
+    outcomes = [o for part in parts for o in part.outcomes]
+    merged = SuiteResult(outcomes=outcomes, build_seconds=build_seconds,
+                         run_seconds=time.perf_counter() - t1,
+                         builds=sorted({b for part in parts for b in part.builds}))
+    merged.write_junit(out / "junit.xml")
+    cases = [_case_entry(o, out) for o in outcomes]
+    pixels = sum(x["pixels"] for x in cases)
+    sim_seconds = sum(x["time"] for x in cases)
+    section: dict[str, Any] = {
+        "source": "irnuc.cosim.run_suite", "testbench": TB_TOP,
+        "tests": len(cases), "passed": sum(x["status"] == "passed" for x in cases),
+        "failed": sum(x["status"] == "failed" for x in cases),
+        "error": sum(x["status"] == "error" for x in cases),
+        "timeout": sum(x["status"] == "timeout" for x in cases), "skipped": 0,
+        "planned": len(plan), "partial": len(cases) < len(plan) or any(
+            x["status"] == "timeout" for x in cases),
+        "time": round(sim_seconds, 3), "build_seconds": round(build_seconds, 3),
+        "run_seconds": round(merged.run_seconds, 3), "jobs": jobs,
+        "pixels": pixels, "mismatches": sum(x["mismatches"] for x in cases),
+        "assertion_failures": sum(len(x["assertion_failures"]) for x in cases),
+        "throughput_pixels_per_s": round(pixels / sim_seconds, 3) if sim_seconds else None,
+        "timeouts_s": {cfg.name: test_timeout(cfg, base) for cfg in configs},
+        "configurations": [{"name": cfg.name, "digest": cfg.digest(), "adc_bits": cfg.adc_bits,
+                            "out_bits": cfg.out_bits,
+                            "gain": f"U{cfg.gain_int_bits}.{cfg.gain_frac_bits}",
+                            "offset": f"S{cfg.offset_int_bits}.{cfg.offset_frac_bits}",
+                            "rounding": cfg.rounding, "max_width": cfg.max_width,
+                            "max_height": cfg.max_height, "word_bits": cfg.word_bits,
+                            "tests": [x["name"] for x in cases if x["configuration"] == cfg.name]}
+                           for cfg in configs],
+        "cases": cases, "junit": "junit.xml", "work": _relative(work, out),
+        "coverage": measured_coverage(parts), "mutation": measured_mutation(),
+    }
+    return section
+
+
+def _configs(rep: Report, names: list[str]) -> list[Any]:
+    from irnuc.nuc_fixed import load_pipeline
+
+    out = []
+    for name in names:
+        if name == "recommended":
+            r = (rep.sections.get("sweep") or {}).get("recommended")
+            if r is None:
+                rep.notes.append("co-simulation of the recommended widths skipped: the sweep "
+                                 "recommends none")
+                continue
+            from irnuc.nuc_fixed import PipelineConfig
+
+            out.append(PipelineConfig(**r["pipeline"]))
+        else:
+            out.append(load_pipeline(name))
+    return out
+
+
+def phase_cosim(rep: Report, out: Path, junit: dict[str, Any] | None, no_cosim: bool) -> None:
+    from irnuc.common.errors import ToolError
+    from irnuc.common.io import write_bytes_atomic
+
+    section = None
+    if junit is not None:
+        with rep.phase("cosim"):
+            section = {k: v for k, v in junit.items() if k != "data"}
+            section["source"] = str(junit.get("path", "--junit"))
+            write_bytes_atomic(out / "junit.xml", junit["data"])
+            section["junit"] = "junit.xml"
+            section["partial"] = False
+    elif not no_cosim and "cosim" in rep.config:
+        c = rep.config["cosim"]
+        with rep.phase("cosim"):
+            configs = _configs(rep, list(c["pipelines"]))
+            if configs:
+                try:
+                    section = run_cosim(rep, configs, c, out)
+                except ToolError as exc:  # a build that failed: the report says so, whole
+                    section = {"source": "irnuc.cosim.run_suite", "tests": 0, "passed": 0,
+                               "failed": 0, "error": 1, "timeout": 0, "skipped": 0, "time": 0.0,
+                               "cases": [], "partial": True, "note": str(exc)[:4000]}
+    if section is None:
+        return
+    rep.sections["cosim"] = section
+    rep.metric("cosim.tests", section["tests"], "info")
+    rep.metric("cosim.passed", section["passed"], "info")
+    rep.metric("cosim.failed", section["failed"], "lower")
+    rep.metric("cosim.errors", section["error"] + section.get("timeout", 0), "lower")
+    if "pixels" in section:
+        rep.metric("cosim.pixels", section["pixels"], "info")
+        rep.metric("cosim.mismatches", section["mismatches"], "lower")
+        rep.metric("cosim.assertion_failures", section["assertion_failures"], "lower")
+    rec = (rep.sections.get("sweep") or {}).get("recommended")
+    if rec is not None and section.get("cases"):
+        mine = [x for x in section["cases"] if x.get("configuration") == "recommended"]
+        if mine:
+            rec["cosim"] = {"passed": sum(x["status"] == "passed" for x in mine),
+                            "failed": sum(x["status"] != "passed" for x in mine),
+                            "pixels": sum(x["pixels"] for x in mine),
+                            "mismatches": sum(x["mismatches"] for x in mine),
+                            "tests": [x["name"] for x in mine]}

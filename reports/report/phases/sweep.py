@@ -1,0 +1,238 @@
+"""Phases 3-4: the coefficient bit-width sweep with the hardware cost of every point, the
+Pareto fronts and the recommended widths.
+
+``sweep``: error of every point (:mod:`irnuc.reports.studies.sweep`) and its coefficient
+memory for the configured frame (bits per pixel, block RAMs or external memory).
+
+``synth`` (with a ``[synth]`` section): ``irnuc synth`` of a few points at the corners of
+the swept word widths and of the cheapest candidates, a linear cost model fitted on the
+corners (its error stated against every synthesized point), the datapath cost of every
+point, the fronts of error against memory and against LUT+DSP, and the recommendation:
+the cheapest point meeting the tolerance, synthesized, its edges on the swept grid named.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from irnuc.reports.report.base import Report, point_key, progress
+from irnuc.reports.report.phases.calibration import sensor_overrides
+
+#: LUTs one DSP48E1 counts for on the datapath axis (an 18 x 25 multiplier in fabric).
+DSP_LUT_EQUIVALENT = 200.0
+FRAME_RATE_HZ = 60.0
+SWEPT_AXES = ("gain_frac_bits", "offset_frac_bits", "gain_int_bits", "offset_int_bits")
+
+
+def sweep_specs(s: Mapping[str, Any]):
+    from irnuc.reports.studies.sweep import SensorSpec, SweepAxes
+
+    sensor = SensorSpec(preset=s["preset"], overrides=sensor_overrides(s), seed=s["seed"],
+                        t_low=float(s["t_low"]), t_high=float(s["t_high"]),
+                        t_eval=tuple(float(t) for t in s["t_eval"]), repeats=s["repeats"])
+    axes = SweepAxes(
+        gain_frac_bits=tuple(s["gain_frac_bits"]), offset_frac_bits=tuple(s["offset_frac_bits"]),
+        gain_int_bits=tuple(s.get("gain_int_bits", ["auto"])),
+        offset_int_bits=tuple(s.get("offset_int_bits", ["auto"])),
+        rounding=tuple(s.get("rounding", [None])),
+        coeff_rounding=tuple(s.get("coeff_rounding", ["half_even"])), pipeline=s["pipeline"])
+    return sensor, axes
+
+
+def check_sweep(s: Mapping[str, Any], source: str) -> None:
+    """The sweep's specification, before any work (the ADC of the sensor against the
+    pipeline's, the axes)."""
+    from irnuc.reports.studies.sweep import check_widths
+
+    sensor, axes = sweep_specs(s)
+    sensor.check()
+    axes.check()
+    check_widths(sensor, axes, sensor_name=f"{source}: sweep.preset",
+                 pipeline_name="sweep.pipeline")
+
+
+def recommended_config(p: Mapping[str, Any], rows: int, cols: int):
+    """The pipeline configuration of a sweep point for the configured frame (line buffers
+    of ``cols`` pixels, frames of up to ``rows`` lines)."""
+    from irnuc.reports.studies.sweep import SweepPoint
+
+    fields = {k: p[k] for k in SweepPoint.__dataclass_fields__}
+    cfg = SweepPoint(**fields).config(rows, cols)
+    return cfg.replace(
+        name="recommended" if p.get("recommended") else f"sweep{p['index']}",
+        max_width=cols, max_height=rows,
+        description=(f"U{p['gain_int_bits']}.{p['gain_frac_bits']} gain, S{p['offset_int_bits']}."
+                     f"{p['offset_frac_bits']} offset, from the bit-width sweep of irnuc report "
+                     f"({p['bits_per_pixel']} bits per pixel)"))
+
+
+def _recommended_entry(rep: Report, p: Mapping[str, Any], metric: str, frame: tuple[int, int],
+                       axes: Mapping[str, Any], candidates: list[int]) -> dict[str, Any]:
+    from irnuc.reports.studies.hwcost import grid_edges
+
+    rows, cols = frame
+    cfg = recommended_config({**p, "recommended": True}, rows, cols)
+    edges = grid_edges(p, {k: axes[k] for k in SWEPT_AXES if k in axes})
+    for e in edges:
+        rep.notes.append(f"the recommended widths lie on the {e['edge']} edge of the swept "
+                         f"{e['axis']} ({p[e['axis']]}); widen the sweep: {e['widen']}")
+    return {
+        "index": p["index"],
+        "gain_int_bits": p["gain_int_bits"], "gain_frac_bits": p["gain_frac_bits"],
+        "offset_int_bits": p["offset_int_bits"], "offset_frac_bits": p["offset_frac_bits"],
+        "adc_bits": p["adc_bits"], "out_bits": p["out_bits"], "rounding": p["rounding"],
+        "coeff_rounding": p["coeff_rounding"],
+        "bits_per_pixel": p["bits_per_pixel"], "err_max_lsb": p["err_max_lsb"],
+        "metric": metric, "error": p[metric], "candidates": candidates,
+        "memory": p["memory"], "edges": edges,
+        "pipeline": cfg.to_dict(), "pipeline_digest": cfg.digest(), "pipeline_toml": cfg.to_toml(),
+        "cosim": None, "synth": None,
+    }
+
+
+def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None:
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.hwcost import coefficient_memory, recommend
+    from irnuc.reports.studies.sweep import run_sweep
+
+    s = rep.config["sweep"]
+    metric = s.get("error_metric", "err_max_lsb")
+    max_error = float(s["max_error"])
+    rate = float(s.get("frame_rate_hz", FRAME_RATE_HZ))
+    with rep.phase("sweep"):
+        sensor, axes = sweep_specs(s)
+        res = run_sweep(sensor, axes, workers=s.get("workers", 2), scheduler=scheduler,
+                        progress=progress("sweep", show_progress))
+        d = res.to_dict(max_error=max_error, metric=metric)
+        rows, cols = res.frame_shape()
+        for p in d["points"]:
+            p["memory"] = coefficient_memory(p["bits_per_pixel"], rows, cols, rate)
+            p["datapath_cost"] = None
+            p["hw"] = None
+        rec = recommend(d["points"], max_error, metric)
+        d["tolerance"] = {"metric": metric, "max_error": max_error}
+        d["recommended"] = None
+        if rec["found"]:
+            d["recommended"] = _recommended_entry(rep, d["points"][rec["index"]], metric,
+                                                  (rows, cols), d["axes"], rec["candidates"])
+        else:
+            rep.notes.append(f"no swept width meets {metric} <= {max_error:g}: widen the sweep "
+                             "(more fraction bits)")
+    rep.sections["sweep"] = d
+    pts = d["points"]
+    sm = d["smallest"]
+    rep.metric("sweep.points", len(pts), "info")
+    rep.metric("sweep.best_err_max_lsb", min(p["err_max_lsb"] for p in pts), "lower", "LSB")
+    rep.metric("sweep.best_residual_nu", min(p["residual_nu"] for p in pts), "lower")
+    rep.metric("sweep.smallest_bits_per_pixel", sm["bits_per_pixel"], "lower", "bit")
+    for p in pts:
+        k = point_key(p)
+        rep.metric(f"sweep.point.{k}.err_max_lsb", p["err_max_lsb"], "lower", "LSB")
+        rep.metric(f"sweep.point.{k}.err_rms_lsb", p["err_rms_lsb"], "lower", "LSB")
+        rep.metric(f"sweep.point.{k}.residual_nu", p["residual_nu"], "lower")
+        rep.metric(f"sweep.point.{k}.radial_rms_lsb", p["radial_rms_lsb"], "lower", "LSB")
+    rep.figure("sweep", "Error of the fixed-point NUC against the float NUC, worst over the "
+               "evaluation temperatures, against gain fraction bits (one line per offset "
+               "fraction width)", figures.error_vs_bits(pts, metric, max_error))
+    if "synth" not in rep.config:
+        rep.figure("sweep", f"Pareto front of {metric} against coefficient memory; the star is the "
+                   f"smallest memory meeting {metric} <= {max_error:g}",
+                   figures.pareto(pts, res.pareto(metric), metric, sm))
+
+
+def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None:
+    """Synthesize a few points, fit the cost model, cost every point, recommend."""
+    from irnuc.cosim.synth import synth_configs
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.hwcost import (
+        CostModel,
+        datapath_cost,
+        fit_indices,
+        recommend,
+        synth_figures,
+        widths,
+    )
+    from irnuc.reports.studies.metrics import pareto_front
+
+    sy = rep.config["synth"]
+    d = rep.sections["sweep"]
+    pts = d["points"]
+    metric = d["tolerance"]["metric"]
+    max_error = d["tolerance"]["max_error"]
+    rows, cols = d["frame"]
+    dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
+    with rep.phase("synth"):
+        fit = fit_indices(pts, int(sy.get("fit_points", 4)))
+        cand = recommend(pts, max_error, metric)["candidates"]
+        cand = sorted(cand, key=lambda i: (pts[i][metric], i))[:3]
+        todo = sorted(set(fit) | set(cand))
+        cfgs = [recommended_config(pts[i], rows, cols) for i in todo]
+        results = synth_configs(cfgs, workers=int(sy.get("workers", 2)), scheduler=scheduler,
+                                progress=progress("synth", show_progress),
+                                speed=int(sy.get("speed", 6)), freq_mhz=float(sy.get("freq_mhz", 150.0)),
+                                seed=int(sy.get("seed", 1)))
+        synthesized = {i: r for i, r in zip(todo, results, strict=True)}
+        figs = {i: synth_figures(r) for i, r in synthesized.items()}
+        model = CostModel.fit([widths(pts[i]) for i in fit], [figs[i] for i in fit])
+        for p in pts:
+            i = p["index"]
+            if i in figs:
+                hw = {"source": "synthesized", **figs[i]}
+            else:
+                hw = {"source": "model", **model.predict(widths(p))}
+            p["hw"] = hw
+            p["datapath_cost"] = round(datapath_cost(hw, dsp_w), 3)
+        held = [i for i in todo if i not in fit]
+        heldout = model.errors([widths(pts[i]) for i in held], [figs[i] for i in held]) if held else {}
+        every = model.errors([widths(pts[i]) for i in todo], [figs[i] for i in todo])
+        rec = recommend(pts, max_error, metric, {p["index"]: p["datapath_cost"] for p in pts})
+        cost = [p["datapath_cost"] for p in pts]
+        err = [p[metric] if p[metric] is not None else float("inf") for p in pts]
+        front_mem = pareto_front([p["bits_per_pixel"] for p in pts], err).tolist()
+        front_dp = pareto_front(cost, err).tolist()
+    d["pareto_memory"] = front_mem
+    d["pareto_datapath"] = front_dp
+    d["synth"] = {
+        "frame": [rows, cols], "dsp_lut_equivalent": dsp_w,
+        "fit_indices": fit, "synthesized": [
+            {"index": i, "label": f"U{pts[i]['gain_int_bits']}.{pts[i]['gain_frac_bits']}/"
+                                  f"S{pts[i]['offset_int_bits']}.{pts[i]['offset_frac_bits']}",
+             "used_for_fit": i in fit, "fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"], "ecp5": r["ecp5"],
+             "predicted": model.predict(widths(pts[i])), "cached": bool(r.get("cached")),
+             "seconds": r.get("seconds"), "config_digest": r.get("config_digest")}
+            for i, r in synthesized.items()],
+        "model": model.to_dict(), "model_error_heldout": heldout, "model_error_all": every,
+        "tools": next(iter(results)).get("tools") if results else None,
+    }
+    if rec["found"]:
+        p = pts[rec["index"]]
+        if d["recommended"] is None or d["recommended"]["index"] != p["index"]:
+            d["recommended"] = _recommended_entry(rep, p, metric, (rows, cols), d["axes"],
+                                                  rec["candidates"])
+        r = synthesized[p["index"]]
+        d["recommended"]["synth"] = {"fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"], "ecp5": r["ecp5"],
+                                     "device": r.get("device"), "speed": r.get("speed"),
+                                     "target_mhz": r.get("target_mhz"),
+                                     "critical_path": r.get("critical_path", [])[:12]}
+        d["recommended"]["datapath_cost"] = p["datapath_cost"]
+        rs = d["recommended"]["synth"]
+        rep.metric("synth.recommended.fmax_mhz", rs["fmax_mhz"], "higher", "MHz", rel_tol=0.05)
+        for fam, keys in (("xc7", ("lut", "ff", "dsp", "bram18", "bram36")),
+                          ("ecp5", ("lut4", "ff", "mult18", "dp16kd"))):
+            for k in keys:
+                rep.metric(f"synth.recommended.{fam}.{k}", rs[fam][k], "lower", rel_tol=0.02)
+    for key, e in every.items():
+        rep.metric(f"synth.model_error.{key}", e["max_abs"], "info")
+    rec_i = d["recommended"]["index"] if d["recommended"] else None
+    rep.figure("sweep", f"Pareto fronts of {metric} against coefficient memory (left) and against "
+               f"the datapath cost (right: xc7 LUTs + {dsp_w:g} per DSP48E1, synthesized points "
+               "squared, the others from the cost model); the star is the recommendation",
+               figures.hardware_fronts(pts, metric, max_error, rec_i, front_mem, front_dp))
+    names = [x["label"] for x in d["synth"]["synthesized"]]
+    used = [x["used_for_fit"] for x in d["synth"]["synthesized"]]
+    rep.figure("synth", "Cost model against synthesis: xc7 LUTs (fit points and held-out "
+               "points; the dotted line is exact)",
+               figures.cost_model_check(names, [figs[i]["xc7.lut"] for i in todo],
+                                        [model.predict(widths(pts[i]))["xc7.lut"] for i in todo],
+                                        used, "xc7 LUTs"))

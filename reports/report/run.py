@@ -1,0 +1,128 @@
+"""``irnuc report``: everything checked before the work, the phases, the output folder
+written as a unit.
+
+Before any work: the configuration (schema), ``--out`` claimed (kind ``report``: a user's
+folder is refused, a second run fails at once), the baseline validated, a ``--junit`` file
+parsed, a ``--scheduler`` reached, the sweep's widths checked against its pipeline. The
+phases then fill a hidden sibling of ``--out``, which replaces ``--out`` as a whole only
+when the report is complete: a kill leaves the previous report, whole. The closing line
+names only files that exist.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import time
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from irnuc.reports.report.base import Report
+from irnuc.reports.report.config import config_path, load_report_config
+
+OUTPUTS = ("index.html", "summary.json", "junit.xml", "recommended.toml")
+
+
+def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] | None = None,
+                 no_cosim: bool = False, scheduler: str | None = None,
+                 progress: bool = True) -> Report:
+    """Run every phase the configuration asks for, writing logs and results under ``out``."""
+    from irnuc.reports.report.phases.calibration import phase_frames_and_calibration
+    from irnuc.reports.report.phases.cosim import phase_cosim
+    from irnuc.reports.report.phases.paper import phase_paper
+    from irnuc.reports.report.phases.precision import phase_precision
+    from irnuc.reports.report.phases.sweep import phase_sweep, phase_synth
+
+    rep = Report(config=copy.deepcopy(dict(config)), verbose=progress)
+    if "sensor" in config:
+        phase_frames_and_calibration(rep)
+    if "sweep" in config:
+        phase_sweep(rep, scheduler, progress)
+        if "synth" in config:
+            phase_synth(rep, scheduler, progress)
+    if "paper" in config:
+        phase_paper(rep, progress)
+    phase_cosim(rep, out, junit, no_cosim)
+    if "precision" in config:
+        phase_precision(rep, progress)
+    _recommended_metrics(rep)
+    return rep
+
+
+def _recommended_metrics(rep: Report) -> None:
+    r = (rep.sections.get("sweep") or {}).get("recommended")
+    if "sweep" not in rep.sections:
+        return
+    rep.metric("sweep.recommended.bits_per_pixel", r and r["bits_per_pixel"], "lower", "bit")
+    rep.metric("sweep.recommended.err_max_lsb", r and r["err_max_lsb"], "lower", "LSB")
+    if r and r.get("cosim"):
+        rep.metric("sweep.recommended.cosim.failed", r["cosim"]["failed"], "lower")
+        rep.metric("sweep.recommended.cosim.mismatches", r["cosim"]["mismatches"], "lower")
+        rep.metric("sweep.recommended.cosim.pixels", r["cosim"]["pixels"], "info")
+
+
+def write_outputs(rep: Report, summary: dict[str, Any], out: Path) -> None:
+    from irnuc.common.io import write_text_atomic
+    from irnuc.reports.report.render import render_report
+    from irnuc.reports.report.summary import validate_summary
+    from irnuc.reports.studies import figures
+
+    rep.figure("times", "Run time per phase", figures.phase_times(summary["phases"]))
+    summary["schema_validation"] = validate_summary(summary)
+    r = (summary["sections"].get("sweep") or {}).get("recommended")
+    if r:
+        write_text_atomic(out / "recommended.toml", r["pipeline_toml"])
+    write_text_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
+    write_text_atomic(out / "index.html", render_report(rep, summary))
+
+
+def check_scheduler(scheduler: str | None) -> None:
+    """An unreachable ``--scheduler`` is an error before the work."""
+    if scheduler:
+        from irnuc.common.executor import open_executor
+
+        with open_executor(0, scheduler):
+            pass
+
+
+def run_report(args: Any) -> int:
+    """Entry point of ``irnuc report`` (argparse namespace, see :mod:`irnuc.cli.report`)."""
+    import sys
+
+    from irnuc.common.io import claim_output_folder, output_folder
+    from irnuc.reports.report.phases.cosim import parse_junit
+    from irnuc.reports.report.phases.sweep import check_sweep
+    from irnuc.reports.report.summary import load_baseline, make_summary
+
+    argv = list(getattr(args, "argv", []) or [])
+    config = load_report_config(args.config, quick=args.quick)
+    cfg_file = config_path(args.config)
+    out = claim_output_folder(args.out, kind="report", inputs={
+        "--config": cfg_file if cfg_file.is_file() else None})
+    baseline = load_baseline(args.baseline) if args.baseline else None
+    junit = parse_junit(args.junit) if args.junit else None
+    if junit is not None:
+        junit["path"] = str(args.junit)
+    if "sweep" in config:
+        check_sweep(config["sweep"], f"--config {args.config}")
+    check_scheduler(args.scheduler)
+    t0 = time.perf_counter()
+    with output_folder(out, kind="report") as tmp:
+        rep = build_report(config, out=tmp, junit=junit, no_cosim=args.no_cosim,
+                           scheduler=args.scheduler, progress=not args.no_progress)
+        summary = make_summary(rep, argv, baseline, args.baseline)
+        write_outputs(rep, summary, tmp)
+    total = time.perf_counter() - t0
+    times = ", ".join(f"{k} {v:.1f} s" for k, v in rep.phases.items())
+    written = [str(Path(out) / n) for n in OUTPUTS if (Path(out) / n).is_file()]
+    if not args.no_progress:  # -q: errors only
+        print(f"wrote {', '.join(written)} in {total:.1f} s ({times})")
+    if summary["status"] != "pass":
+        for r in summary["status_reasons"]:
+            print(f"irnuc report: FAIL: {r}", file=sys.stderr)
+        for e in summary.get("baseline", {}).get("regressions", [])[:20]:
+            print(f"  regression: {e['metric']}: {e['baseline']} -> {e['value']} "
+                  f"(better {e['better']})", file=sys.stderr)
+        return 1
+    return 0

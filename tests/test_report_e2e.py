@@ -1,0 +1,175 @@
+"""``irnuc report`` end to end on the tiny configuration (the `minimal` pipeline on a tiny
+frame): the recommendation is synthesized and co-simulated bit-exact, the cost model's
+error is stated, the HTML shows the fronts and the co-simulation detail; and a report
+killed at random points leaves its output folder old or new, whole, and no simulator,
+Yosys or nextpnr process behind."""
+
+from __future__ import annotations
+
+import json
+import os
+import random
+import re
+import signal
+import subprocess
+import sys
+import time
+import uuid
+from pathlib import Path
+
+import pytest
+
+from irnuc.cli import main
+from irnuc.reports import report
+
+pytestmark = pytest.mark.slow
+
+TINY = Path(report.__file__).with_name("report_tiny.toml")
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("tiny") / "out"
+    rc = main(["report", "-q", "--config", "tiny", "--out", str(out)])
+    return rc, out
+
+
+def test_recommendation_is_synthesized_and_cosimulated(tiny_run) -> None:
+    rc, out = tiny_run
+    assert rc == 0
+    s = json.loads((out / "summary.json").read_text())
+    report.validate_summary(s)
+    sw = s["sections"]["sweep"]
+    r = sw["recommended"]
+    assert r["err_max_lsb"] <= sw["tolerance"]["max_error"]
+    # The cheapest meeting the tolerance: nothing with fewer bits per pixel meets it.
+    assert all(p["err_max_lsb"] > 1.0 for p in sw["points"] if p["bits_per_pixel"] < r["bits_per_pixel"])
+    assert r["cosim"]["failed"] == 0 and r["cosim"]["mismatches"] == 0 and r["cosim"]["pixels"] > 0
+    assert r["synth"]["fmax_mhz"] > 0 and r["synth"]["xc7"]["lut"] > 0
+    assert r["pipeline"]["gain_frac_bits"] == r["gain_frac_bits"]
+    # Every point carries its memory and datapath cost; a few were synthesized.
+    assert all(p["hw"] and p["datapath_cost"] is not None for p in sw["points"])
+    sources = {p["hw"]["source"] for p in sw["points"]}
+    assert sources == {"synthesized", "model"}
+    syn = sw["synth"]
+    assert len(syn["fit_indices"]) == 3 and syn["model_error_all"]["xc7.lut"]["points"] >= 4
+    assert r["index"] in [x["index"] for x in syn["synthesized"]]
+    c = s["sections"]["cosim"]
+    assert c["source"] == "irnuc.cosim.run_suite" and not c["partial"]
+    neg = [x for x in c["cases"] if x["negative_control"]]
+    assert neg and neg[0]["detected"] > 0 and neg[0]["triage"][0].startswith("frame ")
+    for x in c["cases"]:
+        assert (out / x["log"]).is_file()  # paths inside the report folder, after the swap
+    assert s["metrics"]["synth.recommended.fmax_mhz"]["value"] == r["synth"]["fmax_mhz"]
+
+
+def test_html_shows_fronts_costs_and_cosim_detail(tiny_run) -> None:
+    _, out = tiny_run
+    h = (out / "index.html").read_text()
+    for text in ("id='synth'", "Cost, broken down", "RAMB36E1", "Pareto fronts", "Triage lines",
+                 "negative control", "Coverage: not measured", "Mutation: not measured",
+                 "recommended.toml"):
+        assert text in h, text
+    run_id = json.loads((out / "summary.json").read_text())["provenance"]["run_id"]
+    assert f"content='{run_id}'" in h
+
+
+def test_coverage_and_mutation_hooks(monkeypatch) -> None:
+    import types
+
+    from irnuc.reports.report.phases import cosim as phase
+
+    result = types.SimpleNamespace(coverage={"functional": 0.93, "line": 0.88})
+    assert phase.measured_coverage([result, object()]) == {"functional": 0.93, "line": 0.88}
+    assert phase.measured_coverage([object()]) is None
+    monkeypatch.setitem(sys.modules, "irnuc.cosim.mutate", None)  # absent: ImportError
+    assert phase.measured_mutation() is None
+    fake = types.ModuleType("irnuc.cosim.mutate")
+    monkeypatch.setitem(sys.modules, "irnuc.cosim.mutate", fake)
+    assert phase.measured_mutation() is None  # no cached_summary: AttributeError
+    fake.cached_summary = lambda: {"mutants": 40, "killed": 38}
+    import irnuc.cosim
+
+    monkeypatch.setattr(irnuc.cosim, "mutate", fake, raising=False)
+    assert phase.measured_mutation() == {"mutants": 40, "killed": 38}
+
+
+# ---- SIGKILL at random points ---------------------------------------------------------------
+
+KILL_CONFIG = TINY.read_text().replace(
+    'tests = ["corner_codes", "checker_detects_mismatch"]', 'tests = ["corner_codes"]')
+
+
+def _ours(token: str, roots: list[str]) -> list[str]:
+    """Processes started by the killed report: its token in their environment, or its
+    folders in their command line or working directory."""
+    found = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit() or int(d) == os.getpid():
+            continue
+        try:
+            env = Path(f"/proc/{d}/environ").read_bytes()
+            cmd = Path(f"/proc/{d}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+            cwd = os.readlink(f"/proc/{d}/cwd")
+            state = Path(f"/proc/{d}/stat").read_text().split(") ")[1][0]
+        except OSError:
+            continue
+        if state == "Z":
+            continue
+        if token.encode() in env or any(r in cmd or cwd.startswith(r) for r in roots):
+            found.append(f"{d}: {cmd[:200]}")
+    return found
+
+
+def _whole(out: Path) -> str | None:
+    """The run id of a whole report folder (summary.json and index.html of one run)."""
+    if not out.exists():
+        return None
+    s = json.loads((out / "summary.json").read_text())
+    h = (out / "index.html").read_text()
+    m = re.search(r"name='irnuc-run-id' content='([0-9a-f]{32})'", h)
+    assert m and m.group(1) == s["provenance"]["run_id"], "summary.json and index.html of two runs"
+    return m.group(1)
+
+
+def test_sigkill_leaves_old_or_new_report_and_no_child(tmp_path) -> None:
+    cfg = tmp_path / "kill.toml"
+    cfg.write_text(KILL_CONFIG)
+    out = tmp_path / "out"
+    token = uuid.uuid4().hex
+    env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache"), "IRNUC_KILL_TEST": token}
+    cmd = [str(Path(sys.executable).with_name("irnuc")), "report", "-q", "--config", str(cfg),
+           "--out", str(out)]
+    rng = random.Random(20261122)
+    seen: set[str] = set()
+    # Trial 0: cold (syntheses and the Verilator build running); trial 1 runs to the end;
+    # later trials warm, killed anywhere in the run.
+    plan = [("kill", rng.uniform(4.0, 20.0)), ("finish", None)] + [
+        ("kill", rng.uniform(0.5, 12.0)) for _ in range(3)]
+    for what, delay in plan:
+        before = _whole(out)
+        t0 = time.monotonic()
+        proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                start_new_session=True)
+        if what == "kill":
+            try:
+                proc.wait(timeout=delay)
+            except subprocess.TimeoutExpired:
+                proc.send_signal(signal.SIGKILL)
+                proc.wait()
+        else:
+            assert proc.wait(timeout=600) == 0
+        after = _whole(out)
+        if what == "finish":
+            assert after is not None and after != before
+            seen.add(after)
+        else:
+            assert after == before or (proc.returncode == 0 and after is not None), \
+                f"after a kill at {time.monotonic() - t0:.1f} s the folder is neither old nor new"
+        deadline = time.monotonic() + 15.0
+        while (left := _ours(token, [str(tmp_path)])) and time.monotonic() < deadline:
+            time.sleep(0.25)
+        assert not left, f"survived the killed report: {left}"
+    # The next run removes what killed runs left beside the folder.
+    assert subprocess.run(cmd, env=env, capture_output=True, timeout=600).returncode == 0
+    assert _whole(out) not in seen and not list(tmp_path.glob(".out.tmp-*"))
