@@ -185,7 +185,12 @@ CATALOGUE: tuple[Mutant, ...] = (
        "fw_is3_q ? WidthBits'(0) : WidthBits'(2);",
        "line-buffer look-ahead starts one column late"),
     _m("ctrl_idle_read_col", "dpc_ctrl.sv", ": AddrBits'(2))", ": AddrBits'(1))",
-       "line-buffer read address in Idle off by one"),
+       "line-buffer read address in Idle off by one",
+       equivalent="the mutated branch is taken for W >= 3, where the word read in Idle is "
+                  "that of item 2 of the new frame, in row 0: it holds rows -2 and -1, which "
+                  "reach only window row 0 while the centre is row -1 (no output) or row 0 "
+                  "(masked by the top border) and are written back only into row -1 "
+                  "slots; no output code, flag or marker depends on it"),
     _m("ctrl_flush_short", "dpc_ctrl.sv",
        "if (take_phantom && cur_col_last) ph_wrapped_q <= 1'b1;",
        "if (take_phantom) ph_wrapped_q <= 1'b1;", "the flush ends after two phantoms"),
