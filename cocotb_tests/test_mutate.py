@@ -37,8 +37,10 @@ def test_a_stale_mutant_is_a_clear_error() -> None:
     m = mutate.Mutant("x", "nuc_core.sv", "no such text", "y", "test")
     with pytest.raises(ValueError, match="occurs 0 times"):
         m.apply((HDL_DIR / "nuc_core.sv").read_text())
-    with pytest.raises(ValueError, match="unknown mutant 'nope'"):
+    with pytest.raises(ValueError, match="--only nope: no such mutant"):
         mutate.catalogue(["nope"])
+    with pytest.raises(ValueError, match="did you mean 'dpc_no_rounding'"):
+        mutate.catalogue(["dpc_no_roundin"])
 
 
 @pytest.mark.cosim
@@ -47,8 +49,16 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
     assert mutate.cached_summary() is None
     picked = mutate.catalogue(["spill_ready_half_rate", "pkg_chunk_16"])
-    s = mutate.run_mutants(picked, workers=0)
+    # A change no test can see, without an argument: must be reported as survived (the
+    # classification can fail), and is not cached as a complete campaign.
+    first_line = (HDL_DIR / "nuc_core.sv").read_text().splitlines()[0]
+    blind = mutate.Mutant("comment_only", "nuc_core.sv", first_line, first_line + " (changed)",
+                          "a comment changed")
+    s = mutate.run_mutants([*picked, blind], workers=0)
     by_id = {r["id"]: r for r in s["mutants"]}
+    assert by_id["comment_only"]["status"] == "survived" and s["survivors"] == ["comment_only"]
+    assert not s["complete"]
+    s = mutate.summarize([r for r in s["mutants"] if r["id"] != "comment_only"], 2)
     # Half throughput, no data lost: only the throughput checks can see it.
     assert by_id["spill_ready_half_rate"]["status"] == "killed"
     assert by_id["spill_ready_half_rate"]["killed_by"]
@@ -78,5 +88,5 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     bad = subprocess.run([str(irnuc), "mutate", "--only", "nope", "--out",
                           str(tmp_path / "o2")], env=env, capture_output=True, text=True)
     err = bad.stderr.strip().splitlines()
-    assert bad.returncode == 2 and len(err) == 1 and "unknown mutant 'nope'" in err[0]
+    assert bad.returncode == 2 and len(err) == 1 and "--only nope: no such mutant" in err[0]
     assert not (tmp_path / "o2").exists()

@@ -38,7 +38,14 @@ from irnuc.cosim.sources import (
     hdl_sources,
     top_parameters,
 )
-from irnuc.cosim.suite import SuiteCase, SuiteResult, TestOutcome, cocotb_test_names, run_suite
+from irnuc.cosim.suite import (
+    SuiteCase,
+    SuiteResult,
+    TestOutcome,
+    cocotb_test_names,
+    merge_results,
+    run_suite,
+)
 from irnuc.cosim.verilator import (
     RtlError,
     fst_supported,
@@ -76,6 +83,7 @@ __all__ = [
     "fst_supported",
     "hdl_sources",
     "lint",
+    "merge_results",
     "read_results",
     "results_dir",
     "run",

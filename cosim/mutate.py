@@ -238,9 +238,15 @@ def catalogue(only: Sequence[str] | None = None) -> list[Mutant]:
     if not only:
         return list(CATALOGUE)
     by_id = {m.id: m for m in CATALOGUE}
+    from irnuc.common.schema import nearest
+
     unknown = [i for i in only if i not in by_id]
     if unknown:
-        raise UserError(f"unknown mutant {unknown[0]!r}; known: {', '.join(by_id)}")
+        raise UserError(f"--only {unknown[0]}: no such mutant{nearest(unknown[0], list(by_id))} "
+                        "(irnuc mutate --list shows the catalogue)")
+    twice = sorted({i for i in only if list(only).count(i) > 1})
+    if twice:
+        raise UserError(f"--only {twice[0]}: given more than once")
     return [by_id[i] for i in only]
 
 
@@ -396,9 +402,9 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
     from irnuc.common.executor import open_executor
 
     mutants = list(CATALOGUE if mutants is None else mutants)
-    baseline_check(mutants)
     results = []
-    with open_executor(workers, scheduler) as handle:
+    with open_executor(workers, scheduler) as handle:  # a bad --scheduler fails first
+        baseline_check(mutants)
         futures = [handle.executor.submit(_job, asdict(m), use_cache) for m in mutants]
         for i, fut in enumerate(futures):
             results.append(fut.result())

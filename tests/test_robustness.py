@@ -761,6 +761,23 @@ case("synth-out-file", Y, "--pipeline minimal --out {t}/out", ("--out",), "--out
 case("synth-out-user-folder", Y, "--pipeline minimal --out {t}/out", ("--out",),
      "--out is a user's folder (never deleted)", setup=_user_folder)
 
+# ---- mutate ---------------------------------------------------------------------------
+
+M = "mutate"
+case("mutate-only-unknown", M, "--only spill_ready_halfrate",
+     ("--only", "did you mean 'spill_ready_half_rate'"), "a misspelt mutant id")
+case("mutate-only-twice", M, "--only dpc_no_rounding --only dpc_no_rounding",
+     ("--only", "more than once"), "one mutant twice")
+case("mutate-workers-negative", M, "--workers -1", ("--workers", "0..256"),
+     "a negative worker count")
+case("mutate-workers-text", M, "--workers many", ("--workers", "invalid int"),
+     "a worker count that is a word")
+case("mutate-scheduler-malformed", M, "--scheduler tcp://nohost", ("--scheduler", "tcp://HOST:PORT"),
+     "a scheduler address without a port")
+case("mutate-out-file", M, "--out {t}/out", ("--out",), "--out is a file", setup=_out_is_file)
+case("mutate-out-user-folder", M, "--out {t}/out", ("--out",),
+     "--out is a user's folder (never deleted)", setup=_user_folder)
+
 # ---------------------------------------------------------------------------------------
 # The shared input files
 # ---------------------------------------------------------------------------------------
@@ -934,6 +951,7 @@ WORK: dict[str, tuple[tuple[str, str], ...]] = {
     "report": (("irnuc.reports.report.run", "build_report"),),
     "precision": (("irnuc.reports.studies.precision", "run_precision"),),
     "synth": (("irnuc.cosim.synth", "synth_configs"),),
+    "mutate": (("irnuc.cosim.mutate", "baseline_check"), ("irnuc.cosim.mutate", "run_mutant")),
 }
 
 
@@ -1618,6 +1636,7 @@ _COMMAND_TITLES = {
     "sweep": "irnuc sweep", "report": "irnuc report",
     "precision": "irnuc precision",
     "synth": "irnuc synth",
+    "mutate": "irnuc mutate",
 }
 
 

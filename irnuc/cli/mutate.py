@@ -12,6 +12,8 @@ def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--only", action="append", default=[], metavar="ID",
                    help="run only this mutant of the catalogue (repeatable; see --list)")
     p.add_argument("--list", action="store_true", help="list the catalogue and exit")
+    p.epilog = ("exit status: 0 when every non-equivalent mutant was killed, 1 when one "
+                "survived, 2 for bad input, 3 when a tool failed")
     p.add_argument("--workers", type=int, default=1,
                    help="worker processes (default: %(default)s); 0 = in-process")
     p.add_argument("--scheduler", metavar="ADDRESS",
@@ -67,7 +69,8 @@ def run_mutate(args: argparse.Namespace) -> int:
         f"(score {100 * summary['score']:.1f} % of the non-equivalent ones)"
         + (f"; survivors: {', '.join(summary['survivors'])}" if summary["survivors"] else ""))
     say(f"wrote {out / 'mutate.json'}")
-    return 0
+    # A surviving non-equivalent mutant is a bug the suite would miss: fail like a test.
+    return 1 if summary["survived"] else 0
 
 
 COMMANDS = {

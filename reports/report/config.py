@@ -110,6 +110,7 @@ SCHEMA: dict[str, Any] = table({
         "timeout_base": number(1.0, 86400.0, unit="s"),
         "jobs": number(1, 16, integer=True),
         "waves": {"type": "boolean"},
+        "coverage": {"type": "boolean"},
         "seed": number(0, 2**31 - 1, integer=True),
     }, ("pipelines", "tests")),
     "precision": table({

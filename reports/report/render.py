@@ -147,6 +147,19 @@ def headline(rep: Report, summary: Mapping[str, Any]) -> list[tuple[str, str]]:
         rows.append(("co-simulation", f"{c['passed']}/{c['tests']} passed, {c['failed']} failed, "
                      f"{c['error']} errors, {c.get('timeout', 0)} timed out"
                      + (" (partial)" if c.get("partial") else "")))
+    cov = (s.get("cosim") or {}).get("coverage")
+    if cov:
+        f = cov["functional"]
+        rows.append(("functional coverage (tests this report ran)",
+                     f"{f['hit']} / {f['total']} bins ({f['percent']:g} %) over "
+                     + ", ".join(cov["functional"]["configurations"])))
+    mut = (s.get("cosim") or {}).get("mutation")
+    if mut:
+        rows.append(("RTL mutants killed (irnuc mutate)",
+                     f"{mut['killed']} of {mut['killed'] + mut['survived']} non-equivalent "
+                     f"(score {100 * mut['score']:.1f} %), {mut['equivalent']} equivalent, "
+                     f"{mut['survived']} survived"
+                     + ("" if mut.get("complete", True) else " (partial campaign)")))
     if "precision" in s:
         pr = s["precision"]
         rows.append(("work-precision defaults on the Pareto front",
@@ -286,7 +299,42 @@ def cosim_rows(c: Mapping[str, Any]) -> dict[str, Any]:
             for g in c.get("configurations", [])]
     bad = [x for x in c["cases"] if x["status"] != "passed"]
     triage = [x for x in c["cases"] if x.get("triage")]
-    return {"cases": cases, "configs": cfgs, "bad": bad, "triage": triage}
+    return {"cases": cases, "configs": cfgs, "bad": bad, "triage": triage,
+            **coverage_rows(c.get("coverage")), **mutation_rows(c.get("mutation"))}
+
+
+def coverage_rows(cov: Mapping[str, Any] | None) -> dict[str, Any]:
+    """Tables of the measured coverage: functional per configuration and per coverpoint,
+    line and toggle per configuration and module."""
+    if not cov:
+        return {"fcov": [], "fcov_points": [], "ccov": []}
+    fcov, points, ccov = [], [], []
+    for label, c in cov["functional"]["configurations"].items():
+        more = c["uncovered_count"] - len(c["uncovered"])
+        fcov.append([label, ", ".join(c["tops"]), f"{c['hit']} / {c['total']}", c["percent"],
+                     ", ".join(c["uncovered"]) + (f" and {more} more" if more > 0 else "")
+                     or "none"])
+        for name, p in c["coverpoints"].items():
+            removed = "; ".join(f"{b}: {why}" for b, why in p["removed"].items())
+            points.append([label, name, p["kind"], f"{p['hit']} / {p['total']}", p["percent"],
+                           removed])
+    for label, mods in cov["code"].items():
+        for mod, m in mods.items():
+            more = m["missed_count"] - len(m["missed_lines"])
+            ccov.append([label, mod, f"{m['line']['hit']} / {m['line']['total']}",
+                         m["line"]["percent"], f"{m['toggle']['hit']} / {m['toggle']['total']}",
+                         m["toggle"]["percent"],
+                         ", ".join(m["missed_lines"]) + (f" and {more} more" if more > 0 else "")])
+    return {"fcov": fcov, "fcov_points": points, "ccov": ccov}
+
+
+def mutation_rows(mut: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The mutation campaign: one row per mutant, and the equivalent ones' arguments."""
+    if not mut:
+        return {"mutants": [], "equivalents": []}
+    rows = [[m["id"], m["file"], m["what"], m["config"], m["status"], m.get("killed_by") or ""]
+            for m in mut.get("mutants", [])]
+    return {"mutants": rows, "equivalents": list((mut.get("equivalents") or {}).items())}
 
 
 def precision_rows(pr: Mapping[str, Any]) -> dict[str, Any]:

@@ -21,7 +21,7 @@ from typing import Any
 from irnuc.reports.report.base import Report
 from irnuc.reports.report.config import config_path, load_report_config
 
-OUTPUTS = ("index.html", "summary.json", "junit.xml", "recommended.toml")
+OUTPUTS = ("index.html", "summary.json", "junit.xml", "coverage.json", "recommended.toml")
 
 
 def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] | None = None,

@@ -69,28 +69,59 @@ def parse_junit(path: str | Path) -> dict[str, Any]:
             "data": p.read_bytes()}
 
 
-# ---- hooks for coverage and mutation (measured by irnuc.cosim when present) ----------------
-def measured_coverage(results: list[Any]) -> dict[str, Any] | None:
-    """Coverage the suite measured: ``getattr(suite_result, "coverage", None)`` of each
-    suite run (a dict; merged), or None when not measured."""
-    found: dict[str, Any] = {}
-    for r in results:
-        cov = getattr(r, "coverage", None)
-        if isinstance(cov, Mapping) and cov:
-            found.update(dict(cov))
-    return found or None
+# ---- coverage and mutation (measured by irnuc.cosim) --------------------------------------
+#: Uncovered bins and missed source lines listed per configuration/module (the rest counted).
+LIST_LIMIT = 40
+
+
+def measured_coverage(result: Any) -> dict[str, Any] | None:
+    """The coverage a suite run measured (``result.coverage``, see
+    :attr:`irnuc.cosim.SuiteResult.coverage`), condensed for the report: functional bins
+    hit per configuration and coverpoint with the uncovered bins by name, and line and
+    toggle coverage per configuration and module with the source lines never reached.
+    None when the run did not measure coverage."""
+    cov = getattr(result, "coverage", None)
+    if not isinstance(cov, Mapping) or not cov:
+        return None
+    f = cov.get("functional") or {}
+    functional = {
+        "hit": f.get("hit", 0), "total": f.get("total", 0), "percent": f.get("percent", 0.0),
+        "configurations": {
+            label: {"hit": c["hit"], "total": c["total"], "percent": c["percent"],
+                    "tops": list(c.get("tops", [])),
+                    "uncovered": list(c.get("uncovered", []))[:LIST_LIMIT],
+                    "uncovered_count": len(c.get("uncovered", [])),
+                    "coverpoints": {name: {"kind": p.get("kind", "point"), "hit": p["hit"],
+                                           "total": p["total"], "percent": p["percent"],
+                                           "removed": dict(p.get("removed", {}))}
+                                    for name, p in c.get("coverpoints", {}).items()}}
+            for label, c in (f.get("configurations") or {}).items()}}
+    code = {label: {mod: {"line": dict(m["line"]), "toggle": dict(m["toggle"]),
+                          "missed_lines": list(m.get("missed_lines", []))[:LIST_LIMIT],
+                          "missed_count": len(m.get("missed_lines", []))}
+                    for mod, m in mods.items()}
+            for label, mods in (cov.get("code") or {}).items()}
+    return {"functional": functional, "code": code}
 
 
 def measured_mutation() -> dict[str, Any] | None:
-    """The cached summary of ``irnuc mutate`` (``irnuc.cosim.mutate.cached_summary()``), or
-    None when that module or function does not exist or holds nothing."""
-    try:
-        from irnuc.cosim import mutate  # type: ignore[attr-defined]
+    """The latest ``irnuc mutate`` campaign of the current RTL sources
+    (:func:`irnuc.cosim.mutate.cached_summary`), condensed for the report: counts, score,
+    survivors, the equivalent mutants with their arguments, and per mutant its status and
+    killing test. None when no campaign has run on these sources."""
+    from irnuc.cosim import mutate
 
-        summary = mutate.cached_summary()
-    except (ImportError, AttributeError):
+    s = mutate.cached_summary()
+    if not isinstance(s, Mapping) or not s:
         return None
-    return dict(summary) if isinstance(summary, Mapping) and summary else None
+    keys = ("rtl_digest", "total", "catalogue_size", "killed", "survived", "equivalent",
+            "score", "complete", "survivors", "equivalents")
+    out = {k: s[k] for k in keys if k in s}
+    out["invalid"] = len(s.get("invalid") or [])
+    out["mutants"] = [{k: m.get(k) for k in ("id", "file", "what", "config", "status",
+                                             "killed_by", "seconds")}
+                      for m in s.get("mutants", [])]
+    return out
 
 
 # ---- running the suite --------------------------------------------------------------------
@@ -121,33 +152,34 @@ def _case_entry(o: Any, root: Path) -> dict[str, Any]:
 def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) -> dict[str, Any]:
     """Build every configuration, then run the tests ``jobs`` at a time; the section."""
     from irnuc import cosim
-    from irnuc.cosim.suite import SuiteResult, test_timeout
+    from irnuc.cosim.suite import test_timeout
 
     tests = tuple(c["tests"])
     waves = bool(c.get("waves", False))
     jobs = int(c.get("jobs", 2))
     base = float(c.get("timeout_base", 120.0))
     seed = int(c.get("seed", 1))
+    coverage = bool(c.get("coverage", True))
     work = out / "cosim"
     t0 = time.perf_counter()
     for cfg in configs:  # builds before any test timer starts
-        cosim.build("nuc_dpc_top", cfg, waves=waves)
+        cosim.build("nuc_dpc_top", cfg, waves=waves, coverage=coverage)
     build_seconds = time.perf_counter() - t0
     plan = [(cfg, t) for cfg in configs for t in tests]
 
     def run_one(item: tuple[Any, str]) -> Any:
         cfg, t = item
         case = cosim.SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=(t,), seed=seed)
-        return cosim.run_suite([case], work, waves=waves, timeout_base=base)
+        return cosim.run_suite([case], work, waves=waves, timeout_base=base,
+                               coverage=coverage)
 
     t1 = time.perf_counter()
     # Each test is one task: the ``jobs`` simulators take the next test as they finish.
     with cf.ThreadPoolExecutor(max_workers=max(1, min(jobs, len(plan)))) as pool:
         parts = list(pool.map(run_one, plan))
-    outcomes = [o for part in parts for o in part.outcomes]
-    merged = SuiteResult(outcomes=outcomes, build_seconds=build_seconds,
-                         run_seconds=time.perf_counter() - t1,
-                         builds=sorted({b for part in parts for b in part.builds}))
+    merged = cosim.merge_results(parts, out, run_seconds=time.perf_counter() - t1)
+    merged.build_seconds = build_seconds
+    outcomes = merged.outcomes
     merged.write_junit(out / "junit.xml")
     cases = [_case_entry(o, out) for o in outcomes]
     pixels = sum(x["pixels"] for x in cases)
@@ -175,7 +207,9 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
                             "tests": [x["name"] for x in cases if x["configuration"] == cfg.name]}
                            for cfg in configs],
         "cases": cases, "junit": "junit.xml", "work": _relative(work, out),
-        "coverage": measured_coverage(parts), "mutation": measured_mutation(),
+        "coverage": measured_coverage(merged),
+        "coverage_file": "coverage.json" if merged.coverage is not None else None,
+        "mutation": measured_mutation(),
     }
     return section
 
