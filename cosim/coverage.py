@@ -90,10 +90,20 @@ def pipeline_stages(top: str, cfg: PipelineConfig) -> list[str]:
     dpc = (["dpc_input", "dpc_window"] + ["dpc_sum"] * 4 + ["dpc_multiply"]
            + ["dpc_product"] * clog2(parts(b + 3, b + 7)) + ["dpc_output"])
     if top == "nuc_core":
-        return nuc
+        return _numbered(nuc)
     if top == "dpc_core":
-        return [*dpc, "flush"]
-    return ["top_input", *nuc, *dpc, "flush"]
+        return _numbered([*dpc, "flush"])
+    return _numbered(["top_input", *nuc, *dpc, "flush"])
+
+
+def _numbered(stages: list[str]) -> list[str]:
+    """Every register its own name: a stage of several registers gets ``_1``, ``_2``, ..."""
+    seen: dict[str, int] = {}
+    out = []
+    for s in stages:
+        seen[s] = seen.get(s, 0) + 1
+        out.append(f"{s}_{seen[s]}" if stages.count(s) > 1 else s)
+    return out
 
 
 def _unique(seq: Sequence[str]) -> list[str]:

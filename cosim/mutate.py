@@ -255,9 +255,15 @@ def rtl_digest() -> str:
     return files_digest(sorted(HDL_DIR.glob("*.sv")))
 
 
+#: What a mutant's verdict depends on besides the RTL: the mutation suite's testbench and
+#: the checking code it imports (not the other testbenches or the pytest files).
+SUITE_FILES = ("cocotb_tests/tb_top.py", "cocotb_tests/tb_lib.py", "cocotb_tests/directed.py",
+               "cosim/scoreboard.py", "cosim/coverage.py")
+
+
 def _suite_digest() -> str:
-    tb = Path(__file__).resolve().parents[1] / "cocotb_tests"
-    return files_digest(sorted(tb.glob("*.py")) + sorted(SIM_HDL_DIR.glob("*.sv")))
+    root = Path(__file__).resolve().parents[1]
+    return files_digest([root / f for f in SUITE_FILES] + sorted(SIM_HDL_DIR.glob("*.sv")))
 
 
 def _mutant_key(m: Mutant) -> str:
