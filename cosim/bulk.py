@@ -3,6 +3,9 @@
 The harness (``harness/bulk_main.cpp``, Verilator ``--cc --exe``, no cocotb, no VPI)
 reads raw binary stimulus, clocks the model itself and writes raw binary outputs; the
 outputs are checked by the one scoreboard (:class:`~irnuc.cosim.scoreboard.TopScoreboard`).
+``run_bulk(shards=N)`` splits the frames over N harness processes running in parallel
+(each resets the DUT); ``check_bulk`` compares every output of every shard, first with a
+direct numpy comparison and, when anything differs, with the scoreboard's triage.
 """
 
 from __future__ import annotations
@@ -160,16 +163,6 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
     coef_file = work_dir / "coef.bin"
     np.ascontiguousarray(wd, dtype="<u8").tofile(coef_file)
     parts = [p for p in np.array_split(np.arange(frames.shape[0]), shards) if p.size]
-    cmds, outs = [], []
-    for i, part in enumerate(parts):
-        pix_file, out_file = work_dir / f"pix{i}.bin", work_dir / f"out{i}.bin"
-        out_file.unlink(missing_ok=True)  # never read a previous run's outputs
-        np.ascontiguousarray(frames[part[0]:part[-1] + 1], dtype=pix_dtype).tofile(pix_file)
-        cmds.append([str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file),
-                     str(out_file), str(part.size * h * w), str(w), str(h),
-                     str(np.dtype(pix_dtype).itemsize), str(idle_percent),
-                     str(stall_percent), str((seed + i) % (1 << 64))])
-        outs.append(out_file)
     from irnuc.common.process import run_child
 
     def one(cmd: list[str]) -> dict:
@@ -182,12 +175,22 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
                            f"{info or proc.stdout}\n{proc.stderr}")
         return info
 
+    outs, jobs = [], []
     t0 = time.perf_counter()
-    if len(cmds) == 1:
-        infos = [one(cmds[0])]
-    else:  # the harnesses run in parallel; threads only wait for them
-        with ThreadPoolExecutor(len(cmds)) as pool:
-            infos = list(pool.map(one, cmds))
+    # Threads only wait for the harnesses; a shard starts as soon as its file is written.
+    with ThreadPoolExecutor(len(parts)) as pool:
+        for i, part in enumerate(parts):
+            pix_file, out_file = work_dir / f"pix{i}.bin", work_dir / f"out{i}.bin"
+            out_file.unlink(missing_ok=True)  # never read a previous run's outputs
+            np.ascontiguousarray(frames[part[0]:part[-1] + 1], dtype=pix_dtype).tofile(pix_file)
+            if i == 0:
+                t0 = time.perf_counter()
+            jobs.append(pool.submit(one, [
+                str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
+                str(part.size * h * w), str(w), str(h), str(np.dtype(pix_dtype).itemsize),
+                str(idle_percent), str(stall_percent), str((seed + i) % (1 << 64))]))
+            outs.append(out_file)
+        infos = [j.result() for j in jobs]
     sim_seconds = time.perf_counter() - t0
     out = np.concatenate([np.fromfile(f, dtype="<u4") for f in outs])
     mask = np.uint32((1 << cfg.out_bits) - 1)
