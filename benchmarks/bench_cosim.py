@@ -2,30 +2,31 @@
 
 Two modes:
 
-* ``per_cycle``: cocotb drives and samples every clock from Python (the lean driver of
-  ``cocotb_tests/tb_bench.py``: one coroutine, one ``await RisingEdge`` per cycle, both
-  input streams and the output handshake honoured, cocotb's public API only) and checks
-  every output code and marker in numpy; goal >= 200 kpixel/s. Timed inside the
-  simulator: stimulus conversion, the cycle loop and the comparison (simulator start-up is
-  reported separately). Measured on irnuc's build (only the top module's signals visible
-  to VPI) and, as the baseline of the same run, on cocotb's default ``--public-flat-rw``.
-* ``bulk``: a C++ harness (``cocotb_tests/harness/bulk_main.cpp``, Verilator ``--cc
-  --exe``, no cocotb) reads the stimulus from raw binary files, clocks the model itself
-  and writes the outputs as raw binary; numpy writes the files (``ndarray.tofile``), reads
-  the outputs (``np.fromfile``) and compares them with the golden output; goal >= 10
-  Mpixel/s, timed end to end (validation, files written, harness process, files read,
-  comparison) for ``--frames`` VGA frames back to back (default 4: the process start and
-  the file set-up are paid once per run, as for a camera sequence); a single frame is
-  reported too, and the harness without the protocol assertions (their cost; every
-  co-simulation keeps them).
+* ``per_cycle``: cocotb drives and samples every clock cycle's handshakes, cocotb's public
+  API only, and every output code and marker is checked in numpy; goal >= 200 kpixel/s.
+  The reported figure is the batched driver (``cocotb_tests/tb_batch.py``): nuc_dpc_top
+  inside the simulation-only transactor ``cocotb_tests/hdl/nuc_dpc_batch.sv``, Python
+  waking once per window of 32 cycles (one command word in: pixel items, coefficient
+  words, per-cycle pause masks; one response word out: the outputs taken). Reference of
+  the same run: the lean one-wake-per-cycle driver (``cocotb_tests/tb_bench.py``), on
+  irnuc's ports-only build and on cocotb's default ``--public-flat-rw``. Timed inside the
+  simulator: stimulus conversion, the cycle loop and the comparison (simulator start-up
+  is reported separately).
+* ``bulk``: a C++ harness (``cosim/harness/bulk_main.cpp``, Verilator ``--cc --exe``, no
+  cocotb) reads the stimulus from raw binary files, clocks the model itself and writes the
+  outputs as raw binary; numpy writes the files, reads the outputs and compares them with
+  the golden output; goal >= 10 Mpixel/s, timed end to end (validation, files written,
+  harness processes, files read, comparison) for ``--frames`` VGA frames back to back
+  (default 4), sharded over two harness processes (``run_bulk(shards=2)``: disjoint
+  frames, each shard reset, every frame checked). Reference of the same run: one harness
+  process; also a single frame, and the harness without the protocol assertions (their
+  cost; every co-simulation keeps them).
 
-Both use Verilator builds with ``nuc_fixed.cosim.FAST_ARGS`` (``-O3``, ``--x-assign fast``,
-``--x-initial fast``, ``-O2`` C++, assertions on, no tracing). Baseline measured in the
-same run: the golden model (``nuc_fixed.nuc_dpc_top``) on the same frame; its output is
-computed once before the co-simulations (also reported: bulk including that time).
-Builds are cached and not timed. Each mode runs ``--repeat`` times (the machine is
-shared): the best run is reported, all runs are listed. The last line printed is one JSON
-object.
+All builds use ``irnuc.cosim.FAST_ARGS`` (``-O3``, ``--x-assign fast``, ``--x-initial
+fast``, ``-O2`` C++, assertions on, no tracing). Baseline measured in the same run: the
+golden model (``nuc_fixed.nuc_dpc_top``) on the same frame. Builds are cached and not
+timed. Each mode runs ``--repeat`` times (the machine is shared): the best run is
+reported, all runs are listed. The last line printed is one JSON object.
 
 Usage: ``python benchmarks/bench_cosim.py [--config typical14] [--seed 1] [--repeat 3]``
 """
@@ -61,12 +62,13 @@ def stimulus(cfg, seed: int):
 
 
 def bench_per_cycle(cfg, raw, words, expected, seed: int, work: Path,
-                    visibility: str = "ports") -> dict:
-    bld = cosim.build("nuc_dpc_top", cfg, extra_args=cosim.FAST_ARGS, visibility=visibility)
+                    visibility: str = "ports", batched: bool = True) -> dict:
+    top, tb = (("nuc_dpc_batch", "tb_batch") if batched else ("nuc_dpc_top", "tb_bench"))
+    bld = cosim.build(top, cfg, extra_args=cosim.FAST_ARGS, visibility=visibility)
     inp, outp = work / "bench_in.npz", work / "bench_out.json"
     np.savez(inp, raw=raw, words=words, expected=expected)
     t0 = time.perf_counter()
-    xml = cosim.run(bld, "irnuc.cocotb_tests.tb_bench", seed=seed,
+    xml = cosim.run(bld, f"irnuc.cocotb_tests.{tb}", seed=seed,
                   env={"IRNUC_BENCH_IN": str(inp), "IRNUC_BENCH_OUT": str(outp),
                        "IRNUC_SEED": str(seed)},
                   results_xml=work / "bench_per_cycle.xml")
@@ -78,20 +80,22 @@ def bench_per_cycle(cfg, raw, words, expected, seed: int, work: Path,
     outp.unlink()
     loop = info["sim_seconds"] + info["check_seconds"]
     return {"passed": all(r.passed for r in res.values()), "mismatches": info["mismatches"],
+            "batch": info.get("batch", 1),
             "cycles": info["cycles"], "seconds": loop, "process_seconds": wall,
             "pixels_per_s": raw.size / loop}
 
 
-def bench_bulk(cfg, raw, words, expected, work: Path, assertions: bool = True) -> dict:
+def bench_bulk(cfg, raw, words, expected, work: Path, assertions: bool = True,
+               shards: int = 2) -> dict:
     bld = cosim.build_bulk(cfg, assertions=assertions)
     t0 = time.perf_counter()
-    res = cosim.run_bulk(bld, raw, words, work_dir=work)
+    res = cosim.run_bulk(bld, raw, words, work_dir=work, shards=shards)
     chk = cosim.check_bulk(res, raw, words, cfg, expected=expected)
     dt = time.perf_counter() - t0
     return {"mismatches": chk.errors, "report": chk.lines[:3],
             "frame_err": res.frame_err, "cycles": res.cycles,
             "bubbles": res.last_out_cycle - res.first_out_cycle + 1 - raw.size,
-            "seconds": dt, "sim_seconds": res.sim_seconds,
+            "seconds": dt, "sim_seconds": res.sim_seconds, "shards": res.shards,
             "pixels_per_s": raw.size / dt, "sim_pixels_per_s": raw.size / res.sim_seconds}
 
 
@@ -125,6 +129,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory(dir=cache_dir("bench"), prefix="bench_cosim.") as tmp:
         work = Path(tmp)
         # Builds first (cached; not part of the timings).
+        cosim.build("nuc_dpc_batch", cfg, extra_args=cosim.FAST_ARGS)
         cosim.build("nuc_dpc_top", cfg, extra_args=cosim.FAST_ARGS)
         cosim.build("nuc_dpc_top", cfg, extra_args=cosim.FAST_ARGS, visibility="all")
         cosim.build_bulk(cfg)
@@ -132,45 +137,67 @@ def main() -> None:
         seq_expected = nuc_dpc_top(seq, words, cfg).astype(np.int64)
         pers = [bench_per_cycle(cfg, raw, words, expected, args.seed, work)
                 for _ in range(args.repeat)]
-        pers_all = [bench_per_cycle(cfg, raw, words, expected, args.seed, work, "all")
-                    for _ in range(args.repeat)]
+        leans = [bench_per_cycle(cfg, raw, words, expected, args.seed, work, batched=False)
+                 for _ in range(args.repeat)]
+        pers_all = [bench_per_cycle(cfg, raw, words, expected, args.seed, work, "all",
+                                    batched=False) for _ in range(args.repeat)]
         bulks = [bench_bulk(cfg, seq, words, seq_expected, work) for _ in range(args.repeat)]
+        singles = [bench_bulk(cfg, seq, words, seq_expected, work, shards=1)
+                   for _ in range(args.repeat)]
         bulk1 = [bench_bulk(cfg, raw, words, expected, work) for _ in range(args.repeat)]
-        bulk_na = [bench_bulk(cfg, seq, words, seq_expected, work, assertions=False)
+        bulk_na = [bench_bulk(cfg, seq, words, seq_expected, work, assertions=False, shards=1)
                    for _ in range(args.repeat)]
     per = max(pers, key=lambda r: r["pixels_per_s"])
+    lean = max(leans, key=lambda r: r["pixels_per_s"])
     per_all = max(pers_all, key=lambda r: r["pixels_per_s"])
     bulk = max(bulks, key=lambda r: r["pixels_per_s"])
+    single = max(singles, key=lambda r: r["pixels_per_s"])
     one = max(bulk1, key=lambda r: r["pixels_per_s"])
     no_assert = max(bulk_na, key=lambda r: r["sim_pixels_per_s"])
+    single_sim = max(singles, key=lambda r: r["sim_pixels_per_s"])
     bulk_golden_rate = raw.size / (one["seconds"] + golden_s)
     per_runs = ", ".join(f"{r['pixels_per_s'] / 1e3:.0f}" for r in pers)
     bulk_runs = ", ".join(f"{r['pixels_per_s'] / 1e6:.2f}" for r in bulks)
-    print(f"per-cycle: {per['pixels_per_s'] / 1e3:.1f} kpixel/s (runs: "
+    print(f"per-cycle: {per['pixels_per_s'] / 1e3:.1f} kpixel/s batched (runs: "
           f"{per_runs}), "
-          f"mismatches {per['mismatches']}, simulator process {per['process_seconds']:.1f} s")
+          f"mismatches {per['mismatches']}, simulator process {per['process_seconds']:.1f} s; "
+          f"lean one-wake-per-cycle driver {lean['pixels_per_s'] / 1e3:.1f} kpixel/s "
+          f"(x{per['pixels_per_s'] / lean['pixels_per_s']:.1f})")
     print(f"bulk:      {bulk['pixels_per_s'] / 1e6:.2f} Mpixel/s end to end (runs: "
           f"{bulk_runs}; "
           f"{bulk['sim_pixels_per_s'] / 1e6:.2f} Mpixel/s harness process only, "
           f"{bulk_golden_rate / 1e6:.2f} Mpixel/s with the golden model), "
-          f"mismatches {bulk['mismatches']}, bubbles {bulk['bubbles']}")
+          f"mismatches {bulk['mismatches']}, bubbles {bulk['bubbles']}; one harness "
+          f"process {single['pixels_per_s'] / 1e6:.2f} Mpixel/s")
     for line in bulk["report"]:
         print(f"  {line}")
-    print(f"per-cycle with cocotb's --public-flat-rw: {per_all['pixels_per_s'] / 1e3:.1f} "
-          f"kpixel/s")
-    print(f"bulk, one frame: {one['pixels_per_s'] / 1e6:.2f} Mpixel/s end to end; harness "
-          f"without assertions {no_assert['sim_pixels_per_s'] / 1e6:.2f} Mpixel/s (with: "
-          f"{bulk['sim_pixels_per_s'] / 1e6:.2f})")
+    print(f"lean per-cycle with cocotb's --public-flat-rw: "
+          f"{per_all['pixels_per_s'] / 1e3:.1f} kpixel/s")
+    print(f"bulk, one frame: {one['pixels_per_s'] / 1e6:.2f} Mpixel/s end to end; one "
+          f"harness process without assertions {no_assert['sim_pixels_per_s'] / 1e6:.2f} "
+          f"Mpixel/s (with: {single_sim['sim_pixels_per_s'] / 1e6:.2f})")
     print(f"golden model: {golden_rate / 1e6:.2f} Mpixel/s")
     result = {
         "benchmark": "bench_cosim", "config": cfg.name, "frame": [H, W], "pixels": raw.size,
         "bulk_frames": args.frames, "cpu_count": os.cpu_count(), "repeat": args.repeat,
+        "per_cycle_driver": "batched (tb_batch, nuc_dpc_batch)",
+        "per_cycle_batch": per["batch"],
+        "per_cycle_lean_pixels_per_s": round(lean["pixels_per_s"]),
+        "per_cycle_lean_runs_pixels_per_s": [round(r["pixels_per_s"]) for r in leans],
+        "per_cycle_lean_mismatches": max(r["mismatches"] for r in leans),
+        "per_cycle_batched_vs_lean": round(per["pixels_per_s"] / lean["pixels_per_s"], 2),
         "per_cycle_public_flat_rw_pixels_per_s": round(per_all["pixels_per_s"]),
-        "per_cycle_vs_public_flat_rw": round(per["pixels_per_s"] / per_all["pixels_per_s"], 3),
+        "per_cycle_lean_vs_public_flat_rw": round(lean["pixels_per_s"]
+                                                  / per_all["pixels_per_s"], 3),
         "bulk_one_frame_pixels_per_s": round(one["pixels_per_s"]),
         "bulk_sim_only_no_assertions_pixels_per_s": round(no_assert["sim_pixels_per_s"]),
-        "assertion_cost_ratio": round(no_assert["sim_pixels_per_s"] / bulk["sim_pixels_per_s"],
-                                      3),
+        "assertion_cost_ratio": round(no_assert["sim_pixels_per_s"]
+                                      / single_sim["sim_pixels_per_s"], 3),
+        "bulk_shards": bulk["shards"],
+        "bulk_single_process_pixels_per_s": round(single["pixels_per_s"]),
+        "bulk_single_process_sim_only_pixels_per_s": round(single_sim["sim_pixels_per_s"]),
+        "bulk_sharded_vs_single_process": round(bulk["pixels_per_s"] / single["pixels_per_s"],
+                                                3),
         "per_cycle_pixels_per_s": round(per["pixels_per_s"]),
         "per_cycle_runs_pixels_per_s": [round(r["pixels_per_s"]) for r in pers],
         "per_cycle_mismatches": max(r["mismatches"] for r in pers),
@@ -181,13 +208,16 @@ def main() -> None:
         "bulk_runs_pixels_per_s": [round(r["pixels_per_s"]) for r in bulks],
         "bulk_sim_only_pixels_per_s": round(bulk["sim_pixels_per_s"]),
         "bulk_with_golden_pixels_per_s": round(bulk_golden_rate),
-        "bulk_mismatches": max(r["mismatches"] for r in bulks),
+        "bulk_mismatches": max(r["mismatches"] for r in [*bulks, *singles, *bulk1]),
         "bulk_bubbles": bulk["bubbles"],
         "bulk_goal_ratio": round(bulk["pixels_per_s"] / BULK_GOAL, 3),
         "golden_model_pixels_per_s": round(golden_rate),
         "bulk_vs_per_cycle": round(bulk["pixels_per_s"] / per["pixels_per_s"], 2),
-        "bulk_goal_met": bulk["pixels_per_s"] >= BULK_GOAL,
-        "per_cycle_goal_met": per["pixels_per_s"] >= PER_CYCLE_GOAL,
+        # A goal counts only with every output checked and matching.
+        "bulk_goal_met": bool(bulk["pixels_per_s"] >= BULK_GOAL
+                              and all(r["mismatches"] == 0 for r in bulks)),
+        "per_cycle_goal_met": bool(per["pixels_per_s"] >= PER_CYCLE_GOAL
+                                   and all(r["mismatches"] == 0 and r["passed"] for r in pers)),
         "per_cycle_vs_golden": round(per["pixels_per_s"] / golden_rate, 5),
         "bulk_vs_golden": round(bulk["pixels_per_s"] / golden_rate, 4),
     }

@@ -10,6 +10,10 @@ converted to Python ints beforehand, and the outputs collected in lists and comp
 the golden model in numpy at the end (every code, sof and eol, bit for bit). Port access
 is cocotb's public API only (``handle.value``); the build makes only the top module's
 signals visible to VPI (``cosim._cocotb_adapter``), not every signal.
+
+One Python wake-up per cycle caps any such driver near 250 k cycles/s (an ``await`` alone
+costs about 4 us); it is the reference of the batched driver ``tb_batch.py``, which wakes
+once per window of cycles and is the benchmark's ``per_cycle`` figure.
 """
 
 from __future__ import annotations

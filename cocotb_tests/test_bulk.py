@@ -4,8 +4,8 @@ The harness (``cocotb_tests/harness/bulk_main.cpp``) streams whole frames throug
 Verilated RTL; ``nuc_fixed.cosim.check_bulk`` compares every output code and marker with
 ``nuc_fixed.nuc_dpc_top`` in numpy. Every named configuration, several frame shapes
 (back-to-back frames, the widest line buffer, 1 x 1 frames), full rate (no bubble) and
-random idle gaps with backpressure, and a deliberately wrong golden configuration that
-must be caught.
+random idle gaps with backpressure, frames sharded over parallel harness processes, and a
+deliberately wrong golden configuration that must be caught.
 """
 
 from __future__ import annotations
@@ -131,6 +131,37 @@ def test_bulk_checker_detects_markers_and_missing_outputs() -> None:
     assert chk.extra == 2 and chk.errors == 2 and "2 extra output(s)" in chk.lines[0]
 
 
+@pytest.mark.parametrize("stall", [0, 40])
+def test_bulk_sharded_matches_single_process(stall: int) -> None:
+    """Frames split over parallel harness processes (each with its own reset): the same
+    outputs as one process at full rate, every frame checked, the cycle accounting summed;
+    more shards than frames start one process per frame."""
+    cfg = load_pipeline("minimal")
+    raw, words = _stimulus("minimal", 5, 9, 14, seed=12)
+    one = cosim.run_bulk(_build("minimal"), raw, words, stall_percent=stall, seed=3)
+    for shards, started in ((2, 2), (8, 5)):
+        res = cosim.run_bulk(_build("minimal"), raw, words, stall_percent=stall, seed=3,
+                             shards=shards)
+        assert res.shards == started
+        assert cosim.check_bulk(res, raw, words, cfg).passed
+        np.testing.assert_array_equal(res.data, one.data)
+        assert res.inputs_taken == (raw.size, raw.size)
+        assert res.last_out_cycle - res.first_out_cycle + 1 == raw.size + res.stall_cycles
+        assert (res.stall_cycles > 0) == (stall > 0)
+
+
+def test_bulk_sharded_detects_wrong_golden() -> None:
+    """Every shard's outputs are compared: a wrong golden configuration is caught in all."""
+    cfg = load_pipeline("minimal")
+    other = cfg.replace(rounding="truncate")
+    raw, words = _stimulus("minimal", 4, 8, 8, seed=13)
+    res = cosim.run_bulk(_build("minimal"), raw, words, shards=2)
+    n_diff = nuc_dpc_top(raw, words, other) != nuc_dpc_top(raw, words, cfg)
+    assert n_diff[:2].any() and n_diff[2:].any(), "both shards must have differing pixels"
+    chk = cosim.check_bulk(res, raw, words, other)
+    assert chk.mismatches == int(n_diff.sum()) and not chk.passed
+
+
 def test_bulk_rejects_bad_arguments() -> None:
     bld = _build("minimal")
     raw, words = _stimulus("minimal", 1, 4, 5, seed=7)
@@ -140,6 +171,8 @@ def test_bulk_rejects_bad_arguments() -> None:
         cosim.run_bulk(bld, raw, words, stall_percent=-1)
     with pytest.raises(ValueError, match=r"seed = -3"):
         cosim.run_bulk(bld, raw, words, seed=-3)
+    with pytest.raises(ValueError, match=r"shards = 0 .*1\.\.16"):
+        cosim.run_bulk(bld, raw, words, shards=0)
     with pytest.raises(InputError, match="raw"):
         cosim.run_bulk(bld, raw + 256, words)  # minimal: 8-bit codes
     with pytest.raises(InputError, match="frame size"):

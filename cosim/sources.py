@@ -40,6 +40,8 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "irnuc_line_buffer": ("irnuc_line_buffer.sv",),
     "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
 }
+# Simulation-only transactor around the top (batched cocotb driver, cocotb_tests/hdl/).
+MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.

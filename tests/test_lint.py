@@ -8,10 +8,10 @@ from irnuc.cosim import HDL_DIR, MODULE_FILES, SIM_HDL_DIR, lint
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
 #: Every design module (the building blocks with the sizes they get in nuc_dpc_top, see
-#: irnuc.cosim.top_parameters) and the simulation-only package probe.
+#: irnuc.cosim.top_parameters), the simulation-only package probe and batch transactor.
 MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_register",
            "irnuc_stream_assert", "irnuc_frame_assert", "irnuc_add_tree", "irnuc_mul_parts",
-           "irnuc_line_buffer", "irnuc_pkg_probe")
+           "irnuc_line_buffer", "irnuc_pkg_probe", "nuc_dpc_batch")
 
 
 def _configs() -> list[tuple[str, dict[str, object]]]:

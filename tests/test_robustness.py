@@ -1530,6 +1530,43 @@ def test_fault_children_die_with_parent(tmp_path: Path, kind: str) -> None:
                         os.kill(pid, signal.SIGKILL)
 
 
+_SINGLE_PARENT = """
+import sys
+from irnuc.common.process import run_child
+# A single-process tool (as the bulk harness): no reaper in between.
+run_child(["sh", "-c", "echo $$ > " + sys.argv[1] + "; exec sleep 300"], single_process=True)
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
+def test_fault_single_process_child_dies_with_parent(tmp_path: Path) -> None:
+    """``run_child(single_process=True)`` starts the tool without the reaper: the tool is
+    the direct child and still dies when its parent is killed (PR_SET_PDEATHSIG)."""
+    pids = tmp_path / "pids"
+    parent = subprocess.Popen([sys.executable, "-c", _SINGLE_PARENT, str(pids)])
+    child = None
+    try:
+        while not (pids.is_file() and pids.read_text().strip()):
+            assert parent.poll() is None, "the parent ended early"
+            time.sleep(0.02)
+        child = int(pids.read_text())
+        ppid = int(Path(f"/proc/{child}/stat").read_text().rsplit(")", 1)[1].split()[1])
+        assert ppid == parent.pid, "the tool must be the parent's direct child (no reaper)"
+        parent.kill()
+        parent.wait()
+        for _ in range(500):
+            if not _alive(child):
+                break
+            time.sleep(0.02)
+        assert not _alive(child), "the tool outlived its parent"
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+        if child is not None and _alive(child):
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(child, signal.SIGKILL)
+
+
 # ---------------------------------------------------------------------------------------
 # Memory estimates against measured peaks
 # ---------------------------------------------------------------------------------------

@@ -1,13 +1,14 @@
 // Bulk co-simulation harness for nuc_dpc_top (Verilator --cc --exe, no cocotb, no VPI).
 //
 // Reads the whole stimulus from raw binary files, clocks the Verilated model itself and
-// writes every output pixel to a raw binary file; nuc_fixed/rtl.py (run_bulk) writes the
+// writes every output pixel to a raw binary file; cosim/bulk.py (run_bulk) writes the
 // inputs with ndarray.tofile, reads the outputs with np.fromfile and compares them with
 // the golden model in numpy. Not part of the design.
 //
 // Usage: nuc_dpc_bulk PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED]
 //   PIX      N raw codes, little-endian unsigned of PIXBYTES (2 or 4) bytes each
-//   COEF     N coefficient words, little-endian uint64 (docs/datapath.md word layout)
+//   COEF     W*H coefficient words, little-endian uint64 (docs/datapath.md word layout),
+//            one image sent again with every frame
 //   OUT      written: one little-endian uint32 per output pixel,
 //            bit 31 sof, bit 30 eol, bits [OutBits-1:0] the corrected code
 //   N        pixels (a whole number of W x H frames, streamed back to back)
@@ -21,7 +22,9 @@
 //
 // Timing: inputs are set while the clock is low, one eval settles the combinational
 // readies, the handshakes are decided from the values present before the edge (as the
-// DUT's flops see them), then the rising edge is evaluated. Two evals per cycle.
+// DUT's flops see them), then the rising edge is evaluated. Two evals per cycle (Verilator
+// sees an edge only between two evals). Positions are counters, not divisions: the
+// harness's own work per cycle is small next to the model's.
 
 #include <cinttypes>
 #include <cstdint>
@@ -89,7 +92,8 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     if (idle > 99 || stall > 99) die("IDLE_PCT and STALL_PCT must be in 0..99", "");
 
     const std::vector<P> pix = read_file<P>(argv[1], n);
-    const std::vector<uint64_t> coef = read_file<uint64_t>(argv[2], n);
+    const uint64_t frame = uint64_t(w) * h;
+    const std::vector<uint64_t> coef = read_file<uint64_t>(argv[2], frame);
     std::vector<uint32_t> out(n);
 
     auto top = std::make_unique<Vnuc_dpc_top>(ctx);
@@ -113,11 +117,12 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     top->rst_ni = 1;
     top->eval();
 
-    const uint64_t frame = uint64_t(w) * h;
     const uint64_t limit = 20 * (n + 100) + 50000;
     uint64_t pi = 0, ci = 0, oi = 0, cycle = 0, first = 0, last = 0;
     uint64_t stalls = 0, stalls_at_last = 0;  // output not ready, counted from the first output
     bool pv = false, cv = false;  // valid held until the transfer (AXI-Stream rule)
+    uint64_t ppos = 0, cpos = 0;  // position in the frame of the next pixel and word
+    uint32_t px = 0;              // column of the next pixel
     while (oi < n) {
         if (cycle >= limit) {
             std::printf("{\"error\": \"timeout\", \"cycles\": %" PRIu64 ", \"outputs\": %" PRIu64
@@ -128,12 +133,11 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
         if (!cv && ci < n) cv = idle == 0 || rng.percent() >= idle;
         const bool rdy = stall == 0 || rng.percent() >= stall;
         if (pv) {
-            const uint64_t pos = pi % frame;
             top->s_pix_data_i = pix[pi];
-            top->s_pix_sof_i = pos == 0;
-            top->s_pix_eol_i = pos % w == w - 1;
+            top->s_pix_sof_i = ppos == 0;
+            top->s_pix_eol_i = px == w - 1;
         }
-        if (cv) set_word(top->s_coef_data_i, coef[ci]);
+        if (cv) set_word(top->s_coef_data_i, coef[cpos]);
         top->s_pix_valid_i = pv;
         top->s_coef_valid_i = cv;
         top->m_pix_ready_i = rdy;
@@ -153,8 +157,17 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
         top->eval();
         top->clk_i = 0;
         ++cycle;
-        if (pfire) { ++pi; pv = false; }
-        if (cfire) { ++ci; cv = false; }
+        if (pfire) {
+            ++pi;
+            pv = false;
+            if (++ppos == frame) ppos = 0;
+            if (++px == w) px = 0;
+        }
+        if (cfire) {
+            ++ci;
+            cv = false;
+            if (++cpos == frame) cpos = 0;
+        }
     }
     // A few more cycles, inputs idle and output ready: nothing more may come out.
     uint64_t extra = 0;
