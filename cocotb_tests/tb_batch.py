@@ -190,3 +190,49 @@ async def vga_frame(dut) -> None:
         rows = [tuple(int(v) for v in r) for r in got]
         tb_lib.assert_no_mismatch(tb_lib.check_frames([frame], rows, cfg), dut._log)
     assert int(dut.frame_err_o.value) == 0, "frame_err_o set on a well-formed stream"
+
+
+@cocotb.test()
+async def transactor_flags(dut) -> None:
+    """The transactor's own errors are flagged, so a driver that falls behind or overfills
+    cannot pass silently: a window without a new command sets ``late``, a push beyond the
+    FIFO's room sets ``overflow``; both are sticky and show in the next response."""
+    cfg = tb_lib.config_from_env()
+    k = int(dut.batch_o.value)
+    cb = k.bit_length()
+    pix_off = 1 + 2 * cb + 3 * k
+    dut.cmd_i.value = 0
+    dut.frame_width_i.value = 4
+    dut.frame_height_i.value = 4
+    Clock(dut.clk_i, tb_lib.CLK_PERIOD_NS, unit="ns", impl="gpi").start()
+    await tb_lib.reset(dut)
+    await RisingEdge(dut.clk_i)
+    period = Timer(k * tb_lib.CLK_PERIOD_NS, unit="ns")
+    await Timer(_PHASE_NS, unit="ns")
+
+    def flags() -> tuple[int, int]:
+        r = int(dut.rsp_o.value)
+        return r >> 1 & 1, r >> 2 & 1
+
+    dut.cmd_i.value = 1  # tag 1, nothing pushed
+    await period
+    assert flags() == (0, 0), "flags set on a well-behaved window"
+    await period  # no new command: the window runs out
+    await period
+    dut.cmd_i.value = 0  # tag 0: taken, its response carries the flags
+    await period
+    assert flags()[0] == 1, "late not flagged after a window without a command"
+    # Overflow: pixel chunks without coefficient words (the DUT takes a pixel only with
+    # its word), more than the FIFO (4 x Batch) and the DUT's input registers hold.
+    await tb_lib.reset(dut)
+    await RisingEdge(dut.clk_i)
+    await Timer(_PHASE_NS, unit="ns")
+    chunk = sum(((i % (1 << cfg.adc_bits)) << ((cfg.adc_bits + 2) * i)) for i in range(k))
+    tag = 0
+    seen = (0, 0)
+    for _ in range(7):
+        tag ^= 1
+        dut.cmd_i.value = tag | (k << 1) | (chunk << pix_off)
+        await period
+        seen = flags()
+    assert seen[1] == 1, "overflow not flagged after pushing 7 x Batch items into 4 x Batch"

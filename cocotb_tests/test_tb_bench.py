@@ -88,3 +88,13 @@ def test_batched_driver_detects_wrong_golden(tmp_path) -> None:
     assert not res["vga_frame"].passed
     assert "mismatching" in res["vga_frame"].message
     assert "frame 0 x" in res["vga_frame"].message
+
+
+def test_batched_transactor_flags_its_errors(tmp_path) -> None:
+    """A late command and a FIFO overflow are flagged by the transactor (the batched
+    driver fails on either), so a fast driver cannot lose stimulus silently."""
+    cfg = load_pipeline("minimal")
+    xml = cosim.run(cosim.build("nuc_dpc_batch", cfg), "irnuc.cocotb_tests.tb_batch",
+                    testcase="transactor_flags", results_xml=tmp_path / "flags.xml")
+    res = cosim.read_results(xml)
+    assert res["transactor_flags"].passed, res["transactor_flags"].message
