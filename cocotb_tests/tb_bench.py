@@ -146,13 +146,20 @@ async def vga_frame(dut) -> None:
            | (got[:, 2] != (pos % w == w - 1)))
     mism = int(bad.sum())
     t2 = time.perf_counter()
+    finish(dut, cfg, {"pixels": int(raw.size), "cycles": cycles, "first_out_cycle": first,
+                      "sim_seconds": t1 - t0, "check_seconds": t2 - t1, "mismatches": mism},
+           raw, words, expected, got)
+
+
+def finish(dut: SimHandleBase, cfg: Any, info: dict[str, Any], raw: np.ndarray,
+           words: np.ndarray, expected: np.ndarray, got: np.ndarray) -> None:
+    """Write the run's figures to ``$IRNUC_BENCH_OUT`` (whole, by rename), then fail with
+    the scoreboard's triage lines when an output differs (``info["mismatches"]``)."""
     out = Path(os.environ["IRNUC_BENCH_OUT"])
     tmp = out.with_suffix(".tmp")
-    tmp.write_text(json.dumps({"pixels": int(raw.size), "cycles": cycles,
-                               "first_out_cycle": first, "sim_seconds": t1 - t0,
-                               "check_seconds": t2 - t1, "mismatches": mism}))
+    tmp.write_text(json.dumps(info))
     os.replace(tmp, out)
-    if mism:
+    if info["mismatches"]:
         frame = tb_lib.Frame(raw=raw, words=words, expected=expected)
         rows = [tuple(int(v) for v in r) for r in got]
         tb_lib.assert_no_mismatch(tb_lib.check_frames([frame], rows, cfg), dut._log)

@@ -1318,6 +1318,9 @@ FAULTS: dict[str, str] = {
                                 "`run_child`, the child having started a grandchild; the child "
                                 "either irnuc's own or a foreign tool (a shell, as make, run "
                                 "under the reaper): both are gone",
+    "single_process_child_dies_with_parent": "SIGKILL of a process that started a tool with "
+                                             "`run_child(single_process=True)` (no reaper, the "
+                                             "bulk harness): the tool, its direct child, is gone",
 }
 
 _MAIN = "import sys; from irnuc.cli import main; sys.exit(main(sys.argv[1:]))"

@@ -62,6 +62,20 @@ def add_out(p: argparse.ArgumentParser, default: str) -> None:
                         "when the command succeeds (default: %(default)s)")
 
 
+def add_executor(p: argparse.ArgumentParser, what: str, workers: int = 2,
+                 workers_help: str = "worker processes; 0 = in-process",
+                 cache: str | None = None) -> None:
+    """``--workers``, ``--scheduler`` (the sweep executor: processes or a Dask cluster) and,
+    when ``cache`` says what is cached, ``--no-cache``."""
+    p.add_argument("--workers", type=int, default=workers,
+                   help=f"{workers_help} (default: %(default)s)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help=f"{what} on a Dask distributed cluster (needs dask[distributed])")
+    if cache is not None:
+        p.add_argument("--no-cache", action="store_true",
+                       help=f"run again even if the cache holds {cache}")
+
+
 def add_pipeline(p: argparse.ArgumentParser, default: str | None = "typical14",
                  help_extra: str = "") -> None:
     p.add_argument("--pipeline", default=default, required=default is None,

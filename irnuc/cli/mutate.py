@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from irnuc.cli._args import add_out, progress, say
+from irnuc.cli._args import add_executor, add_out, progress, say
 
 
 def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
@@ -14,13 +14,7 @@ def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--list", action="store_true", help="list the catalogue and exit")
     p.epilog = ("exit status: 0 when every non-equivalent mutant was killed, 1 when one "
                 "survived, 2 for bad input, 3 when a tool failed")
-    p.add_argument("--workers", type=int, default=1,
-                   help="worker processes (default: %(default)s); 0 = in-process")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run the mutants on a Dask distributed cluster (needs "
-                        "dask[distributed])")
-    p.add_argument("--no-cache", action="store_true",
-                   help="run every mutant again even if the cache holds its result")
+    add_executor(p, "run the mutants", workers=1, cache="a mutant's result")
     p.add_argument("--no-coverage", action="store_true",
                    help="skip the coverage run of the unmutated design (coverage.json)")
     add_out(p, "out/mutate")

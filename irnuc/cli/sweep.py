@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from irnuc.cli._args import (
+    add_executor,
     add_out,
     add_pipeline,
     add_sensor,
@@ -51,9 +52,7 @@ def add_sweep_arguments(p: argparse.ArgumentParser) -> None:
                      help="err_max_lsb (default), err_rms_lsb, residual_nu, residual_nu_adc_lsb, "
                      "radial_rms_lsb")
     run = p.add_argument_group("execution and output")
-    run.add_argument("--workers", type=int, default=2, help="worker processes; 0 = in-process")
-    run.add_argument("--scheduler", metavar="ADDRESS",
-                     help="run the points on a Dask distributed cluster (needs dask[distributed])")
+    add_executor(run, "run the points")
     add_out(run, "out/sweep")
     run.add_argument("--no-figures", action="store_true")
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from irnuc.cli._args import add_out, load_pipeline_arg, progress, say
+from irnuc.cli._args import add_executor, add_out, load_pipeline_arg, progress, say
 
 
 def add_synth_arguments(p: argparse.ArgumentParser) -> None:
@@ -22,12 +22,8 @@ def add_synth_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--freq", type=float, default=150.0, metavar="MHZ",
                    help="clock nextpnr aims at (default: %(default)s MHz)")
     p.add_argument("--seed", type=int, default=1, help="placer seed (default: %(default)s)")
-    p.add_argument("--workers", type=int, default=2,
-                   help="worker processes for several configurations; 0 = in-process")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="synthesize on a Dask distributed cluster (needs dask[distributed])")
-    p.add_argument("--no-cache", action="store_true",
-                   help="synthesize again even if the cache holds this result")
+    add_executor(p, "synthesize", workers_help="worker processes for several "
+                 "configurations; 0 = in-process", cache="this result")
     add_out(p, "out/synth")
 
 
