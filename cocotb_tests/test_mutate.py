@@ -48,7 +48,7 @@ def test_a_stale_mutant_is_a_clear_error() -> None:
 def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
     assert mutate.cached_summary() is None
-    picked = mutate.catalogue(["spill_ready_half_rate", "pkg_chunk_16"])
+    picked = mutate.catalogue(["spill_half_rate", "pkg_chunk_16"])
     # A change no test can see, without an argument: must be reported as survived (the
     # classification can fail), and is not cached as a complete campaign.
     first_line = (HDL_DIR / "nuc_core.sv").read_text().splitlines()[0]
@@ -60,16 +60,16 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     assert not s["complete"]
     s = mutate.summarize([r for r in s["mutants"] if r["id"] != "comment_only"], 2)
     # Half throughput, no data lost: only the throughput checks can see it.
-    assert by_id["spill_ready_half_rate"]["status"] == "killed"
-    assert by_id["spill_ready_half_rate"]["killed_by"]
+    assert by_id["spill_half_rate"]["status"] == "killed"
+    assert by_id["spill_half_rate"]["killed_by"]
     assert by_id["pkg_chunk_16"]["status"] == "equivalent"
     assert by_id["pkg_chunk_16"]["equivalent"]
     assert (s["killed"], s["survived"], s["equivalent"], s["total"]) == (1, 0, 1, 2)
     assert s["score"] == 1.0
     cached = mutate.cached_summary()
     assert cached is not None and cached["rtl_digest"] == mutate.rtl_digest()
-    assert cached["killing_tests"] == {"spill_ready_half_rate":
-                                       by_id["spill_ready_half_rate"]["killed_by"]}
+    assert cached["killing_tests"] == {"spill_half_rate":
+                                       by_id["spill_half_rate"]["killed_by"]}
     # A second run comes from the cache.
     again = mutate.run_mutants(picked, workers=0)
     assert all(r["cached"] for r in again["mutants"])
@@ -78,7 +78,7 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     irnuc = Path(sys.executable).with_name("irnuc")
     env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache")}
     out = tmp_path / "out"
-    proc = subprocess.run([str(irnuc), "mutate", "--only", "spill_ready_half_rate", "--only",
+    proc = subprocess.run([str(irnuc), "mutate", "--only", "spill_half_rate", "--only",
                            "pkg_chunk_16", "--no-coverage", "--out", str(out), "-q"],
                           env=env, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr

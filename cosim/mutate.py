@@ -57,13 +57,17 @@ class Mutant:
     changes: tuple[tuple[str, str], ...] = ()
     #: why no test can kill it (then "equivalent" when it survives)
     equivalent: str | None = None
+    #: further (find, replace) pairs in the same file, for a change at several sites
+    also: tuple[tuple[str, str], ...] = ()
 
     def apply(self, text: str) -> str:
-        n = text.count(self.find)
-        if n != 1:
-            raise UserError(f"mutant {self.id}: the text to change occurs {n} times in "
-                            f"{self.file} (expected once); update the catalogue")
-        return text.replace(self.find, self.replace)
+        for find, replace in ((self.find, self.replace), *self.also):
+            n = text.count(find)
+            if n != 1:
+                raise UserError(f"mutant {self.id}: the text to change occurs {n} times in "
+                                f"{self.file} (expected once); update the catalogue")
+            text = text.replace(find, replace)
+        return text
 
     def pipeline(self):
         from irnuc.nuc_fixed import load_pipeline
@@ -100,7 +104,19 @@ CATALOGUE: tuple[Mutant, ...] = (
     # ---- irnuc_spill_register -----------------------------------------------------------
     _m("spill_ready_half_rate", "irnuc_spill_register.sv", "assign ready_o = ~skid_valid_q;",
        "assign ready_o = ~skid_valid_q & ~main_valid_q;",
-       "ready only when both registers are empty: half throughput, no data lost"),
+       "ready only when both registers are empty, the registers unchanged: an item is "
+       "taken while ready is low (duplicated)"),
+    # Three sites: ready only when both registers are empty, and the registers load only
+    # then (the skid register never): every item once, at half rate.
+    _m("spill_half_rate", "irnuc_spill_register.sv",
+       "      main_valid_q <= skid_valid_q | valid_i;",
+       "      main_valid_q <= skid_valid_q | (valid_i & ~main_valid_q);",
+       "the main register loads only when it was empty (with ready_o to match): half "
+       "throughput, no item lost or duplicated",
+       also=(("    end else if (valid_i && !skid_valid_q) begin",
+              "    end else if (1'b0) begin"),
+             ("assign ready_o = ~skid_valid_q;",
+              "assign ready_o = ~skid_valid_q & ~main_valid_q;"))),
     _m("spill_skid_order", "irnuc_spill_register.sv",
        "main_data_q <= skid_valid_q ? skid_data_q : data_i;", "main_data_q <= data_i;",
        "the main register refills from the input, not from the skid register"),
@@ -267,7 +283,10 @@ def _suite_digest() -> str:
 
 
 def _mutant_key(m: Mutant) -> str:
-    return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": asdict(m)})
+    d = asdict(m)
+    if not d["also"]:
+        del d["also"]  # keys of one-site mutants as before the field existed
+    return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": d})
 
 
 @dataclass
@@ -373,7 +392,8 @@ def _remove_failed_builds(hdl: Path) -> None:
 
 
 def _job(m: dict, use_cache: bool) -> dict:
-    return run_mutant(Mutant(**{**m, "changes": tuple(tuple(c) for c in m["changes"])}),
+    return run_mutant(Mutant(**{**m, "changes": tuple(tuple(c) for c in m["changes"]),
+                                "also": tuple(tuple(c) for c in m["also"])}),
                       use_cache=use_cache)
 
 
