@@ -38,7 +38,7 @@ def best_of(fn, repeats: int, budget: float = 5.0) -> float:
 
 
 def measure(kind: str) -> dict:
-    prob = transient_problem(kind, quick=True)
+    prob = transient_problem(kind)
     cfg, p = prob["cfg"], prob["params"]
     Q, Ts = prob["Q"][:1], prob["T_s"][:1]
     b = cfg["bolometer"]

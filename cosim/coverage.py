@@ -106,10 +106,6 @@ def _numbered(stages: list[str]) -> list[str]:
     return out
 
 
-def _unique(seq: Sequence[str]) -> list[str]:
-    return list(dict.fromkeys(seq))
-
-
 class CoverageModel:
     """The coverpoints of one DUT, registered in cocotb-coverage's ``coverage_db``.
 
@@ -173,14 +169,16 @@ class CoverageModel:
         point("stream.backpressure", BACKPRESSURE_PATTERNS)
         point("stream.back_to_back", ("frames",))
         if top in ("nuc_core", "dpc_core", "nuc_dpc_top"):
-            point("reset.stage", _unique(pipeline_stages(top, cfg)))
+            point("reset.stage", pipeline_stages(top, cfg))
 
     # ---- helpers -----------------------------------------------------------------------
     def _above_max_reachable(self) -> bool:
+        """The golden model at the largest code, gain and offset rounds above 2^B - 1."""
         c = self.cfg
-        top = (((1 << c.adc_bits) - 1) * ((1 << c.gain_bits) - 1) << (c.frac_bits - c.gain_frac_bits)) \
-            + ((((1 << (c.offset_bits - 1)) - 1)) << (c.frac_bits - c.offset_frac_bits))
-        return top >> c.frac_bits > (1 << c.out_bits) - 1
+        big = np.array([(1 << c.adc_bits) - 1])
+        it = nuc_core(big, np.array([(1 << c.gain_bits) - 1]),
+                      np.array([(1 << (c.offset_bits - 1)) - 1]), c, intermediates=True)
+        return int(it.r[0]) > (1 << c.out_bits) - 1
 
     def has(self, name: str) -> bool:
         return name in self._samplers

@@ -26,7 +26,7 @@ import shutil
 import tempfile
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
@@ -295,13 +295,12 @@ class MutantResult:
     file: str
     what: str
     config: str
-    status: str  # killed, survived, equivalent
+    status: str  # killed, survived, equivalent, invalid
     killed_by: str | None = None
     message: str = ""
     equivalent: str | None = None
     seconds: float = 0.0
     cached: bool = False
-    extra: dict[str, Any] = field(default_factory=dict)
 
 
 def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOUT) -> dict:

@@ -25,7 +25,7 @@ def test_mpmath_reference_matches_scipy_quad():
 
 def test_exact_transient_reference_agrees_with_radau():
     # Two independent references: phase-variable quadrature in mpmath and scipy's Radau.
-    prob = P.transient_problem("stiff_1e3", quick=True)
+    prob = P.transient_problem("stiff_1e3")
     Q, Ts, p = prob["Q"], prob["T_s"], prob["params"]
     b = prob["cfg"]["bolometer"]
     kw = dict(tcr=b["tcr"], T_ref=b["T_ref"], bias_current=b["bias_current"], t_int=b["t_int"],

@@ -83,14 +83,14 @@ def _run_problem(prob, **settings):
 
 @pytest.fixture(scope="module")
 def nonstiff():
-    prob = transient_problem("nonstiff", quick=True)
+    prob = transient_problem("nonstiff")
     prob["refs"] = {pix: _reference_for(prob, pix) for pix in [(0, 0), (5, 7)]}
     return prob
 
 
 @pytest.fixture(scope="module")
 def stiff():
-    prob = transient_problem("stiff", quick=True)
+    prob = transient_problem("stiff")
     prob["refs"] = {pix: _reference_for(prob, pix) for pix in [(4, 4)]}
     return prob
 

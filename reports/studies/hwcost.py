@@ -39,8 +39,12 @@ def bram_blocks(width: int, depth: int, shapes: Sequence[tuple[int, int]]) -> in
     return min(math.ceil(width / w) * math.ceil(depth / d) for d, w in shapes)
 
 
+#: Frame rate of the memory bandwidth figures unless the caller gives one.
+FRAME_RATE_HZ = 60.0
+
+
 def coefficient_memory(bits_per_pixel: int, rows: int, cols: int,
-                       frame_rate_hz: float = 60.0) -> dict[str, Any]:
+                       frame_rate_hz: float = FRAME_RATE_HZ) -> dict[str, Any]:
     """The coefficient store of one ``rows`` x ``cols`` frame at ``bits_per_pixel``."""
     n = int(rows) * int(cols)
     xc7 = bram_blocks(bits_per_pixel, n, XC7_BRAM36_SHAPES)

@@ -692,7 +692,7 @@ TRANSIENT_PROBLEMS: dict[str, dict[str, Any]] = {
 TRANSIENT_PROBLEMS["stiff"] = TRANSIENT_PROBLEMS["stiff_1e3"]
 
 
-def transient_problem(kind: str, quick: bool = False) -> dict[str, Any]:
+def transient_problem(kind: str) -> dict[str, Any]:
     """Absorbed power, parameters and settings of a transient test problem."""
     from irnuc import model
     from irnuc.model.scenes import Scene
@@ -727,7 +727,7 @@ def transient_study(kind: str, quick: bool = False, repeats: int = 3) -> dict[st
     from irnuc.model import transient as tr
 
     start = time.perf_counter()
-    prob = transient_problem(kind, quick)
+    prob = transient_problem(kind)
     cfg, Q, Ts, p = prob["cfg"], prob["Q"], prob["T_s"], prob["params"]
     b = cfg["bolometer"]
     rows, cols = Q.shape[1:]
@@ -992,6 +992,7 @@ def figures(result: dict[str, Any]) -> list[tuple[str, bytes]]:
         caption = (f"{c['title']}: error against run time and against "
                    f"{c.get('work_name', 'work')}; default {d['method']} "
                    f"{d['setting_name']} = {d['setting']:g} ({state}); "
-                   f"{len(c['missing'])} failed setting(s) drawn as red crosses.")
+                   f"{len(c['missing'])} failed setting(s) drawn as crosses in their "
+                   "method's colour above the curves.")
         out.append((caption, figure_png(c)))
     return out

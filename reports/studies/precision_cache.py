@@ -1,9 +1,10 @@
 """The work-precision study's results, cached (``irnuc precision`` and ``irnuc report``).
 
-A stored run is valid for the model code it measured (:func:`code_digest`, a hash of the
-model's sources), at its depth (``quick``) and for its components; it lives in the irnuc
-cache (``precision/<digest>-<quick|full>-<components>.json``). ``irnuc precision`` stores
-every run there; the report reuses it, or runs the study and stores it.
+A stored run is valid for the code it measured (:func:`code_digest`, a hash of the
+model's sources and of the study's own code), at its depth (``quick``) and for its
+components; it lives in the irnuc cache
+(``precision/<digest>-<quick|full>-<components>.json``). ``irnuc precision`` stores every
+run there; the report reuses it, or runs the study and stores it.
 """
 
 from __future__ import annotations
@@ -16,37 +17,44 @@ from typing import Any
 
 
 def code_digest() -> str:
-    """Hash of the model's source files: a stored precision run is valid for this code only."""
+    """Hash of what a stored precision run measured: the model's sources and the study's own
+    code (its problems, references, sample sizes and budgets); valid for this code only."""
     from irnuc import model
+    from irnuc.reports.studies import precision
 
     root = Path(model.__file__).parent
+    files = [(p.relative_to(root).as_posix(), p) for p in sorted(root.rglob("*.py"))]
+    files.append(("study/precision.py", Path(precision.__file__)))
     h = hashlib.sha256()
-    for path in sorted(root.rglob("*.py")):
-        h.update(path.relative_to(root).as_posix().encode())
+    for name, path in files:
+        h.update(name.encode())
         h.update(path.read_bytes())
     return h.hexdigest()[:16]
 
 
-def _key(quick: bool, components: Sequence[str] | None) -> str:
+def _key(quick: bool, components: Sequence[str] | None, digest: str) -> str:
     from irnuc.reports.studies.precision import component_names
 
     names = component_names(components)
     tag = "all" if not components else hashlib.sha256(",".join(names).encode()).hexdigest()[:8]
-    return f"{code_digest()}-{'quick' if quick else 'full'}-{tag}"
+    return f"{digest}-{'quick' if quick else 'full'}-{tag}"
 
 
-def cache_file(quick: bool, components: Sequence[str] | None = None) -> Path:
+def cache_file(quick: bool, components: Sequence[str] | None = None,
+               digest: str | None = None) -> Path:
     from irnuc.common.cache import cache_dir
 
-    return cache_dir("precision") / f"{_key(quick, components)}.json"
+    key = _key(quick, components, digest or code_digest())
+    return cache_dir("precision") / f"{key}.json"
 
 
 def store_precision(result: dict[str, Any], components: Sequence[str] | None = None) -> Path:
     """Keep a study result in the cache (atomically), tagged with the code it measured."""
     from irnuc.common.io import write_text_atomic
 
-    path = cache_file(bool(result["quick"]), components)
-    return write_text_atomic(path, json.dumps({**result, "code_digest": code_digest()}) + "\n")
+    d = code_digest()
+    path = cache_file(bool(result["quick"]), components, d)
+    return write_text_atomic(path, json.dumps({**result, "code_digest": d}) + "\n")
 
 
 def cached_precision(quick: bool = True, components: Sequence[str] | None = None, *,
@@ -54,11 +62,12 @@ def cached_precision(quick: bool = True, components: Sequence[str] | None = None
                      progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
     """The full study result of the current model code: from the cache, else run (and
     stored). ``FileNotFoundError`` when absent and ``run_if_missing`` is false."""
-    path = cache_file(quick, components)
+    d = code_digest()
+    path = cache_file(quick, components, d)
     if path.is_file():
         try:
             data = json.loads(path.read_text())
-            if data.get("code_digest") == code_digest() and data.get("quick") == quick:
+            if data.get("code_digest") == d and data.get("quick") == quick:
                 return {**data, "cached": True}
         except (OSError, json.JSONDecodeError):
             pass  # a damaged entry is measured again
@@ -69,4 +78,4 @@ def cached_precision(quick: bool = True, components: Sequence[str] | None = None
 
     result = run_precision(quick=quick, components=components, progress=progress)
     store_precision(result, components)
-    return {**result, "code_digest": code_digest(), "cached": False}
+    return {**result, "code_digest": d, "cached": False}

@@ -170,8 +170,9 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
     def run_one(item: tuple[Any, str]) -> Any:
         cfg, t = item
         case = cosim.SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=(t,), seed=seed)
-        return cosim.run_suite([case], work, waves=waves, timeout_base=base,
-                               coverage=coverage)
+        # A folder per test: its files (and its own coverage.json) apart from the others.
+        return cosim.run_suite([case], work / f"{cfg.name}-{cfg.digest()[:8]}" / t,
+                               waves=waves, timeout_base=base, coverage=coverage)
 
     t1 = time.perf_counter()
     # Each test is one task: the ``jobs`` simulators take the next test as they finish.

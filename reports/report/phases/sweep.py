@@ -21,7 +21,6 @@ from irnuc.reports.report.phases.calibration import sensor_overrides
 
 #: LUTs one DSP48E1 counts for on the datapath axis (an 18 x 25 multiplier in fabric).
 DSP_LUT_EQUIVALENT = 200.0
-FRAME_RATE_HZ = 60.0
 SWEPT_AXES = ("gain_frac_bits", "offset_frac_bits", "gain_int_bits", "offset_int_bits")
 
 
@@ -93,7 +92,7 @@ def _recommended_entry(rep: Report, p: Mapping[str, Any], metric: str, frame: tu
 
 def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None:
     from irnuc.reports.studies import figures
-    from irnuc.reports.studies.hwcost import coefficient_memory, recommend
+    from irnuc.reports.studies.hwcost import FRAME_RATE_HZ, coefficient_memory, recommend
     from irnuc.reports.studies.sweep import run_sweep
 
     s = rep.config["sweep"]
