@@ -159,7 +159,7 @@ async def vga_frame(dut) -> None:
     data = np.load(os.environ["IRNUC_BENCH_IN"])
     raw, words, expected = data["raw"], data["words"], data["expected"]
     cfg = tb_lib.config_from_env()
-    word_bits = cfg.gain_bits + cfg.offset_bits + 1
+    word_bits = cfg.word_bits
     dut.cmd_i.value = 0
     Clock(dut.clk_i, tb_lib.CLK_PERIOD_NS, unit="ns", impl="gpi").start()
     await tb_lib.reset(dut)

@@ -33,22 +33,16 @@ from cocotb.triggers import RisingEdge
 from irnuc.cocotb_tests import tb_lib
 
 
-def fast_reader(handle: SimHandleBase) -> Callable[[], int]:
-    """A function returning the unsigned value of a port (public API: ``handle.value``)."""
+def reader(handle: SimHandleBase) -> Callable[[], int]:
+    """The unsigned value of a port, as a bound callable for the cycle loop (``handle.value``)."""
     return lambda: int(handle.value)  # Logic and LogicArray both convert
 
 
-def port_writer(handle: SimHandleBase) -> tuple[Callable[[Any], None], Callable[[int], Any]]:
-    """``(write, encode)``: ``write(encode(v))`` deposits the unsigned int ``v`` on a port
-    through the public API (``handle.value = v``)."""
+def writer(handle: SimHandleBase) -> Callable[[int], None]:
+    """Deposit an unsigned int on a port, as a bound callable (``handle.value = v``)."""
     def write(v: int) -> None:
         handle.value = v
-    return write, int
-
-
-def fast_writer(handle: SimHandleBase) -> Callable[[int], None]:
-    """A function depositing an unsigned int on a port (public API)."""
-    return port_writer(handle)[0]
+    return write
 
 
 async def stream_lean(dut: SimHandleBase, raw: np.ndarray, words: np.ndarray
@@ -60,23 +54,18 @@ async def stream_lean(dut: SimHandleBase, raw: np.ndarray, words: np.ndarray
     """
     h, w = raw.shape
     n = raw.size
-    set_pix, enc_pix = port_writer(dut.s_pix_data_i)
-    set_coef, enc_coef = port_writer(dut.s_coef_data_i)
+    set_pix, set_coef = writer(dut.s_pix_data_i), writer(dut.s_coef_data_i)
     pix = raw.ravel().tolist()
     coef = words.ravel().tolist()
-    if enc_pix is not int:
-        pix = [enc_pix(v) for v in pix]
-    if enc_coef is not int:
-        coef = [enc_coef(v) for v in coef]
     pos = np.arange(n)
     marks = (((pos == 0).astype(np.int64) << 1) | (pos % w == w - 1)).tolist()  # sof, eol
     dut.frame_width_i.value = w
     dut.frame_height_i.value = h
-    set_sof, set_eol = fast_writer(dut.s_pix_sof_i), fast_writer(dut.s_pix_eol_i)
-    set_pv, set_cv = fast_writer(dut.s_pix_valid_i), fast_writer(dut.s_coef_valid_i)
-    pix_ready, coef_ready = fast_reader(dut.s_pix_ready_o), fast_reader(dut.s_coef_ready_o)
-    out_valid, out_data = fast_reader(dut.m_pix_valid_o), fast_reader(dut.m_pix_data_o)
-    out_sof, out_eol = fast_reader(dut.m_pix_sof_o), fast_reader(dut.m_pix_eol_o)
+    set_sof, set_eol = writer(dut.s_pix_sof_i), writer(dut.s_pix_eol_i)
+    set_pv, set_cv = writer(dut.s_pix_valid_i), writer(dut.s_coef_valid_i)
+    pix_ready, coef_ready = reader(dut.s_pix_ready_o), reader(dut.s_coef_ready_o)
+    out_valid, out_data = reader(dut.m_pix_valid_o), reader(dut.m_pix_data_o)
+    out_sof, out_eol = reader(dut.m_pix_sof_o), reader(dut.m_pix_eol_o)
     dut.m_pix_ready_i.value = 1
     got_d: list[int] = []
     got_s: list[int] = []

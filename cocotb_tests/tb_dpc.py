@@ -67,13 +67,12 @@ async def _run(dut, frames, rng, idle=0.0, bp=0.0):
         raise AssertionError(f"{len(lines)} mismatches; first:\n"
                              + "\n".join([ln for ln in lines if ln][:10]))
     assert int(dut.frame_err_o.value) == 0
-    cov = coverage.model("dpc_core", cfg)
-    for _, bad in frames:
-        cov.sample_dpc(bad)
-    cov.sample_frames([y.shape for y, _ in frames],
-                      [src.taken[int(e)] - src.taken[int(e) - 1] - 1
-                       for e in np.cumsum([y.size for y, _ in frames])[:-1]])
-    coverage.export()
+    if coverage.enabled():
+        cov = coverage.model("dpc_core", cfg)
+        for _, bad in frames:
+            cov.sample_dpc(bad)
+        tb_lib.sample_transitions([y.shape for y, _ in frames], src.taken)
+        coverage.export()
     return sink
 
 

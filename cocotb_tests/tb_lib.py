@@ -126,7 +126,7 @@ def check_frames(frames: list[Frame], got: list[tuple[int, ...]], gcfg: Pipeline
     res = sb.result()
     record(compared=res.compared, errors=res.errors, mismatches=res.mismatches,
            missing=res.missing, extra=res.extra, lines=res.lines[:10])
-    if res.passed and gcfg == config_from_env():
+    if res.passed and gcfg == config_from_env() and coverage.enabled():
         cov = coverage.model("nuc_dpc_top", gcfg)
         for fr in frames:
             g, o, bad = unpack_words(fr.words, gcfg)
@@ -351,7 +351,7 @@ def sample_transitions(sizes: list[tuple[int, int]], taken: list[int]) -> None:
     ends = np.cumsum([h * w for h, w in sizes])
     gaps = [taken[int(e)] - taken[int(e) - 1] - 1 for e in ends[:-1] if int(e) < len(taken)]
     top = os.environ.get("COCOTB_TOPLEVEL", "")
-    if top in ("dpc_core", "nuc_dpc_top"):
+    if top in ("dpc_core", "nuc_dpc_top") and coverage.enabled():
         coverage.model(top, config_from_env()).sample_frames(sizes, gaps)
 
 

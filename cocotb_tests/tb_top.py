@@ -280,6 +280,8 @@ async def frame_size_changes(dut) -> None:
         prev = back_to_back[-1]
         for hw in alone:
             await _check(dut, [frame(hw)], rng, gcfg, backpressure=bp)
+            # A _check of its own starts after the previous frame left the core: the
+            # input was idle for at least the pipeline latency (a gap > 0).
             _cov().sample_frames([prev, hw], [1])
             prev = hw
 

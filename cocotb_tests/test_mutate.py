@@ -48,7 +48,7 @@ def test_a_stale_mutant_is_a_clear_error() -> None:
 def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
     assert mutate.cached_summary() is None
-    picked = mutate.catalogue(["spill_half_rate", "pkg_chunk_16"])
+    picked = mutate.catalogue(["spill_half_rate", "ctrl_idle_read_col"])
     # A change no test can see, without an argument: must be reported as survived (the
     # classification can fail), and is not cached as a complete campaign.
     first_line = (HDL_DIR / "nuc_core.sv").read_text().splitlines()[0]
@@ -62,8 +62,8 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     # Half throughput, no data lost: only the throughput checks can see it.
     assert by_id["spill_half_rate"]["status"] == "killed"
     assert by_id["spill_half_rate"]["killed_by"]
-    assert by_id["pkg_chunk_16"]["status"] == "equivalent"
-    assert by_id["pkg_chunk_16"]["equivalent"]
+    assert by_id["ctrl_idle_read_col"]["status"] == "equivalent"
+    assert by_id["ctrl_idle_read_col"]["equivalent"]
     assert (s["killed"], s["survived"], s["equivalent"], s["total"]) == (1, 0, 1, 2)
     assert s["score"] == 1.0
     cached = mutate.cached_summary()
@@ -79,7 +79,7 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache")}
     out = tmp_path / "out"
     proc = subprocess.run([str(irnuc), "mutate", "--only", "spill_half_rate", "--only",
-                           "pkg_chunk_16", "--no-coverage", "--out", str(out), "-q"],
+                           "ctrl_idle_read_col", "--no-coverage", "--out", str(out), "-q"],
                           env=env, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     data = json.loads((out / "mutate.json").read_text())

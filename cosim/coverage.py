@@ -337,6 +337,12 @@ def bad_shapes(bad: np.ndarray) -> set[str]:
 _MODELS: dict[tuple[str, str], CoverageModel] = {}
 
 
+def enabled() -> bool:
+    """Whether this simulation exports coverage (``$IRNUC_TB_COVERAGE`` is set): testbenches
+    skip the sampling work otherwise (mutation runs, plain pytest runs without export)."""
+    return bool(os.environ.get(COVERAGE_ENV))
+
+
 def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     """The process's coverage model of ``top`` on ``cfg`` (made once)."""
     key = (top, cfg.digest())
@@ -484,6 +490,7 @@ __all__ = [
     "IDLE_PATTERNS",
     "CoverageModel",
     "code_coverage",
+    "enabled",
     "export",
     "merge",
     "merge_data",

@@ -96,11 +96,12 @@ CATALOGUE: tuple[Mutant, ...] = (
        equivalent="with K = B + 7, R[n] = ceil(2^K/n) still gives M (R[n] n - 2^K) < 2^(B+3) "
                   "* 8 < 2^K, so (M R[n]) >> K = floor(M/n) exactly: the same output for "
                   "every input (only tb_pkg's table comparison notices the new table)"),
+    # On typical14 the DPC's 17 x 21 multiply becomes 2 x 2 parts instead of 1 x 2: the
+    # same products one stage later (on minimal, with 11 x 15 bits, it would be equivalent).
     _m("pkg_chunk_16", "irnuc_pkg.sv", "localparam int unsigned MulChunkBits = 17;",
-       "localparam int unsigned MulChunkBits = 16;", "multiplier chunks of 16 bits",
-       equivalent="the chunk width only changes how a product is cut into partial "
-                  "products and their registers; their sum is the full product for any "
-                  "width, with the same pipeline depth for every configuration's widths"),
+       "localparam int unsigned MulChunkBits = 16;",
+       "multiplier chunks of 16 bits: the same products, one adder stage more on typical14",
+       config="typical14"),
     # ---- irnuc_spill_register -----------------------------------------------------------
     _m("spill_ready_half_rate", "irnuc_spill_register.sv", "assign ready_o = ~skid_valid_q;",
        "assign ready_o = ~skid_valid_q & ~main_valid_q;",
@@ -271,15 +272,14 @@ def rtl_digest() -> str:
     return files_digest(sorted(HDL_DIR.glob("*.sv")))
 
 
-#: What a mutant's verdict depends on besides the RTL: the mutation suite's testbench and
-#: the checking code it imports (not the other testbenches or the pytest files).
-SUITE_FILES = ("cocotb_tests/tb_top.py", "cocotb_tests/tb_lib.py", "cocotb_tests/directed.py",
-               "cosim/scoreboard.py", "cosim/coverage.py")
-
-
 def _suite_digest() -> str:
+    """What a mutant's verdict depends on besides the RTL: the Python of the testbenches and
+    their helpers, the golden model and the co-simulation layer (not the pytest files), and
+    the simulation-only HDL."""
     root = Path(__file__).resolve().parents[1]
-    return files_digest([root / f for f in SUITE_FILES] + sorted(SIM_HDL_DIR.glob("*.sv")))
+    files = [p for d in ("cocotb_tests", "cosim", "nuc_fixed") for p in sorted((root / d).glob("*.py"))
+             if not p.name.startswith(("test_", "conftest"))]
+    return files_digest(files + sorted(SIM_HDL_DIR.glob("*.sv")))
 
 
 def _mutant_key(m: Mutant) -> str:
