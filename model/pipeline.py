@@ -542,9 +542,9 @@ def simulation_bytes(cfg: Mapping[str, Any], n_frames: int, outputs: Sequence[st
                      ) -> int:
     """Estimated peak memory of simulating ``n_frames`` frames of ``cfg`` (bytes)."""
     f = cfg["fpa"]
-    b, k = f["boundary"], f["blind"]
-    pixels = (f["active_rows"] + b[0] + b[1] + k[0] + k[1]) * (f["active_cols"] + b[2] + b[3]
-                                                             + k[2] + k[3])
+    layout = ArrayLayout.from_dict({k: f[k] for k in ("active_rows", "active_cols", "boundary",
+                                                      "blind") if k in f})
+    pixels = layout.rows * layout.cols
     chunk = min(int(cfg["run"]["chunk_frames"]), n_frames)
     per_frame = _BYTES_CODES + 8 * sum(o in outputs for o in _PER_FRAME_OUTPUTS)
     # The result is concatenated from its chunks: twice its size at the peak.

@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from irnuc.model import pipeline as _pl
-from irnuc.model.config import apply_overrides, validate
+from irnuc.model.config import apply_overrides
 from irnuc.model.core import bolometer as _kb
 from irnuc.model.core import transient as _kt
 from irnuc.model.scenes import Scene, check_temps
@@ -326,35 +326,32 @@ def _precheck_rk4(th0, Ts0, Q0, I, R, B, T_ref, g, C, t_int, s) -> None:
 
 def absorbed_power(cfg: Mapping[str, Any], temps: np.ndarray, scene: Scene, seed: int,
                    substrate: np.ndarray, pipes: dict[float, _pl.Pipeline] | None = None
-                   ) -> tuple[np.ndarray, dict[str, Any], _pl.Pipeline]:
+                   ) -> tuple[np.ndarray, dict[str, Any]]:
     """Absorbed power Q (N, rows, cols) W by the steady pipeline's stages, per substrate
     temperature (the emission and blind-pixel terms depend on it).
 
     ``pipes`` (optional) collects the configured sensor of each substrate temperature (K),
     so a caller can reuse their static products and stage counts.
-    Returns Q, the static products (params, defects) and the pipeline at the first T_s.
+    Returns Q and the static products (params, defects) of the first T_s.
     """
     n = temps.shape[0]
     Q: np.ndarray | None = None
-    first: _pl.Pipeline | None = None
     static: dict[str, Any] = {}
     pipes = {} if pipes is None else pipes
     for value in np.unique(substrate):
         idx = np.flatnonzero(substrate == value)
         pipe = pipes.get(float(value))
-        if pipe is None:
-            c = validate(apply_overrides(cfg, {"environment.T_substrate": float(value)}))
+        if pipe is None:  # the Pipeline validates the configuration
+            c = apply_overrides(cfg, {"environment.T_substrate": float(value)})
             pipe = pipes[float(value)] = _pl.Pipeline(c, seed)
-        got = pipe.run(temps[idx], ["Q", "params", "defects"] if first is None else ["Q"],
-                       scene)
+        got = pipe.run(temps[idx], ["Q"] if static else ["Q", "params", "defects"], scene)
         if Q is None:
             Q = np.empty((n, *got["Q"].shape[1:]))
         Q[idx] = got["Q"]
-        if first is None:
-            first = pipe
+        if not static:
             static = {"params": got["params"], "defects": got["defects"]}
-    assert Q is not None and first is not None
-    return Q, static, first
+    assert Q is not None
+    return Q, static
 
 
 def simulate_transient(
@@ -421,7 +418,7 @@ def simulate_transient(
     # does the readout, so its static products (housing radiance, skim voltage) are shared.
     T_cfg = float(cfg["environment"]["T_substrate"])
     pipes: dict[float, _pl.Pipeline] = {T_cfg: _pl.Pipeline(cfg, seed)}
-    Q, static, _ = absorbed_power(cfg, t, scene, seed, Ts, pipes)
+    Q, static = absorbed_power(cfg, t, scene, seed, Ts, pipes)
     p = static["params"]
     res = integrate_pixels(Q, Ts, p["R_ref"], p["g"], p["C"], tcr=b["tcr"], T_ref=b["T_ref"],
                            bias_current=b["bias_current"], t_int=b["t_int"],

@@ -194,14 +194,15 @@ def recommend(points: Sequence[Mapping[str, Any]], max_error: float, metric: str
     or predicted), then the lowest error. Returns ``{found, index, candidates}``
     (candidates: every point meeting the tolerance at that memory).
     """
-    ok = [p for p in points if p[metric] is not None and p[metric] <= max_error]
-    if not ok:
+    from irnuc.reports.studies.sweep import smallest_meeting
+
+    least = smallest_meeting(points, max_error, metric)  # in order of error, then index
+    if not least["found"]:
         return {"found": False, "index": None, "candidates": []}
-    least = min(p["bits_per_pixel"] for p in ok)
-    tied = [p for p in ok if p["bits_per_pixel"] == least]
+    err = {p["index"]: p[metric] for p in points}
     dp = datapath or {}
-    tied.sort(key=lambda p: (dp.get(p["index"], 0.0), p[metric], p["index"]))
-    return {"found": True, "index": tied[0]["index"], "candidates": [p["index"] for p in tied]}
+    best = min(least["points"], key=lambda i: (dp.get(i, 0.0), err[i], i))
+    return {"found": True, "index": best, "candidates": list(least["points"])}
 
 
 def grid_edges(point: Mapping[str, Any], axes: Mapping[str, Sequence[Any]]) -> list[dict[str, str]]:

@@ -703,7 +703,7 @@ def transient_problem(kind: str) -> dict[str, Any]:
     cfg = model.load_preset("default", ov)
     temps = np.array([300.0, 400.0, 300.0])
     Ts = np.full(3, cfg["environment"]["T_substrate"])
-    Q, static, _ = absorbed_power(cfg, temps, Scene(), 0, Ts)
+    Q, static = absorbed_power(cfg, temps, Scene(), 0, Ts)
     return {"cfg": cfg, "Q": Q, "T_s": Ts, "params": static["params"]}
 
 

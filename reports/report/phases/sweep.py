@@ -163,8 +163,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
     with rep.phase("synth"):
         fit = fit_indices(pts, int(sy.get("fit_points", 4)))
-        cand = recommend(pts, max_error, metric)["candidates"]
-        cand = sorted(cand, key=lambda i: (pts[i][metric], i))[:3]
+        cand = recommend(pts, max_error, metric)["candidates"][:3]  # in order of error
         todo = sorted(set(fit) | set(cand))
         cfgs = [recommended_config(pts[i], rows, cols) for i in todo]
         results = synth_configs(cfgs, workers=int(sy.get("workers", 2)), scheduler=scheduler,
