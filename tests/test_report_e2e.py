@@ -202,8 +202,10 @@ def test_sigkill_leaves_old_or_new_report_and_no_child(tmp_path) -> None:
             assert after is not None and after != before
             seen.add(after)
         else:
-            assert after == before or (proc.returncode == 0 and after is not None), \
-                f"after a kill at {time.monotonic() - t0:.1f} s the folder is neither old nor new"
+            # Old, or new and whole (_whole checks that summary.json and index.html are of
+            # one run): a kill can land after the swap, before the process exits.
+            assert after == before or after is not None, \
+                f"after a kill at {time.monotonic() - t0:.1f} s the folder is gone"
         deadline = time.monotonic() + 15.0
         while (left := _ours(token, [str(tmp_path)])) and time.monotonic() < deadline:
             time.sleep(0.25)
