@@ -5,7 +5,7 @@ Two modes:
 * ``per_cycle``: cocotb drives and samples every clock cycle's handshakes, cocotb's public
   API only, and every output code and marker is checked in numpy; goal >= 200 kpixel/s.
   The reported figure is the batched driver (``cocotb_tests/tb_batch.py``): nuc_dpc_top
-  inside the simulation-only transactor ``cocotb_tests/hdl/nuc_dpc_batch.sv``, Python
+  inside the simulation-only transactor ``cosim/hdl/nuc_dpc_batch.sv``, Python
   waking once per window of 32 cycles (one command word in: pixel items, coefficient
   words, per-cycle pause masks; one response word out: the outputs taken). Reference of
   the same run: the lean one-wake-per-cycle driver (``cocotb_tests/tb_bench.py``), on

@@ -1,8 +1,7 @@
-"""``hdl/irnuc_pkg.sv`` against the Python side, by simulation of a probe module.
-
-Mode encodings (``ROUNDING_MODES``, ``OVERFLOW_MODES``), the coefficient word layout
-(``pack_words``) and the DPC reciprocal table (``reciprocal_table``) are read back from the
-simulated RTL for every named configuration (``cocotb_tests/tb_pkg.py``).
+"""``hdl/irnuc_pkg.sv`` against the shared-constants spec (``irnuc.nuc_fixed.rtl_spec``), by
+simulation of the generated probe (``cosim/hdl/irnuc_pkg_probe.sv``): every constant, range,
+enum literal, word layout and width function of the package is read back for every named
+configuration (``cocotb_tests/tb_pkg.py``).
 """
 
 from __future__ import annotations

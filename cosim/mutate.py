@@ -91,8 +91,9 @@ CATALOGUE: tuple[Mutant, ...] = (
        "num = (64'd1 << dpc_recip_shift(out_bits)) + longint'(n) - 64'd1;",
        "num = (64'd1 << dpc_recip_shift(out_bits));",
        "DPC reciprocal rounded down instead of up (floor(2^K/n))"),
-    _m("pkg_recip_shift_plus1", "irnuc_pkg.sv", "return out_bits + 32'd6;",
-       "return out_bits + 32'd7;", "DPC reciprocal shift K = B + 7 instead of B + 6",
+    _m("pkg_recip_shift_plus1", "irnuc_pkg.sv", "localparam int unsigned DpcRecipGuardBits = 6;",
+       "localparam int unsigned DpcRecipGuardBits = 7;",
+       "DPC reciprocal shift K = B + 7 instead of B + 6",
        equivalent="with K = B + 7, R[n] = ceil(2^K/n) still gives M (R[n] n - 2^K) < 2^(B+3) "
                   "* 8 < 2^K, so (M R[n]) >> K = floor(M/n) exactly: the same output for "
                   "every input (only tb_pkg's table comparison notices the new table)"),

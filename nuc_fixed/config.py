@@ -18,24 +18,14 @@ from typing import Any
 
 from irnuc.common import schema
 from irnuc.common.digest import digest
-from irnuc.common.errors import UserError
+from irnuc.common.errors import ConfigError
+from irnuc.nuc_fixed import rtl_spec
+from irnuc.nuc_fixed.rtl_spec import OVERFLOW_MODES, ROUNDING_MODES
 
 PIPELINES_TOML = Path(__file__).with_name("pipelines.toml")
 
-ROUNDING_MODES: dict[str, int] = {"truncate": 0, "half_up": 1, "half_even": 2}
-OVERFLOW_MODES: dict[str, int] = {"saturate": 0, "wrap": 1}
-
-# Legal ranges, checked before any work; the RTL asserts the same ranges.
-_RANGES: dict[str, tuple[int, int]] = {
-    "adc_bits": (1, 24),
-    "gain_int_bits": (0, 16),
-    "gain_frac_bits": (0, 32),
-    "offset_int_bits": (1, 32),
-    "offset_frac_bits": (0, 32),
-    "out_bits": (1, 24),
-    "max_width": (1, 65535),
-    "max_height": (1, 65535),
-}
+# Legal ranges, checked before any work; the RTL asserts the same ranges (rtl_spec).
+_RANGES: dict[str, tuple[int, int]] = rtl_spec.PIPELINE_RANGES
 
 
 #: The schema of one pipeline table (docs/datapath.md, "Symbols").
@@ -50,10 +40,6 @@ PIPELINE_SCHEMA: dict[str, Any] = schema.table(
     },
     required=[*_RANGES, "rounding", "overflow"],
 )
-
-
-class ConfigError(UserError):
-    """A configuration field is missing or outside its legal range."""
 
 
 @dataclass(frozen=True)
@@ -83,11 +69,11 @@ class PipelineConfig:
                 f"pipeline {self.name!r}: gain_int_bits + gain_frac_bits = {self.gain_bits} "
                 "must be at least 1"
             )
-        if self.sum_bits > 62:
+        if self.sum_bits > rtl_spec.SUM_BITS_MAX:
             # The golden model computes in int64; keep one bit of headroom for rounding.
             raise ConfigError(
                 f"pipeline {self.name!r}: the datapath sum needs {self.sum_bits} bits; "
-                "the allowed maximum is 62"
+                f"the allowed maximum is {rtl_spec.SUM_BITS_MAX}"
             )
 
     # ---- derived widths (docs/datapath.md, section "Widths") --------------------------
@@ -120,17 +106,17 @@ class PipelineConfig:
     @property
     def word_bits(self) -> int:
         """Coefficient word width: gain, offset and the bad flag."""
-        return self.gain_bits + self.offset_bits + 1
+        return rtl_spec.COEF_WORD.bits(GainBits=self.gain_bits, OffsetBits=self.offset_bits)
 
     @property
     def word_fields(self) -> dict[str, tuple[int, int]]:
         """Coefficient word layout (docs/datapath.md): field -> (lsb, width).
 
-        The one place the layout is written: packing, unpacking, the kernels, the manifest
-        and the RTL's word struct (checked in simulation) all follow it.
+        Written once in :data:`irnuc.nuc_fixed.rtl_spec.COEF_WORD`: packing, unpacking,
+        the kernels, the manifest and the RTL's word struct (generated from it, checked in
+        simulation) all follow it.
         """
-        gw, ow = self.gain_bits, self.offset_bits
-        return {"gain": (0, gw), "offset": (gw, ow), "bad": (gw + ow, 1)}
+        return rtl_spec.COEF_WORD.layout(GainBits=self.gain_bits, OffsetBits=self.offset_bits)
 
     @property
     def rounding_code(self) -> int:
