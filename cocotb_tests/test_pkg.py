@@ -8,15 +8,13 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
+from irnuc.cocotb_tests import tb_pkg
+from irnuc.cocotb_tests.runs import case_params, run_case
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
-
-MODULE = "irnuc.cocotb_tests.tb_pkg"
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 
-@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
-@pytest.mark.parametrize("config", pipeline_names())
+@pytest.mark.parametrize(("config", "case"), case_params(tb_pkg, pipeline_names()))
 def test_irnuc_pkg(config: str, case: str) -> None:
-    check_case(run_module("irnuc_pkg_probe", load_pipeline(config), MODULE), case)
+    run_case("irnuc_pkg_probe", load_pipeline(config), tb_pkg, case)

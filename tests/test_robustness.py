@@ -951,7 +951,7 @@ WORK: dict[str, tuple[tuple[str, str], ...]] = {
     "report": (("irnuc.reports.report.run", "build_report"),),
     "precision": (("irnuc.reports.studies.precision", "run_precision"),),
     "synth": (("irnuc.cosim.synth", "synth_configs"),),
-    "mutate": (("irnuc.cosim.mutate", "baseline_check"), ("irnuc.cosim.mutate", "run_mutant")),
+    "mutate": (("irnuc.verif.mutate", "baseline_check"), ("irnuc.verif.mutate", "run_mutant")),
 }
 
 

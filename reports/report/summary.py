@@ -25,7 +25,7 @@ import numpy as np
 
 from irnuc.common.schema import check
 from irnuc.reports.report.base import Report
-from irnuc.reports.report.config import REPORT_DIR, ReportError, config_hash
+from irnuc.reports.report.config import REPORT_DIR, ReportError, config_hash, input_file
 
 SCHEMA_PATH = REPORT_DIR / "summary.schema.json"
 SCHEMA_VERSION = 2
@@ -158,11 +158,7 @@ def compare_baseline(metrics: Mapping[str, Mapping[str, Any]],
 
 def load_baseline(path: str | Path) -> dict[str, Any]:
     """A validated baseline summary (one-line :class:`ReportError` naming the field)."""
-    p = Path(path)
-    if not p.exists():
-        raise ReportError(f"--baseline {path}: no such file")
-    if p.is_dir():
-        raise ReportError(f"--baseline {path}: is a folder, not a summary.json")
+    p = input_file(path, "--baseline", "a summary.json")
     try:
         text = p.read_bytes().decode("utf-8")
         data = json.loads(text)
