@@ -48,6 +48,11 @@ FAST_ARGS: tuple[str, ...] = ("-O3", "--x-assign", "fast", "--x-initial", "fast"
 #: Verilator code coverage of a ``coverage=True`` build: line (statement and branch) and
 #: toggle coverage, per module (irnuc.cosim.coverage.code_coverage reads the result).
 COVERAGE_ARGS: tuple[str, ...] = ("--coverage-line", "--coverage-toggle")
+#: The modules whose ``assert`` statements cocotb has pytest rewrite (cocotb's
+#: ``COCOTB_REWRITE_ASSERTION_FILES``): the testbenches, not every module imported in the
+#: simulator (cocotb's default ``*.py`` rewrites numpy, numba and irnuc on every run,
+#: seconds per simulation, as nothing can be cached under ``PYTHONDONTWRITEBYTECODE``).
+REWRITE_ASSERTION_FILES = "tb_*.py"
 
 
 class SimulationTimeout(RtlError):
@@ -202,7 +207,10 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     coverage_file(results_xml).unlink(missing_ok=True)
     test_dir = results_xml.parent / (results_xml.stem + ".run")
     test_dir.mkdir(parents=True, exist_ok=True)
-    extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()), **(env or {})}
+    extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()),
+                 "COCOTB_REWRITE_ASSERTION_FILES": os.environ.get(
+                     "COCOTB_REWRITE_ASSERTION_FILES", REWRITE_ASSERTION_FILES),
+                 **(env or {})}
     wave_file = results_xml.with_suffix(waves_suffix())
     test_args = ["--trace-file", str(wave_file)] if waves else []
     plusargs = ([f"+verilator+coverage+file+{coverage_file(results_xml)}"]

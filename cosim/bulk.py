@@ -53,13 +53,21 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True) -> Build:
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
-        cmd = [str(verilator_executable()), "--cc", "--exe", "--build", "-Mdir", str(build_dir),
+        cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
                *[f"-G{k}={v}" for k, v in params.items()],
                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
+        from irnuc.cosim import _objcache
 
+        # Verilator, the shared runtime objects, make (as the cocotb builds do).
         proc = run_child(cmd, env=verilator_env(), log=log)
+        if proc.returncode == 0:
+            _objcache.seed(build_dir)
+            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk"],
+                             env=verilator_env(), log=build_dir / "make.log")
+        if proc.returncode == 0:
+            _objcache.store(build_dir)
         if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
             raise RtlError(f"Verilator build of the bulk harness failed (exit "
                            f"{proc.returncode}); see {log}")

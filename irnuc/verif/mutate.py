@@ -364,9 +364,10 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
     return out
 
 
-def baseline_check(mutants: Sequence[Mutant]) -> None:
+def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
     """The design itself must pass the mutation suite on every configuration the mutants
-    use (else every mutant would look killed); raises :class:`RtlError` otherwise."""
+    use (else every mutant would look killed); raises :class:`RtlError` otherwise. A pass
+    is cached, keyed like a mutant's verdict (the RTL, the suite, the configuration)."""
     from irnuc import cosim
 
     seen: set[str] = set()
@@ -375,6 +376,10 @@ def baseline_check(mutants: Sequence[Mutant]) -> None:
         if cfg.digest() in seen:
             continue
         seen.add(cfg.digest())
+        key = digest({"rtl": rtl_digest(), "suite": _suite_digest(), "config": cfg.digest()})
+        passed = cache_dir("mutate", "baseline") / f"{cfg.name}-{key}.passed"
+        if use_cache and passed.is_file():
+            continue
         bld = cosim.build(SUITE_TOP, cfg)
         xml = cache_dir("mutate", "baseline") / f"{cfg.name}-{cfg.digest()[:8]}.xml"
         res = cosim.read_results(cosim.run(bld, SUITE_MODULE, results_xml=xml,
@@ -383,6 +388,7 @@ def baseline_check(mutants: Sequence[Mutant]) -> None:
         if bad or not res:
             raise cosim.RtlError(f"the unmutated design fails the mutation suite on "
                                  f"{cfg.name} ({', '.join(bad) or 'no result'}); see {xml}")
+        write_text_atomic(passed, json.dumps(sorted(res)) + "\n")
 
 
 def _remove_failed_builds(hdl: Path) -> None:
@@ -436,7 +442,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
     mutants = list(CATALOGUE if mutants is None else mutants)
     results = []
     with open_executor(workers, scheduler) as handle:  # a bad --scheduler fails first
-        baseline_check(mutants)
+        baseline_check(mutants, use_cache)
         futures = [handle.executor.submit(_job, asdict(m), use_cache) for m in mutants]
         for i, fut in enumerate(futures):
             results.append(fut.result())
