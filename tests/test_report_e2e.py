@@ -90,9 +90,9 @@ def test_coverage_and_mutation_condensed_and_rendered(monkeypatch) -> None:
     import types
 
     from irnuc.cosim import coverage as cov
-    from irnuc.cosim import mutate
     from irnuc.reports.report import render
     from irnuc.reports.report.phases import cosim as phase
+    from irnuc.verif import mutate
 
     snap = {"version": 1, "configurations": {"minimal": {"config_digest": "d", "tops": ["t"],
             "coverpoints": {"dpc.n": {"kind": "point", "bins": {"0": 2, "8": 0},

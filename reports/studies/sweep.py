@@ -36,19 +36,18 @@ import numpy as np
 from irnuc.common.errors import UserError
 from irnuc.common.executor import ExecutorHandle, open_executor
 
+
+class SweepError(UserError):
+    """A sweep specification is invalid (names the field, the value and the allowed range)."""
+
+
 ROUNDINGS = ("truncate", "half_up", "half_even")
 # The reference calibration's wide formats: no good pixel's coefficient saturates there.
 _REF_GAIN = (8, 20)
 _REF_OFFSET_EXTRA = 10  # offset integer bits = ADC bits + this (|gain * x| < 2^(A + 8))
 
 
-class SweepError(UserError):
-    """A sweep specification is invalid (names the field, the value and the allowed range)."""
-
-
-# ---------------------------------------------------------------------------------------
-# Specification
-# ---------------------------------------------------------------------------------------
+# ---- specification ------------------------------------------------------------------------
 @dataclass(frozen=True)
 class SensorSpec:
     """Which frames a sweep calibrates on and evaluates.
@@ -225,9 +224,7 @@ class SweepPoint:
                 "offset_bits": cfg.offset_bits, "bits_per_pixel": cfg.word_bits}
 
 
-# ---------------------------------------------------------------------------------------
-# Calibration set (frames + float NUC), built once in the parent
-# ---------------------------------------------------------------------------------------
+# ---- calibration set (frames + float NUC), built once in the parent ----------------------
 @dataclass
 class CalibrationSet:
     """Frames and the float two-point NUC of one (ADC bits, output bits) pair.
@@ -386,9 +383,7 @@ def resolve_points(axes: SweepAxes, sets: Mapping[tuple[int | None, int | None],
     return out
 
 
-# ---------------------------------------------------------------------------------------
-# One point (runs in a worker)
-# ---------------------------------------------------------------------------------------
+# ---- one point (runs in a worker) --------------------------------------------------------
 def quantized_nuc(cs: CalibrationSet, point: SweepPoint) -> tuple[np.ndarray, dict[str, Any]]:
     """Fixed-point NUC output (N, H, W) of the evaluation frames at one point.
 
@@ -463,9 +458,7 @@ def evaluate_point(cs: CalibrationSet, point: SweepPoint, threads: int | None = 
     return rec
 
 
-# ---------------------------------------------------------------------------------------
-# Executors: processes, in-process, or Dask through the same submit/collect code
-# ---------------------------------------------------------------------------------------
+# ---- executors: processes, in-process, or Dask through the same submit/collect code ------
 def run_points(handle: ExecutorHandle,
                tasks: Sequence[tuple[SweepPoint, tuple[int | None, int | None]]],
                sets: Mapping[tuple[int | None, int | None], CalibrationSet],
@@ -484,9 +477,7 @@ def run_points(handle: ExecutorHandle,
     return [results[i] for i in sorted(results)]
 
 
-# ---------------------------------------------------------------------------------------
-# Whole sweep
-# ---------------------------------------------------------------------------------------
+# ---- whole sweep -------------------------------------------------------------------------
 ERROR_METRICS = ("err_max_lsb", "err_rms_lsb", "residual_nu", "residual_nu_adc_lsb", "radial_rms_lsb")
 
 
