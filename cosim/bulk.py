@@ -21,7 +21,7 @@ import numpy as np
 
 from irnuc.common.cache import cache_dir
 from irnuc.common.errors import UserError
-from irnuc.cosim.build import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
+from irnuc.cosim.builds import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
 from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable

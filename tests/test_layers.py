@@ -56,3 +56,28 @@ def test_irnuc_subpackages_and_version(tmp_path: Path) -> None:
     irnuc_cli = Path(sys.executable).with_name("irnuc")
     ver = subprocess.run([str(irnuc_cli), "--version"], capture_output=True, text=True)
     assert ver.stdout.strip() == f"irnuc {res.stdout.strip()}"
+
+
+def test_no_name_shadows_a_module() -> None:
+    """No package binds the name of one of its modules to something else (then
+    ``import irnuc.<pkg>.<module> as m`` would not give the module)."""
+    import importlib
+    import pkgutil
+    import types
+
+    import irnuc
+
+    shadowed = []
+    todo = [irnuc]
+    while todo:
+        pkg = todo.pop()
+        for info in pkgutil.iter_modules(pkg.__path__):
+            if info.name.startswith("test_") or info.name == "conftest":
+                continue
+            full = f"{pkg.__name__}.{info.name}"
+            obj = vars(pkg).get(info.name)
+            if obj is not None and not isinstance(obj, types.ModuleType):
+                shadowed.append(full)
+            if info.ispkg:
+                todo.append(importlib.import_module(full))
+    assert not shadowed, f"names that shadow a module: {shadowed}"

@@ -106,7 +106,7 @@ def test_python_users_read_the_spec() -> None:
         load_pipeline("minimal").replace(max_width=hi + 1)
 
 
-def test_one_config_error_and_no_shadowed_module() -> None:
+def test_one_config_error_and_model_validate_is_the_module() -> None:
     import importlib
 
     from irnuc.common.errors import ConfigError

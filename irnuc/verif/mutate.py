@@ -393,7 +393,7 @@ def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
 
 def _remove_failed_builds(hdl: Path) -> None:
     """Remove the build folders of a mutant copy that did not build (no stamp file)."""
-    from irnuc.cosim.build import sim_build_dir
+    from irnuc.cosim.builds import sim_build_dir
 
     for spec in sim_build_dir().glob("*/irnuc_build_spec.json"):
         try:
