@@ -19,10 +19,10 @@ Verilator and make, so that each build compiles only its design.
 from __future__ import annotations
 
 import importlib.metadata
-import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from irnuc.common.process import python_module
 from irnuc.cosim.verilator import RtlError, verilator_executable, verilator_root
 
 #: cocotb release series whose private runner hooks this adapter was checked against.
@@ -79,9 +79,8 @@ def share_runtime_objects(cmds: list, build_dir: Path) -> list:
     if len(cmds) != 2 or not cmds[1] or cmds[1][0] != "make":
         raise RtlError("cocotb's Verilator build is no longer Verilator then make; update "
                        "irnuc/cosim/_cocotb_adapter.py")
-    objcache = [sys.executable, "-m", "irnuc.cosim._objcache"]
-    return [cmds[0], [*objcache, "seed", str(build_dir)], cmds[1],
-            [*objcache, "store", str(build_dir)]]
+    return [cmds[0], python_module("irnuc.cosim._objcache", "seed", build_dir), cmds[1],
+            python_module("irnuc.cosim._objcache", "store", build_dir)]
 
 
 def wheel_runner(visibility: str = PORTS_ONLY):

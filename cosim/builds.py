@@ -22,7 +22,7 @@ from types import ModuleType
 from irnuc.common.cache import cache_dir
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.io import file_lock, write_text_atomic
-from irnuc.common.process import ChildTimeout, run_child
+from irnuc.common.process import ChildTimeout, python_module, run_child
 from irnuc.cosim._cocotb_adapter import PORTS_ONLY
 from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import (
@@ -153,7 +153,7 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
                           "waves": waves, "always": True, "log_file": str(log)}}
         spec_file = build_dir / "irnuc_build_spec.json"
         write_text_atomic(spec_file, json.dumps(spec))
-        proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
+        proc = run_child(python_module("irnuc.cosim._child", spec_file),
                          log=build_dir / "runner.log")
         if proc.returncode != 0:
             raise RtlError(f"Verilator build of {top} for {cfg.name} failed (exit "
@@ -229,7 +229,7 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     # so the child does not inherit PYTEST_CURRENT_TEST: every result goes to the XML.
     child_env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
     try:
-        proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
+        proc = run_child(python_module("irnuc.cosim._child", spec_file),
                          timeout=timeout, env=child_env, log=test_dir / "runner.log")
     except ChildTimeout as exc:
         raise SimulationTimeout(f"simulation of {bld.top} ({test_module}) stopped: {exc}; "

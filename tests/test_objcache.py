@@ -79,3 +79,13 @@ def test_usage_error() -> None:
     assert _objcache.main(["nope"]) == 2
     with pytest.raises(ValueError):
         _objcache._makefiles(Path("/nonexistent-folder"))
+
+
+def test_children_ignore_files_in_the_current_folder(tmp_path) -> None:
+    """irnuc's Python children run with ``-P``: an ``inspect.py`` in the folder irnuc is
+    started from does not replace the standard module (it broke every simulation)."""
+    from irnuc.common.process import python_module, run_child
+
+    (tmp_path / "inspect.py").write_text("raise SystemExit('the wrong inspect')\n")
+    proc = run_child(python_module("irnuc.cosim._objcache", "nope"), cwd=tmp_path, capture=True)
+    assert proc.returncode == 2 and "usage" in proc.stderr, proc.stderr
