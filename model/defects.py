@@ -547,7 +547,8 @@ def _check_rails(v_low: float, v_high: float) -> tuple[float, float]:
 
 
 def apply_voltage_defects(
-    v: np.ndarray, defects: DefectMap, v_low: float, v_high: float, v_reset: float
+    v: np.ndarray, defects: DefectMap, v_low: float, v_high: float, v_reset: float,
+    *, copy: bool = True,
 ) -> np.ndarray:
     """Apply the output-voltage defects to integrator output voltages.
 
@@ -562,10 +563,13 @@ def apply_voltage_defects(
     v_reset : float
         Integrator reference (reset) level, V, read by DEAD pixels.
 
+    copy : bool
+        False: change ``v`` in place (a float64 array the caller owns) instead of a copy.
+
     Returns
     -------
     numpy.ndarray
-        New float64 array, same shape: DEAD -> ``v_reset``, STUCK_LOW -> ``v_low``,
+        float64 array (new unless ``copy`` is False), same shape: DEAD -> ``v_reset``, STUCK_LOW -> ``v_low``,
         STUCK_HIGH -> ``v_high``, STUCK_VALUE -> ``v_low + level * (v_high - v_low)``,
         HOT/COLD -> ``v + level * (v_high - v_low)``; other pixels unchanged. Not clipped.
     """
@@ -573,7 +577,7 @@ def apply_voltage_defects(
         raise ConfigError(f"defects = {defects!r} is not a DefectMap")
     lo, hi = _check_rails(v_low, v_high)
     vr = check_scalar("v_reset", v_reset, unit="V")
-    out = np.array(v, dtype=np.float64, copy=True)
+    out = np.array(v, dtype=np.float64, copy=True) if copy else v
     if out.ndim < 2 or out.shape[-2:] != defects.shape:
         raise ConfigError(
             f"v has shape {out.shape}; expected (..., {defects.shape[0]}, {defects.shape[1]})"

@@ -20,7 +20,9 @@ import math
 import warnings
 from collections import Counter
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -30,6 +32,7 @@ from irnuc.model import noise as _noise
 from irnuc.model import readout as _readout
 from irnuc.model.config import config_digest
 from irnuc.model.core import bolometer as _kb
+from irnuc.model.core import stream as _ks
 from irnuc.model.core import warmstart as _kw
 from irnuc.model.defects import (
     DefectKind,
@@ -120,6 +123,27 @@ class RunContext:
         if self.env is not None and "T_substrate" in self.env:
             return np.asarray(self.env["T_substrate"], dtype=np.float64)
         return np.full(n, float(self.cfg["environment"]["T_substrate"]))
+
+
+#: Pixel-frames below which a kernel runs on one thread: waking the thread pool costs more
+#: than it saves on a small problem (and much more on a busy machine).
+PARALLEL_MIN_WORK = 200_000
+
+
+@contextmanager
+def threads_for(work: int) -> Iterator[None]:
+    """Run the numba kernels inside on one thread when ``work`` (pixel-frames) is small."""
+    import numba
+
+    if work >= PARALLEL_MIN_WORK:
+        yield
+        return
+    before = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(before)
 
 
 # ---- static stages ---------------------------------------------------------------------
@@ -227,13 +251,31 @@ def housing_power(ctx: RunContext, view: np.ndarray, L_cam: Any, L_s: Any) -> np
     base = _base(ctx.cfg)
     q = base * ((1.0 - view) * L_cam - net * L_s)
     if ctx.cfg["fpa"]["skim_shield"] == "substrate":
-        blind = ctx.layout.kind_map() == BLIND
-        q = np.where(blind, base * (L_s - net * L_s), q)
+        q = np.where(_blind_mask(ctx.layout), base * (L_s - net * L_s), q)
     return q
+
+
+@dataclass(frozen=True)
+class HousingFrames:
+    """The housing power of frames whose housing or substrate temperature varies: the
+    radiances of each frame, evaluated pixel by pixel inside the power pass
+    (:func:`model.core.stream.power_frames`) instead of as an (N, rows, cols) array."""
+
+    seen: np.ndarray
+    L_cam: np.ndarray  # (N,) W m^-2 sr^-1
+    L_s: np.ndarray  # (N,)
+
+
+@lru_cache(maxsize=8)
+def _blind_mask(layout: ArrayLayout) -> np.ndarray:
+    return layout.kind_map() == BLIND
 
 
 def _stage_housing(ctx: RunContext, inp: dict) -> dict:
     L_cam, L_s = inp["L_env"]
+    if np.ndim(L_s):
+        return {"q_env": HousingFrames(inp["seen"], np.asarray(L_cam, np.float64).reshape(-1),
+                                       np.asarray(L_s, np.float64).reshape(-1))}
     return {"q_env": housing_power(ctx, inp["seen"], L_cam, L_s)}
 
 
@@ -298,18 +340,34 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
     if L.ndim == 1:
         L = L[:, None, None]
     q_env = inp["q_env"]
-    Q = inp["k_scene"][None] * L
-    Q += q_env[None] if q_env.ndim == 2 else q_env
-    if "shutter_view" in inp:
-        _shutter_power(ctx, inp, Q)
     defects: DefectMap = inp["defects"]
-    if (defects.resp != 1.0).any():
-        Q[(slice(None), *ctx.layout.active_slice)] *= defects.resp
+    resp = defects.resp if (defects.resp != 1.0).any() else None
+    if isinstance(q_env, HousingFrames):
+        Q = np.empty((L.shape[0], *ctx.layout.shape))
+        net = 1.0 if ctx.cfg["bolometer"]["net_radiation"] else 0.0
+        rs, cs = ctx.layout.active_slice
+        with threads_for(Q.size):
+            _ks.power_frames(inp["k_scene"], L, L.shape[1] == 1, q_env.seen,
+                             _blind_mask(ctx.layout), _base(ctx.cfg), net,
+                             ctx.cfg["fpa"]["skim_shield"] == "substrate", q_env.L_cam,
+                             q_env.L_s, resp if resp is not None else np.empty((0, 0)),
+                             rs.start, cs.start, Q)
+        resp = None  # applied
+    else:
+        Q = inp["k_scene"][None] * L
+        Q += q_env[None]
+    if "shutter_view" in inp:
+        # the frames it overwrites need the responsivity now if the rest already has it
+        _shutter_power(ctx, inp, Q, defects.resp if resp is None else None)
+    if resp is not None:
+        Q[(slice(None), *ctx.layout.active_slice)] *= resp
     return {"Q": Q}
 
 
-def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray) -> None:
-    """Replace, in the frames whose shutter is closed, the scene by the shutter (in place)."""
+def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None:
+    """Replace, in the frames whose shutter is closed, the scene by the shutter (in place);
+    ``resp``: the defects' responsivity factor (H, W) to apply to those frames here, or
+    None when it is applied to every frame afterwards."""
     env = ctx.env
     if env is None or "shutter" not in env:
         return
@@ -328,6 +386,8 @@ def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray) -> None:
         lc = L_cam[n] if L_cam.size > 1 else L_cam[0]
         ls = L_s[n] if L_s.size > 1 else L_s[0]
         Q[n] = _base(ctx.cfg) * view * L_sh[k] + housing_power(ctx, view, lc, ls)
+        if resp is not None and (resp != 1.0).any():
+            Q[(n, *ctx.layout.active_slice)] *= resp
 
 
 def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray],
@@ -344,11 +404,12 @@ def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray],
     Q = np.ascontiguousarray(Q)
     temps = [float(ctx.cfg["environment"]["T_substrate"])] if T_s is None else list(T_s)
     parts = [slice(None)] if T_s is None else [slice(n, n + 1) for n in range(shape[0])]
-    for sl, Ts in zip(parts, temps, strict=True):
-        _kb.solve_frames(Q[sl], params["R_ref"], params["g"], params["C"], B, b["T_ref"], Ts,
-                         b["bias_current"], b["t_int"], BOLOMETER_VARIANTS[b["variant"]],
-                         b["rtol"], b["max_iter"], b["runaway_temperature"], dT[sl], v[sl],
-                         status[sl], iters[sl])
+    with threads_for(Q.size):
+        for sl, Ts in zip(parts, temps, strict=True):
+            _kb.solve_frames(Q[sl], params["R_ref"], params["g"], params["C"], B, b["T_ref"],
+                             Ts, b["bias_current"], b["t_int"], BOLOMETER_VARIANTS[b["variant"]],
+                             b["rtol"], b["max_iter"], b["runaway_temperature"], dT[sl], v[sl],
+                             status[sl], iters[sl])
     return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
 
 
@@ -398,12 +459,12 @@ def _solve_predicted(ctx: RunContext, inp: dict, Q: np.ndarray | None,
     src = np.ascontiguousarray(src)
     n = src.shape[0]
     dT, v, status, iters = _kw.empty_solution(src.shape)
-    _kw.solve_frames_predicted(src, src, A is not None, p["R_ref"], p["g"], coef["fq"],
-                               coef["variant"],
-                               coef["b"], B, b["T_ref"], ctx.substrate(n), b["bias_current"],
-                               b["rtol"], b["max_iter"], b["runaway_temperature"],
-                               ref["inv_T"], ref["e"], ref["c"], ref["s"], ref["ds"],
-                               dT, v, status, iters)
+    with threads_for(src.size):
+        _kw.solve_frames_predicted(src, src, A is not None, p["R_ref"], p["g"], coef["fq"],
+                                   coef["variant"], coef["b"], B, b["T_ref"], ctx.substrate(n),
+                                   b["bias_current"], b["rtol"], b["max_iter"],
+                                   b["runaway_temperature"], ref["inv_T"], ref["e"], ref["c"],
+                                   ref["s"], ref["ds"], dT, v, status, iters)
     return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
 
 
@@ -425,8 +486,9 @@ def _stage_bolometer_lagged(ctx: RunContext, inp: dict) -> dict:
         ctx.state["lagged"] = st
     T_s = ctx.substrate(n)
     theta = np.empty(Q.shape)
-    _kw.lagged_rise(Q, p["g"], st["decay"], T_s, st["T_prev"], st["theta"], st["has"],
-                    theta)
+    with threads_for(Q.size):
+        _kw.lagged_rise(Q, p["g"], st["decay"], T_s, st["T_prev"], st["theta"], st["has"],
+                        theta)
     st.update(theta=theta[-1].copy(), T_prev=float(T_s[-1]), has=True)
     return _solve_predicted(ctx, inp, None, theta)
 
@@ -458,8 +520,9 @@ def _stage_bolometer_transient(ctx: RunContext, inp: dict) -> dict:
     after = s.frame_period - s.pulse_start - b["t_int"]
     last = status[-1] != _kb.STATUS_OK
     relaxed = np.empty(p["g"].size)
-    _kw.carry_theta(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
-                    p["g"].ravel(), p["C"].ravel(), after, 0.0, 0.0, last.ravel(), relaxed)
+    with threads_for(relaxed.size):
+        _kw.carry_theta(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
+                        p["g"].ravel(), p["C"].ravel(), after, 0.0, 0.0, last.ravel(), relaxed)
     ctx.state["transient"] = {"theta": relaxed.reshape(p["g"].shape), "T_prev": float(T_s[-1]),
                               "failed": last, "status": status[-1].copy()}
     ctx.counts["transient_pulses"] += int(status.size)
@@ -496,8 +559,13 @@ def _make_skim_stage(mode: str) -> Stage:
 def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
     r = ctx.cfg["readout"]
     act = (slice(None), *ctx.layout.active_slice)
-    v = _readout.integrate(inp["v_bolo"][act], inp["v_ref"], r["gain"], r["v_reset"])
-    v = apply_voltage_defects(v, inp["defects"], r["v_low"], r["v_high"], r["v_reset"])
+    v_bolo = inp["v_bolo"]
+    v = np.empty((v_bolo.shape[0], *ctx.layout.active_shape))
+    rs, cs = ctx.layout.active_slice
+    with threads_for(v.size):
+        _ks.integrate_frames(v_bolo, rs.start, cs.start, inp["v_ref"], r["gain"], r["v_reset"], v)
+    v = apply_voltage_defects(v, inp["defects"], r["v_low"], r["v_high"], r["v_reset"],
+                              copy=False)
     failed = (inp["status"][act] != _kb.STATUS_OK) if np.count_nonzero(inp["status"]) else None
     if failed is not None and failed.any():
         # A runaway or unsolved pixel drives its integrator into the high rail; it is
@@ -525,8 +593,9 @@ def _stage_noise(ctx: RunContext, inp: dict) -> dict:
         if noisy is None:
             return {"v_out": inp["v_int"]}
         ctx.counts["noise_frames"] += inp["v_int"].shape[0]
+        # v_int is this chunk's own array, used by nothing else: add in place.
         return {"v_out": _noise.add_noise_at(inp["v_int"], noisy[1], noisy[2], ctx.seed,
-                                             ctx.first_frame)}
+                                             ctx.first_frame, copy=False)}
     sigma2: np.ndarray | float = n["readout_sigma"] ** 2
     if n["johnson"]:
         act = (slice(None), *ctx.layout.active_slice)

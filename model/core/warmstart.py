@@ -194,15 +194,19 @@ def _exp_poly(z):
     return p * z + 1.0
 
 
-@njit(cache=True, error_model="numpy")
-def _newton_lane(x, a, b, R, B, Ts, rtol, atol):
-    """One Newton step of h(x) = x - a - b R(T_s + x) at x (K) with R = R(T_s + x) (ohm),
-    and the convergence test of :func:`model.core.bolometer.newton_negative_tcr_warm`.
+#: Largest |exponent| of a Newton step's resistance update by the degree-4 polynomial
+#: (relative error below |z|^5/120 < 1e-17).
+STEP_EXP_MAX = 1e-3
 
-    Returns (xn, R(T_s + xn), converged, exponent of the R update).
+
+@njit(cache=True, error_model="numpy")
+def _newton_lane(x, inv_T, a, b, R, B, rtol, atol):
+    """One Newton step of h(x) = x - a - b R(T_s + x) at x (K), with inv_T = 1/(T_s + x)
+    and R = R(T_s + x) (ohm), and the convergence test of
+    :func:`model.core.bolometer.newton_negative_tcr_warm`.
+
+    Returns (xn, R(T_s + xn), 1/(T_s + xn), converged, exponent of the R update).
     """
-    T = Ts + x
-    inv_T = 1.0 / T
     h = x - a - b * R
     bRB = b * R * B * inv_T * inv_T  # -d(b R)/dT > 0
     dh = 1.0 + bRB
@@ -213,9 +217,12 @@ def _newton_lane(x, a, b, R, B, Ts, rtol, atol):
     K = abs(bRB * (B * inv_T + 2.0) * inv_T) * 0.5 * inv_dh
     conv = (abs(step) <= tol) | ((abs(step) < 1e-4 * (abs(x) + 1.0))
                                  & (K * step * step <= 0.01 * tol))
-    # 1/(T (T - step)) = inv_T^2 (1 + step inv_T + ...): R at xn.
-    z = B * step * inv_T * inv_T * (1.0 + step * inv_T + (step * inv_T) ** 2)
-    return xn, R * _exp_poly(z), conv, z
+    # 1/T_n = 1/(T - step) = inv_T / (1 - step inv_T); R at xn from exp(B (1/T_n - 1/T)).
+    u = step * inv_T
+    inv_Tn = inv_T / (1.0 - u)
+    z = B * u * inv_Tn
+    E = 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z * (1.0 / 24.0))))
+    return xn, R * E, inv_Tn, conv, z
 
 
 @njit(cache=True, error_model="numpy")
@@ -224,25 +231,26 @@ def _predict_row(src, p1, p2, R_ref, b, B, Ts, rtol, T_max, inv_Tr, e_r, c_r, s_
     """Prediction and up to two Newton steps of one row, a = src p1 p2 (K), written without
     branches (and with IEEE division, ``error_model='numpy'``) so that the compiler
     vectorizes it. ``done_out`` (the Newton steps taken, 0 for none) marks the pixels
-    that met the tolerance with every
-    exponent inside the polynomial's range and the iterate inside the bracket (a, inf);
-    the others are solved again by :func:`_solve_pixel`."""
+    that met the tolerance with every exponent inside its polynomial's range and the
+    iterate inside the bracket (a, inf); the others are solved again by
+    :func:`_solve_pixel`."""
     atol = rtol * 1e-3
     for j in range(x_out.shape[0]):
         a = src[j] * p1[j] * p2[j]
         x0 = np.float64(c_r[j]) + np.float64(s_r[j]) * a - np.float64(ds_r[j]) * Ts
         T0 = Ts + x0
-        z0 = B * (1.0 / T0 - inv_Tr[j])
+        inv_T0 = 1.0 / T0
+        z0 = B * (inv_T0 - inv_Tr[j])
         R0 = R_ref[j] * (e_r[j] * _exp_poly(z0))
         bb = b[j]
-        x1, R1, c1, z1 = _newton_lane(x0, a, bb, R0, B, Ts, rtol, atol)
-        x2, R2, c2, z2 = _newton_lane(x1, a, bb, R1, B, Ts, rtol, atol)
+        x1, R1, inv_T1, c1, z1 = _newton_lane(x0, inv_T0, a, bb, R0, B, rtol, atol)
+        x2, R2, _, c2, z2 = _newton_lane(x1, inv_T1, a, bb, R1, B, rtol, atol)
         # For h concave and increasing, every Newton step lands at or left of the root:
         # after the first one the iteration climbs to it and stays in the bracket.
-        valid = ((abs(z0) <= POLY_EXP_MAX) & (abs(z1) <= POLY_EXP_MAX) & (e_r[j] > 0.0)
+        valid = ((abs(z0) <= POLY_EXP_MAX) & (abs(z1) <= STEP_EXP_MAX) & (e_r[j] > 0.0)
                  & (Ts + a > 0.0) & (T0 > 0.0) & (x1 > a))
         x = x1 if c1 else x2
-        ok = valid & (c1 | ((abs(z2) <= POLY_EXP_MAX) & c2)) & (Ts + x <= T_max)
+        ok = valid & (c1 | ((abs(z2) <= STEP_EXP_MAX) & c2)) & (Ts + x <= T_max)
         x_out[j] = x
         R_out[j] = R1 if c1 else R2
         done_out[j] = (1 if c1 else 2) if ok else 0
@@ -274,35 +282,36 @@ def solve_frames_predicted(Q, A, use_A, R_ref, g, fq, variant, b, B, T_ref, T_s,
     """
     n_frames, rows, cols = dT_out.shape
     fq_row = fq.shape[0] > 1
-    for k in prange(n_frames * rows):
-        n = k // rows
-        i = k - n * rows
-        Ts = T_s[n]
+    # Row by row, all frames of the chunk: a row's per-pixel maps stay in cache.
+    for i in prange(rows):
         R_row = np.empty(cols)
         p1 = np.empty(cols)
         p2 = np.empty(cols)
         done = np.empty(cols, np.uint8)
         _row_scale(g[i], fq[i] if fq_row else fq[0], variant, use_A, p1, p2)
-        _predict_row(A[n, i] if use_A else Q[n, i], p1, p2, R_ref[i], b[i], B, Ts, rtol,
-                     T_max, inv_Tr[i], e_r[i], c_r[i], s_r[i], ds_r[i], dT_out[n, i], R_row,
-                     done)
-        for j in range(cols):
-            if done[j]:
-                v_out[n, i, j] = I * R_row[j]
-                status_out[n, i, j] = STATUS_OK
-                iters_out[n, i, j] = done[j]
-                continue
-            if use_A:
-                a = A[n, i, j]
-            else:
-                a = _rise(Q[n, i, j], fq, g, i, j, variant)
-            x0 = np.float64(c_r[i, j]) + np.float64(s_r[i, j]) * a - np.float64(ds_r[i, j]) * Ts
-            x, v, st, it = _solve_pixel(a, b[i, j], R_ref[i, j], B, T_ref, Ts, rtol, max_iter,
-                                        T_max, I, x0, e_r[i, j], inv_Tr[i, j])
-            dT_out[n, i, j] = x
-            v_out[n, i, j] = v
-            status_out[n, i, j] = st
-            iters_out[n, i, j] = it
+        for n in range(n_frames):
+            Ts = T_s[n]
+            _predict_row(A[n, i] if use_A else Q[n, i], p1, p2, R_ref[i], b[i], B, Ts, rtol,
+                         T_max, inv_Tr[i], e_r[i], c_r[i], s_r[i], ds_r[i], dT_out[n, i],
+                         R_row, done)
+            for j in range(cols):
+                if done[j]:
+                    v_out[n, i, j] = I * R_row[j]
+                    status_out[n, i, j] = STATUS_OK
+                    iters_out[n, i, j] = done[j]
+                    continue
+                if use_A:
+                    a = A[n, i, j]
+                else:
+                    a = _rise(Q[n, i, j], fq, g, i, j, variant)
+                x0 = (np.float64(c_r[i, j]) + np.float64(s_r[i, j]) * a
+                      - np.float64(ds_r[i, j]) * Ts)
+                x, v, st, it = _solve_pixel(a, b[i, j], R_ref[i, j], B, T_ref, Ts, rtol,
+                                            max_iter, T_max, I, x0, e_r[i, j], inv_Tr[i, j])
+                dT_out[n, i, j] = x
+                v_out[n, i, j] = v
+                status_out[n, i, j] = st
+                iters_out[n, i, j] = it
 
 
 @njit(cache=True, parallel=True)
@@ -319,21 +328,17 @@ def lagged_rise(Q, g, decay, T_s, T_prev, theta_prev, has_prev, theta_out):
     """
     n_frames, rows, cols = Q.shape
     for i in prange(rows):
-        for j in range(cols):
-            ig = 1.0 / g[i, j]
-            d = decay[i, j]
-            th = theta_prev[i, j]
-            Tp = T_prev
-            start = has_prev
-            for n in range(n_frames):
-                eq = Q[n, i, j] * 1.0 * ig
+        th = theta_prev[i].copy()
+        for n in range(n_frames):
+            start = has_prev or n > 0
+            dTs = (T_prev - T_s[0]) if n == 0 else (T_s[n - 1] - T_s[n])
+            for j in range(cols):
+                eq = Q[n, i, j] * 1.0 * (1.0 / g[i, j])
                 if start:
-                    th = eq + (th + (Tp - T_s[n]) - eq) * d
+                    th[j] = eq + (th[j] + dTs - eq) * decay[i, j]
                 else:
-                    th = eq
-                    start = True
-                Tp = T_s[n]
-                theta_out[n, i, j] = th
+                    th[j] = eq
+                theta_out[n, i, j] = th[j]
 
 
 @njit(cache=True, parallel=True)
