@@ -212,7 +212,7 @@ def test_a_steep_ramp_is_accepted_while_it_stays_in_range():
 ])
 def test_bad_table_csv_is_refused_naming_the_line(tmp_path, csv, fragment):
     (tmp_path / "t.csv").write_text(csv)
-    with pytest.raises(ConfigError, match="sequence.scene.file") as err:
+    with pytest.raises(ConfigError, match=r"sequence\.scene\.file") as err:
         parse_profile({"profile": "table", "file": "t.csv"}, "sequence.scene", tmp_path)
     assert fragment in str(err.value)
 
@@ -287,7 +287,7 @@ def test_lagged_memory_matches_the_time_domain_model():
     time-domain model (state carried across frames) and the lagged model agree to the code;
     the steady model misses the memory by hundreds of codes after each step."""
     cfg = _tiny(**LOW_BIAS, **{"bolometer.C": 1.5e-10})
-    lagged, fr = _codes(cfg, "lagged")
+    lagged, _ = _codes(cfg, "lagged")
     transient, _ = _codes(cfg, "transient")
     steady, _ = _codes(cfg, "steady")
     assert np.abs(lagged - transient).max() <= 1
