@@ -33,10 +33,8 @@ from typing import Any
 import numpy as np
 
 from irnuc.model import pipeline as _pl
-from irnuc.model.config import apply_overrides
 from irnuc.model.core import bolometer as _kb
 from irnuc.model.core.constants import C2, C_LIGHT, H_PLANCK, K_BOLTZMANN
-from irnuc.model.noise import FLICKER_OCTAVES  # noqa: F401  (documented variance model)
 from irnuc.model.validate import ConfigError, check_scalar
 
 #: The seven NVESD components, in the order they are reported: name -> meaning.
@@ -451,10 +449,3 @@ def synthetic_cube(shape: tuple[int, int, int], sigma: Mapping[str, float], seed
         if s:
             cube = cube + s * rng.standard_normal(shapes[name])
     return cube
-
-
-def apply_environment(cfg: Mapping[str, Any], T_substrate: float, T_cam: float
-                      ) -> dict[str, Any]:
-    """``cfg`` with the given substrate and housing temperatures (K)."""
-    return apply_overrides(cfg, {"environment.T_substrate": float(T_substrate),
-                                 "environment.T_cam": float(T_cam)})

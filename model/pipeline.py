@@ -342,6 +342,7 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
     q_env = inp["q_env"]
     defects: DefectMap = inp["defects"]
     resp = defects.resp if (defects.resp != 1.0).any() else None
+    # The sum and the responsivity in one pass: (k L + q) resp, as numpy would round it.
     if isinstance(q_env, HousingFrames):
         Q = np.empty((L.shape[0], *ctx.layout.shape))
         net = 1.0 if ctx.cfg["bolometer"]["net_radiation"] else 0.0
@@ -352,22 +353,22 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
                              ctx.cfg["fpa"]["skim_shield"] == "substrate", q_env.L_cam,
                              q_env.L_s, resp if resp is not None else np.empty((0, 0)),
                              rs.start, cs.start, Q)
-        resp = None  # applied
     else:
-        Q = inp["k_scene"][None] * L
-        Q += q_env[None]
+        Q = np.empty((L.shape[0], *ctx.layout.shape))
+        rs, cs = ctx.layout.active_slice
+        with threads_for(Q.size):
+            _ks.power_static(inp["k_scene"], L, L.shape[1] == 1, q_env,
+                             resp if resp is not None else np.empty((0, 0)), rs.start,
+                             cs.start, Q)
     if "shutter_view" in inp:
-        # the frames it overwrites need the responsivity now if the rest already has it
-        _shutter_power(ctx, inp, Q, defects.resp if resp is None else None)
-    if resp is not None:
-        Q[(slice(None), *ctx.layout.active_slice)] *= resp
+        # the frames it overwrites need the defects' responsivity too
+        _shutter_power(ctx, inp, Q, defects.resp)
     return {"Q": Q}
 
 
 def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None:
     """Replace, in the frames whose shutter is closed, the scene by the shutter (in place);
-    ``resp``: the defects' responsivity factor (H, W) to apply to those frames here, or
-    None when it is applied to every frame afterwards."""
+    ``resp``: the defects' responsivity factor (H, W) to apply to those frames."""
     env = ctx.env
     if env is None or "shutter" not in env:
         return
@@ -1120,26 +1121,26 @@ def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene:
 
 def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
     status = values["status"]
-    act = (slice(None), *pipe.layout.active_slice)
-    dT = values["dT"][act]
+    rs, cs = pipe.layout.active_slice
     # Failures are rare: count them only when there are any.
     counts = (np.bincount(status.reshape(-1), minlength=4) if np.count_nonzero(status)
               else np.zeros(4, np.int64))
-    if counts[_kb.STATUS_INVALID]:
-        dT = dT[np.isfinite(dT)]
+    codes = values.get("codes")
+    top = (1 << pipe.cfg["adc"]["bits"]) - 1
+    lo, hi, total, count, n_low, n_high = _ks.frame_statistics(
+        values["dT"], rs.start, rs.stop, cs.start, cs.stop,
+        codes if codes is not None else np.zeros(0, np.uint16), top)
     diag: dict[str, Any] = {
-        "temperature_rise_K": {"min": float(dT.min()) if dT.size else math.nan,
-                               "mean": float(dT.mean()) if dT.size else math.nan,
-                               "max": float(dT.max()) if dT.size else math.nan},
+        "temperature_rise_K": {"min": lo if count else math.nan,
+                               "mean": total / count if count else math.nan,
+                               "max": hi if count else math.nan},
         "solver_failures": {"no_convergence": int(counts[_kb.STATUS_NO_CONVERGENCE]),
                             "runaway": int(counts[_kb.STATUS_RUNAWAY]),
                             "invalid": int(counts[_kb.STATUS_INVALID])},
     }
-    if "codes" in values:
-        top = (1 << pipe.cfg["adc"]["bits"]) - 1
-        hist_ends = values["codes"].reshape(-1)
-        diag["clipped_low"] = int(np.count_nonzero(hist_ends == 0))
-        diag["clipped_high"] = int(np.count_nonzero(hist_ends == top))
+    if codes is not None:
+        diag["clipped_low"] = int(n_low)
+        diag["clipped_high"] = int(n_high)
     failures = sum(diag["solver_failures"].values())
     if failures:
         warnings.warn(f"{failures} pixel solve(s) failed (thermal runaway or no convergence): "

@@ -88,3 +88,23 @@ def integrate_frames(v_bolo, r0, c0, v_ref, gain, v_reset, out):
             for j in range(cols):
                 cj = j if per_col else j - j
                 out[n, i, j] = (v_ref[n, ri, cj] - v_bolo[n, r0 + i, c0 + j]) * gain + v_reset
+
+
+@njit(cache=True, parallel=True)
+def power_static(k_scene, L_scene, uniform, q_env, resp, r0, c0, out):
+    """Absorbed power (N, rows, cols), W, with a fixed housing term: k L_scene + q_env,
+    times the defects' responsivity ``resp`` (H, W) over the active area at (r0, c0) (an
+    empty array: none); the pipeline's numpy expression in one pass, the same bits."""
+    n_frames, rows, cols = out.shape
+    has_resp = resp.size > 0
+    H, W = resp.shape
+    for i in prange(rows):
+        ia = i - r0
+        for n in range(n_frames):
+            for j in range(cols):
+                L = L_scene[n, 0, 0] if uniform else L_scene[n, i, j]
+                v = k_scene[i, j] * L + q_env[i, j]
+                ja = j - c0
+                if has_resp and 0 <= ia < H and 0 <= ja < W:
+                    v *= resp[ia, ja]
+                out[n, i, j] = v
