@@ -35,24 +35,18 @@ import tempfile
 import time
 from pathlib import Path
 
-SEQUENCE = """\
-[sequence]
-frame_rate = 30.0
-duration = {duration}
-[sequence.fpa]
-profile = "ramp"
-start = 293.0
-rate = 2.0
-[sequence.housing]
-profile = "constant"
-value = 293.0
-[sequence.scene]
-profile = "constant"
-value = 300.0
-[sequence.shutter]
-every = 10.0
-frames = 4
-"""
+
+def sequence(frames: int):
+    """The drift sequence of the example of issue 18, ``frames`` frames long."""
+    from irnuc.model.sequence import sequence_from_dict
+
+    return sequence_from_dict({"sequence": {
+        "frame_rate": 30.0, "duration": frames / 30.0,
+        "fpa": {"profile": "ramp", "start": 293.0, "rate": 2.0},
+        "housing": {"profile": "constant", "value": 293.0},
+        "scene": {"profile": "constant", "value": 300.0},
+        "shutter": {"every": 10.0, "frames": 4}}})
+
 
 GOAL_FPS = 50.0
 GOAL_RSS_MIB = 1536.0
@@ -64,11 +58,9 @@ def _peak_rss_mib() -> float:
 
 def child_sequence(frames: int, folder: Path) -> dict:
     from irnuc import model
-    from irnuc.model.sequence import load_sequence, prepare, write_sequence
+    from irnuc.model.sequence import prepare, write_sequence
 
-    toml = folder / "seq.toml"
-    toml.write_text(SEQUENCE.format(duration=frames / 30.0))
-    seq = load_sequence(toml)
+    seq = sequence(frames)
     cfg = model.load_preset("default")
     # JIT warm-up (numba cache) on a tiny sequence of the same kind, not timed.
     small = model.load_preset("default", {"fpa.active_rows": 8, "fpa.active_cols": 8})
@@ -87,11 +79,8 @@ def child_baseline(frames: int, folder: Path) -> dict:
     import numpy as np
 
     from irnuc import model
-    from irnuc.model.sequence import load_sequence
 
-    toml = folder / "seq.toml"
-    toml.write_text(SEQUENCE.format(duration=frames / 30.0))
-    sched = load_sequence(toml).schedule()
+    sched = sequence(frames).schedule()
     model.simulate(model.load_preset("default", {"fpa.active_rows": 8, "fpa.active_cols": 8}),
                    [300.0], seed=1)  # JIT warm-up
     t0 = time.perf_counter()

@@ -13,6 +13,14 @@ import math
 from numba import njit, prange
 
 
+@njit(cache=True)
+def _responsive(q, resp, has_resp, ia, ja, H, W):
+    """Power q (W) times the defects' responsivity of active pixel (ia, ja), if any."""
+    if has_resp and 0 <= ia < H and 0 <= ja < W:
+        return q * resp[ia, ja]
+    return q
+
+
 @njit(cache=True, parallel=True)
 def power_frames(k_scene, L_scene, uniform, seen, blind, base, net, substrate_shield, L_cam,
                  L_s, resp, r0, c0, out):
@@ -40,11 +48,8 @@ def power_frames(k_scene, L_scene, uniform, seen, blind, base, net, substrate_sh
                 else:
                     q = base * ((1.0 - seen[i, j]) * lc - net * ls)
                 L = L_scene[n, 0, 0] if uniform else L_scene[n, i, j]
-                v = k_scene[i, j] * L + q
-                ja = j - c0
-                if has_resp and 0 <= ia < H and 0 <= ja < W:
-                    v *= resp[ia, ja]
-                out[n, i, j] = v
+                out[n, i, j] = _responsive(k_scene[i, j] * L + q, resp, has_resp, ia, j - c0,
+                                           H, W)
 
 
 @njit(cache=True)
@@ -103,8 +108,5 @@ def power_static(k_scene, L_scene, uniform, q_env, resp, r0, c0, out):
         for n in range(n_frames):
             for j in range(cols):
                 L = L_scene[n, 0, 0] if uniform else L_scene[n, i, j]
-                v = k_scene[i, j] * L + q_env[i, j]
-                ja = j - c0
-                if has_resp and 0 <= ia < H and 0 <= ja < W:
-                    v *= resp[ia, ja]
-                out[n, i, j] = v
+                out[n, i, j] = _responsive(k_scene[i, j] * L + q_env[i, j], resp, has_resp,
+                                           ia, j - c0, H, W)

@@ -106,62 +106,17 @@ def reference_state(Q, fq, g, variant, b, R_ref, B, T_s, dT, v, status, I, c_out
 
 
 @njit(cache=True)
-def exp_near(z):
-    """e^z for the tiny exponents of a converged Newton step: 1 + z + z^2/2 when
-    |z| < 2e-6 (relative error below z^3/6 < 1.4e-18), else
-    :func:`model.core.bolometer.exp_small`."""
-    if abs(z) < 2e-6:
-        return 1.0 + z * (1.0 + 0.5 * z)
-    return exp_small(z)
-
-
-@njit(cache=True)
-def _first_step(a, b, R_ref, B, Ts, rtol, x0, e_r, inv_Tr):
-    """The first Newton step from the prediction x0 (K), with the convergence test of
-    :func:`model.core.bolometer.newton_negative_tcr_warm`.
-
-    e_r = R/R_ref at the reference temperature 1/inv_Tr (K) gives R(T_s + x0) without a
-    fresh exponential. Returns (done, x, R): done when the step met the tolerance (x is
-    then the root, R its resistance, ohm); otherwise x and R are the step's result for
-    the full iteration to go on from, x NaN if the step left the bracket (a, inf).
-    """
-    atol = rtol * 1e-3
-    T = Ts + x0
-    inv_T = 1.0 / T
-    R = R_ref * (e_r * exp_near(B * (inv_T - inv_Tr)))
-    h = x0 - a - b * R
-    bRB = b * R * B * inv_T * inv_T  # -d(b R)/dT > 0
-    dh = 1.0 + bRB
-    inv_dh = 1.0 / dh
-    step = h * inv_dh
-    xn = x0 - step
-    if not (xn > a and (h <= 0.0 or xn < x0)):  # the bracket of the full iteration
-        return False, math.nan, R
-    tol = rtol * abs(xn) + atol
-    done = abs(step) <= tol
-    if not done and abs(step) < 1e-4 * (abs(x0) + 1.0):
-        K = abs(bRB * (B * inv_T + 2.0) * inv_T) * 0.5 * inv_dh
-        done = K * step * step <= 0.01 * tol
-    # 1/(T (T - step)) = inv_T^2 (1 + step inv_T) to a relative (step/T)^2: R at xn.
-    z = B * step * inv_T * inv_T * (1.0 + step * inv_T)
-    return done, xn, R * exp_near(z)
-
-
-@njit(cache=True)
 def _solve_pixel(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, T_max, I, x0, e_r, inv_Tr):
-    """One pixel: (x, v, status, iterations) from the prediction x0, or the bracketed
-    solver when the pixel has no reference (e_r NaN)."""
+    """One pixel the branch-free path left: the safeguarded Newton iteration of
+    :func:`model.core.bolometer.newton_negative_tcr_warm` from the prediction x0 (K) and
+    R(T_s + x0)/R_ref from the reference, or the bracketed solver of
+    :func:`model.core.bolometer.solve_delta_t` when the pixel has no reference (e_r NaN).
+    Returns (x, v, status, iterations)."""
     st = STATUS_OK
     if e_r > 0.0 and Ts + a > 0.0 and Ts + x0 > 0.0:
-        done, x, R = _first_step(a, b, R_ref, B, Ts, rtol, x0, e_r, inv_Tr)
-        it = 1
-        if not done:
-            # Go on from the step (or from the prediction, if the step left the bracket).
-            start = x if math.isfinite(x) else x0
-            e_start = R / R_ref if math.isfinite(x) else math.nan
-            x, st, it, R = newton_negative_tcr_warm(a, b, R_ref, B, T_ref, Ts, rtol, max_iter,
-                                                    start, e_start)
-            it += 1
+        e0 = e_r * exp_small(B * (1.0 / (Ts + x0) - inv_Tr))
+        x, st, it, R = newton_negative_tcr_warm(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, x0,
+                                                e0)
         v = I * R
     else:
         x, st, it = solve_delta_t(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, math.nan, T_max)
