@@ -427,8 +427,11 @@ def _stage_coefficients(ctx: RunContext, inp: dict) -> dict:
 
 
 def _stage_reference_solution(ctx: RunContext, inp: dict) -> dict:
-    """The solve's reference: every pixel solved (cold) once, looking at a uniform scene at
-    the housing temperature with the configuration's environment (docs/model.md)."""
+    """The solve's reference: every pixel solved once, looking at a uniform scene at the
+    housing temperature with the configuration's environment (docs/model.md). The nominal
+    pixel is solved first (neighbour-started, :func:`model.core.bolometer.solve_frames`)
+    and every pixel is then solved from it, as a frame from its reference: the spread of
+    the pixels is small, so this takes two Newton steps where the cold solve takes three."""
     b = ctx.cfg["bolometer"]
     L_cam, L_s = inp["L_env"]
     Q = inp["k_scene"] * L_cam
@@ -437,21 +440,38 @@ def _stage_reference_solution(ctx: RunContext, inp: dict) -> dict:
     if (defects.resp != 1.0).any():
         Q[ctx.layout.active_slice] *= defects.resp
     p, coef = inp["params"], inp["solve_coef"]
-    sol = _solve(ctx, Q[None], p)
+    # The nominal pixel at the typical power of the array.
+    q_nom = float(np.median(Q[::7, ::7]))
+    nominal = {k: np.full((1, 1), float(b[k])) for k in ("R_ref", "g", "C")}
+    one = _solve(ctx, np.full((1, 1, 1), q_nom), nominal)
+    coef_nom = _stage_coefficients(ctx, {"params": nominal})["solve_coef"]
+    start = _reference_state(ctx, np.full((1, 1), q_nom), nominal, coef_nom, one)
+    full = {k: np.ascontiguousarray(np.broadcast_to(v, Q.shape)) if isinstance(v, np.ndarray)
+            else v for k, v in start.items()}
+    sol = _solve_predicted(ctx, {"solve_reference": full, "solve_coef": coef, "params": p},
+                           Q[None], None, T_s=np.array([float(ctx.cfg["environment"]
+                                                                 ["T_substrate"])]))
+    return {"solve_reference": _reference_state(ctx, Q, p, coef, sol)}
+
+
+def _reference_state(ctx: RunContext, Q: np.ndarray, p: Mapping[str, np.ndarray],
+                     coef: Mapping[str, Any], sol: Mapping[str, np.ndarray]) -> dict[str, Any]:
+    """Predictor maps (:func:`model.core.warmstart.reference_state`) of a solved frame."""
+    b = ctx.cfg["bolometer"]
     B = _kb.activation_temperature(b["tcr"], b["T_ref"])
     T_s = float(ctx.cfg["environment"]["T_substrate"])
     shape = Q.shape
     c, s, ds = (np.empty(shape, np.float32) for _ in range(3))
     e = np.empty(shape)
-    inv_T = sol["v_bolo"][0]  # reused: the reference's 1/T, 1/K
+    inv_T = np.empty(shape)
     _kw.reference_state(Q, coef["fq"], p["g"], coef["variant"], coef["b"], p["R_ref"], B, T_s,
                         sol["dT"][0], sol["v_bolo"][0], sol["status"][0], b["bias_current"],
                         c, s, ds, e, inv_T)
-    return {"solve_reference": {"inv_T": inv_T, "e": e, "c": c, "s": s, "ds": ds}}
+    return {"inv_T": inv_T, "e": e, "c": c, "s": s, "ds": ds}
 
 
 def _solve_predicted(ctx: RunContext, inp: dict, Q: np.ndarray | None,
-                     A: np.ndarray | None) -> dict:
+                     A: np.ndarray | None, T_s: np.ndarray | None = None) -> dict:
     b = ctx.cfg["bolometer"]
     ref, coef, p = inp["solve_reference"], inp["solve_coef"], inp["params"]
     B = _kb.activation_temperature(b["tcr"], b["T_ref"])
@@ -462,7 +482,8 @@ def _solve_predicted(ctx: RunContext, inp: dict, Q: np.ndarray | None,
     dT, v, status, iters = _kw.empty_solution(src.shape)
     with threads_for(src.size):
         _kw.solve_frames_predicted(src, src, A is not None, p["R_ref"], p["g"], coef["fq"],
-                                   coef["variant"], coef["b"], B, b["T_ref"], ctx.substrate(n),
+                                   coef["variant"], coef["b"], B, b["T_ref"],
+                                   ctx.substrate(n) if T_s is None else T_s,
                                    b["bias_current"], b["rtol"], b["max_iter"],
                                    b["runaway_temperature"], ref["inv_T"], ref["e"], ref["c"],
                                    ref["s"], ref["ds"], dT, v, status, iters)

@@ -574,8 +574,3 @@ def sequence_file_bytes(cfg: Mapping[str, Any], seq: DriftSequence) -> int:
         lay.kind_map() == (BOUNDARY if mode == "boundary" else BLIND)))
     per_code = 2 if cfg["adc"]["bits"] <= 16 else 4
     return seq.n_frames * (per_code * (lay.active_rows * lay.active_cols + k) + 50) + 65536
-
-
-def with_chunk(seq: DriftSequence, chunk_frames: int) -> DriftSequence:
-    """The same sequence made in chunks of ``chunk_frames`` frames (same bits)."""
-    return replace(seq, chunk_frames=check_int("chunk_frames", chunk_frames, 1, 100_000))
