@@ -543,8 +543,8 @@ def _stage_bolometer_transient(ctx: RunContext, inp: dict) -> dict:
     last = status[-1] != _kb.STATUS_OK
     relaxed = np.empty(p["g"].size)
     with threads_for(relaxed.size):
-        _kw.carry_theta(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
-                        p["g"].ravel(), p["C"].ravel(), after, 0.0, 0.0, last.ravel(), relaxed)
+        _kw.relax_after_pulse(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
+                              p["g"].ravel(), p["C"].ravel(), after, last.ravel(), relaxed)
     ctx.state["transient"] = {"theta": relaxed.reshape(p["g"].shape), "T_prev": float(T_s[-1]),
                               "failed": last, "status": status[-1].copy()}
     ctx.counts["transient_pulses"] += int(status.size)

@@ -297,20 +297,15 @@ def lagged_rise(Q, g, decay, T_s, T_prev, theta_prev, has_prev, theta_out):
 
 
 @njit(cache=True, parallel=True)
-def carry_theta(theta_end, Q, g, C, after, Ts_last, Ts_next, failed, out):
-    """Rise at the start of the next frame from the rise at the end of a pulse (K).
-
-    Relaxes over ``after`` seconds (the rest of the frame), then the substrate step from
-    Ts_last to Ts_next: the same operations as :func:`model.core.transient.integrate_frames`
-    between two frames, so a sequence split into chunks gives the same bits. A failed pixel
-    restarts from 0 (its frames are railed; the caller keeps its status).
-    """
+def relax_after_pulse(theta_end, Q, g, C, after, failed, out):
+    """Rise (K) at the end of a frame from the rise at the end of its pulse: the unbiased
+    relaxation over ``after`` seconds by :func:`model.core.transient.relax`, the operation
+    :func:`model.core.transient.integrate_frames` does between two frames (the substrate
+    step follows at the next frame's start), so a sequence split into chunks gives the same
+    bits. A failed pixel restarts from 0 (its frames are railed; the caller keeps its
+    status)."""
     for p in prange(theta_end.shape[0]):
-        if failed[p]:
-            out[p] = 0.0
-        else:
-            th = relax(theta_end[p], Q[p], g[p], C[p], after)
-            out[p] = th + (Ts_last - Ts_next)
+        out[p] = 0.0 if failed[p] else relax(theta_end[p], Q[p], g[p], C[p], after)
 
 
 def empty_solution(shape):
