@@ -125,9 +125,12 @@ class RunContext:
         return np.full(n, float(self.cfg["environment"]["T_substrate"]))
 
 
-#: Pixel-frames below which a kernel runs on one thread: waking the thread pool costs more
-#: than it saves on a small problem (and much more on a busy machine).
-PARALLEL_MIN_WORK = 200_000
+#: Pixel-frames below which a kernel runs on one thread. A pass over one VGA frame takes
+#: about a millisecond; splitting it saves little, and on a busy machine the wait for the
+#: second thread's core costs several times more (measured: 13 ms for a VGA frame on one
+#: thread, 28 ms on two, with the machine's other jobs running). Chunks of many frames
+#: are split.
+PARALLEL_MIN_WORK = 1_000_000
 
 
 @contextmanager

@@ -180,16 +180,22 @@ def _newton_lane(x, inv_T, a, b, R, B, rtol, atol):
     return xn, R * E, inv_Tn, conv, z
 
 
+#: ``done`` codes of :func:`_predict_row`: not taken (solve the pixel again), or the Newton
+#: steps taken; PENDING: valid after one step, but not yet converged.
+PENDING = 3
+
+
 @njit(cache=True, error_model="numpy")
 def _predict_row(src, p1, p2, R_ref, b, B, Ts, rtol, T_max, inv_Tr, e_r, c_r, s_r, ds_r,
-                 x_out, R_out, done_out):
+                 x_out, R_out, inv_T, done_out):
     """Prediction and up to two Newton steps of one row, a = src p1 p2 (K), written without
     branches (and with IEEE division, ``error_model='numpy'``) so that the compiler
-    vectorizes it. ``done_out`` (the Newton steps taken, 0 for none) marks the pixels
-    that met the tolerance with every exponent inside its polynomial's range and the
-    iterate inside the bracket (a, inf); the others are solved again by
-    :func:`_solve_pixel`."""
+    vectorizes it; the second step only when some pixel of the row needs it. ``done_out``
+    (the Newton steps taken, 0 for none) marks the pixels that met the tolerance with
+    every exponent inside its polynomial's range and the iterate inside the bracket
+    (a, inf); the others are solved again by :func:`_solve_pixel`. ``inv_T``: scratch."""
     atol = rtol * 1e-3
+    pending = 0
     for j in range(x_out.shape[0]):
         a = src[j] * p1[j] * p2[j]
         x0 = np.float64(c_r[j]) + np.float64(s_r[j]) * a - np.float64(ds_r[j]) * Ts
@@ -197,18 +203,27 @@ def _predict_row(src, p1, p2, R_ref, b, B, Ts, rtol, T_max, inv_Tr, e_r, c_r, s_
         inv_T0 = 1.0 / T0
         z0 = B * (inv_T0 - inv_Tr[j])
         R0 = R_ref[j] * (e_r[j] * _exp_poly(z0))
-        bb = b[j]
-        x1, R1, inv_T1, c1, z1 = _newton_lane(x0, inv_T0, a, bb, R0, B, rtol, atol)
-        x2, R2, _, c2, z2 = _newton_lane(x1, inv_T1, a, bb, R1, B, rtol, atol)
+        x1, R1, inv_T1, c1, z1 = _newton_lane(x0, inv_T0, a, b[j], R0, B, rtol, atol)
         # For h concave and increasing, every Newton step lands at or left of the root:
         # after the first one the iteration climbs to it and stays in the bracket.
         valid = ((abs(z0) <= POLY_EXP_MAX) & (abs(z1) <= STEP_EXP_MAX) & (e_r[j] > 0.0)
                  & (Ts + a > 0.0) & (T0 > 0.0) & (x1 > a))
-        x = x1 if c1 else x2
-        ok = valid & (c1 | ((abs(z2) <= STEP_EXP_MAX) & c2)) & (Ts + x <= T_max)
-        x_out[j] = x
-        R_out[j] = R1 if c1 else R2
-        done_out[j] = (1 if c1 else 2) if ok else 0
+        x_out[j] = x1
+        R_out[j] = R1
+        inv_T[j] = inv_T1
+        code = (1 if Ts + x1 <= T_max else 0) if c1 else PENDING
+        done_out[j] = code if valid else 0
+        pending += 1 if valid and not c1 else 0
+    if pending == 0:
+        return
+    for j in range(x_out.shape[0]):
+        a = src[j] * p1[j] * p2[j]
+        x2, R2, _, c2, z2 = _newton_lane(x_out[j], inv_T[j], a, b[j], R_out[j], B, rtol, atol)
+        ok = c2 & (abs(z2) <= STEP_EXP_MAX) & (Ts + x2 <= T_max)
+        second = done_out[j] == PENDING
+        x_out[j] = x2 if second else x_out[j]
+        R_out[j] = R2 if second else R_out[j]
+        done_out[j] = (2 if ok else 0) if second else done_out[j]
 
 
 @njit(cache=True, error_model="numpy")
@@ -240,6 +255,7 @@ def solve_frames_predicted(Q, A, use_A, R_ref, g, fq, variant, b, B, T_ref, T_s,
     # Row by row, all frames of the chunk: a row's per-pixel maps stay in cache.
     for i in prange(rows):
         R_row = np.empty(cols)
+        inv_T = np.empty(cols)
         p1 = np.empty(cols)
         p2 = np.empty(cols)
         done = np.empty(cols, np.uint8)
@@ -248,7 +264,7 @@ def solve_frames_predicted(Q, A, use_A, R_ref, g, fq, variant, b, B, T_ref, T_s,
             Ts = T_s[n]
             _predict_row(A[n, i] if use_A else Q[n, i], p1, p2, R_ref[i], b[i], B, Ts, rtol,
                          T_max, inv_Tr[i], e_r[i], c_r[i], s_r[i], ds_r[i], dT_out[n, i],
-                         R_row, done)
+                         R_row, inv_T, done)
             for j in range(cols):
                 if done[j]:
                     v_out[n, i, j] = I * R_row[j]
