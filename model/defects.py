@@ -582,13 +582,30 @@ def apply_voltage_defects(
         raise ConfigError(
             f"v has shape {out.shape}; expected (..., {defects.shape[0]}, {defects.shape[1]})"
         )
+    apply_voltage_defects_at(out, voltage_defect_index(defects), lo, hi, vr)
+    return out
+
+
+VoltageDefects = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def voltage_defect_index(defects: DefectMap) -> VoltageDefects:
+    """(flat index, kind, level) of the defective pixels of a map: what
+    :func:`apply_voltage_defects_at` needs, computed once per sensor."""
+    idx = np.flatnonzero(defects.kind)
+    return idx, defects.kind.reshape(-1)[idx], defects.level.reshape(-1)[idx]
+
+
+def apply_voltage_defects_at(out: np.ndarray, index: VoltageDefects, lo: float, hi: float,
+                             vr: float) -> None:
+    """:func:`apply_voltage_defects` in place on a float64 array ``out`` (..., H, W), with
+    the defects given by :func:`voltage_defect_index` and checked rails lo, hi and reset
+    level vr (V)."""
+    idx, kind, level = index
+    if idx.size == 0:
+        return
     # Work on the defective pixels only: a handful out of a frame.
     flat = out.reshape(*out.shape[:-2], -1)
-    idx = np.flatnonzero(defects.kind)
-    if idx.size == 0:
-        return out
-    kind = defects.kind.reshape(-1)[idx]
-    level = defects.level.reshape(-1)[idx]
     span = hi - lo
     vals = flat[..., idx]
     vals = np.where(kind == DefectKind.DEAD, vr, vals)
@@ -598,7 +615,6 @@ def apply_voltage_defects(
     offset = (kind == DefectKind.HOT) | (kind == DefectKind.COLD)
     vals = np.where(offset, vals + level * span, vals)
     flat[..., idx] = vals
-    return out
 
 
 def noisy_sigma(defects: DefectMap, v_low: float, v_high: float) -> np.ndarray | None:

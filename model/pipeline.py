@@ -38,9 +38,10 @@ from irnuc.model.defects import (
     DefectKind,
     DefectMap,
     DefectSpec,
-    apply_voltage_defects,
+    apply_voltage_defects_at,
     inject_defects,
     noisy_sigma,
+    voltage_defect_index,
 )
 from irnuc.model.fpa import BLIND, BOUNDARY, ArrayLayout, draw_pixel_parameters
 from irnuc.model.optics import cone_factor, cos4_map, focal_length_from_fov
@@ -343,8 +344,7 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
     if L.ndim == 1:
         L = L[:, None, None]
     q_env = inp["q_env"]
-    defects: DefectMap = inp["defects"]
-    resp = defects.resp if (defects.resp != 1.0).any() else None
+    resp = inp["defect_resp"]
     # The sum and the responsivity in one pass: (k L + q) resp, as numpy would round it.
     if isinstance(q_env, HousingFrames):
         Q = np.empty((L.shape[0], *ctx.layout.shape))
@@ -365,13 +365,14 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
                              cs.start, Q)
     if "shutter_view" in inp:
         # the frames it overwrites need the defects' responsivity too
-        _shutter_power(ctx, inp, Q, defects.resp)
+        _shutter_power(ctx, inp, Q, resp)
     return {"Q": Q}
 
 
 def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None:
     """Replace, in the frames whose shutter is closed, the scene by the shutter (in place);
-    ``resp``: the defects' responsivity factor (H, W) to apply to those frames."""
+    ``resp``: the defects' responsivity factor (H, W) to apply to those frames (None:
+    none)."""
     env = ctx.env
     if env is None or "shutter" not in env:
         return
@@ -390,7 +391,7 @@ def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None
         lc = L_cam[n] if L_cam.size > 1 else L_cam[0]
         ls = L_s[n] if L_s.size > 1 else L_s[0]
         Q[n] = _base(ctx.cfg) * view * L_sh[k] + housing_power(ctx, view, lc, ls)
-        if resp is not None and (resp != 1.0).any():
+        if resp is not None:
             Q[(n, *ctx.layout.active_slice)] *= resp
 
 
@@ -589,14 +590,22 @@ def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
     rs, cs = ctx.layout.active_slice
     with threads_for(v.size):
         _ks.integrate_frames(v_bolo, rs.start, cs.start, inp["v_ref"], r["gain"], r["v_reset"], v)
-    v = apply_voltage_defects(v, inp["defects"], r["v_low"], r["v_high"], r["v_reset"],
-                              copy=False)
+    apply_voltage_defects_at(v, inp["defect_index"], r["v_low"], r["v_high"], r["v_reset"])
     failed = (inp["status"][act] != _kb.STATUS_OK) if np.count_nonzero(inp["status"]) else None
     if failed is not None and failed.any():
         # A runaway or unsolved pixel drives its integrator into the high rail; it is
         # counted in Frames.diagnostics, never passed on as NaN.
         v[failed] = r["v_high"]
     return {"v_int": v}
+
+
+def _stage_defect_index(ctx: RunContext, inp: dict) -> dict:
+    """What the per-frame stages need of the defects, found once per sensor: the output
+    defects' pixels (:func:`model.defects.voltage_defect_index`) and the responsivity
+    factor over the active area (None when no pixel has one)."""
+    d: DefectMap = inp["defects"]
+    return {"defect_index": voltage_defect_index(d),
+            "defect_resp": d.resp if (d.resp != 1.0).any() else None}
 
 
 def _stage_noisy_pixels(ctx: RunContext, inp: dict) -> dict:
@@ -744,7 +753,7 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     # The housing and substrate radiance of every frame replace the configuration's (which
     # the solve's reference still uses) when they vary; housing power and skim voltage follow.
     L_key = "L_env_frames" if env_varies else "L_env"
-    power_in = ("L_scene", "k_scene", "q_env", "defects")
+    power_in = ("L_scene", "k_scene", "q_env", "defect_resp")
     if key.shutter:
         power_in += ("shutter_view", L_key)
     stages = [
@@ -760,8 +769,10 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
         Stage("solve_reference", ("L_env", "k_scene", "seen", "defects", "params", "solve_coef"),
               ("solve_reference",), False, _stage_reference_solution),
         _make_skim_stage(cfg["readout"]["skimming"]),
-        Stage("integrator", ("v_bolo", "v_ref", "defects", "status"), ("v_int",), True,
+        Stage("integrator", ("v_bolo", "v_ref", "defect_index", "status"), ("v_int",), True,
               _stage_integrator),
+        Stage("defect_index", ("defects",), ("defect_index", "defect_resp"), False,
+              _stage_defect_index),
         Stage("reference_layout", (), ("reference_positions",), False, _stage_reference_layout),
         Stage("reference_pixels", ("v_bolo", "status", "dT", "reference_positions"),
               ("blind_codes",), True, _stage_reference_pixels),
