@@ -123,6 +123,28 @@ def ls_poly(v: np.ndarray, y: np.ndarray, regressors: np.ndarray) -> np.ndarray:
     return sol.reshape(regressors.shape[1], *y.shape[1:])
 
 
+def piecewise_fit(x: np.ndarray, t: np.ndarray, knee: np.ndarray | None = None,
+                  level: float | None = None) -> tuple[Any, Any, np.ndarray, np.ndarray]:
+    """Two least-squares segments through the knee (x (S, H, W) increasing with s, t (S,)).
+
+    The knee is the middle scene's code x[S // 2] (the paper repository's middle point)
+    and its output the middle target, unless given (calibration passes their quantized
+    values). Each segment's gain is the least-squares slope through the knee of the scenes
+    on its side: with three scenes, the two-point gain of each pair.
+    """
+    mid = len(t) // 2
+    k = x[mid] if knee is None else knee
+    lv = float(t[mid]) if level is None else float(level)
+    gains = []
+    for sel in (slice(0, mid), slice(mid + 1, None)):
+        dx = x[sel] - k
+        dt = (np.asarray(t, dtype=np.float64)[sel] - lv).reshape(-1, *([1] * (x.ndim - 1)))
+        sxx = (dx * dx).sum(axis=0)
+        gains.append(np.divide((dx * dt).sum(axis=0), sxx, out=np.zeros_like(sxx),
+                               where=sxx > 0))
+    return k, lv, gains[0], gains[1]
+
+
 def quadratic_fit(x: np.ndarray, t: np.ndarray, adc_bits: int) -> tuple[np.ndarray, ...]:
     """Per-pixel least squares t = q xi^2 + b xi + c, xi = x / 2^A (x (S, H, W)).
 
@@ -218,12 +240,9 @@ def _fit(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, t: np.ndarray
         mid = len(t) // 2
         kq = q.field("coeffs.knee", "knee", x[mid])
         lv = q.register("level", "level", float(t[mid]))
-        for key, sel in (("coeffs.gain_lo", slice(0, mid)), ("coeffs.gain_hi", slice(mid + 1, None))):
-            dx = x[sel] - kq
-            dt = (t[sel] - lv).reshape(-1, 1, 1)
-            sxx = (dx * dx).sum(axis=0)
-            q.field(key, "gain", np.divide((dx * dt).sum(axis=0), sxx, out=np.zeros_like(sxx),
-                                           where=sxx > 0))
+        _, _, g_lo, g_hi = piecewise_fit(x, t, knee=kq, level=lv)
+        q.field("coeffs.gain_lo", "gain", g_lo)
+        q.field("coeffs.gain_hi", "gain", g_hi)
     elif base == "quadratic":
         qq, _, _ = quadratic_fit(x, t, cfg.adc_bits)
         qv = q.field("quad.quad", "quad", qq)
