@@ -305,8 +305,10 @@ def _fit_drift(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, good: n
                q: _Q) -> None:
     """blind_ref (the blind sum at the reference point) and drift_gain = k / K.
 
-    k is the least-squares slope of the mean active code against the mean blind code over
-    the FPA points (1, as the paper repository takes it, when there is one point).
+    k, how many ADC codes the image moves per code of the blind mean, is measured when the
+    plan changes the housing temperature alone (``drift_cam``): the least-squares slope of
+    the mean active code against the mean blind code over those points and the reference
+    point's middle scene. Without them k = 1, as the paper repository takes it.
     """
     if pts.blind_codes is None:
         raise PlanError(f"{pts.source}: method {cfg.method!r} needs the blind pixel codes of "
@@ -318,12 +320,17 @@ def _fit_drift(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, good: n
                         f"{cfg.name!r} has blind_max = {cfg.blind_max}")
     ref = pts.reference
     q.register("blind_ref", None, float(b[ref].sum(axis=-1).mean()), bits=cfg.blind_sum_bits)
-    bbar = b.mean(axis=(1, 2, 3))                         # (P,)
-    xbar = np.array([means[p][:, good].mean() for p in range(means.shape[0])])
-    k = 1.0
-    if len(bbar) > 1 and np.ptp(bbar) > 0:
-        k = float(np.polyfit(bbar, xbar, 1)[0])
+    k, source = 1.0, "paper repository (k = 1): the plan has no drift_cam points"
+    if pts.drift_codes is not None and pts.drift_blind is not None:
+        mid = means.shape[1] // 2
+        xs = [means[ref, mid][good].mean()] + [d.mean(axis=0)[good].mean() for d in pts.drift_codes]
+        bs = [b[ref, mid].mean()] + [float(d.mean()) for d in pts.drift_blind]
+        if np.ptp(bs) > 0:
+            k = float(np.polyfit(bs, xs, 1)[0])
+            source = (f"fit over the housing at {', '.join(f'{t:g}' for t in pts.drift_cam_K)} K "
+                      f"(FPA {pts.fpa_K[ref]:g} K)")
     q.floats["drift_coupling"] = k
+    q.floats["drift_coupling_source"] = source
     q.register("drift_gain", "drift_gain", k / kb)
 
 
@@ -498,6 +505,7 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
         "coefficients": coeff_report,
         "registers": {k: {"code": v, "value": q.floats.get(k)} for k, v in q.regs.items()},
         "drift_coupling": q.floats.get("drift_coupling"),
+        "drift_coupling_source": q.floats.get("drift_coupling_source"),
         "offset_local_sigma": off_sigma,
         "offset_outlier_limit": off_limit,
         "bad_pixels": int(bad.sum()),

@@ -49,6 +49,8 @@ PLAN_SCHEMA: dict[str, Any] = schema.table({
         "frames": schema.number(1, 10000, integer=True, unit="frames"),
         "cam": {**_TEMPS, "description": "housing temperature per FPA point (default: fpa)"},
         "reference_fpa": schema.number(100.0, 1000.0, unit="K"),
+        "drift_cam": {**_TEMPS, "description": "housing temperatures at the reference FPA "
+                      "point, for blind_drift's coupling"},
         "description": {"type": "string"},
     }, required=["scene", "fpa", "frames"]),
     "fpa_sensor": schema.table(_SENSOR_FIELDS),
@@ -73,6 +75,10 @@ class CalibrationPlan:
         The FPA temperature whose calibration the methods without temperature
         compensation use, and at which the targets are taken; default: the listed FPA
         temperature nearest their mean.
+    drift_cam : tuple of float
+        Housing temperatures, K, imaged at the reference FPA temperature and the middle
+        scene: the points from which blind_drift measures how the image follows the blind
+        pixels (without them the coupling is 1, as in the paper repository).
     fpa_sensor : FpaSensor
         The on-die sensor that reads each frame's FPA temperature.
     """
@@ -82,6 +88,7 @@ class CalibrationPlan:
     frames: int
     cam: tuple[float, ...] = ()
     reference_fpa: float | None = None
+    drift_cam: tuple[float, ...] = ()
     fpa_sensor: FpaSensor = field(default_factory=FpaSensor)
     source: str = "plan"
 
@@ -123,7 +130,9 @@ def load_plan(path: str | Path, flag: str = "--plan") -> CalibrationPlan:
     return CalibrationPlan(scene=tuple(float(t) for t in p["scene"]),
                            fpa=tuple(float(t) for t in p["fpa"]), frames=int(p["frames"]),
                            cam=tuple(float(t) for t in p.get("cam", ())),
-                           reference_fpa=p.get("reference_fpa"), fpa_sensor=sensor, source=src)
+                           reference_fpa=p.get("reference_fpa"),
+                           drift_cam=tuple(float(t) for t in p.get("drift_cam", ())),
+                           fpa_sensor=sensor, source=src)
 
 
 @dataclass
@@ -138,6 +147,9 @@ class PointFrames:
     blind_codes : (P, S, M, K) blind pixel codes, or None
     defect_kind : (H, W) the model's planted defects (0 = good), or None
     reference : index of the reference FPA point
+    drift_codes, drift_blind : (D, M, H, W) and (D, M, K), the frames of the plan's
+        ``drift_cam`` points (reference FPA temperature, middle scene), or None
+    drift_cam_K : (D,) their housing temperatures, K
     """
 
     codes: np.ndarray
@@ -149,6 +161,9 @@ class PointFrames:
     blind_codes: np.ndarray | None = None
     defect_kind: np.ndarray | None = None
     source: str = ""
+    drift_codes: np.ndarray | None = None
+    drift_blind: np.ndarray | None = None
+    drift_cam_K: np.ndarray | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -215,11 +230,25 @@ def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
             blinds.append(np.asarray(b).reshape(len(plan.scene), plan.frames, -1))
         kind = fr.defect_kind
         adc = int(fr.adc_bits)
-    return PointFrames(codes=np.stack(codes), scene_K=np.asarray(plan.scene),
-                       fpa_K=np.asarray(plan.fpa), reading=np.stack(readings), adc_bits=adc,
-                       reference=plan.reference_index,
-                       blind_codes=np.stack(blinds) if len(blinds) == len(plan.fpa) else None,
-                       defect_kind=kind, source=plan.source)
+    out = PointFrames(codes=np.stack(codes), scene_K=np.asarray(plan.scene),
+                      fpa_K=np.asarray(plan.fpa), reading=np.stack(readings), adc_bits=adc,
+                      reference=plan.reference_index,
+                      blind_codes=np.stack(blinds) if len(blinds) == len(plan.fpa) else None,
+                      defect_kind=kind, source=plan.source)
+    if plan.drift_cam and want_blind:
+        t_ref = plan.fpa[plan.reference_index]
+        mid = plan.scene[len(plan.scene) // 2]
+        dc, db = [], []
+        for t_cam in plan.drift_cam:
+            cfg = _sensor_config(sensor, {**ov, "environment.T_substrate": t_ref,
+                                          "environment.T_cam": t_cam})
+            fr = model.simulate(cfg, [mid], seed=seed, repeats=plan.frames,
+                                outputs=["codes", "blind_codes"])
+            dc.append(fr.codes)
+            db.append(np.asarray(fr.blind_codes))
+        out.drift_codes, out.drift_blind = np.stack(dc), np.stack(db)
+        out.drift_cam_K = np.asarray(plan.drift_cam)
+    return out
 
 
 def points_from_frames(data: Mapping[str, Any], source: str = "--frames",
@@ -240,6 +269,8 @@ def points_from_frames(data: Mapping[str, Any], source: str = "--frames",
     reading = (np.asarray(data["fpa_reading"], dtype=np.int64) if "fpa_reading" in data
                else np.full(n, -1, np.int64))
     blind = np.asarray(data["blind_codes"]) if "blind_codes" in data else None
+    if blind is not None and (blind.ndim != 2 or blind.shape[1] == 0):
+        blind = None  # a file without reference pixels
     s_vals = np.unique(np.round(scene[keep], 6))
     f_vals = np.unique(np.round(fpa[keep], 6))
     groups = {}
@@ -258,5 +289,5 @@ def points_from_frames(data: Mapping[str, Any], source: str = "--frames",
            else int(np.argmin(np.abs(f_vals - reference_fpa))))
     return PointFrames(codes=codes[sel], scene_K=s_vals, fpa_K=f_vals, reading=reading[sel],
                        adc_bits=int(data["adc_bits"]), reference=ref,
-                       blind_codes=None if blind is None or blind.ndim != 2 else blind[sel],
+                       blind_codes=None if blind is None else blind[sel],
                        defect_kind=data.get("defect_kind"), source=source)

@@ -34,29 +34,44 @@ frames = 4                        # per point
 
 def synth_points(fpa=(288.0, 298.0, 308.0), scene=(290.0, 330.0, 370.0), m=2, shape=(6, 8),
                  seed=0, sensor: FpaSensor | None = None, blind_k: int = 20,
-                 coupling: float = 1.7, noise: float = 0.0) -> PointFrames:
+                 coupling: float = 1.7, noise: float = 0.0,
+                 housing: tuple[float, ...] = ()) -> PointFrames:
     """A smooth synthetic array: offset, responsivity and curvature per pixel, all drifting
-    with the FPA temperature; blind pixels whose mean moves 1/coupling as fast as the
-    actives' offset. Without ``noise`` the frames of a point are equal (the fits see exact
-    codes; the noise detection's floor keeps every pixel)."""
+    with the FPA temperature. Blind pixels at 5000 codes; a housing temperature change of
+    ``h`` K (the ``housing`` points, at the reference FPA point and the middle scene)
+    moves them by 10 h codes and the image by ``coupling`` times that. Without ``noise``
+    the frames of a point are equal (the fits see exact codes; the noise detection's floor
+    keeps every pixel)."""
     rng = np.random.default_rng(seed)
     o = 3000 + rng.normal(0, 150, shape)
     g = 40 * (1 + rng.normal(0, 0.05, shape))
     c = rng.normal(0, 0.001, shape)
     drift = -35 + rng.normal(0, 2, shape)
     sensor = sensor or FpaSensor()
+
+    def image(tf: float, ts: float, dh: float) -> np.ndarray:
+        mean = (o + drift * (tf - 298) + g * (1 + 0.02 * (tf - 298)) * (ts - 300)
+                + c * (ts - 300) ** 2 + coupling * 10 * dh)
+        return np.rint(mean + noise * rng.normal(0, 1.0, (m, *shape)))
+
     codes = np.empty((len(fpa), len(scene), m, *shape), np.int64)
     blind = np.empty((len(fpa), len(scene), m, blind_k), np.int64)
     for p, tf in enumerate(fpa):
         for s, ts in enumerate(scene):
-            mean = o + drift * (tf - 298) + g * (1 + 0.02 * (tf - 298)) * (ts - 300) + c * (ts - 300) ** 2
-            codes[p, s] = np.rint(mean + noise * rng.normal(0, 1.0, (m, *shape)))
-            blind[p, s] = np.rint(5000 + (-35 / coupling) * (tf - 298) + rng.normal(0, 1, (m, blind_k)))
+            codes[p, s] = image(tf, ts, 0.0)
+            blind[p, s] = np.rint(5000 + rng.normal(0, 1, (m, blind_k)))
     reading = np.stack([np.broadcast_to(sensor.read(tf), (len(scene), m)) for tf in fpa])
-    return PointFrames(codes=codes, scene_K=np.asarray(scene), fpa_K=np.asarray(fpa),
-                       reading=reading.astype(np.int64), adc_bits=14,
-                       reference=int(np.argmin(np.abs(np.asarray(fpa) - np.mean(fpa)))),
-                       blind_codes=blind, source="synthetic")
+    ref = int(np.argmin(np.abs(np.asarray(fpa) - np.mean(fpa))))
+    pts = PointFrames(codes=codes, scene_K=np.asarray(scene), fpa_K=np.asarray(fpa),
+                      reading=reading.astype(np.int64), adc_bits=14, reference=ref,
+                      blind_codes=blind, source="synthetic")
+    if housing:
+        mid = scene[len(scene) // 2]
+        pts.drift_codes = np.stack([image(fpa[ref], mid, h) for h in housing]).astype(np.int64)
+        pts.drift_blind = np.stack([np.rint(5000 + 10 * h + rng.normal(0, 1, (m, blind_k)))
+                                    for h in housing]).astype(np.int64)
+        pts.drift_cam_K = 300.0 + np.asarray(housing)
+    return pts
 
 
 def _targets(pts: PointFrames) -> tuple[np.ndarray, np.ndarray]:
@@ -135,28 +150,27 @@ def test_table_interp_tables_are_per_point_lines() -> None:
 
 
 def test_blind_drift_coupling_and_registers() -> None:
-    # Scenes symmetric about 300 K: the mean active code drifts with the offset alone
-    # (the responsivity's drift averages out), 1.7 times as fast as the blind mean.
-    pts = synth_points(scene=(260.0, 300.0, 340.0), coupling=1.7, blind_k=20)
+    pts = synth_points(coupling=1.7, blind_k=20, housing=(-5.0, 5.0, 10.0))
     cal = calibrate_points(pts, "drift14")
     means, _ = _targets(pts)
-    bbar = pts.blind_codes.mean(axis=(1, 2, 3))
-    xbar = means.reshape(3, -1).mean(axis=1)
-    k = np.polyfit(bbar, xbar, 1)[0]
+    xs = [means[1, 1].mean()] + [d.mean() for d in pts.drift_codes]
+    bs = [pts.blind_codes[1, 1].mean()] + [d.mean() for d in pts.drift_blind]
+    k = np.polyfit(bs, xs, 1)[0]
     assert cal.floats["drift_coupling"] == pytest.approx(k, rel=1e-9)
-    assert k == pytest.approx(1.7, rel=0.05)  # the planted coupling
+    assert k == pytest.approx(1.7, rel=0.01)  # the planted coupling
     assert cal.coeffs.registers["drift_gain"] == round(k / 20 * 2**24)
     assert cal.coeffs.registers["blind_ref"] == round(pts.blind_codes[1].sum(axis=-1).mean())
-    # At 308 K, drift compensation brings the 300 K scene to its target (within the
-    # spread of the offset drift, 2 codes/K); two_point alone is 35 codes/K off.
+    # Without housing points the coupling is the paper repository's 1.
+    assert calibrate_points(synth_points(), "drift14").coeffs.registers["drift_gain"] == round(2**24 / 20)
+    # The housing 10 K warmer: drift compensation brings the frame back to its target;
+    # two_point alone is 170 codes off.
     two = calibrate_points(pts, "typical14")
-    x = np.rint(means[2]).astype(np.int64)
-    blind = np.rint(pts.blind_codes[2].mean(axis=1)).astype(np.int64)
-    y_d = method_top(x, cal.coeffs, FrameInputs(blind_codes=blind)).y.astype(float)
+    x = pts.drift_codes[2]
+    y_d = method_top(x, cal.coeffs, FrameInputs(blind_codes=pts.drift_blind[2])).y.astype(float)
     y_2 = method_top(x, two.coeffs, FrameInputs()).y.astype(float)
-    err_d = abs(y_d[1].mean() - cal.targets[1])
-    err_2 = abs(y_2[1].mean() - two.targets[1])
-    assert err_d < 10 < 300 < err_2
+    err_d = abs(y_d.mean() - cal.targets[1])
+    err_2 = abs(y_2.mean() - two.targets[1])
+    assert err_d < 1.5 and 150 < err_2 < 190
 
 
 # ---- the paper repository's formulas, re-derived ----------------------------------------------
@@ -217,7 +231,7 @@ def model_points() -> PointFrames:
     return run_plan(plan, "default", {"fpa.active_rows": 24, "fpa.active_cols": 32}, seed=3)
 
 
-@pytest.mark.parametrize("name", [n for n in METHOD_CONFIGS if "drift" not in n])
+@pytest.mark.parametrize("name", METHOD_CONFIGS)
 def test_plan_calibrates_every_method(model_points: PointFrames, name: str) -> None:
     cal = calibrate_points(model_points, name)
     s = cal.summary

@@ -251,6 +251,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
                            work_per_pixel=CALIBRATE_BYTES["per_pixel"])
         _check_adc(data, cfg, f"--frames {args.frames}")
+        _check_fields(data, cfg, f"--frames {args.frames}")
         points = points_from_frames(data, f"--frames {args.frames}")
         source = {"frames_file": str(args.frames)}
     try:
@@ -311,6 +312,28 @@ _FRAME_FIELD_KEYS = {"fpa_reading": "fpa_reading", "blind_codes": "blind_codes",
                      "shutter": "shutter"}
 
 
+def _check_fields(data: dict[str, Any], cfg: Any, where: str) -> None:
+    """One line when the frames lack a per-frame field the method reads.
+
+    A frame file of an older irnuc has its fields made up from its configuration
+    (``fields_synthesized``): its FPA reading is not a measurement, so a method that reads
+    it refuses the file; one without reference pixels has no blind codes.
+    """
+    from irnuc.nuc_fixed.method_top import needs
+
+    for name in needs(cfg):
+        key = _FRAME_FIELD_KEYS[name]
+        absent = key not in data
+        if name == "fpa_reading" and data.get("fields_synthesized", False):
+            absent = True
+        if name == "blind_codes" and not absent and data[key].shape[-1] == 0:
+            absent = True
+        if absent:
+            raise UserError(f"{where}: method {cfg.method!r} needs the per-frame field {key}; "
+                            "the file lacks it (make the frames with irnuc frames or a drift "
+                            "sequence of this version)")
+
+
 def _run_correct(args: argparse.Namespace) -> int:
     import numpy as np
 
@@ -349,18 +372,8 @@ def _run_correct(args: argparse.Namespace) -> int:
         raise UserError(f"--frames {args.frames}: frames are {codes.shape[1]} x {codes.shape[2]}"
                         f" (H x W) but the coefficients in {args.coeffs} are "
                         f"{mc.shape[0]} x {mc.shape[1]}")
-    fields = {}
-    for name in needs(cfg):
-        key = _FRAME_FIELD_KEYS[name]
-        if key not in data:
-            raise UserError(f"--frames {args.frames}: method {cfg.method!r} needs the per-frame "
-                            f"field {key}; the file lacks it (frames of a drift sequence "
-                            "carry it)")
-        v = np.asarray(data[key])
-        if v.shape[:1] != (codes.shape[0],):
-            raise UserError(f"--frames {args.frames}: {key} has shape {v.shape}; one per frame "
-                            f"({codes.shape[0]}) is required")
-        fields[name] = v
+    _check_fields(data, cfg, f"--frames {args.frames}")
+    fields = {name: np.asarray(data[_FRAME_FIELD_KEYS[name]]) for name in needs(cfg)}
     inputs = FrameInputs(reading=fields.get("fpa_reading"), blind_codes=fields.get("blind_codes"),
                          shutter=fields.get("shutter"))
     target = None
