@@ -485,8 +485,11 @@ class PipelineConfig:
         elif base == "quadratic":
             mems += [_layout("coeffs", [g, o, bad]), _layout("quad", [fmt("quad")])]
         elif base == "tc_offset":
-            names = list(self.format_names_needed(base, ()))
-            mems += [_layout("coeffs", [g, o, bad]), _layout("tc", [fmt(n) for n in names])]
+            order = int(self.tc_order or 1)
+            mems += [_layout("coeffs", [g, o, bad]),
+                     _layout("tc", [fmt(n) for n in ["tc1", "tc2"][:order]])]
+            if self.tc_gain:
+                mems.append(_layout("tg", [fmt(n) for n in ["tg1", "tg2"][:order]]))
         elif base == "table_interp":
             mems += [_layout(f"table{k}", [g, o, bad], reads_per_frame=0)
                      for k in range(self.tables or 0)]

@@ -284,7 +284,8 @@ def _fit(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, t: np.ndarray
                 gp = np.stack([ls_line(means[p], t)[0] for p in range(means.shape[0])])
                 gc = ls_poly(np.asarray(readings), gp, reg)
                 vals = [q.field("coeffs.gain", "gain", gc[0])]
-                vals += [q.field(f"tc.{n}", n, gc[i + 1]) for i, n in enumerate(["tg1", "tg2"][:order])]
+                vals += [q.field(f"tg.{n}", n, gc[i + 1])
+                         for i, n in enumerate(["tg1", "tg2"][:order])]
                 g_at = np.einsum("pk,khw->phw", reg, np.stack(vals))
             else:
                 xc = means - means.mean(axis=1, keepdims=True)       # (P, S, H, W)
@@ -365,7 +366,7 @@ def float_correct(cal: MethodCalibration, x: np.ndarray, reading: int | None = N
         g = f["coeffs.gain"]
         if cfg.tc_gain:
             gn = ["tg1", "tg2"][: int(cfg.tc_order or 1)]
-            g = g + sum(r * f[f"tc.{n}"] for r, n in zip(reg[1:], gn, strict=False))
+            g = g + sum(r * f[f"tg.{n}"] for r, n in zip(reg[1:], gn, strict=False))
         return g * xf + o
     rs = list(f["table_readings"])
     j = max([i for i in range(len(rs) - 1) if rs[i] <= t] or [0])

@@ -164,7 +164,8 @@ def frame_coefficients(c: MethodCoefficients, reading: int | None) -> dict[str, 
     if base == "tc_offset":
         tr = tc_reading(int(reading), int(c.registers["t_ref"]), cfg)  # type: ignore[arg-type]
         cs = c.fields["coeffs"]
-        g, o = tc_coeffs(cs["gain"], cs["offset"], c.fields["tc"], tr, cfg)
+        g, o = tc_coeffs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
+                         tr, cfg)
         return {"gain": g, "offset": o}
     if base == "table_interp":
         iw = interp_weight(int(reading), c.registers["table_readings"], cfg)  # type: ignore[arg-type]

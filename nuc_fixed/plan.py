@@ -174,7 +174,7 @@ class PointFrames:
         return int(np.floor(float(np.mean(self.reading[p])) + 0.5))
 
 
-def _sensor_config(sensor: str | Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
+def sensor_config(sensor: str | Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
     from irnuc import model
 
     if isinstance(sensor, Mapping):
@@ -215,7 +215,7 @@ def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
     kind = None
     n_pt = len(plan.scene) * plan.frames
     for p, (t_fpa, t_cam) in enumerate(zip(plan.fpa, plan.cam_K, strict=True)):
-        cfg = _sensor_config(sensor, {**ov, "environment.T_substrate": t_fpa,
+        cfg = sensor_config(sensor, {**ov, "environment.T_substrate": t_fpa,
                                       "environment.T_cam": t_cam})
         outputs = ["codes", "blind_codes"] if want_blind else ["codes"]
         fr = model.simulate(cfg, list(plan.scene), seed=seed, repeats=plan.frames,
@@ -240,7 +240,7 @@ def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
         mid = plan.scene[len(plan.scene) // 2]
         dc, db = [], []
         for t_cam in plan.drift_cam:
-            cfg = _sensor_config(sensor, {**ov, "environment.T_substrate": t_ref,
+            cfg = sensor_config(sensor, {**ov, "environment.T_substrate": t_ref,
                                           "environment.T_cam": t_cam})
             fr = model.simulate(cfg, [mid], seed=seed, repeats=plan.frames,
                                 outputs=["codes", "blind_codes"])

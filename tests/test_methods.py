@@ -310,7 +310,8 @@ def test_tc_reading_clamps_and_tc_coeffs_exact(name: str) -> None:
               t_ref + lim + 1, 2**14 - 1):
         tr = tc_reading(t, t_ref, cfg)
         assert tr.u == min(max(t - t_ref, -lim), lim) and tr.u2 == tr.u * tr.u // 2**cfg.reading_range_bits
-        g, o = tc_coeffs(c.fields["coeffs"]["gain"], c.fields["coeffs"]["offset"], c.fields["tc"], tr, cfg)
+        tc = {**c.fields["tc"], **c.fields.get("tg", {})}
+        g, o = tc_coeffs(c.fields["coeffs"]["gain"], c.fields["coeffs"]["offset"], tc, tr, cfg)
         for i in range(12):
             p = _pix(c, i)
             assert (int(g.flat[i]), int(o.flat[i])) == ref_tc(cfg, t, t_ref, p)
@@ -398,7 +399,7 @@ def test_methods_follow_their_real_valued_formula(name: str) -> None:
         d1 = rng.integers(-2**14, 2**14, (h, w))
         d2 = rng.integers(-2**13, 2**13, (h, w))
         c = MethodCoefficients(cfg, {"coeffs": {"gain": g, "offset": o // 2, "bad": np.zeros((h, w), bool)},
-                                     "tc": {"tc1": t1, "tc2": t2, "tg1": d1, "tg2": d2}},
+                                     "tc": {"tc1": t1, "tc2": t2}, "tg": {"tg1": d1, "tg2": d2}},
                                {"t_ref": 7485})
         t = 7485 + 700
         v = 700 / 2**11

@@ -128,7 +128,7 @@ def test_other_checks() -> None:
     with pytest.raises(ConfigError, match="tg1 is required"):
         load_pipeline("tcoffset14").replace(tc_gain=True)
     with pytest.raises(ConfigError, match="the golden model's uint64 words hold at most 64"):
-        load_pipeline("tcgain14").replace(formats={"tc1": {"int_bits": 20, "frac_bits": 10}})
+        load_pipeline("piecewise14").replace(formats={"knee": {"frac_bits": 20}})
 
 
 @pytest.mark.parametrize("name", ALL)
