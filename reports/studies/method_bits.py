@@ -131,10 +131,10 @@ def figure(result: dict[str, Any]) -> bytes:
         if m["float_fpn_mK"] is not None:
             axes[1].axhline(m["float_fpn_mK"], color=f"C{i}", ls=":", lw=0.8)
     axes[0].set_ylabel("residual non-uniformity (std / mean), reference FPA")
-    axes[1].set_ylabel("worst fixed pattern over the FPA points, mK (dotted: float fit)")
+    axes[1].set_ylabel("worst fixed pattern, all FPA points, mK")
     for ax in axes:
         ax.set_xlabel("fraction bits of every coefficient")
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
-    fig.suptitle(TITLE, fontsize=9)
+    fig.suptitle(f"{TITLE}\n(dotted: the float fit of each method)", fontsize=9)
     return png(fig)
