@@ -263,13 +263,15 @@ def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> di
 
 
 def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
-    """The pipeline configuration recorded in a manifest."""
+    """The pipeline configuration recorded in a manifest (version 2: with its method)."""
     missing = [k for k in ("config", *_FORMAT_FIELDS) if k not in manifest]
     if missing:
         raise MemImageError(f"{MANIFEST_NAME} is missing field(s) {missing}")
+    method = manifest["method_fields"] if manifest.get("version") == METHOD_IMAGE_VERSION else {}
     return PipelineConfig(name=str(manifest["config"]),
                           description=str(manifest.get("description", "")),
-                          **{k: manifest[k] for k in _FORMAT_FIELDS})  # type: ignore[arg-type]
+                          **{k: manifest[k] for k in _FORMAT_FIELDS},  # type: ignore[arg-type]
+                          **method)  # type: ignore[arg-type]
 
 
 def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
@@ -439,19 +441,6 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
     return manifest
 
 
-def image_config(manifest: dict[str, object]) -> PipelineConfig:
-    """The configuration a manifest of either version records."""
-    if manifest.get("version") != METHOD_IMAGE_VERSION:
-        return manifest_config(manifest)
-    missing = [k for k in ("config", *_FORMAT_FIELDS) if k not in manifest]
-    if missing:
-        raise MemImageError(f"{MANIFEST_NAME} is missing field(s) {missing}")
-    return PipelineConfig(name=str(manifest["config"]),
-                          description=str(manifest.get("description", "")),
-                          **{k: manifest[k] for k in _FORMAT_FIELDS},  # type: ignore[arg-type]
-                          **manifest["method_fields"])  # type: ignore[arg-type]
-
-
 def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
                       source: str = "bin") -> Any:
     """Read a memory image folder of any method back as ``MethodCoefficients``.
@@ -472,7 +461,7 @@ def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | 
         g, o, bad = unpack_words(words, mcfg)
         return MethodCoefficients(mcfg, {"coeffs": {"gain": g, "offset": o, "bad": bad}})
     try:
-        mcfg = image_config(manifest)
+        mcfg = manifest_config(manifest)
     except (ConfigError, TypeError) as exc:
         raise MemImageError(f"{d / MANIFEST_NAME}: {exc}") from None
     if cfg is not None:

@@ -28,19 +28,8 @@ METHOD_CONFIGS = [n for n in pipeline_names(method=None) if n not in pipeline_na
 
 # ---- the exact reference (Python ints), from docs/datapath.md ------------------------
 
-def rnd(v: int, k: int, mode: str) -> int:
-    """ROUND_k: v / 2^k rounded (floor, ties up, ties to even), by Fraction."""
-    q = Fraction(v, 1 << k)
-    fl = q.numerator // q.denominator
-    rem = q - fl
-    if mode == "truncate" or rem < Fraction(1, 2):
-        return fl
-    if rem > Fraction(1, 2) or mode == "half_up":
-        return fl + 1
-    return fl + (fl % 2)
-
-
 def rdiv(a: int, b: int, mode: str) -> int:
+    """a / b rounded (floor, ties up, ties to even), by Fraction."""
     q = Fraction(a, b)
     fl = q.numerator // q.denominator
     rem = q - fl
@@ -49,6 +38,11 @@ def rdiv(a: int, b: int, mode: str) -> int:
     if rem > Fraction(1, 2) or mode == "half_up":
         return fl + 1
     return fl + (fl % 2)
+
+
+def rnd(v: int, k: int, mode: str) -> int:
+    """ROUND_k: v / 2^k."""
+    return rdiv(v, 1 << k, mode)
 
 
 def sat(v: int, bits: int, signed: bool) -> int:
