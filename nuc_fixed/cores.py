@@ -96,19 +96,23 @@ def _ffc_term(ffc: object | None, cfg: PipelineConfig, f: int, shape: tuple[int,
     return d << (f - cfg.format("ffc").frac_bits)
 
 
-def drift_sub(x: object, delta: int, cfg: PipelineConfig | str) -> np.ndarray:
+def drift_sub(x: object, delta: object, cfg: PipelineConfig | str) -> np.ndarray:
     """``drift_sub``: x' = (x << Df) - delta, signed, Df fraction bits (blind_drift).
 
     Parameters
     ----------
-    x : integer array_like
+    x : integer array_like, (H, W) or (N, H, W)
         Raw ADC codes in [0, 2^A - 1].
-    delta : int
+    delta : int, or (N,) integers with a stack
         The frame's drift code (format ``drift``: signed, Df fraction bits, ADC codes).
     """
     cfg = as_config(cfg)
     xa = int_array("x", x, 0, (1 << cfg.adc_bits) - 1).astype(np.int64)
-    d = int(coeff(cfg, "drift", delta, "delta"))
+    d = coeff(cfg, "drift", delta, "delta")
+    if d.ndim:
+        if xa.ndim != 3 or d.shape != (xa.shape[0],):
+            raise InputError(f"delta has shape {d.shape}; one per frame of x {xa.shape}")
+        d = d[:, None, None]
     return (xa << cfg.format("drift").frac_bits) - d
 
 

@@ -432,6 +432,8 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
         "registers": {k: (list(v) if isinstance(v, tuple) else v)
                       for k, v in coeffs.registers.items()},
         "register_layout": desc["registers"],
+        "runtime_memories": {k: v for k, v in desc["memories"].items()  # type: ignore[union-attr]
+                             if v["source"] == "runtime"},
         "width": w,
         "height": h,
         "sha256": files[f"{first}.bin"],

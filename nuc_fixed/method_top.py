@@ -245,24 +245,33 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     held = np.zeros(n, dtype=bool)
     cache: dict[int | None, dict[str, np.ndarray]] = {}
     last: np.ndarray | None = None
-    for i in range(n):
-        key = None if reading is None else int(reading[i])
+    keys = [None] * n if reading is None else [int(v) for v in reading]
+    is_shut = np.zeros(n, bool) if shutter is None else shutter
+    i = 0
+    while i < n:
+        key = keys[i]
         if key not in cache:
             cache.clear()  # a reading usually repeats for many frames; keep one set
             cache[key] = frame_coefficients(coeffs, key)
         fc = cache[key]
+        # Frames i..j-1 share their coefficients and nothing changes state between them
+        # (an open shutter): one pass over the stack, as the per-frame pass would give.
+        j = i + 1
+        if not is_shut[i]:
+            while j < n and keys[j] == key and not is_shut[j]:
+                j += 1
         if delta is not None:
-            xi = drift_sub(x3[i], int(delta[i]), cfg)
+            xi = drift_sub(x3[i:j], delta[i:j], cfg)
             res = base_core(coeffs, fc, xi, xfrac=cfg.format("drift").frac_bits, signed_x=True)
         else:
-            res = base_core(coeffs, fc, x3[i], ffc=None if state is None else state.offset)
+            res = base_core(coeffs, fc, x3[i:j], ffc=None if state is None else state.offset)
         yi = dpc_core(res.y, coeffs.bad, cfg)
         if state is not None and shutter is not None and shutter[i]:
             if cfg.ffc_output == "hold" and last is not None:
                 out[i] = last
                 held[i] = True
             else:
-                out[i] = yi
+                out[i] = yi[0]
             if state.step(x3[i], True):
                 nb = ffc_shift(cfg)
                 ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
@@ -273,8 +282,9 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
         else:
             if state is not None:
                 state.step(x3[i], False)
-            out[i] = yi
-            last = out[i]
+            out[i:j] = yi
+            last = out[j - 1]
+        i = j
     return MethodOutput(y=out.reshape(x.shape), delta=delta,
                         ffc_offset=None if state is None else state.offset,
                         refreshes=tuple(state.refreshes) if state else (), held=held)

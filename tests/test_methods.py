@@ -24,6 +24,25 @@ from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_t
 from irnuc.nuc_fixed.tempcomp import interp_coeffs, interp_weight, tc_coeffs, tc_reading
 
 METHOD_CONFIGS = [n for n in pipeline_names(method=None) if n not in pipeline_names()]
+#: Variants the shipped file does not hold: a first-order polynomial, with and without gain.
+VARIANTS = {"tcgain14_order1": ("tcgain14", {"tc_order": 1}),
+            "tcffc14_order1": ("tcffc14", {"tc_order": 1, "tc_gain": False})}
+
+
+def _config(name: str):
+    """A shipped configuration, or a variant with the formats its method needs."""
+    if name not in VARIANTS:
+        return load_pipeline(name)
+    from irnuc.nuc_fixed.config import PipelineConfig
+
+    base, changes = VARIANTS[name]
+    d = load_pipeline(base).to_dict() | changes
+    order = d["tc_order"]
+    names = ["tc1", "tc2"][:order] + (["tg1", "tg2"][:order] if d["tc_gain"] else [])
+    names += ["ffc"] if "ffc" in d["method"] else []
+    d["formats"] = {k: v for k, v in load_pipeline(base).to_dict()["formats"].items()
+                    if k in names}
+    return PipelineConfig(**{**d, "name": name})
 
 
 # ---- the exact reference (Python ints), from docs/datapath.md ------------------------
@@ -179,9 +198,9 @@ def _pix(c: MethodCoefficients, i: int) -> dict:
 
 # ---- the cores, bit for bit -------------------------------------------------------------
 
-@pytest.mark.parametrize("name", METHOD_CONFIGS)
+@pytest.mark.parametrize("name", [*METHOD_CONFIGS, *VARIANTS])
 def test_every_method_matches_the_exact_reference(name: str) -> None:
-    cfg = load_pipeline(name)
+    cfg = _config(name)
     rng = np.random.default_rng(abs(hash(name)) % 2**32)
     c = random_coeffs(cfg, rng)
     n = 24
@@ -435,3 +454,41 @@ def test_pwl_core_is_continuous_at_the_knee() -> None:
     for glo, ghi in ((2**14, 2**15), (0, 65535)):
         r = pwl_core(np.array([[5000]]), np.array([[glo]]), np.array([[ghi]]), k, 5000 * 16, cfg)
         assert int(r.y[0, 0]) == 5000 and int(r.s[0, 0]) == 5000 * 2 ** r.frac
+
+
+def test_drift_and_ffc_follow_their_real_valued_formula() -> None:
+    rng = np.random.default_rng(8)
+    h, w = 5, 6
+    g = rng.integers(int(0.8 * 2**14), int(1.2 * 2**14), (h, w))
+    o = rng.integers(-500 * 16, 500 * 16, (h, w))
+    # blind_drift: y = g (x - k (mean b - mean b_ref)) + o, k = 0.8, K = 50 blind pixels.
+    cfg = load_pipeline("drift14")
+    k, kb = 0.8, 50
+    m = round(k / kb * 2**24)
+    ref = 50 * 3000
+    blind = rng.integers(3100, 3300, (4, kb))
+    x = rng.integers(4000, 9000, (4, h, w))
+    c = MethodCoefficients(cfg, {"coeffs": {"gain": g, "offset": o, "bad": np.zeros((h, w), bool)}},
+                           {"blind_ref": ref, "drift_gain": m})
+    y = method_top(x, c, FrameInputs(blind_codes=blind)).y
+    shift = k * (blind.mean(axis=1) - ref / kb)
+    y_f = g / 2**14 * (x - shift[:, None, None]) + o / 16
+    # delta rounds to 2^-3 codes; the gain (< 1.2) scales that; then the output's 0.5.
+    assert np.abs(y - y_f).max() <= 0.5 + 1.2 * 2**-3 + 1.2 * 2 * abs(m / 2**24 - k / kb) * 200
+    # ffc: after the refresh, the shutter's mean frame reads the target level.
+    cfg = load_pipeline("ffc14")
+    c = MethodCoefficients(cfg, {"coeffs": {"gain": g, "offset": o, "bad": np.zeros((h, w), bool)}})
+    shutter = rng.integers(5000, 5100, (8, h, w))
+    scene = rng.integers(4000, 9000, (1, h, w))
+    target = 5000 * 16 + 5  # within the correction format of every pixel
+    res = method_top(np.concatenate([scene, shutter, scene]), c,
+                     FrameInputs(shutter=np.r_[False, np.ones(8, bool), False]),
+                     ffc_target=target)
+    delta = res.ffc_offset / 16
+    flat = g / 2**14 * shutter.mean(axis=0) + o / 16 + delta
+    assert np.abs(flat - target / 16).max() <= 2**-5 + 1e-9  # the correction's rounding
+    y_f = g / 2**14 * scene[0] + o / 16 + delta
+    assert np.abs(res.y[-1] - y_f).max() <= 0.5
+    # The shutter frames repeat the frame before them (hold).
+    assert res.held.tolist() == [False] + [True] * 8 + [False]
+    assert (res.y[1:9] == res.y[0]).all()

@@ -164,3 +164,17 @@ def test_correct_without_the_fields_a_method_needs(tmp_path: Path, plan_file: Pa
         assert z["held"].tolist() == f["shutter"].tolist()
         good = z["ffc_offset"] != 0
         assert good.any()
+
+
+def test_unknown_method_in_a_pipeline_file(tmp_path: Path, plan_file: Path,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    from irnuc.nuc_fixed import load_pipeline
+
+    text = load_pipeline("typical14").to_toml().replace("[typical14]", "[mine]\nmethod = \"three_point\"")
+    f = tmp_path / "mine.toml"
+    f.write_text(text)
+    assert main(["calibrate", "--plan", str(plan_file), "--pipeline", str(f), *SMALL, "--out",
+                 str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "'three_point' is not a base method" in err, err
+    assert err.startswith(f"irnuc calibrate: error: --pipeline {f}")
