@@ -20,7 +20,6 @@ and ``docs/transient.md``.
 
 from __future__ import annotations
 
-import math
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
@@ -466,14 +465,3 @@ def simulate_transient(
         counts=dict(counts),
     )
 
-
-def closed_form_linear(theta0: float, Q: float, I: float, R: float, g: float, C: float,
-                       t: float) -> tuple[float, float]:
-    """Exact (theta(t), mean of theta over [0, t]) of C theta' = I^2 R + Q - g theta with
-    constant R (TCR = 0 or I = 0): the reference for the linear case."""
-    eq = (I * I * R + Q) / g
-    tau = C / g
-    u = t / tau
-    end = eq + (theta0 - eq) * math.exp(-u)
-    mean = eq + (theta0 - eq) * (-math.expm1(-u) / u if u > 0 else 1.0)
-    return end, mean

@@ -13,6 +13,8 @@ from scipy.integrate import quad
 from irnuc.cli import precision as R
 from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
 from irnuc.reports.studies import precision as P
+from irnuc.reports.studies.precision import references as PR
+from irnuc.reports.studies.precision import studies as PS
 
 
 def test_mpmath_reference_matches_scipy_quad():
@@ -201,9 +203,9 @@ def test_cli_writes_the_report(tmp_path, capsys, monkeypatch):
 
 
 def test_electro_thermal_reference_is_tighter_than_brentq():
-    prob = P._electro_problem(True)
+    prob = PS.electro_problem(True)
     idx = np.arange(0, prob["Q"].size, 37)
-    ref, est = P._mp_reference(prob, idx)
-    br = P._brentq_reference(prob, idx)
+    ref, est = PR.mp_root_reference(prob, idx)
+    br = PR.brentq_reference(prob, idx)
     assert est < 1e-25
     assert np.max(P.rel_error_dd(br, ref)) < 1e-14  # brentq is right to ~1e-16

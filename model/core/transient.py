@@ -437,13 +437,6 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
                 meth_out[n, p] = used
 
 
-@njit(cache=True)
-def rhs_jacobian(theta, Ts, Q, I, R_ref, B, T_ref, g, C):
-    """f(theta) and df/dtheta during the pulse (for the reference solver and tests)."""
-    f, R, dR = _rhs(theta, Ts, Q, I * I, R_ref, B, T_ref, g, C)
-    return f, (I * I * dR - g) / C, R
-
-
 def empty_outputs(shape):
     """Output arrays of :func:`integrate_frames` for a (N, P) problem."""
     return (np.empty(shape), np.empty(shape), np.empty(shape), np.empty(shape, np.uint8),
