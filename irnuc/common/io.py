@@ -70,6 +70,22 @@ def write_text_atomic(path: str | Path, text: str) -> Path:
     return write_atomic(path, lambda fh: fh.write(text.encode()))
 
 
+#: What a name that becomes a file or folder name may hold: letters, digits, ``_ . -``,
+#: starting with a letter or digit (no separator, no ``..``, nothing hidden), at most 64.
+PLAIN_NAME = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$"
+
+
+def plain_name(name: str, what: str) -> str:
+    """``name`` if it can be one file or folder name inside an output folder; a one-line
+    :class:`UserError` naming ``what`` otherwise (a name never becomes a path)."""
+    import re
+
+    if not isinstance(name, str) or not re.fullmatch(PLAIN_NAME, name):
+        raise UserError(f"{what} = {name!r} cannot name a file or folder: use letters, "
+                        "digits, '_', '.' and '-' (at most 64, starting with a letter or digit)")
+    return name
+
+
 def read_json_object(path: str | Path, what: str = "") -> dict[str, Any]:
     """A JSON file whose top level is an object; one-line :class:`UserError` otherwise.
 

@@ -91,6 +91,8 @@ def _message(err: Any, prefix: str) -> str:
         return f"{where} has {len(v)} item(s); {word} {n} allowed"
     if kind == "minLength":
         return f"{where} must not be empty"
+    if kind == "pattern" and sch.get("x-pattern-text"):
+        return f"{where} = {v!r} must be {sch['x-pattern-text']}"
     if kind == "not" and isinstance(v, float) and not math.isfinite(v):
         return f"{where} = {v!r} must be a finite number"
     return f"{where}: {err.message}"

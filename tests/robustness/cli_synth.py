@@ -2,7 +2,20 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from robustness.harness import case, command, out_is_file, user_folder
+
+
+def _pipeline_named(name: str):
+    """A pipeline file holding ``minimal``'s fields under the table name ``name``."""
+    def setup(w: Path, t: Path) -> None:
+        from irnuc.nuc_fixed import load_pipeline
+
+        text = load_pipeline("minimal").to_toml().replace("[minimal]", f"[{name!s}]")
+        (t / "named.toml").write_text(text)
+    return setup
+
 
 Y = command("synth", (("irnuc.cosim.synth", "synth_configs"),))
 case("synth-no-pipeline", Y, "", ("--pipeline", "required"), "no --pipeline")
@@ -34,3 +47,13 @@ case("synth-out-file", Y, "--pipeline minimal --out {t}/out", ("--out",), "--out
      setup=out_is_file)
 case("synth-out-user-folder", Y, "--pipeline minimal --out {t}/out", ("--out",),
      "--out is a user's folder (never deleted)", setup=user_folder)
+case("synth-pipeline-name-up", Y, "--pipeline {t}/named.toml --pipeline minimal",
+     ("--pipeline", "named.toml", "'../../x'", "plain name"),
+     "a pipeline table named [\"../../x\"] (wrote x/synth.json outside --out)",
+     setup=_pipeline_named('"../../x"'))
+case("synth-pipeline-name-absolute", Y, "--pipeline {t}/named.toml --pipeline minimal",
+     ("--pipeline", "'/tmp/x'", "plain name"),
+     "a pipeline table named with an absolute path", setup=_pipeline_named('"/tmp/x"'))
+case("synth-pipeline-name-hidden", Y, "--pipeline {t}/named.toml",
+     ("--pipeline", "'.x'", "plain name"), "a pipeline table named as a hidden file",
+     setup=_pipeline_named('".x"'))
