@@ -17,6 +17,9 @@ The tables of cases, each run by one parametrized test:
 * ``faults.py``: SIGKILL at random points, concurrent runs on one ``--out``, children that
   die with their parent (the tests are in ``test_faults.py``).
 * ``memory.py``: the memory estimates checked before the work stay above measured peaks.
+* ``outcomes.py``: hostile inputs whose right outcome is not only an error line before the
+  work (write and stdout errors, runs that check nothing, results that were silently
+  wrong); ``test_outcomes.py`` checks each row.
 
 ``docs/robustness.md`` is generated from these tables (``.venv/bin/python
 tests/robustness/doc.py`` rewrites it) and ``test_doc.py`` keeps it in step.

@@ -16,6 +16,7 @@ from robustness.api_cases import API_CASES, BYTE_ORDER_CASES
 from robustness.faults import FAULTS
 from robustness.harness import CLI_CASES, COMMANDS, REPO, Case, load_tables
 from robustness.memory import MEASURED
+from robustness.outcomes import OUTCOMES
 
 DOC = REPO / "docs" / "robustness.md"
 
@@ -100,6 +101,13 @@ def render_doc() -> str:
             "", "## Faults", "", "| test | what happens | outcome |", "|---|---|---|"]
     for name, text in FAULTS.items():
         out.append(f"| `test_fault_{name}` | {_cell(text)} | passes |")
+    out += ["", "## Outcomes", "",
+            "Hostile inputs whose right outcome is not only an error line before the work: "
+            "write and", "stdout errors, runs and comparisons that check nothing, results "
+            "that were silently wrong.", "",
+            "| test | hostile input | outcome |", "|---|---|---|"]
+    for name, (what, result) in OUTCOMES.items():
+        out.append(f"| `test_outcome_{name}` | {_cell(what)} | {_cell(result)} |")
     out += ["", "## Memory estimates", "",
             "Checked before the work against `MemAvailable` (80 % of it may be planned). The",
             "estimates are generous: above the peaks measured for these requests (growth of",
