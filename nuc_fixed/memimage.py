@@ -31,6 +31,9 @@ _FORMAT_FIELDS = (
     "adc_bits", "gain_int_bits", "gain_frac_bits", "offset_int_bits", "offset_frac_bits",
     "out_bits", "rounding", "overflow", "max_width", "max_height",
 )
+#: Every manifest field that shapes the result is under ``format_sha256``: the formats and
+#: the frame size (swapped width and height fit the same binary image).
+_HASHED_FIELDS = (*_FORMAT_FIELDS, "height", "width")
 
 
 class MemImageError(UserError):
@@ -173,7 +176,7 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
         "config": cfg.name,
         "description": cfg.description,
         **fmt,
-        "format_sha256": _format_sha256(fmt),
+        "format_sha256": _format_sha256({**fmt, "height": h, "width": wd}),
         "word_bits": cfg.word_bits,
         "word_layout": {k: [lsb + width - 1, lsb] for k, (lsb, width) in cfg.word_fields.items()},
         "width": wd,
@@ -209,9 +212,9 @@ def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
     if unhashed:
         raise MemImageError(f"{path}: files names no SHA-256 of {', '.join(unhashed)}; every "
                             "memory image file must be hashed")
-    fmt = {k: manifest.get(k) for k in _FORMAT_FIELDS}
+    fmt = {k: manifest.get(k) for k in _HASHED_FIELDS}
     if _format_sha256(fmt) != manifest["format_sha256"]:
-        raise MemImageError(f"{path}: the format fields ({', '.join(_FORMAT_FIELDS)}) do not "
+        raise MemImageError(f"{path}: the format fields ({', '.join(_HASHED_FIELDS)}) do not "
                             "match their recorded SHA-256; the manifest was edited")
     return manifest
 

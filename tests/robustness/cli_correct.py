@@ -35,13 +35,13 @@ def _set_manifest(folder: Path, m: Any) -> None:
 
 
 def _rehash(folder: Path) -> None:
-    from irnuc.nuc_fixed.memimage import _FORMAT_FIELDS, _format_sha256
+    from irnuc.nuc_fixed.memimage import _HASHED_FIELDS, _format_sha256
 
     m = _manifest(folder)
     m["files"] = {n: hashlib.sha256((folder / n).read_bytes()).hexdigest()
                   for n in m["files"] if (folder / n).is_file()}
     m["sha256"] = m["files"].get("coeffs.bin", m.get("sha256"))
-    m["format_sha256"] = _format_sha256({k: m.get(k) for k in _FORMAT_FIELDS})
+    m["format_sha256"] = _format_sha256({k: m.get(k) for k in _HASHED_FIELDS})
     _set_manifest(folder, m)
 
 
@@ -119,6 +119,10 @@ case("correct-manifest-rounding-unknown-rehashed", R, CF, ("--coeffs", "rounding
 case("correct-manifest-word-bits", R, CF, ("--coeffs", "manifest.json", "word_bits = 64"),
      "word_bits that the formats contradict",
      setup=_coeffs_copy(_edit_manifest(word_bits=64)))
+case("correct-manifest-size-swapped", R, CF, ("--coeffs", "format fields", "height", "width", "edited"),
+     "width and height swapped in manifest.json (applied 8 x 6 coefficients to 6 x 8 frames, exit 0)",
+     setup=_coeffs_copy(lambda d: _edit_manifest(width=_manifest(d)["height"],
+                                                 height=_manifest(d)["width"])(d)))
 case("correct-manifest-size-rehashed", R, CF, ("--coeffs", "coeffs.bin", "bytes"),
      "height changed, hashes recomputed", setup=_coeffs_copy(_edit_manifest(height=7), rehash=True))
 case("correct-manifest-config-missing", R, CF, ("--coeffs", "manifest.json", "['config']"), "no config name",
