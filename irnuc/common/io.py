@@ -86,23 +86,63 @@ def plain_name(name: str, what: str) -> str:
     return name
 
 
-def read_json_object(path: str | Path, what: str = "") -> dict[str, Any]:
-    """A JSON file whose top level is an object; one-line :class:`UserError` otherwise.
+#: The most irnuc reads of a configuration, manifest, baseline or report file (they are
+#: kilobytes): a device, a pipe or a wrong file is refused before it fills the memory.
+MAX_TEXT_BYTES = 16 * 2**20
 
-    ``what`` (e.g. the flag that named the file) is put before the path in messages.
+
+def read_bytes_capped(path: str | Path, what: str = "", limit: int = MAX_TEXT_BYTES) -> bytes:
+    """The bytes of a file the user named, reading at most ``limit`` (one-line
+    :class:`UserError` naming ``what`` (e.g. the flag) and the path otherwise).
+
+    Any kind of file is read (``/dev/stdin``, a pipe) but never more than ``limit`` + 1
+    bytes, so ``/dev/zero`` or a multi-gigabyte file is an error at once.
     """
-    import json
-
     path = Path(path)
     name = f"{what} {path}" if what else str(path)
     try:
-        data = json.loads(path.read_text())
+        with path.open("rb") as fh:
+            data = fh.read(limit + 1)
     except FileNotFoundError:
         raise UserError(f"{name}: no such file") from None
     except IsADirectoryError:
-        raise UserError(f"{name}: is a folder, not a JSON file") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise UserError(f"{name}: is a folder, not a file") from None
+    except OSError as exc:
+        raise UserError(f"{name}: cannot be read ({exc.strerror or exc})") from None
+    if len(data) > limit:
+        raise UserError(f"{name}: larger than {_size_text(limit)}, the most irnuc reads of such "
+                        "a file; is it the right file?")
+    return data
+
+
+def _size_text(n: int) -> str:
+    return f"{n / 2**20:g} MiB" if n >= 2**20 else f"{n} bytes"
+
+
+def parse_json(data: bytes, name: str) -> Any:
+    """A JSON document (UTF-8); one-line :class:`UserError` naming ``name`` for anything
+    that is not one: bad syntax or encoding, nesting too deep for the parser, an integer
+    too long to convert."""
+    import json
+
+    try:
+        return json.loads(data.decode("utf-8"))
+    except RecursionError:
+        raise UserError(f"{name}: not a readable JSON file (nested too deeply)") from None
+    except (UnicodeDecodeError, ValueError) as exc:  # JSONDecodeError, int digit limit
         raise UserError(f"{name}: not a readable JSON file ({exc})") from None
+
+
+def read_json_object(path: str | Path, what: str = "", limit: int = MAX_TEXT_BYTES
+                     ) -> dict[str, Any]:
+    """A JSON file whose top level is an object; one-line :class:`UserError` otherwise.
+
+    ``what`` (e.g. the flag that named the file) is put before the path in messages; at
+    most ``limit`` bytes are read (:func:`read_bytes_capped`).
+    """
+    path = Path(path)
+    name = f"{what} {path}" if what else str(path)
+    data = parse_json(read_bytes_capped(path, what, limit), name)
     if not isinstance(data, dict):
         raise UserError(f"{name}: the top level is a {type(data).__name__}; a JSON object is "
                         "required")

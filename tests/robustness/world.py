@@ -39,6 +39,57 @@ def _bomb(path: Path) -> None:
 
 
 
+def baseline(metrics: Any = None, **top: Any) -> str:
+    """A baseline summary of ``--config small`` as JSON text: valid but for the fields
+    given (``metrics``, or top-level fields; ``_DROP`` removes one)."""
+    import json
+
+    from irnuc.reports.report.config import config_hash, load_report_config
+
+    cfg = load_report_config("small")
+    doc: dict[str, Any] = {
+        "schema_version": 2, "tool": "irnuc report",
+        "provenance": {"config_name": cfg["name"], "config_hash": config_hash(cfg),
+                       "git_commit": None},
+        "metrics": {"calibration.bad_pixels": {"value": 1, "better": "lower"}}
+        if metrics is None else metrics}
+    doc.update(top)
+    return json.dumps({k: v for k, v in doc.items() if v is not _DROP})
+
+
+_DROP = object()
+
+
+def baselines() -> dict[str, str]:
+    """The hostile baselines, by name (``base_<name>.json`` in the world folder)."""
+    from irnuc.reports.report.config import config_hash, load_report_config
+
+    other = load_report_config("default")
+    bad = "calibration.bad_pixels"
+    return {
+        "metrics_list": baseline([]),
+        "metric_number": baseline({bad: 1}),
+        "metric_string": baseline({bad: "many"}),
+        "metric_list": baseline({bad: [1]}),
+        "nan": baseline({bad: {"value": float("nan"), "better": "lower"}}),
+        "value_text": baseline({bad: {"value": "x", "better": "lower"}}),
+        "value_huge": baseline({bad: {"value": 10**4000, "better": "lower"}}),
+        "digits_5001": baseline().replace('"value": 1', '"value": 1' + "0" * 5000),
+        "provenance_text": baseline(provenance="x"),
+        "no_provenance": baseline(provenance=_DROP),
+        "empty_metrics": baseline({}),
+        "schema_99": baseline(schema_version=99),
+        "schema_1": baseline(schema_version=1),
+        "schema_text": baseline(schema_version="2"),
+        "tool_calibrate": baseline(tool="irnuc calibrate"),
+        "other_config": baseline(provenance={"config_name": "default",
+                                             "config_hash": config_hash(other)}),
+        "edited_config": baseline(provenance={"config_name": "small",
+                                              "config_hash": "0" * 16}),
+        "deep": '{"metrics": ' + "[" * 100_000 + "]" * 100_000 + "}",
+    }
+
+
 def build_world(root: Path) -> Path:
     """Valid and hostile input files shared by the cases (never written by a case)."""
     from irnuc.cli import main
@@ -125,15 +176,12 @@ def build_world(root: Path) -> Path:
         "base_notjson.json": "{",
         "base_list.json": "[]",
         "base_nometrics.json": "{}",
-        "base_metrics_list.json": '{"metrics": []}',
-        "base_metric_number.json": '{"metrics": {"calibration.bad_pixels": 1}}',
-        "base_metric_string.json": '{"metrics": {"calibration.bad_pixels": "many"}}',
-        "base_metric_list.json": '{"metrics": {"calibration.bad_pixels": [1]}}',
-        "base_nan.json": '{"metrics": {"calibration.bad_pixels": {"value": NaN, "better": "lower"}}}',
-        "base_value_text.json": '{"metrics": {"calibration.bad_pixels": {"value": "x", "better": "lower"}}}',
         "junit_bad.xml": "<testsuite",
         "junit_root.xml": "<html/>",
     }
+    files.update({f"base_{k}.json": v for k, v in baselines().items()})
+    files.update({
+    })
     typ = load_pipeline("typical14").to_toml().replace("[typical14]", "[p]")
     files["pipe_two.toml"] = typ + typ.replace("[p]", "[q]")
     files["pipe_scalar.toml"] = "p = 3\n"
@@ -157,6 +205,20 @@ def build_world(root: Path) -> Path:
     files["rep_sweep_adc.toml"] = sm.replace('pipeline = "typical14"\ngain_frac_bits',
                                              'pipeline = "minimal"\ngain_frac_bits')
     files["rep_rec_nosweep.toml"] = '[cosim]\npipelines = ["recommended"]\ntests = ["corner_codes"]\n'
+    files["rep_only_name.toml"] = 'name = "x"\n'
+    files["rep_cosim_only.toml"] = '[cosim]\npipelines = ["minimal"]\ntests = ["corner_codes"]\n'
+    files["rep_sensor_pipeline.toml"] = sm.replace('pipeline = "typical14"\n[sensor.overrides]',
+                                                   'pipeline = "typicl14"\n[sensor.overrides]')
+    files["rep_sensor_preset.toml"] = sm.replace('[sensor]\npreset = "default"',
+                                                 '[sensor]\npreset = "defualt"')
+    files["rep_sensor_override.toml"] = sm.replace('"noise.enabled" = true',
+                                                   '"noise.enabeld" = true', 1)
+    files["rep_sensor_override_value.toml"] = sm.replace('"noise.enabled" = true',
+                                                         '"noise.enabled" = 3', 1)
+    files["rep_sensor_rows.toml"] = sm.replace('"noise.enabled" = true',
+                                               '"noise.enabled" = true\n"fpa.active_rows" = 99', 1)
+    files["rep_precision.toml"] = sm.replace("[precision]\nquick = true",
+                                             '[precision]\nquick = true\ncomponents = ["radiance_x"]')
     files["rep_skim.toml"] = sm.replace('skimming = ["row", "column"]', 'skimming = ["diagonal"]')
     for name, content in files.items():
         (w / name).write_bytes(content if isinstance(content, bytes) else content.encode())
