@@ -97,7 +97,9 @@ def _run_calibrate(args: argparse.Namespace) -> int:
         if Path(args.thresholds).is_dir():
             raise UserError(f"--thresholds {args.thresholds}: is a folder, not a TOML file")
         if not Path(args.thresholds).is_file():
-            raise UserError(f"--thresholds {args.thresholds}: no such file")
+            raise UserError(f"--thresholds {args.thresholds}: "
+                            + ("not a regular file" if Path(args.thresholds).exists()
+                               else "no such file"))
     try:
         th = load_thresholds(args.thresholds, overrides=overrides)
     except UserError as exc:

@@ -123,6 +123,12 @@ case("calibrate-thresholds-folder", K, f"{G} --thresholds {{w}}", ("--thresholds
      "a folder as --thresholds")
 case("calibrate-thresholds-malformed", K, f"{G} --thresholds {{w}}/bad.toml",
      ("--thresholds", "bad.toml", "not valid TOML"), "malformed thresholds TOML")
+case("calibrate-thresholds-dev-zero", K, f"{G} --thresholds /dev/zero",
+     ("--thresholds", "/dev/zero", "not a regular file"), "a device as thresholds")
+case("calibrate-pipeline-dev-zero", K, f"{G} --pipeline /dev/zero.toml",
+     ("--pipeline", "/dev/zero.toml", "no such file"), "a device path that is no file")
+case("calibrate-pipeline-dev-zero-file", K, f"{G} --pipeline /dev/zero",
+     ("--pipeline", "/dev/zero", "larger than"), "an endless file as the pipeline")
 case("calibrate-thresholds-no-default", K, f"{G} --thresholds {{w}}/th_other.toml",
      ("--thresholds", "no [default] table"), "thresholds without [default]")
 case("calibrate-thresholds-scalar", K, f"{G} --thresholds {{w}}/th_scalar.toml",

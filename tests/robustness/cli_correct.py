@@ -90,6 +90,12 @@ case("correct-manifest-not-json", R, CF, ("--coeffs", "manifest.json", "not a re
 case("correct-manifest-binary", R, CF, ("--coeffs", "manifest.json", "not a readable JSON"),
      "binary garbage as manifest",
      setup=_coeffs_copy(lambda d: (d / "manifest.json").write_bytes(bytes(range(256)))))
+case("correct-manifest-deep", R, CF, ("--coeffs", "manifest.json", "nested too deeply"),
+     "a manifest of 10^5 nested lists (RecursionError)",
+     setup=_coeffs_copy(lambda d: (d / "manifest.json").write_text("[" * 100_000 + "]" * 100_000)))
+case("correct-manifest-huge", R, CF, ("--coeffs", "manifest.json", "larger than"),
+     "a 17 MiB manifest (read with a size cap)",
+     setup=_coeffs_copy(lambda d: (d / "manifest.json").write_bytes(b" " * (17 * 2**20))))
 case("correct-manifest-version", R, CF, ("--coeffs", "version = 2"), "a manifest of a newer version",
      setup=_coeffs_copy(_edit_manifest(version=2)))
 case("correct-manifest-no-files", R, CF, ("--coeffs", "'files'"), "a manifest without files",

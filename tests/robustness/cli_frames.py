@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import io
 import shutil
 from pathlib import Path
+
+import numpy as np
 
 from robustness.harness import (
     case,
@@ -16,6 +19,17 @@ from robustness.harness import (
     user_folder,
     write_file,
 )
+
+
+def _npy_header(path: Path, shape: tuple[int, ...]) -> None:
+    """An .npy file of ``shape`` float64 whose data is absent (only the header)."""
+    from numpy.lib import format as npformat
+
+    buf = io.BytesIO()
+    npformat.write_array_header_1_0(buf, {"descr": "<f8", "fortran_order": False,
+                                          "shape": shape})
+    path.write_bytes(buf.getvalue() + bytes(64))
+
 
 F = command("frames", (("irnuc.model", "simulate"),))
 case("frames-unknown-flag", F, "--bogus 1", ("--bogus", "unrecognized"), "an unknown flag")
@@ -76,7 +90,25 @@ case("frames-scene-map-image-garbage", F, "--scene map --scene-param path={t}/ma
 case("frames-scene-map-shape", F, "--scene map --scene-param path={w}/map_3x3.npy",
      ("--scene-param", "shape (3, 3)"), "a map of the wrong size")
 case("frames-scene-map-folder", F, "--scene map --scene-param path={w}",
-     ("scene.path", "no such file"), "a folder as the map")
+     ("scene.path", "not a regular file"), "a folder as the map")
+case("frames-scene-map-bool", F, "--scene map --scene-param path={t}/map.npy",
+     ("scene.path", "dtype bool", "temperatures in K"),
+     "a boolean .npy map (was taken as a 1 K scene)",
+     setup=lambda w, t: np.save(t / "map.npy", np.ones((8, 8), bool)))
+case("frames-scene-map-complex", F, "--scene map --scene-param path={t}/map.npy",
+     ("scene.path", "complex128"), "a complex .npy map",
+     setup=lambda w, t: np.save(t / "map.npy", np.full((8, 8), 300 + 1j)))
+case("frames-scene-map-3d", F, "--scene map --scene-param path={t}/map.npy",
+     ("scene.path", "shape (2, 8, 8)", "2-D"), "a 3-D .npy map",
+     setup=lambda w, t: np.save(t / "map.npy", np.full((2, 8, 8), 300.0)))
+case("frames-scene-map-header-bomb", F, "--scene map --scene-param path={t}/map.npy",
+     ("scene.path", "needs an estimated"),
+     "an .npy map whose header claims 10^6 x 10^6 (checked before reading)",
+     setup=lambda w, t: _npy_header(t / "map.npy", (10**6, 10**6)))
+case("frames-scene-map-dev-zero", F, "--scene map --scene-param path=/dev/zero",
+     ("scene.path", "/dev/zero", "not a regular file"), "a device as the map")
+case("frames-sensor-dev-zero", F, "--sensor /dev/zero", ("--sensor", "/dev/zero", "larger than"),
+     "an endless file as the sensor (grew without bound)")
 case("frames-sensor-unknown-preset", F, "--sensor defualt", ("--sensor", "neither a preset"),
      "a misspelled preset")
 case("frames-sensor-missing-file", F, "--sensor {t}/none.toml", ("--sensor", "none.toml", "no such file"),
