@@ -34,6 +34,21 @@ class OutputError(UserError):
     """An output path cannot be written (wrong kind of file, permission, busy)."""
 
 
+#: Errors of the writing itself, not of the path: a full disk, a file-size limit
+#: (``ulimit -f``), a quota.
+WRITE_ERRNOS = frozenset({errno.ENOSPC, errno.EFBIG, errno.EDQUOT})
+
+
+class WriteError(OutputError):
+    """An output could not be written (disk full, file too large); what was there before
+    is left whole. ``path`` is the file, ``errno`` the operating system's error."""
+
+    def __init__(self, message: str, path: Path, errno_: int) -> None:
+        super().__init__(message)
+        self.path = path
+        self.errno = errno_
+
+
 def _umask() -> int:
     umask = os.umask(0)
     os.umask(umask)
@@ -54,6 +69,13 @@ def write_atomic(path: str | Path, write: Callable[[IO[bytes]], Any]) -> Path:
         with os.fdopen(fd, "wb") as fh:
             write(fh)
         os.replace(tmp, path)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        if exc.errno not in WRITE_ERRNOS:
+            raise
+        kept = "the previous file is left whole" if path.exists() else "nothing was written"
+        raise WriteError(f"{path}: cannot be written ({os.strerror(exc.errno)}); {kept}",
+                         path, exc.errno) from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
@@ -352,8 +374,13 @@ def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = N
             tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
             os.chmod(tmp, 0o777 & ~_umask())
             try:
-                yield tmp
-                (tmp / MARKER_NAME).write_text(_marker_text(kind))
+                try:
+                    yield tmp
+                    (tmp / MARKER_NAME).write_text(_marker_text(kind))
+                except (OSError, WriteError) as exc:  # named by --out, not the hidden folder
+                    if exc.errno not in WRITE_ERRNOS:
+                        raise
+                    raise _folder_write_error(exc, tmp, p, f"{flag} {given}") from None
                 if p.is_dir():
                     if _exchange(tmp, p):
                         shutil.rmtree(tmp, ignore_errors=True)  # now the previous result
@@ -370,3 +397,16 @@ def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = N
     finally:
         if held:
             _release(p)
+
+
+def _folder_write_error(exc: OSError | WriteError, tmp: Path, p: Path, name: str) -> WriteError:
+    """A write error while an output folder was being filled, told by the folder's name and
+    the file's name inside it (not the hidden temporary folder's)."""
+    f = getattr(exc, "path", None) or exc.filename
+    inner = ""
+    if f is not None:
+        with contextlib.suppress(ValueError):
+            inner = f"{Path(os.path.abspath(f)).relative_to(tmp)}: "
+    kept = ("its previous content is left whole" if p.exists() else "nothing was written")
+    return WriteError(f"{name}: {inner}cannot be written ({os.strerror(exc.errno or 0)}); {kept}",
+                      p, exc.errno or 0)

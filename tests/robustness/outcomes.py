@@ -11,4 +11,22 @@ OUTCOMES: dict[str, tuple[str, str]] = {
         "under another configuration's name",
         "the result and its folder carry the name asked for, written inside `--out` only "
         "(a cached result used to report the name that made it, and write outside `--out`)"),
+    "write_file_too_large": (
+        "`irnuc calibrate` over an earlier result with a file-size limit (`ulimit -f`, "
+        "SIGXFSZ ignored) below its `coeffs.npz`: `OSError` 27 inside the atomic writer",
+        "exit 2, one line naming `--out`, the file and 'File too large'; the earlier result "
+        "whole, no temporary folder left (was a traceback)"),
+    "write_disk_full": (
+        "a full disk (ENOSPC) while the atomic writer writes a file, alone and inside an "
+        "output folder",
+        "`WriteError` naming the file (or `--out` and the file in it) and 'No space left'; the "
+        "previous file or folder whole"),
+    "stdout_closed": (
+        "`irnuc calibrate ... | true`: stdout is a pipe whose reader has gone",
+        "exit 2, one line naming stdout ('the reader closed it'), no second error at exit "
+        "(was `BrokenPipeError`)"),
+    "stdout_full": (
+        "`irnuc calibrate ... > /dev/full`",
+        "exit 2, one line naming stdout and 'No space left'; the result in `--out` whole "
+        "(was `OSError` 28 at exit)"),
 }

@@ -2,9 +2,17 @@
 
 from __future__ import annotations
 
+import errno
+import hashlib
 import json
+import os
+import resource
+import signal
+import subprocess
+import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from robustness.harness import run_cli
@@ -48,6 +56,108 @@ def test_outcome_synth_cache_carries_the_asked_name(tmp_path: Path, monkeypatch:
     assert _files(work) == {"syn", "syn/.irnuc-output", "syn/synth.json", "syn/alias",
                             "syn/alias/synth.json", "syn/minimal", "syn/minimal/synth.json",
                             ".syn.lock"}
+
+
+_MAIN = "import sys; from irnuc.cli import main; sys.exit(main(sys.argv[1:]))"
+
+
+def _frames(path: Path, seed: int = 1) -> Path:
+    from irnuc.nuc_fixed.synthetic import synth_frames
+
+    s = synth_frames(shape=(24, 32), temps=(300.0, 400.0), repeats=3, defect_fraction=0.03,
+                     seed=seed)
+    np.savez(path, codes=s.codes, temps=s.temps, adc_bits=np.int64(s.adc_bits))
+    return path
+
+
+def _digest(folder: Path) -> dict[str, str]:
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def _irnuc(args: list[str], cwd: Path, **kw) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+    return subprocess.run([sys.executable, "-c", _MAIN, *args], cwd=cwd, env=env, text=True,
+                          stderr=subprocess.PIPE, timeout=120, **kw)
+
+
+def _one_error_line(err: str) -> str:
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert len(lines) == 1 and "Traceback" not in err and "Exception ignored" not in err, err
+    return lines[0]
+
+
+def test_outcome_write_file_too_large(tmp_path: Path) -> None:
+    from irnuc.cli import main
+
+    out = tmp_path / "cal"
+    assert main(["calibrate", "-q", "--frames", str(_frames(tmp_path / "a.npz")), "--out",
+                 str(out)]) == 0
+    before = _digest(out)
+    limit = 8000  # below coeffs.npz (~20 kB), above every other file of the run
+
+    def limited() -> None:
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # write() then fails with EFBIG
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    r = _irnuc(["calibrate", "-q", "--frames", str(_frames(tmp_path / "b.npz", 2)), "--out",
+                str(out)], tmp_path, stdout=subprocess.DEVNULL, preexec_fn=limited)
+    line = _one_error_line(r.stderr)
+    assert r.returncode == 2, line
+    assert line.startswith(f"irnuc calibrate: error: --out {out}: ") and "File too large" in line
+    assert "previous content is left whole" in line
+    assert _digest(out) == before
+    assert not list(tmp_path.glob(".cal.tmp-*"))
+
+
+def test_outcome_write_disk_full(tmp_path: Path) -> None:
+    from irnuc.common.io import WriteError, output_folder, write_atomic, write_text_atomic
+
+    def full(fh) -> None:
+        fh.write(b"half")
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    f = write_text_atomic(tmp_path / "a.txt", "old")
+    with pytest.raises(WriteError, match=rf"^{f}: cannot be written \(No space left on device\); "
+                       "the previous file is left whole$"):
+        write_atomic(f, full)
+    assert f.read_text() == "old" and sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
+    out = tmp_path / "out"
+    with output_folder(out, kind="test") as tmp:
+        (tmp / "x").write_text("old")
+    with pytest.raises(WriteError, match=rf"^--out {out}: x.npz: cannot be written \(No space "
+                       r"left on device\); its previous content is left whole$"):
+        with output_folder(out, kind="test") as tmp:
+            write_atomic(tmp / "x.npz", full)
+    assert (out / "x").read_text() == "old"
+    assert not list(tmp_path.glob(".out.tmp-*"))
+
+
+def test_outcome_stdout_closed(tmp_path: Path) -> None:
+    r, w = os.pipe()
+    os.close(r)  # the reader is gone before the first line
+    try:
+        p = _irnuc(["calibrate", "--frames", str(_frames(tmp_path / "a.npz")), "--out",
+                    str(tmp_path / "cal")], tmp_path, stdout=w)
+    finally:
+        os.close(w)
+    line = _one_error_line(p.stderr)
+    assert p.returncode == 2
+    assert line.startswith("irnuc calibrate: error: stdout: cannot be written (the reader closed it)")
+
+
+def test_outcome_stdout_full(tmp_path: Path) -> None:
+    if not Path("/dev/full").exists():
+        pytest.skip("no /dev/full here")
+    with open("/dev/full", "w") as full:
+        p = _irnuc(["calibrate", "--frames", str(_frames(tmp_path / "a.npz")), "--out",
+                    str(tmp_path / "cal")], tmp_path, stdout=full)
+    line = _one_error_line(p.stderr)
+    assert p.returncode == 2
+    assert line.startswith("irnuc calibrate: error: stdout: cannot be written (No space left")
+    from irnuc.nuc_fixed.memimage import read_memimage
+
+    read_memimage(tmp_path / "cal", "typical14")  # whole: every file checks against the manifest
 
 
 def test_every_outcome_is_tested() -> None:
