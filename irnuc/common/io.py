@@ -241,6 +241,15 @@ def _read_marker(folder: Path) -> str | None:
         return None
 
 
+def _nested_output(folder: Path) -> Path | None:
+    """The first folder below ``folder`` that is another irnuc output (its marker file)."""
+    for root, dirs, files in os.walk(folder):
+        if MARKER_NAME in files and Path(root) != folder:
+            return Path(root)
+        dirs.sort()
+    return None
+
+
 def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = None,
                         inputs: dict[str, str | Path | None] | None = None) -> Path:
     """Check, before any work, that ``path`` can become an output folder.
@@ -274,6 +283,12 @@ def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | No
         if q == p or q.is_relative_to(p):
             raise OutputError(f"{name}: holds {in_flag} {value}, which this command reads and "
                               "would replace; give another output folder")
+    for outer in p.parents:  # inside another output, the next run of that one deletes it
+        marker = _read_marker(outer)
+        if marker is not None:
+            raise OutputError(f"{name}: is inside {outer}, the output of `{marker}`, which its "
+                              f"next run replaces as a whole ({flag} with it); give a folder "
+                              "outside it")
     if p.is_dir():
         try:
             entries = [e.name for e in os.scandir(p)]
@@ -289,6 +304,11 @@ def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | No
             if kind is not None and marker not in (_marker_text(kind).strip(), "irnuc output"):
                 raise OutputError(f"{name}: holds the output of `{marker}`, not of `irnuc "
                                   f"{kind}`; give another folder")
+            nested = _nested_output(p)
+            if nested is not None:
+                raise OutputError(f"{name}: holds {nested.relative_to(p)}, the output of "
+                                  f"`{_read_marker(nested)}`, which replacing {flag} as a whole "
+                                  "would delete; move it out or give another folder")
     parent = p.parent
     probe = parent
     while not probe.exists():

@@ -24,6 +24,14 @@ def _frames_in_out(w: Path, t: Path) -> None:
 
 
 
+
+def _nested_output(w: Path, t: Path) -> None:
+    (t / "out" / "corr").mkdir(parents=True)
+    (t / "out" / ".irnuc-output").write_text("irnuc calibrate\n")
+    (t / "out" / "corr" / ".irnuc-output").write_text("irnuc correct\n")
+    (t / "out" / "corr" / "frames.npz").write_bytes(b"results")
+
+
 K = command("calibrate", (("irnuc.nuc_fixed.calibrate", "calibrate"),))
 G = "--frames {w}/good.npz"
 case("calibrate-no-frames", K, "", ("--frames", "required"), "--frames missing")
@@ -112,6 +120,10 @@ case("calibrate-targets-negative", K, f"{G} --targets=-1,1000", ("--targets", "0
      "a negative target")
 case("calibrate-targets-above", K, f"{G} --targets 0,99999", ("--targets", "0..16383"),
      "a target above the output range")
+case("calibrate-targets-reversed", K, f"{G} --targets 9000,1000", ("--targets", "LOW", "below HIGH"),
+     "targets high to low (was blamed on the thresholds and the frames, after the work)")
+case("calibrate-targets-equal", K, f"{G} --targets 5000,5000", ("--targets", "below HIGH"),
+     "equal targets (a zero gain)")
 case("calibrate-set-no-equals", K, f"{G} --set low_response", ("--set", "KEY=VALUE"), "--set without =")
 case("calibrate-set-typo", K, f"{G} --set low_respons=0.3", ("--set", "did you mean 'low_response'"),
      "a misspelled threshold")
@@ -166,6 +178,9 @@ case("calibrate-out-frames-output", K, f"{G} --out {{t}}/out", ("--out", "irnuc 
      "--out holds the output of irnuc frames", setup=other_kind("frames"))
 case("calibrate-out-holds-frames", K, "--frames {t}/out/frames.npz --out {t}/out",
      ("--out", "--frames", "would replace"), "--out holds the frames it reads", setup=_frames_in_out)
+case("calibrate-out-holds-other-output", K, f"{G} --out {{t}}/out", ("--out", "holds corr", "irnuc correct"),
+     "--out is a calibration holding another command's output (deleted without a word)",
+     setup=_nested_output)
 case("calibrate-out-link", K, f"{G} --out {{t}}/out", ("--out", "symbolic link"), "--out is a link",
      setup=link_out)
 case("calibrate-out-cwd", K, f"{G} --out .", ("--out", "current folder"), "--out is the current folder",

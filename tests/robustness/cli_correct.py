@@ -183,6 +183,9 @@ case("correct-header-bomb", R, "--frames {w}/bomb.npz --coeffs {t}/cal", ("--fra
      "an .npz whose header claims petabytes", setup=_coeffs_copy())
 case("correct-out-is-coeffs", R, CF + " --out {t}/cal", ("--out", "--coeffs", "would replace"),
      "--out is the coefficient folder it reads", setup=_coeffs_copy())
+case("correct-out-inside-coeffs", R, CF + " --out {t}/cal/corr", ("--out", "is inside", "irnuc calibrate"),
+     "--out nested inside the calibration it reads (the next irnuc calibrate --out there deleted it)",
+     setup=_coeffs_copy())
 case("correct-out-file", R, CF + " --out {t}/out", ("--out", "not a folder"), "--out is a file",
      setup=lambda w, t: (_coeffs_copy()(w, t), out_is_file(w, t)))
 case("correct-out-user-folder", R, CF + " --out {t}/out", ("--out", "other content"),
