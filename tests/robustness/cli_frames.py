@@ -109,6 +109,11 @@ case("frames-scene-map-dev-zero", F, "--scene map --scene-param path=/dev/zero",
      ("scene.path", "/dev/zero", "not a regular file"), "a device as the map")
 case("frames-sensor-dev-zero", F, "--sensor /dev/zero", ("--sensor", "/dev/zero", "larger than"),
      "an endless file as the sensor (grew without bound)")
+case("frames-every-solve-fails", F, "--set fpa.active_rows=4 --set fpa.active_cols=4 "
+     "--set bolometer.tcr=0.02 --set bolometer.bias_current=1e-4",
+     ("--set bolometer.tcr=0.02", "every pixel's solve failed", "runaway"),
+     "a sensor where every pixel runs away (exit 0, a raw RuntimeWarning, frames of rail codes)",
+     before_work=False)
 case("frames-sensor-unknown-preset", F, "--sensor defualt", ("--sensor", "neither a preset"),
      "a misspelled preset")
 case("frames-sensor-missing-file", F, "--sensor {t}/none.toml", ("--sensor", "none.toml", "no such file"),

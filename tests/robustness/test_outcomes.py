@@ -160,6 +160,25 @@ def test_outcome_stdout_full(tmp_path: Path) -> None:
     read_memimage(tmp_path / "cal", "typical14")  # whole: every file checks against the manifest
 
 
+def test_outcome_frames_some_solves_fail(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from irnuc.cli import main
+
+    out = tmp_path / "f"
+    assert main(["frames", "-q", "--set", "fpa.active_rows=4", "--set", "fpa.active_cols=4",
+                 "--set", "bolometer.g=1e-30", "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    with np.load(out / "frames.npz") as z:
+        assert sorted(z.files) == sorted(["codes", "temps", "defect_kind", "defect_pattern",
+                                          "adc_bits", "seed", "config_json",
+                                          "diagnostics_json"])  # no status written
+        d = json.loads(str(z["diagnostics_json"]))["solver_failures"]
+    n = d["runaway"] + d["invalid"]
+    assert d["runaway"] and d["invalid"] and not d["no_convergence"]
+    # The failures of the whole array (4 x 4 active pixels and their blind surround).
+    assert err.splitlines() == [f"irnuc frames: warning: {n} of 100 pixel solves failed "
+                                "(runaway, invalid); those pixels read the high rail"], err
+
+
 def test_every_outcome_is_tested() -> None:
     tests = {n.removeprefix("test_outcome_") for n in globals() if n.startswith("test_outcome_")}
     assert tests == set(OUTCOMES)
