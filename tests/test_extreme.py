@@ -89,6 +89,69 @@ def test_narrow_band_radiance_relative_error(band):
         assert abs((got - ref) / ref) < 1e-12, (band, T)
 
 
+def _ulps_above(x, n):
+    for _ in range(n):
+        x = np.nextafter(x, 1.0)
+    return float(x)
+
+
+COLD_BANDS = {"one ulp": (8e-6, _ulps_above(8e-6, 1)), "1e-15 m": (8e-6, 8e-6 + 1e-15),
+              "8 um +- 1 pm": (8e-6 - 1e-12, 8e-6 + 1e-12), "1 nm": (8e-6, 8.001e-6)}
+
+
+@pytest.mark.parametrize("band", list(COLD_BANDS.values()), ids=list(COLD_BANDS))
+def test_narrow_band_in_the_cold_branch_against_mpmath(band):
+    # x = hc/(lambda k T) near and above 600, where the radiance is the first tail term in
+    # log space: 1e-12 relative to the 80-digit mpmath series (was 2.5e-4 for one ulp and
+    # 1.5e-11 for 1e-15 m at 2.99 K: logs of ratios rounded near 1).
+    for T in (2.99, 2.9975, 3.0, 2.5, 1.8):
+        ref = band_radiance_mp(T, band, as_mpf=True)
+        got = mp.mpf(float(model.band_radiance(T, band=band)))
+        if ref >= FLOAT64_TINY:
+            assert abs((got - ref) / ref) < 1e-12, (band, T)
+        else:
+            assert abs(got - ref) <= 1e-323, (band, T)
+
+
+def test_narrow_bands_random_cold_scan_against_mpmath():
+    # Seeded draws: bands of 1-40 ulps, 1e-15..1e-6 and 1e-6..3 relative width at 3-20 um,
+    # the temperature set so that x2 spans 100..710 (both sides of the log-space branch).
+    rng = np.random.default_rng(19)
+    worst = 0.0
+    for _ in range(60):
+        lam1 = 10 ** rng.uniform(math.log10(3e-6), math.log10(20e-6))
+        kind = int(rng.integers(0, 3))
+        lam2 = (_ulps_above(lam1, int(rng.integers(1, 40))) if kind == 0
+                else lam1 * (1 + 10 ** rng.uniform(-15, -6) if kind == 1
+                             else 1 + 10 ** rng.uniform(-6, 0.5)))
+        T = 0.014387768775039337 / (lam2 * rng.uniform(100.0, 710.0))
+        ref = band_radiance_mp(T, (lam1, lam2), as_mpf=True)
+        if ref < FLOAT64_TINY:
+            continue
+        got = mp.mpf(float(model.band_radiance(T, band=(lam1, lam2))))
+        worst = max(worst, float(abs((got - ref) / ref)))
+    assert worst < 1e-12
+
+
+@pytest.mark.parametrize("T", [1e-313, 1e-315, 5e-324])
+def test_subnormal_temperatures_give_zero_radiance_and_frames(T, tmp_path):
+    # T in (0, 1e9] is legal: a subnormal T is a scene at 0 K, never a ZeroDivisionError
+    # (lambda * T underflowed to 0 inside the kernel) in the radiance, the steady and the
+    # transient model or `irnuc frames`.
+    from irnuc.cli import main
+    from irnuc.model.transient import simulate_transient
+
+    assert model.band_radiance(T) == 0.0
+    assert model.band_radiance(T, band=COLD_BANDS["one ulp"]) == 0.0
+    cfg = _cfg(**{"fpa.active_rows": 3, "fpa.active_cols": 4})
+    cold = _sim(cfg, [T, 1e-200]).codes
+    assert (cold[0] == cold[1]).all()  # both scenes radiate nothing
+    tf = simulate_transient(cfg, [T, 300.0])
+    assert np.isfinite(tf.codes).all() and tf.codes.shape == (2, 3, 4)
+    assert main(["frames", "-q", "--temps", f"{T!r}", "--set", "fpa.active_rows=3",
+                 "--set", "fpa.active_cols=4", "--out", str(tmp_path / "f")]) == 0
+
+
 @pytest.mark.parametrize("bad", [0.0, -5.0, math.nan, math.inf, -math.inf])
 def test_bad_temperatures_are_clear_errors(bad):
     with pytest.raises(ConfigError, match=r"^T = .*allowed range|^T = .*not finite"):
