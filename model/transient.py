@@ -42,8 +42,10 @@ INTEGRATORS: dict[str, int] = {
     "exponential": _kt.M_EXPONENTIAL,
     "auto": _kt.M_AUTO,
 }
-#: Integrator names by code (``auto`` reports the one that finished each pulse).
-INTEGRATOR_NAMES: dict[int, str] = {v: k for k, v in INTEGRATORS.items()}
+#: Integrator names by code (``auto`` reports the one that finished each pulse;
+#: ``quasi_static``: ``auto`` or ``exponential`` took the pulse in the tau -> 0 limit).
+INTEGRATOR_NAMES: dict[int, str] = {**{v: k for k, v in INTEGRATORS.items()},
+                                    _kt.M_QUASI_STATIC: "quasi_static"}
 #: Order of accuracy of each integrator (for documentation and convergence tests).
 INTEGRATOR_ORDER: dict[str, int] = {"rk4": 4, "backward_euler": 1, "trapezoidal": 2,
                                     "exponential": 3}

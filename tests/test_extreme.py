@@ -215,6 +215,67 @@ def test_tau_extremes_give_finite_frames(C):
     assert (fr.outputs["status"] == STATUS_OK).all()
 
 
+def _tau_zero_limit(Q, Ts, p, b):
+    """Per frame and pixel, the equilibrium of the biased pixel, I^2 R + Q = g theta (the
+    tau -> 0 limit of a pulse), by scipy's brentq: (voltage I R, theta)."""
+    from scipy.optimize import brentq
+
+    B = -b["tcr"] * b["T_ref"] ** 2
+    I2 = b["bias_current"] ** 2
+    v = np.empty(Q.shape)
+    th = np.empty(Q.shape)
+    for n, i, j in np.ndindex(*Q.shape):
+        g, R0, q, ts = p["g"][i, j], p["R_ref"][i, j], Q[n, i, j], Ts[n]
+
+        def R(x, R0=R0, ts=ts):
+            return R0 * math.exp(B * (1 / (ts + x) - 1 / b["T_ref"]))
+
+        lo = q / g  # unbiased: the heat balance is >= 0 here and <= 0 at hi (R falls)
+        root = brentq(lambda x, R=R, q=q, g=g: I2 * R(x) + q - g * x, lo, lo + I2 * R(lo) / g,
+                      xtol=1e-300, rtol=8.9e-16, maxiter=500)
+        v[n, i, j], th[n, i, j] = b["bias_current"] * R(root), root
+    return v, th
+
+
+@pytest.mark.parametrize("C", [1e-24, 1e-26, 1e-30, 1e-40, 1e-60, 1e-100])
+def test_any_accepted_C_is_solved_by_default_in_the_tau_to_zero_limit(C):
+    # C down to 1e-100 J/K (the accepted range): the default integrator gives the tau -> 0
+    # limit (the biased pixel's equilibrium, brentq) to 1e-12 (its rtol is 1e-9) or 10/stiffness,
+    # whichever is larger; from stiffness 1e18 it takes that limit directly (1 solve per
+    # pulse). Was: C = 1e-60 left most pulses unconverged at the top code; C = 1e-40 needed
+    # 21,014 substeps.
+    from irnuc.model import transient as tr
+    from irnuc.reports.studies.precision import transient_problem
+
+    prob = transient_problem("nonstiff")
+    cfg, Q, Ts, p = prob["cfg"], prob["Q"], prob["T_s"], prob["params"]
+    b = cfg["bolometer"]
+    r = tr.integrate_pixels(Q, Ts, p["R_ref"], p["g"], C, tcr=b["tcr"], T_ref=b["T_ref"],
+                            bias_current=b["bias_current"], t_int=b["t_int"])
+    assert (r.status == STATUS_OK).all()
+    v, th = _tau_zero_limit(Q, Ts, p, b)
+    stiffness = float((p["g"] * b["t_int"] / C).min())
+    err = max(float(np.max(np.abs(r.v_bolo - v) / v)), float(np.max(np.abs(r.dT_end - th) / th)))
+    assert err <= max(1e-12, 10.0 / stiffness), err
+    if stiffness >= 1e18:
+        assert r.integrators_used() == {"quasi_static": Q.size} and (r.substeps == 1).all()
+    else:
+        assert r.substeps.max() < 700
+
+
+def test_tiny_C_frames_equal_the_steady_model():
+    # simulate_transient(cfg, [300, 310]) at C = 1e-60 (the audit's call): every pulse
+    # solved, no pixel at the top code, the codes of the steady model (whose self-heating
+    # factor is 1 in this limit).
+    from irnuc.model.transient import simulate_transient
+
+    cfg = _cfg(**{"bolometer.C": 1e-60})
+    tf = simulate_transient(cfg, [300.0, 310.0], outputs=("codes", "status"))
+    assert (tf.outputs["status"] == STATUS_OK).all()
+    assert tf.codes.max() < 2**14 - 1
+    np.testing.assert_array_equal(tf.codes, _sim(cfg, [300.0, 310.0]).codes)
+
+
 def test_integration_time_zero_is_an_error():
     with pytest.raises(ConfigError, match=r"bolometer\.t_int = 0"):
         _cfg(**{"bolometer.t_int": 0.0})
