@@ -272,8 +272,16 @@ def integrate_pixels(
     else:
         th0 = np.ascontiguousarray(np.broadcast_to(
             check_array("theta0", theta0, unit="K"), shape), dtype=np.float64).ravel()
-    if not (Ts[0] + th0 > 0.0).all():
-        raise ConfigError("theta0: the initial pixel temperature T_s + theta0 must be > 0 K")
+    cold = ~(Ts[0] + th0 > 0.0)
+    if cold.any():
+        if theta0 is not None:
+            raise ConfigError("theta0: the initial pixel temperature T_s + theta0 must be > 0 K")
+        k = int(np.argmax(cold))
+        raise ConfigError(
+            f"transient.initial = 'equilibrium': the unbiased equilibrium T_s + Q/g of "
+            f"{int(cold.sum())} pixel(s) is at or below 0 K (first: Q = {Qf[0, k]:.3g} W, "
+            f"bolometer.g = {gg[k]:.3g} W/K: the pixel emits more than it absorbs and g "
+            "cannot hold it); use transient.initial = 'substrate' or a larger bolometer.g")
     B = _kb.activation_temperature(tcr, T_ref)
     method = INTEGRATORS[s.integrator]
     refuse = s.explicit_policy == "refuse"

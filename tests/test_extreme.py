@@ -184,7 +184,8 @@ def test_tolerance_one_gives_finite_frames():
 # ---- self-heating factor: tau -> 0 and tau -> inf --------------------------------------
 
 def _f_mp(u):
-    with mp.workdps(50):
+    # Digits enough for the cancellation in 1 - (1 - e^-u)/u at u down to 1e-300.
+    with mp.workdps(50 + max(0, int(-math.log10(u)) if u > 0 else 0)):
         um = mp.mpf(u)
         return float(1 + mp.expm1(-um) / um)
 
@@ -276,6 +277,21 @@ def test_tiny_C_frames_equal_the_steady_model():
     np.testing.assert_array_equal(tf.codes, _sim(cfg, [300.0, 310.0]).codes)
 
 
+def test_transient_error_at_g_1e_100_names_what_the_caller_gave():
+    # The default initial state is the unbiased equilibrium T_s + Q/g; for net emitters on
+    # g = 1e-100 it lies below 0 K. The error names transient.initial and bolometer.g (it
+    # named theta0, which the caller never passed); with initial = 'substrate' it runs.
+    from irnuc.model.transient import simulate_transient
+
+    cfg = _cfg(**{"bolometer.g": 1e-100})
+    with pytest.raises(ConfigError, match=r"^transient\.initial = 'equilibrium'.*bolometer\.g") as e:
+        simulate_transient(cfg, [300.0])
+    assert "theta0" not in str(e.value)
+    tf = simulate_transient(cfg, [300.0], settings={"initial": "substrate"},
+                            outputs=("codes", "status"))
+    assert np.isfinite(tf.codes).all() and (tf.outputs["status"] == STATUS_OK).all()
+
+
 def test_integration_time_zero_is_an_error():
     with pytest.raises(ConfigError, match=r"bolometer\.t_int = 0"):
         _cfg(**{"bolometer.t_int": 0.0})
@@ -298,6 +314,82 @@ def test_g_to_zero_reports_failed_pixels_not_garbage(g):
     assert fr.diagnostics["solver_failures"]["runaway"] + \
         fr.diagnostics["solver_failures"]["invalid"] == int((~ok).sum()) > 0
     assert np.isfinite(fr.codes).all()
+
+
+def _root_mp(a, b, R_ref, B, T_ref, T_s):
+    """The root of x = a + b R(T_s + x) (B > 0, b > 0) by bisection in mpmath at 50 digits
+    on ln(x - a) = ln(b R(T_s + x)), increasing in x, bracketed by max(a, -T_s) (-inf
+    there) and max(a, 0) + b R(T_s + max(a, 0)) (>= 0 there: R falls with x)."""
+    with mp.workdps(50):
+        a, b, R_ref, B, T_ref, T_s = (mp.mpf(float(v)) for v in (a, b, R_ref, B, T_ref, T_s))
+
+        def F(x):
+            return mp.log(x - a) - mp.log(b * R_ref) - B * (1 / (T_s + x) - 1 / T_ref)
+
+        lo = max(a, -T_s)
+        top = max(a, mp.mpf(0))
+        hi = top + b * R_ref * mp.exp(B * (1 / (T_s + top) - 1 / T_ref))
+        while hi - lo > mp.mpf(10) ** -44 * abs(hi):
+            m = (lo + hi) / 2
+            lo, hi = (m, hi) if F(m) < 0 else (lo, m)
+        return (lo + hi) / 2
+
+
+def test_g_1e_100_every_output_finite_and_the_biased_equilibrium_right():
+    # g = 1e-100 W/K (the bottom of the accepted range): pixels whose unbiased equilibrium
+    # T_s + Q/g lies below 0 K (net emitters) still have exactly one biased equilibrium
+    # above 0 K (R grows without bound as T -> 0); it is solved (40-digit mpmath root to
+    # 1e-12), and no output holds NaN (temperature_rise and bolometer_voltage were NaN,
+    # the pixels reported invalid).
+    b = _cfg()["bolometer"]
+    cfg = _cfg(**{"bolometer.g": 1e-100})
+    fr = _sim(cfg, [300.0], outputs=("codes", "status", "temperature_rise",
+                                      "bolometer_voltage", "params", "power"))
+    dT, v = fr.outputs["temperature_rise"][0], fr.outputs["bolometer_voltage"][0]
+    assert np.isfinite(dT).all() and np.isfinite(v).all()
+    p, Q = fr.outputs["params"], fr.outputs["power"][0]
+    Ts, I = cfg["environment"]["T_substrate"], cfg["bolometer"]["bias_current"]
+    a = Q / p["g"]
+    s = fr.outputs["status"][0]
+    assert (s[Ts + a <= 0] == STATUS_OK).all() and (s != STATUS_INVALID).all()
+    assert (s[a > 1e3] == STATUS_RUNAWAY).all()  # absorbers: Q/g of 1e76 K
+    cold = np.argwhere(Ts + a <= 0)
+    assert cold.size  # the case under test occurs
+    B = -b["tcr"] * b["T_ref"] ** 2
+    for i, j in cold[:6]:
+        f = _f_mp(b["t_int"] * p["g"][i, j] / p["C"][i, j])
+        ref = _root_mp(a[i, j], I * I * f / p["g"][i, j], p["R_ref"][i, j], B, b["T_ref"], Ts)
+        assert abs((dT[i, j] - ref) / ref) < 1e-12
+        assert 0 < Ts + dT[i, j] < Ts
+
+
+def test_no_equilibrium_above_0K_is_invalid_with_the_values_at_0K():
+    # Without bias nothing holds a net emitter above 0 K: status invalid, the pixel at the
+    # bound it falls to (temperature_rise = -T_substrate) and 0 V (no current), never NaN.
+    cfg = _cfg(**{"bolometer.g": 1e-100, "bolometer.bias_current": 0.0})
+    fr = _sim(cfg, [300.0], outputs=("codes", "status", "temperature_rise", "bolometer_voltage"))
+    s = fr.outputs["status"]
+    assert (s == STATUS_INVALID).any()
+    Ts = cfg["environment"]["T_substrate"]
+    assert (fr.outputs["temperature_rise"][s == STATUS_INVALID] == -Ts).all()
+    assert (fr.outputs["bolometer_voltage"][s == STATUS_INVALID] == 0.0).all()
+    assert fr.diagnostics["solver_failures"]["invalid"] == int((s == STATUS_INVALID).sum())
+
+
+def test_microkelvin_rise_to_full_relative_accuracy():
+    # The Newton stop tests are relative: a rise of ~3 uK (bias 10 nA) comes back to 1e-12
+    # of the 40-digit root, as a rise of kelvins does (an absolute floor of 1e-15 K left it
+    # 1e-9 off).
+    from irnuc.model.core.bolometer import solve_delta_t
+
+    B = 0.025 * 300.0**2
+    for a, bb in ((0.0, 3e-11), (1e-7, 1e-11), (-1e-6, 3e-11), (0.0, 3e-20)):
+        x, st, _ = solve_delta_t(a, bb, 1e5, B, 300.0, 300.0, 1e-12, 100, math.nan, 1000.0)
+        ref = _root_mp(a, bb, 1e5, B, 300.0, 300.0)
+        assert st == STATUS_OK and abs((x - ref) / ref) < 1e-12, (a, bb, x, ref)
+    fr = _sim(_cfg(**{"bolometer.bias_current": 1e-8}), [300.0],
+              outputs=("codes", "temperature_rise"))
+    assert 1e-7 < np.median(fr.outputs["temperature_rise"]) < 1e-4
 
 
 def test_positive_tcr_runaway_detected_per_pixel():
