@@ -3,10 +3,12 @@
 For each component, every method is run over a range of settings (series tolerance or
 terms, Newton tolerance or iteration cap, integrator steps or tolerance). A point is the
 error (max relative over the sample, against an independent reference), the run time
-(minimum of a few runs after a warm-up that includes the JIT compilation) and the work
+(minimum of a few runs after an untimed warm-up call, which compiles every kernel and
+signature the setting reaches: JIT compilation is never on the time axis) and the work
 (series terms, Newton iterations or integrator substeps: a second axis free of timing
 noise). A method that fails at a setting (an error, a solver status other than OK, a
-non-finite value) is a failed point with its reason and the time it took to fail. The
+non-finite value) is a failed point with its reason and the time a second (compiled) call
+took to fail. The
 default setting of each component is marked and checked against the Pareto front.
 
 References, all independent of the code under test and kept as double-double values (a

@@ -18,7 +18,8 @@ TIME_MARGIN = 1.5
 ERROR_MARGIN = 4.0
 #: Errors below this are "exact to double precision" and compare equal.
 ERROR_FLOOR = 1e-15
-#: A timed call is repeated only while the repeats together stay below this, s.
+#: A timed call (after its untimed warm-up) is repeated only while the repeats together
+#: stay below this, s.
 TIME_BUDGET = 0.6
 #: Substep budget per pulse and pixel of the transient studies: beyond, a failed point.
 TRANSIENT_BUDGET = 10_000
@@ -60,13 +61,13 @@ def single_thread() -> Iterator[None]:
         numba.set_num_threads(old)
 
 
-def best_time(fn: Callable[[], Any], repeats: int, first: float | None = None) -> float:
-    """Minimum wall time of up to ``repeats`` calls of ``fn``, s; ``first`` is the time of
-    a call already made (the warm-up). Slow calls are not repeated past TIME_BUDGET."""
-    best = math.inf if first is None else first
-    spent = 0.0 if first is None else first
-    for _ in range(repeats):
-        if spent > TIME_BUDGET and best < math.inf:
+def best_time(fn: Callable[[], Any], repeats: int) -> float:
+    """Minimum wall time of up to ``repeats`` calls of ``fn`` (at least one), s; call it
+    after a warm-up call. Slow calls are not repeated past TIME_BUDGET."""
+    best = math.inf
+    spent = 0.0
+    for _ in range(max(1, repeats)):
+        if spent > TIME_BUDGET:
             break
         t0 = time.perf_counter()
         fn()
@@ -116,24 +117,45 @@ class SettingFailed(RuntimeError):
         self.work = work
 
 
-def measure(points: list[Point], method: str, name: str, setting: float, runner: Runner,
-             repeats: int, default: bool = False) -> None:
-    """``runner = (call, evaluate)``: ``evaluate(call())`` gives (error, work) or raises
-    :class:`SettingFailed`; only ``call`` is timed (the first call is the warm-up)."""
-    call, evaluate = runner
+def _failed(points: list[Point], method: str, name: str, setting: float, exc: Exception,
+            seconds: float, default: bool) -> None:
+    points.append(Point(method, name, setting, None, seconds, getattr(exc, "work", None),
+                        f"{type(exc).__name__}: {exc}"[:300], default, failed=True))
+
+
+def _time_failure(call: Callable[[], Any]) -> float:
+    """Wall time of one more call of a setting that failed, s (it is compiled by now)."""
     t0 = time.perf_counter()
+    with contextlib.suppress(Exception):
+        call()
+    return time.perf_counter() - t0
+
+
+def measure(points: list[Point], method: str, name: str, setting: float, runner: Runner,
+            repeats: int, default: bool = False) -> None:
+    """``runner = (call, evaluate)``: ``evaluate(call())`` gives (error, work) or raises
+    :class:`SettingFailed`; only ``call`` is timed.
+
+    The first call is the warm-up and is never timed: it compiles every kernel and
+    signature this setting reaches (numba's JIT, seconds), which would otherwise be drawn
+    as the setting's run time. The point's time is the best of up to ``repeats`` calls
+    after it; a failed setting's time is that of one more, compiled, call.
+    """
+    call, evaluate = runner
     try:
         out = call()
-        first = time.perf_counter() - t0
+    except Exception as exc:  # a failing setting is a failed point, with its reason
+        _failed(points, method, name, setting, exc, _time_failure(call), default)
+        return
+    try:
         err, work = evaluate(out)
         if not math.isfinite(err):
             raise SettingFailed("non-finite result")
-        t = best_time(call, repeats, first if first > TIME_BUDGET else None)
-        points.append(Point(method, name, setting, float(err), t, work, None, default))
-    except Exception as exc:  # a failing setting is a failed point, with its reason
-        spent = time.perf_counter() - t0
-        points.append(Point(method, name, setting, None, spent, getattr(exc, "work", None),
-                            f"{type(exc).__name__}: {exc}"[:300], default, failed=True))
+    except Exception as exc:
+        _failed(points, method, name, setting, exc, _time_failure(call), default)
+        return
+    points.append(Point(method, name, setting, float(err), best_time(call, repeats), work,
+                        None, default))
 
 
 def component(name: str, title: str, problem: str, reference: str, reference_error: float,
