@@ -34,4 +34,9 @@ OUTCOMES: dict[str, tuple[str, str]] = {
         "exit 0, the frames written, and one warning line counting the failed solves and "
         "their kinds (was a raw two-line RuntimeWarning); every pixel failing is the "
         "command-line case `frames-every-solve-fails`"),
+    "report_checks_nothing": (
+        "a report whose baseline shares no compared metric with the run (every metric new), "
+        "or a run that measured only `info` metrics",
+        "status `fail` with the reason ('nothing was checked against it', 'measured nothing "
+        "that can pass or fail'), never `pass` (was `compared: 0` and pass)"),
 }

@@ -179,6 +179,27 @@ def test_outcome_frames_some_solves_fail(tmp_path: Path, capsys: pytest.CaptureF
                                 "(runaway, invalid); those pixels read the high rail"], err
 
 
+def test_outcome_report_checks_nothing() -> None:
+    from irnuc.reports.report.base import Report
+    from irnuc.reports.report.summary import make_summary
+
+    rep = Report(config={"name": "x"}, verbose=False)
+    rep.metric("calibration.bad_pixels", 3, "lower")
+    base = {"metrics": {"other.metric": {"value": 1.0, "better": "lower"}}}
+    s = make_summary(rep, [], base, "base.json")
+    assert s["baseline"]["compared"] == 0 and s["baseline"]["new"] == ["calibration.bad_pixels"]
+    assert s["status"] == "fail"
+    assert any("nothing was checked against it" in r for r in s["status_reasons"])
+    # The same run against a baseline holding its metric: compared, and a pass.
+    same = {"metrics": {"calibration.bad_pixels": {"value": 3, "better": "lower"}}}
+    assert make_summary(rep, [], same, "base.json")["status"] == "pass"
+    info = Report(config={"name": "x"}, verbose=False)
+    info.metric("cosim.tests", 4, "info")
+    s = make_summary(info, [], None, None)
+    assert s["status"] == "fail" and s["status_reasons"] == [
+        "the report measured nothing that can pass or fail"]
+
+
 def test_every_outcome_is_tested() -> None:
     tests = {n.removeprefix("test_outcome_") for n in globals() if n.startswith("test_outcome_")}
     assert tests == set(OUTCOMES)
