@@ -172,11 +172,11 @@ def test_outcome_frames_some_solves_fail(tmp_path: Path, capsys: pytest.CaptureF
                                           "adc_bits", "seed", "config_json",
                                           "diagnostics_json"])  # no status written
         d = json.loads(str(z["diagnostics_json"]))["solver_failures"]
-    n = d["runaway"] + d["invalid"]
-    assert d["runaway"] and d["invalid"] and not d["no_convergence"]
+    n = d["runaway"]
+    assert 0 < n < 100 and not d["no_convergence"] and not d["invalid"]
     # The failures of the whole array (4 x 4 active pixels and their blind surround).
     assert err.splitlines() == [f"irnuc frames: warning: {n} of 100 pixel solves failed "
-                                "(runaway, invalid); those pixels read the high rail"], err
+                                "(runaway); those pixels read the high rail"], err
 
 
 def test_outcome_report_checks_nothing() -> None:
