@@ -30,7 +30,7 @@ OUTCOMES: dict[str, tuple[str, str]] = {
         "exit 2, one line naming stdout and 'No space left'; the result in `--out` whole "
         "(was `OSError` 28 at exit)"),
     "frames_some_solves_fail": (
-        "`irnuc frames --set bolometer.g=1e-30`: some pixels run away",
+        "`irnuc frames` of a positive-TCR sensor near runaway with a 5 % spread: some pixels run away",
         "exit 0, the frames written, and one warning line counting the failed solves and "
         "their kinds (was a raw two-line RuntimeWarning); every pixel failing is the "
         "command-line case `frames-every-solve-fails`"),
