@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from robustness.harness import case, command, out_is_file, user_folder
+from robustness.harness import case, command, out_is_file, user_folder, write_file
 
 P = command("report", (("irnuc.reports.report.run", "build_report"),))
 NC = "--config small --no-cosim"
@@ -118,6 +118,11 @@ case("report-junit-malformed", P, "--config small --junit {w}/junit_bad.xml", ("
      "a JUnit file that is not XML (read after the other phases)")
 case("report-junit-root", P, "--config small --junit {w}/junit_root.xml", ("--junit", "junit_root.xml"),
      "XML that is not JUnit")
+case("report-junit-dev-zero", P, "--config small --junit /dev/zero", ("--junit", "/dev/zero", "larger than"),
+     "an endless file as JUnit results")
+case("report-junit-empty-suite", P, "--config small --junit {t}/j.xml", ("--junit", "no <testcase>"),
+     "a JUnit file without a test (reported 0 tests and passed)",
+     setup=write_file("j.xml", '<testsuite name="s" tests="0"></testsuite>'))
 case("report-scheduler-refused", P, f"{NC} --scheduler tcp://127.0.0.1:1", ("--scheduler",),
      "an unreachable Dask scheduler (noticed in the sweep phase)")
 case("report-config-cosim-test-typo", P, "--config {w}/rep_cosim_typo.toml",
