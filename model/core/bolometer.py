@@ -214,43 +214,15 @@ def solve_cold_start(a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
             hi_T = T
         if lo_T == 0.0 and not T > 0.0:
             return -T_s, STATUS_INVALID, it  # no positive T left in floating point
-    x, st, k = bracketed_newton_negative(lo_T - T_s, hi_T - T_s, T - T_s, a, b, R_ref, B,
-                                         T_ref, T_s, rtol, max_iter)
+    x, st, k = bracketed_newton(lo_T - T_s, hi_T - T_s, T - T_s, a, b, R_ref, B, T_ref, T_s,
+                                rtol, max_iter)
     return x, st, it + k
 
 
 @njit(cache=True)
-def bracketed_newton_negative(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
-    """Root of the increasing h(x) = x - a - b R(T_s + x) (B > 0) in [lo, hi] (K), h(lo) <
-    0 <= h(hi): Newton from x, bisection whenever a step leaves the bracket. Returns
-    (x, status, iterations)."""
-    for it in range(1, max_iter + 1):
-        T = T_s + x
-        R = resistance(T, R_ref, B, T_ref)
-        h = x - a - b * R
-        if h == 0.0:
-            return x, STATUS_OK, it
-        if h < 0.0:
-            lo = x
-        else:
-            hi = x
-        dh = 1.0 + b * R * B / (T * T)
-        xn = x - h / dh
-        if lo < xn < hi:
-            # A Newton step this small leaves an error of order its square: done.
-            if abs(xn - x) <= rtol * abs(xn) + ROOT_ATOL:
-                return xn, STATUS_OK, it
-        else:
-            xn = 0.5 * (lo + hi)
-            if xn == lo or xn == hi:
-                return xn, STATUS_OK, it  # the bracket is two neighbouring floats
-        x = xn
-    return x, STATUS_NO_CONVERGENCE, max_iter
-
-
-@njit(cache=True)
 def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
-    """(h in K, dh/dx dimensionless) of h(x) = x - a - b R(T_s + x), x in K."""
+    """(h in K, dh/dx dimensionless) of h(x) = x - a - b R(T_s + x), x in K (either sign
+    of B; named for the positive TCR, its first user)."""
     T = T_s + x
     bR = b * resistance(T, R_ref, B, T_ref)
     return x - a - bR, 1.0 + bR * B / (T * T)
@@ -258,13 +230,14 @@ def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
 
 @njit(cache=True)
 def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
-    """Root of h in [lo, hi] (K) with h(lo) < 0 < h(hi) and exactly one root between:
-    Newton from x (K), bisection whenever a step leaves the bracket.
+    """Root of h in [lo, hi] (K) with h(lo) < 0 <= h(hi) and exactly one root between:
+    Newton from x (K), bisection whenever a step leaves the bracket. It stops on a Newton
+    step below rtol |x| (the error after it is of order its square), or on a bracket of
+    two neighbouring floats; never on a bisection step, whose error is its own size.
 
-    a (K), b (K/ohm), R_ref (ohm), B (K), T_ref and T_s (K) as in :func:`solve_delta_t`.
-    Returns (x in K, status, iterations).
+    a (K), b (K/ohm), R_ref (ohm), B (K, either sign), T_ref and T_s (K) as in
+    :func:`solve_delta_t`. Returns (x in K, status, iterations).
     """
-    atol = ROOT_ATOL
     for it in range(1, max_iter + 1):
         h, dh = _h_positive(x, a, b, R_ref, B, T_ref, T_s)
         if h == 0.0:
@@ -274,10 +247,13 @@ def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
         else:
             hi = x
         xn = x - h / dh if dh != 0.0 else math.nan
-        if not lo < xn < hi:
+        if lo < xn < hi:
+            if abs(xn - x) <= rtol * abs(xn) + ROOT_ATOL:
+                return xn, STATUS_OK, it
+        else:
             xn = 0.5 * (lo + hi)
-        if abs(xn - x) <= rtol * abs(xn) + atol or hi - lo <= rtol * abs(xn) + atol:
-            return xn, STATUS_OK, it
+            if xn == lo or xn == hi:
+                return xn, STATUS_OK, it
         x = xn
     return x, STATUS_NO_CONVERGENCE, max_iter
 
