@@ -23,4 +23,12 @@ The tables of cases, each run by one parametrized test:
 
 ``docs/robustness.md`` is generated from these tables (``.venv/bin/python
 tests/robustness/doc.py`` rewrites it) and ``test_doc.py`` keeps it in step.
+
+To add cases: for an existing command, append ``case(...)`` lines to its ``cli_<command>.py``
+(a file the case needs of its own is made by ``setup=``; files several cases share go into
+``world.py``, the ``world`` fixture of ``conftest.py``). For a new command, add
+``cli_<command>.py`` holding ``X = command("<command>", (("irnuc.module", "work_fn"),))``
+and its cases; it is collected and documented without other edits. Then rewrite the doc.
+Modules here import each other as ``robustness.<module>`` (the folder is a package; pytest's
+importlib mode imports it as such, and ``doc.py`` puts ``tests/`` on the path when run).
 """
