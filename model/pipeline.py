@@ -1056,8 +1056,8 @@ def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
     # Failures are rare: count them only when there are any.
     counts = (np.bincount(status.reshape(-1), minlength=4) if np.count_nonzero(status)
               else np.zeros(4, np.int64))
-    if counts[_kb.STATUS_INVALID]:
-        dT = dT[np.isfinite(dT)]
+    if counts[_kb.STATUS_INVALID]:  # those hold 0 K (-T_s), no rise of the pixel's own
+        dT = dT[status[act] != _kb.STATUS_INVALID]
     diag: dict[str, Any] = {
         "temperature_rise_K": {"min": float(dT.min()) if dT.size else math.nan,
                                "mean": float(dT.mean()) if dT.size else math.nan,

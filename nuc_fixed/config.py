@@ -29,6 +29,7 @@ from typing import Any
 from irnuc.common import schema
 from irnuc.common.digest import digest
 from irnuc.common.errors import UserError
+from irnuc.common.io import PLAIN_NAME
 
 PIPELINES_TOML = Path(__file__).with_name("pipelines.toml")
 
@@ -112,7 +113,9 @@ PIPELINE_SCHEMA: dict[str, Any] = schema.table(
         "rounding": {"enum": list(ROUNDING_MODES)},
         "overflow": {"enum": list(OVERFLOW_MODES)},
         "description": {"type": "string"},
-        "name": {"type": "string", "minLength": 1},
+        # A name labels files and folders (synthesis, builds): never a path.
+        "name": {"type": "string", "minLength": 1, "pattern": PLAIN_NAME,
+                 "x-pattern-text": "a plain name (letters, digits, '_', '.', '-'; no path)"},
         "method": {"type": "string", "minLength": 1},
         **{k: schema.number(lo, hi, integer=True, unit=unit)
            for k, (lo, hi, unit, _) in _PARAM_RANGES.items()},

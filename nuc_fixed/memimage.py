@@ -33,6 +33,9 @@ _FORMAT_FIELDS = (
     "adc_bits", "gain_int_bits", "gain_frac_bits", "offset_int_bits", "offset_frac_bits",
     "out_bits", "rounding", "overflow", "max_width", "max_height",
 )
+#: Every manifest field that shapes the result is under ``format_sha256``: the formats and
+#: the frame size (swapped width and height fit the same binary image).
+_HASHED_FIELDS = (*_FORMAT_FIELDS, "height", "width")
 
 
 class MemImageError(UserError):
@@ -141,8 +144,9 @@ def format_fields(cfg: PipelineConfig) -> dict[str, object]:
 
 
 def _format_digest_fields(manifest: dict[str, object]) -> dict[str, object]:
-    """The fields the format SHA-256 covers: the base formats (and, version 2, the method)."""
-    fmt = {k: manifest.get(k) for k in _FORMAT_FIELDS}
+    """The fields the format SHA-256 covers: the base formats, the frame size (and,
+    version 2, the method)."""
+    fmt = {k: manifest.get(k) for k in _HASHED_FIELDS}
     if manifest.get("version") == METHOD_IMAGE_VERSION:
         fmt["method_fields"] = manifest.get("method_fields")
     return fmt
@@ -183,7 +187,7 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
         "config": cfg.name,
         "description": cfg.description,
         **fmt,
-        "format_sha256": _format_sha256(fmt),
+        "format_sha256": _format_sha256({**fmt, "height": h, "width": wd}),
         "word_bits": cfg.word_bits,
         "word_layout": {k: [lsb + width - 1, lsb] for k, (lsb, width) in cfg.word_fields.items()},
         "width": wd,
@@ -426,7 +430,8 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
         "method": cfg.method,
         **fmt,
         "method_fields": mfields,
-        "format_sha256": _format_sha256({**fmt, "method_fields": mfields}),
+        "format_sha256": _format_sha256({**fmt, "height": h, "width": w,
+                                         "method_fields": mfields}),
         "word_bits": cfg.memories[first].word_bits,
         "memories": memories,
         "registers": {k: (list(v) if isinstance(v, tuple) else v)

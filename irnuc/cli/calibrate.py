@@ -107,7 +107,9 @@ def _load_thresholds(args: argparse.Namespace, overrides: dict[str, Any]) -> Any
         if Path(args.thresholds).is_dir():
             raise UserError(f"--thresholds {args.thresholds}: is a folder, not a TOML file")
         if not Path(args.thresholds).is_file():
-            raise UserError(f"--thresholds {args.thresholds}: no such file")
+            raise UserError(f"--thresholds {args.thresholds}: "
+                            + ("not a regular file" if Path(args.thresholds).exists()
+                               else "no such file"))
     try:
         return load_thresholds(args.thresholds, overrides=overrides)
     except UserError as exc:
@@ -157,6 +159,9 @@ def _run_calibrate(args: argparse.Namespace) -> int:
         if not all(0 <= t <= top for t in targets):
             raise UserError(f"--targets {args.targets!r}: each level must lie in 0..{top} (the "
                             f"output codes of out_bits = {cfg.out_bits})")
+        if not targets[0] < targets[1]:  # the gain is unsigned: the scene must brighten
+            raise UserError(f"--targets {args.targets!r}: LOW (the output at --t-low) must be "
+                            "below HIGH (the output at --t-high)")
     for flag, v in (("--t-low", args.t_low), ("--t-high", args.t_high)):
         if v is not None and not (np.isfinite(v) and v > 0):
             raise UserError(f"{flag} {v}: must be a finite temperature above 0 K")
