@@ -1162,8 +1162,9 @@ def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
               else np.zeros(4, np.int64))
     codes = values.get("codes")
     top = (1 << pipe.cfg["adc"]["bits"]) - 1
+    # Invalid pixels hold 0 K (-T_s), no rise of the pixel's own: left out.
     lo, hi, total, count, n_low, n_high = _ks.frame_statistics(
-        values["dT"], rs.start, rs.stop, cs.start, cs.stop,
+        values["dT"], status, rs.start, rs.stop, cs.start, cs.stop,
         codes if codes is not None else np.zeros(0, np.uint16), top)
     diag: dict[str, Any] = {
         "temperature_rise_K": {"min": lo if count else math.nan,

@@ -411,8 +411,8 @@ class Diagnostics:
 
         if np.count_nonzero(status):
             self.fail += np.bincount(status.reshape(-1), minlength=4)[:4]
-        lo, hi, total, count, n_low, n_high = frame_statistics(dT, *self.window, codes,
-                                                               self.top)
+        lo, hi, total, count, n_low, n_high = frame_statistics(dT, status, *self.window,
+                                                               codes, self.top)
         if count:
             self.lo, self.hi = min(self.lo, lo), max(self.hi, hi)
             self.total += total

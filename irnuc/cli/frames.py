@@ -8,6 +8,7 @@ the metadata; docs/sequences.md describes every key.
 from __future__ import annotations
 
 import argparse
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +20,7 @@ from irnuc.cli._args import (
     parse_floats,
     progress,
     say,
+    stderr,
 )
 
 FRAMES_NAME = "frames.npz"
@@ -76,7 +78,8 @@ def run_frames(args: argparse.Namespace) -> int:
     except model.ConfigError as exc:
         raise UserError(f"--temps {args.temps}: {exc}") from None
     scene = model.Scene(args.scene, scene_params)
-    outputs = ["codes", "params"] if args.params else ["codes"]
+    # status: which pixels' solves failed (told below, one line), not written.
+    outputs = ["codes", "status", "params"] if args.params else ["codes", "status"]
     n = len(temps) * args.repeats
     f = cfg["fpa"]
     check_simulation_memory(cfg, n, outputs, what=(
@@ -88,8 +91,22 @@ def run_frames(args: argparse.Namespace) -> int:
     except model.ConfigError as exc:
         raise UserError(f"--scene {args.scene} --scene-param: {exc}") from None
     bar = progress("frames") if n > cfg["run"]["chunk_frames"] else None
-    fr = model.simulate(cfg, temps, scene, seed=args.seed, repeats=args.repeats,
-                        outputs=outputs, progress=bar)
+    with warnings.catch_warnings():  # solver failures are told below, in one line
+        warnings.simplefilter("ignore", RuntimeWarning)
+        fr = model.simulate(cfg, temps, scene, seed=args.seed, repeats=args.repeats,
+                            outputs=outputs, progress=bar)
+    status = fr.outputs.pop("status")  # every pixel of the array, blind ones too
+    n_failed = int(np.count_nonzero(status))
+    if n_failed:
+        failed = fr.diagnostics["solver_failures"]
+        kinds = ", ".join(k.replace("_", " ") for k, v in failed.items() if v)
+        if n_failed == status.size:  # frames of rail codes only: no result
+            given = f"--sensor {args.sensor}" + "".join(f" --set {s}" for s in args.set)
+            raise UserError(f"{given}: every pixel's solve failed ({n_failed} of {status.size}: "
+                            f"{kinds}); no frame holds a measurement (check "
+                            "bolometer.bias_current, .g, .tcr)")
+        stderr(f"irnuc frames: warning: {n_failed} of {status.size} pixel solves failed "
+               f"({kinds}); those pixels read the high rail")
     env = cfg["environment"]
     arrays = file_arrays(fr, constant_fields(fr.temps, env["T_substrate"], env["T_cam"],
                                              seed=args.seed), FpaSensor(), PLAIN_FRAME_RATE)
@@ -152,6 +169,11 @@ def _run_sequence(args: argparse.Namespace, out: Path, scene_params: dict[str, A
     with output_folder(out, kind="frames") as tmp:
         fr = write_sequence(run, tmp / FRAMES_NAME, progress=bar, extra=extra)
     d = fr.diagnostics
+    n_failed = sum(d["solver_failures"].values())
+    if n_failed:
+        kinds = ", ".join(k.replace("_", " ") for k, v in d["solver_failures"].items() if v)
+        stderr(f"irnuc frames: warning: {n_failed} pixel solve(s) failed over the sequence "
+               f"({kinds}); those pixels read the high rail")
     closed = int(run.fields["shutter"].sum())
     say(f"wrote {out / FRAMES_NAME}: {seq.n_frames} frame(s) of {f['active_rows']}x"
         f"{f['active_cols']} codes ({format_bytes(need)}), {closed} with the shutter closed, "

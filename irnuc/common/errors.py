@@ -6,6 +6,8 @@
   allowed.
 * :class:`ToolError` (a ``RuntimeError``): an external tool (Verilator, the C++
   compiler, Yosys, nextpnr) failed; the message names the log. Exit status 3.
+* :class:`StreamError` (a :class:`UserError`): stdout cannot be written (``| head``,
+  ``> /dev/full``); one line naming the stream, exit status 2.
 * Anything else is a bug in irnuc and keeps its traceback.
 """
 
@@ -22,3 +24,9 @@ class UserError(IrnucError, ValueError):
 
 class ToolError(IrnucError, RuntimeError):
     """An external tool failed: printed as one line naming its log, exit status 3."""
+
+
+class StreamError(UserError):
+    """A standard stream cannot be written (a closed pipe, a full disk): printed as one
+    line naming the stream, exit status 2. Outputs under ``--out`` stay whole: each is
+    replaced only as a unit."""

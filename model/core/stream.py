@@ -17,6 +17,8 @@ import math
 
 from numba import njit, prange
 
+from irnuc.model.core.bolometer import STATUS_INVALID
+
 
 @njit(cache=True, error_model="numpy")
 def _scale_active(row, resp_row, c0):
@@ -117,9 +119,10 @@ def integrate_frames(v_bolo, r0, c0, v_ref, gain, v_reset, out):
 
 
 @njit(cache=True)
-def frame_statistics(dT, r0, r1, c0, c1, codes, top):
-    """(min, max, sum, count of finite dT over rows r0:r1, cols c0:c1; codes == 0; codes ==
-    top) of (N, rows, cols) rises (K) and (N, H, W) codes."""
+def frame_statistics(dT, status, r0, r1, c0, c1, codes, top):
+    """(min, max, sum, count of dT over rows r0:r1, cols c0:c1 of the pixels whose status
+    is not STATUS_INVALID (they hold 0 K, no rise of their own) and finite; codes == 0;
+    codes == top) of (N, rows, cols) rises (K) and status, and (N, H, W) codes."""
     lo = math.inf
     hi = -math.inf
     total = 0.0
@@ -128,7 +131,7 @@ def frame_statistics(dT, r0, r1, c0, c1, codes, top):
         for i in range(r0, r1):
             for j in range(c0, c1):
                 x = dT[n, i, j]
-                if math.isfinite(x):
+                if status[n, i, j] != STATUS_INVALID and math.isfinite(x):
                     lo = min(lo, x)
                     hi = max(hi, x)
                     total += x

@@ -31,6 +31,7 @@ import numpy as np
 from numba import njit, prange
 
 from irnuc.model.core.bolometer import (
+    ROOT_ATOL,
     STATUS_INVALID,
     STATUS_OK,
     STATUS_RUNAWAY,
@@ -99,7 +100,7 @@ def reference_state(Q, fq, g, variant, b, R_ref, B, T_s, dT, v, status, I, c_out
                     c = x - s * _rise(Q[i, j], fq, g, i, j, variant) + ds * T_s
                     e = R / R_ref[i, j]
             c_out[i, j] = c
-            inv_T_out[i, j] = 1.0 / (T_s + x)
+            inv_T_out[i, j] = 1.0 / (T_s + x) if T_s + x > 0.0 else math.nan
             s_out[i, j] = s
             ds_out[i, j] = ds
             e_out[i, j] = e
@@ -121,7 +122,7 @@ def _solve_pixel(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, T_max, I, x0, e_r, i
     else:
         x, st, it = solve_delta_t(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, math.nan, T_max)
         if st == STATUS_INVALID:
-            v = math.nan
+            v = 0.0  # at 0 K, where it fell (as solve_row)
         else:
             v = I * resistance(Ts + x, R_ref, B, T_ref)
     if st == STATUS_OK and not Ts + x <= T_max:
@@ -194,7 +195,7 @@ def _predict_row(src, p1, p2, R_ref, b, B, Ts, rtol, T_max, inv_Tr, e_r, c_r, s_
     (the Newton steps taken, 0 for none) marks the pixels that met the tolerance with
     every exponent inside its polynomial's range and the iterate inside the bracket
     (a, inf); the others are solved again by :func:`_solve_pixel`. ``inv_T``: scratch."""
-    atol = rtol * 1e-3
+    atol = ROOT_ATOL
     pending = 0
     for j in range(x_out.shape[0]):
         a = src[j] * p1[j] * p2[j]
