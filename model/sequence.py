@@ -574,3 +574,7 @@ def sequence_file_bytes(cfg: Mapping[str, Any], seq: DriftSequence) -> int:
         lay.kind_map() == (BOUNDARY if mode == "boundary" else BLIND)))
     per_code = 2 if cfg["adc"]["bits"] <= 16 else 4
     return seq.n_frames * (per_code * (lay.active_rows * lay.active_cols + k) + 50) + 65536
+
+
+#: :func:`prepare` under the name :mod:`model` exports it.
+prepare_sequence = prepare
