@@ -61,12 +61,7 @@ def _row_frames(out, k, L, L_row, uniform, seen, blind, base, net, substrate_shi
     for j in range(out.shape[0]):  # the housing term, then the scene
         q = base * ((1.0 - seen[j]) * lc - net * ls)
         out[j] = shield if substrate_shield and blind[j] else q
-    if uniform:
-        for j in range(out.shape[0]):
-            out[j] = k[j] * L + out[j]
-    else:
-        for j in range(out.shape[0]):
-            out[j] = k[j] * L_row[j] + out[j]
+    _row_static(out, k, L, L_row, uniform, out)
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
