@@ -346,23 +346,19 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
     q_env = inp["q_env"]
     resp = inp["defect_resp"]
     # The sum and the responsivity in one pass: (k L + q) resp, as numpy would round it.
-    if isinstance(q_env, HousingFrames):
-        Q = np.empty((L.shape[0], *ctx.layout.shape))
-        net = 1.0 if ctx.cfg["bolometer"]["net_radiation"] else 0.0
-        rs, cs = ctx.layout.active_slice
-        with threads_for(Q.size):
-            _ks.power_frames(inp["k_scene"], L, L.shape[1] == 1, q_env.seen,
-                             _blind_mask(ctx.layout), _base(ctx.cfg), net,
-                             ctx.cfg["fpa"]["skim_shield"] == "substrate", q_env.L_cam,
-                             q_env.L_s, resp if resp is not None else np.empty((0, 0)),
-                             rs.start, cs.start, Q)
+    Q = np.empty((L.shape[0], *ctx.layout.shape))
+    rs, cs = ctx.layout.active_slice
+    none = np.empty((0, 0))
+    if isinstance(q_env, HousingFrames):  # per frame: (q_env, seen, blind, L_cam, L_s)
+        housing = (none, True, q_env.seen, _blind_mask(ctx.layout), q_env.L_cam, q_env.L_s)
     else:
-        Q = np.empty((L.shape[0], *ctx.layout.shape))
-        rs, cs = ctx.layout.active_slice
-        with threads_for(Q.size):
-            _ks.power_static(inp["k_scene"], L, L.shape[1] == 1, q_env,
-                             resp if resp is not None else np.empty((0, 0)), rs.start,
-                             cs.start, Q)
+        housing = (q_env, False, none, np.empty((0, 0), bool), np.empty(0), np.empty(0))
+    q, per_frame, seen, blind, L_cam, L_s = housing
+    net = 1.0 if ctx.cfg["bolometer"]["net_radiation"] else 0.0
+    with threads_for(Q.size):
+        _ks.power(inp["k_scene"], L, L.shape[1] == 1, q, per_frame, seen, blind,
+                  _base(ctx.cfg), net, ctx.cfg["fpa"]["skim_shield"] == "substrate", L_cam,
+                  L_s, resp if resp is not None else none, rs.start, cs.start, Q)
     if "shutter_view" in inp:
         # the frames it overwrites need the defects' responsivity too
         _shutter_power(ctx, inp, Q, resp)

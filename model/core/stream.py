@@ -1,10 +1,10 @@
 """Kernels of the per-frame passes of the pipeline, one pass over the pixels each.
 
-* :func:`power_static` and :func:`power_frames`: the absorbed power of frames, Q = k
-  L_scene + q_env with a fixed housing term, or with q_env = eps A pi ((1 - seen) L_cam -
-  net L_s) per frame (the skimming pixels under a substrate shield: eps A pi (L_s - net
-  L_s)); then times the defects' responsivity over the active area. The same operations in
-  the same order as the numpy expressions they replace, so the same bits;
+* :func:`power`: the absorbed power of frames, Q = k L_scene + q_env with a fixed housing
+  term, or with q_env = eps A pi ((1 - seen) L_cam - net L_s) per frame (the skimming
+  pixels under a substrate shield: eps A pi (L_s - net L_s)); then times the defects'
+  responsivity over the active area. The same operations in the same order as the numpy
+  expressions they replace, so the same bits;
 * :func:`integrate_frames`: the integrator, v_reset + gain (v_ref - v_bolo);
 * :func:`frame_statistics`: the diagnostics of frames (temperature-rise range and sum over
   the active area, codes at either end of the ADC range).
@@ -37,24 +37,6 @@ def _row_static(out, k, L, L_row, uniform, q):
             out[j] = k[j] * L_row[j] + q[j]
 
 
-@njit(cache=True, parallel=True, error_model="numpy")
-def power_static(k_scene, L_scene, uniform, q_env, resp, r0, c0, out):
-    """Absorbed power (N, rows, cols), W, with a fixed housing term: k L_scene + q_env,
-    times the defects' responsivity ``resp`` (H, W) over the active area at (r0, c0) (an
-    empty array: none); L_scene (N, 1, 1) for a uniform scene (``uniform``), else
-    (N, rows, cols), W m^-2 sr^-1."""
-    n_frames, rows, _ = out.shape
-    has_resp = resp.size > 0
-    H = resp.shape[0]
-    for i in prange(rows):
-        ia = i - r0
-        for n in range(n_frames):
-            L_row = L_scene[n, 0] if uniform else L_scene[n, i]
-            _row_static(out[n, i], k_scene[i], L_scene[n, 0, 0], L_row, uniform, q_env[i])
-            if has_resp and 0 <= ia < H:
-                _scale_active(out[n, i], resp[ia], c0)
-
-
 @njit(cache=True, error_model="numpy")
 def _row_frames(out, k, L, L_row, uniform, seen, blind, base, net, substrate_shield, lc, ls):
     shield = base * (ls - net * ls)
@@ -65,15 +47,19 @@ def _row_frames(out, k, L, L_row, uniform, seen, blind, base, net, substrate_shi
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def power_frames(k_scene, L_scene, uniform, seen, blind, base, net, substrate_shield, L_cam,
-                 L_s, resp, r0, c0, out):
-    """Absorbed power (N, rows, cols), W, of frames whose housing and substrate vary.
+def power(k_scene, L_scene, uniform, q_env, per_frame, seen, blind, base, net,
+          substrate_shield, L_cam, L_s, resp, r0, c0, out):
+    """Absorbed power (N, rows, cols), W: k L_scene plus the housing term, times the
+    defects' responsivity ``resp`` (H, W) over the active area at (r0, c0) (an empty array:
+    none).
 
-    k_scene, seen (rows, cols): scene coupling (W per W m^-2 sr^-1) and scene fraction of
-    the hemisphere; blind (rows, cols) bool: skimming pixels; base: eps A pi (m^2 sr); net:
-    1 with net radiation, else 0; L_scene as :func:`power_static`; L_cam, L_s (N,): housing
-    and substrate radiance, W m^-2 sr^-1; resp (H, W): the defects' responsivity factor
-    over the active area at (r0, c0), applied after the sum (an empty array: none).
+    k_scene (rows, cols): scene coupling (W per W m^-2 sr^-1); L_scene (N, 1, 1) for a
+    uniform scene (``uniform``), else (N, rows, cols), W m^-2 sr^-1. The housing term is
+    q_env (rows, cols), W, or with ``per_frame`` the frame's own: eps A pi ((1 - seen)
+    L_cam - net L_s) with seen (rows, cols) the scene fraction of the hemisphere, base =
+    eps A pi (m^2 sr), net 1 with net radiation (else 0), L_cam and L_s (N,) the housing
+    and substrate radiance (W m^-2 sr^-1), and the skimming pixels (``blind``) under a
+    ``substrate_shield``: eps A pi (L_s - net L_s).
     """
     n_frames, rows, _ = out.shape
     has_resp = resp.size > 0
@@ -82,8 +68,12 @@ def power_frames(k_scene, L_scene, uniform, seen, blind, base, net, substrate_sh
         ia = i - r0
         for n in range(n_frames):
             L_row = L_scene[n, 0] if uniform else L_scene[n, i]
-            _row_frames(out[n, i], k_scene[i], L_scene[n, 0, 0], L_row, uniform, seen[i],
-                        blind[i], base, net, substrate_shield, L_cam[n], L_s[n])
+            if per_frame:
+                _row_frames(out[n, i], k_scene[i], L_scene[n, 0, 0], L_row, uniform, seen[i],
+                            blind[i], base, net, substrate_shield, L_cam[n], L_s[n])
+            else:
+                _row_static(out[n, i], k_scene[i], L_scene[n, 0, 0], L_row, uniform,
+                            q_env[i])
             if has_resp and 0 <= ia < H:
                 _scale_active(out[n, i], resp[ia], c0)
 
