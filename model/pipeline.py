@@ -263,7 +263,7 @@ def housing_power(ctx: RunContext, view: np.ndarray, L_cam: Any, L_s: Any) -> np
 class HousingFrames:
     """The housing power of frames whose housing or substrate temperature varies: the
     radiances of each frame, evaluated pixel by pixel inside the power pass
-    (:func:`model.core.stream.power_frames`) instead of as an (N, rows, cols) array."""
+    (:func:`model.core.stream.power`) instead of as an (N, rows, cols) array."""
 
     seen: np.ndarray
     L_cam: np.ndarray  # (N,) W m^-2 sr^-1
