@@ -293,6 +293,10 @@ def choose_thermal(cfg: Mapping[str, Any], seq: DriftSequence, sched: Schedule,
              f"{memory:.3g} of a change in the next frame ({period * 1e3:.3g} ms later); the "
              f"largest change between frames is {change:.3g} K, so a frame remembers up to "
              f"{err:.3g} K of the one before")
+    if seq.thermal == "lagged" and cfg["bolometer"]["variant"] == "paper":
+        raise ConfigError("sequence.thermal = 'lagged' needs bolometer.variant = "
+                          "'equilibrium': the paper variant switches the scene on with the bias "
+                          "pulse, so there is no rise before the pulse to carry over")
     if seq.thermal != "auto":
         return seq.thermal, f"asked for (sequence.thermal); {facts}"
     if cfg["bolometer"]["variant"] == "paper":

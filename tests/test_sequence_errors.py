@@ -65,3 +65,10 @@ def test_noise_needs_a_responsivity_for_foreign_frames(tmp_path, capsys):
                  str(tmp_path / "n")]) == 2
     assert "--seed -4" in capsys.readouterr().err
     assert not (tmp_path / "n" / "noise.json").exists()
+
+
+def test_lagged_memory_needs_the_equilibrium_variant(tmp_path, capsys):
+    toml = _write(tmp_path, GOOD.replace("scene = 300.0", 'scene = 300.0\nthermal = "lagged"'))
+    assert main(["frames", "--sequence", toml, *SMALL, "--set", "bolometer.variant=paper",
+                 "--out", str(tmp_path / "o")]) == 2
+    assert "sequence.thermal = 'lagged' needs bolometer.variant" in capsys.readouterr().err
