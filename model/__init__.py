@@ -8,13 +8,13 @@ Public API::
     frames.codes  # (3, 48, W) uint16
 """
 
-from irnuc.model.config import load_config, load_preset, preset_names, validate
+from irnuc.common.errors import ConfigError
+from irnuc.model.config import load_config, load_preset, preset_names
 from irnuc.model.defects import DefectKind, DefectPattern
 from irnuc.model.optics import cone_factor, cos4_map
 from irnuc.model.pipeline import OUTPUTS, Frames, Pipeline, simulate
 from irnuc.model.radiometry import BAND_RADIANCE_METHODS, band_radiance
 from irnuc.model.scenes import Scene
-from irnuc.model.validate import ConfigError
 
 __all__ = [
     "BAND_RADIANCE_METHODS",
@@ -32,5 +32,4 @@ __all__ = [
     "load_preset",
     "preset_names",
     "simulate",
-    "validate",
 ]
