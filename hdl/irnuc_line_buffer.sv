@@ -5,7 +5,9 @@
 // A read returns the word at rd_addr_i in the cycle after rd_en_i; rd_data_o holds while
 // rd_en_i is low. Reading the address written in the same cycle gives an undefined word
 // (no_rw_check: no collision logic is built); the user bypasses that case.
-module irnuc_line_buffer #(
+module irnuc_line_buffer
+  import irnuc_pkg::*;
+#(
   parameter int unsigned Depth    = 1024,
   parameter int unsigned DataBits = 30,
   // Derived, do not override.
@@ -22,8 +24,8 @@ module irnuc_line_buffer #(
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (Depth >= 1 && Depth <= 65535)
-      else $fatal(1, "irnuc_line_buffer: Depth = %0d outside 1..65535", Depth);
+    assert (Depth >= 1 && Depth <= FrameDimMax)
+      else $fatal(1, "irnuc_line_buffer: Depth = %0d outside 1..%0d", Depth, FrameDimMax);
     assert (DataBits >= 1)
       else $fatal(1, "irnuc_line_buffer: DataBits = %0d must be at least 1", DataBits);
   end

@@ -13,7 +13,8 @@ Public API::
     model.netd(cfg, 300.0)                        # closed-form NETD, K (docs/model.md)
 """
 
-from irnuc.model.config import load_config, load_preset, preset_names, validate
+from irnuc.common.errors import ConfigError
+from irnuc.model.config import load_config, load_preset, preset_names
 from irnuc.model.defects import DefectKind, DefectPattern
 from irnuc.model.noise_metrics import netd, noise_3d, responsivity
 from irnuc.model.optics import cone_factor, cos4_map
@@ -27,7 +28,6 @@ from irnuc.model.sequence import (
     simulate_sequence,
     write_sequence,
 )
-from irnuc.model.validate import ConfigError
 
 __all__ = [
     "BAND_RADIANCE_METHODS",
@@ -52,6 +52,5 @@ __all__ = [
     "sequence_from_dict",
     "simulate",
     "simulate_sequence",
-    "validate",
     "write_sequence",
 ]
