@@ -159,6 +159,10 @@ class Netd:
     method: str
     notes: str = ""
 
+    def __float__(self) -> float:
+        """The NETD, K."""
+        return self.netd_K
+
     def as_dict(self) -> dict[str, Any]:
         return {"netd_mK": self.netd_K * 1e3, "uncertainty_mK": self.uncertainty_K * 1e3,
                 "temporal_noise_codes": self.noise_codes,
