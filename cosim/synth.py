@@ -427,11 +427,14 @@ def synth_config(cfg, *, top: str = "nuc_dpc_top", max_width: int | None = None,
     key = files_digest(sources, settings)
     root = cache_dir("synth")
     result_file = root / key / "synth.json"
+    # The key is the design (sources, parameters, flow), not the configuration's name: a
+    # cached result is told as the configuration asked for, never as the one that made it.
+    asked = {"config": cfg.to_dict(), "config_digest": cfg.digest()}
     if use_cache and result_file.is_file():
-        return {**json.loads(result_file.read_text()), "cached": True}
+        return {**json.loads(result_file.read_text()), **asked, "cached": True}
     with file_lock(root / f".{key}.lock"):
         if use_cache and result_file.is_file():
-            return {**json.loads(result_file.read_text()), "cached": True}
+            return {**json.loads(result_file.read_text()), **asked, "cached": True}
         work = root / key / "work"
         shutil.rmtree(work, ignore_errors=True)
         xc7 = synth_xc7(sources, top, params, work / "xc7")

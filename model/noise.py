@@ -24,11 +24,14 @@ from irnuc.model.core.constants import K_BOLTZMANN
 FLICKER_OCTAVES = 8
 #: Stream key that separates noise draws from the other seeded stages.
 NOISE_STREAM = 0x6E6F6973
+#: Stream of the reference (shielded) pixels read out beside the image: their draws never
+#: change the image's.
+REFERENCE_STREAM = 0x72656670
 
 
-def frame_rng(seed: int, frame: int) -> np.random.Generator:
-    """The generator of one frame's noise."""
-    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(NOISE_STREAM, frame)))
+def frame_rng(seed: int, frame: int, stream: int = NOISE_STREAM) -> np.random.Generator:
+    """The generator of one frame's noise (of the image, or of another ``stream``)."""
+    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(stream, frame)))
 
 
 def johnson_sigma(v_bolo: np.ndarray, temperature: np.ndarray, bias_current: float,
@@ -85,15 +88,15 @@ def add_noise(v: np.ndarray, sigma: np.ndarray | float, seed: int, first_frame: 
 
 
 def add_noise_at(v: np.ndarray, index: np.ndarray, sigma: np.ndarray, seed: int,
-                 first_frame: int) -> np.ndarray:
+                 first_frame: int, *, copy: bool = True) -> np.ndarray:
     """v plus white noise on some pixels only (one draw per such pixel and frame).
 
     Used when temporal noise is off but some pixels have a NOISY defect: the other pixels
     need no draw at all. ``index`` holds the flat (row-major) positions of those pixels in
     a frame and ``sigma`` their standard deviations, V; frames are seeded as in
-    :func:`add_noise`.
+    :func:`add_noise`. ``copy`` False adds in place (a C-ordered array the caller owns).
     """
-    out = v.copy()
+    out = v.copy() if copy else v
     flat = out.reshape(v.shape[0], -1)
     for k in range(v.shape[0]):
         rng = frame_rng(seed, first_frame + k)

@@ -63,25 +63,62 @@ def check_temps(temps: Sequence[float] | np.ndarray | None, *, required: bool = 
     return t
 
 
+def _temperature_map(field: str, value: Any) -> np.ndarray:
+    """A scene map of temperatures, K: real numbers (booleans or text would be read as
+    1 K / 0 K scenes), finite and in (0, 1e5]."""
+    dtype = np.asarray(value).dtype
+    if dtype.kind not in "iuf":
+        raise ConfigError(f"{field} has dtype {dtype}; a map of temperatures in K (integer "
+                          "or float numbers) is required")
+    return check_array(field, value, 0.0, 1e5, lo_open=True, unit="K")
+
+
+def _load_npy_map(path: Path) -> np.ndarray:
+    """An .npy temperature map, its header checked (dtype, 2-D, size against the memory
+    there is) before the data is read."""
+    from numpy.lib import format as npformat
+
+    from irnuc.common.memory import check_memory
+
+    name = f"scene.path = {str(path)!r}"
+    try:
+        with path.open("rb") as fh:
+            if fh.read(6) != b"\x93NUMPY":  # the .npy magic: text or garbage is named as such
+                raise ConfigError(f"{name} is not a readable .npy array (no .npy header; "
+                                  "write it with numpy.save)")
+            fh.seek(0)
+            version = npformat.read_magic(fh)
+            read = (npformat.read_array_header_1_0 if version == (1, 0)
+                    else npformat.read_array_header_2_0)
+            shape, _, dtype = read(fh)
+    except (OSError, ValueError, EOFError) as exc:
+        raise ConfigError(f"{name} is not a readable .npy array ({exc})") from None
+    if dtype.kind not in "iuf":
+        raise ConfigError(f"{name} has dtype {dtype}; a map of temperatures in K (integer or "
+                          "float numbers) is required")
+    if len(shape) != 2:
+        raise ConfigError(f"{name} has shape {tuple(shape)}; a 2-D map (rows, cols) is required")
+    # The file's array, its float64 copy and the scene built from it.
+    check_memory(float(np.prod(shape, dtype=np.float64)) * (dtype.itemsize + 16), name,
+                 "give a map of the active area's size")
+    try:
+        arr = np.load(path, allow_pickle=False)
+    except (OSError, ValueError, EOFError) as exc:
+        raise ConfigError(f"{name} is not a readable .npy array ({exc})") from None
+    return _temperature_map("scene.path", arr)
+
+
 def _load_map(params: Mapping[str, Any]) -> np.ndarray:
     if "map" in params:
-        return check_array("scene.map", params["map"], 0.0, 1e5, lo_open=True, unit="K")
+        return _temperature_map("scene.map", params["map"])
     if "path" not in params:
         raise ConfigError("scene 'map' needs either map (array, K) or path (file)")
     path = Path(params["path"])
     if not path.is_file():
-        raise ConfigError(f"scene.path = {str(path)!r}: no such file (an .npy map in K or an image)")
+        what = "not a regular file" if path.exists() else "no such file"
+        raise ConfigError(f"scene.path = {str(path)!r}: {what} (an .npy map in K or an image)")
     if path.suffix == ".npy":
-        with path.open("rb") as fh:
-            if fh.read(6) != b"\x93NUMPY":  # the .npy magic: text or garbage is named as such
-                raise ConfigError(f"scene.path = {str(path)!r} is not a readable .npy array "
-                                  "(no .npy header; write it with numpy.save)")
-        try:
-            arr = np.load(path, allow_pickle=False)
-        except (OSError, ValueError, EOFError) as exc:
-            raise ConfigError(f"scene.path = {str(path)!r} is not a readable .npy array ({exc})"
-                              ) from None
-        return check_array("scene.path", arr, 0.0, 1e5, lo_open=True, unit="K")
+        return _load_npy_map(path)
     import matplotlib.image as mpimg
 
     try:

@@ -20,7 +20,6 @@ and ``docs/transient.md``.
 
 from __future__ import annotations
 
-import math
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
@@ -43,8 +42,10 @@ INTEGRATORS: dict[str, int] = {
     "exponential": _kt.M_EXPONENTIAL,
     "auto": _kt.M_AUTO,
 }
-#: Integrator names by code (``auto`` reports the one that finished each pulse).
-INTEGRATOR_NAMES: dict[int, str] = {v: k for k, v in INTEGRATORS.items()}
+#: Integrator names by code (``auto`` reports the one that finished each pulse;
+#: ``quasi_static``: ``auto`` or ``exponential`` took the pulse in the tau -> 0 limit).
+INTEGRATOR_NAMES: dict[int, str] = {**{v: k for k, v in INTEGRATORS.items()},
+                                    _kt.M_QUASI_STATIC: "quasi_static"}
 #: Order of accuracy of each integrator (for documentation and convergence tests).
 INTEGRATOR_ORDER: dict[str, int] = {"rk4": 4, "backward_euler": 1, "trapezoidal": 2,
                                     "exponential": 3}
@@ -271,8 +272,16 @@ def integrate_pixels(
     else:
         th0 = np.ascontiguousarray(np.broadcast_to(
             check_array("theta0", theta0, unit="K"), shape), dtype=np.float64).ravel()
-    if not (Ts[0] + th0 > 0.0).all():
-        raise ConfigError("theta0: the initial pixel temperature T_s + theta0 must be > 0 K")
+    cold = ~(Ts[0] + th0 > 0.0)
+    if cold.any():
+        if theta0 is not None:
+            raise ConfigError("theta0: the initial pixel temperature T_s + theta0 must be > 0 K")
+        k = int(np.argmax(cold))
+        raise ConfigError(
+            f"transient.initial = 'equilibrium': the unbiased equilibrium T_s + Q/g of "
+            f"{int(cold.sum())} pixel(s) is at or below 0 K (first: Q = {Qf[0, k]:.3g} W, "
+            f"bolometer.g = {gg[k]:.3g} W/K: the pixel emits more than it absorbs and g "
+            "cannot hold it); use transient.initial = 'substrate' or a larger bolometer.g")
     B = _kb.activation_temperature(tcr, T_ref)
     method = INTEGRATORS[s.integrator]
     refuse = s.explicit_policy == "refuse"
@@ -466,14 +475,3 @@ def simulate_transient(
         counts=dict(counts),
     )
 
-
-def closed_form_linear(theta0: float, Q: float, I: float, R: float, g: float, C: float,
-                       t: float) -> tuple[float, float]:
-    """Exact (theta(t), mean of theta over [0, t]) of C theta' = I^2 R + Q - g theta with
-    constant R (TCR = 0 or I = 0): the reference for the linear case."""
-    eq = (I * I * R + Q) / g
-    tau = C / g
-    u = t / tau
-    end = eq + (theta0 - eq) * math.exp(-u)
-    mean = eq + (theta0 - eq) * (-math.expm1(-u) / u if u > 0 else 1.0)
-    return end, mean

@@ -92,9 +92,20 @@ def test_positive_tcr_strong_bias_reports_runaway_not_nan():
 
 
 def test_unphysical_temperature_is_invalid():
-    _, status, _ = kb.solve_delta_t(-400.0, 1.0, 1e5, 2700.0, 300.0, 300.0, 1e-12, 100, math.nan,
-                                    1000.0)
-    assert status == kb.STATUS_INVALID
+    # The unbiased equilibrium T_s + a is below 0 K. Without bias (b = 0) or with a positive
+    # TCR (R -> 0 as T -> 0) nothing holds the pixel above 0 K: invalid, at 0 K.
+    for b, B in ((0.0, 2700.0), (1.0, -2700.0)):
+        x, status, _ = kb.solve_delta_t(-400.0, b, 1e5, B, 300.0, 300.0, 1e-12, 100, math.nan,
+                                        1000.0)
+        assert status == kb.STATUS_INVALID and x == -300.0
+    # A negative TCR with bias: R grows without bound as T -> 0, so the biased equilibrium
+    # exists above 0 K (issue 19; it was called invalid): its residual vanishes.
+    x, status, _ = kb.solve_delta_t(-400.0, 1.0, 1e5, 2700.0, 300.0, 300.0, 1e-12, 100,
+                                    math.nan, 1000.0)
+    T = 300.0 + x
+    assert status == kb.STATUS_OK and T > 0.0
+    rhs = -400.0 + 1e5 * math.exp(2700.0 * (1 / T - 1 / 300.0))
+    assert x == pytest.approx(rhs, rel=1e-12)
 
 
 def test_variants_differ_only_in_the_scene_term():

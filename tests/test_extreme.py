@@ -89,6 +89,69 @@ def test_narrow_band_radiance_relative_error(band):
         assert abs((got - ref) / ref) < 1e-12, (band, T)
 
 
+def _ulps_above(x, n):
+    for _ in range(n):
+        x = np.nextafter(x, 1.0)
+    return float(x)
+
+
+COLD_BANDS = {"one ulp": (8e-6, _ulps_above(8e-6, 1)), "1e-15 m": (8e-6, 8e-6 + 1e-15),
+              "8 um +- 1 pm": (8e-6 - 1e-12, 8e-6 + 1e-12), "1 nm": (8e-6, 8.001e-6)}
+
+
+@pytest.mark.parametrize("band", list(COLD_BANDS.values()), ids=list(COLD_BANDS))
+def test_narrow_band_in_the_cold_branch_against_mpmath(band):
+    # x = hc/(lambda k T) near and above 600, where the radiance is the first tail term in
+    # log space: 1e-12 relative to the 80-digit mpmath series (was 2.5e-4 for one ulp and
+    # 1.5e-11 for 1e-15 m at 2.99 K: logs of ratios rounded near 1).
+    for T in (2.99, 2.9975, 3.0, 2.5, 1.8):
+        ref = band_radiance_mp(T, band, as_mpf=True)
+        got = mp.mpf(float(model.band_radiance(T, band=band)))
+        if ref >= FLOAT64_TINY:
+            assert abs((got - ref) / ref) < 1e-12, (band, T)
+        else:
+            assert abs(got - ref) <= 1e-323, (band, T)
+
+
+def test_narrow_bands_random_cold_scan_against_mpmath():
+    # Seeded draws: bands of 1-40 ulps, 1e-15..1e-6 and 1e-6..3 relative width at 3-20 um,
+    # the temperature set so that x2 spans 100..710 (both sides of the log-space branch).
+    rng = np.random.default_rng(19)
+    worst = 0.0
+    for _ in range(60):
+        lam1 = 10 ** rng.uniform(math.log10(3e-6), math.log10(20e-6))
+        kind = int(rng.integers(0, 3))
+        lam2 = (_ulps_above(lam1, int(rng.integers(1, 40))) if kind == 0
+                else lam1 * (1 + 10 ** rng.uniform(-15, -6) if kind == 1
+                             else 1 + 10 ** rng.uniform(-6, 0.5)))
+        T = 0.014387768775039337 / (lam2 * rng.uniform(100.0, 710.0))
+        ref = band_radiance_mp(T, (lam1, lam2), as_mpf=True)
+        if ref < FLOAT64_TINY:
+            continue
+        got = mp.mpf(float(model.band_radiance(T, band=(lam1, lam2))))
+        worst = max(worst, float(abs((got - ref) / ref)))
+    assert worst < 1e-12
+
+
+@pytest.mark.parametrize("T", [1e-313, 1e-315, 5e-324])
+def test_subnormal_temperatures_give_zero_radiance_and_frames(T, tmp_path):
+    # T in (0, 1e9] is legal: a subnormal T is a scene at 0 K, never a ZeroDivisionError
+    # (lambda * T underflowed to 0 inside the kernel) in the radiance, the steady and the
+    # transient model or `irnuc frames`.
+    from irnuc.cli import main
+    from irnuc.model.transient import simulate_transient
+
+    assert model.band_radiance(T) == 0.0
+    assert model.band_radiance(T, band=COLD_BANDS["one ulp"]) == 0.0
+    cfg = _cfg(**{"fpa.active_rows": 3, "fpa.active_cols": 4})
+    cold = _sim(cfg, [T, 1e-200]).codes
+    assert (cold[0] == cold[1]).all()  # both scenes radiate nothing
+    tf = simulate_transient(cfg, [T, 300.0])
+    assert np.isfinite(tf.codes).all() and tf.codes.shape == (2, 3, 4)
+    assert main(["frames", "-q", "--temps", f"{T!r}", "--set", "fpa.active_rows=3",
+                 "--set", "fpa.active_cols=4", "--out", str(tmp_path / "f")]) == 0
+
+
 @pytest.mark.parametrize("bad", [0.0, -5.0, math.nan, math.inf, -math.inf])
 def test_bad_temperatures_are_clear_errors(bad):
     with pytest.raises(ConfigError, match=r"^T = .*allowed range|^T = .*not finite"):
@@ -121,7 +184,8 @@ def test_tolerance_one_gives_finite_frames():
 # ---- self-heating factor: tau -> 0 and tau -> inf --------------------------------------
 
 def _f_mp(u):
-    with mp.workdps(50):
+    # Digits enough for the cancellation in 1 - (1 - e^-u)/u at u down to 1e-300.
+    with mp.workdps(50 + max(0, int(-math.log10(u)) if u > 0 else 0)):
         um = mp.mpf(u)
         return float(1 + mp.expm1(-um) / um)
 
@@ -152,6 +216,82 @@ def test_tau_extremes_give_finite_frames(C):
     assert (fr.outputs["status"] == STATUS_OK).all()
 
 
+def _tau_zero_limit(Q, Ts, p, b):
+    """Per frame and pixel, the equilibrium of the biased pixel, I^2 R + Q = g theta (the
+    tau -> 0 limit of a pulse), by scipy's brentq: (voltage I R, theta)."""
+    from scipy.optimize import brentq
+
+    B = -b["tcr"] * b["T_ref"] ** 2
+    I2 = b["bias_current"] ** 2
+    v = np.empty(Q.shape)
+    th = np.empty(Q.shape)
+    for n, i, j in np.ndindex(*Q.shape):
+        g, R0, q, ts = p["g"][i, j], p["R_ref"][i, j], Q[n, i, j], Ts[n]
+
+        def R(x, R0=R0, ts=ts):
+            return R0 * math.exp(B * (1 / (ts + x) - 1 / b["T_ref"]))
+
+        lo = q / g  # unbiased: the heat balance is >= 0 here and <= 0 at hi (R falls)
+        root = brentq(lambda x, R=R, q=q, g=g: I2 * R(x) + q - g * x, lo, lo + I2 * R(lo) / g,
+                      xtol=1e-300, rtol=8.9e-16, maxiter=500)
+        v[n, i, j], th[n, i, j] = b["bias_current"] * R(root), root
+    return v, th
+
+
+@pytest.mark.parametrize("C", [1e-24, 1e-26, 1e-30, 1e-40, 1e-60, 1e-100])
+def test_any_accepted_C_is_solved_by_default_in_the_tau_to_zero_limit(C):
+    # C down to 1e-100 J/K (the accepted range): the default integrator gives the tau -> 0
+    # limit (the biased pixel's equilibrium, brentq) to 1e-12 (its rtol is 1e-9) or 10/stiffness,
+    # whichever is larger; from stiffness 1e18 it takes that limit directly (1 solve per
+    # pulse). Was: C = 1e-60 left most pulses unconverged at the top code; C = 1e-40 needed
+    # 21,014 substeps.
+    from irnuc.model import transient as tr
+    from irnuc.reports.studies.precision import transient_problem
+
+    prob = transient_problem("nonstiff")
+    cfg, Q, Ts, p = prob["cfg"], prob["Q"], prob["T_s"], prob["params"]
+    b = cfg["bolometer"]
+    r = tr.integrate_pixels(Q, Ts, p["R_ref"], p["g"], C, tcr=b["tcr"], T_ref=b["T_ref"],
+                            bias_current=b["bias_current"], t_int=b["t_int"])
+    assert (r.status == STATUS_OK).all()
+    v, th = _tau_zero_limit(Q, Ts, p, b)
+    stiffness = float((p["g"] * b["t_int"] / C).min())
+    err = max(float(np.max(np.abs(r.v_bolo - v) / v)), float(np.max(np.abs(r.dT_end - th) / th)))
+    assert err <= max(1e-12, 10.0 / stiffness), err
+    if stiffness >= 1e18:
+        assert r.integrators_used() == {"quasi_static": Q.size} and (r.substeps == 1).all()
+    else:
+        assert r.substeps.max() < 700
+
+
+def test_tiny_C_frames_equal_the_steady_model():
+    # simulate_transient(cfg, [300, 310]) at C = 1e-60 (the audit's call): every pulse
+    # solved, no pixel at the top code, the codes of the steady model (whose self-heating
+    # factor is 1 in this limit).
+    from irnuc.model.transient import simulate_transient
+
+    cfg = _cfg(**{"bolometer.C": 1e-60})
+    tf = simulate_transient(cfg, [300.0, 310.0], outputs=("codes", "status"))
+    assert (tf.outputs["status"] == STATUS_OK).all()
+    assert tf.codes.max() < 2**14 - 1
+    np.testing.assert_array_equal(tf.codes, _sim(cfg, [300.0, 310.0]).codes)
+
+
+def test_transient_error_at_g_1e_100_names_what_the_caller_gave():
+    # The default initial state is the unbiased equilibrium T_s + Q/g; for net emitters on
+    # g = 1e-100 it lies below 0 K. The error names transient.initial and bolometer.g (it
+    # named theta0, which the caller never passed); with initial = 'substrate' it runs.
+    from irnuc.model.transient import simulate_transient
+
+    cfg = _cfg(**{"bolometer.g": 1e-100})
+    with pytest.raises(ConfigError, match=r"^transient\.initial = 'equilibrium'.*bolometer\.g") as e:
+        simulate_transient(cfg, [300.0])
+    assert "theta0" not in str(e.value)
+    tf = simulate_transient(cfg, [300.0], settings={"initial": "substrate"},
+                            outputs=("codes", "status"))
+    assert np.isfinite(tf.codes).all() and (tf.outputs["status"] == STATUS_OK).all()
+
+
 def test_integration_time_zero_is_an_error():
     with pytest.raises(ConfigError, match=r"bolometer\.t_int = 0"):
         _cfg(**{"bolometer.t_int": 0.0})
@@ -174,6 +314,82 @@ def test_g_to_zero_reports_failed_pixels_not_garbage(g):
     assert fr.diagnostics["solver_failures"]["runaway"] + \
         fr.diagnostics["solver_failures"]["invalid"] == int((~ok).sum()) > 0
     assert np.isfinite(fr.codes).all()
+
+
+def _root_mp(a, b, R_ref, B, T_ref, T_s):
+    """The root of x = a + b R(T_s + x) (B > 0, b > 0) by bisection in mpmath at 50 digits
+    on ln(x - a) = ln(b R(T_s + x)), increasing in x, bracketed by max(a, -T_s) (-inf
+    there) and max(a, 0) + b R(T_s + max(a, 0)) (>= 0 there: R falls with x)."""
+    with mp.workdps(50):
+        a, b, R_ref, B, T_ref, T_s = (mp.mpf(float(v)) for v in (a, b, R_ref, B, T_ref, T_s))
+
+        def F(x):
+            return mp.log(x - a) - mp.log(b * R_ref) - B * (1 / (T_s + x) - 1 / T_ref)
+
+        lo = max(a, -T_s)
+        top = max(a, mp.mpf(0))
+        hi = top + b * R_ref * mp.exp(B * (1 / (T_s + top) - 1 / T_ref))
+        while hi - lo > mp.mpf(10) ** -44 * abs(hi):
+            m = (lo + hi) / 2
+            lo, hi = (m, hi) if F(m) < 0 else (lo, m)
+        return (lo + hi) / 2
+
+
+def test_g_1e_100_every_output_finite_and_the_biased_equilibrium_right():
+    # g = 1e-100 W/K (the bottom of the accepted range): pixels whose unbiased equilibrium
+    # T_s + Q/g lies below 0 K (net emitters) still have exactly one biased equilibrium
+    # above 0 K (R grows without bound as T -> 0); it is solved (40-digit mpmath root to
+    # 1e-12), and no output holds NaN (temperature_rise and bolometer_voltage were NaN,
+    # the pixels reported invalid).
+    b = _cfg()["bolometer"]
+    cfg = _cfg(**{"bolometer.g": 1e-100})
+    fr = _sim(cfg, [300.0], outputs=("codes", "status", "temperature_rise",
+                                      "bolometer_voltage", "params", "power"))
+    dT, v = fr.outputs["temperature_rise"][0], fr.outputs["bolometer_voltage"][0]
+    assert np.isfinite(dT).all() and np.isfinite(v).all()
+    p, Q = fr.outputs["params"], fr.outputs["power"][0]
+    Ts, I = cfg["environment"]["T_substrate"], cfg["bolometer"]["bias_current"]
+    a = Q / p["g"]
+    s = fr.outputs["status"][0]
+    assert (s[Ts + a <= 0] == STATUS_OK).all() and (s != STATUS_INVALID).all()
+    assert (s[a > 1e3] == STATUS_RUNAWAY).all()  # absorbers: Q/g of 1e76 K
+    cold = np.argwhere(Ts + a <= 0)
+    assert cold.size  # the case under test occurs
+    B = -b["tcr"] * b["T_ref"] ** 2
+    for i, j in cold[:6]:
+        f = _f_mp(b["t_int"] * p["g"][i, j] / p["C"][i, j])
+        ref = _root_mp(a[i, j], I * I * f / p["g"][i, j], p["R_ref"][i, j], B, b["T_ref"], Ts)
+        assert abs((dT[i, j] - ref) / ref) < 1e-12
+        assert 0 < Ts + dT[i, j] < Ts
+
+
+def test_no_equilibrium_above_0K_is_invalid_with_the_values_at_0K():
+    # Without bias nothing holds a net emitter above 0 K: status invalid, the pixel at the
+    # bound it falls to (temperature_rise = -T_substrate) and 0 V (no current), never NaN.
+    cfg = _cfg(**{"bolometer.g": 1e-100, "bolometer.bias_current": 0.0})
+    fr = _sim(cfg, [300.0], outputs=("codes", "status", "temperature_rise", "bolometer_voltage"))
+    s = fr.outputs["status"]
+    assert (s == STATUS_INVALID).any()
+    Ts = cfg["environment"]["T_substrate"]
+    assert (fr.outputs["temperature_rise"][s == STATUS_INVALID] == -Ts).all()
+    assert (fr.outputs["bolometer_voltage"][s == STATUS_INVALID] == 0.0).all()
+    assert fr.diagnostics["solver_failures"]["invalid"] == int((s == STATUS_INVALID).sum())
+
+
+def test_microkelvin_rise_to_full_relative_accuracy():
+    # The Newton stop tests are relative: a rise of ~3 uK (bias 10 nA) comes back to 1e-12
+    # of the 40-digit root, as a rise of kelvins does (an absolute floor of 1e-15 K left it
+    # 1e-9 off).
+    from irnuc.model.core.bolometer import solve_delta_t
+
+    B = 0.025 * 300.0**2
+    for a, bb in ((0.0, 3e-11), (1e-7, 1e-11), (-1e-6, 3e-11), (0.0, 3e-20)):
+        x, st, _ = solve_delta_t(a, bb, 1e5, B, 300.0, 300.0, 1e-12, 100, math.nan, 1000.0)
+        ref = _root_mp(a, bb, 1e5, B, 300.0, 300.0)
+        assert st == STATUS_OK and abs((x - ref) / ref) < 1e-12, (a, bb, x, ref)
+    fr = _sim(_cfg(**{"bolometer.bias_current": 1e-8}), [300.0],
+              outputs=("codes", "temperature_rise"))
+    assert 1e-7 < np.median(fr.outputs["temperature_rise"]) < 1e-4
 
 
 def test_positive_tcr_runaway_detected_per_pixel():

@@ -13,6 +13,8 @@ from scipy.integrate import quad
 from irnuc.cli import precision as R
 from irnuc.model.core.constants import C2, RADIANCE_PREFACTOR
 from irnuc.reports.studies import precision as P
+from irnuc.reports.studies.precision import references as PR
+from irnuc.reports.studies.precision import studies as PS
 
 
 def test_mpmath_reference_matches_scipy_quad():
@@ -75,6 +77,46 @@ def test_pareto_marking_uses_margins_and_skips_failed():
     close = [_pt("a", 1e-6, 1.0), _pt("b", 0.5e-6, 0.8)]
     P.mark_front(close)
     assert all(p.on_front for p in close)
+
+
+def test_jit_warm_up_is_never_timed(monkeypatch):
+    # A fake clock: each call advances it by what the call "costs". The first call of a
+    # setting compiles (10 s), the others take 1 ms: the point is drawn at 1 ms, a failed
+    # setting at the time of a compiled call (the study drew 3.63 s and 7.13 s points
+    # where their neighbours took 4e-4 s).
+    from types import SimpleNamespace
+
+    from irnuc.reports.studies.precision import harness as H
+
+    clock = [0.0]
+    monkeypatch.setattr(H, "time", SimpleNamespace(perf_counter=lambda: clock[0]))
+
+    def runner(cost, fail_call=False, fail_eval=False):
+        calls = []
+
+        def call():
+            clock[0] += 10.0 if not calls else cost
+            calls.append(1)
+            if fail_call:
+                raise P.SettingFailed("refused")
+            return 1
+
+        def evaluate(_):
+            if fail_eval:
+                raise P.SettingFailed("not converged", work=7.0)
+            return 1e-9, 5.0
+        return (call, evaluate), calls
+
+    pts = []
+    (r, calls) = runner(1e-3)
+    H.measure(pts, "m", "s", 1.0, r, repeats=3)
+    (r2, calls2) = runner(2e-3, fail_call=True)
+    H.measure(pts, "m", "s", 2.0, r2, repeats=3)
+    (r3, calls3) = runner(4e-3, fail_eval=True)
+    H.measure(pts, "m", "s", 3.0, r3, repeats=3)
+    assert [p.time_s for p in pts] == pytest.approx([1e-3, 2e-3, 4e-3], rel=1e-9)
+    assert [p.failed for p in pts] == [False, True, True] and pts[2].work == 7.0
+    assert (len(calls), len(calls2), len(calls3)) == (4, 2, 2)  # warm-up + timed calls
 
 
 @pytest.fixture(scope="module")
@@ -201,9 +243,9 @@ def test_cli_writes_the_report(tmp_path, capsys, monkeypatch):
 
 
 def test_electro_thermal_reference_is_tighter_than_brentq():
-    prob = P._electro_problem(True)
+    prob = PS.electro_problem(True)
     idx = np.arange(0, prob["Q"].size, 37)
-    ref, est = P._mp_reference(prob, idx)
-    br = P._brentq_reference(prob, idx)
+    ref, est = PR.mp_root_reference(prob, idx)
+    br = PR.brentq_reference(prob, idx)
     assert est < 1e-25
     assert np.max(P.rel_error_dd(br, ref)) < 1e-14  # brentq is right to ~1e-16

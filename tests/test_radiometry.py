@@ -168,11 +168,15 @@ def test_narrow_band_cancels_in_the_paper_series():
     # The paper's difference of tails loses digits on a 1 pm band: the reason for quadrature.
     from irnuc.reports.studies.precision import band_radiance_mp
 
+    # The lost digits are rounding noise: at one temperature they may happen to cancel, so
+    # the largest error over several is the measure (1e-10 to 2e-8 here).
     band = NARROW_BANDS[0]
-    ref = band_radiance_mp(300.0, band, as_mpf=True)
-    err = abs(float((mp.mpf(float(band_radiance(300.0, band=band, method="series"))) - ref)
-                    / ref))
-    assert err > 1e-11
+    errs = []
+    for T in (100.0, 300.0, 400.0, 3000.0):
+        ref = band_radiance_mp(T, band, as_mpf=True)
+        got = mp.mpf(float(band_radiance(T, band=band, method="series")))
+        errs.append(abs(float((got - ref) / ref)))
+    assert max(errs) > 1e-10
 
 
 @pytest.mark.parametrize("T", [1e-300, 1e-100, 1e-5, 0.5, 1.0, 1.4, 1.5, 2.0, 3.0])

@@ -187,13 +187,14 @@ def test_failing_cosim_fails_the_report_and_sections_follow_data(tmp_path) -> No
     assert "mismatch at frame 0, x 3, y 1" in h
 
 
-def test_no_cosim_means_no_section_and_no_junit(tmp_path) -> None:
+def test_no_cosim_leaving_nothing_to_run_is_an_error(tmp_path, capsys) -> None:
+    # Only [cosim], skipped: the report would check nothing, so it is no PASS (issue 19).
     cfg = tmp_path / "empty.toml"
     cfg.write_text('name = "empty"\n[cosim]\npipelines = ["minimal"]\ntests = ["corner_codes"]\n')
     out = tmp_path / "o"
-    assert main(["report", "--config", str(cfg), "--out", str(out), "--no-cosim"]) == 0
-    s = json.loads((out / "summary.json").read_text())
-    assert s["sections"] == {} and not (out / "junit.xml").exists()
+    assert main(["report", "--config", str(cfg), "--out", str(out), "--no-cosim"]) == 2
+    assert "no phase to run" in capsys.readouterr().err
+    assert not out.exists()
 
 
 @pytest.mark.parametrize(("better", "base", "now", "regress"), [

@@ -16,16 +16,18 @@ from __future__ import annotations
 import argparse
 import errno
 import importlib
+import os
 import sys
 from collections.abc import Callable, Sequence
 from typing import NoReturn
 
-from irnuc.cli._args import add_verbosity, set_verbosity
-from irnuc.common.errors import ToolError, UserError
+from irnuc.cli._args import add_verbosity, set_verbosity, stdout_error
+from irnuc.common.errors import StreamError, ToolError, UserError
 
 COMMAND_MODULES: tuple[str, ...] = (
     "irnuc.cli.frames", "irnuc.cli.calibrate", "irnuc.cli.sweep", "irnuc.cli.report",
-    "irnuc.cli.precision", "irnuc.cli.synth", "irnuc.cli.mutate",
+    "irnuc.cli.precision", "irnuc.cli.synth", "irnuc.cli.mutate", "irnuc.cli.study",
+    "irnuc.cli.noise",
 )
 
 Command = tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]
@@ -73,6 +75,7 @@ def _os_error_line(exc: OSError) -> str | None:
     what = {errno.ENOENT: "no such file or folder", errno.EACCES: "permission denied",
             errno.EPERM: "operation not permitted", errno.EISDIR: "is a folder",
             errno.ENOTDIR: "a part of the path is not a folder", errno.ENOSPC: "no space left",
+            errno.EFBIG: "file too large (the file-size limit)", errno.EDQUOT: "disk quota exceeded",
             errno.EROFS: "read-only file system", errno.EEXIST: "already exists"}
     return f"{exc.filename}: {what.get(exc.errno, exc.strerror or 'cannot be used')}"
 
@@ -80,6 +83,25 @@ def _os_error_line(exc: OSError) -> str | None:
 def _one_line(text: object) -> str:
     """A message as one line (a file's own text quoted in it may hold line breaks)."""
     return " ".join(str(text).split())
+
+
+def _flush_stdout() -> None:
+    try:
+        sys.stdout.flush()
+    except OSError as exc:
+        raise stdout_error(exc) from None
+
+
+def _silence_stdout() -> None:
+    """Point a broken stdout at /dev/null, so the interpreter's last flush at exit does not
+    print a second error."""
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # a replaced stream (tests): nothing to do
+        return
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, fd)
+    os.close(null)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -94,8 +116,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     from irnuc.common.io import release_claims
 
     try:
-        return int(run(args) or 0)
+        code = int(run(args) or 0)
+        _flush_stdout()  # a buffered stdout fails here, not silently at exit
+        return code
     except UserError as exc:
+        if isinstance(exc, StreamError):
+            _silence_stdout()
         print(f"{prefix} {_one_line(exc)}", file=sys.stderr)
         return 2
     except ToolError as exc:

@@ -19,7 +19,7 @@ import sys
 import tomllib
 from typing import Any
 
-from irnuc.common.errors import UserError
+from irnuc.common.errors import StreamError, UserError
 
 #: 0 quiet (errors only), 1 normal, 2 verbose; set by ``-q`` / ``-v``.
 _VERBOSITY = [1]
@@ -34,9 +34,21 @@ def verbosity() -> int:
 
 
 def say(message: str, level: int = 1) -> None:
-    """Print a line on stdout when the verbosity is at least ``level``."""
+    """Print a line on stdout when the verbosity is at least ``level``; a stdout that
+    cannot be written (closed pipe, full disk) is a :class:`StreamError`."""
     if _VERBOSITY[0] >= level:
-        print(message, flush=True)
+        try:
+            print(message, flush=True)
+        except OSError as exc:
+            raise stdout_error(exc) from None
+
+
+def stdout_error(exc: OSError) -> StreamError:
+    """The one-line error of a stdout that cannot be written."""
+    why = ("the reader closed it" if isinstance(exc, BrokenPipeError)
+           else exc.strerror or str(exc))
+    return StreamError(f"stdout: cannot be written ({why}); the command stopped, and every "
+                       "--out is whole (replaced only as a unit)")
 
 
 def progress(label: str):

@@ -31,13 +31,19 @@ def run_synth(args: argparse.Namespace) -> int:
     import json
 
     from irnuc.common.errors import UserError
-    from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
+    from irnuc.common.io import (
+        claim_output_folder,
+        output_folder,
+        plain_name,
+        write_text_atomic,
+    )
     from irnuc.cosim.synth import synth_configs
     from irnuc.nuc_fixed.rtl_spec import PIPELINE_RANGES
 
     out = claim_output_folder(args.out, kind="synth")
     cfgs = [load_pipeline_arg(p) for p in args.pipeline]
-    names = [c.name for c in cfgs]
+    names = [plain_name(c.name, f"--pipeline {p}: the configuration's name")
+             for c, p in zip(cfgs, args.pipeline, strict=True)]
     if len(set(names)) != len(names):
         raise UserError(f"--pipeline names {', '.join(names)}: each configuration once")
     for flag, v, field in (("--max-width", args.max_width, "max_width"),
@@ -63,9 +69,9 @@ def run_synth(args: argparse.Namespace) -> int:
         if len(results) == 1:
             write_text_atomic(tmp / "synth.json", json.dumps(results[0], indent=1) + "\n")
         else:
-            for r in results:
-                write_text_atomic(tmp / r["config"]["name"] / "synth.json",
-                                  json.dumps(r, indent=1) + "\n")
+            for r in results:  # the names were checked plain: each is one folder
+                write_text_atomic(tmp / plain_name(r["config"]["name"], "--pipeline name")
+                                  / "synth.json", json.dumps(r, indent=1) + "\n")
             index = {"configurations": [
                 {"name": r["config"]["name"], "fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"],
                  "ecp5": r["ecp5"], "config_digest": r["config_digest"]} for r in results]}

@@ -7,6 +7,8 @@
   report): every layer raises this same class.
 * :class:`ToolError` (a ``RuntimeError``): an external tool (Verilator, the C++
   compiler, Yosys, nextpnr) failed; the message names the log. Exit status 3.
+* :class:`StreamError` (a :class:`UserError`): stdout cannot be written (``| head``,
+  ``> /dev/full``); one line naming the stream, exit status 2.
 * Anything else is a bug in irnuc and keeps its traceback.
 """
 
@@ -28,3 +30,9 @@ class ConfigError(UserError):
 
 class ToolError(IrnucError, RuntimeError):
     """An external tool failed: printed as one line naming its log, exit status 3."""
+
+
+class StreamError(UserError):
+    """A standard stream cannot be written (a closed pipe, a full disk): printed as one
+    line naming the stream, exit status 2. Outputs under ``--out`` stay whole: each is
+    replaced only as a unit."""

@@ -34,6 +34,21 @@ class OutputError(UserError):
     """An output path cannot be written (wrong kind of file, permission, busy)."""
 
 
+#: Errors of the writing itself, not of the path: a full disk, a file-size limit
+#: (``ulimit -f``), a quota.
+WRITE_ERRNOS = frozenset({errno.ENOSPC, errno.EFBIG, errno.EDQUOT})
+
+
+class WriteError(OutputError):
+    """An output could not be written (disk full, file too large); what was there before
+    is left whole. ``path`` is the file, ``errno`` the operating system's error."""
+
+    def __init__(self, message: str, path: Path, errno_: int) -> None:
+        super().__init__(message)
+        self.path = path
+        self.errno = errno_
+
+
 def _umask() -> int:
     umask = os.umask(0)
     os.umask(umask)
@@ -54,6 +69,13 @@ def write_atomic(path: str | Path, write: Callable[[IO[bytes]], Any]) -> Path:
         with os.fdopen(fd, "wb") as fh:
             write(fh)
         os.replace(tmp, path)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        if exc.errno not in WRITE_ERRNOS:
+            raise
+        kept = "the previous file is left whole" if path.exists() else "nothing was written"
+        raise WriteError(f"{path}: cannot be written ({os.strerror(exc.errno)}); {kept}",
+                         path, exc.errno) from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
@@ -70,23 +92,79 @@ def write_text_atomic(path: str | Path, text: str) -> Path:
     return write_atomic(path, lambda fh: fh.write(text.encode()))
 
 
-def read_json_object(path: str | Path, what: str = "") -> dict[str, Any]:
-    """A JSON file whose top level is an object; one-line :class:`UserError` otherwise.
+#: What a name that becomes a file or folder name may hold: letters, digits, ``_ . -``,
+#: starting with a letter or digit (no separator, no ``..``, nothing hidden), at most 64.
+PLAIN_NAME = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$"
 
-    ``what`` (e.g. the flag that named the file) is put before the path in messages.
+
+def plain_name(name: str, what: str) -> str:
+    """``name`` if it can be one file or folder name inside an output folder; a one-line
+    :class:`UserError` naming ``what`` otherwise (a name never becomes a path)."""
+    import re
+
+    if not isinstance(name, str) or not re.fullmatch(PLAIN_NAME, name):
+        raise UserError(f"{what} = {name!r} cannot name a file or folder: use letters, "
+                        "digits, '_', '.' and '-' (at most 64, starting with a letter or digit)")
+    return name
+
+
+#: The most irnuc reads of a configuration, manifest, baseline or report file (they are
+#: kilobytes): a device, a pipe or a wrong file is refused before it fills the memory.
+MAX_TEXT_BYTES = 16 * 2**20
+
+
+def read_bytes_capped(path: str | Path, what: str = "", limit: int = MAX_TEXT_BYTES) -> bytes:
+    """The bytes of a file the user named, reading at most ``limit`` (one-line
+    :class:`UserError` naming ``what`` (e.g. the flag) and the path otherwise).
+
+    Any kind of file is read (``/dev/stdin``, a pipe) but never more than ``limit`` + 1
+    bytes, so ``/dev/zero`` or a multi-gigabyte file is an error at once.
     """
-    import json
-
     path = Path(path)
     name = f"{what} {path}" if what else str(path)
     try:
-        data = json.loads(path.read_text())
+        with path.open("rb") as fh:
+            data = fh.read(limit + 1)
     except FileNotFoundError:
         raise UserError(f"{name}: no such file") from None
     except IsADirectoryError:
-        raise UserError(f"{name}: is a folder, not a JSON file") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise UserError(f"{name}: is a folder, not a file") from None
+    except OSError as exc:
+        raise UserError(f"{name}: cannot be read ({exc.strerror or exc})") from None
+    if len(data) > limit:
+        raise UserError(f"{name}: larger than {_size_text(limit)}, the most irnuc reads of such "
+                        "a file; is it the right file?")
+    return data
+
+
+def _size_text(n: int) -> str:
+    return f"{n / 2**20:g} MiB" if n >= 2**20 else f"{n} bytes"
+
+
+def parse_json(data: bytes, name: str) -> Any:
+    """A JSON document (UTF-8); one-line :class:`UserError` naming ``name`` for anything
+    that is not one: bad syntax or encoding, nesting too deep for the parser, an integer
+    too long to convert."""
+    import json
+
+    try:
+        return json.loads(data.decode("utf-8"))
+    except RecursionError:
+        raise UserError(f"{name}: not a readable JSON file (nested too deeply)") from None
+    except (UnicodeDecodeError, ValueError) as exc:  # JSONDecodeError, int digit limit
         raise UserError(f"{name}: not a readable JSON file ({exc})") from None
+
+
+def read_json_object(path: str | Path, what: str = "", limit: int = MAX_TEXT_BYTES
+                     ) -> dict[str, Any]:
+    """A JSON file whose top level is an object; one-line :class:`UserError` otherwise.
+
+    ``what`` (e.g. the flag that named the file) is put before the path in messages; at
+    most ``limit`` bytes are read (:func:`read_bytes_capped`).
+    """
+    path = Path(path)
+    name = f"{what} {path}" if what else str(path)
+    data = parse_json(read_bytes_capped(path, what, limit), name)
     if not isinstance(data, dict):
         raise UserError(f"{name}: the top level is a {type(data).__name__}; a JSON object is "
                         "required")
@@ -163,6 +241,15 @@ def _read_marker(folder: Path) -> str | None:
         return None
 
 
+def _nested_output(folder: Path) -> Path | None:
+    """The first folder below ``folder`` that is another irnuc output (its marker file)."""
+    for root, dirs, files in os.walk(folder):
+        if MARKER_NAME in files and Path(root) != folder:
+            return Path(root)
+        dirs.sort()
+    return None
+
+
 def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = None,
                         inputs: dict[str, str | Path | None] | None = None) -> Path:
     """Check, before any work, that ``path`` can become an output folder.
@@ -196,6 +283,12 @@ def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | No
         if q == p or q.is_relative_to(p):
             raise OutputError(f"{name}: holds {in_flag} {value}, which this command reads and "
                               "would replace; give another output folder")
+    for outer in p.parents:  # inside another output, the next run of that one deletes it
+        marker = _read_marker(outer)
+        if marker is not None:
+            raise OutputError(f"{name}: is inside {outer}, the output of `{marker}`, which its "
+                              f"next run replaces as a whole ({flag} with it); give a folder "
+                              "outside it")
     if p.is_dir():
         try:
             entries = [e.name for e in os.scandir(p)]
@@ -211,6 +304,11 @@ def check_output_folder(path: str | Path, flag: str = "--out", *, kind: str | No
             if kind is not None and marker not in (_marker_text(kind).strip(), "irnuc output"):
                 raise OutputError(f"{name}: holds the output of `{marker}`, not of `irnuc "
                                   f"{kind}`; give another folder")
+            nested = _nested_output(p)
+            if nested is not None:
+                raise OutputError(f"{name}: holds {nested.relative_to(p)}, the output of "
+                                  f"`{_read_marker(nested)}`, which replacing {flag} as a whole "
+                                  "would delete; move it out or give another folder")
     parent = p.parent
     probe = parent
     while not probe.exists():
@@ -296,8 +394,13 @@ def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = N
             tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
             os.chmod(tmp, 0o777 & ~_umask())
             try:
-                yield tmp
-                (tmp / MARKER_NAME).write_text(_marker_text(kind))
+                try:
+                    yield tmp
+                    (tmp / MARKER_NAME).write_text(_marker_text(kind))
+                except (OSError, WriteError) as exc:  # named by --out, not the hidden folder
+                    if exc.errno not in WRITE_ERRNOS:
+                        raise
+                    raise _folder_write_error(exc, tmp, p, f"{flag} {given}") from None
                 if p.is_dir():
                     if _exchange(tmp, p):
                         shutil.rmtree(tmp, ignore_errors=True)  # now the previous result
@@ -314,3 +417,16 @@ def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = N
     finally:
         if held:
             _release(p)
+
+
+def _folder_write_error(exc: OSError | WriteError, tmp: Path, p: Path, name: str) -> WriteError:
+    """A write error while an output folder was being filled, told by the folder's name and
+    the file's name inside it (not the hidden temporary folder's)."""
+    f = getattr(exc, "path", None) or exc.filename
+    inner = ""
+    if f is not None:
+        with contextlib.suppress(ValueError):
+            inner = f"{Path(os.path.abspath(f)).relative_to(tmp)}: "
+    kept = ("its previous content is left whole" if p.exists() else "nothing was written")
+    return WriteError(f"{name}: {inner}cannot be written ({os.strerror(exc.errno or 0)}); {kept}",
+                      p, exc.errno or 0)

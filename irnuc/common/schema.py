@@ -34,7 +34,16 @@ def _dotted(prefix: str, path: Any) -> str:
 
 
 def _num(v: float) -> str:
-    return f"{v:g}" if isinstance(v, float) else str(v)
+    return f"{v:g}" if isinstance(v, float) else _show(v, str)
+
+
+def _show(v: Any, fmt: Any = repr, width: int = 60) -> str:
+    """A value as text for a one-line message, cut short (a thousand-digit number or a
+    large table would swamp the line)."""
+    if isinstance(v, int) and not isinstance(v, bool) and v.bit_length() > 200:
+        return f"{'-' if v < 0 else ''}(an integer of {int(v.bit_length() * 0.30103) + 1} digits)"
+    s = fmt(v)
+    return s if len(s) <= width else s[: width - 4] + " ..."
 
 
 def _range(schema: Mapping[str, Any]) -> str:
@@ -77,39 +86,41 @@ def _message(err: Any, prefix: str) -> str:
         missing = [k for k in err.validator_value if not isinstance(v, Mapping) or k not in v]
         return f"{_dotted(prefix, [*err.absolute_path, missing[0]])} is required but missing"
     if kind == "type":
-        return f"{where} = {v!r} must be {_type_text(err.validator_value)}"
+        return f"{where} = {_show(v)} must be {_type_text(err.validator_value)}"
     if kind in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum"):
         unit = f" {sch['x-unit']}" if sch.get("x-unit") else ""
         return f"{where} = {_num(v)}{unit} is outside the allowed range {_range(sch)}"
     if kind == "enum":
-        return f"{where} = {v!r} is not one of {', '.join(map(repr, err.validator_value))}"
+        return f"{where} = {_show(v)} is not one of {', '.join(map(repr, err.validator_value))}"
     if kind == "const":
-        return f"{where} = {v!r} must be {err.validator_value!r}"
+        return f"{where} = {_show(v)} must be {err.validator_value!r}"
     if kind in ("minItems", "maxItems"):
         n = err.validator_value
         word = "at least" if kind == "minItems" else "at most"
         return f"{where} has {len(v)} item(s); {word} {n} allowed"
     if kind == "minLength":
         return f"{where} must not be empty"
+    if kind == "minProperties":
+        return f"{where} is empty; at least {err.validator_value} entry needed"
+    if kind == "pattern" and sch.get("x-pattern-text"):
+        return f"{where} = {_show(v)} must be {sch['x-pattern-text']}"
     if kind == "not" and isinstance(v, float) and not math.isfinite(v):
-        return f"{where} = {v!r} must be a finite number"
+        return f"{where} = {_show(v)} must be a finite number"
     return f"{where}: {err.message}"
 
 
-def _finite(instance: Any, prefix: str, path: tuple = ()) -> str | None:
-    """Path of the first NaN or infinity in a document (JSON allows them via Python)."""
-    if isinstance(instance, float) and not math.isfinite(instance):
-        return f"{_dotted(prefix, path)} = {instance!r} must be a finite number"
-    if isinstance(instance, Mapping):
-        for k, v in instance.items():
-            found = _finite(v, prefix, (*path, k))
-            if found:
-                return found
-    if isinstance(instance, list):
-        for i, v in enumerate(instance):
-            found = _finite(v, prefix, (*path, i))
-            if found:
-                return found
+def _finite(instance: Any, prefix: str) -> str | None:
+    """Path of the first NaN or infinity in a document (JSON allows them via Python);
+    iterative, so a deeply nested document is no recursion error."""
+    stack: list[tuple[tuple, Any]] = [((), instance)]
+    while stack:
+        path, v = stack.pop()
+        if isinstance(v, float) and not math.isfinite(v):
+            return f"{_dotted(prefix, path)} = {v!r} must be a finite number"
+        if isinstance(v, Mapping):
+            stack.extend(((*path, k), x) for k, x in reversed(list(v.items())))
+        elif isinstance(v, list):
+            stack.extend(((*path, i), x) for i, x in reversed(list(enumerate(v))))
     return None
 
 
@@ -159,19 +170,24 @@ def nearest(word: str, known: list[str] | tuple[str, ...]) -> str:
 
 
 def read_toml(path: str | Path, flag: str = "") -> dict[str, Any]:
-    """Parse a TOML file; one-line errors name the flag, the file and the problem."""
+    """Parse a TOML file (at most :data:`irnuc.common.io.MAX_TEXT_BYTES`); one-line errors
+    name the flag, the file and the problem."""
+    from irnuc.common.io import read_bytes_capped
+
     p = Path(path)
     name = f"{flag} {p}" if flag else str(p)
     if not p.exists():
         raise UserError(f"{name}: no such file")
     if p.is_dir():
         raise UserError(f"{name}: is a folder, not a TOML file")
+    data = read_bytes_capped(p, flag)
     try:
-        with p.open("rb") as fh:
-            return tomllib.load(fh)
+        return tomllib.loads(data.decode("utf-8"))
     except tomllib.TOMLDecodeError as exc:
         raise UserError(f"{name}: not valid TOML ({exc})") from None
-    except (OSError, UnicodeDecodeError) as exc:
+    except RecursionError:
+        raise UserError(f"{name}: not valid TOML (nested too deeply)") from None
+    except (UnicodeDecodeError, ValueError) as exc:  # encoding; an integer too long
         raise UserError(f"{name}: cannot be read ({exc})") from None
 
 

@@ -41,6 +41,12 @@ STATUS_NO_CONVERGENCE = 1
 STATUS_RUNAWAY = 2
 STATUS_INVALID = 3  # the temperature would be <= 0 K
 
+#: Absolute floor of the Newton stop tests, K: only so that a root at exactly 0 ends. The
+#: tests are relative (|step| <= rtol |dT|): a rise of a microkelvin is solved to the same
+#: relative accuracy as one of tens of kelvin (a floor of rtol * 1e-3 K left microkelvin
+#: rises 1e-9 relative off at rtol 1e-12).
+ROOT_ATOL = 1e-300
+
 
 
 #: Taylor coefficients of f(u) = sum_{k>=1} (-1)^(k+1) u^k / (k+1)!, for u < 0.25.
@@ -105,7 +111,7 @@ def newton_negative_tcr_warm(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, e0)
     A neighbour's solution gives both x0 and e0 (its R over its R_ref), so the first Newton
     step needs no exponential.
     """
-    atol = rtol * 1e-3
+    atol = ROOT_ATOL
     inv_Tref = 1.0 / T_ref
     lo = a
     hi = math.inf
@@ -159,11 +165,18 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
     """Root dT of dT = a + b R(T_s + dT). Returns (dT, status, iterations).
 
     x0 is an initial guess (NaN for none); it is used only if it lies inside the bracket.
-    Convergence: |last Newton step| <= rtol |dT| + rtol * 1e-3 K.
+    Convergence: |last Newton step| <= rtol |dT| (+ ROOT_ATOL).
+
+    T_s + a <= 0 (the unbiased equilibrium below 0 K: a net emitter on a vanishing g): for
+    B > 0 and b > 0 the biased pixel still has exactly one equilibrium above 0 K (R grows
+    without bound as T -> 0), found by :func:`solve_cold_start`; otherwise there is none
+    and the result is STATUS_INVALID with dT = -T_s (the pixel at 0 K, the bound it falls to).
     """
     Ta = T_s + a
     if not Ta > 0.0:
-        return math.nan, STATUS_INVALID, 0
+        if B > 0.0 and b > 0.0:
+            return solve_cold_start(a, b, R_ref, B, T_ref, T_s, rtol, max_iter)
+        return -T_s, STATUS_INVALID, 0
     if b == 0.0:
         return a, STATUS_OK, 0
     if B == 0.0:
@@ -175,8 +188,41 @@ def solve_delta_t(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, x0, T_max):
 
 
 @njit(cache=True)
+def solve_cold_start(a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
+    """Root dT of dT = a + b R(T_s + dT) for B > 0, b > 0 and T_s + a <= 0, in K.
+
+    h(x) = x - a - b R(T_s + x) is increasing, -> -inf as T -> 0+ and >= 0 at
+    x_hi = b R(T_s) (R falls with T and x_hi - a >= b R(T_s)), so the one root lies in
+    T = T_s + x in (0, T_s + x_hi]. The bracket is first narrowed by bisection in ln T (the
+    root may be kelvins or far less), then Newton safeguarded by the bracket finishes.
+    Returns (dT, status, iterations).
+    """
+    lo_T = 0.0
+    hi_T = T_s + b * resistance(T_s, R_ref, B, T_ref)
+    it = 0
+    T = hi_T
+    while it < max_iter:
+        it += 1
+        T = 0.5 * hi_T if lo_T == 0.0 else math.sqrt(lo_T * hi_T)
+        if lo_T > 0.0 and hi_T - lo_T <= 1e-3 * hi_T:
+            break
+        e = B * (1.0 / T - 1.0 / T_ref)
+        h = (T - T_s) - a - (b * R_ref * math.exp(e) if e < 700.0 else math.inf)
+        if h < 0.0:
+            lo_T = T
+        else:
+            hi_T = T
+        if lo_T == 0.0 and not T > 0.0:
+            return -T_s, STATUS_INVALID, it  # no positive T left in floating point
+    x, st, k = bracketed_newton(lo_T - T_s, hi_T - T_s, T - T_s, a, b, R_ref, B, T_ref, T_s,
+                                rtol, max_iter)
+    return x, st, it + k
+
+
+@njit(cache=True)
 def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
-    """(h in K, dh/dx dimensionless) of h(x) = x - a - b R(T_s + x), x in K."""
+    """(h in K, dh/dx dimensionless) of h(x) = x - a - b R(T_s + x), x in K (either sign
+    of B; named for the positive TCR, its first user)."""
     T = T_s + x
     bR = b * resistance(T, R_ref, B, T_ref)
     return x - a - bR, 1.0 + bR * B / (T * T)
@@ -184,13 +230,14 @@ def _h_positive(x, a, b, R_ref, B, T_ref, T_s):
 
 @njit(cache=True)
 def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
-    """Root of h in [lo, hi] (K) with h(lo) < 0 < h(hi) and exactly one root between:
-    Newton from x (K), bisection whenever a step leaves the bracket.
+    """Root of h in [lo, hi] (K) with h(lo) < 0 <= h(hi) and exactly one root between:
+    Newton from x (K), bisection whenever a step leaves the bracket. It stops on a Newton
+    step below rtol |x| (the error after it is of order its square), or on a bracket of
+    two neighbouring floats; never on a bisection step, whose error is its own size.
 
-    a (K), b (K/ohm), R_ref (ohm), B (K), T_ref and T_s (K) as in :func:`solve_delta_t`.
-    Returns (x in K, status, iterations).
+    a (K), b (K/ohm), R_ref (ohm), B (K, either sign), T_ref and T_s (K) as in
+    :func:`solve_delta_t`. Returns (x in K, status, iterations).
     """
-    atol = rtol * 1e-3
     for it in range(1, max_iter + 1):
         h, dh = _h_positive(x, a, b, R_ref, B, T_ref, T_s)
         if h == 0.0:
@@ -200,10 +247,13 @@ def bracketed_newton(lo, hi, x, a, b, R_ref, B, T_ref, T_s, rtol, max_iter):
         else:
             hi = x
         xn = x - h / dh if dh != 0.0 else math.nan
-        if not lo < xn < hi:
+        if lo < xn < hi:
+            if abs(xn - x) <= rtol * abs(xn) + ROOT_ATOL:
+                return xn, STATUS_OK, it
+        else:
             xn = 0.5 * (lo + hi)
-        if abs(xn - x) <= rtol * abs(xn) + atol or hi - lo <= rtol * abs(xn) + atol:
-            return xn, STATUS_OK, it
+            if xn == lo or xn == hi:
+                return xn, STATUS_OK, it
         x = xn
     return x, STATUS_NO_CONVERGENCE, max_iter
 
@@ -223,7 +273,7 @@ def solve_positive_tcr(a, b, R_ref, B, T_ref, T_s, rtol, max_iter, T_max):
     x_max = T_max - T_s
     if not a < x_max:
         return a, STATUS_RUNAWAY, 0
-    atol = rtol * 1e-3
+    atol = ROOT_ATOL
     x_inf = -0.5 * B - T_s  # inflection of R(T_s + x)
     x = a
     it = 0
@@ -290,7 +340,8 @@ def solve_row(Q, R_ref, g, C, B, T_ref, T_s, I, t_int, variant, rtol, max_iter, 
             x, st, it = solve_delta_t(a, b, R_ref[j], B, T_ref, T_s, rtol, max_iter, x0, T_max)
             e0 = math.nan
             if st == STATUS_INVALID:
-                v_out[j] = math.nan
+                # At 0 K, where it fell: no current (b = 0) or no resistance (B < 0) there.
+                v_out[j] = 0.0
             else:
                 v_out[j] = I * resistance(T_s + x, R_ref[j], B, T_ref)
         if st == STATUS_OK and not T_s + x <= T_max:

@@ -189,14 +189,23 @@ def radiance_underflow(T, lam1, lam2):
     """Blackbody band radiance (W m^-2 sr^-1) for x2 = hc/(lam2 k T) > X_UNDERFLOW.
 
     Log space: every factor is a logarithm, so T -> 0 gives exp(-inf) = 0, never
-    0 * inf. Relative to the first tail terms the rest is below e^-600.
+    0 * inf (and no product of T with the wavelengths, which underflows to 0 for a
+    subnormal T). Relative to the first tail terms the rest is below e^-600. The ratio
+    r = I(x1)/I(x2) of the first terms, ln r = -(x1 - x2) + 3 ln(x1/x2) + ln(P1/P2), is
+    formed from exact differences with log1p: for a band of a few ulps every log of a ratio
+    rounded near 1 would lose the whole band.
     """
     ln_x2 = math.log(C2 / lam2) - math.log(T)
-    x2 = C2 / (lam2 * T)
-    dx = C2 * (lam2 - lam1) / (lam1 * lam2 * T)
-    # ln r, r = I(x1) / I(x2) from the first terms: -(x1 - x2) + 3 ln(x1/x2) + ln P1/P2.
-    ln_r = -dx + 3.0 * math.log(lam2 / lam1) + math.log(
-        _poly_over_cube(x2 + dx) / _poly_over_cube(x2))
+    x2 = (C2 / lam2) / T
+    x1 = (C2 / lam1) / T
+    d = (lam2 - lam1) / lam1  # x1 / x2 = 1 + d, from the exact wavelength difference
+    dx = (C2 / T) * ((lam2 - lam1) / (lam1 * lam2))  # x1 - x2
+    u1 = 1.0 / x1
+    u2 = 1.0 / x2
+    # P(x) = 1 + 3u + 6u^2 + 6u^3 (u = 1/x); P1 - P2 = (u1 - u2)(3 + 6(u1 + u2) + 6(u1^2 +
+    # u1 u2 + u2^2)) with u1 - u2 = -d u1.
+    dp = -d * u1 * (3.0 + 6.0 * (u1 + u2) + 6.0 * (u1 * u1 + u1 * u2 + u2 * u2))
+    ln_r = -dx + 3.0 * math.log1p(d) + math.log1p(dp / _poly_over_cube(x2))
     ln_band = -math.expm1(ln_r)  # 1 - r without cancellation for narrow bands
     if not ln_band > 0.0:
         return 0.0
@@ -216,10 +225,10 @@ def band_radiance_one(T, lam1, lam2, rtol, coef, method, n_fixed):
     Returns (radiance, terms or integrand evaluations, status): status 1 if the paper's
     series did not converge within MAX_TERMS.
     """
-    x2 = C2 / (lam2 * T)
+    x2 = (C2 / lam2) / T  # never lam * T: it underflows to 0 for a subnormal T
     if x2 > X_UNDERFLOW:
         return radiance_underflow(T, lam1, lam2), 1, 0
-    x1 = C2 / (lam1 * T)
+    x1 = (C2 / lam1) / T
     scale = RADIANCE_PREFACTOR * T * T * T * T
     if method == 1:
         v, n, st = band_series_paper(x1, x2, rtol, n_fixed)

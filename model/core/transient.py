@@ -43,6 +43,7 @@ import numpy as np
 from numba import njit, prange
 
 from irnuc.model.core.bolometer import (
+    STATUS_INVALID,
     STATUS_NO_CONVERGENCE,
     STATUS_OK,
     STATUS_RUNAWAY,
@@ -71,6 +72,17 @@ M_BACKWARD_EULER = 1
 M_TRAPEZOIDAL = 2
 M_EXPONENTIAL = 3
 M_AUTO = 4
+#: Reported (never chosen): ``auto`` and ``exponential`` took the pulse in the tau -> 0
+#: limit (see :data:`QUASI_STATIC`).
+M_QUASI_STATIC = 5
+
+#: Stiffness g t_int / C (a lower bound of t_int |df/dtheta| for a negative TCR) from which
+#: ``auto`` and ``exponential`` take the pulse in the tau -> 0 limit: theta jumps to the
+#: equilibrium of the biased pixel and stays there. The approach it skips changes the pulse
+#: integrals by about |dR/R| |theta0 - theta*| / stiffness (< 5e-17 relative here), while
+#: integrating it in floating point costs ever more substeps as the right-hand side
+#: (divided by C) grows to 1e40 and beyond and its rounding swamps the error estimate.
+QUASI_STATIC = 1e18
 
 #: ``auto`` leaves RK4 for the exponential integrator once RK4's stability limit cuts the
 #: step its accuracy control asks for by more than this factor (h |lambda| above
@@ -257,6 +269,66 @@ def _order(method):
 
 
 @njit(cache=True)
+def _heat(x, Ts, Q, I2, R_ref, B, T_ref, g):
+    """C dtheta/dt during the pulse, W (the sign of the motion); +inf near 0 K."""
+    R = resistance(Ts + x, R_ref, B, T_ref)
+    return (I2 * R if I2 > 0.0 else 0.0) + Q - g * x
+
+
+@njit(cache=True)
+def quasi_static_pulse(th, Ts, Q, I, R_ref, B, T_ref, g, t_int, T_max):
+    """One bias pulse in the tau -> 0 limit: theta reaches at once the equilibrium that the
+    motion from ``th`` meets first (the first sign change of the heat balance in the
+    direction it drives theta) and stays there.
+
+    The root is bracketed by steps growing by 2 from ``th`` and bisected to the last bit.
+    Returns (theta_end, int V dt, int theta dt, status, 1, M_QUASI_STATIC): STATUS_RUNAWAY
+    if no equilibrium lies below ``T_max``, STATUS_INVALID if the pixel would cool to 0 K.
+    """
+    I2 = I * I
+    h0 = _heat(th, Ts, Q, I2, R_ref, B, T_ref, g)
+    root = th
+    if h0 != 0.0:
+        s = 1.0 if h0 > 0.0 else -1.0
+        a = th
+        step = 1e-3 * (1.0 + abs(th))
+        while True:
+            b = a + s * step
+            if s > 0.0 and Ts + b > T_max:
+                b = T_max - Ts
+                if _heat(b, Ts, Q, I2, R_ref, B, T_ref, g) > 0.0:
+                    return b, 0.0, 0.0, STATUS_RUNAWAY, 1, M_QUASI_STATIC
+            elif s < 0.0 and not Ts + b > 0.0:
+                b = a - 0.5 * (Ts + a)  # halfway to 0 K: T never reaches it
+                if not Ts + b > 0.0 or b == a:
+                    return a, 0.0, 0.0, STATUS_INVALID, 1, M_QUASI_STATIC
+            if _heat(b, Ts, Q, I2, R_ref, B, T_ref, g) * s <= 0.0:
+                break
+            a = b
+            step *= 2.0
+        while True:  # bisection: the motion side stays at a, the far side at b
+            m = 0.5 * (a + b)
+            if m == a or m == b:
+                break
+            if _heat(m, Ts, Q, I2, R_ref, B, T_ref, g) * s > 0.0:
+                a = m
+            else:
+                b = m
+        ha = abs(_heat(a, Ts, Q, I2, R_ref, B, T_ref, g))
+        hb = abs(_heat(b, Ts, Q, I2, R_ref, B, T_ref, g))
+        root = a if ha <= hb else b
+    V = I * resistance(Ts + root, R_ref, B, T_ref)
+    return root, V * t_int, root * t_int, STATUS_OK, 1, M_QUASI_STATIC
+
+
+@njit(cache=True)
+def equilibrium_rate(theta, Ts, I, R_ref, B, T_ref, g):
+    """C |df/dtheta| at theta, W/K: g - I^2 dR/dT (dR/dT = -B R / T^2)."""
+    T = Ts + theta
+    return g + I * I * B * resistance(T, R_ref, B, T_ref) / (T * T)
+
+
+@njit(cache=True)
 def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_max,
           refuse_unstable, rtol):
     """Integrate one bias pulse of length t_int from theta = th.
@@ -269,7 +341,17 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
     ``method`` M_AUTO starts with RK4 and switches to M_EXPONENTIAL where the pixel is stiff.
 
     Returns (theta_end, int V dt, int theta dt, status, substeps, method used last).
+    ``auto`` and ``exponential`` take a pulse whose stiffness (g t_int / C, and t_int
+    |df/dtheta| at the equilibrium) is at least QUASI_STATIC in the tau -> 0 limit
+    (:func:`quasi_static_pulse`).
     """
+    if (method == M_AUTO or method == M_EXPONENTIAL) and g * t_int >= QUASI_STATIC * C:
+        qs = quasi_static_pulse(th, Ts, Q, I, R_ref, B, T_ref, g, t_int, T_max)
+        # Stiff at the equilibrium too (a positive TCR lowers the rate there), or no
+        # equilibrium at all (runaway, 0 K): the limit is the answer.
+        if qs[3] != STATUS_OK or (equilibrium_rate(qs[0], Ts, I, R_ref, B, T_ref, g) * t_int
+                                  >= QUASI_STATIC * C):
+            return qs
     I2 = I * I
     iV = 0.0
     iT = 0.0
@@ -435,13 +517,6 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
                 status_out[n, p] = st
                 sub_out[n, p] = nsub
                 meth_out[n, p] = used
-
-
-@njit(cache=True)
-def rhs_jacobian(theta, Ts, Q, I, R_ref, B, T_ref, g, C):
-    """f(theta) and df/dtheta during the pulse (for the reference solver and tests)."""
-    f, R, dR = _rhs(theta, Ts, Q, I * I, R_ref, B, T_ref, g, C)
-    return f, (I * I * dR - g) / C, R
 
 
 def empty_outputs(shape):

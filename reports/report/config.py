@@ -165,8 +165,72 @@ def _set_dotted(d: dict[str, Any], dotted: str, value: Any, source: str) -> None
     cur[keys[-1]] = value
 
 
+#: The sections that run a phase: a configuration without any checks nothing.
+PHASE_SECTIONS = ("sensor", "sweep", "paper", "cosim", "precision")
+#: Model fields a section sets by its own keys (never by ``overrides`` beside them).
+_FRAME_FIELDS = {"fpa.active_rows": "rows", "fpa.active_cols": "cols"}
+
+
+def _check_frames(cfg: Mapping[str, Any], source: str) -> None:
+    """Each section that simulates frames: its preset, its overrides (one model field set
+    one way only) and its pipeline, all before the first progress line."""
+    from irnuc import model
+    from irnuc.nuc_fixed import load_pipeline
+
+    for sec in ("sensor", "sweep", "paper"):
+        s = cfg.get(sec)
+        if not s:
+            continue
+        known = model.preset_names()
+        if s["preset"] not in known:
+            raise ReportError(f"{source}: {sec}.preset = {s['preset']!r} is not a sensor preset"
+                              f"{nearest(s['preset'], known)} (known: {', '.join(known)})")
+        over = dict(s.get("overrides") or {})
+        for key, field in _FRAME_FIELDS.items():
+            if key in over:
+                raise ReportError(f"{source}: {sec}.overrides[{key!r}] = {over[key]!r} beside "
+                                  f"{sec}.{field} = {s[field]!r}: set the frame size with "
+                                  f"{sec}.{field} only")
+        frame = {"fpa.active_rows": s["rows"], "fpa.active_cols": s["cols"]}
+        try:
+            model.load_preset(s["preset"], {**frame, **over})
+        except UserError as exc:
+            raise ReportError(f"{source}: {sec}.overrides: {exc}") from None
+        if "pipeline" in s:
+            try:
+                load_pipeline(s["pipeline"])
+            except UserError as exc:
+                raise ReportError(f"{source}: {sec}.pipeline: {exc}") from None
+
+
+def _check_precision(cfg: Mapping[str, Any], source: str) -> None:
+    comps = (cfg.get("precision") or {}).get("components")
+    if comps:
+        from irnuc.reports.studies.precision import component_names
+
+        try:
+            component_names(comps)
+        except UserError as exc:
+            raise ReportError(f"{source}: precision.{exc}") from None
+
+
+def check_runs_something(cfg: Mapping[str, Any], source: str, *, no_cosim: bool = False,
+                         junit: bool = False) -> None:
+    """A report that would run no phase is an error, never a PASS that checked nothing
+    (an empty file, one holding only ``name``, only ``[cosim]`` with ``--no-cosim``)."""
+    ran = [s for s in PHASE_SECTIONS if s in cfg and not (s == "cosim" and no_cosim)]
+    if not ran and not junit:
+        why = " (its [cosim] is skipped by --no-cosim)" if no_cosim and "cosim" in cfg else ""
+        raise ReportError(f"{source}: no phase to run{why}; a report needs at least one of "
+                          f"[{'], ['.join(PHASE_SECTIONS)}] (a run that checks nothing is "
+                          "not a pass)")
+
+
 def _check_more(cfg: Mapping[str, Any], source: str) -> None:
-    """What a schema cannot say: relations between fields."""
+    """What a schema cannot say: relations between fields, and the names the fields give
+    (presets, pipelines, components, tests) resolved before any work."""
+    _check_frames(cfg, source)
+    _check_precision(cfg, source)
     for sec in ("sensor", "sweep", "paper"):
         s = cfg.get(sec)
         if s and "t_low" in s and "t_high" in s and not s["t_low"] < s["t_high"]:

@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from irnuc.reports.report.base import Report
-from irnuc.reports.report.config import config_path, load_report_config
+from irnuc.reports.report.config import check_runs_something, config_path, load_report_config
 
 OUTPUTS = ("index.html", "summary.json", "junit.xml", "coverage.json", "recommended.toml")
 
@@ -100,7 +100,9 @@ def run_report(args: Any) -> int:
     cfg_file = config_path(args.config)
     out = claim_output_folder(args.out, kind="report", inputs={
         "--config": cfg_file if cfg_file.is_file() else None})
-    baseline = load_baseline(args.baseline) if args.baseline else None
+    check_runs_something(config, f"--config {args.config}", no_cosim=args.no_cosim,
+                         junit=bool(args.junit))
+    baseline = load_baseline(args.baseline, config) if args.baseline else None
     junit = parse_junit(args.junit) if args.junit else None
     if junit is not None:
         junit["path"] = str(args.junit)

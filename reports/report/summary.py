@@ -31,26 +31,37 @@ SCHEMA_PATH = REPORT_DIR / "summary.schema.json"
 SCHEMA_VERSION = 2
 REPO_ROOT = REPORT_DIR.parent.parent
 
-#: A baseline file: only what the comparison reads is required.
+#: A baseline file: what the comparison reads and what says which run it is (schema,
+#: tool, configuration), each of the right type.
 BASELINE_SCHEMA: dict[str, Any] = {
     "type": "object",
-    "required": ["metrics"],
+    "required": ["schema_version", "tool", "provenance", "metrics"],
     "properties": {
+        "schema_version": {"const": SCHEMA_VERSION},
+        "tool": {"const": "irnuc report"},
         "metrics": {
             "type": "object",
+            "minProperties": 1,
             "additionalProperties": {
                 "type": "object",
                 "required": ["value", "better"],
                 "properties": {
-                    "value": {"type": ["number", "null"]},
+                    # Bounded: a thousand-digit integer would overflow the comparison.
+                    "value": {"type": ["number", "null"], "minimum": -1e300, "maximum": 1e300},
                     "better": {"enum": ["lower", "higher", "equal", "info"]},
                     "unit": {"type": "string"},
-                    "abs_tol": {"type": "number", "minimum": 0},
-                    "rel_tol": {"type": "number", "minimum": 0},
+                    "abs_tol": {"type": "number", "minimum": 0, "maximum": 1e300},
+                    "rel_tol": {"type": "number", "minimum": 0, "maximum": 1e300},
                 },
             },
         },
-        "provenance": {"type": "object"},
+        "provenance": {
+            "type": "object",
+            "required": ["config_name", "config_hash"],
+            "properties": {"config_name": {"type": ["string", "null"]},
+                           "config_hash": {"type": "string"},
+                           "git_commit": {"type": ["string", "null"]}},
+        },
     },
 }
 
@@ -156,17 +167,34 @@ def compare_baseline(metrics: Mapping[str, Mapping[str, Any]],
     return out
 
 
-def load_baseline(path: str | Path) -> dict[str, Any]:
-    """A validated baseline summary (one-line :class:`ReportError` naming the field)."""
-    p = input_file(path, "--baseline", "a summary.json")
+def load_baseline(path: str | Path, config: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """A validated baseline summary (one-line :class:`ReportError` naming the field).
+
+    Read with a size cap; every field the comparison or the summary reads is checked for
+    its type; a summary of another schema version or tool is refused, and with ``config``
+    (the run's configuration) one made with another configuration (its name or its hash
+    differs): its metrics would not be the same measurements.
+    """
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import read_json_object
+
+    source = f"--baseline {path}"
+    input_file(path, "--baseline", "a summary.json")
     try:
-        text = p.read_bytes().decode("utf-8")
-        data = json.loads(text)
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ReportError(f"--baseline {path}: not a readable summary.json ({exc})") from None
-    if not isinstance(data, dict) or not isinstance(data.get("metrics"), dict):
-        raise ReportError(f"--baseline {path}: no 'metrics' object; is it an irnuc summary.json?")
-    check({"metrics": data["metrics"]}, BASELINE_SCHEMA, source=f"--baseline {path}")
+        data = read_json_object(path, "--baseline")
+    except UserError as exc:
+        raise ReportError(f"{exc} (an irnuc report summary.json is needed)") from None
+    if not isinstance(data.get("metrics"), dict):
+        raise ReportError(f"{source}: no 'metrics' object; is it an irnuc summary.json?")
+    check(data, BASELINE_SCHEMA, source=source)
+    if config is not None:
+        prov = data["provenance"]
+        name, digest = config.get("name"), config_hash(config)
+        if prov["config_name"] != name or prov["config_hash"] != digest:
+            raise ReportError(
+                f"{source}: made with configuration {prov['config_name']!r} (hash "
+                f"{prov['config_hash']}), this run uses {name!r} (hash {digest}); a baseline "
+                "compares the same configuration only")
     return data
 
 
@@ -227,6 +255,11 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
         summary["baseline"] = cmp
         if cmp["regressions"]:
             reasons.append(f"{len(cmp['regressions'])} metric(s) regressed against the baseline")
+        if not cmp["compared"]:
+            reasons.append("the baseline shares no compared metric with this run: nothing "
+                           "was checked against it")
+    if not any(m["better"] != "info" for m in rep.metrics.values()):
+        reasons.append("the report measured nothing that can pass or fail")
     c = rep.sections.get("cosim")
     if c is not None and (c["failed"] or c["error"] or c.get("timeout")):
         reasons.append(f"co-simulation: {c['failed']} failed, {c['error']} errors, "

@@ -24,7 +24,8 @@ def code_digest() -> str:
 
     root = Path(model.__file__).parent
     files = [(p.relative_to(root).as_posix(), p) for p in sorted(root.rglob("*.py"))]
-    files.append(("study/precision.py", Path(precision.__file__)))
+    study = Path(precision.__file__).parent
+    files += [(f"study/{p.relative_to(study).as_posix()}", p) for p in sorted(study.glob("*.py"))]
     h = hashlib.sha256()
     for name, path in files:
         h.update(name.encode())

@@ -33,9 +33,15 @@ NEGATIVE_CONTROLS = ("checker_detects_mismatch",)
 def parse_junit(path: str | Path) -> dict[str, Any]:
     """Counts and per-test results of a JUnit XML file (pytest's or any xunit2 writer)."""
     p = input_file(path, "--junit", "a JUnit XML file")
-    try:
-        root = ET.parse(p).getroot()
-    except (ET.ParseError, OSError, UnicodeDecodeError) as exc:
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import read_bytes_capped
+
+    try:  # read with a size cap before it is parsed (a JUnit file of a suite is megabytes)
+        data = read_bytes_capped(p, "--junit", 256 * 2**20)
+        root = ET.fromstring(data)
+    except UserError as exc:
+        raise ReportError(str(exc)) from None
+    except (ET.ParseError, UnicodeDecodeError) as exc:
         raise ReportError(f"--junit {path}: not a readable JUnit XML file ({exc})") from None
     if root.tag not in ("testsuite", "testsuites"):
         raise ReportError(f"--junit {path}: root element is <{root.tag}>, "
@@ -58,10 +64,12 @@ def parse_junit(path: str | Path) -> dict[str, Any]:
                                   f"{tc.get('time')!r}, not a number") from None
             cases.append({"name": tc.get("name", ""), "classname": tc.get("classname", ""),
                           "time": seconds, "status": status, "message": message})
+    if not cases:  # results that check nothing are not a pass
+        raise ReportError(f"--junit {path}: holds no <testcase>; nothing to report")
     counts = {k: sum(c["status"] == k for c in cases) for k in ("passed", "failed", "error", "skipped")}
     return {"tests": len(cases), **counts, "timeout": 0,
             "time": round(sum(c["time"] for c in cases), 3), "cases": cases,
-            "data": p.read_bytes()}
+            "data": data}
 
 
 # ---- coverage and mutation (measured by irnuc.cosim) --------------------------------------

@@ -1,0 +1,59 @@
+"""The robustness cases of ``irnuc synth``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from robustness.harness import case, command, out_is_file, user_folder
+
+
+def _pipeline_named(name: str):
+    """A pipeline file holding ``minimal``'s fields under the table name ``name``."""
+    def setup(w: Path, t: Path) -> None:
+        from irnuc.nuc_fixed import load_pipeline
+
+        text = load_pipeline("minimal").to_toml().replace("[minimal]", f"[{name!s}]")
+        (t / "named.toml").write_text(text)
+    return setup
+
+
+Y = command("synth", (("irnuc.cosim.synth", "synth_configs"),))
+case("synth-no-pipeline", Y, "", ("--pipeline", "required"), "no --pipeline")
+case("synth-pipeline-unknown", Y, "--pipeline typcal14", ("--pipeline", "did you mean"),
+     "a misspelt configuration name")
+case("synth-pipeline-missing-file", Y, "--pipeline {t}/none.toml", ("--pipeline", "no such file"),
+     "a pipeline file that does not exist")
+case("synth-pipeline-unknown-field", Y, "--pipeline {w}/pipe_unknown.toml",
+     ("--pipeline", "adc_bitz"), "a pipeline file with an unknown field")
+case("synth-pipeline-range", Y, "--pipeline {w}/pipe_range.toml", ("--pipeline", "out_bits"),
+     "a pipeline field out of range")
+case("synth-pipeline-twice", Y, "--pipeline minimal --pipeline minimal", ("--pipeline", "once"),
+     "one configuration twice")
+case("synth-max-width-zero", Y, "--pipeline minimal --max-width 0", ("--max-width", "1..65535"),
+     "a zero line length")
+case("synth-max-width-huge", Y, "--pipeline minimal --max-width 70000",
+     ("--max-width", "1..65535"), "a line length beyond the RTL's range")
+case("synth-max-height-text", Y, "--pipeline minimal --max-height tall",
+     ("--max-height", "invalid int"), "a height that is a word")
+case("synth-speed-grade", Y, "--pipeline minimal --speed 5", ("--speed", "invalid choice"),
+     "a speed grade ECP5 does not have")
+case("synth-freq-zero", Y, "--pipeline minimal --freq 0", ("--freq", "1..1000"),
+     "a zero target clock")
+case("synth-seed-negative", Y, "--pipeline minimal --seed -1", ("--seed", "0..2^31-1"),
+     "a negative placer seed")
+case("synth-workers-negative", Y, "--pipeline minimal --pipeline typical14 --workers -1",
+     ("--workers", "0..256"), "a negative worker count")
+case("synth-out-file", Y, "--pipeline minimal --out {t}/out", ("--out",), "--out is a file",
+     setup=out_is_file)
+case("synth-out-user-folder", Y, "--pipeline minimal --out {t}/out", ("--out",),
+     "--out is a user's folder (never deleted)", setup=user_folder)
+case("synth-pipeline-name-up", Y, "--pipeline {t}/named.toml --pipeline minimal",
+     ("--pipeline", "named.toml", "'../../x'", "plain name"),
+     "a pipeline table named [\"../../x\"] (wrote x/synth.json outside --out)",
+     setup=_pipeline_named('"../../x"'))
+case("synth-pipeline-name-absolute", Y, "--pipeline {t}/named.toml --pipeline minimal",
+     ("--pipeline", "'/tmp/x'", "plain name"),
+     "a pipeline table named with an absolute path", setup=_pipeline_named('"/tmp/x"'))
+case("synth-pipeline-name-hidden", Y, "--pipeline {t}/named.toml",
+     ("--pipeline", "'.x'", "plain name"), "a pipeline table named as a hidden file",
+     setup=_pipeline_named('".x"'))
