@@ -34,6 +34,7 @@ class Field:
     unit: str = ""
     choices: tuple[str, ...] = ()
     optional: bool = False  # may be absent or None
+    default: Any = None  # the value of an absent optional field
 
 
 _POS = {"lo": 0.0, "lo_open": True}
@@ -63,6 +64,13 @@ SCHEMA: dict[str, Field] = {
     "fpa.spread": Field("choice", choices=("lognormal", "gamma", "normal_truncated")),
     "fpa.tolerance": Field("tolerances"),
     "fpa.defects": Field("table"),
+    # What the pixels outside the active area see (docs/model.md, "Shielded pixels"): the
+    # skimming (blind) pixels a shield at the housing or at the substrate temperature; the
+    # boundary pixels the scene (edge-extended) or the housing through a shield.
+    "fpa.skim_shield": Field("choice", choices=("housing", "substrate"), optional=True,
+                             default="housing"),
+    "fpa.boundary_view": Field("choice", choices=("scene", "housing"), optional=True,
+                               default="scene"),
     # bolometer (section 3.4)
     "bolometer.R_ref": Field("float", 1e-100, 1e100, unit="ohm"),
     "bolometer.T_ref": Field("float", unit="K", **_POS),
@@ -86,6 +94,9 @@ SCHEMA: dict[str, Field] = {
     "readout.v_low": Field("float", -100.0, 100.0, unit="V"),
     "readout.v_high": Field("float", -100.0, 100.0, unit="V"),
     "readout.v_skim": Field("float", -1e3, 1e3, unit="V", optional=True),
+    # The pixels read out beside the image as drift references (``blind_codes``).
+    "readout.reference_pixels": Field("choice", choices=("boundary", "blind", "none"),
+                                      optional=True, default="boundary"),
     # ADC
     "adc.bits": Field("int", 1, 24),
     "adc.v_low": Field("float", -100.0, 100.0, unit="V"),
@@ -113,7 +124,7 @@ def _field_schema(spec: Field) -> dict[str, Any]:
     if spec.kind == "bool":
         return {"type": "boolean"}
     if spec.kind == "choice":
-        return {"enum": list(spec.choices)}
+        return {"enum": [*spec.choices, *([None] if spec.optional else [])]}
     if spec.kind == "band":
         return {"type": "array", "minItems": 2, "maxItems": 2,
                 "items": schema.number(1e-7, 1e-3, unit="m")}
@@ -169,6 +180,8 @@ def validate(cfg: Mapping[str, Any], source: str = "sensor configuration") -> di
     for name, spec in SCHEMA.items():
         section, key = name.split(".", 1)
         value = copy.deepcopy(cfg.get(section, {}).get(key))
+        if value is None:
+            value = spec.default
         if spec.kind == "float" and value is not None:
             value = float(value)
         elif spec.kind == "band":

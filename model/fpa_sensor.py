@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from irnuc.model.validate import check_array, check_int, check_scalar
+from irnuc.model.validate import ConfigError, check_array, check_int, check_scalar
 
 #: Per-frame fields stored with the codes of every frame file (plain runs store them
 #: constant): name -> (dtype, unit, meaning).
@@ -85,3 +85,64 @@ class FpaSensor:
     def temperature(self, code: np.ndarray | int) -> np.ndarray:
         """The temperature a reading stands for, K (``zero_K + code * lsb_K``)."""
         return self.zero_K + np.asarray(code, dtype=np.float64) * self.lsb_K
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """The sensor's settings as the arrays a frame file stores (``fpa_sensor_<field>``)."""
+        return {"fpa_sensor_bits": np.int64(self.bits), "fpa_sensor_lsb_K": np.float64(self.lsb_K),
+                "fpa_sensor_zero_K": np.float64(self.zero_K),
+                "fpa_sensor_offset_K": np.float64(self.offset_K),
+                "fpa_sensor_noise_K": np.float64(self.noise_K)}
+
+    @classmethod
+    def from_dict(cls, table: dict, path: str = "fpa_sensor") -> FpaSensor:
+        """A sensor from a TOML table (keys of the dataclass; unknown keys refused)."""
+        known = tuple(cls.__dataclass_fields__)
+        if not isinstance(table, dict):
+            raise ConfigError(f"{path} = {table!r} must be a table")
+        for key in table:
+            if key not in known:
+                raise ConfigError(f"{path}.{key} is not a known field (known here: "
+                                  f"{', '.join(known)})")
+        return cls(**{k: table[k] for k in known if k in table})
+
+
+#: Nominal frame rate of a plain run (no sequence), Hz: its frames are stamped n / rate.
+PLAIN_FRAME_RATE = 30.0
+
+
+def frame_fields(time_s: np.ndarray, fpa_K: np.ndarray, T_cam_K: np.ndarray,
+                 scene_K: np.ndarray, shutter: np.ndarray, sensor: FpaSensor,
+                 seed: int = 0) -> dict[str, np.ndarray]:
+    """The per-frame fields (:data:`FRAME_FIELDS`) of N frames, with the sensor's readings.
+
+    Parameters
+    ----------
+    time_s, fpa_K, T_cam_K, scene_K : ndarray
+        (N,) time (s), FPA, housing and scene temperature (K) of each frame.
+    shutter : ndarray
+        (N,) bool, True while the shutter is closed.
+    sensor : FpaSensor
+        The on-die sensor; its readings are drawn from ``seed``.
+    """
+    n = np.shape(time_s)[0]
+    fields = {"time_s": time_s, "fpa_K": fpa_K, "T_cam_K": T_cam_K, "scene_K": scene_K,
+              "shutter": shutter}
+    out = {}
+    for name, value in fields.items():
+        arr = np.asarray(value, dtype=FRAME_FIELDS[name][0])
+        if arr.shape != (n,):
+            raise ConfigError(f"{name} has shape {arr.shape}; expected ({n},)")
+        out[name] = arr
+    out["fpa_reading"] = sensor.read(out["fpa_K"], seed=seed) if n else np.empty(0, np.int64)
+    return {name: out[name] for name in FRAME_FIELDS}
+
+
+def constant_fields(scene_K: np.ndarray, T_substrate: float, T_cam: float,
+                    sensor: FpaSensor | None = None, seed: int = 0,
+                    frame_rate: float = PLAIN_FRAME_RATE) -> dict[str, np.ndarray]:
+    """The per-frame fields of a plain run: constant FPA and housing temperatures (K),
+    shutter open, frames ``frame_rate`` (Hz) apart."""
+    n = np.shape(scene_K)[0]
+    return frame_fields(np.arange(n) / frame_rate, np.full(n, float(T_substrate)),
+                        np.full(n, float(T_cam)), np.asarray(scene_K, dtype=np.float64),
+                        np.zeros(n, bool), sensor or FpaSensor(), seed)

@@ -24,11 +24,14 @@ from irnuc.model.core.constants import K_BOLTZMANN
 FLICKER_OCTAVES = 8
 #: Stream key that separates noise draws from the other seeded stages.
 NOISE_STREAM = 0x6E6F6973
+#: Stream of the reference (shielded) pixels read out beside the image: their draws never
+#: change the image's.
+REFERENCE_STREAM = 0x72656670
 
 
-def frame_rng(seed: int, frame: int) -> np.random.Generator:
-    """The generator of one frame's noise."""
-    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(NOISE_STREAM, frame)))
+def frame_rng(seed: int, frame: int, stream: int = NOISE_STREAM) -> np.random.Generator:
+    """The generator of one frame's noise (of the image, or of another ``stream``)."""
+    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(stream, frame)))
 
 
 def johnson_sigma(v_bolo: np.ndarray, temperature: np.ndarray, bias_current: float,

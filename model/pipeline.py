@@ -2,11 +2,15 @@
 
 A request for some outputs runs only the stages those outputs need, each once: the stages
 that do not depend on the scene (per-pixel parameters, defects, cos^4, housing radiance,
-optical coupling) once per run, the others once per chunk of frames. The graph itself is
-built from the configuration, so only the configured skimming mode is computed and the
-noise stage exists only when noise is configured. :attr:`Pipeline.counts` records how often
-each stage ran and how many temperatures the radiance series was evaluated at; the tests
-check "computes only what it needs" with these counts.
+optical coupling, the solver's reference solution) once per configured sensor, the others
+once per chunk of frames. The graph itself is built from the configuration and the run, so
+only the configured skimming mode is computed, the noise stage exists only when noise is
+configured, and the stages that depend on the substrate or housing temperature (their
+radiance, the housing power, the nominal skim voltage) become per-frame stages only in a
+run whose environment varies from frame to frame (a drift sequence, :mod:`model.sequence`).
+:attr:`Pipeline.counts` records how often each stage ran and how many temperatures the
+radiance series was evaluated at; the tests check "computes only what it needs" with these
+counts.
 """
 
 from __future__ import annotations
@@ -15,7 +19,7 @@ import json
 import math
 import warnings
 from collections import Counter
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,6 +30,7 @@ from irnuc.model import noise as _noise
 from irnuc.model import readout as _readout
 from irnuc.model.config import config_digest
 from irnuc.model.core import bolometer as _kb
+from irnuc.model.core import warmstart as _kw
 from irnuc.model.defects import (
     DefectKind,
     DefectMap,
@@ -34,13 +39,24 @@ from irnuc.model.defects import (
     inject_defects,
     noisy_sigma,
 )
-from irnuc.model.fpa import ArrayLayout, draw_pixel_parameters
+from irnuc.model.fpa import BLIND, BOUNDARY, ArrayLayout, draw_pixel_parameters
 from irnuc.model.optics import cone_factor, cos4_map, focal_length_from_fov
 from irnuc.model.radiometry import band_radiance
 from irnuc.model.scenes import Scene, check_temps, scene_temperatures
-from irnuc.model.validate import ConfigError, check_int
+from irnuc.model.validate import ConfigError, check_choice, check_int
 
 BOLOMETER_VARIANTS = {"equilibrium": 0, "paper": 1}
+
+#: How the bolometer state goes from one frame to the next (docs/sequences.md):
+#: ``steady``: every frame in equilibrium with its own scene and temperatures;
+#: ``lagged``: the pre-pulse temperature of every pixel follows its equilibrium through its
+#: own thermal time constant C/g (exact between pulses), the pulse as in ``steady``;
+#: ``transient``: the time-domain model (:mod:`model.transient`), state carried.
+THERMAL_MODES = ("steady", "lagged", "transient")
+
+#: Per-frame environment a run may vary (arrays of one value per frame): substrate and
+#: housing temperature (K), shutter closed (bool) and the shutter's temperature (K).
+ENV_FIELDS = ("T_substrate", "T_cam", "shutter", "T_shutter")
 
 #: Names a caller can request from :func:`simulate`, and the product each one is.
 OUTPUTS: dict[str, str] = {
@@ -55,6 +71,8 @@ OUTPUTS: dict[str, str] = {
     "params": "params",               # per-pixel R_ref, g, C over the full array
     "defects": "defects",             # DefectMap (ground truth)
     "cos4": "cos4",                   # (rows, cols)
+    "blind_codes": "blind_codes",     # (N, K) ADC codes of the reference pixels
+    "blind_positions": "reference_positions",  # (K, 2) their full-array (row, col)
 }
 
 
@@ -84,6 +102,24 @@ class RunContext:
     #: ``demand(product)`` computes (once) and returns a product no stage input declared:
     #: for results needed only on a rare path, like the skimming fallback voltage.
     demand: Callable[[str], Any] | None = None
+    #: This chunk's per-frame environment (keys of :data:`ENV_FIELDS`), or None: the
+    #: configuration's, constant.
+    env: Mapping[str, np.ndarray] | None = None
+    #: State carried from chunk to chunk of one run (thermal memory, transient state).
+    state: dict[str, Any] = field(default_factory=dict)
+    #: Time between frames, s (the lagged and transient thermal modes).
+    frame_period: float | None = None
+    #: Settings of the transient thermal mode (:class:`model.transient.TransientSettings`).
+    transient: Any = None
+
+    def frames(self) -> int:
+        return len(self.temps)
+
+    def substrate(self, n: int) -> np.ndarray:
+        """(n,) substrate temperature of this chunk's frames, K."""
+        if self.env is not None and "T_substrate" in self.env:
+            return np.asarray(self.env["T_substrate"], dtype=np.float64)
+        return np.full(n, float(self.cfg["environment"]["T_substrate"]))
 
 
 # ---- static stages ---------------------------------------------------------------------
@@ -130,6 +166,37 @@ def _stage_env_radiance(ctx: RunContext, _: dict) -> dict:
     return {"L_env": (float(L[0]), float(L[1]))}
 
 
+def _stage_env_frames(ctx: RunContext, _: dict) -> dict:
+    """Housing and substrate radiance of each frame of the chunk (a varying environment),
+    each distinct temperature evaluated once."""
+    env = ctx.env
+    assert env is not None
+    n = ctx.frames()
+    cfg_env = ctx.cfg["environment"]
+    out = []
+    for key in ("T_cam", "T_substrate"):
+        t = np.asarray(env[key], dtype=np.float64) if key in env else np.full(n, cfg_env[key])
+        uniq, inv = np.unique(t, return_inverse=True)
+        out.append(_radiance(ctx, uniq)[inv].reshape(n, 1, 1))
+    return {"L_env_frames": (out[0], out[1])}
+
+
+def _base(cfg: Mapping[str, Any]) -> float:
+    """eps A pi: absorptance times sensitive area times pi, m^2 sr."""
+    f = cfg["fpa"]
+    return f["absorptance"] * f["pitch"] ** 2 * f["fill_factor"] * math.pi
+
+
+def _shielded(ctx: RunContext) -> np.ndarray:
+    """(rows, cols) True where a pixel sees no scene: the blind (skimming) pixels, and the
+    boundary pixels with ``fpa.boundary_view = 'housing'``."""
+    kind = ctx.layout.kind_map()
+    mask = kind == BLIND
+    if ctx.cfg["fpa"]["boundary_view"] == "housing":
+        mask |= kind == BOUNDARY
+    return mask
+
+
 def _stage_coupling(ctx: RunContext, inp: dict) -> dict:
     """Per-pixel optical coupling: Q = k_scene * L_scene + q_env (W).
 
@@ -138,32 +205,72 @@ def _stage_coupling(ctx: RunContext, inp: dict) -> dict:
     housing and optics at T_cam over the rest of the hemisphere. With ``net_radiation``
     it also emits at the substrate temperature (linearised emission is part of g), so a
     scene, housing and substrate all at one temperature heat the pixel by exactly 0.
-    Blind pixels see only the shield at T_cam.
+    Shielded pixels see no scene: ``seen`` is the fraction of the hemisphere (weighted by
+    the projected solid angle) that is the scene.
     """
-    cfg, lay = ctx.cfg, ctx.layout
-    f, o = cfg["fpa"], cfg["optics"]
-    L_cam, L_s = inp["L_env"]
-    net = 1.0 if cfg["bolometer"]["net_radiation"] else 0.0
-    area = f["pitch"] ** 2 * f["fill_factor"]
+    o = ctx.cfg["optics"]
     cone = cone_factor(o["cone_method"], f_number=o["f_number"], fov=o["fov"])
-    base = f["absorptance"] * area * math.pi
     seen = o["transmission"] * cone * inp["cos4"]
-    seen[lay.kind_map() == 2] = 0.0  # blind pixels: no scene
-    return {"k_scene": base * seen, "q_env": base * ((1.0 - seen) * L_cam - net * L_s)}
+    seen[_shielded(ctx)] = 0.0
+    return {"k_scene": _base(ctx.cfg) * seen, "seen": seen}
+
+
+def housing_power(ctx: RunContext, view: np.ndarray, L_cam: Any, L_s: Any) -> np.ndarray:
+    """Power of everything but the scene (or shutter), W: eps A pi ((1 - view) L_cam -
+    net L_s) with ``view`` the fraction of the pixel's hemisphere that the scene fills.
+
+    The blind (skimming) pixels see their shield: at T_cam (``fpa.skim_shield =
+    'housing'``, view 0) or at the substrate (``'substrate'``: eps A pi (1 - net) L_s, 0
+    with net radiation). ``L_cam`` and ``L_s`` are numbers or (N, 1, 1) per frame.
+    """
+    net = 1.0 if ctx.cfg["bolometer"]["net_radiation"] else 0.0
+    base = _base(ctx.cfg)
+    q = base * ((1.0 - view) * L_cam - net * L_s)
+    if ctx.cfg["fpa"]["skim_shield"] == "substrate":
+        blind = ctx.layout.kind_map() == BLIND
+        q = np.where(blind, base * (L_s - net * L_s), q)
+    return q
+
+
+def _stage_housing(ctx: RunContext, inp: dict) -> dict:
+    L_cam, L_s = inp["L_env"]
+    return {"q_env": housing_power(ctx, inp["seen"], L_cam, L_s)}
+
+
+def _stage_shutter_view(ctx: RunContext, inp: dict) -> dict:
+    """Coupling to a closed shutter between the lens and the array: it fills the pixel's
+    cone (pi sin^2(theta) cos^4(beta), no lens transmission) at its own temperature; the
+    housing fills the rest. Shielded pixels do not see it."""
+    o = ctx.cfg["optics"]
+    cone = cone_factor(o["cone_method"], f_number=o["f_number"], fov=o["fov"])
+    view = cone * inp["cos4"]
+    view[_shielded(ctx)] = 0.0
+    return {"shutter_view": view}
+
+
+def _nominal_skim(ctx: RunContext, L_cam: Any, L_s: Any) -> Any:
+    """Voltage of a nominal blind pixel, its shield as ``fpa.skim_shield`` says, V: a
+    number, or one per frame when ``L_cam``, ``L_s`` are given per frame."""
+    b = ctx.cfg["bolometer"]
+    net = 1.0 if b["net_radiation"] else 0.0
+    shield = L_s if ctx.cfg["fpa"]["skim_shield"] == "substrate" else L_cam
+    q = np.asarray(_base(ctx.cfg) * (shield - net * L_s), dtype=np.float64).reshape(-1, 1, 1)
+    params = {k: np.full((1, 1), b[k]) for k in ("R_ref", "g", "C")}
+    per_frame = np.ndim(L_s) > 0
+    v = _solve(ctx, q, params, ctx.substrate(q.shape[0]) if per_frame else None)["v_bolo"]
+    return v[:, 0, 0] if per_frame else float(v[0, 0, 0])
 
 
 def _stage_v_skim(ctx: RunContext, inp: dict) -> dict:
     """Reference voltage for ``skimming = none`` and the fallback of a failed blind row:
-    the configured value, or a nominal blind pixel at the substrate temperature."""
-    r, b = ctx.cfg["readout"], ctx.cfg["bolometer"]
-    if r["v_skim"] is not None:
-        return {"v_skim": float(r["v_skim"])}
+    the configured value, or a nominal blind pixel at the substrate temperature (one per
+    frame when the environment varies)."""
+    r = ctx.cfg["readout"]
     L_cam, L_s = inp["L_env"]
-    f = ctx.cfg["fpa"]
-    net = 1.0 if b["net_radiation"] else 0.0
-    q = f["absorptance"] * f["pitch"] ** 2 * f["fill_factor"] * math.pi * (L_cam - net * L_s)
-    v = _solve(ctx, np.full((1, 1, 1), q), {k: np.full((1, 1), b[k]) for k in ("R_ref", "g", "C")})
-    return {"v_skim": float(v["v_bolo"][0, 0, 0])}
+    if r["v_skim"] is not None:
+        v = float(r["v_skim"])
+        return {"v_skim": v if np.ndim(L_s) == 0 else np.full(np.shape(L_s)[0], v)}
+    return {"v_skim": _nominal_skim(ctx, L_cam, L_s)}
 
 
 # ---- per-chunk stages ------------------------------------------------------------------
@@ -190,14 +297,43 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
     L = inp["L_scene"]
     if L.ndim == 1:
         L = L[:, None, None]
-    Q = inp["k_scene"][None] * L + inp["q_env"][None]
+    q_env = inp["q_env"]
+    Q = inp["k_scene"][None] * L
+    Q += q_env[None] if q_env.ndim == 2 else q_env
+    if "shutter_view" in inp:
+        _shutter_power(ctx, inp, Q)
     defects: DefectMap = inp["defects"]
     if (defects.resp != 1.0).any():
         Q[(slice(None), *ctx.layout.active_slice)] *= defects.resp
     return {"Q": Q}
 
 
-def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray]) -> dict:
+def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray) -> None:
+    """Replace, in the frames whose shutter is closed, the scene by the shutter (in place)."""
+    env = ctx.env
+    if env is None or "shutter" not in env:
+        return
+    closed = np.flatnonzero(env["shutter"])
+    if closed.size == 0:
+        return
+    ctx.counts["shutter_frames"] += int(closed.size)
+    view = inp["shutter_view"]
+    T_sh = np.asarray(env["T_shutter"], dtype=np.float64)[closed]
+    uniq, inv = np.unique(T_sh, return_inverse=True)
+    L_sh = _radiance(ctx, uniq)[inv]
+    L_cam, L_s = inp["L_env"]
+    L_cam = np.asarray(L_cam, dtype=np.float64).reshape(-1)
+    L_s = np.asarray(L_s, dtype=np.float64).reshape(-1)
+    for k, n in enumerate(closed):
+        lc = L_cam[n] if L_cam.size > 1 else L_cam[0]
+        ls = L_s[n] if L_s.size > 1 else L_s[0]
+        Q[n] = _base(ctx.cfg) * view * L_sh[k] + housing_power(ctx, view, lc, ls)
+
+
+def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray],
+           T_s: np.ndarray | None = None) -> dict:
+    """The cold solve (:func:`model.core.bolometer.solve_frames`), frame by frame when the
+    substrate temperature ``T_s`` (N,) varies."""
     b = ctx.cfg["bolometer"]
     B = _kb.activation_temperature(b["tcr"], b["T_ref"])
     shape = Q.shape
@@ -205,15 +341,136 @@ def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray]) -> 
     v = np.empty(shape)
     status = np.empty(shape, np.uint8)
     iters = np.empty(shape, np.int32)
-    _kb.solve_frames(np.ascontiguousarray(Q), params["R_ref"], params["g"], params["C"], B,
-                     b["T_ref"], ctx.cfg["environment"]["T_substrate"], b["bias_current"],
-                     b["t_int"], BOLOMETER_VARIANTS[b["variant"]], b["rtol"], b["max_iter"],
-                     b["runaway_temperature"], dT, v, status, iters)
+    Q = np.ascontiguousarray(Q)
+    temps = [float(ctx.cfg["environment"]["T_substrate"])] if T_s is None else list(T_s)
+    parts = [slice(None)] if T_s is None else [slice(n, n + 1) for n in range(shape[0])]
+    for sl, Ts in zip(parts, temps, strict=True):
+        _kb.solve_frames(Q[sl], params["R_ref"], params["g"], params["C"], B, b["T_ref"], Ts,
+                         b["bias_current"], b["t_int"], BOLOMETER_VARIANTS[b["variant"]],
+                         b["rtol"], b["max_iter"], b["runaway_temperature"], dT[sl], v[sl],
+                         status[sl], iters[sl])
+    return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
+
+
+def _stage_coefficients(ctx: RunContext, inp: dict) -> dict:
+    """Per-pixel b = I^2 f / g (and f_Q for the ``paper`` variant) of the solve (static)."""
+    b = ctx.cfg["bolometer"]
+    p = inp["params"]
+    variant = BOLOMETER_VARIANTS[b["variant"]]
+    shape = p["g"].shape
+    fq = np.empty(shape) if variant == 1 else np.ones((1, 1))
+    bb = np.empty(shape)
+    _kw.coefficients(p["g"], p["C"], b["bias_current"], b["t_int"], variant, fq, bb)
+    return {"solve_coef": {"fq": fq, "b": bb, "variant": variant}}
+
+
+def _stage_reference_solution(ctx: RunContext, inp: dict) -> dict:
+    """The solve's reference: every pixel solved (cold) once, looking at a uniform scene at
+    the housing temperature with the configuration's environment (docs/model.md)."""
+    b = ctx.cfg["bolometer"]
+    L_cam, L_s = inp["L_env"]
+    Q = inp["k_scene"] * L_cam
+    Q += housing_power(ctx, inp["seen"], L_cam, L_s)
+    defects: DefectMap = inp["defects"]
+    if (defects.resp != 1.0).any():
+        Q[ctx.layout.active_slice] *= defects.resp
+    p, coef = inp["params"], inp["solve_coef"]
+    sol = _solve(ctx, Q[None], p)
+    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
+    T_s = float(ctx.cfg["environment"]["T_substrate"])
+    shape = Q.shape
+    c, s, ds = (np.empty(shape, np.float32) for _ in range(3))
+    e = np.empty(shape)
+    inv_T = sol["v_bolo"][0]  # reused: the reference's 1/T, 1/K
+    _kw.reference_state(Q, coef["fq"], p["g"], coef["variant"], coef["b"], p["R_ref"], B, T_s,
+                        sol["dT"][0], sol["v_bolo"][0], sol["status"][0], b["bias_current"],
+                        c, s, ds, e, inv_T)
+    return {"solve_reference": {"inv_T": inv_T, "e": e, "c": c, "s": s, "ds": ds}}
+
+
+def _solve_predicted(ctx: RunContext, inp: dict, Q: np.ndarray | None,
+                     A: np.ndarray | None) -> dict:
+    b = ctx.cfg["bolometer"]
+    ref, coef, p = inp["solve_reference"], inp["solve_coef"], inp["params"]
+    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
+    src = A if A is not None else Q
+    assert src is not None
+    src = np.ascontiguousarray(src)
+    n = src.shape[0]
+    dT, v, status, iters = _kw.empty_solution(src.shape)
+    _kw.solve_frames_predicted(src, src, A is not None, p["R_ref"], p["g"], coef["fq"],
+                               coef["variant"],
+                               coef["b"], B, b["T_ref"], ctx.substrate(n), b["bias_current"],
+                               b["rtol"], b["max_iter"], b["runaway_temperature"],
+                               ref["inv_T"], ref["e"], ref["c"], ref["s"], ref["ds"],
+                               dT, v, status, iters)
     return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
 
 
 def _stage_bolometer(ctx: RunContext, inp: dict) -> dict:
-    return _solve(ctx, inp["Q"], inp["params"])
+    return _solve_predicted(ctx, inp, inp["Q"], None)
+
+
+def _stage_bolometer_lagged(ctx: RunContext, inp: dict) -> dict:
+    """The steady pulse with thermal memory between frames: the rise before the pulse
+    follows its equilibrium Q/g through exp(-period g/C) per frame (equilibrium variant)."""
+    Q = np.ascontiguousarray(inp["Q"])
+    n = Q.shape[0]
+    p = inp["params"]
+    st = ctx.state.get("lagged")
+    if st is None:
+        assert ctx.frame_period is not None
+        decay = np.exp(-ctx.frame_period * p["g"] / p["C"])
+        st = {"decay": decay, "theta": np.zeros(p["g"].shape), "T_prev": 0.0, "has": False}
+        ctx.state["lagged"] = st
+    T_s = ctx.substrate(n)
+    theta = np.empty(Q.shape)
+    _kw.lagged_rise(Q, p["g"], st["decay"], T_s, st["T_prev"], st["theta"], st["has"],
+                    theta)
+    st.update(theta=theta[-1].copy(), T_prev=float(T_s[-1]), has=True)
+    return _solve_predicted(ctx, inp, None, theta)
+
+
+def _stage_bolometer_transient(ctx: RunContext, inp: dict) -> dict:
+    """The time-domain model (:func:`model.transient.integrate_pixels`), its state carried
+    from chunk to chunk: the same bits as one run over the whole sequence."""
+    from irnuc.model import transient as _tr
+
+    b = ctx.cfg["bolometer"]
+    p = inp["params"]
+    Q = np.ascontiguousarray(inp["Q"])
+    n = Q.shape[0]
+    T_s = ctx.substrate(n)
+    st = ctx.state.get("transient")
+    settings = ctx.transient
+    theta0 = None
+    if st is not None:
+        settings = _replace_warmup(settings)
+        theta0 = st["theta"] + (st["T_prev"] - T_s[0])
+    res = _tr.integrate_pixels(Q, T_s, p["R_ref"], p["g"], p["C"], tcr=b["tcr"],
+                               T_ref=b["T_ref"], bias_current=b["bias_current"],
+                               t_int=b["t_int"], runaway_temperature=b["runaway_temperature"],
+                               settings=settings, theta0=theta0)
+    status = res.status
+    if st is not None and st["failed"].any():
+        status[:, st["failed"]] = st["status"][st["failed"]]
+    s = _tr.TransientSettings.from_any(settings)
+    after = s.frame_period - s.pulse_start - b["t_int"]
+    last = status[-1] != _kb.STATUS_OK
+    relaxed = np.empty(p["g"].size)
+    _kw.carry_theta(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
+                    p["g"].ravel(), p["C"].ravel(), after, 0.0, 0.0, last.ravel(), relaxed)
+    ctx.state["transient"] = {"theta": relaxed.reshape(p["g"].shape), "T_prev": float(T_s[-1]),
+                              "failed": last, "status": status[-1].copy()}
+    ctx.counts["transient_pulses"] += int(status.size)
+    return {"v_bolo": res.v_bolo, "dT": res.dT_mean, "status": status, "iters": res.substeps}
+
+
+def _replace_warmup(settings: Any) -> Any:
+    """Settings of the chunks after the first: no warm-up frames (the state is carried)."""
+    from dataclasses import replace
+
+    return replace(settings, warmup_frames=0)
 
 
 def _make_skim_stage(mode: str) -> Stage:
@@ -273,7 +530,7 @@ def _stage_noise(ctx: RunContext, inp: dict) -> dict:
     sigma2: np.ndarray | float = n["readout_sigma"] ** 2
     if n["johnson"]:
         act = (slice(None), *ctx.layout.active_slice)
-        T = cfg["environment"]["T_substrate"] + inp["dT"][act]
+        T = ctx.substrate(inp["dT"].shape[0])[:, None, None] + inp["dT"][act]
         sj = _noise.johnson_sigma(np.abs(inp["v_bolo"][act]), np.maximum(T, 0.0),
                                   max(b["bias_current"], 1e-30), b["t_int"], r["gain"])
         sigma2 = sigma2 + np.nan_to_num(sj) ** 2
@@ -296,8 +553,7 @@ def _stage_adc(ctx: RunContext, inp: dict) -> dict:
 def _noise_configured(cfg: Mapping[str, Any]) -> bool:
     """True if some noise source is non-zero: noise enabled with every sigma 0 (and no
     Johnson noise) adds exactly nothing, so it gets no stage and draws nothing."""
-    n = cfg["noise"]
-    if n["enabled"] and (n["johnson"] or n["readout_sigma"] > 0 or n["flicker_sigma"] > 0):
+    if _temporal_noise(cfg):
         return True
     spec = _defect_spec(cfg)
     kinds = set(spec.cluster_kinds) | {spec.line_kind} if (spec.clusters or spec.rows or spec.cols) else set()
@@ -306,24 +562,133 @@ def _noise_configured(cfg: Mapping[str, Any]) -> bool:
     return DefectKind.NOISY.name.lower() in {str(k).lower() for k in kinds}
 
 
-def build_stages(cfg: Mapping[str, Any]) -> list[Stage]:
-    """The stage graph for one validated configuration."""
+def _temporal_noise(cfg: Mapping[str, Any]) -> bool:
+    """True if the array's own temporal noise (not a NOISY defect's) is non-zero."""
+    n = cfg["noise"]
+    return bool(n["enabled"] and (n["johnson"] or n["readout_sigma"] > 0
+                                  or n["flicker_sigma"] > 0))
+
+
+# ---- reference (shielded) pixels read out beside the image ------------------------------
+
+def _stage_reference_layout(ctx: RunContext, _: dict) -> dict:
+    """Full-array (row, col) of the pixels ``readout.reference_pixels`` names, row-major."""
+    mode = ctx.cfg["readout"]["reference_pixels"]
+    kind = ctx.layout.kind_map()
+    if mode == "none":
+        mask = np.zeros(kind.shape, bool)
+    else:
+        mask = kind == (BOUNDARY if mode == "boundary" else BLIND)
+    return {"reference_positions": np.argwhere(mask).astype(np.int32).reshape(-1, 2)}
+
+
+def _stage_reference_pixels(ctx: RunContext, inp: dict) -> dict:
+    """ADC codes of the reference pixels, (N, K): each read like an active pixel through
+    the integrator against its own row's (column's) skimming reference, with the array's
+    white temporal noise (Johnson and readout, drawn from their own stream) and the ADC.
+    Pixels whose solve failed read the high rail."""
+    cfg = ctx.cfg
+    r, a, nz = cfg["readout"], cfg["adc"], cfg["noise"]
+    pos = inp["reference_positions"]
+    v_bolo, status = inp["v_bolo"], inp["status"]
+    n = v_bolo.shape[0]
+    if pos.shape[0] == 0:
+        return {"blind_codes": np.empty((n, 0), _adc.adc_dtype(a["bits"]))}
+    rows, cols = pos[:, 0], pos[:, 1]
+    mode = r["skimming"]
+    lines = rows if mode == "row" else cols
+    uniq, where = np.unique(lines, return_inverse=True)
+
+    def fallback() -> Any:
+        assert ctx.demand is not None
+        return ctx.demand("v_skim")
+
+    ref = _readout.line_reference(v_bolo, status, ctx.layout, mode, uniq,
+                                  fallback)[:, where.reshape(-1)]
+    vp = v_bolo[:, rows, cols]
+    v = _readout.integrate(vp, ref, r["gain"], r["v_reset"])
+    failed = status[:, rows, cols] != _kb.STATUS_OK
+    if failed.any():
+        v[failed] = r["v_high"]
+    if _temporal_noise(cfg) and (nz["johnson"] or nz["readout_sigma"] > 0):
+        sigma2: Any = nz["readout_sigma"] ** 2
+        if nz["johnson"]:
+            b = cfg["bolometer"]
+            T = ctx.substrate(n)[:, None] + inp["dT"][:, rows, cols]
+            sj = _noise.johnson_sigma(np.abs(vp), np.maximum(T, 0.0), max(b["bias_current"], 1e-30),
+                                      b["t_int"], r["gain"])
+            sigma2 = sigma2 + np.nan_to_num(sj) ** 2
+        sigma = np.broadcast_to(np.sqrt(sigma2), v.shape)
+        for k in range(n):
+            rng = _noise.frame_rng(ctx.seed, ctx.first_frame + k, _noise.REFERENCE_STREAM)
+            v[k] += sigma[k] * rng.standard_normal(v.shape[1])
+    codes = _adc.adc_convert(v, a["bits"], a["v_low"], a["v_high"], a["rounding"],
+                             rails=(r["v_low"], r["v_high"]))
+    return {"blind_codes": codes}
+
+
+def _env_input(fn: Callable[[RunContext, dict], dict], key: str
+               ) -> Callable[[RunContext, dict], dict]:
+    """``fn`` reading the housing and substrate radiance from ``key`` as ``L_env``."""
+    if key == "L_env":
+        return fn
+    return lambda ctx, inp: fn(ctx, {**inp, "L_env": inp[key]} if key in inp else inp)
+
+
+@dataclass(frozen=True)
+class GraphKey:
+    """What shapes a run's stage graph besides the configuration."""
+
+    varying: frozenset[str] = frozenset()  # environment fields that vary per frame
+    thermal: str = "steady"  # THERMAL_MODES
+    shutter: bool = False  # some frame has its shutter closed
+
+
+def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Stage]:
+    """The stage graph for one validated configuration and one kind of run."""
+    env_varies = bool(key.varying & {"T_substrate", "T_cam"})
+    # The housing and substrate radiance of every frame replace the configuration's (which
+    # the solve's reference still uses) when they vary; housing power and skim voltage follow.
+    L_key = "L_env_frames" if env_varies else "L_env"
+    power_in = ("L_scene", "k_scene", "q_env", "defects")
+    if key.shutter:
+        power_in += ("shutter_view", L_key)
     stages = [
         Stage("params", (), ("params",), False, _stage_params),
         Stage("defects", (), ("defects",), False, _stage_defects),
         Stage("cos4", (), ("cos4",), False, _stage_cos4),
         Stage("env_radiance", (), ("L_env",), False, _stage_env_radiance),
-        Stage("coupling", ("cos4", "L_env"), ("k_scene", "q_env"), False, _stage_coupling),
-        Stage("v_skim", ("L_env",), ("v_skim",), False, _stage_v_skim),
+        Stage("coupling", ("cos4",), ("k_scene", "seen"), False, _stage_coupling),
         Stage("scene", (), ("T_scene",), True, _stage_scene),
         Stage("scene_radiance", ("T_scene",), ("L_scene",), True, _stage_scene_radiance),
-        Stage("power", ("L_scene", "k_scene", "q_env", "defects"), ("Q",), True, _stage_power),
-        Stage("bolometer", ("Q", "params"), ("v_bolo", "dT", "status", "iters"), True,
-              _stage_bolometer),
+        Stage("power", power_in, ("Q",), True, _env_input(_stage_power, L_key)),
+        Stage("solve_coefficients", ("params",), ("solve_coef",), False, _stage_coefficients),
+        Stage("solve_reference", ("L_env", "k_scene", "seen", "defects", "params", "solve_coef"),
+              ("solve_reference",), False, _stage_reference_solution),
         _make_skim_stage(cfg["readout"]["skimming"]),
         Stage("integrator", ("v_bolo", "v_ref", "defects", "status"), ("v_int",), True,
               _stage_integrator),
+        Stage("reference_layout", (), ("reference_positions",), False, _stage_reference_layout),
+        Stage("reference_pixels", ("v_bolo", "status", "dT", "reference_positions"),
+              ("blind_codes",), True, _stage_reference_pixels),
     ]
+    if env_varies:
+        stages.append(Stage("env_frames", (), ("L_env_frames",), True, _stage_env_frames))
+    stages += [
+        Stage("housing", ("seen", L_key), ("q_env",), env_varies, _env_input(_stage_housing, L_key)),
+        Stage("v_skim", (L_key,), ("v_skim",), env_varies, _env_input(_stage_v_skim, L_key)),
+    ]
+    if key.shutter:
+        stages.append(Stage("shutter_view", ("cos4",), ("shutter_view",), False,
+                            _stage_shutter_view))
+    bolo_out = ("v_bolo", "dT", "status", "iters")
+    if key.thermal == "transient":
+        stages.append(Stage("bolometer", ("Q", "params"), bolo_out, True,
+                            _stage_bolometer_transient))
+    else:
+        fn = _stage_bolometer_lagged if key.thermal == "lagged" else _stage_bolometer
+        stages.append(Stage("bolometer", ("Q", "params", "solve_coef", "solve_reference"),
+                            bolo_out, True, fn))
     if _noise_configured(cfg):
         stages.append(Stage("noisy_pixels", ("defects",), ("noisy_sigma",), False,
                             _stage_noisy_pixels))
@@ -397,6 +762,12 @@ class Frames:
         Self-heating, solver failures, clipped codes.
     counts : dict
         Stage executions and radiance evaluations of this run.
+    blind_codes : ndarray or None
+        (N, K) ADC codes of the reference (shielded) pixels read out beside the image
+        (``readout.reference_pixels``; K = 0 for ``none``).
+    blind_positions : ndarray or None
+        (K, 2) int32 full-array (row, col) of those pixels (the active area starts at
+        ``layout.active_slice``).
     """
 
     codes: np.ndarray | None
@@ -410,6 +781,8 @@ class Frames:
     outputs: dict[str, Any]
     diagnostics: dict[str, Any]
     counts: dict[str, int]
+    blind_codes: np.ndarray | None = None
+    blind_positions: np.ndarray | None = None
 
     def config_json(self) -> str:
         return json.dumps({"config": self.config, "scene": {"kind": self.scene.kind,
@@ -436,49 +809,129 @@ class Pipeline:
         f = cfg["fpa"]
         self.layout = ArrayLayout(f["active_rows"], f["active_cols"], tuple(f["boundary"]),
                                   tuple(f["blind"]))
-        self.stages = build_stages(cfg)
+        self._graphs: dict[GraphKey, list[Stage]] = {}
+        self.stages = self.graph(GraphKey())
         self.counts: Counter = Counter()
         self._static: dict[str, Any] = {}
 
-    def run(self, temps: np.ndarray, products: Sequence[str], scene: Scene | None = None,
-            progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
-        """Compute ``products`` for the frames of ``temps``; per-chunk products stacked."""
-        order = plan(self.stages, products)
+    def graph(self, key: GraphKey) -> list[Stage]:
+        """The stage graph of one kind of run (built once)."""
+        if key not in self._graphs:
+            self._graphs[key] = build_stages(self.cfg, key)
+        return self._graphs[key]
+
+    def graph_key(self, env: Mapping[str, Any] | None, thermal: str = "steady") -> GraphKey:
+        """The graph a run with this per-frame environment needs: a field is per-frame only
+        if it differs from the configuration somewhere."""
+        check_choice("thermal", thermal, THERMAL_MODES)
+        if not env:
+            return GraphKey(thermal=thermal)
+        unknown = set(env) - set(ENV_FIELDS)
+        if unknown:
+            raise ConfigError(f"env: unknown field(s) {sorted(unknown)}; known {list(ENV_FIELDS)}")
+        e = self.cfg["environment"]
+        varying = frozenset(k for k in ("T_substrate", "T_cam")
+                            if k in env and np.any(np.asarray(env[k]) != e[k]))
+        shutter = bool("shutter" in env and np.any(env["shutter"]))
+        return GraphKey(varying, thermal, shutter)
+
+    def iter_chunks(self, temps: np.ndarray, products: Sequence[str], scene: Scene | None = None,
+                    *, env: Mapping[str, np.ndarray] | None = None, thermal: str = "steady",
+                    frame_period: float | None = None, transient: Any = None,
+                    chunk_frames: int | None = None,
+                    progress: Callable[[int, int], None] | None = None,
+                    ) -> Iterator[tuple[int, dict[str, Any]]]:
+        """Compute ``products`` chunk by chunk: yields (first frame, products of the chunk).
+
+        Parameters
+        ----------
+        temps : ndarray
+            (N,) scene base temperature of each frame, K.
+        products : sequence of str
+            Product names (values of :data:`OUTPUTS`, or any stage output).
+        scene : Scene, optional
+        env : dict of (N,) arrays, optional
+            Per-frame environment (:data:`ENV_FIELDS`): T_substrate, T_cam, T_shutter (K)
+            and shutter (bool). A field equal to the configuration everywhere stays static.
+        thermal : str
+            :data:`THERMAL_MODES`; ``lagged`` and ``transient`` carry the bolometer state
+            from frame to frame and need ``frame_period`` (s).
+        transient : TransientSettings, optional
+            Settings of the ``transient`` mode.
+        chunk_frames : int, optional
+            Frames per chunk (default ``run.chunk_frames``).
+        progress : callable, optional
+            Called as ``progress(done, total)`` after each chunk.
+        """
+        n = len(temps)
+        key = self.graph_key(env, thermal)
+        if key.thermal != "steady" and frame_period is None:
+            raise ConfigError(f"thermal = {thermal!r} needs the frame period (s)")
+        if env is not None:
+            for k, v in env.items():
+                if np.shape(v) != (n,):
+                    raise ConfigError(f"env.{k} has shape {np.shape(v)}; one value per frame "
+                                      f"({n}) is required")
+        stages = self.graph(key)
+        order = plan(stages, products)
         chunked = [s for s in order if s.per_chunk]
-        ctx = RunContext(self.cfg, self.layout, scene or Scene(), self.seed, counts=self.counts)
-        static = [s for s in self.stages if not s.per_chunk]
-
-        def demand(product: str) -> Any:  # a static product needed only on a rare path
-            run_planned(static, ctx, self._static, [product])
-            return self._static[product]
-
-        ctx.demand = demand
+        chunk_outputs = {o for s in stages if s.per_chunk for o in s.outputs}
+        ctx = RunContext(self.cfg, self.layout, scene or Scene(), self.seed, counts=self.counts,
+                         frame_period=frame_period, transient=transient)
         for stage in order:
             if not stage.per_chunk and not all(o in self._static for o in stage.outputs):
                 self.counts[stage.name] += 1
                 self._static.update(stage.fn(ctx, {k: self._static[k] for k in stage.inputs}))
-        per_chunk: dict[str, list] = {p: [] for p in products}
-        n = len(temps)
-        step = self.cfg["run"]["chunk_frames"] if chunked else max(n, 1)
+        step = chunk_frames or (self.cfg["run"]["chunk_frames"] if chunked else max(n, 1))
         for start in range(0, n, step):
             ctx.temps = temps[start:start + step]
             ctx.first_frame = start
-            chunk = dict(self._static)
+            if env is not None:
+                ctx.env = {k: np.asarray(v)[start:start + step] for k, v in env.items()}
+            chunk = {k: v for k, v in self._static.items() if k not in chunk_outputs}
+            ctx.demand = self._demand(stages, ctx, chunk)
             for stage in chunked:
                 self.counts[stage.name] += 1
                 chunk.update(stage.fn(ctx, {k: chunk[k] for k in stage.inputs}))
-            for p in products:
-                per_chunk[p].append(chunk[p])
             if progress is not None:
                 progress(min(start + step, n), n)
+            yield start, {p: chunk[p] for p in products}
+
+    def _demand(self, stages: Sequence[Stage], ctx: RunContext, chunk: dict[str, Any]
+                ) -> Callable[[str], Any]:
+        """``demand(product)`` for one chunk: a product needed only on a rare path (the
+        skimming fallback), static ones computed once per sensor."""
+        def demand(product: str) -> Any:
+            for stage in plan(stages, [product], chunk):
+                self.counts[stage.name] += 1
+                out = stage.fn(ctx, {k: chunk[k] for k in stage.inputs})
+                chunk.update(out)
+                if not stage.per_chunk:
+                    self._static.update(out)
+            return chunk[product]
+
+        return demand
+
+    def run(self, temps: np.ndarray, products: Sequence[str], scene: Scene | None = None,
+            progress: Callable[[int, int], None] | None = None, **run: Any) -> dict[str, Any]:
+        """Compute ``products`` for the frames of ``temps``; per-chunk products stacked.
+        Keyword arguments as :meth:`iter_chunks`."""
+        key = self.graph_key(run.get("env"), run.get("thermal", "steady"))
+        chunk_products = {o for s in self.graph(key) if s.per_chunk for o in s.outputs}
+        parts: dict[str, list] = {p: [] for p in products}
+        last: dict[str, Any] = {}
+        for _, values in self.iter_chunks(temps, products, scene, progress=progress, **run):
+            for p in products:
+                parts[p].append(values[p])
+            last = values
+        if not last:  # no frame: static products only
+            return {p: self._static[p] for p in products if p not in chunk_products}
         out: dict[str, Any] = {}
-        chunk_products = {o for s in chunked for o in s.outputs}
         for p in products:
             if p in chunk_products:
-                parts = per_chunk[p]
-                out[p] = np.concatenate(parts) if len(parts) > 1 else parts[0]
+                out[p] = np.concatenate(parts[p]) if len(parts[p]) > 1 else parts[p][0]
             else:
-                out[p] = self._static[p]
+                out[p] = last[p]
         return out
 
     def simulate(self, temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform", *,
@@ -497,7 +950,8 @@ class Pipeline:
         check_simulation_memory(self.cfg, t.size, outputs)
         wanted = [OUTPUTS[o] for o in outputs]
         if "codes" in outputs:
-            wanted += ["defects", "status", "dT"]  # ground truth and diagnostics
+            # ground truth, diagnostics and the reference pixels read beside the image
+            wanted += ["defects", "status", "dT", "blind_codes", "reference_positions"]
         before = Counter(self.counts)
         values = self.run(t, list(dict.fromkeys(wanted)), scene, progress)
         defects = values.get("defects")
@@ -513,6 +967,8 @@ class Pipeline:
             outputs={o: values[OUTPUTS[o]] for o in outputs},
             diagnostics=_diagnostics(self, values) if "status" in values else {},
             counts=dict(self.counts - before),
+            blind_codes=values.get("blind_codes"),
+            blind_positions=values.get("reference_positions"),
         )
 
 

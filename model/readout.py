@@ -1,9 +1,10 @@
 """Readout: blind-pixel skimming and the integrator (paper section 3.5, Table 1).
 
 The ROIC subtracts, from every active pixel, a reference from the blind (skimming)
-bolometers, which see only the shield at the housing temperature and so follow the substrate
-temperature without the scene. The reference is taken per row (blind columns at the ends of
-the row), per column (blind rows at the top and bottom) or is a fixed voltage (``none``).
+bolometers, which see only their shield (at the housing or at the substrate temperature,
+``fpa.skim_shield``) and so follow the substrate temperature without the scene. The
+reference is taken per row (blind columns at the ends of the row), per column (blind rows
+at the top and bottom) or is a fixed voltage (``none``).
 The integrator turns the difference into a voltage around ``v_reset``; the readout is
 inverting, so a hotter scene (lower resistance for a negative TCR) gives a higher output.
 """
@@ -33,12 +34,18 @@ def _blind_mean(values: np.ndarray, ok: np.ndarray, axis: int, fallback: Fallbac
     if (count > 0).all():
         return total / count
     fb = fallback() if callable(fallback) else fallback
+    if np.ndim(fb):  # one value per frame: broadcast over the lines
+        fb = np.reshape(fb, (-1,) + (1,) * (count.ndim - 1))
     return np.where(count > 0, total / np.maximum(count, 1.0), fb)
 
 
 def skim_none(v_bolo, status, layout, v_skim: Fallback):
-    """A fixed reference voltage for every pixel, V: shape (N, 1, 1)."""
-    return np.full((v_bolo.shape[0], 1, 1), v_skim() if callable(v_skim) else v_skim)
+    """A fixed reference voltage for every pixel (one per frame when given per frame), V:
+    shape (N, 1, 1)."""
+    v = v_skim() if callable(v_skim) else v_skim
+    if np.ndim(v):
+        return np.asarray(v, dtype=np.float64).reshape(-1, 1, 1)
+    return np.full((v_bolo.shape[0], 1, 1), v)
 
 
 def skim_row(v_bolo, status, layout, v_skim: Fallback):
@@ -59,10 +66,37 @@ def skim_column(v_bolo, status, layout, v_skim: Fallback):
     return ref[:, None, :]
 
 
+def line_reference(v_bolo, status, layout, mode: str, lines: np.ndarray,
+                   v_skim: Fallback) -> np.ndarray:
+    """The skimming reference of some full-array rows (``row``) or columns (``column``), V.
+
+    The mean of the blind columns of each row in ``lines`` (row skimming) or of the blind
+    rows of each column (column skimming), as :func:`skim_row` / :func:`skim_column` take
+    it for the active lines; ``none`` gives ``v_skim`` (a float, an (N,) array or a
+    callable). Returns (N, len(lines)).
+    """
+    n = v_bolo.shape[0]
+    if mode == "none":
+        fb = v_skim() if callable(v_skim) else v_skim
+        return np.broadcast_to(np.reshape(fb, (-1, 1)), (n, len(lines))).astype(np.float64)
+    if mode == "row":
+        cols = layout.blind_col_indices
+        vals = v_bolo[:, :, cols][:, lines]
+        ok = status[:, :, cols][:, lines] == STATUS_OK
+        return _blind_mean(vals, ok, axis=2, fallback=v_skim)
+    rows = layout.blind_row_indices
+    vals = v_bolo[:, rows][:, :, lines]
+    ok = status[:, rows][:, :, lines] == STATUS_OK
+    return _blind_mean(vals, ok, axis=1, fallback=v_skim)
+
+
 #: Skimming modes, selected by name (paper Table 1: "rows" and "columns").
 SKIMMING_MODES = {"none": skim_none, "row": skim_row, "column": skim_column}
 
 
 def integrate(v_active: np.ndarray, v_ref: np.ndarray, gain: float, v_reset: float) -> np.ndarray:
     """Integrator output, V: ``v_reset + gain * (v_ref - v_active)`` (not yet clipped)."""
-    return v_reset + gain * (v_ref - v_active)
+    v = np.subtract(v_ref, v_active)  # in place from here: one new array
+    v *= gain
+    v += v_reset
+    return v

@@ -14,6 +14,7 @@ from irnuc.nuc_fixed.memimage import (
     unpack_words,
     write_memimage,
 )
+from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, MethodOutput, method_top
 from irnuc.nuc_fixed.nuc import NucIntermediates, nuc_core
 from irnuc.nuc_fixed.top import nuc_dpc_top
 from irnuc.nuc_fixed.validate import InputError
@@ -21,14 +22,18 @@ from irnuc.nuc_fixed.validate import InputError
 __all__ = [
     "ConfigError",
     "FixedFormat",
+    "FrameInputs",
     "InputError",
     "MemImageError",
+    "MethodCoefficients",
+    "MethodOutput",
     "NucIntermediates",
     "PipelineConfig",
     "apply_overflow",
     "dpc_core",
     "gain_format",
     "load_pipeline",
+    "method_top",
     "nuc_core",
     "nuc_dpc_top",
     "offset_format",

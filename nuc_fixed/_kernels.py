@@ -87,6 +87,18 @@ def round_codes(s, frac, mode, out):
         flat_o[i] = round_code(flat_s[i], frac, mode)
 
 
+@njit(cache=True)
+def round_out_codes(s, frac, mode, wrap, ymax, r_out, y_out):
+    """ROUND_F then OUT of every element of the int64 array ``s`` (the methods' cores)."""
+    flat_s = s.ravel()
+    flat_r = r_out.ravel()
+    flat_y = y_out.ravel()
+    for i in range(flat_s.size):
+        r = round_code(flat_s[i], frac, mode)
+        flat_r[i] = r
+        flat_y[i] = out_code(r, wrap, ymax)
+
+
 @njit(cache=True, parallel=True)
 def nuc_flat(x, g, o, out, gsh, osh, frac, mode, wrap, ymax):
     """NUC of ``x`` (n_frames, n_pix) with per-pixel ``g``, ``o`` (n_pix,) into ``out``."""

@@ -32,6 +32,7 @@ class Reason(enum.IntFlag):
     GAIN_RANGE = 64       # gain not representable in the gain format (negative or too large)
     OFFSET_RANGE = 128    # offset not representable in the offset format
     EQUAL_RESPONSE = 256  # identical mean response at both temperatures: gain undefined
+    COEFF_RANGE = 512     # another coefficient of the method not representable in its format
 
 
 def reason_names(code: int) -> list[str]:

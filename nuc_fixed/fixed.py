@@ -49,6 +49,24 @@ def round_shift(s: np.ndarray | int, shift: int, rounding: str) -> np.ndarray | 
     return int(_kernels.round_code(np.int64(s), shift, mode))
 
 
+def round_div(a: int, b: int, rounding: str) -> int:
+    """Exact ``ROUND(a / b)`` of integers (b > 0): floor, ties up or ties to even.
+
+    The per-frame divisions of the datapath (interpolation weight, FFC mean target) are
+    written with this: an RTL divider with its remainder gives the same three modes.
+    """
+    mode = _check_mode("rounding", rounding, ROUNDING_MODES)
+    a, b = int(a), int(b)
+    if b <= 0:
+        raise ConfigError(f"divisor = {b} must be positive")
+    q, r = divmod(a, b)  # floor division, 0 <= r < b
+    if mode == "truncate":
+        return q
+    if 2 * r > b or (2 * r == b and (mode == "half_up" or q & 1)):
+        return q + 1
+    return q
+
+
 def apply_overflow(r: np.ndarray | int, lo: int, hi: int, overflow: str) -> np.ndarray | int:
     """Bring ``r`` into the code range [lo, hi] by saturation or two's-complement wrap.
 

@@ -11,6 +11,7 @@ import hashlib
 import json
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -22,6 +23,7 @@ from irnuc.nuc_fixed.nuc import check_coefficients
 from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, int_array
 
 MEMIMAGE_VERSION = 1
+METHOD_IMAGE_VERSION = 2
 HEX_NAME = "coeffs.hex"
 BIN_NAME = "coeffs.bin"
 MANIFEST_NAME = "manifest.json"
@@ -141,6 +143,15 @@ def format_fields(cfg: PipelineConfig) -> dict[str, object]:
     return {k: getattr(cfg, k) for k in _FORMAT_FIELDS}
 
 
+def _format_digest_fields(manifest: dict[str, object]) -> dict[str, object]:
+    """The fields the format SHA-256 covers: the base formats, the frame size (swapped width
+    and height fit the same binary image) and, version 2, the method."""
+    fmt = {k: manifest.get(k) for k in _HASHED_FIELDS}
+    if manifest.get("version") == METHOD_IMAGE_VERSION:
+        fmt["method_fields"] = manifest.get("method_fields")
+    return fmt
+
+
 def _format_sha256(fields: dict[str, object]) -> str:
     return hashlib.sha256(json.dumps(fields, sort_keys=True).encode()).hexdigest()
 
@@ -191,30 +202,43 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
     return manifest
 
 
-def read_manifest(directory: str | os.PathLike) -> dict[str, object]:
-    """The manifest of a memory image folder, its structure checked."""
+def read_manifest(directory: str | os.PathLike,
+                  versions: tuple[int, ...] = (MEMIMAGE_VERSION,)) -> dict[str, object]:
+    """The manifest of a memory image folder, its structure checked.
+
+    ``versions``: the manifest versions the caller reads (1: two-point, one memory;
+    2: every method, :func:`read_method_image`).
+    """
     path = Path(directory) / MANIFEST_NAME
     try:
         manifest = read_json_object(path)
     except UserError as exc:
         raise MemImageError(f"{exc} (a manifest written by irnuc calibrate is needed)") from None
-    if manifest.get("version") != MEMIMAGE_VERSION:
+    version = manifest.get("version")
+    if version not in versions or isinstance(version, bool):
         raise MemImageError(
-            f"{path}: version = {manifest.get('version')!r}; this reader supports "
-            f"{MEMIMAGE_VERSION}"
+            f"{path}: version = {version!r}; this reader supports "
+            f"{' and '.join(map(str, versions))}"
         )
     words = {dict: "a JSON object", int: "an integer", str: "a string"}
-    for key, kind in (("files", dict), ("height", int), ("width", int), ("sha256", str),
-                      ("format_sha256", str)):
+    required = [("files", dict), ("height", int), ("width", int), ("sha256", str),
+                ("format_sha256", str)]
+    if version == METHOD_IMAGE_VERSION:
+        required += [("memories", dict), ("registers", dict), ("method_fields", dict)]
+    for i, (key, kind) in enumerate(required):
         if not isinstance(manifest.get(key), kind) or isinstance(manifest.get(key), bool):
-            raise MemImageError(f"{path}: field {key!r} is missing or not {words[kind]}")
-    unhashed = [n for n in (BIN_NAME, HEX_NAME) if n not in manifest["files"]]  # type: ignore[operator]
-    if unhashed:
-        raise MemImageError(f"{path}: files names no SHA-256 of {', '.join(unhashed)}; every "
-                            "memory image file must be hashed")
-    fmt = {k: manifest.get(k) for k in _HASHED_FIELDS}
+            ver = f"version = {version} but " if i >= 5 else ""
+            raise MemImageError(f"{path}: {ver}field {key!r} is missing or not {words[kind]}")
+    images = (BIN_NAME, HEX_NAME) if version == MEMIMAGE_VERSION else tuple(
+        n for m in manifest["memories"].values() if isinstance(m, dict)  # type: ignore[union-attr]
+        for n in (m.get("bin_file"), m.get("hex_file")))
+    unhashed = [str(n) for n in images if n not in manifest["files"]]  # type: ignore[operator]
+    if unhashed or not images:
+        raise MemImageError(f"{path}: files names no SHA-256 of {', '.join(unhashed) or 'any image'}"
+                            "; every memory image file must be hashed")
+    fmt = _format_digest_fields(manifest)
     if _format_sha256(fmt) != manifest["format_sha256"]:
-        raise MemImageError(f"{path}: the format fields ({', '.join(_HASHED_FIELDS)}) do not "
+        raise MemImageError(f"{path}: the format fields ({', '.join(fmt)}) do not "
                             "match their recorded SHA-256; the manifest was edited")
     return manifest
 
@@ -243,13 +267,15 @@ def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> di
 
 
 def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
-    """The pipeline configuration recorded in a manifest."""
+    """The pipeline configuration recorded in a manifest (version 2: with its method)."""
     missing = [k for k in ("config", *_FORMAT_FIELDS) if k not in manifest]
     if missing:
         raise MemImageError(f"{MANIFEST_NAME} is missing field(s) {missing}")
+    method = manifest["method_fields"] if manifest.get("version") == METHOD_IMAGE_VERSION else {}
     return PipelineConfig(name=str(manifest["config"]),
                           description=str(manifest.get("description", "")),
-                          **{k: manifest[k] for k in _FORMAT_FIELDS})  # type: ignore[arg-type]
+                          **{k: manifest[k] for k in _FORMAT_FIELDS},  # type: ignore[arg-type]
+                          **method)  # type: ignore[arg-type]
 
 
 def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
@@ -339,3 +365,166 @@ def _parse_hex(path: Path, data: bytes, cfg: PipelineConfig, n: int) -> np.ndarr
 
 
 _HEX_DIGITS = "0123456789abcdefABCDEF"
+
+
+# ---- version 2: every method, several memories --------------------------------------------
+
+def words_to_hex(words: np.ndarray, word_bits: int) -> bytes:
+    """``$readmemh`` text of words of ``word_bits`` bits (as :func:`to_hex`)."""
+    nd = (word_bits + 3) // 4
+    return "".join(f"{int(v):0{nd}x}\n" for v in np.asarray(words).reshape(-1)).encode("ascii")
+
+
+def words_to_bin(words: np.ndarray, word_bits: int) -> bytes:
+    """Raw little-endian binary of words of ``word_bits`` bits (as :func:`to_bin`)."""
+    nb = (word_bits + 7) // 8
+    le = np.ascontiguousarray(np.asarray(words, dtype=np.uint64).reshape(-1)).astype("<u8")
+    return le.view(np.uint8).reshape(-1, 8)[:, :nb].tobytes()
+
+
+def _method_fields(cfg: PipelineConfig) -> dict[str, object]:
+    d = cfg.to_dict()
+    return {k: v for k, v in d.items() if k not in (*_FORMAT_FIELDS, "name", "description")}
+
+
+def write_method_image(directory: str | os.PathLike, coeffs: Any,
+                       extra_files: tuple[str, ...] = ()) -> dict[str, object]:
+    """Write the memory images of a method's coefficients and their manifest.
+
+    ``coeffs`` is a :class:`~irnuc.nuc_fixed.method_top.MethodCoefficients`. Plain
+    two-point configurations write version 1 (:func:`write_memimage`); every other method
+    version 2: ``NAME.hex`` and ``NAME.bin`` per calibration memory and a manifest with
+    the method, its formats, every memory's layout and file hashes, the registers' values,
+    width, height and the SHA-256 of every file (the images and ``extra_files``).
+    """
+    from irnuc.nuc_fixed.layout import layouts_dict
+
+    cfg = coeffs.cfg
+    coeffs.check()
+    words = coeffs.words()
+    if cfg.method == "two_point":
+        return write_memimage(directory, words["coeffs"], cfg, extra_files)
+    d = Path(directory)
+    d.mkdir(parents=True, exist_ok=True)
+    h, w = coeffs.shape
+    desc = layouts_dict(cfg)
+    memories: dict[str, object] = {}
+    for name, wd in words.items():
+        layout = cfg.memories[name]
+        write_bytes_atomic(d / f"{name}.bin", words_to_bin(wd, layout.word_bits))
+        write_bytes_atomic(d / f"{name}.hex", words_to_hex(wd, layout.word_bits))
+        memories[name] = {**desc["memories"][name],  # type: ignore[index]
+                          "hex_file": f"{name}.hex", "bin_file": f"{name}.bin",
+                          "bin_bytes_per_word": (layout.word_bits + 7) // 8}
+    names = [n for m in memories.values() for n in (m["bin_file"], m["hex_file"])]  # type: ignore[index]
+    files = {n: file_sha256(d / n) for n in (*names, *extra_files)}
+    for m in memories.values():
+        m["sha256"] = files[m["bin_file"]]  # type: ignore[index]
+    fmt = format_fields(cfg)
+    mfields = _method_fields(cfg)
+    first = next(iter(memories))
+    manifest: dict[str, object] = {
+        "version": METHOD_IMAGE_VERSION,
+        "config": cfg.name,
+        "description": cfg.description,
+        "method": cfg.method,
+        **fmt,
+        "method_fields": mfields,
+        "format_sha256": _format_sha256({**fmt, "height": h, "width": w,
+                                         "method_fields": mfields}),
+        "word_bits": cfg.memories[first].word_bits,
+        "memories": memories,
+        "registers": {k: (list(v) if isinstance(v, tuple) else v)
+                      for k, v in coeffs.registers.items()},
+        "register_layout": desc["registers"],
+        "runtime_memories": {k: v for k, v in desc["memories"].items()  # type: ignore[union-attr]
+                             if v["source"] == "runtime"},
+        "width": w,
+        "height": h,
+        "sha256": files[f"{first}.bin"],
+        "files": files,
+    }
+    write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
+    return manifest
+
+
+def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
+                      source: str = "bin") -> Any:
+    """Read a memory image folder of any method back as ``MethodCoefficients``.
+
+    Version 1 folders (two-point) are read by :func:`read_memimage`; version 2 folders get
+    the same checks per memory: the version, the format fields and method against their
+    hash and against ``cfg`` if given, every file against its SHA-256, the sizes, and that
+    every hex word equals the binary one.
+    """
+    from irnuc.nuc_fixed.method_top import MethodCoefficients
+
+    if source not in ("bin", "hex"):
+        raise ConfigError(f"source = {source!r} is not one of ['bin', 'hex']")
+    d = Path(directory)
+    manifest = read_manifest(d, versions=(MEMIMAGE_VERSION, METHOD_IMAGE_VERSION))
+    if manifest["version"] == MEMIMAGE_VERSION:
+        words, mcfg = read_memimage(d, cfg, source)
+        g, o, bad = unpack_words(words, mcfg)
+        return MethodCoefficients(mcfg, {"coeffs": {"gain": g, "offset": o, "bad": bad}})
+    try:
+        mcfg = manifest_config(manifest)
+    except (ConfigError, TypeError) as exc:
+        raise MemImageError(f"{d / MANIFEST_NAME}: {exc}") from None
+    if cfg is not None:
+        cfg = as_config(cfg)
+        if cfg.to_dict() | {"name": "", "description": ""} != (
+                mcfg.to_dict() | {"name": "", "description": ""}):
+            raise MemImageError(f"{d / MANIFEST_NAME}: the coefficients were made for method "
+                                f"{mcfg.method!r} with pipeline {mcfg.name!r}, whose formats "
+                                f"differ from pipeline {cfg.name!r} (method {cfg.method!r})")
+    contents = check_files(d, manifest)
+    h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
+    mems = manifest["memories"]
+    want = [m.name for m in mcfg.memories.values() if m.source == "calibration"]
+    if sorted(mems) != sorted(want):  # type: ignore[arg-type]
+        raise MemImageError(f"{d / MANIFEST_NAME}: memories {sorted(mems)} but method "  # type: ignore[arg-type]
+                            f"{mcfg.method!r} has {want}")
+    words_by: dict[str, np.ndarray] = {}
+    for name in want:
+        m = mems[name]  # type: ignore[index]
+        wb = mcfg.memories[name].word_bits
+        if m.get("word_bits") != wb:
+            raise MemImageError(f"{d / MANIFEST_NAME}: memory {name} has word_bits = "
+                                f"{m.get('word_bits')!r} but the formats give {wb}")
+        nb = (wb + 7) // 8
+        raw = contents[m["bin_file"]]
+        if len(raw) != h * w * nb:
+            raise MemImageError(f"{d / m['bin_file']}: {len(raw)} bytes, expected {h * w} "
+                                f"words x {nb} bytes = {h * w * nb}")
+        buf = np.zeros((h * w, 8), dtype=np.uint8)
+        buf[:, :nb] = np.frombuffer(raw, dtype=np.uint8).reshape(h * w, nb)
+        bw = buf.view("<u8").reshape(h, w).astype(np.uint64)
+        hw = _parse_hex_bits(d / m["hex_file"], contents[m["hex_file"]], wb, h * w).reshape(h, w)
+        if not np.array_equal(hw, bw):
+            idx = tuple(int(i) for i in np.argwhere(hw != bw)[0])
+            raise MemImageError(f"{d / m['hex_file']}: word at (row, col) {idx} = "
+                                f"{int(hw[idx]):x} differs from the binary ({int(bw[idx]):x})")
+        words_by[name] = bw if source == "bin" else hw
+    try:
+        return MethodCoefficients.from_words(mcfg, words_by, {
+            k: (tuple(v) if isinstance(v, list) else v)
+            for k, v in manifest["registers"].items()})  # type: ignore[union-attr]
+    except UserError as exc:
+        raise MemImageError(f"{d}: {exc}") from None
+
+
+def _parse_hex_bits(path: Path, data: bytes, word_bits: int, n: int) -> np.ndarray:
+    nd = (word_bits + 3) // 4
+    try:
+        lines = data.decode("ascii").splitlines()
+    except UnicodeDecodeError as exc:
+        raise MemImageError(f"{path}: not ASCII text ({exc}); one hex word per line is "
+                            "required") from None
+    if len(lines) != n:
+        raise MemImageError(f"{path}: {len(lines)} lines, expected {n} words")
+    bad = next((i for i, line in enumerate(lines)
+                if len(line) != nd or line.strip(_HEX_DIGITS)), None)
+    if bad is not None:
+        raise MemImageError(f"{path}: line {bad + 1} = {lines[bad]!r} is not {nd} hex digits")
+    return np.array([int(line, 16) for line in lines], dtype=np.uint64)

@@ -77,16 +77,16 @@ def frames_work_bytes(shape: tuple[int, ...], per_code: float, per_pixel: float)
 
 
 def load_npz(path: Path, flag: str, required: tuple[str, ...],
-             work_bytes: Callable[[Headers], float] | None = None) -> dict[str, Any]:
+             work_bytes: Callable[[Headers], float] | None = None,
+             mapped: tuple[str, ...] = ()) -> dict[str, Any]:
     """Every array of an ``.npz`` file (no pickles), checked for the required keys.
 
     ``work_bytes(headers)``: the memory the work that follows needs besides the arrays;
     checked, with every array's size, against the available memory before anything is
-    loaded.
+    loaded. The arrays named in ``mapped`` are memory-mapped from the file when it stores
+    them uncompressed (:func:`irnuc.common.framefile.open_member`).
     """
     import math
-
-    import numpy as np
 
     from irnuc.common.memory import check_memory
 
@@ -104,26 +104,42 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     check_memory(need, f"{flag} {path}" + (f" ({big} {headers[big][0]} {headers[big][1]})"
                                            if big else ""),
                  "give fewer or smaller frames")
+    from irnuc.common.framefile import open_member
+
     try:
-        with np.load(path, allow_pickle=False) as z:
-            return {k: z[k] for k in z.files}
+        with zipfile.ZipFile(path) as zf:
+            return {k: open_member(path, zf, k, mmap=k in mapped) for k in headers}
     except (OSError, EOFError, ValueError, zipfile.BadZipFile, KeyError, zlib.error) as exc:
         raise UserError(f"{flag} {path}: damaged or truncated .npz ({exc})") from None
 
 
 def load_frames(value: str, flag: str = "--frames", work_per_code: float = 0.0,
                 work_per_pixel: float = 0.0) -> dict[str, Any]:
-    """Frames written by ``irnuc frames``: codes (N, H, W) integers, temps (N,) kelvin,
-    adc_bits; every field checked. The work that follows needs ``work_per_code`` bytes per
-    code and ``work_per_pixel`` per pixel of a frame besides the frames (checked against
-    the available memory before loading)."""
+    """Frames written by ``irnuc frames``, every field checked (one line naming the key).
+
+    Returns the file's arrays, with
+
+    * ``codes`` (N, H, W) integer ADC codes (memory-mapped from an uncompressed file),
+      ``temps`` (N,) scene temperature, K (float64), ``adc_bits`` (int);
+    * the per-frame fields of :data:`model.fpa_sensor.FRAME_FIELDS` by their names
+      (``time_s``, ``fpa_K``, ``fpa_reading``, ``T_cam_K``, ``scene_K``, ``shutter``) and
+      ``fpa_sensor`` (:class:`model.fpa_sensor.FpaSensor`, the on-die sensor's bits, LSB,
+      zero and the ground-truth offset and noise), ``frame_rate`` (Hz);
+    * ``blind_codes`` (N, K) and ``blind_positions`` (K, 2): the reference pixels read out
+      beside the image and their full-array (row, col); ``active_origin`` (2,);
+    * ``fields_synthesized``: True for a file of an older irnuc without the fields, which
+      are then made constant from its configuration (K = 0 reference pixels).
+
+    The work that follows needs ``work_per_code`` bytes per code and ``work_per_pixel`` per
+    pixel of a frame besides the frames (checked against the available memory before
+    loading)."""
     import numpy as np
 
     def work(headers: Headers) -> float:
         return frames_work_bytes(headers["codes"][0], work_per_code, work_per_pixel)
 
     path = frames_path(value, flag)
-    data = load_npz(path, flag, FRAMES_KEYS, work)
+    data = load_npz(path, flag, FRAMES_KEYS, work, mapped=("codes", "blind_codes"))
     codes, temps, adc = data["codes"], data["temps"], data["adc_bits"]
     if not np.issubdtype(codes.dtype, np.integer):
         raise UserError(f"{flag} {path}: codes has dtype {codes.dtype}; integer ADC codes "
@@ -151,4 +167,89 @@ def load_frames(value: str, flag: str = "--frames", work_per_code: float = 0.0,
                         f" of adc_bits = {adc_bits}")
     data["temps"] = t
     data["adc_bits"] = adc_bits
+    _frame_fields(data, f"{flag} {path}", codes.shape[0])
     return data
+
+
+def _frame_fields(data: dict[str, Any], where: str, n: int) -> None:
+    """Check (or, for an older file, make up) the per-frame fields, the FPA sensor and the
+    reference pixels of a frame file, in place."""
+    import json
+
+    import numpy as np
+
+    from irnuc.model.fpa_sensor import FRAME_FIELDS, PLAIN_FRAME_RATE, FpaSensor, constant_fields
+    from irnuc.model.validate import ConfigError
+
+    sensor_keys = [k for k in data if k.startswith("fpa_sensor_")]
+    try:
+        sensor = FpaSensor(**{k[len("fpa_sensor_"):]: data.pop(k).item() for k in sensor_keys})
+    except (ConfigError, TypeError, ValueError) as exc:
+        raise UserError(f"{where}: bad FPA sensor settings ({exc})") from None
+    data["fpa_sensor"] = sensor
+    present = [k for k in FRAME_FIELDS if k in data]
+    data["fields_synthesized"] = not present
+    if not present:  # an older file: the fields its configuration implies
+        env = _file_environment(data, json)
+        data.update(constant_fields(data["temps"], env["T_substrate"], env["T_cam"], sensor))
+        data["frame_rate"] = np.float64(PLAIN_FRAME_RATE)
+    missing = [k for k in FRAME_FIELDS if k not in data]
+    if missing:
+        raise UserError(f"{where}: missing per-frame field(s) {', '.join(missing)}")
+    for key, (dtype, unit, _) in FRAME_FIELDS.items():
+        arr = np.asarray(data[key])
+        if arr.shape != (n,):
+            raise UserError(f"{where}: {key} has shape {arr.shape}; one value per frame ({n}) "
+                            "is required")
+        if dtype == "bool":
+            if arr.dtype != np.bool_:
+                raise UserError(f"{where}: {key} has dtype {arr.dtype}; bool is required")
+        elif dtype == "int64":
+            if not np.issubdtype(arr.dtype, np.integer):
+                raise UserError(f"{where}: {key} has dtype {arr.dtype}; integers are required")
+            if arr.size and (arr.min() < 0 or arr.max() > sensor.max_code):
+                raise UserError(f"{where}: {key} spans {arr.min()}..{arr.max()}, outside "
+                                f"0..{sensor.max_code} of fpa_sensor_bits = {sensor.bits}")
+        else:
+            if not np.issubdtype(arr.dtype, np.floating) or not np.isfinite(arr).all():
+                raise UserError(f"{where}: {key} must hold finite numbers ({unit})")
+        data[key] = arr.astype(dtype)
+    if (data["fpa_K"] <= 0).any() or (data["T_cam_K"] <= 0).any():
+        raise UserError(f"{where}: fpa_K and T_cam_K must be above 0 K")
+    rate = np.asarray(data.get("frame_rate", PLAIN_FRAME_RATE))
+    if rate.shape != () or not np.isfinite(rate) or not rate > 0:
+        raise UserError(f"{where}: frame_rate = {rate!r} must be one number above 0 Hz")
+    data["frame_rate"] = float(rate)
+    _reference_pixels(data, where, n)
+
+
+def _file_environment(data: dict[str, Any], json: Any) -> dict[str, float]:
+    """The substrate and housing temperatures (K) of an older file's configuration."""
+    default = {"T_substrate": 300.0, "T_cam": 300.0}
+    if "config_json" not in data:
+        return default
+    try:
+        env = json.loads(str(data["config_json"]))["config"]["environment"]
+        return {k: float(env[k]) for k in default}
+    except (ValueError, KeyError, TypeError):
+        return default
+
+
+def _reference_pixels(data: dict[str, Any], where: str, n: int) -> None:
+    import numpy as np
+
+    if "blind_codes" not in data:
+        data["blind_codes"] = np.empty((n, 0), data["codes"].dtype)
+        data["blind_positions"] = np.empty((0, 2), np.int32)
+    codes, pos = data["blind_codes"], np.asarray(data.get("blind_positions", np.empty((0, 2))))
+    if codes.ndim != 2 or codes.shape[0] != n or not np.issubdtype(codes.dtype, np.integer):
+        raise UserError(f"{where}: blind_codes has shape {codes.shape} {codes.dtype}; (N, K) "
+                        f"integer codes with N = {n} frames are required")
+    if pos.shape != (codes.shape[1], 2) or not np.issubdtype(pos.dtype, np.integer):
+        raise UserError(f"{where}: blind_positions has shape {pos.shape}; (K, 2) integer "
+                        f"(row, col) with K = {codes.shape[1]} is required")
+    top = (1 << data["adc_bits"]) - 1
+    if codes.size and (int(codes.min()) < 0 or int(codes.max()) > top):
+        raise UserError(f"{where}: blind_codes span {int(codes.min())}..{int(codes.max())}, "
+                        f"outside 0..{top} of adc_bits = {data['adc_bits']}")
+    data["blind_positions"] = pos.astype(np.int32)

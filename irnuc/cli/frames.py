@@ -1,4 +1,9 @@
-"""``irnuc frames``: raw ADC frames from the physics model, written to ``--out/frames.npz``."""
+"""``irnuc frames``: raw ADC frames from the physics model, written to ``--out/frames.npz``.
+
+The file is an uncompressed ``.npz`` (:mod:`irnuc.common.framefile`): the codes, the
+per-frame fields (:data:`model.fpa_sensor.FRAME_FIELDS`), the reference pixels' codes and
+the metadata; docs/sequences.md describes every key.
+"""
 
 from __future__ import annotations
 
@@ -34,13 +39,12 @@ def add_frames_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run_frames(args: argparse.Namespace) -> int:
-    import json
-
     import numpy as np
 
     from irnuc import model
     from irnuc.common.errors import UserError
-    from irnuc.common.io import claim_output_folder, output_folder, write_atomic
+    from irnuc.common.io import claim_output_folder, output_folder
+    from irnuc.model.fpa_sensor import constant_fields
     from irnuc.model.pipeline import check_simulation_memory
     from irnuc.model.scenes import check_temps, scene_temperatures
 
@@ -88,9 +92,44 @@ def run_frames(args: argparse.Namespace) -> int:
                             "bolometer.bias_current, .g, .tcr)")
         stderr(f"irnuc frames: warning: {n_failed} of {status.size} pixel solves failed "
                f"({kinds}); those pixels read the high rail")
+    env = cfg["environment"]
+    arrays = frame_file_arrays(fr, constant_fields(fr.temps, env["T_substrate"], env["T_cam"],
+                                                   seed=args.seed))
+    if args.params:
+        for key, value in fr.outputs["params"].items():
+            arrays[f"param_{key}"] = value
+    with output_folder(out, kind="frames") as tmp:
+        write_frame_file(tmp / FRAMES_NAME, fr.codes, arrays)
+    d = fr.diagnostics
+    say(f"wrote {out / FRAMES_NAME}: {fr.codes.shape[0]} frame(s) of {fr.codes.shape[1]}x"
+        f"{fr.codes.shape[2]} {fr.codes.dtype} codes, {int((fr.defect_kind > 0).sum())} "
+        f"defective pixels, self-heating {d['temperature_rise_K']['mean']:.3g} K mean, "
+        f"clipped {d['clipped_low']} low / {d['clipped_high']} high")
+    return 0
+
+
+def frame_file_arrays(fr: Any, fields: dict[str, Any], sensor: Any = None,
+                      frame_rate: float | None = None) -> dict[str, Any]:
+    """Every array of a frame file but the codes: the per-frame fields, the FPA sensor's
+    settings, the reference pixels' codes and positions, the ground truth and metadata."""
+    import json
+
+    import numpy as np
+
+    from irnuc.common.framefile import FORMAT_VERSION
+    from irnuc.model.fpa_sensor import PLAIN_FRAME_RATE, FpaSensor
+
+    lay = fr.config["fpa"]
+    origin = (lay["blind"][0] + lay["boundary"][0], lay["blind"][2] + lay["boundary"][2])
     arrays: dict[str, Any] = {
-        "codes": fr.codes,
-        "temps": fr.temps,
+        "format_version": np.int64(FORMAT_VERSION),
+        "temps": np.asarray(fields["scene_K"], dtype=np.float64),
+        **fields,
+        **(sensor or FpaSensor()).arrays(),
+        "frame_rate": np.float64(frame_rate or PLAIN_FRAME_RATE),
+        "blind_codes": fr.blind_codes,
+        "blind_positions": fr.blind_positions,
+        "active_origin": np.array(origin, dtype=np.int32),
         "defect_kind": fr.defect_kind,
         "defect_pattern": fr.defect_pattern,
         "adc_bits": np.int64(fr.adc_bits),
@@ -98,17 +137,21 @@ def run_frames(args: argparse.Namespace) -> int:
         "config_json": np.array(fr.config_json()),
         "diagnostics_json": np.array(json.dumps(fr.diagnostics)),
     }
-    if args.params:
-        for key, value in fr.outputs["params"].items():
-            arrays[f"param_{key}"] = value
-    with output_folder(out, kind="frames") as tmp:
-        write_atomic(tmp / FRAMES_NAME, lambda fh: np.savez_compressed(fh, **arrays))
-    d = fr.diagnostics
-    say(f"wrote {out / FRAMES_NAME}: {fr.codes.shape[0]} frame(s) of {fr.codes.shape[1]}x"
-        f"{fr.codes.shape[2]} {fr.codes.dtype} codes, {int((fr.defect_kind > 0).sum())} "
-        f"defective pixels, self-heating {d['temperature_rise_K']['mean']:.3g} K mean, "
-        f"clipped {d['clipped_low']} low / {d['clipped_high']} high")
-    return 0
+    return arrays
+
+
+def write_frame_file(path: Path, codes: Any, arrays: dict[str, Any]) -> None:
+    """Write a frame file at ``path`` (inside the output's temporary folder): the codes in
+    chunks (an array, or an iterable of (n, H, W) chunks with ``arrays`` then complete)."""
+    import numpy as np
+
+    from irnuc.common.framefile import FrameWriter
+
+    n, h, w = codes.shape
+    with FrameWriter(path, n, (h, w), codes.dtype) as fw:
+        for start in range(0, n, 64):
+            fw.write(np.asarray(codes[start:start + 64]))
+        fw.close(arrays)
 
 
 COMMANDS = {

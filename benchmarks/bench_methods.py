@@ -1,0 +1,94 @@
+"""Speed of the golden model's correction methods on VGA frames (``method_top``).
+
+Each method configuration corrects a sequence of VGA frames (random codes, random
+coefficient codes of its formats, per-frame inputs: the FPA reading changing every frame,
+blind codes, an FFC in the middle); the baseline measured in the same run is the two-point
+``nuc_dpc_top`` (numba, fused NUC + DPC) on the same frames. Printed: ms per frame and the
+ratio to the baseline per method; the last line is one JSON object.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+import numpy as np
+
+from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words, pipeline_names
+from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
+
+
+def random_coefficients(cfg, shape, rng) -> MethodCoefficients:
+    """Codes in every field's range (realistic gains near 1), registers in range."""
+    bad = rng.random(shape) < 0.01
+    fields = {}
+    for m in cfg.memories.values():
+        if m.source != "calibration":
+            continue
+        vals = {}
+        for f in m.fields:
+            if f.name == "bad":
+                vals[f.name] = bad
+                continue
+            lo = -(1 << (f.width - 1)) if f.signed else 0
+            vals[f.name] = rng.integers(lo, lo + (1 << f.width), shape)
+        fields[m.name] = vals
+    regs = {}
+    for r in cfg.registers.values():
+        if r.source != "calibration":
+            continue
+        if r.count > 1:
+            regs[r.name] = tuple(6000 + 1000 * i for i in range(r.count))
+        elif r.signed:
+            regs[r.name] = 1 << (r.width - 12)
+        else:
+            regs[r.name] = min(7000, (1 << r.width) - 1) if r.name != "blind_ref" else 0
+    return MethodCoefficients(cfg, fields, regs)
+
+
+def median_time(fn, repeats: int) -> float:
+    fn()  # warm-up (numba compilation)
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--frames", type=int, default=16)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--seed", type=int, default=1)
+    args = ap.parse_args()
+    h, w = 480, 640
+    rng = np.random.default_rng(args.seed)
+    n = args.frames
+    raw = rng.integers(0, 2**14, (n, h, w)).astype(np.uint16)
+    inputs = FrameInputs(reading=6000 + 100 * np.arange(n), blind_codes=rng.integers(0, 2**14, (n, 200)),
+                         shutter=np.r_[np.zeros(2, bool), np.ones(8, bool), np.zeros(n - 10, bool)])
+    base = load_pipeline("typical14")
+    g = rng.integers(0, 2**base.gain_bits, (h, w))
+    o = rng.integers(-(2 ** (base.offset_bits - 1)), 2 ** (base.offset_bits - 1), (h, w))
+    words = pack_words(g, o, rng.random((h, w)) < 0.01, base)
+    t_base = median_time(lambda: nuc_dpc_top(raw, words, base), args.repeats) / n
+    out: dict[str, object] = {"frame": [h, w], "frames": n,
+                              "baseline": "nuc_dpc_top typical14 (numba, fused)",
+                              "baseline_ms_per_frame": 1e3 * t_base, "methods": {}}
+    for name in pipeline_names(method=None):
+        cfg = load_pipeline(name)
+        if cfg.method == "two_point" and name != "typical14":
+            continue
+        c = random_coefficients(cfg, (h, w), rng)
+        t = median_time(lambda c=c: method_top(raw, c, inputs), args.repeats) / n
+        out["methods"][name] = {"method": cfg.method, "ms_per_frame": 1e3 * t,
+                                "ratio_to_baseline": t / t_base}
+        print(f"{name:12s} {cfg.method:22s} {1e3 * t:8.2f} ms/frame  x{t / t_base:6.1f}")
+    print(f"baseline nuc_dpc_top {1e3 * t_base:.2f} ms/frame")
+    print(json.dumps(out))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,587 @@
+"""Calibration of every method over scene and FPA temperature (docs/methods.md).
+
+:func:`calibrate_points` takes the frames of a calibration plan (:class:`PointFrames`)
+and, for the configuration's method:
+
+1. takes the per-pixel mean of each (FPA, scene) point and the bad-pixel map over all
+   points (the response checks of ``badpix`` at every FPA point, lowest and highest scene,
+   OR-ed; offset outliers of the reference point's two-point offsets);
+2. sets the targets T_s (output codes of scene s): the mean over pre-good pixels at the
+   reference FPA point, times 2^(B - A), the same at every FPA point (so a corrected
+   pixel reads the same whatever the FPA temperature);
+3. fits the method's float coefficients by least squares (``fit_<method>`` below),
+   quantizing the global registers and the coefficients other fits depend on first, so
+   the dependent ones absorb that quantization;
+4. quantizes every coefficient to its format (rounding of the format, or ``rounding``;
+   saturating) and flags the pixels whose coefficient saturates (GAIN_RANGE,
+   OFFSET_RANGE, COEFF_RANGE); refuses a format too narrow for the fitted range (more
+   than ``max_saturated`` of the pre-good pixels saturate) in one line;
+5. gives flagged pixels the median code of the good pixels, field by field;
+6. reports the needed range and saturation per coefficient, and the residual of the
+   quantized method and of its float fit at every calibration point.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from irnuc.common.errors import UserError
+from irnuc.nuc_fixed.badpix import (
+    DetectionThresholds,
+    Reason,
+    detect_offset_outliers,
+    detect_response,
+    load_thresholds,
+    stack_stats,
+)
+from irnuc.nuc_fixed.config import ROUNDING_MODES, ConfigError, PipelineConfig
+from irnuc.nuc_fixed.dpc import uncorrectable
+from irnuc.nuc_fixed.fixed import FixedFormat
+from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
+from irnuc.nuc_fixed.plan import PlanError, PointFrames
+from irnuc.nuc_fixed.validate import InputError, as_config, check_frame_shape
+
+_NOT_CALIBRATABLE = (Reason.STUCK | Reason.RAIL | Reason.EQUAL_RESPONSE | Reason.UNRESPONSIVE
+                     | Reason.OVER_RESPONSIVE)
+
+
+class FormatRangeError(UserError):
+    """A coefficient format is too narrow for the range calibration fitted."""
+
+
+@dataclass(frozen=True)
+class MethodCalibration:
+    """Result of :func:`calibrate_points`.
+
+    Attributes
+    ----------
+    coeffs : MethodCoefficients
+        Quantized codes (flagged pixels filled) and registers: what the memory image holds.
+    reasons : (H, W) uint16
+        :class:`~irnuc.nuc_fixed.badpix.Reason` bits (0 = good).
+    floats : dict
+        The unquantized fit, ``"memory.field"`` -> (H, W) float64, and the registers.
+    targets : (S,) float64
+        Output level of each scene, output codes.
+    summary : dict
+        JSON-ready report (ranges, saturation, residuals, bad pixels).
+    """
+
+    coeffs: MethodCoefficients
+    reasons: np.ndarray
+    floats: dict[str, Any]
+    targets: np.ndarray
+    summary: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def cfg(self) -> PipelineConfig:
+        return self.coeffs.cfg
+
+    @property
+    def bad(self) -> np.ndarray:
+        return self.coeffs.bad
+
+
+# ---- least-squares pieces ---------------------------------------------------------------
+
+def _targets(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    tt = np.asarray(t, dtype=np.float64)
+    return tt.reshape(-1, *([1] * (x.ndim - 1))) if tt.ndim == 1 else tt
+
+
+def ls_line(x: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per-pixel least-squares line t = g x + o over the first axis (x (S, H, W); t (S,)
+    or per pixel (S, H, W)).
+
+    Two points: the two-point formula. A pixel whose x does not vary gets g = 0.
+    """
+    tt = _targets(t, x)
+    xm = x.mean(axis=0)
+    tm = tt.mean(axis=0)
+    sxx = ((x - xm) ** 2).sum(axis=0)
+    sxt = ((x - xm) * (tt - tm)).sum(axis=0)
+    g = np.divide(sxt, sxx, out=np.zeros_like(sxx), where=sxx > 0)
+    return g, tm - g * xm
+
+
+def ls_fixed_gain(x: np.ndarray, t: np.ndarray, g: np.ndarray | float) -> np.ndarray:
+    """Least-squares offset for a fixed gain: mean over the first axis of t - g x."""
+    return (_targets(t, x) - g * x).mean(axis=0)
+
+
+def ls_poly(v: np.ndarray, y: np.ndarray, regressors: np.ndarray) -> np.ndarray:
+    """Per-pixel least squares y_p = sum_k c_k r_k(v_p) (y (P, H, W), regressors (P, K)).
+
+    Returns (K, H, W). ``numpy.linalg.lstsq`` on all pixels at once.
+    """
+    p = y.shape[0]
+    sol = np.linalg.lstsq(regressors, y.reshape(p, -1), rcond=None)[0]
+    return sol.reshape(regressors.shape[1], *y.shape[1:])
+
+
+def piecewise_fit(x: np.ndarray, t: np.ndarray, knee: np.ndarray | None = None,
+                  level: float | None = None) -> tuple[Any, Any, np.ndarray, np.ndarray]:
+    """Two least-squares segments through the knee (x (S, H, W) increasing with s, t (S,)).
+
+    The knee is the middle scene's code x[S // 2] (the paper repository's middle point)
+    and its output the middle target, unless given (calibration passes their quantized
+    values). Each segment's gain is the least-squares slope through the knee of the scenes
+    on its side: with three scenes, the two-point gain of each pair.
+    """
+    mid = len(t) // 2
+    k = x[mid] if knee is None else knee
+    lv = float(t[mid]) if level is None else float(level)
+    gains = []
+    for sel in (slice(0, mid), slice(mid + 1, None)):
+        dx = x[sel] - k
+        dt = (np.asarray(t, dtype=np.float64)[sel] - lv).reshape(-1, *([1] * (x.ndim - 1)))
+        sxx = (dx * dx).sum(axis=0)
+        gains.append(np.divide((dx * dt).sum(axis=0), sxx, out=np.zeros_like(sxx),
+                               where=sxx > 0))
+    return k, lv, gains[0], gains[1]
+
+
+def quadratic_fit(x: np.ndarray, t: np.ndarray, adc_bits: int) -> tuple[np.ndarray, ...]:
+    """Per-pixel least squares t = q xi^2 + b xi + c, xi = x / 2^A (x (S, H, W)).
+
+    Returns (q, g = b / 2^A, c). Three scenes: the quadratic through the three points.
+    """
+    xi = x / float(1 << adc_bits)
+    s = x.shape[0]
+    a = np.stack([xi**2, xi, np.ones_like(xi)], axis=-1)          # (S, H, W, 3)
+    a = np.moveaxis(a, 0, -2)                                      # (H, W, S, 3)
+    ata = a.swapaxes(-1, -2) @ a                                   # (H, W, 3, 3)
+    atb = a.swapaxes(-1, -2) @ np.broadcast_to(np.asarray(t, float), (*x.shape[1:], s))[..., None]
+    ok = np.abs(np.linalg.det(ata)) > 1e-300
+    sol = np.zeros((*x.shape[1:], 3))
+    sol[ok] = np.linalg.solve(ata[ok], atb[ok])[..., 0]
+    return sol[..., 0], sol[..., 1] / float(1 << adc_bits), sol[..., 2]
+
+
+# ---- the method fits: float coefficients, quantized in dependency order -------------------
+
+class _Q:
+    """Quantizes coefficients and registers to their formats, recording overflow."""
+
+    def __init__(self, cfg: PipelineConfig, rounding: str | None) -> None:
+        self.cfg = cfg
+        self.rounding = rounding
+        self.codes: dict[str, np.ndarray] = {}
+        self.over: dict[str, np.ndarray] = {}
+        self.floats: dict[str, Any] = {}
+        self.regs: dict[str, Any] = {}
+
+    def fmt(self, name: str) -> tuple[FixedFormat, str]:
+        f = self.cfg.format(name)
+        rnd = self.rounding or (f.rounding if name not in ("gain", "offset") else "half_even")
+        return FixedFormat(f.int_bits, f.frac_bits, f.signed), rnd
+
+    def field(self, key: str, fmt_name: str, values: np.ndarray) -> np.ndarray:
+        """Quantize a per-pixel field; return the value of its codes (float)."""
+        ff, rnd = self.fmt(fmt_name)
+        v = np.nan_to_num(np.asarray(values, dtype=np.float64))
+        codes, over = ff.quantize(v, rnd)
+        self.codes[key], self.over[key], self.floats[key] = codes, over, v
+        return ff.to_value(codes)
+
+    def register(self, name: str, fmt_name: str | None, value: float | list[float],
+                 bits: int = 0) -> Any:
+        """Quantize a register (an unsigned integer of ``bits`` when ``fmt_name`` is None)."""
+        vals = np.atleast_1d(np.asarray(value, dtype=np.float64))
+        if fmt_name is None:
+            ff, rnd = FixedFormat(bits, 0, False), "half_even"
+        else:
+            ff, rnd = self.fmt(fmt_name)
+        codes, over = ff.quantize(vals, rnd)
+        if over.any():
+            raise FormatRangeError(
+                f"pipeline {self.cfg.name!r}: register {name} = {vals[over][0]:.6g} does not "
+                f"fit its format {ff}" + (f" (formats.{fmt_name})" if fmt_name else ""))
+        self.floats[name] = vals.tolist() if np.ndim(value) else float(vals[0])
+        out = tuple(int(c) for c in codes) if np.ndim(value) else int(codes[0])
+        self.regs[name] = out
+        return ff.to_value(codes) if np.ndim(value) else float(ff.to_value(codes)[0])
+
+
+def _reading_regressors(cfg: PipelineConfig, readings: list[int], t_ref: int) -> np.ndarray:
+    """[1, v, v2] of each point as the datapath computes them (u clamped, u2 floored)."""
+    ts = int(cfg.reading_range_bits or 1)
+    lim = (1 << ts) - 1
+    rows = []
+    for t in readings:
+        u = t - t_ref
+        if abs(u) > lim:
+            raise FormatRangeError(
+                f"pipeline {cfg.name!r}: an FPA point reads {u:+d} codes from the reference "
+                f"reading {t_ref}; reading_range_bits = {ts} holds +-{lim}: widen it")
+        rows.append([1.0, u / 2.0**ts, ((u * u) >> ts) / 2.0**ts])
+    return np.asarray(rows)[:, : int(cfg.tc_order or 1) + 1]
+
+
+def _fit(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, t: np.ndarray,
+         good: np.ndarray, q: _Q) -> None:
+    """Fit and quantize the base method's coefficients (and blind_drift's registers)."""
+    base = cfg.base_method
+    ref = pts.reference
+    x = means[ref]  # (S, H, W) at the reference FPA point
+    scale = 2.0 ** (cfg.out_bits - cfg.adc_bits)
+    if base == "one_point":
+        gv = q.register("gain", "gain", scale)
+        q.field("coeffs.offset", "offset", ls_fixed_gain(x, t, gv))
+    elif base == "two_point":
+        g, _ = ls_line(x, t)
+        gq = q.field("coeffs.gain", "gain", g)
+        q.field("coeffs.offset", "offset", ls_fixed_gain(x, t, gq))
+    elif base == "piecewise":
+        mid = len(t) // 2
+        kq = q.field("coeffs.knee", "knee", x[mid])
+        lv = q.register("level", "level", float(t[mid]))
+        _, _, g_lo, g_hi = piecewise_fit(x, t, knee=kq, level=lv)
+        q.field("coeffs.gain_lo", "gain", g_lo)
+        q.field("coeffs.gain_hi", "gain", g_hi)
+    elif base == "quadratic":
+        qq, _, _ = quadratic_fit(x, t, cfg.adc_bits)
+        qv = q.field("quad.quad", "quad", qq)
+        # The line through what the quantized quadratic term leaves.
+        rest = t.reshape(-1, 1, 1) - qv * (x / float(1 << cfg.adc_bits)) ** 2
+        g, _ = ls_line(x, rest)
+        gq = q.field("coeffs.gain", "gain", g)
+        q.field("coeffs.offset", "offset", ls_fixed_gain(x, rest, gq))
+    elif base in ("tc_offset", "table_interp"):
+        readings = [pts.point_reading(p) for p in range(means.shape[0])]
+        if min(readings) < 0:
+            raise PlanError(f"{pts.source}: method {cfg.method!r} needs the FPA reading of "
+                            "every frame (fpa_reading); the frames lack it")
+        xbar = means.mean(axis=1)  # (P, H, W)
+        tbar = float(np.mean(t))
+        if base == "table_interp":
+            order = np.argsort(readings)
+            rs = [readings[i] for i in order]
+            if len(rs) != cfg.tables:
+                raise PlanError(f"{pts.source}: method table_interp with tables = {cfg.tables} "
+                                f"needs {cfg.tables} FPA temperatures; the plan has {len(rs)}")
+            if any(b <= a for a, b in itertools.pairwise(rs)):
+                raise PlanError(f"{pts.source}: two FPA points give the same reading {rs}; "
+                                "table readings must increase strictly")
+            q.register("table_readings", None, rs, bits=int(cfg.reading_bits or 1))
+            for k, p in enumerate(order):
+                g, _ = ls_line(means[p], t)
+                gq = q.field(f"table{k}.gain", "gain", g)
+                q.field(f"table{k}.offset", "offset", tbar - gq * xbar[p])
+        else:
+            t_ref = readings[ref]
+            q.register("t_ref", None, t_ref, bits=int(cfg.reading_bits or 1))
+            reg = _reading_regressors(cfg, readings, t_ref)
+            order = int(cfg.tc_order or 1)
+            if means.shape[0] < order + 1:
+                raise PlanError(f"{pts.source}: tc_order = {order} needs at least {order + 1} "
+                                f"FPA temperatures; the plan has {means.shape[0]}")
+            if cfg.tc_gain:
+                gp = np.stack([ls_line(means[p], t)[0] for p in range(means.shape[0])])
+                gc = ls_poly(np.asarray(readings), gp, reg)
+                vals = [q.field("coeffs.gain", "gain", gc[0])]
+                vals += [q.field(f"tg.{n}", n, gc[i + 1])
+                         for i, n in enumerate(["tg1", "tg2"][:order])]
+                g_at = np.einsum("pk,khw->phw", reg, np.stack(vals))
+            else:
+                xc = means - means.mean(axis=1, keepdims=True)       # (P, S, H, W)
+                tc = (t - tbar).reshape(1, -1, 1, 1)
+                sxx = (xc * xc).sum(axis=(0, 1))
+                g = np.divide((xc * tc).sum(axis=(0, 1)), sxx, out=np.zeros_like(sxx),
+                              where=sxx > 0)
+                g_at = np.broadcast_to(q.field("coeffs.gain", "gain", g), xbar.shape)
+            oc = ls_poly(np.asarray(readings), tbar - g_at * xbar, reg)
+            q.field("coeffs.offset", "offset", oc[0])
+            for i, n in enumerate(["tc1", "tc2"][:order]):
+                q.field(f"tc.{n}", n, oc[i + 1])
+    if cfg.has("blind_drift"):
+        _fit_drift(cfg, pts, means, good, q)
+
+
+def _fit_drift(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, good: np.ndarray,
+               q: _Q) -> None:
+    """blind_ref (the blind sum at the reference point) and drift_gain = k / K.
+
+    k, how many ADC codes the image moves per code of the blind mean, is measured when the
+    plan changes the housing temperature alone (``drift_cam``): the least-squares slope of
+    the mean active code against the mean blind code over those points and the reference
+    point's middle scene. Without them k = 1, as the paper repository takes it.
+    """
+    if pts.blind_codes is None:
+        raise PlanError(f"{pts.source}: method {cfg.method!r} needs the blind pixel codes of "
+                        "every frame (blind_codes); the frames lack them")
+    b = pts.blind_codes.astype(np.float64)               # (P, S, M, K)
+    kb = b.shape[-1]
+    if kb > int(cfg.blind_max or 0):
+        raise PlanError(f"{pts.source}: {kb} blind pixels per frame; pipeline "
+                        f"{cfg.name!r} has blind_max = {cfg.blind_max}")
+    ref = pts.reference
+    q.register("blind_ref", None, float(b[ref].sum(axis=-1).mean()), bits=cfg.blind_sum_bits)
+    k, source = 1.0, "paper repository (k = 1): the plan has no drift_cam points"
+    if pts.drift_codes is not None and pts.drift_blind is not None:
+        mid = means.shape[1] // 2
+        xs = [means[ref, mid][good].mean()] + [d.mean(axis=0)[good].mean() for d in pts.drift_codes]
+        bs = [b[ref, mid].mean()] + [float(d.mean()) for d in pts.drift_blind]
+        if np.ptp(bs) > 0:
+            k = float(np.polyfit(bs, xs, 1)[0])
+            source = (f"fit over the housing at {', '.join(f'{t:g}' for t in pts.drift_cam_K)} K "
+                      f"(FPA {pts.fpa_K[ref]:g} K)")
+    q.floats["drift_coupling"] = k
+    q.floats["drift_coupling_source"] = source
+    q.register("drift_gain", "drift_gain", k / kb)
+
+
+# ---- the float evaluation of a fit (for residuals and studies) ---------------------------
+
+def float_correct(cal: MethodCalibration, x: np.ndarray, reading: int | None = None,
+                  blind_mean_change: float = 0.0) -> np.ndarray:
+    """The method's real-valued output (output codes, unrounded, unclipped) for raw ``x``
+    with the unquantized fit: the method's error without fixed point."""
+    cfg, f = cal.cfg, cal.floats
+    base = cfg.base_method
+    xf = np.asarray(x, dtype=np.float64) - (f.get("drift_coupling", 0.0) * blind_mean_change
+                                            if cfg.has("blind_drift") else 0.0)
+    if base == "one_point":
+        return f["gain"] * xf + f["coeffs.offset"]
+    if base == "two_point":
+        return f["coeffs.gain"] * xf + f["coeffs.offset"]
+    if base == "piecewise":
+        k = f["coeffs.knee"]
+        g = np.where(xf <= k, f["coeffs.gain_lo"], f["coeffs.gain_hi"])
+        return f["level"] + g * (xf - k)
+    if base == "quadratic":
+        return (f["quad.quad"] * (xf / float(1 << cfg.adc_bits)) ** 2 + f["coeffs.gain"] * xf
+                + f["coeffs.offset"])
+    t = int(reading)  # type: ignore[arg-type]
+    if base == "tc_offset":
+        lim = (1 << int(cfg.reading_range_bits or 1)) - 1
+        t_ref = int(f["t_ref"])
+        reg = _reading_regressors(cfg, [min(max(t, t_ref - lim), t_ref + lim)], t_ref)[0]
+        names = ["tc1", "tc2"][: int(cfg.tc_order or 1)]
+        o = f["coeffs.offset"] + sum(r * f[f"tc.{n}"] for r, n in zip(reg[1:], names, strict=False))
+        g = f["coeffs.gain"]
+        if cfg.tc_gain:
+            gn = ["tg1", "tg2"][: int(cfg.tc_order or 1)]
+            g = g + sum(r * f[f"tg.{n}"] for r, n in zip(reg[1:], gn, strict=False))
+        return g * xf + o
+    rs = list(f["table_readings"])
+    j = max([i for i in range(len(rs) - 1) if rs[i] <= t] or [0])
+    w = min(max((t - rs[j]) / (rs[j + 1] - rs[j]), 0.0), 1.0)
+    g = (1 - w) * f[f"table{j}.gain"] + w * f[f"table{j + 1}.gain"]
+    o = (1 - w) * f[f"table{j}.offset"] + w * f[f"table{j + 1}.offset"]
+    return g * xf + o
+
+
+# ---- the calibration ----------------------------------------------------------------------
+
+def _needed(ff: FixedFormat, values: np.ndarray) -> dict[str, Any]:
+    if values.size == 0:
+        return {"min": None, "max": None, "int_bits_needed": None}
+    lo, hi = float(values.min()), float(values.max())
+    bits = None if (not ff.signed and lo < 0) else ff.bits_needed(lo, hi)
+    return {"min": lo, "max": hi, "int_bits_needed": bits}
+
+
+def _field_reason(fname: str) -> Reason:
+    if fname.startswith("gain"):
+        return Reason.GAIN_RANGE
+    if fname == "offset":
+        return Reason.OFFSET_RANGE
+    return Reason.COEFF_RANGE
+
+
+def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
+                     thresholds: DetectionThresholds | None = None, rounding: str | None = None,
+                     max_saturated: float = 0.01) -> MethodCalibration:
+    """Fit, quantize and check the configuration's method on calibration points.
+
+    Parameters
+    ----------
+    points : PointFrames
+        Frames at every (FPA, scene) point (:func:`irnuc.nuc_fixed.plan.run_plan`).
+    cfg : PipelineConfig or str
+    thresholds : DetectionThresholds, optional
+        Bad-pixel detection thresholds (default ``nuc_fixed/detection.toml``).
+    rounding : {"truncate", "half_up", "half_even"}, optional
+        Rounding of every stored coefficient; default each format's own (gain and offset:
+        half_even).
+    max_saturated : float
+        Largest fraction of pre-good pixels whose coefficient may saturate (they are then
+        flagged bad); more is a :class:`FormatRangeError` naming the format to widen.
+    """
+    cfg = as_config(cfg)
+    if rounding is not None and rounding not in ROUNDING_MODES:
+        raise ConfigError(f"rounding = {rounding!r} is not one of {sorted(ROUNDING_MODES)}")
+    th = thresholds if thresholds is not None else load_thresholds()
+    if points.adc_bits != cfg.adc_bits:
+        raise InputError(f"{points.source}: the frames have adc_bits = {points.adc_bits} but "
+                         f"pipeline {cfg.name!r} expects {cfg.adc_bits}")
+    n_p, n_s, n_m, h, w = points.codes.shape
+    check_frame_shape("calibration frames", (h, w), cfg)
+    need_s = 3 if cfg.base_method in ("piecewise", "quadratic") else 2
+    if n_s < need_s:
+        raise PlanError(f"{points.source}: method {cfg.method!r} needs at least {need_s} scene "
+                        f"temperatures; the plan has {n_s}")
+    codes = points.codes
+    means = codes.mean(axis=2, dtype=np.float64)          # (P, S, H, W)
+    reasons = np.zeros((h, w), np.uint16)
+    for p in range(n_p):
+        r, _ = detect_response(stack_stats(codes[p, 0], codes[p, -1], cfg.adc_bits), th)
+        reasons |= r
+    pre_good = reasons == 0
+    if not pre_good.any():
+        raise InputError(f"{points.source}: every pixel failed the response checks")
+    ref = points.reference
+    scale = 2.0 ** (cfg.out_bits - cfg.adc_bits)
+    t = np.array([means[ref, s][pre_good].mean() for s in range(n_s)]) * scale
+    top = float(2**cfg.out_bits - 1)
+    if not ((t >= 0) & (t <= top)).all():
+        raise InputError(f"{points.source}: targets {t.round(3).tolist()} lie outside the "
+                         f"output range [0, {top:g}]")
+    q = _Q(cfg, rounding)
+    _fit(cfg, points, means, t, pre_good, q)
+
+    calibratable = (reasons & int(_NOT_CALIBRATABLE)) == 0
+    coeff_report: dict[str, Any] = {}
+    for key in q.codes:
+        mem, fname = key.split(".")
+        fmt_name = "gain" if fname.startswith("gain") else fname
+        ff, _ = q.fmt(fmt_name)
+        over = q.over[key]
+        frac = float(over[pre_good].mean())
+        rep = {"format": str(ff), "int_bits": ff.int_bits, "frac_bits": ff.frac_bits,
+               "calibratable": _needed(ff, q.floats[key][calibratable]),
+               "saturated": int((over & calibratable).sum()), "saturated_all": int(over.sum()),
+               "saturated_fraction": frac}
+        coeff_report[key] = rep
+        if frac > max_saturated:
+            need = rep["calibratable"]["int_bits_needed"]
+            fix = (f"widen formats.{fmt_name}.int_bits to {need}" if fmt_name not in
+                   ("gain", "offset") else f"widen {fmt_name}_int_bits to {need}")
+            raise FormatRangeError(
+                f"pipeline {cfg.name!r}: coefficient {key} saturates on {100 * frac:.2f} % of "
+                f"the pixels (more than {100 * max_saturated:g} %): its fitted range "
+                f"[{rep['calibratable']['min']:.6g}, {rep['calibratable']['max']:.6g}] needs "
+                f"{need} integer bits at {ff.frac_bits} fraction bits but the format is {ff}"
+                + ("" if need is None else f"; {fix}"))
+        reasons[over & calibratable] |= np.uint16(_field_reason(fname))
+    # Offset outliers: the two-point offsets at the reference point (a hot or cold pixel
+    # stands out there for every method).
+    o_ref = ls_line(means[ref], t)[1]
+    outl, off_sigma, off_limit = detect_offset_outliers(o_ref, reasons == 0, th,
+                                                        float(2**cfg.out_bits))
+    reasons[outl & calibratable] |= np.uint16(Reason.OFFSET_OUTLIER)
+    bad = reasons != 0
+    good = ~bad
+    if not good.any():
+        raise InputError(f"{points.source}: every pixel was flagged bad")
+    fields: dict[str, dict[str, np.ndarray]] = {}
+    for key, codes_ in q.codes.items():
+        mem, fname = key.split(".")
+        fill = int(np.median(codes_[good]))
+        fields.setdefault(mem, {})[fname] = np.where(bad, fill, codes_).astype(np.int64)
+    for mem in fields:
+        fields[mem]["bad"] = bad
+    layout = [m.name for m in cfg.memories.values() if m.source == "calibration"]
+    fields = {m: {f.name: fields[m][f.name] for f in cfg.memories[m].fields} for m in layout}
+    coeffs = MethodCoefficients(cfg=cfg, fields=fields, registers=dict(q.regs))
+    coeffs.check()
+    cal = MethodCalibration(coeffs=coeffs, reasons=reasons, floats=q.floats, targets=t)
+    residual = point_residuals(cal, points)
+    counts = {r.name: int(((reasons & int(r)) != 0).sum()) for r in Reason}
+    summary: dict[str, Any] = {
+        "config": cfg.name,
+        "method": cfg.method,
+        "frame": [h, w],
+        "points": {"scene_K": points.scene_K.tolist(), "fpa_K": points.fpa_K.tolist(),
+                   "frames": int(n_m), "reference_fpa_K": float(points.fpa_K[ref]),
+                   "readings": [points.point_reading(p) for p in range(n_p)]},
+        "targets": t.tolist(),
+        "rounding": rounding or "per format",
+        "thresholds": th.to_dict(),
+        "coefficients": coeff_report,
+        "registers": {k: {"code": v, "value": q.floats.get(k)} for k, v in q.regs.items()},
+        "drift_coupling": q.floats.get("drift_coupling"),
+        "drift_coupling_source": q.floats.get("drift_coupling_source"),
+        "offset_local_sigma": off_sigma,
+        "offset_outlier_limit": off_limit,
+        "bad_pixels": int(bad.sum()),
+        "bad_fraction": float(bad.mean()),
+        "uncorrectable": int(uncorrectable(bad).sum()),
+        "reasons": counts,
+        "residual": residual,
+        "max_saturated": max_saturated,
+    }
+    return MethodCalibration(coeffs=coeffs, reasons=reasons, floats=q.floats, targets=t,
+                             summary=summary)
+
+
+def point_residuals(cal: MethodCalibration, points: PointFrames) -> list[dict[str, Any]]:
+    """Residual of the quantized method and of its float fit at every calibration point.
+
+    The input is each point's per-pixel mean code, rounded (the quantized method) or not
+    (the float fit); the error is the output minus the scene's target, over good pixels,
+    in output codes: rms, max |e| and the spatial std (the fixed pattern left).
+    """
+    cfg = cal.cfg
+    good = ~cal.bad
+    out = []
+    n_p, n_s = points.codes.shape[:2]
+    means = points.codes.mean(axis=2, dtype=np.float64)
+    top = (1 << cfg.adc_bits) - 1
+    for p in range(n_p):
+        reading = points.point_reading(p) if points.reading.min() >= 0 else None
+        xs = np.clip(np.floor(means[p] + 0.5), 0, top).astype(np.int64)
+        inputs = FrameInputs(reading=np.full(n_s, reading if reading is not None else 0),
+                             blind_codes=None if points.blind_codes is None else
+                             np.floor(points.blind_codes[p].mean(axis=1) + 0.5).astype(np.int64),
+                             shutter=np.zeros(n_s, bool))
+        y = method_top(xs, cal.coeffs, inputs).y
+        bchange = 0.0
+        if points.blind_codes is not None and cfg.has("blind_drift"):
+            bchange = float(points.blind_codes[p].mean() - points.blind_codes[points.reference].mean())
+        for s in range(n_s):
+            e = y[s].astype(np.float64)[good] - cal.targets[s]
+            ef = float_correct(cal, means[p, s], reading, bchange)[good] - cal.targets[s]
+            out.append({"fpa_K": float(points.fpa_K[p]), "scene_K": float(points.scene_K[s]),
+                        "reading": reading, "rms": float(np.sqrt(np.mean(e**2))),
+                        "max_abs": float(np.abs(e).max()), "std": float(e.std()),
+                        "float_rms": float(np.sqrt(np.mean(ef**2))),
+                        "float_std": float(ef.std())})
+    return out
+
+
+def summary_text(cal: MethodCalibration) -> str:
+    """A short human-readable report of a method calibration."""
+    s = cal.summary
+    pts = s["points"]
+    lines = [
+        f"irnuc calibration, pipeline {s['config']} (method {s['method']}), frame "
+        f"{s['frame'][1]} x {s['frame'][0]} (W x H), scenes {pts['scene_K']} K x FPA "
+        f"{pts['fpa_K']} K x {pts['frames']} frames (reference FPA {pts['reference_fpa_K']:g} K)",
+        f"targets (output codes): {', '.join(f'{v:.3f}' for v in s['targets'])}",
+    ]
+    for key, r in s["coefficients"].items():
+        c = r["calibratable"]
+        if c["min"] is None:
+            continue
+        lines.append(f"{key}: needed range [{c['min']:.6g}, {c['max']:.6g}] -> "
+                     f"{c['int_bits_needed']} integer bits at {r['frac_bits']} fraction bits "
+                     f"(format {r['format']}); {r['saturated']} saturated "
+                     f"({r['saturated_all']} of all pixels)")
+    for k, v in s["registers"].items():
+        lines.append(f"register {k} = {v['code']} (value {v['value']})")
+    lines.append(f"bad pixels: {s['bad_pixels']} ({100 * s['bad_fraction']:.3f} %), "
+                 f"uncorrectable: {s['uncorrectable']}")
+    for name, n in s["reasons"].items():
+        if n:
+            lines.append(f"  {name:16s} {n}")
+    worst = max(s["residual"], key=lambda r: r["std"])
+    lines.append(f"residual fixed pattern (std over good pixels): worst {worst['std']:.3f} "
+                 f"codes at FPA {worst['fpa_K']:g} K, scene {worst['scene_K']:g} K (float fit "
+                 f"{worst['float_std']:.3f})")
+    return "\n".join(lines) + "\n"

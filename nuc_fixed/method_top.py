@@ -1,0 +1,290 @@
+"""``method_top``: every correction method and composition on a sequence of frames, then DPC.
+
+The composition of the RTL modules per frame (docs/datapath.md, "Method top"):
+
+1. per-frame inputs latched at the frame start: the FPA sensor reading (``tc_reading`` /
+   ``interp_weight``), the blind drift (``blind_drift``), the shutter flag;
+2. per-pixel coefficients: stored (one_point, two_point, piecewise, quadratic) or computed
+   from the reading (``tc_poly``, ``table_interp``);
+3. ``drift_sub`` (blind_drift), then the base core with the FFC offset correction (ffc);
+4. ``dpc_core`` with the bad map, unchanged for every method;
+5. ffc: the shutter frame is accumulated; after the N-th the refresh writes the new
+   correction, used from the next frame; shutter frames are held or passed.
+
+:class:`MethodCoefficients` holds a calibration's per-pixel codes and registers (from
+:func:`irnuc.nuc_fixed.methods_cal.calibrate_plan` or read back from a memory image).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.cores import CoreResult, drift_sub, lin_core, pwl_core, quad_core
+from irnuc.nuc_fixed.dpc import dpc_core
+from irnuc.nuc_fixed.drift import blind_drift
+from irnuc.nuc_fixed.ffc import FfcState, ffc_mean_target, ffc_refresh
+from irnuc.nuc_fixed.layout import pack_memory, unpack_memory
+from irnuc.nuc_fixed.nuc import out_dtype
+from irnuc.nuc_fixed.tempcomp import interp_coeffs, interp_weight, tc_coeffs, tc_reading
+from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
+from irnuc.nuc_fixed.widths import ffc_shift
+
+
+@dataclass(frozen=True)
+class MethodCoefficients:
+    """A method's per-pixel coefficient codes and its calibration registers.
+
+    Attributes
+    ----------
+    cfg : PipelineConfig
+    fields : dict
+        Per memory, per field: int64 codes (H, W) (``bad`` bool), e.g.
+        ``fields["coeffs"]["gain"]``, ``fields["table1"]["offset"]``.
+    registers : dict
+        Calibration registers by name (an int, or a tuple for ``table_readings``).
+    """
+
+    cfg: PipelineConfig
+    fields: dict[str, dict[str, np.ndarray]]
+    registers: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def bad(self) -> np.ndarray:
+        """The defective-pixel map (the ``bad`` field of the first memory)."""
+        return next(iter(self.fields.values()))["bad"]
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return tuple(self.bad.shape)  # type: ignore[return-value]
+
+    def words(self) -> dict[str, np.ndarray]:
+        """The calibration memories as uint64 words (H, W), by memory name."""
+        mems = self.cfg.memories
+        return {name: pack_memory(vals, mems[name]) for name, vals in self.fields.items()}
+
+    @classmethod
+    def from_words(cls, cfg: PipelineConfig | str, words: Mapping[str, object],
+                   registers: Mapping[str, Any]) -> MethodCoefficients:
+        """Unpack memory words by the layouts of ``cfg`` (every calibration memory needed)."""
+        cfg = as_config(cfg)
+        need = [m for m in cfg.memories.values() if m.source == "calibration"]
+        missing = [m.name for m in need if m.name not in words]
+        if missing:
+            raise InputError(f"memory words of {', '.join(missing)} are missing "
+                             f"(method {cfg.method!r})")
+        fields_ = {m.name: unpack_memory(words[m.name], m) for m in need}
+        out = cls(cfg=cfg, fields=fields_, registers=dict(registers))
+        out.check()
+        return out
+
+    def check(self) -> None:
+        """Every memory and register present, of one frame shape, in range."""
+        cfg = self.cfg
+        shapes = {next(iter(v.values())).shape for v in self.fields.values()}
+        if len(shapes) != 1:
+            raise InputError(f"coefficient memories differ in shape: {sorted(shapes)}")
+        check_frame_shape("coefficients", next(iter(shapes)), cfg)
+        for m in cfg.memories.values():
+            if m.source != "calibration":
+                continue
+            if m.name not in self.fields:
+                raise InputError(f"coefficients lack memory {m.name!r} (method {cfg.method!r})")
+            pack_memory(self.fields[m.name], m)  # checks every field's range
+        if cfg.base_method == "table_interp":
+            b0 = self.fields["table0"]["bad"]
+            for k in range(1, int(cfg.tables or 0)):
+                if not np.array_equal(self.fields[f"table{k}"]["bad"], b0):
+                    raise InputError(f"table{k}: its bad flags differ from table0's; one "
+                                     "bad-pixel map serves every table")
+        for r in cfg.registers.values():
+            if r.source != "calibration":
+                continue
+            if r.name not in self.registers:
+                raise InputError(f"register {r.name!r} is missing (method {cfg.method!r})")
+            vals = self.registers[r.name]
+            vals = list(vals) if r.count != 1 else [vals]
+            if len(vals) != r.count:
+                raise InputError(f"register {r.name!r} holds {len(vals)} values; {r.count} "
+                                 "expected")
+            lo = -(1 << (r.width - 1)) if r.signed else 0
+            hi = (1 << (r.width - 1)) - 1 if r.signed else (1 << r.width) - 1
+            int_array(f"register {r.name}", np.asarray(vals), lo, hi)
+
+
+@dataclass(frozen=True)
+class FrameInputs:
+    """Per-frame fields a method needs (N frames; None where the method needs none)."""
+
+    reading: np.ndarray | None = None
+    blind_codes: np.ndarray | None = None
+    shutter: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class MethodOutput:
+    """Result of :func:`method_top`.
+
+    Attributes
+    ----------
+    y : (N, H, W) corrected frames after DPC (uint16 if B <= 16 else uint32).
+    delta : (N,) int64 blind drift code of each frame (blind_drift), else None.
+    ffc_offset : (H, W) the FFC correction after the last frame (ffc), else None.
+    refreshes : indices of the frames after which an FFC refresh ran.
+    held : (N,) bool, frames whose output repeats an earlier frame (ffc hold).
+    """
+
+    y: np.ndarray
+    delta: np.ndarray | None = None
+    ffc_offset: np.ndarray | None = None
+    refreshes: tuple[int, ...] = ()
+    held: np.ndarray | None = None
+
+
+def needs(cfg: PipelineConfig) -> tuple[str, ...]:
+    """The per-frame fields the method reads: ``fpa_reading``, ``blind_codes``, ``shutter``."""
+    out = []
+    if cfg.base_method in ("tc_offset", "table_interp"):
+        out.append("fpa_reading")
+    if cfg.has("blind_drift"):
+        out.append("blind_codes")
+    if cfg.has("ffc"):
+        out.append("shutter")
+    return tuple(out)
+
+
+def frame_coefficients(c: MethodCoefficients, reading: int | None) -> dict[str, np.ndarray]:
+    """The per-pixel coefficient codes the core uses in a frame with this reading."""
+    cfg = c.cfg
+    base = cfg.base_method
+    if base == "tc_offset":
+        tr = tc_reading(int(reading), int(c.registers["t_ref"]), cfg)  # type: ignore[arg-type]
+        cs = c.fields["coeffs"]
+        g, o = tc_coeffs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
+                         tr, cfg)
+        return {"gain": g, "offset": o}
+    if base == "table_interp":
+        iw = interp_weight(int(reading), c.registers["table_readings"], cfg)  # type: ignore[arg-type]
+        lo, hi = c.fields[f"table{iw.j}"], c.fields[f"table{iw.j + 1}"]
+        g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]), iw, cfg)
+        return {"gain": g, "offset": o}
+    if base == "one_point":
+        return {"gain": np.int64(c.registers["gain"]), "offset": c.fields["coeffs"]["offset"]}
+    return dict(c.fields["coeffs"])
+
+
+def base_core(c: MethodCoefficients, fc: Mapping[str, np.ndarray], x: np.ndarray, *,
+              xfrac: int = 0, signed_x: bool = False, ffc: np.ndarray | None = None,
+              sum_only: bool = False) -> CoreResult:
+    """The base method's core on ``x`` with the frame's coefficients ``fc``."""
+    cfg = c.cfg
+    base = cfg.base_method
+    if base == "piecewise":
+        return pwl_core(x, fc["gain_lo"], fc["gain_hi"], fc["knee"], int(c.registers["level"]),
+                        cfg, xfrac=xfrac, ffc=ffc, sum_only=sum_only)
+    if base == "quadratic":
+        return quad_core(x, fc["gain"], fc["offset"], c.fields["quad"]["quad"], cfg,
+                         xfrac=xfrac, ffc=ffc, sum_only=sum_only)
+    return lin_core(x, fc["gain"], fc["offset"], cfg, xfrac=xfrac, signed_x=signed_x, ffc=ffc,
+                    sum_only=sum_only)
+
+
+def _per_frame(name: str, value: object, n: int, cfg: PipelineConfig) -> np.ndarray:
+    if value is None:
+        raise InputError(f"method {cfg.method!r} needs the per-frame field {name}; the "
+                         "frames lack it")
+    a = np.asarray(value)
+    if a.shape[:1] != (n,):
+        raise InputError(f"{name} has shape {a.shape}; one value per frame ({n}) is required")
+    return a
+
+
+def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | None = None, *,
+               ffc_target: int | None = None, ffc_offset: object | None = None) -> MethodOutput:
+    """Correct a sequence of frames with the configuration's method, then DPC.
+
+    Parameters
+    ----------
+    raw : integer array_like, (N, H, W) or (H, W)
+        Raw ADC codes in [0, 2^A - 1], in time order.
+    coeffs : MethodCoefficients
+    inputs : FrameInputs
+        The per-frame fields the method needs (:func:`needs`).
+    ffc_target : int, optional
+        FFC target level (U B.Cf); default: the mean of the shutter image
+        (:func:`irnuc.nuc_fixed.ffc.ffc_mean_target`).
+    ffc_offset : integer array_like (H, W), optional
+        FFC correction at the start (default 0: none yet).
+    """
+    cfg = coeffs.cfg
+    x = int_array("raw", raw, 0, (1 << cfg.adc_bits) - 1)
+    h, w = check_frame_shape("raw", x.shape, cfg)
+    if (h, w) != coeffs.shape:
+        raise InputError(f"raw frames are {(h, w)} but the coefficients are {coeffs.shape}")
+    x3 = x.reshape(-1, h, w).astype(np.int64)
+    n = x3.shape[0]
+    inputs = inputs or FrameInputs()
+    reading = (_per_frame("fpa_reading", inputs.reading, n, cfg)
+               if "fpa_reading" in needs(cfg) else None)
+    delta = None
+    if cfg.has("blind_drift"):
+        b = _per_frame("blind_codes", inputs.blind_codes, n, cfg)
+        delta = blind_drift(b, int(coeffs.registers["blind_ref"]),
+                            int(coeffs.registers["drift_gain"]), cfg).delta
+    shutter = None
+    state = None
+    if cfg.has("ffc"):
+        shutter = bool_array("shutter", _per_frame("shutter", inputs.shutter, n, cfg))
+        start = np.zeros((h, w), np.int64) if ffc_offset is None else np.asarray(ffc_offset)
+        state = FfcState(cfg=cfg, offset=np.asarray(start, dtype=np.int64))
+    out = np.empty((n, h, w), dtype=out_dtype(cfg))
+    held = np.zeros(n, dtype=bool)
+    cache: dict[int | None, dict[str, np.ndarray]] = {}
+    last: np.ndarray | None = None
+    keys = [None] * n if reading is None else [int(v) for v in reading]
+    is_shut = np.zeros(n, bool) if shutter is None else shutter
+    i = 0
+    while i < n:
+        key = keys[i]
+        if key not in cache:
+            cache.clear()  # a reading usually repeats for many frames; keep one set
+            cache[key] = frame_coefficients(coeffs, key)
+        fc = cache[key]
+        # Frames i..j-1 share their coefficients and nothing changes state between them
+        # (an open shutter): one pass over the stack, as the per-frame pass would give.
+        j = i + 1
+        if not is_shut[i]:
+            while j < n and keys[j] == key and not is_shut[j]:
+                j += 1
+        if delta is not None:
+            xi = drift_sub(x3[i:j], delta[i:j], cfg)
+            res = base_core(coeffs, fc, xi, xfrac=cfg.format("drift").frac_bits, signed_x=True)
+        else:
+            res = base_core(coeffs, fc, x3[i:j], ffc=None if state is None else state.offset)
+        yi = dpc_core(res.y, coeffs.bad, cfg)
+        if state is not None and shutter is not None and shutter[i]:
+            if cfg.ffc_output == "hold" and last is not None:
+                out[i] = last
+                held[i] = True
+            else:
+                out[i] = yi[0]
+            if state.step(x3[i], True):
+                nb = ffc_shift(cfg)
+                ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
+                tgt = (ffc_mean_target(ref.s, ref.frac, ~coeffs.bad, cfg)
+                       if ffc_target is None else ffc_target)
+                state.offset = ffc_refresh(ref.s, ref.frac, tgt, cfg)
+                state.refreshes.append(i)
+        else:
+            if state is not None:
+                state.step(x3[i], False)
+            out[i:j] = yi
+            last = out[j - 1]
+        i = j
+    return MethodOutput(y=out.reshape(x.shape), delta=delta,
+                        ffc_offset=None if state is None else state.offset,
+                        refreshes=tuple(state.refreshes) if state else (), held=held)

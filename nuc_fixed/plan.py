@@ -1,0 +1,293 @@
+"""Calibration plans: scene temperatures x FPA temperatures x frames per point.
+
+A plan (TOML, ``docs/methods.md``)::
+
+    [plan]
+    scene = [290.0, 330.0, 370.0]     # K, blackbody temperatures
+    fpa = [288.0, 298.0, 308.0]       # K, FPA (substrate) temperatures
+    frames = 4                        # per point
+
+is run on the physics model (:func:`run_plan`: one model configuration per FPA point, the
+same seed, so the same pixels, at every point) or gathered from frames that carry the
+per-frame fields (:func:`points_from_frames`). Either way the result is
+:class:`PointFrames`, the input of :func:`irnuc.nuc_fixed.fit.calibrate_points`.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from irnuc.common import schema
+from irnuc.common.errors import UserError
+from irnuc.model.fpa_sensor import FpaSensor
+
+
+class PlanError(UserError):
+    """A calibration plan is malformed or cannot be run."""
+
+
+_SENSOR_FIELDS = {"bits": schema.number(1, 24, integer=True, unit="bits"),
+                  "lsb_K": schema.number(0.0, 100.0, lo_open=True, unit="K"),
+                  "zero_K": schema.number(0.0, 1000.0, unit="K"),
+                  "offset_K": schema.number(-100.0, 100.0, unit="K"),
+                  "noise_K": schema.number(0.0, 100.0, unit="K")}
+
+_TEMPS = {"type": "array", "minItems": 1, "maxItems": 64,
+          "items": schema.number(100.0, 1000.0, unit="K")}
+
+#: The schema of a plan file: [plan] required, [fpa_sensor] optional.
+PLAN_SCHEMA: dict[str, Any] = schema.table({
+    "plan": schema.table({
+        "scene": _TEMPS,
+        "fpa": _TEMPS,
+        "frames": schema.number(1, 10000, integer=True, unit="frames"),
+        "cam": {**_TEMPS, "description": "housing temperature per FPA point (default: fpa)"},
+        "reference_fpa": schema.number(100.0, 1000.0, unit="K"),
+        "drift_cam": {**_TEMPS, "description": "housing temperatures at the reference FPA "
+                      "point, for blind_drift's coupling"},
+        "description": {"type": "string"},
+    }, required=["scene", "fpa", "frames"]),
+    "fpa_sensor": schema.table(_SENSOR_FIELDS),
+}, required=["plan"])
+
+
+@dataclass(frozen=True)
+class CalibrationPlan:
+    """Scene temperatures x FPA temperatures x frames per point.
+
+    Attributes
+    ----------
+    scene : tuple of float
+        Blackbody temperatures, K, increasing.
+    fpa : tuple of float
+        FPA (substrate) temperatures, K, increasing.
+    frames : int
+        Frames per (scene, FPA) point.
+    cam : tuple of float
+        Housing temperature at each FPA point, K (default: the FPA temperature).
+    reference_fpa : float
+        The FPA temperature whose calibration the methods without temperature
+        compensation use, and at which the targets are taken; default: the listed FPA
+        temperature nearest their mean.
+    drift_cam : tuple of float
+        Housing temperatures, K, imaged at the reference FPA temperature and the middle
+        scene: the points from which blind_drift measures how the image follows the blind
+        pixels (without them the coupling is 1, as in the paper repository).
+    fpa_sensor : FpaSensor
+        The on-die sensor that reads each frame's FPA temperature.
+    """
+
+    scene: tuple[float, ...]
+    fpa: tuple[float, ...]
+    frames: int
+    cam: tuple[float, ...] = ()
+    reference_fpa: float | None = None
+    drift_cam: tuple[float, ...] = ()
+    fpa_sensor: FpaSensor = field(default_factory=FpaSensor)
+    source: str = "plan"
+
+    def __post_init__(self) -> None:
+        for name in ("scene", "fpa"):
+            v = list(getattr(self, name))
+            if any(b <= a for a, b in itertools.pairwise(v)):
+                raise PlanError(f"{self.source}: plan.{name} = {v} must increase strictly")
+        if self.cam and len(self.cam) != len(self.fpa):
+            raise PlanError(f"{self.source}: plan.cam has {len(self.cam)} values but plan.fpa "
+                            f"has {len(self.fpa)}; one housing temperature per FPA point")
+        if self.reference_fpa is not None and self.reference_fpa not in self.fpa:
+            raise PlanError(f"{self.source}: plan.reference_fpa = {self.reference_fpa:g} K is "
+                            f"not one of plan.fpa ({', '.join(f'{t:g}' for t in self.fpa)})")
+
+    @property
+    def cam_K(self) -> tuple[float, ...]:
+        return tuple(self.cam) if self.cam else tuple(self.fpa)
+
+    @property
+    def reference_index(self) -> int:
+        """Index in ``fpa`` of the reference FPA point."""
+        if self.reference_fpa is not None:
+            return list(self.fpa).index(self.reference_fpa)
+        mean = float(np.mean(self.fpa))
+        return int(np.argmin([abs(t - mean) for t in self.fpa]))
+
+
+def load_plan(path: str | Path, flag: str = "--plan") -> CalibrationPlan:
+    """Read and check a plan TOML file (unknown keys refused with the nearest name)."""
+    doc = schema.read_toml(path, flag)
+    src = f"{flag} {path}" if flag else str(path)
+    try:
+        schema.check(doc, PLAN_SCHEMA, source=src)
+    except schema.SchemaError as exc:
+        raise PlanError(str(exc)) from None
+    p = doc["plan"]
+    sensor = FpaSensor(**doc.get("fpa_sensor", {}))
+    return CalibrationPlan(scene=tuple(float(t) for t in p["scene"]),
+                           fpa=tuple(float(t) for t in p["fpa"]), frames=int(p["frames"]),
+                           cam=tuple(float(t) for t in p.get("cam", ())),
+                           reference_fpa=p.get("reference_fpa"),
+                           drift_cam=tuple(float(t) for t in p.get("drift_cam", ())),
+                           fpa_sensor=sensor, source=src)
+
+
+@dataclass
+class PointFrames:
+    """Calibration frames grouped by point: FPA point p, scene s, frame m.
+
+    Attributes
+    ----------
+    codes : (P, S, M, H, W) integer ADC codes
+    scene_K : (S,) K; fpa_K : (P,) K
+    reading : (P, S, M) int64 FPA sensor readings
+    blind_codes : (P, S, M, K) blind pixel codes, or None
+    defect_kind : (H, W) the model's planted defects (0 = good), or None
+    reference : index of the reference FPA point
+    drift_codes, drift_blind : (D, M, H, W) and (D, M, K), the frames of the plan's
+        ``drift_cam`` points (reference FPA temperature, middle scene), or None
+    drift_cam_K : (D,) their housing temperatures, K
+    """
+
+    codes: np.ndarray
+    scene_K: np.ndarray
+    fpa_K: np.ndarray
+    reading: np.ndarray
+    adc_bits: int
+    reference: int
+    blind_codes: np.ndarray | None = None
+    defect_kind: np.ndarray | None = None
+    source: str = ""
+    drift_codes: np.ndarray | None = None
+    drift_blind: np.ndarray | None = None
+    drift_cam_K: np.ndarray | None = None
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return tuple(self.codes.shape[-2:])  # type: ignore[return-value]
+
+    def point_reading(self, p: int) -> int:
+        """The FPA reading of point p: the rounded mean of its frames' readings."""
+        return int(np.floor(float(np.mean(self.reading[p])) + 0.5))
+
+
+def sensor_config(sensor: str | Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
+    from irnuc import model
+
+    if isinstance(sensor, Mapping):
+        from irnuc.model.config import apply_overrides, validate
+
+        return validate(apply_overrides(dict(sensor), overrides), "sensor with plan overrides")
+    if str(sensor).endswith(".toml") or "/" in str(sensor):
+        return model.load_config(sensor, overrides)
+    return model.load_preset(str(sensor), overrides)
+
+
+def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
+             overrides: Mapping[str, Any] | None = None, seed: int = 0) -> PointFrames:
+    """Simulate every point of the plan on the physics model.
+
+    Per FPA point the sensor configuration gets ``environment.T_substrate`` = the FPA
+    temperature and ``environment.T_cam`` = the housing temperature (``plan.cam``, default
+    the FPA temperature); the same ``seed`` everywhere, so every point images the same
+    pixels. The FPA reading of every frame is ``plan.fpa_sensor.read`` of the FPA
+    temperature (its noise seeded by ``seed`` and the frame's index in the plan).
+
+    Parameters
+    ----------
+    sensor : str or dict
+        A preset name, a sensor TOML path, or a validated configuration.
+    overrides : dict
+        Dotted sensor overrides (``fpa.active_rows`` ...); the plan's own fields
+        (``environment.T_substrate``, ``environment.T_cam``) may not be among them.
+    """
+    from irnuc import model
+
+    ov = dict(overrides or {})
+    for k in ("environment.T_substrate", "environment.T_cam"):
+        if k in ov:
+            raise PlanError(f"--set {k}: the plan sets it at every point (plan.fpa / plan.cam)")
+    want_blind = "blind_codes" in model.OUTPUTS
+    codes, readings, blinds = [], [], []
+    kind = None
+    n_pt = len(plan.scene) * plan.frames
+    for p, (t_fpa, t_cam) in enumerate(zip(plan.fpa, plan.cam_K, strict=True)):
+        cfg = sensor_config(sensor, {**ov, "environment.T_substrate": t_fpa,
+                                      "environment.T_cam": t_cam})
+        outputs = ["codes", "blind_codes"] if want_blind else ["codes"]
+        fr = model.simulate(cfg, list(plan.scene), seed=seed, repeats=plan.frames,
+                            outputs=outputs)
+        h, w = fr.codes.shape[-2:]
+        codes.append(fr.codes.reshape(len(plan.scene), plan.frames, h, w))
+        readings.append(plan.fpa_sensor.read(np.full(n_pt, t_fpa), seed=seed,
+                                             first_frame=p * n_pt).reshape(len(plan.scene),
+                                                                           plan.frames))
+        b = getattr(fr, "blind_codes", None)
+        if b is not None and np.size(b):
+            blinds.append(np.asarray(b).reshape(len(plan.scene), plan.frames, -1))
+        kind = fr.defect_kind
+        adc = int(fr.adc_bits)
+    out = PointFrames(codes=np.stack(codes), scene_K=np.asarray(plan.scene),
+                      fpa_K=np.asarray(plan.fpa), reading=np.stack(readings), adc_bits=adc,
+                      reference=plan.reference_index,
+                      blind_codes=np.stack(blinds) if len(blinds) == len(plan.fpa) else None,
+                      defect_kind=kind, source=plan.source)
+    if plan.drift_cam and want_blind:
+        t_ref = plan.fpa[plan.reference_index]
+        mid = plan.scene[len(plan.scene) // 2]
+        dc, db = [], []
+        for t_cam in plan.drift_cam:
+            cfg = sensor_config(sensor, {**ov, "environment.T_substrate": t_ref,
+                                          "environment.T_cam": t_cam})
+            fr = model.simulate(cfg, [mid], seed=seed, repeats=plan.frames,
+                                outputs=["codes", "blind_codes"])
+            dc.append(fr.codes)
+            db.append(np.asarray(fr.blind_codes))
+        out.drift_codes, out.drift_blind = np.stack(dc), np.stack(db)
+        out.drift_cam_K = np.asarray(plan.drift_cam)
+    return out
+
+
+def points_from_frames(data: Mapping[str, Any], source: str = "--frames",
+                       reference_fpa: float | None = None) -> PointFrames:
+    """Group frames (a frames file's arrays) into calibration points.
+
+    Frames are grouped by their scene temperature (``scene_K``, else ``temps``) and FPA
+    temperature (``fpa_K``; a file without it is one FPA point); shutter frames are left
+    out. Every point must hold the same number of frames (the smallest count is used, the
+    first frames of each point). ``fpa_reading`` gives the readings (needed by the
+    temperature methods, which say so).
+    """
+    codes = np.asarray(data["codes"])
+    n = codes.shape[0]
+    scene = np.asarray(data.get("scene_K", data["temps"]), dtype=np.float64)
+    fpa = np.asarray(data["fpa_K"], dtype=np.float64) if "fpa_K" in data else np.zeros(n)
+    keep = ~np.asarray(data["shutter"], bool) if "shutter" in data else np.ones(n, bool)
+    reading = (np.asarray(data["fpa_reading"], dtype=np.int64) if "fpa_reading" in data
+               else np.full(n, -1, np.int64))
+    blind = np.asarray(data["blind_codes"]) if "blind_codes" in data else None
+    if blind is not None and (blind.ndim != 2 or blind.shape[1] == 0):
+        blind = None  # a file without reference pixels
+    s_vals = np.unique(np.round(scene[keep], 6))
+    f_vals = np.unique(np.round(fpa[keep], 6))
+    groups = {}
+    for p, tf in enumerate(f_vals):
+        for s, ts in enumerate(s_vals):
+            idx = np.flatnonzero(keep & np.isclose(scene, ts, atol=1e-6)
+                                 & np.isclose(fpa, tf, atol=1e-6))
+            if idx.size == 0:
+                raise PlanError(f"{source}: no frame at scene {ts:g} K with the FPA at "
+                                f"{tf:g} K; every scene must be imaged at every FPA temperature")
+            groups[(p, s)] = idx
+    m = min(v.size for v in groups.values())
+    P, S = len(f_vals), len(s_vals)
+    sel = np.array([[groups[(p, s)][:m] for s in range(S)] for p in range(P)])
+    ref = (int(np.argmin(np.abs(f_vals - np.mean(f_vals)))) if reference_fpa is None
+           else int(np.argmin(np.abs(f_vals - reference_fpa))))
+    return PointFrames(codes=codes[sel], scene_K=s_vals, fpa_K=f_vals, reading=reading[sel],
+                       adc_bits=int(data["adc_bits"]), reference=ref,
+                       blind_codes=None if blind is None else blind[sel],
+                       defect_kind=data.get("defect_kind"), source=source)

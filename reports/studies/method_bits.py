@@ -1,0 +1,140 @@
+"""Study: residual against coefficient fraction bits for every method (the paper's Table 2).
+
+For f = 3..16 every fraction width of a method (gain, offset and every format in
+``formats``) is set to f, integer widths as shipped; the method is calibrated on one plan
+(the frames simulated once) and corrects uniform scenes between the calibration scenes
+at the plan's FPA temperatures. Per method and f: the residual non-uniformity (spatial std
+over mean, the paper's measure) at the reference FPA temperature (the paper's table is at
+one temperature) and over every FPA point, the worst fixed pattern in LSB and mK, and the
+same for the float fit (the floor fraction bits cannot go below: the unquantized
+coefficients, given the quantized ones they depend on).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from irnuc.reports.studies.drift_common import (
+    PLAN,
+    StudySensor,
+    fpn,
+    frames_at,
+    pyplot,
+    responsivity,
+)
+
+NAME = "method_bits"
+TITLE = "Residual against fraction bits per method (the paper's Table 2 for every method)"
+METHODS = ("onepoint14", "typical14", "piecewise14", "quadratic14", "tcoffset14", "tcgain14",
+           "table14")
+
+
+def with_frac_bits(cfg: Any, f: int) -> Any:
+    """``cfg`` with every coefficient's fraction width set to ``f`` (None if illegal)."""
+    from irnuc.common.errors import UserError
+
+    try:
+        return cfg.replace(gain_frac_bits=f, offset_frac_bits=f,
+                           formats={x.name: {"frac_bits": f} for x in cfg.formats})
+    except UserError:
+        return None
+
+
+def run(quick: bool = False, sensor: StudySensor | None = None,
+        frac_bits: tuple[int, ...] | None = None, names: tuple[str, ...] = METHODS,
+        progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+    """The table of residual against fraction bits (JSON-ready)."""
+    import time
+
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed.fit import calibrate_points, float_correct
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+
+    t0 = time.perf_counter()
+    sensor = sensor or StudySensor(rows=24 if quick else 48, cols=32 if quick else 64)
+    bits = frac_bits or ((4, 8, 12, 16) if quick else tuple(range(3, 17)))
+    plan = CalibrationPlan(scene=tuple(PLAN["scene"]), fpa=tuple(PLAN["fpa"]),
+                           frames=int(PLAN["frames"]))
+    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    scenes = (310.0, 350.0)
+    evals = []
+    for tf in plan.fpa:
+        raw, blind = frames_at(sensor, tf, tf, scenes)
+        evals.append((tf, raw, blind, int(plan.fpa_sensor.read(tf)[0])))
+    table: dict[str, Any] = {}
+    total = len(names) * len(bits)
+    done = 0
+    for name in names:
+        base = load_pipeline(name)
+        rows = []
+        floor = None
+        for f in bits:
+            cfg = with_frac_bits(base, f)
+            rec: dict[str, Any] = {"frac_bits": f, "valid": cfg is not None}
+            if cfg is not None:
+                cal = calibrate_points(pts, cfg, max_saturated=1.0)
+                good = ~cal.bad
+                r_of = responsivity(cal.targets, plan.scene)
+                worst = {"nu": 0.0, "lsb": 0.0, "mk": 0.0, "float": 0.0, "nu_ref": 0.0,
+                         "mk_ref": 0.0}
+                for tf, raw, blind, rd in evals:
+                    y = method_top(raw, cal.coeffs, FrameInputs(
+                        reading=np.full(len(scenes), rd), blind_codes=blind)).y
+                    for k, s in enumerate(scenes):
+                        v = fpn(y[k], good)
+                        nu = v / float(y[k][good].mean())
+                        mk = v / r_of(s) * 1e3
+                        yf = float_correct(cal, raw[k].astype(np.float64), rd)
+                        vals = {"nu": nu, "lsb": v, "mk": mk,
+                                "float": fpn(yf, good) / r_of(s) * 1e3}
+                        if tf == plan.fpa[plan.reference_index]:
+                            vals |= {"nu_ref": nu, "mk_ref": mk}
+                        worst = {key: max(worst[key], vals.get(key, 0.0)) for key in worst}
+                rec |= {"residual_nu": worst["nu"], "worst_fpn_lsb": worst["lsb"],
+                        "worst_fpn_mK": worst["mk"], "float_fpn_mK": worst["float"],
+                        "reference_fpa_residual_nu": worst["nu_ref"],
+                        "reference_fpa_fpn_mK": worst["mk_ref"],
+                        "bits_per_pixel": sum(m.word_bits for m in cfg.memories.values()
+                                              if m.source == "calibration")}
+                floor = worst["float"]  # the fit at the widest valid fractions
+            rows.append(rec)
+            done += 1
+            if progress:
+                progress(done, total)
+        table[name] = {"method": base.method, "rows": rows, "float_fpn_mK": floor}
+    return {
+        "study": NAME, "title": TITLE, "quick": quick,
+        "sensor": {"preset": str(sensor.preset), "rows": sensor.rows, "cols": sensor.cols,
+                   "seed": sensor.seed, "overrides": dict(sensor.overrides)},
+        "plan": {k: list(v) if isinstance(v, tuple) else v for k, v in PLAN.items()},
+        "eval_scene_K": list(scenes), "eval_fpa_K": list(plan.fpa), "frac_bits": list(bits),
+        "methods": table, "seconds": time.perf_counter() - t0,
+    }
+
+
+def figure(result: dict[str, Any]) -> bytes:
+    """Worst residual non-uniformity and fixed pattern (mK) against fraction bits."""
+    from irnuc.reports.studies.figures import png
+
+    plt = pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for i, (name, m) in enumerate(result["methods"].items()):
+        rows = [r for r in m["rows"] if r["valid"]]
+        f = [r["frac_bits"] for r in rows]
+        axes[0].semilogy(f, [r["reference_fpa_residual_nu"] for r in rows], "o-", ms=3,
+                         color=f"C{i}", label=name)
+        axes[1].semilogy(f, [r["worst_fpn_mK"] for r in rows], "o-", ms=3, color=f"C{i}")
+        if m["float_fpn_mK"] is not None:
+            axes[1].axhline(m["float_fpn_mK"], color=f"C{i}", ls=":", lw=0.8)
+    axes[0].set_ylabel("residual non-uniformity (std / mean), reference FPA")
+    axes[1].set_ylabel("worst fixed pattern, all FPA points, mK")
+    for ax in axes:
+        ax.set_xlabel("fraction bits of every coefficient")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    fig.suptitle(f"{TITLE}\n(dotted: the float fit of each method)", fontsize=9)
+    return png(fig)
