@@ -83,11 +83,13 @@ def pipeline_stages(top: str, cfg: PipelineConfig) -> list[str]:
     def clog2(n: int) -> int:
         return max(0, (n - 1).bit_length())
 
-    nuc = (["nuc_input", "nuc_product"]
+    # A multiply is two registers: the DSP block's input and output registers.
+    nuc = (["nuc_input", "nuc_product", "nuc_product"]
            + ["nuc_sum"] * clog2(parts(cfg.adc_bits, cfg.gain_bits) + 1)
            + ["nuc_round", "nuc_output"])
     b = cfg.out_bits
-    dpc = (["dpc_input", "dpc_window"] + ["dpc_sum"] * 4 + ["dpc_multiply"]
+    dpc = (["dpc_input", "dpc_window", "dpc_mask"] + ["dpc_sum"] * 4
+           + ["dpc_multiply", "dpc_multiply"]
            + ["dpc_product"] * clog2(parts(b + 3, b + 7)) + ["dpc_output"])
     if top == "nuc_core":
         return _numbered(nuc)
@@ -347,7 +349,9 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     """The process's coverage model of ``top`` on ``cfg`` (made once)."""
     key = (top, cfg.digest())
     if key not in _MODELS:
-        _MODELS[key] = CoverageModel(top, cfg)
+        from irnuc.cosim.method_coverage import METHOD_TOPS, MethodCoverageModel
+
+        _MODELS[key] = (MethodCoverageModel if top in METHOD_TOPS else CoverageModel)(top, cfg)
     return _MODELS[key]
 
 
