@@ -8,6 +8,7 @@ Every value comes from the configuration's formats and memory layouts
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -89,19 +90,29 @@ def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Gene
     return MethodCoefficients(cfg=cfg, fields=fields, registers=regs)
 
 
-def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
-                   rng: np.random.Generator) -> int | None:
-    """An FPA reading for a frame (None for methods without one): anywhere, or near the
-    method's breakpoints (t_ref and its clamps, the table readings)."""
-    if cfg.base_method not in ("tc_offset", "table_interp"):
-        return None
-    hi = (1 << int(cfg.reading_bits or 1)) - 1
+def reading_marks(cfg: PipelineConfig, coeffs: MethodCoefficients) -> list[int]:
+    """The readings where the method's frame values change behaviour: t_ref and the
+    clamps (tc_offset), the table readings and the midpoints between them (table_interp:
+    w = 1/2 on an even span, a rounding tie)."""
     if cfg.base_method == "tc_offset":
         lim = (1 << int(cfg.reading_range_bits or 1)) - 1
         t = int(coeffs.registers["t_ref"])
-        marks = [t, t - lim - 1, t - lim, t + lim, t + lim + 1]
-    else:
-        marks = list(coeffs.registers["table_readings"])
+        return [t, t - lim - 1, t - lim, t + lim, t + lim + 1, t - 1, t + 1]
+    rs = [int(v) for v in coeffs.registers["table_readings"]]
+    return rs + [(a + b) // 2 for a, b in itertools.pairwise(rs)] + [rs[0] - 1, rs[-1] + 1]
+
+
+def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
+                   rng: np.random.Generator, mark: int | None = None) -> int | None:
+    """An FPA reading for a frame (None for methods without one): anywhere, or near the
+    method's breakpoints (:func:`reading_marks`); ``mark`` picks breakpoint ``mark``
+    exactly (cyclically)."""
+    if cfg.base_method not in ("tc_offset", "table_interp"):
+        return None
+    hi = (1 << int(cfg.reading_bits or 1)) - 1
+    marks = reading_marks(cfg, coeffs)
+    if mark is not None:
+        return int(np.clip(marks[mark % len(marks)], 0, hi))
     kind = int(rng.integers(0, 4))
     if kind == 0:
         return int(rng.integers(0, hi + 1))
@@ -114,18 +125,24 @@ def random_raw(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
     return _codes(rng, 0, (1 << cfg.adc_bits) - 1, (h, w), biased)
 
 
-def _corner_candidate(cfg: PipelineConfig, rng: np.random.Generator, h: int, w: int
-                      ) -> FramePlan:
-    """A biased random frame; per method some pixels are put on its breakpoints."""
+def _corner_candidate(cfg: PipelineConfig, rng: np.random.Generator, h: int, w: int,
+                      index: int) -> FramePlan:
+    """A biased random frame; per method some pixels are put on its breakpoints, and every
+    other candidate's reading is a breakpoint (:func:`reading_marks`, in turn)."""
     c = random_coefficients(cfg, h, w, rng, bad_fraction=0.0, biased=True)
     raw = random_raw(cfg, h, w, rng, biased=True)
     base = cfg.base_method
+    for name in ("gain", "level"):  # the global registers at 0, their largest code, other
+        r = cfg.registers.get(name)
+        if r is not None and r.source == "calibration" and index % 3 < 2:
+            c.registers[name] = (0, (1 << r.width) - 1)[index % 3]
     if base == "piecewise":
         # Knees exactly at some pixels' codes (d = 0).
         kf = cfg.format("knee").frac_bits
         at = rng.random((h, w)) < 0.25
         c.fields["coeffs"]["knee"] = np.where(at, raw << kf, c.fields["coeffs"]["knee"])
-    return FramePlan(coeffs=c, raw=raw, reading=random_reading(cfg, c, rng))
+    return FramePlan(coeffs=c, raw=raw, reading=random_reading(
+        cfg, c, rng, mark=index // 2 if index % 2 == 0 else None))
 
 
 def corner_frames(cfg: PipelineConfig, rng: np.random.Generator, h: int = 8, w: int = 8,
@@ -138,8 +155,8 @@ def corner_frames(cfg: PipelineConfig, rng: np.random.Generator, h: int = 8, w: 
     points, _ = method_points(cfg)
     want = {(p, b) for p, bins in points.items() if p != "method.frame_word" for b in bins}
     cands = []
-    for _ in range(pool):
-        fp = _corner_candidate(cfg, rng, h, w)
+    for i in range(pool):
+        fp = _corner_candidate(cfg, rng, h, w, i)
         got = {(p, b) for p, bins in frame_classes(fp.coeffs, fp.raw, fp.reading).items()
                for b in bins}
         cands.append((fp, got & want))
