@@ -17,7 +17,6 @@ limbs (little-endian) for the bulk harness.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,8 +25,8 @@ from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.method_top import MethodCoefficients
 from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_weight
 
-__all__ = ["FrameDrive", "coef_stream_bits", "frame_drive", "frame_word_bits", "limbs",
-           "stream_memories"]
+__all__ = ["FrameDrive", "coef_stream_bits", "frame_drive", "frame_word", "frame_word_bits",
+           "limbs", "stream_limbs", "stream_memories", "stream_parts"]
 
 
 def stream_memories(cfg: PipelineConfig) -> list[str]:
@@ -84,44 +83,72 @@ class FrameDrive:
     interp: InterpWeight | None = None
 
 
-def _concat(parts: Sequence[tuple[np.ndarray, int]]) -> np.ndarray:
-    """Words (Python ints, object array) from (uint64 words, bits) pairs, the first at bit 0."""
-    out = np.zeros(parts[0][0].shape, dtype=object)
-    shift = 0
-    for words, bits in parts:
-        out = out + (np.asarray(words, dtype=np.uint64).astype(object) << shift)
-        shift += bits
-    return out
+def stream_parts(coeffs: MethodCoefficients, reading: int | None = None
+                 ) -> tuple[list[tuple[np.ndarray, int]], InterpWeight | None]:
+    """The memory words of the coefficient word, bit 0 first, as (uint64 words (H, W),
+    bits) pairs, for a frame with this reading; and table_interp's j and w."""
+    cfg = coeffs.cfg
+    mems = coeffs.words()
+    if cfg.base_method == "table_interp":
+        iw = interp_weight(int(reading), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
+        bits = cfg.memories["table0"].word_bits
+        return [(mems[f"table{iw.j}"], bits), (mems[f"table{iw.j + 1}"], bits)], iw
+    return [(mems[n], cfg.memories[n].word_bits) for n in stream_memories(cfg)], None
+
+
+def frame_word(coeffs: MethodCoefficients, reading: int | None = None,
+               interp: InterpWeight | None = None) -> int:
+    """The frame word (``s_pix_frame_i``) of a frame with this reading."""
+    cfg = coeffs.cfg
+    base = cfg.base_method
+    if base == "one_point":
+        return int(coeffs.registers["gain"])
+    if base == "piecewise":
+        return int(coeffs.registers["level"])
+    if base == "tc_offset":
+        r = cfg.registers["reading"].width
+        return int(reading) | (int(coeffs.registers["t_ref"]) << r)  # type: ignore[arg-type]
+    if base == "table_interp":
+        iw = interp or interp_weight(int(reading), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
+        return int(iw.w)
+    return 0
 
 
 def frame_drive(coeffs: MethodCoefficients, reading: int | None = None) -> FrameDrive:
-    """The frame word and coefficient words of a frame with this FPA reading (needed by
-    tc_offset and table_interp) for the calibration ``coeffs``."""
-    cfg = coeffs.cfg
-    base = cfg.base_method
-    mems = coeffs.words()
-    interp = None
-    if base == "table_interp":
-        interp = interp_weight(int(reading), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
-        bits = cfg.memories["table0"].word_bits
-        words = _concat([(mems[f"table{interp.j}"], bits), (mems[f"table{interp.j + 1}"], bits)])
-        frame = int(interp.w)
-    else:
-        words = _concat([(mems[n], cfg.memories[n].word_bits) for n in stream_memories(cfg)])
-        if base == "one_point":
-            frame = int(coeffs.registers["gain"])
-        elif base == "piecewise":
-            frame = int(coeffs.registers["level"])
-        elif base == "tc_offset":
-            r = cfg.registers["reading"].width
-            frame = int(reading) | (int(coeffs.registers["t_ref"]) << r)  # type: ignore[arg-type]
-        else:
-            frame = 0
-    return FrameDrive(frame_word=frame, words=words, interp=interp)
+    """The frame word and coefficient words (Python ints) of a frame with this FPA reading
+    (needed by tc_offset and table_interp) for the calibration ``coeffs``."""
+    parts, iw = stream_parts(coeffs, reading)
+    words = np.zeros(parts[0][0].shape, dtype=object)
+    shift = 0
+    for w, bits in parts:
+        words = words + (np.asarray(w, dtype=np.uint64).astype(object) << shift)
+        shift += bits
+    return FrameDrive(frame_word=frame_word(coeffs, reading, iw), words=words, interp=iw)
+
+
+def stream_limbs(coeffs: MethodCoefficients, reading: int | None = None) -> np.ndarray:
+    """The coefficient words of a frame as uint64 limbs, bit 0 first: (H, W, L), L =
+    ceil(bits / 64) (the bulk harness's image)."""
+    parts, _ = stream_parts(coeffs, reading)
+    total = sum(bits for _, bits in parts)
+    n = max(1, -(-total // 64))
+    h, w = parts[0][0].shape
+    out = np.zeros((h, w, n), dtype=np.uint64)
+    off = 0
+    for words, bits in parts:
+        v = np.asarray(words, dtype=np.uint64)
+        for k in range(n):
+            lo = 64 * k
+            if off >= lo + 64 or off + bits <= lo:
+                continue
+            sh = off - lo
+            out[:, :, k] |= (v << np.uint64(sh)) if sh >= 0 else (v >> np.uint64(-sh))
+        off += bits
+    return out
 
 
 def limbs(words: np.ndarray, bits: int) -> np.ndarray:
-    """Words (ints) as little-endian uint64 limbs: shape (..., ceil(bits / 64))."""
+    """Words (Python ints) as little-endian uint64 limbs: shape (..., ceil(bits / 64))."""
     n = max(1, -(-bits // 64))
     flat = np.asarray(words, dtype=object).reshape(-1)
     out = np.empty((flat.size, n), dtype=np.uint64)
