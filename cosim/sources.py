@@ -56,7 +56,6 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "interp_weight": (*_PKG, "interp_weight.sv"),
     "irnuc_line_buffer": ("irnuc_line_buffer.sv",),
     "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
-    "irnuc_method_probe": (*_PKG, "irnuc_method_probe.sv"),
 }
 # Simulation-only transactor around the top (batched cocotb driver, cocotb_tests/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")

@@ -2,10 +2,12 @@
 // "Methods"): the method encoding, the signed DSP chunking of the method multipliers, and
 // the per-method words of method_dpc_top's two streams.
 //
-// The method codes are those of nuc_fixed.layout.rtl_package (Method); the word layouts
-// are nuc_fixed.config.PipelineConfig.memories in stream order, and
-// cocotb_tests/test_method_pkg.py checks both against the Python side by simulating
-// cocotb_tests/hdl/irnuc_method_probe.sv (see there).
+// The method codes are the index in nuc_fixed.config.BASE_METHODS (as Method of
+// nuc_fixed.layout.rtl_package; irnuc.cosim.sources.method_parameters passes it); the word
+// layouts are nuc_fixed.config.PipelineConfig.memories in stream order (irnuc.cosim.stream
+// is their Python side). cocotb_tests/tb_method.py reads the stream widths back from every
+// simulated method_dpc_top and compares them with irnuc.cosim.stream, and the co-simulation
+// checks every field bit for bit.
 package irnuc_method_pkg;
 
   import irnuc_pkg::MulChunkBits;
