@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import time
 
 import numpy as np
+from bench_golden import best_time  # the median of timed runs after a warm-up
 
 from irnuc.nuc_fixed import load_pipeline, nuc_dpc_top, pack_words, pipeline_names
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
@@ -47,16 +47,6 @@ def random_coefficients(cfg, shape, rng) -> MethodCoefficients:
     return MethodCoefficients(cfg, fields, regs)
 
 
-def median_time(fn, repeats: int) -> float:
-    fn()  # warm-up (numba compilation)
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times))
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--frames", type=int, default=16)
@@ -73,7 +63,7 @@ def main() -> None:
     g = rng.integers(0, 2**base.gain_bits, (h, w))
     o = rng.integers(-(2 ** (base.offset_bits - 1)), 2 ** (base.offset_bits - 1), (h, w))
     words = pack_words(g, o, rng.random((h, w)) < 0.01, base)
-    t_base = median_time(lambda: nuc_dpc_top(raw, words, base), args.repeats) / n
+    t_base = best_time(lambda: nuc_dpc_top(raw, words, base), args.repeats) / n
     out: dict[str, object] = {"frame": [h, w], "frames": n,
                               "baseline": "nuc_dpc_top typical14 (numba, fused)",
                               "baseline_ms_per_frame": 1e3 * t_base, "methods": {}}
@@ -82,7 +72,7 @@ def main() -> None:
         if cfg.method == "two_point" and name != "typical14":
             continue
         c = random_coefficients(cfg, (h, w), rng)
-        t = median_time(lambda c=c: method_top(raw, c, inputs), args.repeats) / n
+        t = best_time(lambda c=c: method_top(raw, c, inputs), args.repeats) / n
         out["methods"][name] = {"method": cfg.method, "ms_per_frame": 1e3 * t,
                                 "ratio_to_baseline": t / t_base}
         print(f"{name:12s} {cfg.method:22s} {1e3 * t:8.2f} ms/frame  x{t / t_base:6.1f}")

@@ -309,13 +309,15 @@ class PipelineConfig:
                 f"pipeline {self.name!r}: gain_int_bits + gain_frac_bits = {self.gain_bits} "
                 "must be at least 1"
             )
-        for what, bits in self.datapath_widths().items():
-            if bits > 62:
-                # The golden model computes in int64; keep one bit of headroom for rounding.
-                raise ConfigError(
-                    f"pipeline {self.name!r}: the datapath {what} needs {bits} bits; "
-                    "the allowed maximum is 62"
-                )
+        widths = self.datapath_widths()
+        what = max(widths, key=lambda k: widths[k])
+        if widths[what] > 62:
+            # The golden model computes in int64; keep one bit of headroom for rounding.
+            name = {"core.s": "sum"}.get(what, what)
+            raise ConfigError(
+                f"pipeline {self.name!r}: the datapath {name} needs {widths[what]} bits; "
+                "the allowed maximum is 62"
+            )
         for mem in self.memories.values():
             # (A two-point word beyond 64 bits is refused where words are packed, as before.)
             if mem.word_bits > 64 and self.method != "two_point":

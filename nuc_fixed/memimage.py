@@ -144,8 +144,8 @@ def format_fields(cfg: PipelineConfig) -> dict[str, object]:
 
 
 def _format_digest_fields(manifest: dict[str, object]) -> dict[str, object]:
-    """The fields the format SHA-256 covers: the base formats, the frame size (swapped width
-    and height fit the same binary image) and, version 2, the method."""
+    """The fields the format SHA-256 covers: the base formats, the frame size (and,
+    version 2, the method)."""
     fmt = {k: manifest.get(k) for k in _HASHED_FIELDS}
     if manifest.get("version") == METHOD_IMAGE_VERSION:
         fmt["method_fields"] = manifest.get("method_fields")
@@ -344,8 +344,9 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
     return words, mcfg
 
 
-def _parse_hex(path: Path, data: bytes, cfg: PipelineConfig, n: int) -> np.ndarray:
-    nd = hex_digits(cfg)
+def _parse_hex(path: Path, data: bytes, cfg: PipelineConfig | int, n: int) -> np.ndarray:
+    """The words of a ``$readmemh`` file of ``cfg``'s words (or of words of ``cfg`` bits)."""
+    nd = hex_digits(cfg) if isinstance(cfg, PipelineConfig) else (cfg + 3) // 4
     try:
         lines = data.decode("ascii").splitlines()
     except UnicodeDecodeError as exc:
@@ -500,7 +501,7 @@ def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | 
         buf = np.zeros((h * w, 8), dtype=np.uint8)
         buf[:, :nb] = np.frombuffer(raw, dtype=np.uint8).reshape(h * w, nb)
         bw = buf.view("<u8").reshape(h, w).astype(np.uint64)
-        hw = _parse_hex_bits(d / m["hex_file"], contents[m["hex_file"]], wb, h * w).reshape(h, w)
+        hw = _parse_hex(d / m["hex_file"], contents[m["hex_file"]], wb, h * w).reshape(h, w)
         if not np.array_equal(hw, bw):
             idx = tuple(int(i) for i in np.argwhere(hw != bw)[0])
             raise MemImageError(f"{d / m['hex_file']}: word at (row, col) {idx} = "
@@ -512,19 +513,3 @@ def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | 
             for k, v in manifest["registers"].items()})  # type: ignore[union-attr]
     except UserError as exc:
         raise MemImageError(f"{d}: {exc}") from None
-
-
-def _parse_hex_bits(path: Path, data: bytes, word_bits: int, n: int) -> np.ndarray:
-    nd = (word_bits + 3) // 4
-    try:
-        lines = data.decode("ascii").splitlines()
-    except UnicodeDecodeError as exc:
-        raise MemImageError(f"{path}: not ASCII text ({exc}); one hex word per line is "
-                            "required") from None
-    if len(lines) != n:
-        raise MemImageError(f"{path}: {len(lines)} lines, expected {n} words")
-    bad = next((i for i, line in enumerate(lines)
-                if len(line) != nd or line.strip(_HEX_DIGITS)), None)
-    if bad is not None:
-        raise MemImageError(f"{path}: line {bad + 1} = {lines[bad]!r} is not {nd} hex digits")
-    return np.array([int(line, 16) for line in lines], dtype=np.uint64)
