@@ -5,10 +5,11 @@ Two modes:
 * ``per_cycle``: cocotb drives and samples every clock cycle's handshakes, cocotb's public
   API only, and every output code and marker is checked in numpy; goal >= 200 kpixel/s.
   The reported figure is the batched driver (``cocotb_tests/tb_batch.py``): nuc_dpc_top
-  inside the simulation-only transactor ``cocotb_tests/hdl/nuc_dpc_batch.sv``, Python
+  inside the simulation-only transactor ``cosim/hdl/nuc_dpc_batch.sv``, Python
   waking once per window of 32 cycles (one command word in: pixel items, coefficient
   words, per-cycle pause masks; one response word out: the outputs taken). Reference of
-  the same run: the lean one-wake-per-cycle driver (``cocotb_tests/tb_bench.py``), on
+  the same run: the testbenches' one-wake-per-cycle engine (``cocotb_tests/tb_bench.py``,
+  ``streams.run_streams``; the ``lean`` keys of the JSON), on
   irnuc's ports-only build and on cocotb's default ``--public-flat-rw``. Timed inside the
   simulator: stimulus conversion, the cycle loop and the comparison (simulator start-up
   is reported separately).
@@ -161,7 +162,7 @@ def main() -> None:
     print(f"per-cycle: {per['pixels_per_s'] / 1e3:.1f} kpixel/s batched (runs: "
           f"{per_runs}), "
           f"mismatches {per['mismatches']}, simulator process {per['process_seconds']:.1f} s; "
-          f"lean one-wake-per-cycle driver {lean['pixels_per_s'] / 1e3:.1f} kpixel/s "
+          f"one-wake-per-cycle engine {lean['pixels_per_s'] / 1e3:.1f} kpixel/s "
           f"(x{per['pixels_per_s'] / lean['pixels_per_s']:.1f})")
     print(f"bulk:      {bulk['pixels_per_s'] / 1e6:.2f} Mpixel/s end to end (runs: "
           f"{bulk_runs}; "

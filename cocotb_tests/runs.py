@@ -5,14 +5,17 @@ from __future__ import annotations
 
 import functools
 import os
+from collections.abc import Sequence
+from pathlib import Path
+from types import ModuleType
 
 from irnuc import cosim
+from irnuc.cosim import cocotb_test_names, metrics
 from irnuc.cosim.coverage import COVERAGE_ENV
-from irnuc.cosim.suite import METRICS_ENV, cocotb_test_names
 from irnuc.nuc_fixed import PipelineConfig
 
-__all__ = ["check_case", "cocotb_test_names", "coverage_json", "module_metrics", "run_module",
-           "waves_requested"]
+__all__ = ["case_params", "check_case", "cocotb_test_names", "coverage_json", "module_metrics",
+           "run_case", "run_module", "waves_requested"]
 
 
 def waves_requested() -> bool:
@@ -32,10 +35,10 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
     bld = cosim.build(top, cfg, waves=waves)
     cov = coverage_json(top, cfg, module)
     cov.unlink(missing_ok=True)
-    metrics = cov.with_suffix(".metrics.jsonl")
-    metrics.unlink(missing_ok=True)
+    metrics_file = cov.with_suffix(".metrics.jsonl")
+    metrics_file.unlink(missing_ok=True)
     xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed), COVERAGE_ENV: str(cov),
-                                      METRICS_ENV: str(metrics)},
+                                      metrics.METRICS_ENV: str(metrics_file)},
                     seed=seed, waves=waves, results_xml=cov.with_suffix(".xml"))
     results = cosim.read_results(xml)
     fired = cosim.assertion_failures(xml)
@@ -48,19 +51,26 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
 
 def module_metrics(top: str, cfg: PipelineConfig, module: str) -> list[dict]:
     """The metric lines the testbench recorded in its :func:`run_module` run."""
-    import json
-
     run_module(top, cfg, module)
-    path = coverage_json(top, cfg, module).with_suffix(".metrics.jsonl")
-    if not path.is_file():
-        return []
-    return [json.loads(ln) for ln in path.read_text().splitlines() if ln.startswith("{")]
+    return metrics.read(coverage_json(top, cfg, module).with_suffix(".metrics.jsonl"))
 
 
-def coverage_json(top: str, cfg: PipelineConfig, module: str):
+def coverage_json(top: str, cfg: PipelineConfig, module: str) -> Path:
     """The functional-coverage file a :func:`run_module` run exports."""
     tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
     return cosim.results_dir() / f"{tag}.coverage.json"
+
+
+def case_params(tb: ModuleType, configs: Sequence[str]) -> list[tuple[str, str]]:
+    """(configuration, cocotb test) of every test of testbench ``tb`` on every
+    configuration: the parameters of a pytest wrapper (one pytest test per cocotb test)."""
+    return [(c, t) for c in configs for t in cocotb_test_names(tb)]
+
+
+def run_case(top: str, cfg: PipelineConfig, tb: ModuleType, case: str) -> None:
+    """Fail unless cocotb test ``case`` of ``tb`` passed on ``top`` (one simulation of the
+    whole testbench per (top, configuration), run once)."""
+    check_case(run_module(top, cfg, tb.__name__), case)
 
 
 def check_case(results: dict[str, cosim.CaseResult], case: str) -> None:
@@ -68,3 +78,4 @@ def check_case(results: dict[str, cosim.CaseResult], case: str) -> None:
         raise AssertionError(f"cocotb test {case!r} did not run; results: {sorted(results)}")
     res = results[case]
     assert res.passed, f"cocotb test {case} failed:\n{res.message}"
+

@@ -1,5 +1,5 @@
 """Batched per-cycle driver: one frame through nuc_dpc_top inside the ``nuc_dpc_batch``
-transactor (``cocotb_tests/hdl/nuc_dpc_batch.sv``), Python waking once per window of
+transactor (``cosim/hdl/nuc_dpc_batch.sv``), Python waking once per window of
 ``Batch`` cycles instead of once per cycle.
 
 Same interface as ``tb_bench.py`` (env ``IRNUC_BENCH_IN``: npz with raw, words, expected;

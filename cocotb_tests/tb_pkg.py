@@ -1,10 +1,11 @@
-"""cocotb tests of ``hdl/irnuc_pkg.sv`` through ``cocotb_tests/hdl/irnuc_pkg_probe.sv``
-(run by ``cocotb_tests/test_pkg.py``).
+"""cocotb tests of ``hdl/irnuc_pkg.sv`` through the generated probe
+``cosim/hdl/irnuc_pkg_probe.sv`` (run by ``cocotb_tests/test_pkg.py``).
 
-The package is the RTL's single source of the mode encodings, the coefficient word layout
-and the DPC reciprocal table; here its values are read back from the simulated RTL and
-compared with the Python side: ``nuc_fixed.config.ROUNDING_MODES`` / ``OVERFLOW_MODES``,
-``nuc_fixed.pack_words`` / ``unpack_words`` and ``irnuc.nuc_fixed.dpc.reciprocal_table``.
+Every item of the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`) is read back from
+the simulated RTL and compared with the spec: each constant, range end and enum literal
+(and each enum's number of literals), each word layout (field positions, width, packing and
+unpacking against ``pack_words`` / ``unpack_words`` for the coefficient word), the
+package's width functions over their whole argument ranges and the DPC reciprocal table.
 """
 
 from __future__ import annotations
@@ -14,8 +15,7 @@ import numpy as np
 from cocotb.triggers import Timer
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.nuc_fixed import pack_words, unpack_words
-from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
+from irnuc.nuc_fixed import pack_words, rtl_spec, unpack_words
 from irnuc.nuc_fixed.dpc import reciprocal_table
 
 
@@ -24,29 +24,52 @@ async def _settle() -> None:
 
 
 @cocotb.test()
-async def mode_enums(dut) -> None:
-    """rounding_e / overflow_e: one literal per configuration mode, same codes, no more."""
-    for prefix, modes in (("rounding", ROUNDING_MODES), ("overflow", OVERFLOW_MODES)):
-        await _settle()
-        count = int(getattr(dut, f"{prefix}_count_o").value)
-        assert count == len(modes), f"{prefix}_e has {count} literals, Python {len(modes)}"
-        for name, code in modes.items():
-            port = getattr(dut, f"{prefix}_{name}_o", None)
-            assert port is not None, f"no literal for {prefix} mode {name!r} in irnuc_pkg"
-            assert int(port.value) == code, (
-                f"{prefix} {name}: RTL {int(port.value)}, Python {code}")
+async def constants_ranges_enums(dut) -> None:
+    """Every constant, range end, enum literal and enum size of the spec, by name."""
+    await _settle()
+    want = rtl_spec.probe_values()
+    wrong = []
+    for port, value in want.items():
+        handle = getattr(dut, port, None)
+        if handle is None:
+            wrong.append(f"{port}: no such port (regenerate: python -m irnuc.cosim.spec_files "
+                         "--write)")
+        elif int(handle.value) != value:
+            wrong.append(f"{port}: RTL {int(handle.value)}, spec {value}")
+    assert not wrong, "\n".join(wrong)
+    assert len(want) >= len(rtl_spec.CONSTANTS) + 2 * len(rtl_spec.RANGES) + 5
+
+
+@cocotb.test()
+async def width_functions(dut) -> None:
+    """mul_chunks(bits) for every operand width 1..64 and dpc_recip_shift(B) for every
+    output width the ranges allow: the RTL's functions against the spec's."""
+    await _settle()
+    chunks = int(dut.mul_chunks_o.value)
+    shifts = int(dut.dpc_recip_shift_o.value)
+    for b in range(1, rtl_spec.PROBE_MUL_BITS + 1):
+        got = (chunks >> (8 * (b - 1))) & 0xFF
+        assert got == rtl_spec.mul_chunks(b), f"mul_chunks({b}): RTL {got}"
+    for b in range(1, rtl_spec.PROBE_OUT_BITS + 1):
+        got = (shifts >> (8 * (b - 1))) & 0xFF
+        assert got == rtl_spec.dpc_recip_shift(b), f"dpc_recip_shift({b}): RTL {got}"
+    assert rtl_spec.PROBE_OUT_BITS == rtl_spec.PIPELINE_RANGES["out_bits"][1]
 
 
 @cocotb.test()
 async def coefficient_word_layout(dut) -> None:
-    """coef_word #(GW, OW)::word_t packs and unpacks exactly like pack_words / unpack_words."""
+    """coef_word #(GW, OW)::word_t and its lsb functions: the spec's layout, and packing
+    and unpacking exactly like pack_words / unpack_words."""
     cfg = tb_lib.config_from_env()
-    gw, ow = cfg.gain_bits, cfg.offset_bits
-    assert len(dut.word_o) == cfg.word_bits
+    lay = rtl_spec.COEF_WORD
+    fields = lay.layout(GainBits=cfg.gain_bits, OffsetBits=cfg.offset_bits)
+    assert fields == cfg.word_fields
     await _settle()
-    assert int(dut.word_bits_o.value) == cfg.word_bits
-    assert int(dut.offset_lsb_o.value) == gw
-    assert int(dut.bad_bit_o.value) == gw + ow
+    assert int(getattr(dut, rtl_spec.layout_port(lay, "bits")).value) == cfg.word_bits
+    for name, (lsb, width) in fields.items():
+        assert int(getattr(dut, rtl_spec.layout_port(lay, "lsb", name)).value) == lsb, name
+        assert len(getattr(dut, rtl_spec.layout_port(lay, "field_i", name))) == width, name
+    gw, ow = cfg.gain_bits, cfg.offset_bits
     rng = np.random.default_rng(tb_lib.seed_from_env())
     half = 1 << (ow - 1)
     n = 200
@@ -56,27 +79,30 @@ async def coefficient_word_layout(dut) -> None:
     bad = np.concatenate([[True, False, True, False], rng.random(n) < 0.5])
     words = pack_words(g, o, bad, cfg)
     ug, uo, ub = unpack_words(words, cfg)
+
+    def port(what: str, field: str = ""):
+        return getattr(dut, rtl_spec.layout_port(lay, what, field))
+
     for i in range(g.size):
-        dut.gain_i.value = int(g[i])
-        dut.offset_i.value = int(o[i]) & ((1 << ow) - 1)
-        dut.bad_i.value = int(bad[i])
-        dut.word_i.value = int(words[i])
+        port("field_i", "gain").value = int(g[i])
+        port("field_i", "offset").value = int(o[i]) & ((1 << ow) - 1)
+        port("field_i", "bad").value = int(bad[i])
+        port("word_i").value = int(words[i])
         await _settle()
-        got = int(dut.word_o.value)
+        got = int(port("word_o").value)
         assert got == int(words[i]), (f"gain {g[i]} offset {o[i]} bad {bad[i]}: RTL word "
                                       f"{got:#x}, pack_words {int(words[i]):#x}")
-        assert int(dut.gain_o.value) == int(ug[i])
-        assert int(dut.offset_o.value) == int(uo[i]) & ((1 << ow) - 1)
-        assert bool(int(dut.bad_o.value)) == bool(ub[i])
+        assert int(port("field_o", "gain").value) == int(ug[i])
+        assert int(port("field_o", "offset").value) == int(uo[i]) & ((1 << ow) - 1)
+        assert bool(int(port("field_o", "bad").value)) == bool(ub[i])
 
 
 @cocotb.test()
 async def reciprocal_table_matches(dut) -> None:
-    """The DPC reciprocal table of the RTL is irnuc.nuc_fixed.dpc.reciprocal_table (proven exact)."""
+    """The DPC reciprocal table of the RTL is irnuc.nuc_fixed.dpc.reciprocal_table (proven
+    exact by cocotb_tests/test_dpc_core.py)."""
     cfg = tb_lib.config_from_env()
     shift, table = reciprocal_table(cfg.out_bits)
-    await _settle()
-    assert int(dut.recip_shift_o.value) == shift
     assert len(dut.recip_o) == shift + 1
     for n in range(9):
         dut.recip_n_i.value = n

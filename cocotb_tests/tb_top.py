@@ -1,6 +1,8 @@
 """cocotb tests of ``nuc_dpc_top`` (run through ``cocotb_tests/test_nuc_dpc_top.py``).
 
-Every output pixel is compared bit for bit, in order, with ``nuc_fixed.nuc_dpc_top``.
+Every output pixel is compared bit for bit, in order, with ``nuc_fixed.nuc_dpc_top`` by
+one :class:`irnuc.cosim.TopScoreboard` per check; the streams ``s_pix``, ``s_coef`` and
+``m_pix`` are found by prefix (``tb_lib.top_sources``, ``tb_lib.top_sink``).
 """
 
 from __future__ import annotations
@@ -11,14 +13,21 @@ from cocotb.triggers import ClockCycles, RisingEdge
 
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.directed import corner_coefficients, dpc_bad_patterns, neighbour_maps
-from irnuc.cocotb_tests.tb_lib import Frame, golden_frame
+from irnuc.cocotb_tests.streams import coverage_sample, reset, run_streams
+from irnuc.cocotb_tests.tb_lib import golden_frame
 from irnuc.cosim import coverage
-from irnuc.nuc_fixed import nuc_core, unpack_words
+from irnuc.nuc_fixed import nuc_core, pack_words, unpack_words
 
 #: Pause patterns of the inputs (idle) and of the output (backpressure), all combinations
 #: in ``stream_patterns`` (cocotb_tests/test_nuc_dpc_top.py makes each a pytest parameter).
 IDLE = coverage.IDLE_PATTERNS
 BACKPRESSURE = coverage.BACKPRESSURE_PATTERNS
+
+
+async def _setup(dut, salt: int):
+    """(configuration, golden configuration, rng) of a test, after clock and reset."""
+    env = await tb_lib.setup(dut, salt)
+    return env.cfg, env.golden, env.rng
 
 
 def _sizes(cfg) -> list[tuple[int, int]]:
@@ -38,23 +47,21 @@ def _random_frames(rng, cfg, gcfg, n, h, w, bad_fraction=0.05):
 
 
 async def _check(dut, frames, rng, gcfg, **kw):
-    got, cycles, sink = await tb_lib.run_top_frames(dut, frames, rng, **kw)
-    tb_lib.assert_no_mismatch(tb_lib.check_frames(frames, got, gcfg), dut._log)
+    """Stream the frames, score them; fail on a mismatch or a framing error. The sink."""
+    sink, _ = await tb_lib.run_top_frames(dut, frames, rng, **kw)
+    tb_lib.assert_passed(tb_lib.check_frames(frames, sink, gcfg))
     assert int(dut.frame_err_o.value) == 0, "frame_err_o set on a well-formed stream"
-    return got, cycles, sink
+    return sink
 
 
 @cocotb.test()
 async def random_frames_full_rate(dut) -> None:
     """Back-to-back random frames at valid=1/ready=1: exact, and no bubble anywhere."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
+    cfg, gcfg, rng = await _setup(dut, 0)
     tb_lib.check_top_widths(dut, cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env())
-    await tb_lib.start_clock_and_reset(dut)
     h, w = min(cfg.max_height, 12), min(cfg.max_width, 20)
     frames = _random_frames(rng, cfg, gcfg, 3, h, w)
-    _, _, sink = await _check(dut, frames, rng, gcfg)
+    sink = await _check(dut, frames, rng, gcfg)
     n = 3 * h * w
     assert sink.last_cycle - sink.first_cycle == n - 1, (
         f"{n} outputs took {sink.last_cycle - sink.first_cycle + 1} cycles: bubbles")
@@ -63,10 +70,7 @@ async def random_frames_full_rate(dut) -> None:
 @cocotb.test()
 async def random_gaps_backpressure(dut) -> None:
     """Random idle cycles on both inputs and random output backpressure, many sizes."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 1)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 1)
     for i, (h, w) in enumerate(_sizes(cfg)):
         frames = _random_frames(rng, cfg, gcfg, 2, h, w, bad_fraction=0.2)
         idle = (0.3, 0.1, 0.5)[i % 3]
@@ -77,10 +81,7 @@ async def random_gaps_backpressure(dut) -> None:
 @cocotb.test()
 async def corner_codes(dut) -> None:
     """Largest code x largest gain, saturation at both ends, rounding ties."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 2)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 2)
     x, g, o, kinds = corner_coefficients(cfg, rng)
     w = min(cfg.max_width, 16)
     n = len(x)
@@ -91,7 +92,7 @@ async def corner_codes(dut) -> None:
     x = np.concatenate([x, np.zeros(pad, np.int64)]).reshape(h, w)
     g = np.concatenate([g, np.zeros(pad, np.int64)]).reshape(h, w)
     o = np.concatenate([o, np.zeros(pad, np.int64)]).reshape(h, w)
-    words = tb_lib.pack_words(g, o, np.zeros((h, w), bool), cfg)
+    words = pack_words(g, o, np.zeros((h, w), bool), cfg)
     frame = golden_frame(x, words, gcfg)
     await _check(dut, [frame], rng, gcfg, idle_pix=0.1, backpressure=0.1)
     # The set really covers what it claims (golden intermediates).
@@ -113,10 +114,7 @@ async def corner_codes(dut) -> None:
 @cocotb.test()
 async def dpc_patterns(dut) -> None:
     """Flagged pixels at borders, corners, in clusters, whole rows/columns, all bad."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 3)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 3)
     h, w = min(cfg.max_height, 10), min(cfg.max_width, 12)
     for bad in dpc_bad_patterns(h, w) + neighbour_maps(h, w):
         hh, ww = bad.shape
@@ -133,19 +131,13 @@ async def dpc_patterns(dut) -> None:
 @cocotb.test()
 async def reset_mid_frame(dut) -> None:
     """Reset in the middle of a frame, then a clean frame is exact."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 4)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 4)
     h, w = min(cfg.max_height, 8), min(cfg.max_width, 10)
     frames = _random_frames(rng, cfg, gcfg, 1, h, w)
-    dut.frame_width_i.value = w
-    dut.frame_height_i.value = h
-    pix, coef = tb_lib.top_sources(dut, frames, 0.1, 0.1)
-    sink = tb_lib.top_sink(dut, 0.2)
-    await tb_lib.run_streams(dut, [pix, coef], sink, (h * w) // 3, rng)
+    pix, coef = tb_lib.top_sources(dut, frames, 0.1, 0.1, rng)
+    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, 0.2, rng, expect=(h * w) // 3))
     # Abort: reset while pixels are in flight in both cores.
-    await tb_lib.reset(dut, 2)
+    await reset(dut, 2)
     assert int(dut.m_pix_valid_o.value) == 0, "output valid right after reset"
     await ClockCycles(dut.clk_i, 3)
     frames = _random_frames(rng, cfg, gcfg, 2, h, w)
@@ -155,9 +147,7 @@ async def reset_mid_frame(dut) -> None:
 @cocotb.test()
 async def checker_detects_mismatch(dut) -> None:
     """The checker fails when the golden model differs (another rounding mode)."""
-    cfg = tb_lib.config_from_env()
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 5)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, _, rng = await _setup(dut, 5)
     if cfg.frac_bits > 0:
         other = cfg.replace(rounding={"truncate": "half_up"}.get(cfg.rounding, "truncate"))
     else:
@@ -167,33 +157,28 @@ async def checker_detects_mismatch(dut) -> None:
     wrong = [golden_frame(f.raw, f.words, other) for f in frames]
     assert any((a.expected != b.expected).any() for a, b in zip(frames, wrong, strict=True)), \
         "the deliberately different golden model predicts the same frame"
-    got, _, _ = await tb_lib.run_top_frames(dut, frames, rng)
-    mism = tb_lib.check_frames(wrong, got, other)
+    sink, _ = await tb_lib.run_top_frames(dut, frames, rng)
+    mism = tb_lib.check_frames(wrong, sink, other)
     assert not mism.passed, "checker reported no mismatch against a different golden configuration"
     text = mism.lines[0]
     for key in ("frame", "x", "y", "raw", "gain", "offset", "expected", "got", " p ", " s ",
                 " r "):
         assert key in text, f"mismatch report lacks {key!r}: {text}"
     # ... and the same outputs pass against the right configuration.
-    assert tb_lib.check_frames(frames, got, cfg).passed
+    assert tb_lib.check_frames(frames, sink, cfg).passed
 
 
 @cocotb.test()
 async def framing_error_flag(dut) -> None:
     """A missing end-of-line marker sets the sticky frame_err_o; reset clears it."""
-    cfg = tb_lib.config_from_env()
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 6)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, _, rng = await _setup(dut, 6)
     h, w = min(cfg.max_height, 4), min(cfg.max_width, 5)
     frames = _random_frames(rng, cfg, cfg, 1, h, w)
-    dut.frame_width_i.value = w
-    dut.frame_height_i.value = h
     pix, coef = tb_lib.top_sources(dut, frames)
-    pix.values[w - 1][2] = 0  # drop eol of row 0
-    sink = tb_lib.top_sink(dut)
-    await tb_lib.run_streams(dut, [pix, coef], sink, h * w, rng)
+    pix.toggle(w - 1, "eol")  # drop eol of row 0
+    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, expect=h * w))
     assert int(dut.frame_err_o.value) == 1
-    await tb_lib.reset(dut)
+    await reset(dut)
     assert int(dut.frame_err_o.value) == 0
     await RisingEdge(dut.clk_i)
 
@@ -201,48 +186,39 @@ async def framing_error_flag(dut) -> None:
 @cocotb.test()
 async def model_frames(dut) -> None:
     """Frames of the physics model (with defects), calibrated by nuc_fixed."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
     from irnuc.cocotb_tests.model_frames import calibrated_model_frames
 
-    frames_raw, words = calibrated_model_frames(cfg, seed=tb_lib.seed_from_env())
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 7)
-    await tb_lib.start_clock_and_reset(dut)
+    frames_raw, words = calibrated_model_frames(tb_lib.config_from_env(),
+                                                seed=tb_lib.seed_from_env())
+    cfg, gcfg, rng = await _setup(dut, 7)
     frames = [golden_frame(f, words, gcfg) for f in frames_raw]
     _, _, bad = unpack_words(words, cfg)
     assert bad.any(), "the model frames carry no defect"
     await _check(dut, frames, rng, gcfg, idle_pix=0.05, idle_coef=0.05, backpressure=0.05)
 
 
-def _cov():
-    return coverage.model("nuc_dpc_top", tb_lib.config_from_env())
-
-
 @cocotb.test()
 async def stream_patterns(dut) -> None:
     """Every idle pattern x every backpressure pattern: exact; at full-rate input no cycle
     is lost inside the core (outputs + sink stalls = output cycles, across frames)."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 8)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 8)
     h, w = min(cfg.max_height, 5), min(cfg.max_width, 9)
     failures = []
     for idle in IDLE:
         for bp in BACKPRESSURE:
             frames = _random_frames(rng, cfg, gcfg, 2, h, w, bad_fraction=0.1)
-            got, _, sink = await tb_lib.run_top_frames(dut, frames, rng, idle_pix=idle,
-                                                       idle_coef=idle, backpressure=bp)
-            res = tb_lib.check_frames(frames, got, gcfg)
+            sink, _ = await tb_lib.run_top_frames(dut, frames, rng, idle_pix=idle,
+                                                  idle_coef=idle, backpressure=bp)
+            res = tb_lib.check_frames(frames, sink, gcfg)
             msg = "" if res.passed else res.report(3)
             if not msg and idle == "none":
                 try:
                     sink.check_throughput()
-                    _cov().sample("stream.back_to_back", "frames")
+                    coverage_sample("stream.back_to_back", "frames")
                 except AssertionError as exc:
                     msg = str(exc)
             tb_lib.record(pattern=[idle, bp], passed=not msg, message=msg,
-                          stalls=sink.stalls, outputs=len(got))
+                          stalls=sink.stalls, outputs=len(sink.got))
             if msg:
                 failures.append(f"idle {idle} / backpressure {bp}: {msg}")
     assert int(dut.frame_err_o.value) == 0, "frame_err_o set on a well-formed stream"
@@ -260,10 +236,7 @@ async def frame_size_changes(dut) -> None:
     size changes (docs/rtl.md, frame size rule): frames changing size back to back here
     have at least 24 pixels; the small extreme frames each follow an idle input.
     """
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 9)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 9)
     h, w = min(cfg.max_height, 4), min(cfg.max_width, 6)
     back_to_back = [(h, w), (h, w + 1), (h + 1, w + 1), (h + 2, w + 1), (h, w), (h, w)]
     alone = [(1, 1), (1, 1), (1, min(cfg.max_width, 5)), (min(cfg.max_height, 5), 1),
@@ -282,13 +255,13 @@ async def frame_size_changes(dut) -> None:
             await _check(dut, [frame(hw)], rng, gcfg, backpressure=bp)
             # A _check of its own starts after the previous frame left the core: the
             # input was idle for at least the pipeline latency (a gap > 0).
-            _cov().sample_frames([prev, hw], [1])
+            coverage.model("nuc_dpc_top", cfg).sample_frames([prev, hw], [1])
             prev = hw
 
 
 async def _inject(dut, cfg, rng, cause: str) -> int:
     """One frame-error cause alone (or none: ``control``); returns frame_err_o after it."""
-    await tb_lib.reset(dut)
+    await reset(dut)
     h, w = min(cfg.max_height, 3), min(cfg.max_width, 4)
     gcfg = cfg
     if cause in ("sof_missing", "sof_unexpected", "eol_missing", "eol_unexpected", "control"):
@@ -296,12 +269,9 @@ async def _inject(dut, cfg, rng, cause: str) -> int:
         pix, coef = tb_lib.top_sources(dut, frames)
         row = {"sof_missing": 0, "sof_unexpected": w + 1, "eol_missing": w - 1,
                "eol_unexpected": 1 if w > 2 else 0}.get(cause)
-        if cause.startswith("sof"):
-            pix.values[row][1] ^= 1
-        elif cause.startswith("eol"):
-            pix.values[row][2] ^= 1
-        sink = tb_lib.top_sink(dut)
-        await tb_lib.run_streams(dut, [pix, coef], sink, h * w, rng)
+        if row is not None:
+            pix.toggle(row, cause[:3])
+        await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, expect=h * w))
         await ClockCycles(dut.clk_i, 2)
         return int(dut.frame_err_o.value)
     # An illegal size: legal when the frame's first pixel is taken at both ports with an
@@ -312,8 +282,8 @@ async def _inject(dut, cfg, rng, cause: str) -> int:
     pix, coef = tb_lib.top_sources(dut, frames)
     del pix.values[wa + 1:], coef.values[wa + 1:]  # frame A and B's first pixel only
     nuc = len(coverage.pipeline_stages("nuc_core", cfg))
-    await tb_lib.run_streams(dut, [pix, coef], tb_lib.top_sink(dut), 10**9, rng,
-                             stop=lambda c: pix.done and c >= pix.taken[-1] + nuc + 4)
+    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut),
+                      stop=lambda c: pix.done and c >= pix.taken[-1] + nuc + 4)
     wbits, hbits = len(dut.frame_width_i), len(dut.frame_height_i)
     bad = {"width_zero": (0, None), "height_zero": (None, 0),
            "width_over_max": (min(cfg.max_width + 1, (1 << wbits) - 1), None),
@@ -332,9 +302,7 @@ async def frame_error_causes(dut) -> None:
     """Every cause of frame_err_o alone sets it (sof missing or unexpected, eol missing or
     unexpected, width or height 0 or above the maximum); a clean frame does not; reset
     clears it."""
-    cfg = tb_lib.config_from_env()
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 10)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, _, rng = await _setup(dut, 10)
     assert await _inject(dut, cfg, rng, "control") == 0, "frame_err_o set by a clean frame"
     wrong = []
     for cause in coverage.FRAME_ERRORS:
@@ -346,8 +314,8 @@ async def frame_error_causes(dut) -> None:
         if err != 1:
             wrong.append(cause)
         else:
-            _cov().sample("frame.error", cause)
-    await tb_lib.reset(dut)
+            coverage_sample("frame.error", cause)
+    await reset(dut)
     assert int(dut.frame_err_o.value) == 0, "reset did not clear frame_err_o"
     coverage.export()
     assert not wrong, f"frame_err_o stayed 0 for: {', '.join(wrong)}"
@@ -371,46 +339,40 @@ async def reset_each_stage(dut) -> None:
     """Reset while the leading item is in each pipeline stage, and during the DPC's flush;
     each time the next frame is exact. The stage model is checked first: the first output
     leaves len(stages) + W + 1 cycles after the first pixel was taken (docs/rtl.md)."""
-    cfg = tb_lib.config_from_env()
-    gcfg = tb_lib.golden_config(cfg)
-    rng = np.random.default_rng(tb_lib.seed_from_env() + 11)
-    await tb_lib.start_clock_and_reset(dut)
+    cfg, gcfg, rng = await _setup(dut, 11)
     h, w = min(cfg.max_height, 3), min(cfg.max_width, 4)
     stages = coverage.pipeline_stages("nuc_dpc_top", cfg)[:-1]
     frames = _random_frames(rng, cfg, gcfg, 1, h, w)
     pix, coef = tb_lib.top_sources(dut, frames)
-    sink = tb_lib.top_sink(dut)
-    await tb_lib.run_streams(dut, [pix, coef], sink, h * w, rng)
+    sink = tb_lib.top_sink(dut, expect=h * w)
+    await run_streams(dut, [pix, coef], sink)
     latency = sink.first_cycle - pix.taken[0]
     assert latency == len(stages) + w + 1, (
         f"first output {latency} cycles after the first pixel; the stage model says "
         f"{len(stages) + w + 1}")
     for k in range(latency + 1):
-        await tb_lib.reset(dut)
+        await reset(dut)
         frames = _random_frames(rng, cfg, gcfg, 1, h, w)
         pix, coef = tb_lib.top_sources(dut, frames)
-        await tb_lib.run_streams(dut, [pix, coef], tb_lib.top_sink(dut), 10**9, rng,
-                                 stop=lambda c, p=pix, k=k: bool(p.taken) and
-                                 c >= p.taken[0] + k)
-        await tb_lib.reset(dut)
-        _cov().sample("reset.stage", _stage_at(cfg, w, k))
+        await run_streams(dut, [pix, coef], tb_lib.top_sink(dut),
+                          stop=lambda c, p=pix, k=k: bool(p.taken) and c >= p.taken[0] + k)
+        await reset(dut)
+        coverage_sample("reset.stage", _stage_at(cfg, w, k))
         assert int(dut.m_pix_valid_o.value) == 0
         await _check(dut, _random_frames(rng, cfg, gcfg, 1, h, w), rng, gcfg)
     # During the flush: a frame, no next pixel, reset while the phantoms push it out.
     wf = min(cfg.max_width, 12)
     nuc = len(coverage.pipeline_stages("nuc_core", cfg))
     for k in range(1, 4):
-        await tb_lib.reset(dut)
+        await reset(dut)
         frames = _random_frames(rng, cfg, gcfg, 1, 1, wf)
         pix, coef = tb_lib.top_sources(dut, frames)
-        await tb_lib.run_streams(
-            dut, [pix, coef], tb_lib.top_sink(dut), 10**9, rng,
+        await run_streams(
+            dut, [pix, coef], tb_lib.top_sink(dut),
             stop=lambda c, p=pix, k=k: p.done and c >= p.taken[-1] + nuc + 2
             + k * max(1, wf // 4))
-        await tb_lib.reset(dut)
-        _cov().sample("reset.stage", "flush")
+        await reset(dut)
+        coverage_sample("reset.stage", "flush")
         await _check(dut, _random_frames(rng, cfg, gcfg, 1, h, w), rng, gcfg)
     coverage.export()
 
-
-__all__ = ["Frame"]

@@ -3,25 +3,22 @@
 * every named configuration (and every mode variant of ``nuc_core``) reaches 100 % of its
   bins over the testbenches run for it; an unreachable bin is removed with its reason;
 * the merge, the summary and the ``coverage.dat`` reader on small hand-made data (so the
-  100 % check can fail: an unhit bin is reported by name);
-* ``run_suite(coverage=True)``: ``SuiteResult.coverage`` (functional bins, code coverage
-  per module) and ``coverage.json``.
+  100 % check can fail: an unhit bin is reported by name).
+
+``run_suite(coverage=True)`` is tested in ``tests/test_suite.py``.
 """
 
 from __future__ import annotations
 
-import json
-
 import pytest
 
-from irnuc import cosim
+from irnuc.cocotb_tests import tb_dpc, tb_nuc, tb_top
 from irnuc.cocotb_tests.runs import coverage_json, run_module
 from irnuc.cocotb_tests.test_nuc_core import _VARIANTS, _config
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
-TB = {"nuc_dpc_top": "irnuc.cocotb_tests.tb_top", "dpc_core": "irnuc.cocotb_tests.tb_dpc",
-      "nuc_core": "irnuc.cocotb_tests.tb_nuc"}
+TB = {"nuc_dpc_top": tb_top.__name__, "dpc_core": tb_dpc.__name__, "nuc_core": tb_nuc.__name__}
 
 
 def _labels() -> list[str]:
@@ -93,25 +90,3 @@ def test_code_coverage_from_a_coverage_dat(tmp_path) -> None:
     assert cc["nuc_core"]["line"] == {"hit": 1, "total": 2, "percent": 50.0}
     assert cc["nuc_core"]["toggle"]["percent"] == 50.0
     assert cc["nuc_core"]["missed_lines"] == ["nuc_core.sv:12"]
-
-
-@pytest.mark.cosim
-@pytest.mark.slow
-def test_run_suite_collects_coverage(tmp_path) -> None:
-    case = cosim.SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB["nuc_dpc_top"],
-                           tests=("corner_codes", "frame_error_causes"))
-    res = cosim.run_suite([case], tmp_path, coverage=True)
-    assert res.passed, [(o.test, o.message) for o in res.outcomes]
-    f = res.coverage["functional"]["configurations"]["minimal"]
-    pts = f["coverpoints"]
-    assert pts["frame.error"]["hit"] == pts["frame.error"]["total"]
-    assert pts["nuc.round.half_even"]["hit"] > 0
-    assert 0 < f["hit"] < f["total"]  # two tests do not reach every bin
-    code = res.coverage["code"]["minimal"]
-    assert {"nuc_core", "dpc_core", "dpc_ctrl", "nuc_dpc_top"} <= set(code)
-    assert 0 < code["dpc_ctrl"]["line"]["percent"] <= 100
-    assert 0 < code["nuc_core"]["toggle"]["percent"] <= 100
-    on_disk = json.loads((tmp_path / "coverage.json").read_text())
-    assert on_disk["functional"]["configurations"]["minimal"]["hit"] == f["hit"]
-    # Without coverage=True there is none.
-    assert cosim.run_suite([case], tmp_path / "plain").coverage is None

@@ -7,19 +7,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
+from irnuc.cocotb_tests import tb_dpc
+from irnuc.cocotb_tests.runs import case_params, run_case
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 from irnuc.nuc_fixed.dpc import reciprocal_table
-
-MODULE = "irnuc.cocotb_tests.tb_dpc"
 
 
 @pytest.mark.cosim
 @pytest.mark.slow
-@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
-@pytest.mark.parametrize("config", pipeline_names())
+@pytest.mark.parametrize(("config", "case"), case_params(tb_dpc, pipeline_names()))
 def test_dpc_core(config: str, case: str) -> None:
-    check_case(run_module("dpc_core", load_pipeline(config), MODULE), case)
+    run_case("dpc_core", load_pipeline(config), tb_dpc, case)
 
 
 def _out_bits_to_prove() -> list[int]:

@@ -8,10 +8,9 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
+from irnuc.cocotb_tests import tb_nuc
+from irnuc.cocotb_tests.runs import case_params, run_case
 from irnuc.nuc_fixed import PipelineConfig, load_pipeline, pipeline_names
-
-MODULE = "irnuc.cocotb_tests.tb_nuc"
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
@@ -31,7 +30,6 @@ def _config(variant: str) -> PipelineConfig:
     return cfg.replace(**changes) if changes else cfg
 
 
-@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
-@pytest.mark.parametrize("variant", list(_VARIANTS))
+@pytest.mark.parametrize(("variant", "case"), case_params(tb_nuc, list(_VARIANTS)))
 def test_nuc_core(variant: str, case: str) -> None:
-    check_case(run_module("nuc_core", _config(variant), MODULE), case)
+    run_case("nuc_core", _config(variant), tb_nuc, case)

@@ -4,19 +4,19 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, module_metrics, run_module
+from irnuc.cocotb_tests import tb_top
+from irnuc.cocotb_tests.runs import case_params, module_metrics, run_case
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
-MODULE = "irnuc.cocotb_tests.tb_top"
+MODULE = tb_top.__name__
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 
-@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
-@pytest.mark.parametrize("config", pipeline_names())
+@pytest.mark.parametrize(("config", "case"), case_params(tb_top, pipeline_names()))
 def test_nuc_dpc_top(config: str, case: str) -> None:
-    check_case(run_module("nuc_dpc_top", load_pipeline(config), MODULE), case)
+    run_case("nuc_dpc_top", load_pipeline(config), tb_top, case)
 
 
 @pytest.mark.parametrize("backpressure", BACKPRESSURE_PATTERNS)

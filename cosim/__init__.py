@@ -4,15 +4,17 @@
 * :mod:`~irnuc.cosim.build` caches Verilator builds and runs cocotb test modules on them in
   a child process group (timeouts; children die with the parent);
 * :mod:`~irnuc.cosim.bulk` drives the C++ bulk harness;
-* :mod:`~irnuc.cosim.suite` runs a co-simulation suite as a Python API (builds first,
-  one timer per test, partial results kept);
 * :mod:`~irnuc.cosim.scoreboard` is the one in-order scoreboard of every testbench, the
-  bulk check and the report;
+  bulk check and the report; :mod:`~irnuc.cosim.metrics` carries what a testbench records
+  to whoever runs it; :mod:`~irnuc.cosim.coverage` is the functional and code coverage;
+* :mod:`~irnuc.cosim.spec_files` writes the SystemVerilog generated from the
+  shared-constants spec (``irnuc.nuc_fixed.rtl_spec``);
 * :mod:`~irnuc.cosim.synth` synthesizes the RTL (pyosys: xc7, ECP5), places and routes it
   (nextpnr-ecp5: Fmax) and checks it structurally (no combinational input-to-output path);
 * :mod:`~irnuc.cosim._cocotb_adapter` holds the only use of cocotb internals.
 
-It imports the golden model (``irnuc.nuc_fixed``) and never the reports or the command line.
+It imports the golden model (``irnuc.nuc_fixed``) and never the testbenches, the
+campaigns that run them (``irnuc.verif``), the reports or the command line.
 """
 
 from irnuc.cosim.build import (
@@ -24,12 +26,19 @@ from irnuc.cosim.build import (
     assertion_failures,
     build,
     build_binary,
+    cocotb_test_names,
     read_results,
     results_dir,
     run,
 )
 from irnuc.cosim.bulk import BulkResult, build_bulk, check_bulk, run_bulk
-from irnuc.cosim.scoreboard import Scoreboard, ScoreResult, TopScoreboard
+from irnuc.cosim.scoreboard import (
+    DpcScoreboard,
+    NucScoreboard,
+    Scoreboard,
+    ScoreResult,
+    TopScoreboard,
+)
 from irnuc.cosim.sources import (
     ASSERT_DEFINE,
     HDL_DIR,
@@ -37,14 +46,6 @@ from irnuc.cosim.sources import (
     SIM_HDL_DIR,
     hdl_sources,
     top_parameters,
-)
-from irnuc.cosim.suite import (
-    SuiteCase,
-    SuiteResult,
-    TestOutcome,
-    cocotb_test_names,
-    merge_results,
-    run_suite,
 )
 from irnuc.cosim.verilator import (
     RtlError,
@@ -66,13 +67,12 @@ __all__ = [
     "Build",
     "BulkResult",
     "CaseResult",
+    "DpcScoreboard",
+    "NucScoreboard",
     "RtlError",
     "ScoreResult",
     "Scoreboard",
     "SimulationTimeout",
-    "SuiteCase",
-    "SuiteResult",
-    "TestOutcome",
     "TopScoreboard",
     "assertion_failures",
     "build",
@@ -83,12 +83,10 @@ __all__ = [
     "fst_supported",
     "hdl_sources",
     "lint",
-    "merge_results",
     "read_results",
     "results_dir",
     "run",
     "run_bulk",
-    "run_suite",
     "top_parameters",
     "verilator_executable",
     "verilator_root",

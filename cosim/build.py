@@ -8,6 +8,8 @@ never rebuilt. A file lock makes parallel workers share a build instead of racin
 
 from __future__ import annotations
 
+import ast
+import inspect
 import json
 import os
 import sys
@@ -15,6 +17,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
 
 from irnuc.common.cache import cache_dir
 from irnuc.common.digest import digest, files_digest
@@ -262,6 +265,25 @@ def assertion_failures(results_xml: Path) -> list[str]:
             if "Assertion failed" in ln][:50]
 
 
+def cocotb_test_names(module: ModuleType | str) -> list[str]:
+    """The cocotb tests a testbench module defines, in order: its functions decorated with
+    ``@cocotb.test``, read from its source with :mod:`ast` (nothing runs, no cocotb
+    internals). A name must be that of a module the caller has imported, so that the
+    dependency is an import the layer contract sees."""
+    if isinstance(module, str):
+        if module not in sys.modules:
+            raise ValueError(f"testbench module {module} is not imported; import it first")
+        module = sys.modules[module]
+    names = []
+    for node in ast.parse(inspect.getsource(module)).body:
+        if isinstance(node, ast.AsyncFunctionDef | ast.FunctionDef):
+            for dec in node.decorator_list:
+                target = dec.func if isinstance(dec, ast.Call) else dec
+                if ast.unparse(target) == "cocotb.test":
+                    names.append(node.name)
+    return names
+
+
 def read_results(path: Path) -> dict[str, CaseResult]:
     """Parse a cocotb JUnit XML file into ``{test name: result}``."""
     out: dict[str, CaseResult] = {}
@@ -286,6 +308,7 @@ __all__ = [
     "build_binary",
     "build_digest",
     "cached_build",
+    "cocotb_test_names",
     "coverage_file",
     "digest",
     "read_results",

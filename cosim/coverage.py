@@ -51,7 +51,7 @@ from typing import Any
 
 import numpy as np
 
-from irnuc.nuc_fixed import PipelineConfig, nuc_core
+from irnuc.nuc_fixed import PipelineConfig, nuc_core, rtl_spec
 from irnuc.nuc_fixed.dpc import neighbour_counts
 
 #: Environment variable naming the JSON file a testbench exports its coverage to.
@@ -69,43 +69,16 @@ FRAME_SIZES = ("1x1", "1xN", "Nx1", "small", "width_max", "height_max")
 TRANSITIONS = ("same_size", "width_only", "height_only", "both", "after_idle")
 FRAME_ERRORS = ("sof_missing", "sof_unexpected", "eol_missing", "eol_unexpected",
                 "width_zero", "height_zero", "width_over_max", "height_over_max")
-#: Pause patterns of the stream sources and sinks (cocotb_tests.tb_stream).
+#: Pause patterns of the stream sources and sinks (cocotb_tests.streams.pause_pattern).
 IDLE_PATTERNS = ("none", "random", "bursty", "alternate")
 BACKPRESSURE_PATTERNS = ("none", "random", "bursty", "alternate")
 
 
 def pipeline_stages(top: str, cfg: PipelineConfig) -> list[str]:
     """The register stages an item passes in ``top``, in order (one name per register;
-    docs/rtl.md, "Architecture"), ending with ``flush`` for the DPC's flush state."""
-    def parts(a: int, b: int) -> int:
-        return -(-a // 17) * -(-b // 17)
-
-    def clog2(n: int) -> int:
-        return max(0, (n - 1).bit_length())
-
-    # A multiply is two registers: the DSP block's input and output registers.
-    nuc = (["nuc_input", "nuc_product", "nuc_product"]
-           + ["nuc_sum"] * clog2(parts(cfg.adc_bits, cfg.gain_bits) + 1)
-           + ["nuc_round", "nuc_output"])
-    b = cfg.out_bits
-    dpc = (["dpc_input", "dpc_window", "dpc_mask"] + ["dpc_sum"] * 4
-           + ["dpc_multiply", "dpc_multiply"]
-           + ["dpc_product"] * clog2(parts(b + 3, b + 7)) + ["dpc_output"])
-    if top == "nuc_core":
-        return _numbered(nuc)
-    if top == "dpc_core":
-        return _numbered([*dpc, "flush"])
-    return _numbered(["top_input", *nuc, *dpc, "flush"])
-
-
-def _numbered(stages: list[str]) -> list[str]:
-    """Every register its own name: a stage of several registers gets ``_1``, ``_2``, ..."""
-    seen: dict[str, int] = {}
-    out = []
-    for s in stages:
-        seen[s] = seen.get(s, 0) + 1
-        out.append(f"{s}_{seen[s]}" if stages.count(s) > 1 else s)
-    return out
+    docs/rtl.md, "Architecture"), ending with ``flush`` for the DPC's flush state: the
+    stage model of :func:`irnuc.nuc_fixed.rtl_spec.pipeline_stages` for ``cfg``'s widths."""
+    return rtl_spec.pipeline_stages(top, cfg.adc_bits, cfg.gain_bits, cfg.out_bits)
 
 
 class CoverageModel:

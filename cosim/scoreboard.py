@@ -1,12 +1,17 @@
 """The in-order scoreboard: every output of the RTL against the golden model, bit for bit.
 
-One implementation serves the cocotb testbenches (outputs observed one per cycle), the
-bulk C++ harness (outputs read back as arrays) and the report (mismatch triage lines).
-Expected values are queued as arrays, observed values are appended as they come, and the
-comparison is done in numpy when the result is asked for, field by field, in stream
-order. Missing and extra outputs are counted; the first ``max_report`` mismatches get a
-full description from the ``describe`` callback (for the pipeline top: frame, x, y, the
-inputs, expected, got and the golden intermediates p, s, r).
+One implementation (:class:`Scoreboard`) serves every cocotb testbench (outputs collected
+by a sink), the bulk C++ harness (outputs read back as arrays) and the report (mismatch
+triage lines). Expected values are queued as arrays, observed values are added as they
+come, and the comparison is done in numpy when the result is asked for, field by field,
+in stream order. Missing and extra outputs are counted; the first ``max_report``
+mismatches get a full description from the ``describe`` callback.
+
+A DUT's scoreboard only says what to expect and how to describe a mismatch, from the
+golden model: :class:`TopScoreboard` (``nuc_dpc_top``: frame, x, y, the inputs, expected,
+got and the golden intermediates p, s, r), :class:`NucScoreboard` (``nuc_core``) and
+:class:`DpcScoreboard` (``dpc_core``: the 3 x 3 window). A scoreboard of a new stream (a
+coefficient write-back, say) is a :class:`Scoreboard` with its fields and a ``describe``.
 """
 
 from __future__ import annotations
@@ -16,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from irnuc.nuc_fixed import PipelineConfig, nuc_core, nuc_dpc_top, unpack_words
+from irnuc.nuc_fixed import PipelineConfig, dpc_core, nuc_core, nuc_dpc_top, unpack_words
 
 
 @dataclass(frozen=True)
@@ -70,12 +75,10 @@ class Scoreboard:
     max_report: int = 10
     _expected: dict[str, list[np.ndarray]] = field(default_factory=dict)
     _observed: dict[str, list[np.ndarray]] = field(default_factory=dict)  # array chunks
-    _pending: dict[str, list[int]] = field(default_factory=dict)  # observe() since the last chunk
 
     def __post_init__(self) -> None:
         self._expected = {f: [] for f in self.fields}
         self._observed = {f: [] for f in self.fields}
-        self._pending = {f: [] for f in self.fields}
 
     # ---- feeding -------------------------------------------------------------------
     def expect(self, **arrays: np.ndarray) -> None:
@@ -86,20 +89,8 @@ class Scoreboard:
         for k, a in arrays.items():
             self._expected[k].append(np.asarray(a, dtype=np.int64).ravel())
 
-    def observe(self, **values: int) -> None:
-        """Record one output as it leaves the DUT."""
-        for k in self.fields:
-            self._pending[k].append(int(values[k]))
-
-    def _flush(self) -> None:
-        for k in self.fields:
-            if self._pending[k]:
-                self._observed[k].append(np.asarray(self._pending[k], dtype=np.int64))
-                self._pending[k] = []
-
     def observe_arrays(self, **arrays: np.ndarray) -> None:
-        """Record many outputs at once (stream order), kept as arrays."""
-        self._flush()
+        """Record outputs (stream order; a sink's ``outputs()``), kept as arrays."""
         for k in self.fields:
             self._observed[k].append(np.asarray(arrays[k], dtype=np.int64).ravel())
 
@@ -109,14 +100,12 @@ class Scoreboard:
 
     @property
     def n_observed(self) -> int:
-        f = self.fields[0]
-        return sum(a.size for a in self._observed[f]) + len(self._pending[f])
+        return sum(a.size for a in self._observed[self.fields[0]])
 
     # ---- result --------------------------------------------------------------------
     def result(self) -> ScoreResult:
         exp = {k: (np.concatenate(v) if v else np.zeros(0, np.int64))
                for k, v in self._expected.items()}
-        self._flush()
         got = {k: (np.concatenate(v) if v else np.zeros(0, np.int64))
                for k, v in self._observed.items()}
         n, m = self.n_expected, self.n_observed
@@ -204,3 +193,65 @@ def describe_top_pixel(raw: np.ndarray, words: np.ndarray, golden: PipelineConfi
             f"got {got['data']} | sof {got['sof']} (expected {exp_sof}) eol {got['eol']} "
             f"(expected {exp_eol}) | golden p {int(it.p[0, 0])} s {int(it.s[0, 0])} "
             f"r {int(it.r[0, 0])} y_nuc {int(it.y[0, 0])}")
+
+
+class NucScoreboard(Scoreboard):
+    """The scoreboard of ``nuc_core``: codes, gains and offsets in, ``pix_data`` and the
+    ``user`` side band out (the side band passes unchanged).
+
+    A mismatch line gives the item, x, gain, offset, user, expected, got and the golden
+    intermediates p, s, r.
+    """
+
+    def __init__(self, golden: PipelineConfig, max_report: int = 10) -> None:
+        super().__init__(("pix_data", "user"), self._describe, max_report)
+        self.golden = golden
+        self._inputs: list[np.ndarray] = []  # (4, n) blocks: x, g, o, user
+
+    def expect_items(self, x: np.ndarray, g: np.ndarray, o: np.ndarray,
+                     user: np.ndarray) -> None:
+        """Queue items (1-D arrays of equal length; offsets signed)."""
+        x, g, o, user = (np.asarray(a, dtype=np.int64).ravel() for a in (x, g, o, user))
+        self._inputs.append(np.stack([x, g, o, user]))
+        self.expect(pix_data=nuc_core(x, g, o, self.golden), user=user)
+
+    def _describe(self, index: int, got: Mapping[str, int]) -> str:
+        x, g, o, u = np.concatenate(self._inputs, axis=1)[:, index]
+        it = nuc_core(np.array([x]), np.array([g]), np.array([o]), self.golden,
+                      intermediates=True)
+        return (f"item {index}: x {x} gain {g} offset {o} user {u} | expected {int(it.y[0])} "
+                f"got {got['pix_data']} (user {got['user']}) | golden p {int(it.p[0])} "
+                f"s {int(it.s[0])} r {int(it.r[0])}")
+
+
+class DpcScoreboard(Scoreboard):
+    """The scoreboard of ``dpc_core``: frames of NUC outputs y and bad maps in, ``pix_data``,
+    ``sof`` and ``eol`` out. A mismatch line gives frame, x, y, the value and flag, the
+    3 x 3 window of values and flags, expected and got, and the markers."""
+
+    def __init__(self, golden: PipelineConfig, max_report: int = 10) -> None:
+        super().__init__(("pix_data", "sof", "eol"), self._describe, max_report)
+        self.golden = golden
+        self._frames: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # y, bad, exp
+        self._starts: list[int] = []
+
+    def expect_frame(self, y: np.ndarray, bad: np.ndarray) -> None:
+        y, bad = np.asarray(y, dtype=np.int64), np.asarray(bad, dtype=bool)
+        exp = dpc_core(y, bad, self.golden).astype(np.int64)
+        h, w = y.shape
+        pos = np.arange(h * w)
+        self._starts.append(self.n_expected)
+        self._frames.append((y, bad, exp))
+        self.expect(pix_data=exp.ravel(), sof=(pos == 0).astype(np.int64),
+                    eol=(pos % w == w - 1).astype(np.int64))
+
+    def _describe(self, index: int, got: Mapping[str, int]) -> str:
+        f = int(np.searchsorted(self._starts, index, side="right")) - 1
+        y, bad, exp = self._frames[f]
+        w = y.shape[1]
+        r, c = divmod(index - self._starts[f], w)
+        win = np.s_[max(r - 1, 0): r + 2, max(c - 1, 0): c + 2]
+        return (f"frame {f} x {c} y {r}: y {int(y[r, c])} bad {int(bad[r, c])} window "
+                f"{y[win].tolist()} bad {bad[win].astype(int).tolist()} | expected "
+                f"{int(exp[r, c])} got {got['pix_data']} | sof {got['sof']}/{int(r == c == 0)} "
+                f"eol {got['eol']}/{int(c == w - 1)}")

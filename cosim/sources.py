@@ -6,16 +6,17 @@ Widths and modes come only from a :class:`~irnuc.nuc_fixed.config.PipelineConfig
 
 from __future__ import annotations
 
-import importlib
 from pathlib import Path
 
+import irnuc.hdl
 from irnuc.common.errors import UserError
 from irnuc.nuc_fixed.config import PipelineConfig
 
 #: Folder of the SystemVerilog sources (the design).
-HDL_DIR = Path(importlib.import_module("irnuc.hdl").__file__).resolve().parent
-#: Simulation-only HDL (probes that expose package contents to cocotb), not the design.
-SIM_HDL_DIR = Path(importlib.import_module("irnuc.cocotb_tests").__file__).resolve().parent / "hdl"
+HDL_DIR = Path(irnuc.hdl.__file__).resolve().parent
+#: Simulation-only HDL of the co-simulation (the package probe, the batched transactor),
+#: not the design.
+SIM_HDL_DIR = Path(__file__).resolve().parent / "hdl"
 
 _PKG = ("irnuc_pkg.sv", "irnuc_method_pkg.sv")
 _ASSERT = ("irnuc_stream_assert.sv",)
@@ -32,7 +33,7 @@ _TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
 _TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
 #: Module -> the HDL files it needs, in dependency order (one module per file; the
-#: packages first). Files are looked up in ``hdl/``, then in ``cocotb_tests/hdl/``.
+#: packages first). Files are looked up in ``hdl/``, then in ``cosim/hdl/``.
 MODULE_FILES: dict[str, tuple[str, ...]] = {
     "nuc_core": (*_PKG, *_NUC),
     "dpc_core": (*_PKG, *_DPC),
@@ -46,7 +47,7 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "dpc_ctrl": (*_PKG, "dpc_ctrl.sv"),
     "irnuc_spill_register": _SPILL,
     "irnuc_stream_assert": _ASSERT,
-    "irnuc_frame_assert": _FRAME,
+    "irnuc_frame_assert": (*_PKG, *_FRAME),
     "irnuc_add_tree": ("irnuc_add_tree.sv",),
     "irnuc_mul_parts": (*_PKG, *_MUL),
     "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
@@ -54,10 +55,10 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
     "tc_reading": (*_PKG, *_MUL, "irnuc_add_tree.sv", "tc_reading.sv"),
     "interp_weight": (*_PKG, "interp_weight.sv"),
-    "irnuc_line_buffer": ("irnuc_line_buffer.sv",),
+    "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
     "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
 }
-# Simulation-only transactor around the top (batched cocotb driver, cocotb_tests/hdl/).
+# Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
@@ -169,7 +170,7 @@ def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     """HDL files needed to elaborate module ``top``.
 
     ``hdl_dir`` replaces ``hdl/`` (a modified copy of the design, e.g. a mutant); files it
-    lacks are taken from ``cocotb_tests/hdl/``.
+    lacks are taken from ``cosim/hdl/``.
     """
     if top not in MODULE_FILES:
         raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(MODULE_FILES))}")

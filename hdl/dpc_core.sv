@@ -71,12 +71,15 @@ module dpc_core
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (OutBits >= 1 && OutBits <= 24)
-      else $fatal(1, "dpc_core: OutBits = %0d outside 1..24", OutBits);
-    assert (MaxWidth >= 1 && MaxWidth <= 65535)
-      else $fatal(1, "dpc_core: MaxWidth = %0d outside 1..65535", MaxWidth);
-    assert (MaxHeight >= 1 && MaxHeight <= 65535)
-      else $fatal(1, "dpc_core: MaxHeight = %0d outside 1..65535", MaxHeight);
+    assert (OutBits >= OutBitsMin && OutBits <= OutBitsMax)
+      else $fatal(1, "dpc_core: OutBits = %0d outside %0d..%0d", OutBits, OutBitsMin,
+                  OutBitsMax);
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
+      else $fatal(1, "dpc_core: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
+                  MaxWidthMax);
+    assert (MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "dpc_core: MaxHeight = %0d outside %0d..%0d", MaxHeight, MaxHeightMin,
+                  MaxHeightMax);
   end
 `endif
 

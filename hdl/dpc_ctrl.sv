@@ -67,10 +67,12 @@ module dpc_ctrl
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (MaxWidth >= 1 && MaxWidth <= 65535)
-      else $fatal(1, "dpc_ctrl: MaxWidth = %0d outside 1..65535", MaxWidth);
-    assert (MaxHeight >= 1 && MaxHeight <= 65535)
-      else $fatal(1, "dpc_ctrl: MaxHeight = %0d outside 1..65535", MaxHeight);
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
+      else $fatal(1, "dpc_ctrl: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
+                  MaxWidthMax);
+    assert (MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "dpc_ctrl: MaxHeight = %0d outside %0d..%0d", MaxHeight, MaxHeightMin,
+                  MaxHeightMax);
   end
 `endif
 

@@ -2,7 +2,9 @@
 // (start_i: valid && ready && sof), the run-time size must lie in 1..MaxWidth x
 // 1..MaxHeight. Instantiated under `ifdef IRNUC_ASSERT next to the stream checkers;
 // frame_err_o flags the same condition in hardware.
-module irnuc_frame_assert #(
+module irnuc_frame_assert
+  import irnuc_pkg::*;
+#(
   parameter int unsigned MaxWidth   = 1024,
   parameter int unsigned MaxHeight  = 1024,
   // Derived, do not override.
@@ -18,9 +20,10 @@ module irnuc_frame_assert #(
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (MaxWidth >= 1 && MaxWidth <= 65535 && MaxHeight >= 1 && MaxHeight <= 65535)
-      else $fatal(1, "irnuc_frame_assert: MaxWidth = %0d, MaxHeight = %0d outside 1..65535",
-                  MaxWidth, MaxHeight);
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax &&
+            MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "irnuc_frame_assert: MaxWidth = %0d, MaxHeight = %0d outside %0d..%0d",
+                  MaxWidth, MaxHeight, MaxWidthMin, MaxWidthMax);
   end
 
   // Off in reset, on from the first edge after it (rst_ni stays a pure asynchronous reset).

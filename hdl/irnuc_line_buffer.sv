@@ -13,7 +13,9 @@
 // maps block RAM without it; its clock-to-output without the register (5.8 ns at speed 6)
 // would leave no time for the routing at 150 MHz. Port A writes, port B reads; one block
 // per 18, 9, 4, 2 or 1 bits of the word for up to 1024, 2048, 4096, 8192 or 16384 words.
-module irnuc_line_buffer #(
+module irnuc_line_buffer
+  import irnuc_pkg::*;
+#(
   parameter int unsigned Depth    = 1024,
   parameter int unsigned DataBits = 30,
   // Derived, do not override.
@@ -30,8 +32,8 @@ module irnuc_line_buffer #(
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (Depth >= 1 && Depth <= 65535)
-      else $fatal(1, "irnuc_line_buffer: Depth = %0d outside 1..65535", Depth);
+    assert (Depth >= 1 && Depth <= FrameDimMax)
+      else $fatal(1, "irnuc_line_buffer: Depth = %0d outside 1..%0d", Depth, FrameDimMax);
     assert (DataBits >= 1)
       else $fatal(1, "irnuc_line_buffer: DataBits = %0d must be at least 1", DataBits);
   end

@@ -61,28 +61,35 @@ module nuc_core
 `ifndef SYNTHESIS
   // Legal ranges (nuc_fixed/config.py checks the same before any build).
   initial begin : p_param_ranges
-    assert (AdcBits >= 1 && AdcBits <= 24)
-      else $fatal(1, "nuc_core: AdcBits = %0d outside 1..24", AdcBits);
-    assert (GainIntBits <= 16)
-      else $fatal(1, "nuc_core: GainIntBits = %0d outside 0..16", GainIntBits);
-    assert (GainFracBits <= 32)
-      else $fatal(1, "nuc_core: GainFracBits = %0d outside 0..32", GainFracBits);
+    assert (AdcBits >= AdcBitsMin && AdcBits <= AdcBitsMax)
+      else $fatal(1, "nuc_core: AdcBits = %0d outside %0d..%0d", AdcBits, AdcBitsMin,
+                  AdcBitsMax);
+    // (the Min of GainIntBits, GainFracBits and OffsetFracBits is 0: nothing to check)
+    assert (GainIntBits <= GainIntBitsMax)
+      else $fatal(1, "nuc_core: GainIntBits = %0d outside 0..%0d", GainIntBits,
+                  GainIntBitsMax);
+    assert (GainFracBits <= GainFracBitsMax)
+      else $fatal(1, "nuc_core: GainFracBits = %0d outside 0..%0d", GainFracBits,
+                  GainFracBitsMax);
     assert (GainBits >= 1)
       else $fatal(1, "nuc_core: GainIntBits + GainFracBits must be at least 1");
-    assert (OffsetIntBits >= 1 && OffsetIntBits <= 32)
-      else $fatal(1, "nuc_core: OffsetIntBits = %0d outside 1..32", OffsetIntBits);
-    assert (OffsetFracBits <= 32)
-      else $fatal(1, "nuc_core: OffsetFracBits = %0d outside 0..32", OffsetFracBits);
-    assert (OutBits >= 1 && OutBits <= 24)
-      else $fatal(1, "nuc_core: OutBits = %0d outside 1..24", OutBits);
-    assert (Rounding <= 2)
-      else $fatal(1, "nuc_core: Rounding = %0d outside 0..2", Rounding);
-    assert (Overflow <= 1)
-      else $fatal(1, "nuc_core: Overflow = %0d outside 0..1", Overflow);
+    assert (OffsetIntBits >= OffsetIntBitsMin && OffsetIntBits <= OffsetIntBitsMax)
+      else $fatal(1, "nuc_core: OffsetIntBits = %0d outside %0d..%0d", OffsetIntBits,
+                  OffsetIntBitsMin, OffsetIntBitsMax);
+    assert (OffsetFracBits <= OffsetFracBitsMax)
+      else $fatal(1, "nuc_core: OffsetFracBits = %0d outside 0..%0d", OffsetFracBits,
+                  OffsetFracBitsMax);
+    assert (OutBits >= OutBitsMin && OutBits <= OutBitsMax)
+      else $fatal(1, "nuc_core: OutBits = %0d outside %0d..%0d", OutBits, OutBitsMin,
+                  OutBitsMax);
+    assert (Rounding < RoundingCount)
+      else $fatal(1, "nuc_core: Rounding = %0d outside 0..%0d", Rounding, RoundingCount - 1);
+    assert (Overflow < OverflowCount)
+      else $fatal(1, "nuc_core: Overflow = %0d outside 0..%0d", Overflow, OverflowCount - 1);
     assert (UserBits >= 1)
       else $fatal(1, "nuc_core: UserBits = %0d must be at least 1", UserBits);
-    assert (SumBits <= 62)
-      else $fatal(1, "nuc_core: sum width %0d exceeds 62", SumBits);
+    assert (SumBits <= SumBitsMax)
+      else $fatal(1, "nuc_core: sum width %0d exceeds %0d", SumBits, SumBitsMax);
   end
 `endif
 

@@ -59,10 +59,12 @@ module nuc_dpc_top
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (MaxWidth >= 1 && MaxWidth <= 65535)
-      else $fatal(1, "nuc_dpc_top: MaxWidth = %0d outside 1..65535", MaxWidth);
-    assert (MaxHeight >= 1 && MaxHeight <= 65535)
-      else $fatal(1, "nuc_dpc_top: MaxHeight = %0d outside 1..65535", MaxHeight);
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
+      else $fatal(1, "nuc_dpc_top: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
+                  MaxWidthMax);
+    assert (MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "nuc_dpc_top: MaxHeight = %0d outside %0d..%0d", MaxHeight, MaxHeightMin,
+                  MaxHeightMax);
     assert ($bits(coef_word_t) == WordBits)
       else $fatal(1, "nuc_dpc_top: coefficient word type of %0d bits, expected %0d",
                   $bits(coef_word_t), WordBits);

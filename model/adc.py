@@ -4,14 +4,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from irnuc.common.errors import UserError
 from irnuc.model.core import adc as _k
 from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
 
 ADC_ROUNDING = ("nearest", "floor")
 
 
-class NonFiniteVoltageError(ValueError):
-    """The ADC was given NaN or infinite voltages."""
+class NonFiniteVoltageError(UserError):
+    """The ADC was given NaN or infinite voltages (a ``ValueError``, as every
+    :class:`~irnuc.common.errors.UserError`)."""
 
 
 def adc_dtype(bits: int) -> type:

@@ -1,7 +1,8 @@
 """Input checks shared by every API function of the model.
 
-A bad value is reported before any work, as a :class:`ConfigError` whose message names
-the field, the value and the allowed range.
+A bad value is reported before any work, as a :class:`~irnuc.common.errors.ConfigError`
+(the one class of every layer, re-exported here) whose message names the field, the value
+and the allowed range.
 """
 
 from __future__ import annotations
@@ -11,12 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from irnuc.common.errors import UserError
+from irnuc.common.errors import ConfigError
 
-
-class ConfigError(UserError):
-    """A configuration or argument value is missing, of the wrong type or out of range."""
-
+__all__ = ["ConfigError", "check_array", "check_choice", "check_int", "check_scalar"]
 
 def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
     left = "(" if lo_open else "["

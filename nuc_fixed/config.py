@@ -28,13 +28,13 @@ from typing import Any
 
 from irnuc.common import schema
 from irnuc.common.digest import digest
-from irnuc.common.errors import UserError
+from irnuc.common.errors import ConfigError
 from irnuc.common.io import PLAIN_NAME
+from irnuc.nuc_fixed import rtl_spec
+from irnuc.nuc_fixed.rtl_spec import OVERFLOW_MODES, ROUNDING_MODES
 
 PIPELINES_TOML = Path(__file__).with_name("pipelines.toml")
 
-ROUNDING_MODES: dict[str, int] = {"truncate": 0, "half_up": 1, "half_even": 2}
-OVERFLOW_MODES: dict[str, int] = {"saturate": 0, "wrap": 1}
 
 #: Base correction methods (one per pixel datapath) and the stages that compose with them.
 BASE_METHODS: tuple[str, ...] = ("one_point", "two_point", "piecewise", "quadratic",
@@ -46,17 +46,8 @@ STAGE_BASES: dict[str, tuple[str, ...]] = {
     "ffc": BASE_METHODS,
 }
 
-# Legal ranges, checked before any work; the RTL asserts the same ranges.
-_RANGES: dict[str, tuple[int, int]] = {
-    "adc_bits": (1, 24),
-    "gain_int_bits": (0, 16),
-    "gain_frac_bits": (0, 32),
-    "offset_int_bits": (1, 32),
-    "offset_frac_bits": (0, 32),
-    "out_bits": (1, 24),
-    "max_width": (1, 65535),
-    "max_height": (1, 65535),
-}
+# Legal ranges, checked before any work; the RTL asserts the same ranges (rtl_spec).
+_RANGES: dict[str, tuple[int, int]] = rtl_spec.PIPELINE_RANGES
 
 #: Method parameters: field -> (lo, hi, unit, the method or stage that uses it).
 _PARAM_RANGES: dict[str, tuple[int, int, str, tuple[str, ...]]] = {
@@ -125,10 +116,6 @@ PIPELINE_SCHEMA: dict[str, Any] = schema.table(
     },
     required=[*_RANGES, "rounding", "overflow"],
 )
-
-
-class ConfigError(UserError):
-    """A configuration field is missing or outside its legal range."""
 
 
 def parse_method(text: str, source: str = "method") -> tuple[str, tuple[str, ...]]:
@@ -311,12 +298,12 @@ class PipelineConfig:
             )
         widths = self.datapath_widths()
         what = max(widths, key=lambda k: widths[k])
-        if widths[what] > 62:
+        if widths[what] > rtl_spec.SUM_BITS_MAX:
             # The golden model computes in int64; keep one bit of headroom for rounding.
             name = {"core.s": "sum"}.get(what, what)
             raise ConfigError(
                 f"pipeline {self.name!r}: the datapath {name} needs {widths[what]} bits; "
-                "the allowed maximum is 62"
+                f"the allowed maximum is {rtl_spec.SUM_BITS_MAX}"
             )
         for mem in self.memories.values():
             # (A two-point word beyond 64 bits is refused where words are packed, as before.)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from irnuc.nuc_fixed import _kernels
+from irnuc.nuc_fixed import _kernels, rtl_spec
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.nuc import out_dtype
 from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
@@ -62,11 +62,13 @@ def reciprocal_table(out_bits: int) -> tuple[int, list[int]]:
     """The RTL's DPC division: shift K and table ``R[n] = ceil(2^K / n)``, n = 0..8.
 
     ``dpc_core`` divides M = S + floor(n/2) (< 2^(B+3)) by n as ``(M * R[n]) >> K`` with
-    K = B + 6 (docs/datapath.md); ``R[0]`` is unused (0). Exact because
-    M * (R[n] n - 2^K) < 2^(B+3) * 8 = 2^K. The golden model divides exactly; the tests
-    prove this table equal for every M and read the RTL's table back from the simulator.
+    K = B + 6 (docs/datapath.md; :func:`irnuc.nuc_fixed.rtl_spec.dpc_recip_shift`);
+    ``R[0]`` is unused (0). Exact because M * (R[n] n - 2^K) < 2^(B+3) * 8 = 2^K. The
+    golden model divides exactly; the tests prove this table equal for every M and read
+    the RTL's table back from the simulator.
     """
-    if isinstance(out_bits, bool) or not isinstance(out_bits, int) or not 1 <= out_bits <= 24:
-        raise InputError(f"out_bits = {out_bits!r} is outside the allowed range 1..24 (int)")
-    shift = out_bits + 6
-    return shift, [0] + [-(-(1 << shift) // n) for n in range(1, 9)]
+    lo, hi = rtl_spec.PIPELINE_RANGES["out_bits"]
+    if isinstance(out_bits, bool) or not isinstance(out_bits, int) or not lo <= out_bits <= hi:
+        raise InputError(f"out_bits = {out_bits!r} is outside the allowed range {lo}..{hi} (int)")
+    return rtl_spec.dpc_recip_shift(out_bits), [rtl_spec.dpc_recip(out_bits, n)
+                                                for n in range(9)]

@@ -20,7 +20,7 @@ from irnuc.common.errors import UserError
 from irnuc.common.io import read_json_object, write_bytes_atomic
 from irnuc.nuc_fixed.config import ConfigError, PipelineConfig
 from irnuc.nuc_fixed.nuc import check_coefficients
-from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, int_array
+from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
 
 MEMIMAGE_VERSION = 1
 METHOD_IMAGE_VERSION = 2
@@ -169,12 +169,7 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
     w = check_words(words, cfg)
     if w.ndim != 2:
         raise InputError(f"words has shape {w.shape}; (H, W) is required")
-    h, wd = w.shape
-    if not (1 <= h <= cfg.max_height and 1 <= wd <= cfg.max_width):
-        raise InputError(
-            f"words frame size is {h} x {wd}; pipeline {cfg.name!r} allows up to "
-            f"{cfg.max_height} x {cfg.max_width}"
-        )
+    h, wd = check_frame_shape("words", w.shape, cfg)
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     raw = to_bin(w, cfg)

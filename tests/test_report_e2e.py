@@ -55,7 +55,7 @@ def test_recommendation_is_synthesized_and_cosimulated(tiny_run) -> None:
     assert len(syn["fit_indices"]) == 3 and syn["model_error_all"]["xc7.lut"]["points"] >= 4
     assert r["index"] in [x["index"] for x in syn["synthesized"]]
     c = s["sections"]["cosim"]
-    assert c["source"] == "irnuc.cosim.run_suite" and not c["partial"]
+    assert c["source"] == "irnuc.verif.run_suite" and not c["partial"]
     neg = [x for x in c["cases"] if x["negative_control"]]
     assert neg and neg[0]["detected"] > 0 and neg[0]["triage"][0].startswith("frame ")
     for x in c["cases"]:

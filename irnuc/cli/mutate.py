@@ -25,7 +25,7 @@ def run_mutate(args: argparse.Namespace) -> int:
 
     from irnuc.common.errors import UserError
     from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
-    from irnuc.cosim import mutate
+    from irnuc.verif import mutate
 
     if args.list:
         for m in mutate.CATALOGUE:
@@ -40,15 +40,14 @@ def run_mutate(args: argparse.Namespace) -> int:
                                  use_cache=not args.no_cache, progress=progress("mutate"))
     cov = None
     if not args.no_coverage:
-        from irnuc import cosim
-        from irnuc.cosim.suite import SuiteCase
+        import tempfile
+
+        from irnuc.verif import SuiteCase, run_suite
 
         cases = {(m.pipeline().digest(), m.top, m.suite): SuiteCase(m.top, m.pipeline(), m.suite)
                  for m in mutants}
-        import tempfile
-
         with tempfile.TemporaryDirectory() as tmp:
-            res = cosim.run_suite(list(cases.values()), tmp, coverage=True)
+            res = run_suite(list(cases.values()), tmp, coverage=True)
         cov = res.coverage
     with output_folder(out, kind="mutate") as tmp:
         write_text_atomic(tmp / "mutate.json", json.dumps(summary, indent=1) + "\n")

@@ -38,6 +38,7 @@ def run_synth(args: argparse.Namespace) -> int:
         write_text_atomic,
     )
     from irnuc.cosim.synth import synth_configs
+    from irnuc.nuc_fixed.rtl_spec import PIPELINE_RANGES
 
     out = claim_output_folder(args.out, kind="synth")
     cfgs = [load_pipeline_arg(p) for p in args.pipeline]
@@ -45,10 +46,11 @@ def run_synth(args: argparse.Namespace) -> int:
              for c, p in zip(cfgs, args.pipeline, strict=True)]
     if len(set(names)) != len(names):
         raise UserError(f"--pipeline names {', '.join(names)}: each configuration once")
-    for flag, v, limit in (("--max-width", args.max_width, 65535),
-                           ("--max-height", args.max_height, 65535)):
-        if v is not None and not 1 <= v <= limit:
-            raise UserError(f"{flag} {v} is outside the allowed range 1..{limit}")
+    for flag, v, field in (("--max-width", args.max_width, "max_width"),
+                           ("--max-height", args.max_height, "max_height")):
+        lo, hi = PIPELINE_RANGES[field]
+        if v is not None and not lo <= v <= hi:
+            raise UserError(f"{flag} {v} is outside the allowed range {lo}..{hi}")
     if not 1.0 <= args.freq <= 1000.0:
         raise UserError(f"--freq {args.freq:g} is outside the allowed range 1..1000 MHz")
     if not 0 <= args.seed < 2**31:

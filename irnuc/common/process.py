@@ -21,6 +21,8 @@ import threading
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from irnuc.common.errors import ToolError
+
 _PR_SET_PDEATHSIG = 1
 
 
@@ -30,7 +32,7 @@ def _set_pdeathsig() -> None:  # runs in the child between fork and exec
         ctypes.CDLL(name, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
-class ChildTimeout(RuntimeError):
+class ChildTimeout(ToolError):
     """A child process group ran past its time limit and was killed."""
 
 

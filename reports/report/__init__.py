@@ -5,7 +5,7 @@ Modules:
 * :mod:`~irnuc.reports.report.config`   the report TOML, validated (schema, nearest names)
 * :mod:`~irnuc.reports.report.phases`   one module per phase: ``calibration`` (frames,
   calibration, bad-pixel detection), ``sweep`` (bit-width sweep, hardware cost, cost model,
-  fronts, recommendation), ``paper``, ``cosim`` (``irnuc.cosim.run_suite`` or ``--junit``),
+  fronts, recommendation), ``paper``, ``cosim`` (``irnuc.verif.run_suite`` or ``--junit``),
   ``precision`` (work-precision diagrams)
 * :mod:`~irnuc.reports.report.summary`  provenance, baseline (validated), ``summary.json``
 * :mod:`~irnuc.reports.report.render`   Jinja2 templates and one stylesheet

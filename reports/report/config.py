@@ -120,12 +120,21 @@ SCHEMA: dict[str, Any] = table({
     "quick": {"type": "object"},
 })
 
-SECTIONS = tuple(k for k in SCHEMA["properties"] if k not in ("name", "quick"))
-
 
 # ---------------------------------------------------------------------------------------
 # Loading
 # ---------------------------------------------------------------------------------------
+def input_file(path: str | Path, flag: str, what: str) -> Path:
+    """A file the user names with ``flag``: a one-line :class:`ReportError` when it is
+    missing or a folder."""
+    p = Path(path)
+    if not p.exists():
+        raise ReportError(f"{flag} {path}: no such file")
+    if p.is_dir():
+        raise ReportError(f"{flag} {path}: is a folder, not {what}")
+    return p
+
+
 def embedded_names() -> list[str]:
     return sorted(p.stem.removeprefix("report_") for p in REPORT_DIR.glob("report_*.toml"))
 
@@ -245,14 +254,14 @@ def _check_more(cfg: Mapping[str, Any], source: str) -> None:
                 load_pipeline(name)
             except (ValueError, UserError) as exc:
                 raise ReportError(f"{source}: cosim.pipelines: {exc}") from None
-        from irnuc.cocotb_tests import tb_top  # noqa: F401  (the names below are its tests)
+        from irnuc.cocotb_tests import tb_top
         from irnuc.cosim import cocotb_test_names
 
-        known = cocotb_test_names("irnuc.cocotb_tests.tb_top")
+        known = cocotb_test_names(tb_top)
         for t in c["tests"]:
             if t not in known:
                 raise ReportError(f"{source}: cosim.tests holds {t!r}, not a test of "
-                                  f"irnuc.cocotb_tests.tb_top{nearest(t, known)} (known: "
+                                  f"{tb_top.__name__}{nearest(t, known)} (known: "
                                   f"{', '.join(known)})")
     if "synth" in cfg and "sweep" not in cfg:
         raise ReportError(f"{source}: [synth] costs the sweep's points; the configuration has no [sweep]")

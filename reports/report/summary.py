@@ -25,7 +25,7 @@ import numpy as np
 
 from irnuc.common.schema import check
 from irnuc.reports.report.base import Report
-from irnuc.reports.report.config import REPORT_DIR, ReportError, config_hash
+from irnuc.reports.report.config import REPORT_DIR, ReportError, config_hash, input_file
 
 SCHEMA_PATH = REPORT_DIR / "summary.schema.json"
 SCHEMA_VERSION = 2
@@ -179,6 +179,7 @@ def load_baseline(path: str | Path, config: Mapping[str, Any] | None = None) -> 
     from irnuc.common.io import read_json_object
 
     source = f"--baseline {path}"
+    input_file(path, "--baseline", "a summary.json")
     try:
         data = read_json_object(path, "--baseline")
     except UserError as exc:

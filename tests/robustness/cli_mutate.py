@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from robustness.harness import case, command, out_is_file, user_folder
 
-M = command("mutate", (("irnuc.cosim.mutate", "baseline_check"), ("irnuc.cosim.mutate", "run_mutant")))
+M = command("mutate", (("irnuc.verif.mutate", "baseline_check"), ("irnuc.verif.mutate", "run_mutant")))
 case("mutate-only-unknown", M, "--only spill_ready_halfrate",
      ("--only", "did you mean 'spill_ready_half_rate'"), "a misspelt mutant id")
 case("mutate-only-twice", M, "--only dpc_no_rounding --only dpc_no_rounding",

@@ -1,10 +1,10 @@
-"""Phase: the RTL co-simulation, run as a Python API (``irnuc.cosim.run_suite`` with the
+"""Phase: the RTL co-simulation, run as a Python API (``irnuc.verif.run_suite`` with the
 testbench module ``irnuc.cocotb_tests.tb_top``; never pytest), or an ingested JUnit XML
 (``--junit``).
 
 Every Verilator build is made first (no test timer runs during a build); then every test
 runs in its own simulator process with its own time limit, scaled with the size of the
-design built (``cosim.suite.test_timeout``), ``jobs`` tests at a time. A test that runs out
+design built (``irnuc.verif.test_timeout``), ``jobs`` tests at a time. A test that runs out
 of time is one ``timeout`` outcome; the others are kept, and a suite cut short is reported
 as partial. The section holds, per test: status, time, pixels compared, mismatches with
 their triage lines (frame, x, y, inputs, expected, got, intermediate values), assertion
@@ -22,9 +22,8 @@ from pathlib import Path
 from typing import Any
 
 from irnuc.reports.report.base import Report
-from irnuc.reports.report.config import ReportError
+from irnuc.reports.report.config import ReportError, input_file
 
-TB_TOP = "irnuc.cocotb_tests.tb_top"
 #: Tests that compare against a deliberately wrong golden model (their mismatches are the
 #: checker working, not the RTL failing).
 NEGATIVE_CONTROLS = ("checker_detects_mismatch",)
@@ -33,11 +32,7 @@ NEGATIVE_CONTROLS = ("checker_detects_mismatch",)
 # ---- JUnit ingest -------------------------------------------------------------------------
 def parse_junit(path: str | Path) -> dict[str, Any]:
     """Counts and per-test results of a JUnit XML file (pytest's or any xunit2 writer)."""
-    p = Path(path)
-    if not p.exists():
-        raise ReportError(f"--junit {path}: no such file")
-    if p.is_dir():
-        raise ReportError(f"--junit {path}: is a folder, not a JUnit XML file")
+    p = input_file(path, "--junit", "a JUnit XML file")
     from irnuc.common.errors import UserError
     from irnuc.common.io import read_bytes_capped
 
@@ -84,7 +79,7 @@ LIST_LIMIT = 40
 
 def measured_coverage(result: Any) -> dict[str, Any] | None:
     """The coverage a suite run measured (``result.coverage``, see
-    :attr:`irnuc.cosim.SuiteResult.coverage`), condensed for the report: functional bins
+    :attr:`irnuc.verif.SuiteResult.coverage`), condensed for the report: functional bins
     hit per configuration and coverpoint with the uncovered bins by name, and line and
     toggle coverage per configuration and module with the source lines never reached.
     None when the run did not measure coverage."""
@@ -114,10 +109,10 @@ def measured_coverage(result: Any) -> dict[str, Any] | None:
 
 def measured_mutation() -> dict[str, Any] | None:
     """The latest ``irnuc mutate`` campaign of the current RTL sources
-    (:func:`irnuc.cosim.mutate.cached_summary`), condensed for the report: counts, score,
+    (:func:`irnuc.verif.mutate.cached_summary`), condensed for the report: counts, score,
     survivors, the equivalent mutants with their arguments, and per mutant its status and
     killing test. None when no campaign has run on these sources."""
-    from irnuc.cosim import mutate
+    from irnuc.verif import mutate
 
     s = mutate.cached_summary()
     if not isinstance(s, Mapping) or not s:
@@ -160,7 +155,9 @@ def _case_entry(o: Any, root: Path) -> dict[str, Any]:
 def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) -> dict[str, Any]:
     """Build every configuration, then run the tests ``jobs`` at a time; the section."""
     from irnuc import cosim
-    from irnuc.cosim.suite import test_timeout
+    from irnuc.cocotb_tests import tb_top  # imported here: the report's import stays light
+    from irnuc.nuc_fixed import gain_format, offset_format
+    from irnuc.verif import SuiteCase, merge_results, run_suite, test_timeout
 
     tests = tuple(c["tests"])
     waves = bool(c.get("waves", False))
@@ -177,16 +174,16 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
 
     def run_one(item: tuple[Any, str]) -> Any:
         cfg, t = item
-        case = cosim.SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=(t,), seed=seed)
+        case = SuiteCase("nuc_dpc_top", cfg, tb_top.__name__, tests=(t,), seed=seed)
         # A folder per test: its files (and its own coverage.json) apart from the others.
-        return cosim.run_suite([case], work / f"{cfg.name}-{cfg.digest()[:8]}" / t,
+        return run_suite([case], work / f"{cfg.name}-{cfg.digest()[:8]}" / t,
                                waves=waves, timeout_base=base, coverage=coverage)
 
     t1 = time.perf_counter()
     # Each test is one task: the ``jobs`` simulators take the next test as they finish.
     with cf.ThreadPoolExecutor(max_workers=max(1, min(jobs, len(plan)))) as pool:
         parts = list(pool.map(run_one, plan))
-    merged = cosim.merge_results(parts, out, run_seconds=time.perf_counter() - t1)
+    merged = merge_results(parts, out, run_seconds=time.perf_counter() - t1)
     merged.build_seconds = build_seconds
     outcomes = merged.outcomes
     merged.write_junit(out / "junit.xml")
@@ -194,7 +191,7 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
     pixels = sum(x["pixels"] for x in cases)
     sim_seconds = sum(x["time"] for x in cases)
     section: dict[str, Any] = {
-        "source": "irnuc.cosim.run_suite", "testbench": TB_TOP,
+        "source": "irnuc.verif.run_suite", "testbench": tb_top.__name__,
         "tests": len(cases), "passed": sum(x["status"] == "passed" for x in cases),
         "failed": sum(x["status"] == "failed" for x in cases),
         "error": sum(x["status"] == "error" for x in cases),
@@ -209,8 +206,7 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
         "timeouts_s": {cfg.name: test_timeout(cfg, base) for cfg in configs},
         "configurations": [{"name": cfg.name, "digest": cfg.digest(), "adc_bits": cfg.adc_bits,
                             "out_bits": cfg.out_bits,
-                            "gain": f"U{cfg.gain_int_bits}.{cfg.gain_frac_bits}",
-                            "offset": f"S{cfg.offset_int_bits}.{cfg.offset_frac_bits}",
+                            "gain": str(gain_format(cfg)), "offset": str(offset_format(cfg)),
                             "rounding": cfg.rounding, "max_width": cfg.max_width,
                             "max_height": cfg.max_height, "word_bits": cfg.word_bits,
                             "tests": [x["name"] for x in cases if x["configuration"] == cfg.name]}
@@ -262,7 +258,7 @@ def phase_cosim(rep: Report, out: Path, junit: dict[str, Any] | None, no_cosim: 
                 try:
                     section = run_cosim(rep, configs, c, out)
                 except ToolError as exc:  # a build that failed: the report says so, whole
-                    section = {"source": "irnuc.cosim.run_suite", "tests": 0, "passed": 0,
+                    section = {"source": "irnuc.verif.run_suite", "tests": 0, "passed": 0,
                                "failed": 0, "error": 1, "timeout": 0, "skipped": 0, "time": 0.0,
                                "cases": [], "partial": True, "note": str(exc)[:4000]}
     if section is None:

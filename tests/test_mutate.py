@@ -1,4 +1,4 @@
-"""``irnuc mutate`` and ``irnuc.cosim.mutate``: the catalogue, a small campaign (killed,
+"""``irnuc mutate`` and ``irnuc.verif.mutate``: the catalogue, a small campaign (killed,
 equivalent), the cache and ``cached_summary``, the command line.
 
 The full campaign is not run here (see docs/verification.md for its figures): two mutants
@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from irnuc.cosim import mutate
 from irnuc.cosim.sources import HDL_DIR, MODULE_FILES
+from irnuc.verif import mutate
 
 DESIGN = {f.removesuffix(".sv") for f in MODULE_FILES["nuc_dpc_top"]} - {
     "irnuc_stream_assert", "irnuc_frame_assert"}

@@ -16,7 +16,8 @@ of ``cocotb_tests/tb_top.py``, one simulation) on the mutant's configuration:
 Results are cached in the irnuc cache by the digest of the RTL sources, the mutant and
 the testbench sources; :func:`cached_summary` returns the latest campaign of the current
 RTL sources (the report shows it). Mutants run on the sweep's executor (worker processes,
-in-process, or a Dask cluster).
+in-process, or a Dask cluster). Mutation testing runs testbenches, so it sits above them
+(the ``irnuc.verif`` layer, which imports the testbench it runs).
 """
 
 from __future__ import annotations
@@ -30,6 +31,10 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
+import irnuc.cocotb_tests
+import irnuc.cosim
+import irnuc.nuc_fixed
+from irnuc.cocotb_tests import tb_top
 from irnuc.common.cache import cache_dir
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.errors import UserError
@@ -37,7 +42,7 @@ from irnuc.common.io import write_text_atomic
 from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR
 
 #: The testbench module every mutant runs against.
-SUITE_MODULE = "irnuc.cocotb_tests.tb_top"
+SUITE_MODULE = tb_top.__name__
 SUITE_TOP = "nuc_dpc_top"
 #: Wall-time limit of one mutant's simulation (a mutant may hang the stream).
 RUN_TIMEOUT = 300.0
@@ -110,8 +115,9 @@ CATALOGUE: tuple[Mutant, ...] = (
        "num = (64'd1 << dpc_recip_shift(out_bits)) + longint'(n) - 64'd1;",
        "num = (64'd1 << dpc_recip_shift(out_bits));",
        "DPC reciprocal rounded down instead of up (floor(2^K/n))"),
-    _m("pkg_recip_shift_plus1", "irnuc_pkg.sv", "return out_bits + 32'd6;",
-       "return out_bits + 32'd7;", "DPC reciprocal shift K = B + 7 instead of B + 6",
+    _m("pkg_recip_shift_plus1", "irnuc_pkg.sv", "localparam int unsigned DpcRecipGuardBits = 6;",
+       "localparam int unsigned DpcRecipGuardBits = 7;",
+       "DPC reciprocal shift K = B + 7 instead of B + 6",
        equivalent="with K = B + 7, R[n] = ceil(2^K/n) still gives M (R[n] n - 2^K) < 2^(B+3) "
                   "* 8 < 2^K, so (M R[n]) >> K = floor(M/n) exactly: the same output for "
                   "every input (only tb_pkg's table comparison notices the new table)"),
@@ -476,8 +482,9 @@ def _suite_digest() -> str:
     """What a mutant's verdict depends on besides the RTL: the Python of the testbenches and
     their helpers, the golden model and the co-simulation layer (not the pytest files), and
     the simulation-only HDL."""
-    root = Path(__file__).resolve().parents[1]
-    files = [p for d in ("cocotb_tests", "cosim", "nuc_fixed") for p in sorted((root / d).glob("*.py"))
+    dirs = [Path(pkg.__file__).resolve().parent
+            for pkg in (irnuc.cocotb_tests, irnuc.cosim, irnuc.nuc_fixed)]
+    files = [p for d in dirs for p in sorted(d.glob("*.py"))
              if not p.name.startswith(("test_", "conftest"))]
     return files_digest(files + sorted(SIM_HDL_DIR.glob("*.sv")))
 

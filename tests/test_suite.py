@@ -1,20 +1,23 @@
-"""The co-simulation suite as a Python API (``irnuc.cosim.run_suite``): results per test,
-metrics from the scoreboard, JUnit, and a timeout that stops only its own test and leaves
-no simulator running."""
+"""The co-simulation suite as a Python API (``irnuc.verif.run_suite``): results per test,
+metrics from the scoreboard, JUnit, coverage, and a timeout that stops only its own test
+and leaves no simulator running."""
 
 from __future__ import annotations
 
+import json
 import os
 import xml.etree.ElementTree as ET
 
 import pytest
 
 from irnuc import cosim
+from irnuc.cocotb_tests import tb_top
 from irnuc.nuc_fixed import load_pipeline
+from irnuc.verif import SuiteCase, run_suite
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
-TB_TOP = "irnuc.cocotb_tests.tb_top"
+TB_TOP = tb_top.__name__
 
 
 def _simulators() -> list[int]:
@@ -32,9 +35,9 @@ def _simulators() -> list[int]:
 
 
 def test_suite_runs_each_test_and_keeps_metrics(tmp_path) -> None:
-    case = cosim.SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB_TOP,
-                           tests=("corner_codes", "checker_detects_mismatch"))
-    res = cosim.run_suite([case], tmp_path)
+    case = SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB_TOP,
+                     tests=("corner_codes", "checker_detects_mismatch"))
+    res = run_suite([case], tmp_path)
     assert [o.test for o in res.outcomes] == ["corner_codes", "checker_detects_mismatch"]
     assert res.passed, [(o.test, o.status, o.message) for o in res.outcomes]
     corner = res.outcomes[0]
@@ -52,11 +55,31 @@ def test_suite_runs_each_test_and_keeps_metrics(tmp_path) -> None:
 
 def test_timeout_stops_only_that_test_and_its_simulator(tmp_path) -> None:
     cfg = load_pipeline("minimal")
-    case = cosim.SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=("model_frames",))
+    case = SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=("model_frames",))
     cosim.build("nuc_dpc_top", cfg)  # built outside the timer, as run_suite does
     before = set(_simulators())
     # A limit far below what the test needs: it must end as "timeout", not hang.
-    res = cosim.run_suite([case], tmp_path, timeout_base=0.3)
+    res = run_suite([case], tmp_path, timeout_base=0.3)
     assert [o.status for o in res.outcomes] == ["timeout"]
     assert "stopped" in res.outcomes[0].message
     assert set(_simulators()) <= before, "a simulator survived the timeout"
+
+
+def test_run_suite_collects_coverage(tmp_path) -> None:
+    case = SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB_TOP,
+                     tests=("corner_codes", "frame_error_causes"))
+    res = run_suite([case], tmp_path, coverage=True)
+    assert res.passed, [(o.test, o.message) for o in res.outcomes]
+    f = res.coverage["functional"]["configurations"]["minimal"]
+    pts = f["coverpoints"]
+    assert pts["frame.error"]["hit"] == pts["frame.error"]["total"]
+    assert pts["nuc.round.half_even"]["hit"] > 0
+    assert 0 < f["hit"] < f["total"]  # two tests do not reach every bin
+    code = res.coverage["code"]["minimal"]
+    assert {"nuc_core", "dpc_core", "dpc_ctrl", "nuc_dpc_top"} <= set(code)
+    assert 0 < code["dpc_ctrl"]["line"]["percent"] <= 100
+    assert 0 < code["nuc_core"]["toggle"]["percent"] <= 100
+    on_disk = json.loads((tmp_path / "coverage.json").read_text())
+    assert on_disk["functional"]["configurations"]["minimal"]["hit"] == f["hit"]
+    # Without coverage=True there is none.
+    assert run_suite([case], tmp_path / "plain").coverage is None

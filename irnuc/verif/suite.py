@@ -13,12 +13,14 @@ pytest call :func:`run_suite`:
 4. :meth:`SuiteResult.write_junit` writes one JUnit XML of everything that ran.
 
 The testbench side of the metrics: a testbench appends JSON lines to the file named by
-``$IRNUC_TB_METRICS`` (``irnuc.cocotb_tests.tb_lib.record``).
+``$IRNUC_TB_METRICS`` (:mod:`irnuc.cosim.metrics`).
+
+This module runs testbenches, so it sits above them (the ``irnuc.verif`` layer); a case
+names a testbench module its caller has imported.
 """
 
 from __future__ import annotations
 
-import importlib
 import json
 import re
 import time
@@ -29,11 +31,13 @@ from pathlib import Path
 from typing import Any
 
 from irnuc.common.io import write_text_atomic
+from irnuc.cosim import metrics as tb_metrics
 from irnuc.cosim.build import (
     Build,
     SimulationTimeout,
     assertion_failures,
     build,
+    cocotb_test_names,
     coverage_file,
     read_results,
     run,
@@ -41,16 +45,6 @@ from irnuc.cosim.build import (
 from irnuc.cosim.coverage import COVERAGE_ENV
 from irnuc.cosim.verilator import RtlError, waves_suffix
 from irnuc.nuc_fixed import PipelineConfig
-
-#: Environment variable naming the JSON-lines file a testbench records metrics into.
-METRICS_ENV = "IRNUC_TB_METRICS"
-
-
-def cocotb_test_names(module: str) -> list[str]:
-    """Names of the cocotb tests defined in a testbench module (imported, not run)."""
-    mod = importlib.import_module(module)
-    return [name for name, obj in vars(mod).items()
-            if type(obj).__name__ == "TestGenerator" and getattr(obj, "module", None) == module]
 
 
 @dataclass(frozen=True)
@@ -153,18 +147,6 @@ def test_timeout(cfg: PipelineConfig, base: float = 120.0) -> float:
     return base * max(1.0, cfg.max_width / 1024)
 
 
-def _read_metrics(path: Path) -> list[dict[str, Any]]:
-    if not path.is_file():
-        return []
-    out = []
-    for line in path.read_text().splitlines():
-        try:
-            out.append(json.loads(line))
-        except json.JSONDecodeError:
-            continue  # a line cut by a killed simulator
-    return out
-
-
 def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
               timeout_base: float = 120.0, build_args: Sequence[str] = (),
               progress: Callable[[int, int], None] | None = None,
@@ -221,7 +203,7 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
         metrics_file.unlink(missing_ok=True)
         cov_file = run_dir / "coverage.json"
         cov_file.unlink(missing_ok=True)
-        env = {"IRNUC_SEED": str(c.seed), METRICS_ENV: str(metrics_file), **dict(c.env)}
+        env = {"IRNUC_SEED": str(c.seed), tb_metrics.METRICS_ENV: str(metrics_file), **dict(c.env)}
         if coverage:
             env[COVERAGE_ENV] = str(cov_file)
         start = time.perf_counter()
@@ -245,7 +227,7 @@ def run_suite(cases: Sequence[SuiteCase], out_dir: Path, *, waves: bool = False,
             case=c, test=test, status=status, seconds=time.perf_counter() - start,
             message=message, log=log if log.is_file() else None,
             waves=wave if waves and wave.is_file() else None,
-            metrics=_read_metrics(metrics_file), assertion_failures=assertion_failures(xml)))
+            metrics=tb_metrics.read(metrics_file), assertion_failures=assertion_failures(xml)))
         if coverage:
             cov_files.append((c, cov_file, coverage_file(xml)))
         if progress is not None:

@@ -1,0 +1,58 @@
+"""The files generated from the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`):
+the block between the markers of ``hdl/irnuc_pkg.sv`` and the whole package probe
+``cosim/hdl/irnuc_pkg_probe.sv``.
+
+``python -m irnuc.cosim.spec_files --write`` rewrites them; ``--check`` (the default)
+lists the stale ones and exits 1. ``tests/test_rtl_spec.py`` runs the check.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from irnuc.common.io import write_text_atomic
+from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR
+from irnuc.nuc_fixed import rtl_spec
+
+PACKAGE = HDL_DIR / "irnuc_pkg.sv"
+PROBE = SIM_HDL_DIR / "irnuc_pkg_probe.sv"
+
+
+def expected() -> dict[Path, str]:
+    """Each generated file and the text it must have."""
+    return {PACKAGE: rtl_spec.replace_block(PACKAGE.read_text(), rtl_spec.sv_package_block()),
+            PROBE: rtl_spec.sv_probe()}
+
+
+def stale() -> list[Path]:
+    """The generated files whose text differs from the spec's."""
+    return [p for p, text in expected().items() if not p.is_file() or p.read_text() != text]
+
+
+def write() -> list[Path]:
+    """Regenerate the stale files; return them."""
+    changed = stale()
+    want = expected()
+    for p in changed:
+        write_text_atomic(p, want[p])
+    return changed
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = sys.argv[1:] if argv is None else argv
+    if args not in ([], ["--check"], ["--write"]):
+        print("usage: python -m irnuc.cosim.spec_files [--check | --write]", file=sys.stderr)
+        return 2
+    if args == ["--write"]:
+        for p in write():
+            print(f"wrote {p}")
+        return 0
+    old = stale()
+    for p in old:
+        print(f"{p} is stale: python -m irnuc.cosim.spec_files --write")
+    return 1 if old else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
