@@ -144,6 +144,9 @@ DPC_RECIP_GUARD_BITS = 6
 SUM_BITS_MAX = 62
 #: Leaves of the DPC's adder tree: 8 neighbour values and floor(n/2) (dpc_core's u_sum).
 DPC_SUM_LEAVES = 9
+#: Register stages of one multiply: the DSP block's input and output registers
+#: (irnuc_dsp_mul; ECP5's MULT18X18D is instantiated with both).
+MUL_STAGES = 2
 
 CONSTANTS: tuple[Constant, ...] = (
     Constant("MulChunkBits", MUL_CHUNK_BITS,
@@ -224,17 +227,19 @@ def pipeline_stages(top: str, adc_bits: int, gain_bits: int, out_bits: int) -> l
     ``nuc_dpc_top``), in order, one name per register (docs/rtl.md, "Architecture"),
     ending with ``flush`` for the DPC's flush state where the top has a DPC.
 
-    From the RTL's structure: nuc_core's sum tree has clog2(parts + 1) levels, dpc_core's
-    clog2(DPC_SUM_LEAVES) and its product tree clog2(parts); ``tb_top``'s
+    From the RTL's structure: a multiply is :data:`MUL_STAGES` registers (the DSP block's
+    input and output registers, irnuc_dsp_mul); nuc_core's sum tree has clog2(parts + 1)
+    levels, dpc_core registers its neighbour mask before its sum tree of
+    clog2(DPC_SUM_LEAVES) levels, its product tree has clog2(parts); ``tb_top``'s
     ``reset_each_stage`` checks the top's latency against this model in simulation.
     """
-    nuc = (["nuc_input", "nuc_product"]
+    nuc = (["nuc_input"] + ["nuc_product"] * MUL_STAGES
            + ["nuc_sum"] * clog2(mul_parts(adc_bits, gain_bits) + 1)
            + ["nuc_round", "nuc_output"])
     num_bits, rec_bits = out_bits + 3, dpc_recip_shift(out_bits) + 1
-    dpc = (["dpc_input", "dpc_window"] + ["dpc_sum"] * clog2(DPC_SUM_LEAVES)
-           + ["dpc_multiply"] + ["dpc_product"] * clog2(mul_parts(num_bits, rec_bits))
-           + ["dpc_output"])
+    dpc = (["dpc_input", "dpc_window", "dpc_mask"] + ["dpc_sum"] * clog2(DPC_SUM_LEAVES)
+           + ["dpc_multiply"] * MUL_STAGES
+           + ["dpc_product"] * clog2(mul_parts(num_bits, rec_bits)) + ["dpc_output"])
     if top == "nuc_core":
         stages = nuc
     elif top == "dpc_core":
@@ -461,7 +466,7 @@ def probe_values() -> dict[str, int]:
 
 __all__ = [
     "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS", "DPC_SUM_LEAVES", "ENUMS",
-    "FRAME_DIM_MAX", "LAYOUTS", "MUL_CHUNK_BITS", "OVERFLOW", "OVERFLOW_MODES",
+    "FRAME_DIM_MAX", "LAYOUTS", "MUL_CHUNK_BITS", "MUL_STAGES", "OVERFLOW", "OVERFLOW_MODES",
     "PIPELINE_RANGES", "RANGES", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX", "Constant",
     "Enum", "EnumLiteral", "Field", "Range", "WordLayout", "clog2", "dpc_recip",
     "dpc_recip_shift", "mul_chunks", "mul_parts", "pipeline_stages", "sv_package_block",
