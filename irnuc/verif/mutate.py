@@ -425,15 +425,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "end else if (join_take) begin",
         "the held frame word follows every pixel", "piecewise14"),
     _mm("top_tc_reading_ref_swapped", "method_dpc_top.sv",
-        ".s_reading_i(frame[ReadingBits-1:0]),\n        .s_t_ref_i  (frame[ReadingBits +: "
-        "ReadingBits]),",
-        ".s_reading_i(frame[ReadingBits +: ReadingBits]),\n        .s_t_ref_i  "
-        "(frame[ReadingBits-1:0]),", "the reading and t_ref swapped", "tcoffset14"),
-    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (coef[TwoPointBits +: QuadBits]),",
+        ".s_reading_i(fw.reading),\n        .s_t_ref_i  (fw.t_ref),",
+        ".s_reading_i(fw.t_ref),\n        .s_t_ref_i  (fw.reading),",
+        "the reading and t_ref swapped", "tcoffset14"),
+    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (w.quad.quad),",
         ".s_quad_i    (coef[TwoPointBits - 1 +: QuadBits]),",
         "the quad word read one bit low", "quadratic14"),
-    _mm("top_one_point_bad", "method_dpc_top.sv", "      assign bad    = coef[OffsetBits];",
-        "      assign bad    = coef[OffsetBits-1];", "one_point's bad flag from the offset's "
+    _mm("top_one_point_bad", "method_dpc_top.sv",
+        "      assign offset = w.offset;\n      assign bad    = w.bad;\n    end else",
+        "      assign offset = w.offset;\n      assign bad    = coef[OffsetBits-1];\n    end else",
+        "one_point's bad flag from the offset's "
         "sign", "onepoint14"),
     _mm("top_table_weight_low", "method_dpc_top.sv", ".s_weight_i (frame[WeightFracBits:0]),",
         ".s_weight_i ({1'b0, frame[WeightFracBits-1:0]}),",
