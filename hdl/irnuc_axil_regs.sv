@@ -1,0 +1,622 @@
+// AXI4-Lite register file of irnuc_axis_top: the map of nuc_fixed/registers.toml (offsets,
+// fields and resets are the irnuc_pkg constants generated from it; docs/registers.md).
+//
+// Slave: the write address and the write data are each taken into a holding register
+// (awready / wready = that register is empty), the write is done when both are held and
+// no response is waiting, and its response is held until bready. A read address is taken
+// when no read is in progress, the read data are registered a cycle later and held until
+// rready. Every output is a flop (arready: no address held and no data waiting, two flops).
+// One write and one read in progress at a time; reads have no side effects.
+//
+// Responses: OKAY, or SLVERR for an offset outside the map, a write to a register without
+// a writable field and a frame size of 0 or above MaxWidth x MaxHeight (the register keeps
+// its value). A register of a method or stage that is not built in (method register slot
+// of width 0, FFC registers without HasFfc) reads 0 and ignores writes, answered OKAY.
+//
+// Shadowed registers (CTRL, FRAME_SIZE, the method registers) are what the framer reads
+// at a frame start (start_i): a write changes the pending value, STATUS.pending is 1 until
+// the next start, and a new frame size also raises size_dirty_o (the framer drains the
+// core before it uses it).
+module irnuc_axil_regs
+  import irnuc_pkg::*;
+#(
+  parameter int unsigned AdcBits           = 14,
+  parameter int unsigned GainIntBits       = 2,
+  parameter int unsigned GainFracBits      = 14,
+  parameter int unsigned OffsetIntBits     = 12,
+  parameter int unsigned OffsetFracBits    = 4,
+  parameter int unsigned OutBits           = 14,
+  parameter int unsigned Rounding          = 1,
+  parameter int unsigned Overflow          = 0,
+  parameter int unsigned MaxWidth          = 1024,
+  parameter int unsigned MaxHeight         = 1024,
+  // The configured method (CONFIG) and what it builds in.
+  parameter int unsigned MethodCode        = 1,
+  parameter int unsigned HasBlindDrift     = 0,
+  parameter int unsigned HasFfc            = 0,
+  parameter int unsigned FfcFrames         = 1,
+  parameter int unsigned CoefLayoutVersion = 1,
+  // Widths of the method registers (PipelineConfig.registers), 0 = not in this method.
+  parameter int unsigned GainRegBits       = 0,
+  parameter int unsigned LevelRegBits      = 0,
+  parameter int unsigned ReadingRegBits    = 0,
+  parameter int unsigned TRefRegBits       = 0,
+  parameter int unsigned BlindSumRegBits   = 0,
+  parameter int unsigned BlindRefRegBits   = 0,
+  parameter int unsigned DriftGainRegBits  = 0,
+  parameter int unsigned FfcTargetRegBits  = 0,
+  parameter int unsigned TableReadings     = 0,
+  parameter int unsigned TableReadingBits  = 1,
+  // Derived, do not override.
+  localparam int unsigned AddrBits         = RegAddrBits,
+  localparam int unsigned GainBits         = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits       = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned WordBits         = coef_word_bits(GainBits, OffsetBits),
+  localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
+  localparam int unsigned NumSlots         = 8,
+  localparam int unsigned NumTable         = RegTableReadingCount
+) (
+  input  logic                             clk_i,
+  input  logic                             rst_ni,
+  // AXI4-Lite slave (AxPROT is not used).
+  input  logic [AddrBits-1:0]              s_axil_awaddr_i,
+  input  logic                             s_axil_awvalid_i,
+  output logic                             s_axil_awready_o,
+  input  logic [31:0]                      s_axil_wdata_i,
+  input  logic [3:0]                       s_axil_wstrb_i,
+  input  logic                             s_axil_wvalid_i,
+  output logic                             s_axil_wready_o,
+  output logic [1:0]                       s_axil_bresp_o,
+  output logic                             s_axil_bvalid_o,
+  input  logic                             s_axil_bready_i,
+  input  logic [AddrBits-1:0]              s_axil_araddr_i,
+  input  logic                             s_axil_arvalid_i,
+  output logic                             s_axil_arready_o,
+  output logic [31:0]                      s_axil_rdata_o,
+  output logic [1:0]                       s_axil_rresp_o,
+  output logic                             s_axil_rvalid_o,
+  input  logic                             s_axil_rready_i,
+  // Pending settings (CTRL, FRAME_SIZE; *_m1 = value - 1, *_is1 = value is 1).
+  output logic [WidthBits-1:0]             width_o,
+  output logic [HeightBits-1:0]            height_o,
+  output logic [WidthBits-1:0]             width_m1_o,
+  output logic [HeightBits-1:0]            height_m1_o,
+  output logic                             width_is1_o,
+  output logic                             height_is1_o,
+  output logic                             size_dirty_o,
+  output logic                             nuc_en_o,
+  output logic                             dpc_en_o,
+  output logic                             coef_sync_o,
+  // Pending method registers: the 64-bit slots (GAIN, LEVEL, READING, T_REF, BLIND_SUM,
+  // BLIND_REF, DRIFT_GAIN, FFC_TARGET) and the table readings.
+  output logic [NumSlots-1:0][63:0]        slot_o,
+  output logic [NumTable-1:0][31:0]        table_o,
+  // A frame starts (the framer takes the pending settings).
+  input  logic                             start_i,
+  // Events (one cycle each) and levels for STATUS, the counters and IRQ_STATUS.
+  input  logic                             frame_start_i,
+  input  logic                             beat_i,
+  input  logic                             drop_i,
+  input  logic                             pad_i,
+  input  logic                             pix_out_i,
+  input  logic                             frame_out_i,
+  input  logic                             sof_early_i,
+  input  logic                             sof_late_i,
+  input  logic                             eol_early_i,
+  input  logic                             eol_late_i,
+  input  logic                             coef_early_i,
+  input  logic                             coef_late_i,
+  input  logic                             in_frame_i,
+  input  logic                             core_err_i,
+  // The FFC unit (HasFfc).
+  output logic                             ffc_start_o,
+  output logic [RegFfcCtrlFramesBits-1:0]  ffc_frames_o,
+  input  logic                             ffc_busy_i,
+  input  logic                             ffc_done_i,
+  // Interrupt: OR of IRQ_STATUS and IRQ_ENABLE (a flop).
+  output logic                             irq_o
+);
+
+  localparam int unsigned SlotBits [NumSlots] = '{
+    GainRegBits, LevelRegBits, ReadingRegBits, TRefRegBits, BlindSumRegBits, BlindRefRegBits,
+    DriftGainRegBits, FfcTargetRegBits
+  };
+  localparam int unsigned SlotOffset [NumSlots] = '{
+    RegGainLoOffset, RegLevelLoOffset, RegReadingLoOffset, RegTRefLoOffset,
+    RegBlindSumLoOffset, RegBlindRefLoOffset, RegDriftGainLoOffset, RegFfcTargetLoOffset
+  };
+  localparam int unsigned NumErrors = 6;
+
+`ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax &&
+            MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "irnuc_axil_regs: MaxWidth = %0d, MaxHeight = %0d outside %0d..%0d",
+                  MaxWidth, MaxHeight, MaxWidthMin, MaxWidthMax);
+    assert (WidthBits <= RegFrameSizeWidthBits && HeightBits <= RegFrameSizeHeightBits)
+      else $fatal(1, "irnuc_axil_regs: the frame size does not fit FRAME_SIZE");
+    for (int k = 0; k < NumSlots; k++) begin
+      assert (SlotBits[k] <= 64)
+        else $fatal(1, "irnuc_axil_regs: method register %0d of %0d bits > 64", k,
+                    SlotBits[k]);
+    end
+    assert (TableReadings <= NumTable && TableReadingBits >= 1 && TableReadingBits <= 32)
+      else $fatal(1, "irnuc_axil_regs: %0d table readings of %0d bits", TableReadings,
+                  TableReadingBits);
+  end
+`endif
+
+  // ---- helpers ------------------------------------------------------------------------------
+  // The word address `word` (address bits AddrBits-1:2) is the register at byte `offset`.
+  function automatic logic at(input logic [AddrBits-3:0] word, input int unsigned offset);
+    return 32'({word, 2'b00}) == offset;
+  endfunction
+
+  function automatic logic [31:0] byte_mask(input logic [3:0] strb);
+    return {{8{strb[3]}}, {8{strb[2]}}, {8{strb[1]}}, {8{strb[0]}}};
+  endfunction
+
+  // The bits of a value field of `bits` bits that lie in word `word` (0: 31..0, 1: 63..32).
+  function automatic logic [31:0] value_mask(input int unsigned bits, input int unsigned word);
+    int unsigned n;
+    n = (bits > 32 * word) ? bits - 32 * word : 0;
+    return (n >= 32) ? 32'hffff_ffff : (32'd1 << n) - 32'd1;
+  endfunction
+
+  // ---- write channel ---------------------------------------------------------------------
+  logic                aw_held_q, w_held_q, b_valid_q;
+  logic [AddrBits-1:0] aw_addr_q;
+  logic [31:0]         w_data_q;
+  logic [3:0]          w_strb_q;
+  axi_resp_e           b_resp_q, w_resp;
+  logic                wr;
+  logic [AddrBits-3:0] aw_word;
+  logic [31:0]         wmask, wdata;
+
+  assign wr    = aw_held_q && w_held_q && !b_valid_q;
+  assign wmask = byte_mask(w_strb_q);
+  assign wdata = w_data_q & wmask;
+  assign aw_word = aw_addr_q[AddrBits-1:2];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_write_channel
+    if (!rst_ni) begin
+      aw_held_q <= 1'b0;
+      w_held_q  <= 1'b0;
+      b_valid_q <= 1'b0;
+      b_resp_q  <= AxiOkay;
+    end else begin
+      if (s_axil_awvalid_i && !aw_held_q) begin
+        aw_held_q <= 1'b1;
+      end
+      if (s_axil_wvalid_i && !w_held_q) begin
+        w_held_q <= 1'b1;
+      end
+      if (wr) begin
+        aw_held_q <= 1'b0;
+        w_held_q  <= 1'b0;
+        b_valid_q <= 1'b1;
+        b_resp_q  <= w_resp;
+      end else if (s_axil_bready_i) begin
+        b_valid_q <= 1'b0;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_write_payload
+    if (s_axil_awvalid_i && !aw_held_q) begin
+      aw_addr_q <= s_axil_awaddr_i;
+    end
+    if (s_axil_wvalid_i && !w_held_q) begin
+      w_data_q <= s_axil_wdata_i;
+      w_strb_q <= s_axil_wstrb_i;
+    end
+  end
+
+  assign s_axil_awready_o = !aw_held_q;
+  assign s_axil_wready_o  = !w_held_q;
+  assign s_axil_bvalid_o  = b_valid_q;
+  assign s_axil_bresp_o   = b_resp_q;
+
+  // ---- CTRL and FRAME_SIZE (shadowed) ------------------------------------------------------
+  localparam logic [31:0] CtrlMask = (32'd1 << RegCtrlNucEnLsb) | (32'd1 << RegCtrlDpcEnLsb)
+                                     | (32'd1 << RegCtrlCoefSyncLsb);
+  localparam logic [31:0] SizeMask = ((32'd1 << RegFrameSizeWidthBits) - 32'd1)
+                                       << RegFrameSizeWidthLsb
+                                     | ((32'd1 << RegFrameSizeHeightBits) - 32'd1)
+                                       << RegFrameSizeHeightLsb;
+
+  logic                  nuc_en_q, dpc_en_q, coef_sync_q;
+  logic [WidthBits-1:0]  width_q, width_m1_q;
+  logic [HeightBits-1:0] height_q, height_m1_q;
+  logic                  width_is1_q, height_is1_q, size_dirty_q, pending_q;
+  logic [31:0]           ctrl_view, size_view, ctrl_new, size_new;
+  logic [31:0]           new_w, new_h;
+  logic                  size_legal, wr_ctrl, wr_size, shadow_touch;
+
+  assign ctrl_view = (32'(nuc_en_q) << RegCtrlNucEnLsb) | (32'(dpc_en_q) << RegCtrlDpcEnLsb)
+                     | (32'(coef_sync_q) << RegCtrlCoefSyncLsb);
+  assign size_view = (32'(width_q) << RegFrameSizeWidthLsb)
+                     | (32'(height_q) << RegFrameSizeHeightLsb);
+  assign ctrl_new  = (ctrl_view & ~wmask) | (wdata & CtrlMask);
+  assign size_new  = (size_view & ~wmask) | (wdata & SizeMask);
+  assign new_w     = (size_new >> RegFrameSizeWidthLsb) & ((32'd1 << RegFrameSizeWidthBits) - 1);
+  assign new_h     = (size_new >> RegFrameSizeHeightLsb)
+                     & ((32'd1 << RegFrameSizeHeightBits) - 1);
+  assign size_legal = (new_w != 0) && (new_w <= MaxWidth) && (new_h != 0) && (new_h <= MaxHeight);
+  assign wr_ctrl    = wr && at(aw_word, RegCtrlOffset);
+  assign wr_size    = wr && at(aw_word, RegFrameSizeOffset);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_settings
+    if (!rst_ni) begin
+      nuc_en_q     <= 1'(RegCtrlNucEnReset);
+      dpc_en_q     <= 1'(RegCtrlDpcEnReset);
+      coef_sync_q  <= 1'(RegCtrlCoefSyncReset);
+      width_q      <= WidthBits'(MaxWidth);
+      width_m1_q   <= WidthBits'(MaxWidth - 1);
+      width_is1_q  <= (MaxWidth == 1);
+      height_q     <= HeightBits'(MaxHeight);
+      height_m1_q  <= HeightBits'(MaxHeight - 1);
+      height_is1_q <= (MaxHeight == 1);
+    end else begin
+      if (wr_ctrl) begin
+        nuc_en_q    <= ctrl_new[RegCtrlNucEnLsb];
+        dpc_en_q    <= ctrl_new[RegCtrlDpcEnLsb];
+        coef_sync_q <= ctrl_new[RegCtrlCoefSyncLsb];
+      end
+      if (wr_size && size_legal) begin
+        width_q      <= WidthBits'(new_w);
+        width_m1_q   <= WidthBits'(new_w - 32'd1);
+        width_is1_q  <= (new_w == 32'd1);
+        height_q     <= HeightBits'(new_h);
+        height_m1_q  <= HeightBits'(new_h - 32'd1);
+        height_is1_q <= (new_h == 32'd1);
+      end
+    end
+  end
+
+  assign width_o      = width_q;
+  assign height_o     = height_q;
+  assign width_m1_o   = width_m1_q;
+  assign height_m1_o  = height_m1_q;
+  assign width_is1_o  = width_is1_q;
+  assign height_is1_o = height_is1_q;
+  assign nuc_en_o     = nuc_en_q;
+  assign dpc_en_o     = dpc_en_q;
+  assign coef_sync_o  = coef_sync_q;
+
+  // ---- method registers (shadowed) ---------------------------------------------------------
+  logic [NumSlots-1:0] slot_hit, slot_touch;
+  logic [NumTable-1:0] table_hit, table_touch;
+
+  for (genvar k = 0; k < NumSlots; k++) begin : gen_slot
+    assign slot_hit[k] = at(aw_word, SlotOffset[k]) || at(aw_word, SlotOffset[k] + 4);
+    if (SlotBits[k] > 0) begin : gen_on
+      localparam int unsigned Bits   = SlotBits[k];
+      localparam logic [31:0] LoMask = value_mask(Bits, 0);
+      localparam logic [31:0] HiMask = value_mask(Bits, 1);
+      logic [Bits-1:0] value_q;
+      logic [63:0]     view;
+      logic [31:0]     lo, hi;
+      logic            wr_lo, wr_hi;
+
+      assign view  = 64'(value_q);
+      assign wr_lo = wr && at(aw_word, SlotOffset[k]);
+      assign wr_hi = wr && at(aw_word, SlotOffset[k] + 4);
+      assign lo    = wr_lo ? (view[31:0] & ~wmask) | (wdata & LoMask) : view[31:0];
+      assign hi    = wr_hi ? (view[63:32] & ~wmask) | (wdata & HiMask) : view[63:32];
+      assign slot_touch[k] = (wr_lo && |(wmask & LoMask)) || (wr_hi && |(wmask & HiMask));
+
+      always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
+        if (!rst_ni) begin
+          value_q <= '0;
+        end else if (wr_lo || wr_hi) begin
+          value_q <= Bits'({hi, lo});
+        end
+      end
+      assign slot_o[k] = view;
+    end else begin : gen_off
+      assign slot_touch[k] = 1'b0;
+      assign slot_o[k]     = '0;
+    end
+  end
+
+  for (genvar k = 0; k < NumTable; k++) begin : gen_table
+    assign table_hit[k] = at(aw_word, RegTableReadingOffset + k * RegTableReadingStride);
+    if (k < TableReadings) begin : gen_on
+      localparam logic [31:0] Mask = value_mask(TableReadingBits, 0);
+      logic [TableReadingBits-1:0] value_q;
+      logic                        wr_k;
+
+      assign wr_k           = wr && table_hit[k];
+      assign table_touch[k] = wr_k && |(wmask & Mask);
+
+      always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
+        if (!rst_ni) begin
+          value_q <= '0;
+        end else if (wr_k) begin
+          value_q <= TableReadingBits'(((32'(value_q) & ~wmask) | (wdata & Mask)));
+        end
+      end
+      assign table_o[k] = 32'(value_q);
+    end else begin : gen_off
+      assign table_touch[k] = 1'b0;
+      assign table_o[k]     = '0;
+    end
+  end
+
+  // A write that changes a shadowed register: pending until the next frame start (a write
+  // in the start cycle stays pending: the framer took the value before it).
+  assign shadow_touch = (wr_ctrl && |(wmask & CtrlMask))
+                        || (wr_size && size_legal && |(wmask & SizeMask))
+                        || |slot_touch || |table_touch;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_pending
+    if (!rst_ni) begin
+      pending_q    <= 1'b0;
+      size_dirty_q <= 1'b0;
+    end else begin
+      pending_q    <= shadow_touch || (pending_q && !start_i);
+      size_dirty_q <= (wr_size && size_legal && |(wmask & SizeMask))
+                      || (size_dirty_q && !start_i);
+    end
+  end
+
+  assign size_dirty_o = size_dirty_q;
+
+  // ---- STATUS, IRQ ---------------------------------------------------------------------------
+  logic [NumErrors-1:0] err_q, err_ev;
+  logic [2:0]           irq_en_q, irq_st_q, irq_ev;
+  logic                 irq_q;
+  logic [31:0]          err_clear, irq_clear;
+
+  assign err_ev    = {coef_late_i, coef_early_i, eol_late_i, eol_early_i, sof_late_i,
+                      sof_early_i};
+  assign irq_ev    = {ffc_done_i && (HasFfc != 0), frame_out_i, |err_ev};
+  assign err_clear = (wr && at(aw_word, RegStatusOffset)) ? wdata : '0;
+  assign irq_clear = (wr && at(aw_word, RegIrqStatusOffset)) ? wdata : '0;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_status
+    if (!rst_ni) begin
+      err_q    <= '0;
+      irq_en_q <= '0;
+      irq_st_q <= '0;
+      irq_q    <= 1'b0;
+    end else begin
+      err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));
+      irq_st_q <= irq_ev | (irq_st_q & ~3'(irq_clear >> RegIrqStatusErrorLsb));
+      irq_q    <= |(irq_st_q & irq_en_q);
+      if (wr && at(aw_word, RegIrqEnableOffset)) begin
+        irq_en_q <= 3'((((32'(irq_en_q) << RegIrqEnableErrorLsb) & ~wmask) | wdata)
+                       >> RegIrqEnableErrorLsb);
+      end
+    end
+  end
+
+  assign irq_o = irq_q;
+
+  // ---- counters --------------------------------------------------------------------------------
+  logic        clear;
+  logic [31:0] frames_in_q, frames_out_q, pix_in_q, pix_out_q, dropped_q, padded_q;
+  logic [15:0] sof_early_q, sof_late_q, eol_early_q, eol_late_q, coef_early_q, coef_late_q;
+
+  assign clear = wr && at(aw_word, RegCommandOffset)
+                 && wdata[RegCommandClearCountersLsb];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_counters
+    if (!rst_ni) begin
+      frames_in_q  <= '0;
+      frames_out_q <= '0;
+      pix_in_q     <= '0;
+      pix_out_q    <= '0;
+      dropped_q    <= '0;
+      padded_q     <= '0;
+      sof_early_q  <= '0;
+      sof_late_q   <= '0;
+      eol_early_q  <= '0;
+      eol_late_q   <= '0;
+      coef_early_q <= '0;
+      coef_late_q  <= '0;
+    end else if (clear) begin
+      frames_in_q  <= '0;
+      frames_out_q <= '0;
+      pix_in_q     <= '0;
+      pix_out_q    <= '0;
+      dropped_q    <= '0;
+      padded_q     <= '0;
+      sof_early_q  <= '0;
+      sof_late_q   <= '0;
+      eol_early_q  <= '0;
+      eol_late_q   <= '0;
+      coef_early_q <= '0;
+      coef_late_q  <= '0;
+    end else begin
+      frames_in_q  <= frames_in_q + 32'(frame_start_i);
+      frames_out_q <= frames_out_q + 32'(frame_out_i);
+      pix_in_q     <= pix_in_q + 32'(beat_i);
+      pix_out_q    <= pix_out_q + 32'(pix_out_i);
+      dropped_q    <= dropped_q + 32'(drop_i);
+      padded_q     <= padded_q + 32'(pad_i);
+      sof_early_q  <= sof_early_q + 16'(sof_early_i);
+      sof_late_q   <= sof_late_q + 16'(sof_late_i);
+      eol_early_q  <= eol_early_q + 16'(eol_early_i);
+      eol_late_q   <= eol_late_q + 16'(eol_late_i);
+      coef_early_q <= coef_early_q + 16'(coef_early_i);
+      coef_late_q  <= coef_late_q + 16'(coef_late_i);
+    end
+  end
+
+  // ---- FFC --------------------------------------------------------------------------------------
+  logic [RegFfcCtrlFramesBits-1:0] ffc_frames_q;
+  logic                            ffc_start_q, ffc_done_q;
+
+  if (HasFfc != 0) begin : gen_ffc
+    always_ff @(posedge clk_i or negedge rst_ni) begin : p_ffc
+      if (!rst_ni) begin
+        ffc_frames_q <= RegFfcCtrlFramesBits'(FfcFrames);
+        ffc_start_q  <= 1'b0;
+        ffc_done_q   <= 1'b0;
+      end else begin
+        ffc_start_q <= wr && at(aw_word, RegFfcCtrlOffset) && wdata[RegFfcCtrlStartLsb];
+        if (wr && at(aw_word, RegFfcCtrlOffset)) begin
+          ffc_frames_q <= RegFfcCtrlFramesBits'(
+            (((32'(ffc_frames_q) << RegFfcCtrlFramesLsb) & ~wmask) | wdata)
+            >> RegFfcCtrlFramesLsb);
+        end
+        if (ffc_done_i) begin
+          ffc_done_q <= 1'b1;
+        end else if (ffc_start_q) begin
+          ffc_done_q <= 1'b0;
+        end
+      end
+    end
+  end else begin : gen_no_ffc
+    assign ffc_frames_q = '0;
+    assign ffc_start_q  = 1'b0;
+    assign ffc_done_q   = 1'b0;
+  end
+
+  assign ffc_start_o  = ffc_start_q;
+  assign ffc_frames_o = ffc_frames_q;
+
+  // ---- write response --------------------------------------------------------------------------
+  // OKAY for a writable or reserved register, SLVERR for a read-only or unmapped one.
+  logic wr_readonly, wr_writable;
+
+  assign wr_readonly = at(aw_word, RegIdOffset) || at(aw_word, RegVersionOffset)
+                       || at(aw_word, RegConfigOffset) || at(aw_word, RegFormatOffset)
+                       || at(aw_word, RegFrameMaxOffset) || at(aw_word, RegFramesInOffset)
+                       || at(aw_word, RegFramesOutOffset) || at(aw_word, RegPixelsInOffset)
+                       || at(aw_word, RegPixelsOutOffset) || at(aw_word, RegDroppedOffset)
+                       || at(aw_word, RegPaddedOffset) || at(aw_word, RegSofErrorsOffset)
+                       || at(aw_word, RegEolErrorsOffset) || at(aw_word, RegCoefErrorsOffset)
+                       || (at(aw_word, RegFfcStatusOffset) && HasFfc != 0);
+  assign wr_writable = at(aw_word, RegCtrlOffset) || at(aw_word, RegCommandOffset)
+                       || at(aw_word, RegStatusOffset) || at(aw_word, RegIrqEnableOffset)
+                       || at(aw_word, RegIrqStatusOffset) || at(aw_word, RegFfcCtrlOffset)
+                       || (at(aw_word, RegFfcStatusOffset) && HasFfc == 0)
+                       || |slot_hit || |table_hit
+                       || (at(aw_word, RegFrameSizeOffset) && size_legal);
+
+  assign w_resp = (wr_writable && !wr_readonly) ? AxiOkay : AxiSlvErr;
+
+  // ---- read channel ----------------------------------------------------------------------------
+  logic                ar_held_q, r_valid_q;
+  logic [AddrBits-1:0] ar_addr_q;
+  logic [AddrBits-3:0] ar_word;
+  logic [31:0]         r_data_q, rd_data;
+  axi_resp_e           r_resp_q, rd_resp;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_channel
+    if (!rst_ni) begin
+      ar_held_q <= 1'b0;
+      r_valid_q <= 1'b0;
+      r_resp_q  <= AxiOkay;
+    end else begin
+      if (s_axil_arvalid_i && !ar_held_q && !r_valid_q) begin
+        ar_held_q <= 1'b1;
+      end else if (ar_held_q) begin
+        ar_held_q <= 1'b0;
+        r_valid_q <= 1'b1;
+        r_resp_q  <= rd_resp;
+      end else if (s_axil_rready_i) begin
+        r_valid_q <= 1'b0;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_read_payload
+    if (s_axil_arvalid_i && !ar_held_q && !r_valid_q) begin
+      ar_addr_q <= s_axil_araddr_i;
+    end
+    if (ar_held_q) begin
+      r_data_q <= rd_data;
+    end
+  end
+
+  assign ar_word          = ar_addr_q[AddrBits-1:2];
+  assign s_axil_arready_o = !ar_held_q && !r_valid_q;
+  assign s_axil_rvalid_o  = r_valid_q;
+  assign s_axil_rdata_o   = r_data_q;
+  assign s_axil_rresp_o   = r_resp_q;
+
+  // The read data of the held address.
+  always_comb begin : p_read_mux
+    rd_data = '0;
+    rd_resp = AxiOkay;
+    unique case ({ar_word, 2'b00})
+      AddrBits'(RegIdOffset): rd_data = 32'(RegMapId) << RegIdValueLsb;
+      AddrBits'(RegVersionOffset):
+        rd_data = (32'(RegMapMinor) << RegVersionMinorLsb)
+                  | (32'(RegMapMajor) << RegVersionMajorLsb)
+                  | (32'(CoefLayoutVersion) << RegVersionCoefLayoutLsb);
+      AddrBits'(RegConfigOffset):
+        rd_data = (32'(AdcBits) << RegConfigAdcBitsLsb) | (32'(OutBits) << RegConfigOutBitsLsb)
+                  | (32'(WordBits) << RegConfigWordBitsLsb)
+                  | (32'(MethodCode) << RegConfigMethodLsb)
+                  | (32'(HasBlindDrift) << RegConfigBlindDriftLsb)
+                  | (32'(HasFfc) << RegConfigFfcLsb) | (32'(Rounding) << RegConfigRoundingLsb)
+                  | (32'(Overflow) << RegConfigOverflowLsb);
+      AddrBits'(RegFormatOffset):
+        rd_data = (32'(GainIntBits) << RegFormatGainIntBitsLsb)
+                  | (32'(GainFracBits) << RegFormatGainFracBitsLsb)
+                  | (32'(OffsetIntBits) << RegFormatOffsetIntBitsLsb)
+                  | (32'(OffsetFracBits) << RegFormatOffsetFracBitsLsb);
+      AddrBits'(RegFrameMaxOffset):
+        rd_data = (32'(MaxWidth) << RegFrameMaxWidthLsb)
+                  | (32'(MaxHeight) << RegFrameMaxHeightLsb);
+      AddrBits'(RegCtrlOffset): rd_data = ctrl_view;
+      AddrBits'(RegFrameSizeOffset): rd_data = size_view;
+      AddrBits'(RegCommandOffset): rd_data = '0;
+      AddrBits'(RegStatusOffset):
+        rd_data = (32'(err_q) << RegStatusSofEarlyLsb) | (32'(core_err_i) << RegStatusCoreErrLsb)
+                  | (32'(in_frame_i) << RegStatusInFrameLsb)
+                  | (32'(pending_q) << RegStatusPendingLsb);
+      AddrBits'(RegIrqEnableOffset): rd_data = 32'(irq_en_q) << RegIrqEnableErrorLsb;
+      AddrBits'(RegIrqStatusOffset): rd_data = 32'(irq_st_q) << RegIrqStatusErrorLsb;
+      AddrBits'(RegFramesInOffset): rd_data = frames_in_q;
+      AddrBits'(RegFramesOutOffset): rd_data = frames_out_q;
+      AddrBits'(RegPixelsInOffset): rd_data = pix_in_q;
+      AddrBits'(RegPixelsOutOffset): rd_data = pix_out_q;
+      AddrBits'(RegDroppedOffset): rd_data = dropped_q;
+      AddrBits'(RegPaddedOffset): rd_data = padded_q;
+      AddrBits'(RegSofErrorsOffset):
+        rd_data = (32'(sof_early_q) << RegSofErrorsEarlyLsb)
+                  | (32'(sof_late_q) << RegSofErrorsLateLsb);
+      AddrBits'(RegEolErrorsOffset):
+        rd_data = (32'(eol_early_q) << RegEolErrorsEarlyLsb)
+                  | (32'(eol_late_q) << RegEolErrorsLateLsb);
+      AddrBits'(RegCoefErrorsOffset):
+        rd_data = (32'(coef_early_q) << RegCoefErrorsEarlyLsb)
+                  | (32'(coef_late_q) << RegCoefErrorsLateLsb);
+      AddrBits'(RegFfcCtrlOffset): rd_data = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
+      AddrBits'(RegFfcStatusOffset):
+        rd_data = (32'(ffc_busy_i && HasFfc != 0) << RegFfcStatusBusyLsb)
+                  | (32'(ffc_done_q) << RegFfcStatusDoneLsb);
+      default: begin
+        rd_resp = AxiSlvErr;
+        for (int k = 0; k < NumSlots; k++) begin
+          if (at(ar_word, SlotOffset[k])) begin
+            rd_data = slot_o[k][31:0];
+            rd_resp = AxiOkay;
+          end
+          if (at(ar_word, SlotOffset[k] + 4)) begin
+            rd_data = slot_o[k][63:32];
+            rd_resp = AxiOkay;
+          end
+        end
+        for (int k = 0; k < NumTable; k++) begin
+          if (at(ar_word, RegTableReadingOffset + k * RegTableReadingStride)) begin
+            rd_data = table_o[k];
+            rd_resp = AxiOkay;
+          end
+        end
+      end
+    endcase
+  end
+
+  // Address bits 1:0 select a byte of the word (not used: whole words are read).
+  logic unused_addr;
+  assign unused_addr = ^{aw_addr_q[1:0], ar_addr_q[1:0]};
+
+endmodule
