@@ -472,7 +472,8 @@ def probe_values() -> dict[str, int]:
 __all__ = [
     "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS", "DPC_SUM_LEAVES", "ENUMS",
     "FRAME_DIM_MAX", "LAYOUTS", "MUL_CHUNK_BITS", "OVERFLOW", "OVERFLOW_MODES",
-    "PIPELINE_RANGES", "RANGES", "REGISTER_CONSTANTS", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX", "Constant",
+    "PIPELINE_RANGES", "RANGES", "REGISTER_CONSTANTS", "ROUNDING", "ROUNDING_MODES",
+    "SUM_BITS_MAX", "Constant",
     "Enum", "EnumLiteral", "Field", "Range", "WordLayout", "clog2", "dpc_recip",
     "dpc_recip_shift", "mul_chunks", "mul_parts", "pipeline_stages", "sv_package_block",
     "sv_probe",
