@@ -2,11 +2,13 @@
 // fields and resets are the irnuc_pkg constants generated from it; docs/registers.md).
 //
 // Slave: the write address and the write data are each taken into a holding register
-// (awready / wready = that register is empty), the write is done when both are held and
-// no response is waiting, and its response is held until bready. A read address is taken
-// when no read is in progress, the read data are registered a cycle later and held until
-// rready. Every output is a flop (arready: no address held and no data waiting, two flops).
-// One write and one read in progress at a time; reads have no side effects.
+// (awready / wready = that register is empty); when both are held and no response is
+// waiting, the address is decoded into one-hot register selects (a cycle), the write is done
+// and its response raised (the next cycle) and held until bready. A read address is taken
+// when no read is in progress, decoded (a cycle), its register read through an AND-OR of the
+// selects (a cycle) and the data held until rready. Every output is a flop or a NOR of flops
+// (arready); no path from an input to an output. One write and one read at a time; reads
+// have no side effects.
 //
 // Responses: OKAY, or SLVERR for an offset outside the map, a write to a register without
 // a writable field and a frame size of 0 or above MaxWidth x MaxHeight (the register keeps
@@ -147,10 +149,75 @@ module irnuc_axil_regs
   end
 `endif
 
-  // ---- helpers ------------------------------------------------------------------------------
-  // The word address `word` (address bits AddrBits-1:2) is the register at byte `offset`.
-  function automatic logic at(input logic [AddrBits-3:0] word, input int unsigned offset);
-    return 32'({word, 2'b00}) == offset;
+  // ---- the map: one index per register word -----------------------------------------------
+  localparam int unsigned IxId         = 0;
+  localparam int unsigned IxVersion    = 1;
+  localparam int unsigned IxConfig     = 2;
+  localparam int unsigned IxFormat     = 3;
+  localparam int unsigned IxFrameMax   = 4;
+  localparam int unsigned IxCtrl       = 5;
+  localparam int unsigned IxFrameSize  = 6;
+  localparam int unsigned IxCommand    = 7;
+  localparam int unsigned IxStatus     = 8;
+  localparam int unsigned IxIrqEnable  = 9;
+  localparam int unsigned IxIrqStatus  = 10;
+  localparam int unsigned IxFramesIn   = 11;
+  localparam int unsigned IxFramesOut  = 12;
+  localparam int unsigned IxPixelsIn   = 13;
+  localparam int unsigned IxPixelsOut  = 14;
+  localparam int unsigned IxDropped    = 15;
+  localparam int unsigned IxPadded     = 16;
+  localparam int unsigned IxSofErrors  = 17;
+  localparam int unsigned IxEolErrors  = 18;
+  localparam int unsigned IxCoefErrors = 19;
+  localparam int unsigned IxFfcCtrl    = 20;
+  localparam int unsigned IxFfcStatus  = 21;
+  localparam int unsigned NumFixed     = 22;
+  localparam int unsigned IxSlot       = NumFixed;              // slot k: LO, HI
+  localparam int unsigned IxTable      = IxSlot + 2 * NumSlots;  // table reading k
+  localparam int unsigned NumRegs      = IxTable + NumTable;
+
+  localparam int unsigned FixedOffset [NumFixed] = '{
+    RegIdOffset, RegVersionOffset, RegConfigOffset, RegFormatOffset, RegFrameMaxOffset,
+    RegCtrlOffset, RegFrameSizeOffset, RegCommandOffset, RegStatusOffset, RegIrqEnableOffset,
+    RegIrqStatusOffset, RegFramesInOffset, RegFramesOutOffset, RegPixelsInOffset,
+    RegPixelsOutOffset, RegDroppedOffset, RegPaddedOffset, RegSofErrorsOffset,
+    RegEolErrorsOffset, RegCoefErrorsOffset, RegFfcCtrlOffset, RegFfcStatusOffset
+  };
+
+  // The byte offset of register index `ix`.
+  function automatic int unsigned reg_offset(input int unsigned ix);
+    if (ix < NumFixed) begin
+      return FixedOffset[ix];
+    end
+    if (ix < IxTable) begin
+      return SlotOffset[(ix - IxSlot) / 2] + 32'd4 * ((ix - IxSlot) % 2);
+    end
+    return RegTableReadingOffset + (ix - IxTable) * RegTableReadingStride;
+  endfunction
+
+  // Registers a write to is answered SLVERR: no writable field (reserved ones are OKAY).
+  function automatic logic [NumRegs-1:0] read_only();
+    logic [NumRegs-1:0] ro;
+    ro = '0;
+    for (int unsigned ix = IxId; ix <= IxFrameMax; ix++) begin
+      ro[ix] = 1'b1;
+    end
+    for (int unsigned ix = IxFramesIn; ix <= IxCoefErrors; ix++) begin
+      ro[ix] = 1'b1;
+    end
+    ro[IxFfcStatus] = (HasFfc != 0);
+    return ro;
+  endfunction
+  localparam logic [NumRegs-1:0] ReadOnly = read_only();
+
+  // The register indices a word address hits (at most one).
+  function automatic logic [NumRegs-1:0] decode(input logic [AddrBits-3:0] word);
+    logic [NumRegs-1:0] hit;
+    for (int unsigned ix = 0; ix < NumRegs; ix++) begin
+      hit[ix] = (32'({word, 2'b00}) == reg_offset(ix));
+    end
+    return hit;
   endfunction
 
   function automatic logic [31:0] byte_mask(input logic [3:0] strb);
@@ -164,25 +231,25 @@ module irnuc_axil_regs
     return (n >= 32) ? 32'hffff_ffff : (32'd1 << n) - 32'd1;
   endfunction
 
-  // ---- write channel ---------------------------------------------------------------------
-  logic                aw_held_q, w_held_q, b_valid_q;
+  // ---- write channel: hold address and data, decode (a cycle), write (a cycle) --------------
+  logic                aw_held_q, w_held_q, dec_q, b_valid_q;
   logic [AddrBits-1:0] aw_addr_q;
   logic [31:0]         w_data_q;
   logic [3:0]          w_strb_q;
-  axi_resp_e           b_resp_q, w_resp;
-  logic                wr;
-  logic [AddrBits-3:0] aw_word;
-  logic [31:0]         wmask, wdata;
+  axi_resp_e           b_resp_q, w_resp_q;
+  logic                decode_now, wr;
+  logic [NumRegs-1:0]  w_hit, wsel_q;
+  logic [31:0]         wmask, wdata;  // the decoded write: byte lanes and their data
 
-  assign wr    = aw_held_q && w_held_q && !b_valid_q;
-  assign wmask = byte_mask(w_strb_q);
-  assign wdata = w_data_q & wmask;
-  assign aw_word = aw_addr_q[AddrBits-1:2];
+  assign decode_now = aw_held_q && w_held_q && !dec_q && !b_valid_q;
+  assign wr         = dec_q;
+  assign w_hit      = decode(aw_addr_q[AddrBits-1:2]);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_write_channel
     if (!rst_ni) begin
       aw_held_q <= 1'b0;
       w_held_q  <= 1'b0;
+      dec_q     <= 1'b0;
       b_valid_q <= 1'b0;
       b_resp_q  <= AxiOkay;
     end else begin
@@ -192,11 +259,12 @@ module irnuc_axil_regs
       if (s_axil_wvalid_i && !w_held_q) begin
         w_held_q <= 1'b1;
       end
-      if (wr) begin
+      dec_q <= decode_now;
+      if (dec_q) begin
         aw_held_q <= 1'b0;
         w_held_q  <= 1'b0;
         b_valid_q <= 1'b1;
-        b_resp_q  <= w_resp;
+        b_resp_q  <= w_resp_q;
       end else if (s_axil_bready_i) begin
         b_valid_q <= 1'b0;
       end
@@ -221,31 +289,50 @@ module irnuc_axil_regs
   // ---- CTRL and FRAME_SIZE (shadowed) ------------------------------------------------------
   localparam logic [31:0] CtrlMask = (32'd1 << RegCtrlNucEnLsb) | (32'd1 << RegCtrlDpcEnLsb)
                                      | (32'd1 << RegCtrlCoefSyncLsb);
-  localparam logic [31:0] SizeMask = ((32'd1 << RegFrameSizeWidthBits) - 32'd1)
-                                       << RegFrameSizeWidthLsb
-                                     | ((32'd1 << RegFrameSizeHeightBits) - 32'd1)
-                                       << RegFrameSizeHeightLsb;
+  localparam logic [31:0] WidthField  = ((32'd1 << RegFrameSizeWidthBits) - 32'd1)
+                                        << RegFrameSizeWidthLsb;
+  localparam logic [31:0] HeightField = ((32'd1 << RegFrameSizeHeightBits) - 32'd1)
+                                        << RegFrameSizeHeightLsb;
+  localparam logic [31:0] SizeMask    = WidthField | HeightField;
 
   logic                  nuc_en_q, dpc_en_q, coef_sync_q;
-  logic [WidthBits-1:0]  width_q, width_m1_q;
-  logic [HeightBits-1:0] height_q, height_m1_q;
+  logic [WidthBits-1:0]  width_q, width_m1_q, new_w_q, new_wm1_q;
+  logic [HeightBits-1:0] height_q, height_m1_q, new_h_q, new_hm1_q;
   logic                  width_is1_q, height_is1_q, size_dirty_q, pending_q;
-  logic [31:0]           ctrl_view, size_view, ctrl_new, size_new;
-  logic [31:0]           new_w, new_h;
-  logic                  size_legal, wr_ctrl, wr_size, shadow_touch;
+  logic [31:0]           ctrl_view, size_view, ctrl_new, size_new, new_w, new_h;
+  logic                  size_legal, size_legal_q, wr_ctrl, wr_size, shadow_touch;
 
-  assign ctrl_view = (32'(nuc_en_q) << RegCtrlNucEnLsb) | (32'(dpc_en_q) << RegCtrlDpcEnLsb)
-                     | (32'(coef_sync_q) << RegCtrlCoefSyncLsb);
-  assign size_view = (32'(width_q) << RegFrameSizeWidthLsb)
-                     | (32'(height_q) << RegFrameSizeHeightLsb);
-  assign ctrl_new  = (ctrl_view & ~wmask) | (wdata & CtrlMask);
-  assign size_new  = (size_view & ~wmask) | (wdata & SizeMask);
-  assign new_w     = (size_new >> RegFrameSizeWidthLsb) & ((32'd1 << RegFrameSizeWidthBits) - 1);
-  assign new_h     = (size_new >> RegFrameSizeHeightLsb)
-                     & ((32'd1 << RegFrameSizeHeightBits) - 1);
-  assign size_legal = (new_w != 0) && (new_w <= MaxWidth) && (new_h != 0) && (new_h <= MaxHeight);
-  assign wr_ctrl    = wr && at(aw_word, RegCtrlOffset);
-  assign wr_size    = wr && at(aw_word, RegFrameSizeOffset);
+  assign ctrl_view  = (32'(nuc_en_q) << RegCtrlNucEnLsb) | (32'(dpc_en_q) << RegCtrlDpcEnLsb)
+                      | (32'(coef_sync_q) << RegCtrlCoefSyncLsb);
+  assign size_view  = (32'(width_q) << RegFrameSizeWidthLsb)
+                      | (32'(height_q) << RegFrameSizeHeightLsb);
+  // The frame size the held write would make, and whether it is legal (decode cycle).
+  assign size_new   = (size_view & ~byte_mask(w_strb_q)) | (w_data_q & byte_mask(w_strb_q));
+  assign new_w      = (size_new & WidthField) >> RegFrameSizeWidthLsb;
+  assign new_h      = (size_new & HeightField) >> RegFrameSizeHeightLsb;
+  assign size_legal = (new_w != 0) && (new_w <= MaxWidth) && (new_h != 0)
+                      && (new_h <= MaxHeight);
+
+  // The write's response (decode cycle): OKAY for a writable or reserved register, SLVERR
+  // for a read-only or unmapped one and for an illegal frame size.
+  always_ff @(posedge clk_i) begin : p_decode
+    if (decode_now) begin
+      wsel_q       <= w_hit;
+      wmask        <= byte_mask(w_strb_q);
+      wdata        <= w_data_q & byte_mask(w_strb_q);
+      size_legal_q <= size_legal;
+      new_w_q      <= WidthBits'(new_w);
+      new_wm1_q    <= WidthBits'(new_w - 32'd1);
+      new_h_q      <= HeightBits'(new_h);
+      new_hm1_q    <= HeightBits'(new_h - 32'd1);
+      w_resp_q     <= (|(w_hit & ~ReadOnly) && !(w_hit[IxFrameSize] && !size_legal))
+                      ? AxiOkay : AxiSlvErr;
+    end
+  end
+
+  assign ctrl_new = (ctrl_view & ~wmask) | (wdata & CtrlMask);
+  assign wr_ctrl  = wr && wsel_q[IxCtrl];
+  assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_settings
     if (!rst_ni) begin
@@ -264,13 +351,13 @@ module irnuc_axil_regs
         dpc_en_q    <= ctrl_new[RegCtrlDpcEnLsb];
         coef_sync_q <= ctrl_new[RegCtrlCoefSyncLsb];
       end
-      if (wr_size && size_legal) begin
-        width_q      <= WidthBits'(new_w);
-        width_m1_q   <= WidthBits'(new_w - 32'd1);
-        width_is1_q  <= (new_w == 32'd1);
-        height_q     <= HeightBits'(new_h);
-        height_m1_q  <= HeightBits'(new_h - 32'd1);
-        height_is1_q <= (new_h == 32'd1);
+      if (wr_size) begin
+        width_q      <= new_w_q;
+        width_m1_q   <= new_wm1_q;
+        width_is1_q  <= (new_wm1_q == '0);
+        height_q     <= new_h_q;
+        height_m1_q  <= new_hm1_q;
+        height_is1_q <= (new_hm1_q == '0);
       end
     end
   end
@@ -286,11 +373,10 @@ module irnuc_axil_regs
   assign coef_sync_o  = coef_sync_q;
 
   // ---- method registers (shadowed) ---------------------------------------------------------
-  logic [NumSlots-1:0] slot_hit, slot_touch;
-  logic [NumTable-1:0] table_hit, table_touch;
+  logic [NumSlots-1:0] slot_touch;
+  logic [NumTable-1:0] table_touch;
 
   for (genvar k = 0; k < NumSlots; k++) begin : gen_slot
-    assign slot_hit[k] = at(aw_word, SlotOffset[k]) || at(aw_word, SlotOffset[k] + 4);
     if (SlotBits[k] > 0) begin : gen_on
       localparam int unsigned Bits   = SlotBits[k];
       localparam logic [31:0] LoMask = value_mask(Bits, 0);
@@ -301,8 +387,8 @@ module irnuc_axil_regs
       logic            wr_lo, wr_hi;
 
       assign view  = 64'(value_q);
-      assign wr_lo = wr && at(aw_word, SlotOffset[k]);
-      assign wr_hi = wr && at(aw_word, SlotOffset[k] + 4);
+      assign wr_lo = wr && wsel_q[IxSlot + 2 * k];
+      assign wr_hi = wr && wsel_q[IxSlot + 2 * k + 1];
       assign lo    = wr_lo ? (view[31:0] & ~wmask) | (wdata & LoMask) : view[31:0];
       assign hi    = wr_hi ? (view[63:32] & ~wmask) | (wdata & HiMask) : view[63:32];
       assign slot_touch[k] = (wr_lo && |(wmask & LoMask)) || (wr_hi && |(wmask & HiMask));
@@ -322,13 +408,12 @@ module irnuc_axil_regs
   end
 
   for (genvar k = 0; k < NumTable; k++) begin : gen_table
-    assign table_hit[k] = at(aw_word, RegTableReadingOffset + k * RegTableReadingStride);
     if (k < TableReadings) begin : gen_on
       localparam logic [31:0] Mask = value_mask(TableReadingBits, 0);
       logic [TableReadingBits-1:0] value_q;
       logic                        wr_k;
 
-      assign wr_k           = wr && table_hit[k];
+      assign wr_k           = wr && wsel_q[IxTable + k];
       assign table_touch[k] = wr_k && |(wmask & Mask);
 
       always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
@@ -347,8 +432,7 @@ module irnuc_axil_regs
 
   // A write that changes a shadowed register: pending until the next frame start (a write
   // in the start cycle stays pending: the framer took the value before it).
-  assign shadow_touch = (wr_ctrl && |(wmask & CtrlMask))
-                        || (wr_size && size_legal && |(wmask & SizeMask))
+  assign shadow_touch = (wr_ctrl && |(wmask & CtrlMask)) || (wr_size && |(wmask & SizeMask))
                         || |slot_touch || |table_touch;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_pending
@@ -357,8 +441,7 @@ module irnuc_axil_regs
       size_dirty_q <= 1'b0;
     end else begin
       pending_q    <= shadow_touch || (pending_q && !start_i);
-      size_dirty_q <= (wr_size && size_legal && |(wmask & SizeMask))
-                      || (size_dirty_q && !start_i);
+      size_dirty_q <= (wr_size && |(wmask & SizeMask)) || (size_dirty_q && !start_i);
     end
   end
 
@@ -373,8 +456,8 @@ module irnuc_axil_regs
   assign err_ev    = {coef_late_i, coef_early_i, eol_late_i, eol_early_i, sof_late_i,
                       sof_early_i};
   assign irq_ev    = {ffc_done_i && (HasFfc != 0), frame_out_i, |err_ev};
-  assign err_clear = (wr && at(aw_word, RegStatusOffset)) ? wdata : '0;
-  assign irq_clear = (wr && at(aw_word, RegIrqStatusOffset)) ? wdata : '0;
+  assign err_clear = (wr && wsel_q[IxStatus]) ? wdata : '0;
+  assign irq_clear = (wr && wsel_q[IxIrqStatus]) ? wdata : '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_status
     if (!rst_ni) begin
@@ -386,7 +469,7 @@ module irnuc_axil_regs
       err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));
       irq_st_q <= irq_ev | (irq_st_q & ~3'(irq_clear >> RegIrqStatusErrorLsb));
       irq_q    <= |(irq_st_q & irq_en_q);
-      if (wr && at(aw_word, RegIrqEnableOffset)) begin
+      if (wr && wsel_q[IxIrqEnable]) begin
         irq_en_q <= 3'((((32'(irq_en_q) << RegIrqEnableErrorLsb) & ~wmask) | wdata)
                        >> RegIrqEnableErrorLsb);
       end
@@ -400,8 +483,7 @@ module irnuc_axil_regs
   logic [31:0] frames_in_q, frames_out_q, pix_in_q, pix_out_q, dropped_q, padded_q;
   logic [15:0] sof_early_q, sof_late_q, eol_early_q, eol_late_q, coef_early_q, coef_late_q;
 
-  assign clear = wr && at(aw_word, RegCommandOffset)
-                 && wdata[RegCommandClearCountersLsb];
+  assign clear = wr && wsel_q[IxCommand] && wdata[RegCommandClearCountersLsb];
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_counters
     if (!rst_ni) begin
@@ -457,8 +539,8 @@ module irnuc_axil_regs
         ffc_start_q  <= 1'b0;
         ffc_done_q   <= 1'b0;
       end else begin
-        ffc_start_q <= wr && at(aw_word, RegFfcCtrlOffset) && wdata[RegFfcCtrlStartLsb];
-        if (wr && at(aw_word, RegFfcCtrlOffset)) begin
+        ffc_start_q <= wr && wsel_q[IxFfcCtrl] && wdata[RegFfcCtrlStartLsb];
+        if (wr && wsel_q[IxFfcCtrl]) begin
           ffc_frames_q <= RegFfcCtrlFramesBits'(
             (((32'(ffc_frames_q) << RegFfcCtrlFramesLsb) & ~wmask) | wdata)
             >> RegFfcCtrlFramesLsb);
@@ -479,46 +561,32 @@ module irnuc_axil_regs
   assign ffc_start_o  = ffc_start_q;
   assign ffc_frames_o = ffc_frames_q;
 
-  // ---- write response --------------------------------------------------------------------------
-  // OKAY for a writable or reserved register, SLVERR for a read-only or unmapped one.
-  logic wr_readonly, wr_writable;
-
-  assign wr_readonly = at(aw_word, RegIdOffset) || at(aw_word, RegVersionOffset)
-                       || at(aw_word, RegConfigOffset) || at(aw_word, RegFormatOffset)
-                       || at(aw_word, RegFrameMaxOffset) || at(aw_word, RegFramesInOffset)
-                       || at(aw_word, RegFramesOutOffset) || at(aw_word, RegPixelsInOffset)
-                       || at(aw_word, RegPixelsOutOffset) || at(aw_word, RegDroppedOffset)
-                       || at(aw_word, RegPaddedOffset) || at(aw_word, RegSofErrorsOffset)
-                       || at(aw_word, RegEolErrorsOffset) || at(aw_word, RegCoefErrorsOffset)
-                       || (at(aw_word, RegFfcStatusOffset) && HasFfc != 0);
-  assign wr_writable = at(aw_word, RegCtrlOffset) || at(aw_word, RegCommandOffset)
-                       || at(aw_word, RegStatusOffset) || at(aw_word, RegIrqEnableOffset)
-                       || at(aw_word, RegIrqStatusOffset) || at(aw_word, RegFfcCtrlOffset)
-                       || (at(aw_word, RegFfcStatusOffset) && HasFfc == 0)
-                       || |slot_hit || |table_hit
-                       || (at(aw_word, RegFrameSizeOffset) && size_legal);
-
-  assign w_resp = (wr_writable && !wr_readonly) ? AxiOkay : AxiSlvErr;
-
-  // ---- read channel ----------------------------------------------------------------------------
-  logic                ar_held_q, r_valid_q;
-  logic [AddrBits-1:0] ar_addr_q;
-  logic [AddrBits-3:0] ar_word;
-  logic [31:0]         r_data_q, rd_data;
-  axi_resp_e           r_resp_q, rd_resp;
+  // ---- read channel: hold the address, decode (a cycle), read (a cycle) -------------------------
+  logic                     ar_held_q, rdec_q, r_valid_q;
+  logic [AddrBits-1:0]      ar_addr_q;
+  logic [NumRegs-1:0]       rsel_q;
+  logic [31:0]              r_data_q, rd_data;
+  axi_resp_e                r_resp_q;
+  logic [NumRegs-1:0][31:0] rvals;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_channel
     if (!rst_ni) begin
       ar_held_q <= 1'b0;
+      rdec_q    <= 1'b0;
       r_valid_q <= 1'b0;
       r_resp_q  <= AxiOkay;
     end else begin
-      if (s_axil_arvalid_i && !ar_held_q && !r_valid_q) begin
+      if (s_axil_arvalid_i && s_axil_arready_o) begin
         ar_held_q <= 1'b1;
-      end else if (ar_held_q) begin
+      end
+      if (ar_held_q) begin
         ar_held_q <= 1'b0;
+        rdec_q    <= 1'b1;
+      end
+      if (rdec_q) begin
+        rdec_q    <= 1'b0;
         r_valid_q <= 1'b1;
-        r_resp_q  <= rd_resp;
+        r_resp_q  <= (|rsel_q) ? AxiOkay : AxiSlvErr;
       end else if (s_axil_rready_i) begin
         r_valid_q <= 1'b0;
       end
@@ -526,93 +594,81 @@ module irnuc_axil_regs
   end
 
   always_ff @(posedge clk_i) begin : p_read_payload
-    if (s_axil_arvalid_i && !ar_held_q && !r_valid_q) begin
+    if (s_axil_arvalid_i && s_axil_arready_o) begin
       ar_addr_q <= s_axil_araddr_i;
     end
     if (ar_held_q) begin
+      rsel_q <= decode(ar_addr_q[AddrBits-1:2]);
+    end
+    if (rdec_q) begin
       r_data_q <= rd_data;
     end
   end
 
-  assign ar_word          = ar_addr_q[AddrBits-1:2];
-  assign s_axil_arready_o = !ar_held_q && !r_valid_q;
+  assign s_axil_arready_o = !ar_held_q && !rdec_q && !r_valid_q;
   assign s_axil_rvalid_o  = r_valid_q;
   assign s_axil_rdata_o   = r_data_q;
   assign s_axil_rresp_o   = r_resp_q;
 
-  // The read data of the held address.
+  // What each register reads.
+  always_comb begin : p_read_values
+    rvals = '0;
+    rvals[IxId]      = 32'(RegMapId) << RegIdValueLsb;
+    rvals[IxVersion] = (32'(RegMapMinor) << RegVersionMinorLsb)
+                       | (32'(RegMapMajor) << RegVersionMajorLsb)
+                       | (32'(CoefLayoutVersion) << RegVersionCoefLayoutLsb);
+    rvals[IxConfig]  = (32'(AdcBits) << RegConfigAdcBitsLsb)
+                       | (32'(OutBits) << RegConfigOutBitsLsb)
+                       | (32'(WordBits) << RegConfigWordBitsLsb)
+                       | (32'(MethodCode) << RegConfigMethodLsb)
+                       | (32'(HasBlindDrift) << RegConfigBlindDriftLsb)
+                       | (32'(HasFfc) << RegConfigFfcLsb)
+                       | (32'(Rounding) << RegConfigRoundingLsb)
+                       | (32'(Overflow) << RegConfigOverflowLsb);
+    rvals[IxFormat]  = (32'(GainIntBits) << RegFormatGainIntBitsLsb)
+                       | (32'(GainFracBits) << RegFormatGainFracBitsLsb)
+                       | (32'(OffsetIntBits) << RegFormatOffsetIntBitsLsb)
+                       | (32'(OffsetFracBits) << RegFormatOffsetFracBitsLsb);
+    rvals[IxFrameMax] = (32'(MaxWidth) << RegFrameMaxWidthLsb)
+                        | (32'(MaxHeight) << RegFrameMaxHeightLsb);
+    rvals[IxCtrl]      = ctrl_view;
+    rvals[IxFrameSize] = size_view;
+    rvals[IxStatus]    = (32'(err_q) << RegStatusSofEarlyLsb)
+                         | (32'(core_err_i) << RegStatusCoreErrLsb)
+                         | (32'(in_frame_i) << RegStatusInFrameLsb)
+                         | (32'(pending_q) << RegStatusPendingLsb);
+    rvals[IxIrqEnable]  = 32'(irq_en_q) << RegIrqEnableErrorLsb;
+    rvals[IxIrqStatus]  = 32'(irq_st_q) << RegIrqStatusErrorLsb;
+    rvals[IxFramesIn]   = frames_in_q;
+    rvals[IxFramesOut]  = frames_out_q;
+    rvals[IxPixelsIn]   = pix_in_q;
+    rvals[IxPixelsOut]  = pix_out_q;
+    rvals[IxDropped]    = dropped_q;
+    rvals[IxPadded]     = padded_q;
+    rvals[IxSofErrors]  = (32'(sof_early_q) << RegSofErrorsEarlyLsb)
+                          | (32'(sof_late_q) << RegSofErrorsLateLsb);
+    rvals[IxEolErrors]  = (32'(eol_early_q) << RegEolErrorsEarlyLsb)
+                          | (32'(eol_late_q) << RegEolErrorsLateLsb);
+    rvals[IxCoefErrors] = (32'(coef_early_q) << RegCoefErrorsEarlyLsb)
+                          | (32'(coef_late_q) << RegCoefErrorsLateLsb);
+    rvals[IxFfcCtrl]    = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
+    rvals[IxFfcStatus]  = (32'(ffc_busy_i && HasFfc != 0) << RegFfcStatusBusyLsb)
+                          | (32'(ffc_done_q) << RegFfcStatusDoneLsb);
+    for (int unsigned k = 0; k < NumSlots; k++) begin
+      rvals[IxSlot + 2 * k]     = slot_o[k][31:0];
+      rvals[IxSlot + 2 * k + 1] = slot_o[k][63:32];
+    end
+    for (int unsigned k = 0; k < NumTable; k++) begin
+      rvals[IxTable + k] = table_o[k];
+    end
+  end
+
+  // The selected register's value: an AND-OR of one-hot selects (no address decode here).
   always_comb begin : p_read_mux
     rd_data = '0;
-    rd_resp = AxiOkay;
-    unique case ({ar_word, 2'b00})
-      AddrBits'(RegIdOffset): rd_data = 32'(RegMapId) << RegIdValueLsb;
-      AddrBits'(RegVersionOffset):
-        rd_data = (32'(RegMapMinor) << RegVersionMinorLsb)
-                  | (32'(RegMapMajor) << RegVersionMajorLsb)
-                  | (32'(CoefLayoutVersion) << RegVersionCoefLayoutLsb);
-      AddrBits'(RegConfigOffset):
-        rd_data = (32'(AdcBits) << RegConfigAdcBitsLsb) | (32'(OutBits) << RegConfigOutBitsLsb)
-                  | (32'(WordBits) << RegConfigWordBitsLsb)
-                  | (32'(MethodCode) << RegConfigMethodLsb)
-                  | (32'(HasBlindDrift) << RegConfigBlindDriftLsb)
-                  | (32'(HasFfc) << RegConfigFfcLsb) | (32'(Rounding) << RegConfigRoundingLsb)
-                  | (32'(Overflow) << RegConfigOverflowLsb);
-      AddrBits'(RegFormatOffset):
-        rd_data = (32'(GainIntBits) << RegFormatGainIntBitsLsb)
-                  | (32'(GainFracBits) << RegFormatGainFracBitsLsb)
-                  | (32'(OffsetIntBits) << RegFormatOffsetIntBitsLsb)
-                  | (32'(OffsetFracBits) << RegFormatOffsetFracBitsLsb);
-      AddrBits'(RegFrameMaxOffset):
-        rd_data = (32'(MaxWidth) << RegFrameMaxWidthLsb)
-                  | (32'(MaxHeight) << RegFrameMaxHeightLsb);
-      AddrBits'(RegCtrlOffset): rd_data = ctrl_view;
-      AddrBits'(RegFrameSizeOffset): rd_data = size_view;
-      AddrBits'(RegCommandOffset): rd_data = '0;
-      AddrBits'(RegStatusOffset):
-        rd_data = (32'(err_q) << RegStatusSofEarlyLsb) | (32'(core_err_i) << RegStatusCoreErrLsb)
-                  | (32'(in_frame_i) << RegStatusInFrameLsb)
-                  | (32'(pending_q) << RegStatusPendingLsb);
-      AddrBits'(RegIrqEnableOffset): rd_data = 32'(irq_en_q) << RegIrqEnableErrorLsb;
-      AddrBits'(RegIrqStatusOffset): rd_data = 32'(irq_st_q) << RegIrqStatusErrorLsb;
-      AddrBits'(RegFramesInOffset): rd_data = frames_in_q;
-      AddrBits'(RegFramesOutOffset): rd_data = frames_out_q;
-      AddrBits'(RegPixelsInOffset): rd_data = pix_in_q;
-      AddrBits'(RegPixelsOutOffset): rd_data = pix_out_q;
-      AddrBits'(RegDroppedOffset): rd_data = dropped_q;
-      AddrBits'(RegPaddedOffset): rd_data = padded_q;
-      AddrBits'(RegSofErrorsOffset):
-        rd_data = (32'(sof_early_q) << RegSofErrorsEarlyLsb)
-                  | (32'(sof_late_q) << RegSofErrorsLateLsb);
-      AddrBits'(RegEolErrorsOffset):
-        rd_data = (32'(eol_early_q) << RegEolErrorsEarlyLsb)
-                  | (32'(eol_late_q) << RegEolErrorsLateLsb);
-      AddrBits'(RegCoefErrorsOffset):
-        rd_data = (32'(coef_early_q) << RegCoefErrorsEarlyLsb)
-                  | (32'(coef_late_q) << RegCoefErrorsLateLsb);
-      AddrBits'(RegFfcCtrlOffset): rd_data = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
-      AddrBits'(RegFfcStatusOffset):
-        rd_data = (32'(ffc_busy_i && HasFfc != 0) << RegFfcStatusBusyLsb)
-                  | (32'(ffc_done_q) << RegFfcStatusDoneLsb);
-      default: begin
-        rd_resp = AxiSlvErr;
-        for (int k = 0; k < NumSlots; k++) begin
-          if (at(ar_word, SlotOffset[k])) begin
-            rd_data = slot_o[k][31:0];
-            rd_resp = AxiOkay;
-          end
-          if (at(ar_word, SlotOffset[k] + 4)) begin
-            rd_data = slot_o[k][63:32];
-            rd_resp = AxiOkay;
-          end
-        end
-        for (int k = 0; k < NumTable; k++) begin
-          if (at(ar_word, RegTableReadingOffset + k * RegTableReadingStride)) begin
-            rd_data = table_o[k];
-            rd_resp = AxiOkay;
-          end
-        end
-      end
-    endcase
+    for (int unsigned ix = 0; ix < NumRegs; ix++) begin
+      rd_data |= rvals[ix] & {32{rsel_q[ix]}};
+    end
   end
 
   // Address bits 1:0 select a byte of the word (not used: whole words are read).

@@ -180,104 +180,105 @@ module irnuc_axis_framer
   assign coef_ready_o = take_coef;
   assign start_o      = fire && starting;
 
-  // ---- next state -----------------------------------------------------------------------
+  // ---- next state ---------------------------------------------------------------------------
+  // Each register's next value with and without an item sent, from registers only; `fire`
+  // picks one at the end (the deepest signal passes a single multiplexer).
   always_comb begin : p_next
-    vst_d       = vst_q;
-    cst_d       = cst_q;
-    xr_d        = xr_q;
-    yr_d        = yr_q;
-    xl_d        = xl_q;
-    yl_d        = yl_q;
-    pad_frame_d = pad_frame_q;
-    done_d      = done_q;
-    late_d      = late_q;
-    // Position: one step per item sent.
-    if (fire) begin
-      if (!xl_q) begin
-        xr_d = xr_q - WidthBits'(1);
-        xl_d = (xr_q == WidthBits'(1));
-      end else if (!yl_q) begin
-        xr_d = starting ? pend_width_m1_i : act_wm1_q;
-        xl_d = starting ? pend_width_is1_i : act_w_is1_q;
-        yr_d = yr_q - HeightBits'(1);
-        yl_d = (yr_q == HeightBits'(1));
-      end
+    // Position: one step per item. The frame's last item, and waiting, load the pending
+    // size: the position of the next frame's first pixel.
+    logic [WidthBits-1:0]  xr_f, xr_n;
+    logic [HeightBits-1:0] yr_f, yr_n;
+    logic                  xl_f, yl_f, xl_n, yl_n;
+    axis_vid_state_e       vst_f, vst_n;
+    axis_coef_state_e      cst_f, cst_n;
+    logic                  pad_frame_f, pad_frame_n, done_f;
+
+    if (starting) begin
+      {xr_n, xl_n, yr_n, yl_n} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
+                                  pend_height_is1_i};
+    end else begin
+      {xr_n, xl_n, yr_n, yl_n} = {xr_q, xl_q, yr_q, yl_q};
     end
-    // Video.
+    if (last) begin
+      {xr_f, xl_f, yr_f, yl_f} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
+                                  pend_height_is1_i};
+    end else if (xl_q) begin
+      xr_f = starting ? pend_width_m1_i : act_wm1_q;
+      xl_f = starting ? pend_width_is1_i : act_w_is1_q;
+      yr_f = yr_q - HeightBits'(1);
+      yl_f = (yr_q == HeightBits'(1));
+    end else begin
+      xr_f = xr_q - WidthBits'(1);
+      xl_f = (xr_q == WidthBits'(1));
+      yr_f = yr_q;
+      yl_f = yl_q;
+    end
+
+    // Video, no item sent: a start of frame inside a frame closes it (sof_early); a drop
+    // ends with a tlast (or with a start of frame after the frame's last pixel).
+    vst_n       = vst_q;
+    pad_frame_n = pad_frame_q;
     unique case (vst_q)
-      AxisWait: begin
-        if (fire) begin
-          late_d = 1'b0;
-          vst_d  = AxisFrame;
-        end else if (drop_beat) begin
-          late_d = 1'b1;
-        end
-      end
       AxisFrame: begin
         if (vid_valid_i && vid_sof_i) begin
-          vst_d       = AxisPad;
-          pad_frame_d = 1'b1;
-        end
-      end
-      AxisPad: begin
-        if (fire && xl_q && (yl_q || !pad_frame_q)) begin
-          vst_d = AxisFrame;
+          vst_n       = AxisPad;
+          pad_frame_n = 1'b1;
         end
       end
       AxisDrop: begin
-        if (vid_valid_i && vid_sof_i && done_q) begin
-          vst_d = AxisWait;
-        end else if (vid_valid_i && vid_sof_i) begin
-          vst_d       = AxisPad;
-          pad_frame_d = 1'b1;
+        if (vid_valid_i && vid_sof_i) begin
+          vst_n       = done_q ? AxisWait : AxisPad;
+          pad_frame_n = 1'b1;
         end else if (drop_beat && vid_eol_i) begin
-          vst_d = done_q ? AxisWait : AxisFrame;
+          vst_n = done_q ? AxisWait : AxisFrame;
         end
       end
-      default: vst_d = AxisWait;
+      default: ;
     endcase
-    // A pixel's own markers (AxisWait and AxisFrame).
-    if (fire && pix_item) begin
-      if (vid_eol_i && !xl_q) begin
-        vst_d       = AxisPad;
-        pad_frame_d = 1'b0;
-      end else if (!vid_eol_i && xl_q) begin
-        vst_d  = AxisDrop;
-        done_d = yl_q;
+    // Video, an item sent: a pixel's own tlast (early: pad the line; missing on the line's
+    // last pixel: drop up to the next tlast); the frame's last item closes it.
+    vst_f       = AxisFrame;
+    pad_frame_f = pad_frame_q;
+    done_f      = done_q;
+    if (vst_q == AxisPad) begin
+      if (last) begin
+        vst_f = AxisWait;
+      end else if (!(xl_q && !pad_frame_q)) begin
+        vst_f = AxisPad;
       end
+    end else if (vid_eol_i && !xl_q) begin
+      vst_f       = AxisPad;
+      pad_frame_f = 1'b0;
+    end else if (!vid_eol_i && xl_q) begin
+      vst_f  = AxisDrop;
+      done_f = yl_q;
+    end else if (last) begin
+      vst_f = AxisWait;
     end
-    // The frame's last item closes it (a late end of line still drops, in AxisDrop).
-    if (fire && last && vst_d != AxisDrop) begin
-      vst_d = AxisWait;
+
+    // Coefficients (with coef_sync): tlast early, fill the frame; missing, skip to one.
+    cst_n = cst_q;
+    if (cst_q == CoefSkip && take_coef && coef_last_i) begin
+      cst_n = CoefNormal;
     end
-    // Waiting: the position of the next frame's first pixel, from the pending size.
-    if (vst_d == AxisWait) begin
-      xr_d = pend_width_m1_i;
-      yr_d = pend_height_m1_i;
-      xl_d = pend_width_is1_i;
-      yl_d = pend_height_is1_i;
+    cst_f = cst_q;
+    if (cst_q == CoefFill) begin
+      cst_f = last ? CoefNormal : CoefFill;
+    end else if (cst_q == CoefNormal && eff_sync && coef_last_i && !last) begin
+      cst_f = CoefFill;
+    end else if (cst_q == CoefNormal && eff_sync && !coef_last_i && last) begin
+      cst_f = CoefSkip;
     end
-    // Coefficients.
-    unique case (cst_q)
-      CoefNormal: begin
-        if (fire && eff_sync && coef_last_i && !last) begin
-          cst_d = CoefFill;
-        end else if (fire && eff_sync && !coef_last_i && last) begin
-          cst_d = CoefSkip;
-        end
-      end
-      CoefFill: begin
-        if (fire && last) begin
-          cst_d = CoefNormal;
-        end
-      end
-      CoefSkip: begin
-        if (take_coef && coef_last_i) begin
-          cst_d = CoefNormal;
-        end
-      end
-      default: cst_d = CoefNormal;
-    endcase
+
+    xr_d        = fire ? xr_f : xr_n;
+    xl_d        = fire ? xl_f : xl_n;
+    yr_d        = fire ? yr_f : yr_n;
+    yl_d        = fire ? yl_f : yl_n;
+    vst_d       = fire ? vst_f : vst_n;
+    cst_d       = fire ? cst_f : cst_n;
+    pad_frame_d = fire ? pad_frame_f : pad_frame_n;
+    done_d      = fire ? done_f : done_q;
+    late_d      = starting ? (late_q || drop_beat) && !fire : 1'b0;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
@@ -350,7 +351,7 @@ module irnuc_axis_framer
       drained_q <= 1'b0;
     end else begin
       flight_q  <= flight_d;
-      empty_q   <= (flight_d == '0);
+      empty_q   <= (flight_q == '0) && !fire;  // an item leaves only when one is in flight
       drained_q <= empty_q && size_dirty_i && starting && !fire;
     end
   end
