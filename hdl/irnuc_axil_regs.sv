@@ -236,7 +236,8 @@ module irnuc_axil_regs
   logic [AddrBits-1:0] aw_addr_q;
   logic [31:0]         w_data_q;
   logic [3:0]          w_strb_q;
-  axi_resp_e           b_resp_q, w_resp_q;
+  axi_resp_e           b_resp_q;
+  logic                size_legal_q;  // the decoded write's frame size is legal
   logic                decode_now, wr;
   logic [NumRegs-1:0]  w_hit, wsel_q;
   logic [31:0]         wmask, wdata;  // the decoded write: byte lanes and their data
@@ -264,7 +265,10 @@ module irnuc_axil_regs
         aw_held_q <= 1'b0;
         w_held_q  <= 1'b0;
         b_valid_q <= 1'b1;
-        b_resp_q  <= w_resp_q;
+        // OKAY for a writable or reserved register, SLVERR for a read-only or unmapped
+        // one and for an illegal frame size (from the decode cycle's registers).
+        b_resp_q  <= (|(wsel_q & ~ReadOnly) && !(wsel_q[IxFrameSize] && !size_legal_q))
+                     ? AxiOkay : AxiSlvErr;
       end else if (s_axil_bready_i) begin
         b_valid_q <= 1'b0;
       end
@@ -299,8 +303,10 @@ module irnuc_axil_regs
   logic [WidthBits-1:0]  width_q, width_m1_q, new_w_q, new_wm1_q;
   logic [HeightBits-1:0] height_q, height_m1_q, new_h_q, new_hm1_q;
   logic                  width_is1_q, height_is1_q, size_dirty_q, pending_q;
-  logic [31:0]           ctrl_view, size_view, ctrl_new, size_new, new_w, new_h;
-  logic                  size_legal, size_legal_q, wr_ctrl, wr_size, shadow_touch;
+  logic [31:0]           ctrl_view, size_view, ctrl_new, size_new;
+  logic [RegFrameSizeWidthBits-1:0]  new_w;  // the fields as written: compared at their
+  logic [RegFrameSizeHeightBits-1:0] new_h;  // own width (short carry chains)
+  logic                  size_legal, wr_ctrl, wr_size, shadow_touch;
 
   assign ctrl_view  = (32'(nuc_en_q) << RegCtrlNucEnLsb) | (32'(dpc_en_q) << RegCtrlDpcEnLsb)
                       | (32'(coef_sync_q) << RegCtrlCoefSyncLsb);
@@ -308,13 +314,13 @@ module irnuc_axil_regs
                       | (32'(height_q) << RegFrameSizeHeightLsb);
   // The frame size the held write would make, and whether it is legal (decode cycle).
   assign size_new   = (size_view & ~byte_mask(w_strb_q)) | (w_data_q & byte_mask(w_strb_q));
-  assign new_w      = (size_new & WidthField) >> RegFrameSizeWidthLsb;
-  assign new_h      = (size_new & HeightField) >> RegFrameSizeHeightLsb;
-  assign size_legal = (new_w != 0) && (new_w <= MaxWidth) && (new_h != 0)
-                      && (new_h <= MaxHeight);
+  assign new_w      = RegFrameSizeWidthBits'(size_new >> RegFrameSizeWidthLsb);
+  assign new_h      = RegFrameSizeHeightBits'(size_new >> RegFrameSizeHeightLsb);
+  assign size_legal = (new_w != '0) && (new_w <= RegFrameSizeWidthBits'(MaxWidth))
+                      && (new_h != '0) && (new_h <= RegFrameSizeHeightBits'(MaxHeight));
 
-  // The write's response (decode cycle): OKAY for a writable or reserved register, SLVERR
-  // for a read-only or unmapped one and for an illegal frame size.
+  // The decode cycle: the register hit, the byte lanes, the new frame size and whether it
+  // is legal (the response is made from these in the next cycle).
   always_ff @(posedge clk_i) begin : p_decode
     if (decode_now) begin
       wsel_q       <= w_hit;
@@ -322,11 +328,9 @@ module irnuc_axil_regs
       wdata        <= w_data_q & byte_mask(w_strb_q);
       size_legal_q <= size_legal;
       new_w_q      <= WidthBits'(new_w);
-      new_wm1_q    <= WidthBits'(new_w - 32'd1);
+      new_wm1_q    <= WidthBits'(new_w - 1'b1);
       new_h_q      <= HeightBits'(new_h);
-      new_hm1_q    <= HeightBits'(new_h - 32'd1);
-      w_resp_q     <= (|(w_hit & ~ReadOnly) && !(w_hit[IxFrameSize] && !size_legal))
-                      ? AxiOkay : AxiSlvErr;
+      new_hm1_q    <= HeightBits'(new_h - 1'b1);
     end
   end
 
