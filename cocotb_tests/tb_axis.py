@@ -54,6 +54,12 @@ def _sample(name: str, value: object) -> None:
         coverage.model(TOP, tb_lib.config_from_env()).sample(name, value)
 
 
+def _export() -> None:
+    """Write the coverage sampled so far (at the end of each test that passed)."""
+    if coverage.enabled():
+        coverage.export()
+
+
 class Bench:
     """The DUT with its AXI drivers and monitors and the register model (made after
     reset): ``vid``, ``coef`` (sources), ``out`` (sink), ``axil`` (master), ``model``."""
@@ -152,6 +158,8 @@ class Bench:
                 drv.pause = False  # the generator may have stopped it paused
             else:
                 drv.set_pause_generator(pause_pattern(name, self.rng))
+        _sample("stream.idle", idle)
+        _sample("stream.backpressure", bp)
         _sample("axis.video_idle", idle)
         _sample("axis.coef_idle", coef_idle)
         _sample("axis.backpressure", bp)
@@ -312,6 +320,7 @@ async def register_map_reset(dut) -> None:
     assert got["word_bits"] == cfg.word_bits and got["method"] == 1
     assert (await bench.read("FRAME_MAX")) == cfg.max_width | (cfg.max_height << 16)
     assert (await bench.read("ID")) == int.from_bytes(b"IRNC", "big")
+    _export()
 
 
 @cocotb.test()
@@ -343,6 +352,7 @@ async def register_read_write(dut) -> None:
         if not legal:
             _sample("axis.register_access", "write_slverr_value")
         await bench.check("FRAME_SIZE")
+    _export()
 
 
 # ---- frames ---------------------------------------------------------------------------------------
@@ -366,6 +376,7 @@ async def frames_idle_backpressure(dut) -> None:
         results.append(res)
         _sample("axis.frame_transition", "size_change")
     await bench.check_counts(results)
+    _export()
 
 
 @cocotb.test()
@@ -380,7 +391,9 @@ async def full_rate_back_to_back(dut) -> None:
     n = 3 * h * w
     span = bench.out_cycles[-1] - bench.out_cycles[-n] + 1
     assert span == n, f"{n} outputs took {span} cycles"
+    _sample("stream.back_to_back", "frames")
     _sample("axis.frame_transition", "same_size")
+    _export()
 
 
 @cocotb.test()
@@ -422,6 +435,7 @@ async def registers_mid_frame(dut) -> None:
     assert [f.settings for f in res.frames] == [s0, s1, s2]
     await bench.check_counts([res])
     _sample("axis.frame_transition", "size_change")
+    _export()
 
 
 @cocotb.test()
@@ -442,6 +456,7 @@ async def enables(dut) -> None:
                                   idle="bursty", bp="alternate", label=f"nuc {nuc} dpc {dpc}")
             assert all(f.settings.nuc_en == bool(nuc) and f.settings.dpc_en == bool(dpc)
                        for f in res.frames)
+    _export()
 
 
 def _marker_cases(h: int, w: int) -> dict[str, object]:
@@ -525,6 +540,7 @@ async def marker_errors(dut) -> None:
                               label=f"after {name}")
         await bench.check_counts([res])
         await bench.clear_status()
+    _export()
 
 
 @cocotb.test()
@@ -543,6 +559,7 @@ async def coef_sync_off(dut) -> None:
     assert res.counts["coef_early"] == 0 and res.counts["coef_late"] == 0
     await bench.check_counts([res])
     _sample("axis.coef_sync", "off")
+    _export()
 
 
 @cocotb.test()
@@ -566,6 +583,7 @@ async def frame_done_interrupt(dut) -> None:
     await ClockCycles(dut.clk_i, 2)
     assert int(dut.irq_o.value) == 0
     _sample("axis.irq", "frame_done")
+    _export()
 
 
 @cocotb.test()
@@ -593,3 +611,4 @@ async def reset_mid_frame(dut) -> None:
     raws, words = _frames(bench, 2, h, w)
     res = await bench.run(video_beats(raws), coef_beats(words), [bench.settings()])
     await bench.check_counts([res])
+    _export()
