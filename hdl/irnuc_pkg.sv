@@ -179,7 +179,7 @@ package irnuc_pkg;
   localparam int unsigned RegIrqEnableFfcDoneLsb = 2;
   // IRQ_ENABLE.ffc_done reset
   localparam int unsigned RegIrqEnableFfcDoneReset = 0;
-  // IRQ_STATUS: interrupt causes (sticky until written 1); irq_o = OR of IRQ_STATUS and IRQ_ENABLE, registered
+  // IRQ_STATUS: interrupt causes (sticky until written 1); irq_o = the OR of the bits set in both IRQ_STATUS and IRQ_ENABLE, registered
   localparam int unsigned RegIrqStatusOffset = 56;
   // IRQ_STATUS.error
   localparam int unsigned RegIrqStatusErrorLsb = 0;
