@@ -483,52 +483,31 @@ module irnuc_axil_regs
   assign irq_o = irq_q;
 
   // ---- counters --------------------------------------------------------------------------------
-  logic        clear;
-  logic [31:0] frames_in_q, frames_out_q, pix_in_q, pix_out_q, dropped_q, padded_q;
-  logic [15:0] sof_early_q, sof_late_q, eol_early_q, eol_late_q, coef_early_q, coef_late_q;
+  // Traffic (32 bits, the registers FRAMES_IN .. PADDED in that order) and error causes (16
+  // bits, in the order of err_ev: SOF early/late, EOL early/late, COEF early/late); all wrap.
+  localparam int unsigned NumTraffic = 6;
+  logic                              clear;
+  logic [NumTraffic-1:0]             traffic_ev;
+  logic [NumTraffic-1:0][31:0]       traffic_q;
+  logic [NumErrors-1:0][15:0]        errors_q;
 
-  assign clear = wr && wsel_q[IxCommand] && wdata[RegCommandClearCountersLsb];
+  assign clear      = wr && wsel_q[IxCommand] && wdata[RegCommandClearCountersLsb];
+  assign traffic_ev = {pad_i, drop_i, pix_out_i, beat_i, frame_out_i, frame_start_i};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_counters
     if (!rst_ni) begin
-      frames_in_q  <= '0;
-      frames_out_q <= '0;
-      pix_in_q     <= '0;
-      pix_out_q    <= '0;
-      dropped_q    <= '0;
-      padded_q     <= '0;
-      sof_early_q  <= '0;
-      sof_late_q   <= '0;
-      eol_early_q  <= '0;
-      eol_late_q   <= '0;
-      coef_early_q <= '0;
-      coef_late_q  <= '0;
+      traffic_q <= '0;
+      errors_q  <= '0;
     end else if (clear) begin
-      frames_in_q  <= '0;
-      frames_out_q <= '0;
-      pix_in_q     <= '0;
-      pix_out_q    <= '0;
-      dropped_q    <= '0;
-      padded_q     <= '0;
-      sof_early_q  <= '0;
-      sof_late_q   <= '0;
-      eol_early_q  <= '0;
-      eol_late_q   <= '0;
-      coef_early_q <= '0;
-      coef_late_q  <= '0;
+      traffic_q <= '0;
+      errors_q  <= '0;
     end else begin
-      frames_in_q  <= frames_in_q + 32'(frame_start_i);
-      frames_out_q <= frames_out_q + 32'(frame_out_i);
-      pix_in_q     <= pix_in_q + 32'(beat_i);
-      pix_out_q    <= pix_out_q + 32'(pix_out_i);
-      dropped_q    <= dropped_q + 32'(drop_i);
-      padded_q     <= padded_q + 32'(pad_i);
-      sof_early_q  <= sof_early_q + 16'(sof_early_i);
-      sof_late_q   <= sof_late_q + 16'(sof_late_i);
-      eol_early_q  <= eol_early_q + 16'(eol_early_i);
-      eol_late_q   <= eol_late_q + 16'(eol_late_i);
-      coef_early_q <= coef_early_q + 16'(coef_early_i);
-      coef_late_q  <= coef_late_q + 16'(coef_late_i);
+      for (int unsigned k = 0; k < NumTraffic; k++) begin
+        traffic_q[k] <= traffic_q[k] + 32'(traffic_ev[k]);
+      end
+      for (int unsigned k = 0; k < NumErrors; k++) begin
+        errors_q[k] <= errors_q[k] + 16'(err_ev[k]);
+      end
     end
   end
 
@@ -643,18 +622,18 @@ module irnuc_axil_regs
                          | (32'(pending_q) << RegStatusPendingLsb);
     rvals[IxIrqEnable]  = 32'(irq_en_q) << RegIrqEnableErrorLsb;
     rvals[IxIrqStatus]  = 32'(irq_st_q) << RegIrqStatusErrorLsb;
-    rvals[IxFramesIn]   = frames_in_q;
-    rvals[IxFramesOut]  = frames_out_q;
-    rvals[IxPixelsIn]   = pix_in_q;
-    rvals[IxPixelsOut]  = pix_out_q;
-    rvals[IxDropped]    = dropped_q;
-    rvals[IxPadded]     = padded_q;
-    rvals[IxSofErrors]  = (32'(sof_early_q) << RegSofErrorsEarlyLsb)
-                          | (32'(sof_late_q) << RegSofErrorsLateLsb);
-    rvals[IxEolErrors]  = (32'(eol_early_q) << RegEolErrorsEarlyLsb)
-                          | (32'(eol_late_q) << RegEolErrorsLateLsb);
-    rvals[IxCoefErrors] = (32'(coef_early_q) << RegCoefErrorsEarlyLsb)
-                          | (32'(coef_late_q) << RegCoefErrorsLateLsb);
+    rvals[IxFramesIn]   = traffic_q[0];
+    rvals[IxFramesOut]  = traffic_q[1];
+    rvals[IxPixelsIn]   = traffic_q[2];
+    rvals[IxPixelsOut]  = traffic_q[3];
+    rvals[IxDropped]    = traffic_q[4];
+    rvals[IxPadded]     = traffic_q[5];
+    rvals[IxSofErrors]  = (32'(errors_q[0]) << RegSofErrorsEarlyLsb)
+                          | (32'(errors_q[1]) << RegSofErrorsLateLsb);
+    rvals[IxEolErrors]  = (32'(errors_q[2]) << RegEolErrorsEarlyLsb)
+                          | (32'(errors_q[3]) << RegEolErrorsLateLsb);
+    rvals[IxCoefErrors] = (32'(errors_q[4]) << RegCoefErrorsEarlyLsb)
+                          | (32'(errors_q[5]) << RegCoefErrorsLateLsb);
     rvals[IxFfcCtrl]    = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
     rvals[IxFfcStatus]  = (32'(ffc_busy_i && HasFfc != 0) << RegFfcStatusBusyLsb)
                           | (32'(ffc_done_q) << RegFfcStatusDoneLsb);
