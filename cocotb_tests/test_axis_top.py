@@ -11,7 +11,7 @@ from irnuc.cocotb_tests.runs import case_params, coverage_json, run_case, run_mo
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline
 
-pytestmark = [pytest.mark.cosim]
+pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 #: minimal (short words, frequent saturation) and typical14 (the camera's widths).
 CONFIGS = ("minimal", "typical14")
