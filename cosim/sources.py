@@ -61,6 +61,20 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
+# ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
+_SPKG = (*_PKG, "irnuc_stage_pkg.sv")
+_CORE_SUM = (*_ARITH, "core_sum.sv")
+_CORE_OUT = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
+_BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
+MODULE_FILES |= {
+    "core_sum": (*_SPKG, *_CORE_SUM),
+    "core_out": (*_PKG, *_CORE_OUT),
+    "drift_sub": ("drift_sub.sv",),
+    "blind_drift": (*_PKG, *_BLIND),
+    "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_CORE_SUM,
+                                             *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
+}
+
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
 ASSERT_DEFINE = "+define+IRNUC_ASSERT"
@@ -122,12 +136,20 @@ def method_parameters(cfg: PipelineConfig) -> dict[str, int]:
     Raises :class:`UserError` for a method with stages (``blind_drift``, ``ffc``): the RTL
     has the base methods.
     """
-    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
+    from irnuc.nuc_fixed.config import BASE_METHODS
 
     if cfg.stages:
         raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has stages "
-                        f"({', '.join(cfg.stages)}); the RTL (method_dpc_top) implements the "
-                        f"base methods {', '.join(BASE_METHODS)}")
+                        f"({', '.join(cfg.stages)}); method_dpc_top implements the "
+                        f"base methods {', '.join(BASE_METHODS)} (the stages: "
+                        f"{', '.join(STAGE_TOPS.values())})")
+    return _base_parameters(cfg)
+
+
+def _base_parameters(cfg: PipelineConfig) -> dict[str, int]:
+    """:func:`method_parameters` of the base method of any configuration."""
+    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
+
     out = {"Method": BASE_METHODS.index(cfg.base_method)}
     for f in cfg.formats:
         if f.name in _METHOD_FORMATS:
@@ -183,6 +205,8 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's)."""
     hdl_sources(top)
     params = cfg.rtl_parameters()
+    if top in STAGE_TOPS.values():
+        return stage_parameters(top, cfg)
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
     if top in _METHOD_MODULES:
@@ -191,3 +215,43 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
             return {k: v for k, v in params.items() if k != "Tables"}
     keep = _MODULE_PARAMETERS.get(top)
     return params if keep is None else {k: params[k] for k in keep if k in params}
+
+
+# ---- the stages -------------------------------------------------------------------------
+
+#: The composition top of each stage (a configuration has at most one stage).
+STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top"}
+
+
+def stage_top(cfg: PipelineConfig) -> str | None:
+    """The composition top of a configuration with a stage (None without one)."""
+    for stage in cfg.stages:
+        if stage in STAGE_TOPS:
+            return STAGE_TOPS[stage]
+    return None
+
+
+def _format_parameters(cfg: PipelineConfig, name: str, prefix: str) -> dict[str, int]:
+    from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
+
+    f = cfg.format(name)
+    return {f"{prefix}IntBits": f.int_bits, f"{prefix}FracBits": f.frac_bits,
+            f"{prefix}Rounding": ROUNDING_MODES[f.rounding],
+            f"{prefix}Overflow": OVERFLOW_MODES[f.overflow]}
+
+
+def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
+    """The SV parameters of a stage top: those of ``method_dpc_top`` for the base method
+    and the stage's (blind_drift: ``BlindMax``, ``Drift*``, ``DriftGain*``)."""
+    want = stage_top(cfg)
+    if want != top:
+        raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has no {top} "
+                        f"(its top: {want or 'method_dpc_top'})")
+    params = {**cfg.rtl_parameters(), **_base_parameters(cfg)}
+    params.pop("Tables", None)
+    if cfg.has("blind_drift"):
+        params |= {"BlindMax": int(cfg.blind_max or 1),
+                   **_format_parameters(cfg, "drift", "Drift")}
+        g = cfg.format("drift_gain")
+        params |= {"DriftGainIntBits": g.int_bits, "DriftGainFracBits": g.frac_bits}
+    return params
