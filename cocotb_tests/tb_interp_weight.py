@@ -60,12 +60,11 @@ def _cases(cfg, rng: np.random.Generator) -> list[tuple[int, list[int]]]:
 @cocotb.test()
 async def weights_match_golden(dut) -> None:
     """j and w of every case equal the golden model's; done_o holds the result."""
-    cfg = tb_lib.config_from_env()
-    rng = np.random.default_rng(tb_lib.seed_from_env())
+    env = await tb_lib.setup(dut, 0)
+    cfg, rng = env.cfg, env.rng
     bits = len(dut.reading_i)
     assert bits == cfg.reading_bits
     assert len(dut.weight_o) == cfg.format("weight").frac_bits + 1
-    await tb_lib.start_clock_and_reset(dut)
     cov = coverage.model(TOP, cfg) if coverage.enabled() else None
     bad = []
     for reading, rs in _cases(cfg, rng):
@@ -87,10 +86,9 @@ async def weights_match_golden(dut) -> None:
 async def unordered_readings_flagged(dut) -> None:
     """Table readings that do not increase strictly raise error_o (the golden model
     refuses them); the next ordered ones clear it."""
-    cfg = tb_lib.config_from_env()
+    cfg = (await tb_lib.setup(dut, 1)).cfg
     bits = len(dut.reading_i)
     k = int(cfg.tables or 2)
-    await tb_lib.start_clock_and_reset(dut)
     for rs in ([5] * k, list(range(k, 0, -1)), [*range(k - 1), k - 2]):
         _, _, err, _ = await _compute(dut, 3, rs, bits)
         assert err == 1, f"table readings {rs}: error_o not raised"
@@ -104,10 +102,9 @@ async def unordered_readings_flagged(dut) -> None:
 @cocotb.test()
 async def result_holds_until_next_start(dut) -> None:
     """After done, j and w hold while start is low; a new start clears done."""
-    cfg = tb_lib.config_from_env()
+    cfg = (await tb_lib.setup(dut, 2)).cfg
     bits = len(dut.reading_i)
     k = int(cfg.tables or 2)
-    await tb_lib.start_clock_and_reset(dut)
     rs = [10 * (i + 1) for i in range(k)]
     j, w, _, cycles = await _compute(dut, 15, rs, bits)
     assert cycles == cfg.format("weight").frac_bits + 5, f"done after {cycles} cycles"

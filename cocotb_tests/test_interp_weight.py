@@ -6,10 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
+from irnuc.cocotb_tests import tb_interp_weight
+from irnuc.cocotb_tests.runs import case_params, run_case
 from irnuc.nuc_fixed import PipelineConfig, load_pipeline
-
-MODULE = "irnuc.cocotb_tests.tb_interp_weight"
 
 pytestmark = [pytest.mark.cosim]
 
@@ -29,7 +28,6 @@ CONFIGS: dict[str, PipelineConfig] = {
 }
 
 
-@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
-@pytest.mark.parametrize("label", list(CONFIGS))
+@pytest.mark.parametrize(("label", "case"), case_params(tb_interp_weight, list(CONFIGS)))
 def test_interp_weight(label: str, case: str) -> None:
-    check_case(run_module("interp_weight", CONFIGS[label], MODULE), case)
+    run_case("interp_weight", CONFIGS[label], tb_interp_weight, case)

@@ -6,10 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests.runs import check_case, cocotb_test_names, run_module
+from irnuc.cocotb_tests import tb_method
+from irnuc.cocotb_tests.runs import case_params, run_case
 from irnuc.nuc_fixed import PipelineConfig, load_pipeline
-
-MODULE = "irnuc.cocotb_tests.tb_method"
 
 pytestmark = [pytest.mark.cosim]
 
@@ -32,7 +31,6 @@ CONFIGS: dict[str, PipelineConfig] = {
 }
 
 
-@pytest.mark.parametrize("case", cocotb_test_names(MODULE))
-@pytest.mark.parametrize("label", list(CONFIGS))
+@pytest.mark.parametrize(("label", "case"), case_params(tb_method, list(CONFIGS)))
 def test_method_dpc_top(label: str, case: str) -> None:
-    check_case(run_module("method_dpc_top", CONFIGS[label], MODULE), case)
+    run_case("method_dpc_top", CONFIGS[label], tb_method, case)

@@ -24,7 +24,7 @@ import numpy as np
 
 from irnuc.common.cache import cache_dir
 from irnuc.common.errors import UserError
-from irnuc.cosim.build import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
+from irnuc.cosim.builds import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
 from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
@@ -66,14 +66,22 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
         (build_dir / "bulk_top.h").write_text(
             f'#include "V{top}.h"\nusing BulkTop = V{top};\n'
             + ("#define BULK_FRAME_WORD 1\n" if top == "method_dpc_top" else ""))
-        cmd = [str(verilator_executable()), "--cc", "--exe", "--build", "-Mdir", str(build_dir),
+        cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
                "-CFLAGS", f"-I{build_dir}",
                *[f"-G{k}={v}" for k, v in params.items()],
                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
+        from irnuc.cosim import _objcache
 
+        # Verilator, the shared runtime objects, make (as the cocotb builds do).
         proc = run_child(cmd, env=verilator_env(), log=log)
+        if proc.returncode == 0:
+            _objcache.seed(build_dir)
+            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk"],
+                             env=verilator_env(), log=build_dir / "make.log")
+        if proc.returncode == 0:
+            _objcache.store(build_dir)
         if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
             raise RtlError(f"Verilator build of the bulk harness failed (exit "
                            f"{proc.returncode}); see {log}")

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from irnuc.common.errors import UserError
-from irnuc.cosim.build import Build
+from irnuc.cosim.builds import Build
 from irnuc.cosim.bulk import BulkResult, exact_stream, flag_lines, run_frames
 from irnuc.cosim.methods import MethodScoreboard, golden_frames
 from irnuc.cosim.scoreboard import ScoreResult

@@ -8,8 +8,13 @@ from ``PipelineConfig.memories`` and ``registers`` (the one place the layouts ar
 * coefficient word: the calibration memories' words concatenated in the order of
   ``PipelineConfig.memories``, the first at bit 0; table_interp: the words of tables j and
   j + 1 of the frame (j at bit 0);
-* frame word: one_point ``gain``, piecewise ``level``, tc_offset ``reading`` (bit 0 up)
-  then ``t_ref``, table_interp the frame's weight w; nothing (one 0 bit) otherwise.
+* frame word: one_point ``gain``, piecewise ``level``, tc_offset the spec's
+  ``frame_tc_offset`` (``reading``, ``t_ref``), table_interp the frame's weight w; nothing
+  (one 0 bit) otherwise.
+
+Every memory word's layout is the spec's (:func:`irnuc.nuc_fixed.rtl_spec.memory_layout`,
+generated into ``irnuc_pkg``), which ``tests/test_method_spec.py`` checks against
+``PipelineConfig.memories``.
 
 Words wider than 64 bits occur (tcgain14: 97 bits), so they are Python ints, or uint64
 limbs (little-endian) for the bulk harness.
@@ -21,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from irnuc.nuc_fixed import rtl_spec
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.method_top import MethodCoefficients
 from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_weight
@@ -57,7 +63,7 @@ def frame_word_bits(cfg: PipelineConfig) -> int:
     if base == "piecewise":
         return regs["level"].width
     if base == "tc_offset":
-        return 2 * regs["reading"].width
+        return rtl_spec.FRAME_TC_OFFSET.bits(ReadingBits=regs["reading"].width)
     if base == "table_interp":
         return cfg.format("weight").bits
     return 1
@@ -105,8 +111,9 @@ def frame_word(coeffs: MethodCoefficients, reading: int | None = None,
     if base == "piecewise":
         return int(coeffs.registers["level"])
     if base == "tc_offset":
-        r = cfg.registers["reading"].width
-        return int(reading) | (int(coeffs.registers["t_ref"]) << r)  # type: ignore[arg-type]
+        lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
+        return ((int(reading) << lay["reading"][0])  # type: ignore[arg-type]
+                | (int(coeffs.registers["t_ref"]) << lay["t_ref"][0]))
     if base == "table_interp":
         iw = interp or interp_weight(int(reading), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
         return int(iw.w)

@@ -108,8 +108,10 @@ module method_dpc_top
   output logic                  frame_err_o
 );
 
-  // Offsets of the memories in the coefficient word.
-  localparam int unsigned TwoPointBits = two_point_word_bits(GainBits, OffsetBits);
+  // The memory words (irnuc_pkg, generated from the spec): the two-point word, and where
+  // the next memory starts in a coefficient word that begins with it.
+  typedef coef_word#(GainBits, OffsetBits)::word_t coef_word_t;
+  localparam int unsigned TwoPointBits = coef_word_bits(GainBits, OffsetBits);
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
@@ -192,14 +194,18 @@ module method_dpc_top
     logic                  bad;
     if (MethodSel == MethodOnePoint) begin : gen_one_point
       // coeffs: offset, bad; the gain is the frame's register.
+      coef_one_point#(OffsetBits)::word_t w;
+      assign w      = coef;
       assign gain   = frame[GainBits-1:0];
-      assign offset = coef[OffsetBits-1:0];
-      assign bad    = coef[OffsetBits];
+      assign offset = w.offset;
+      assign bad    = w.bad;
     end else begin : gen_two_point
       // coeffs: gain, offset, bad.
-      assign gain   = coef[GainBits-1:0];
-      assign offset = coef[GainBits +: OffsetBits];
-      assign bad    = coef[GainBits + OffsetBits];
+      coef_word_t w;
+      assign w      = coef;
+      assign gain   = w.gain;
+      assign offset = w.offset;
+      assign bad    = w.bad;
       logic unused_frame;
       assign unused_frame = ^frame;
     end
@@ -230,6 +236,9 @@ module method_dpc_top
     );
   end else if (MethodSel == MethodPiecewise) begin : gen_piecewise
     // coeffs: gain_lo, gain_hi, knee, bad; the level is the frame's register.
+    coef_piecewise#(GainBits, KneeBits)::word_t w;
+    assign w = coef;
+
     pwl_core #(
       .AdcBits      (AdcBits),
       .GainIntBits  (GainIntBits),
@@ -248,11 +257,11 @@ module method_dpc_top
       .s_valid_i   (join_valid),
       .s_ready_o   (core_ready),
       .s_pix_data_i(pix_data),
-      .s_gain_lo_i (coef[GainBits-1:0]),
-      .s_gain_hi_i (coef[GainBits +: GainBits]),
-      .s_knee_i    (coef[2*GainBits +: KneeBits]),
+      .s_gain_lo_i (w.gain_lo),
+      .s_gain_hi_i (w.gain_hi),
+      .s_knee_i    (w.knee),
       .s_level_i   (frame[LevelBits-1:0]),
-      .s_user_i    ({pix_sof, pix_eol, coef[2*GainBits+KneeBits]}),
+      .s_user_i    ({pix_sof, pix_eol, w.bad}),
       .m_valid_o   (nuc_valid),
       .m_ready_i   (nuc_ready),
       .m_pix_data_o(nuc_data),
@@ -260,6 +269,13 @@ module method_dpc_top
     );
   end else if (MethodSel == MethodQuadratic) begin : gen_quadratic
     // coeffs: gain, offset, bad | quad: quad.
+    typedef struct packed {
+      quad_word#(QuadBits)::word_t quad;
+      coef_word_t                  coeffs;
+    } stream_t;
+    stream_t w;
+    assign w = coef;
+
     quad_core #(
       .AdcBits       (AdcBits),
       .GainIntBits   (GainIntBits),
@@ -279,10 +295,10 @@ module method_dpc_top
       .s_valid_i   (join_valid),
       .s_ready_o   (core_ready),
       .s_pix_data_i(pix_data),
-      .s_gain_i    (coef[GainBits-1:0]),
-      .s_offset_i  (coef[GainBits +: OffsetBits]),
-      .s_quad_i    (coef[TwoPointBits +: QuadBits]),
-      .s_user_i    ({pix_sof, pix_eol, coef[GainBits+OffsetBits]}),
+      .s_gain_i    (w.coeffs.gain),
+      .s_offset_i  (w.coeffs.offset),
+      .s_quad_i    (w.quad.quad),
+      .s_user_i    ({pix_sof, pix_eol, w.coeffs.bad}),
       .m_valid_o   (nuc_valid),
       .m_ready_i   (nuc_ready),
       .m_pix_data_o(nuc_data),
@@ -298,8 +314,13 @@ module method_dpc_top
     logic [PassBits-1:0]   cf_user;
 
     if (MethodSel == MethodTcOffset) begin : gen_tc_offset
-      // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2].
+      // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2] (the tc and tg
+      // words go to tc_poly whole); frame: reading, t_ref.
+      coef_word_t                                coeffs;
+      frame_tc_offset#(ReadingBits)::word_t      fw;
       logic [((TcGain != 0) ? TgWordBits : 1)-1:0] tg;
+      assign coeffs = coef[TwoPointBits-1:0];
+      assign fw     = frame;
       if (TcGain != 0) begin : gen_tg
         assign tg = coef[TwoPointBits + TcWordBits +: TgWordBits];
       end else begin : gen_no_tg
@@ -330,13 +351,13 @@ module method_dpc_top
         .rst_ni     (rst_ni),
         .s_valid_i  (join_valid),
         .s_ready_o  (core_ready),
-        .s_reading_i(frame[ReadingBits-1:0]),
-        .s_t_ref_i  (frame[ReadingBits +: ReadingBits]),
-        .s_gain_i   (coef[GainBits-1:0]),
-        .s_offset_i (coef[GainBits +: OffsetBits]),
+        .s_reading_i(fw.reading),
+        .s_t_ref_i  (fw.t_ref),
+        .s_gain_i   (coeffs.gain),
+        .s_offset_i (coeffs.offset),
         .s_tc_i     (coef[TwoPointBits +: TcWordBits]),
         .s_tg_i     (tg),
-        .s_user_i   ({pix_data, pix_sof, pix_eol, coef[GainBits+OffsetBits]}),
+        .s_user_i   ({pix_data, pix_sof, pix_eol, coeffs.bad}),
         .m_valid_o  (cf_valid),
         .m_ready_i  (cf_ready),
         .m_gain_o   (cf_gain),
@@ -346,6 +367,13 @@ module method_dpc_top
     end else begin : gen_table_interp
       // table j: gain, offset, bad | table j + 1: gain, offset, bad; the weight is the
       // frame's (at most 2^Wf: the bits above Wf are 0, asserted below).
+      typedef struct packed {
+        coef_word_t upper;  // table j + 1
+        coef_word_t lower;  // table j
+      } stream_t;
+      stream_t w;
+      assign w = coef;
+
       table_interp #(
         .GainIntBits   (GainIntBits),
         .GainFracBits  (GainFracBits),
@@ -359,12 +387,12 @@ module method_dpc_top
         .rst_ni     (rst_ni),
         .s_valid_i  (join_valid),
         .s_ready_o  (core_ready),
-        .s_gain0_i  (coef[GainBits-1:0]),
-        .s_offset0_i(coef[GainBits +: OffsetBits]),
-        .s_gain1_i  (coef[TwoPointBits +: GainBits]),
-        .s_offset1_i(coef[TwoPointBits + GainBits +: OffsetBits]),
+        .s_gain0_i  (w.lower.gain),
+        .s_offset0_i(w.lower.offset),
+        .s_gain1_i  (w.upper.gain),
+        .s_offset1_i(w.upper.offset),
         .s_weight_i (frame[WeightFracBits:0]),
-        .s_user_i   ({pix_data, pix_sof, pix_eol, coef[GainBits+OffsetBits]}),
+        .s_user_i   ({pix_data, pix_sof, pix_eol, w.lower.bad}),
         .m_valid_o  (cf_valid),
         .m_ready_i  (cf_ready),
         .m_gain_o   (cf_gain),
@@ -375,10 +403,31 @@ module method_dpc_top
       // asserted below); the weight's bits above Wf are 0.
       logic unused_upper;
       if (WeightBits > WeightFracBits + 1) begin : gen_weight_high
-        assign unused_upper = ^{coef[2*TwoPointBits-1], frame[WeightBits-1:WeightFracBits+1]};
+        assign unused_upper = ^{w.upper.bad, frame[WeightBits-1:WeightFracBits+1]};
       end else begin : gen_weight_fits
-        assign unused_upper = coef[2*TwoPointBits-1];
+        assign unused_upper = w.upper.bad;
       end
+`ifdef IRNUC_ASSERT
+      // table_interp's contracts (docs/datapath.md), at the join:
+      //   a_weight_range  the frame's weight is at most 2^Wf;
+      //   a_table_bad     the pixel's two tables agree on its bad flag.
+      logic armed_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+        if (!rst_ni) begin
+          armed_q <= 1'b0;
+        end else begin
+          armed_q <= 1'b1;
+        end
+      end
+      always_ff @(posedge clk_i) begin : p_check
+        if (armed_q && join_take) begin
+          a_weight_range: assert (64'(frame) <= (64'd1 << WeightFracBits))
+            else $error("method_dpc_top: weight %0d above 2^%0d", frame, WeightFracBits);
+          a_table_bad: assert (w.lower.bad == w.upper.bad)
+            else $error("method_dpc_top: the two tables' bad flags differ");
+        end
+      end
+`endif
     end
 
     nuc_core #(
@@ -445,28 +494,6 @@ module method_dpc_top
     .width_i (frame_width_i),
     .height_i(frame_height_i)
   );
-
-  // The method's per-frame and per-pixel contracts (docs/datapath.md), at the join:
-  //   a_weight_range  table_interp: the frame's weight is at most 2^Wf;
-  //   a_table_bad     table_interp: the pixel's two tables agree on its bad flag.
-  if (MethodSel == MethodTableInterp) begin : gen_assert_table
-    logic armed_q;
-    always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-      if (!rst_ni) begin
-        armed_q <= 1'b0;
-      end else begin
-        armed_q <= 1'b1;
-      end
-    end
-    always_ff @(posedge clk_i) begin : p_check
-      if (armed_q && join_take) begin
-        a_weight_range: assert (64'(frame) <= (64'd1 << WeightFracBits))
-          else $error("method_dpc_top: weight %0d above 2^%0d", frame, WeightFracBits);
-        a_table_bad: assert (coef[TwoPointBits-1] == coef[2*TwoPointBits-1])
-          else $error("method_dpc_top: the two tables' bad flags differ");
-      end
-    end
-  end
 `endif
 
 endmodule

@@ -21,6 +21,7 @@
 // Latency 8 + clog2(reading parts) + clog2(leaves) (tcoffset14 and tcgain14: 10); one pixel
 // per clock. UserBits of side band (raw code, markers, bad flag) pass unchanged.
 module tc_poly
+  import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
   parameter int unsigned GainIntBits      = 2,
@@ -180,6 +181,18 @@ module tc_poly
     .side_o   ({rd_user, rd_tg, rd_tc, rd_c0, rd_g0})
   );
 
+  // ---- the tc and tg words (irnuc_pkg::tc_word1/2, tg_word1/2) ----------------------------
+  logic [Tc1Bits-1:0] rd_tc1;
+  if (Order2) begin : gen_tc_word
+    tc_word2#(Tc1Bits, Tc2Bits)::word_t w;
+    assign w      = rd_tc;
+    assign rd_tc1 = w.tc1;
+  end else begin : gen_tc_word
+    tc_word1#(Tc1Bits)::word_t w;
+    assign w      = rd_tc;
+    assign rd_tc1 = w.tc1;
+  end
+
   // ---- offset terms: c1*u, c2*u2 -----------------------------------------------------------
   logic                            mul_valid;
   logic [UserBits-1:0]             mul_user;
@@ -201,7 +214,7 @@ module tc_poly
     .rst_ni (rst_ni),
     .en_i   (en),
     .valid_i(rd_valid),
-    .a_i    (rd_tc[Tc1Bits-1:0]),
+    .a_i    (rd_tc1),
     .b_i    (rd_u),
     .side_i ({rd_user, rd_g0, rd_c0}),
     .valid_o(mul_valid),
@@ -229,7 +242,7 @@ module tc_poly
       .rst_ni (rst_ni),
       .en_i   (en),
       .valid_i(rd_valid),
-      .a_i    (rd_tc[TcWordBits-1:Tc1Bits]),
+      .a_i    (gen_tc_word.w.tc2),
       .b_i    (rd_u2),
       .side_i (1'b0),
       .valid_o(c2_valid),
@@ -294,6 +307,16 @@ module tc_poly
     logic [Leaves-1:0][GSumBits-1:0] g_leaves;
     logic [PG1-1:0][GSumBits-1:0]    g1_parts;
     logic                            g1_valid, g1_side;
+    logic [Tg1Bits-1:0]              tg1;
+    if (Order2) begin : gen_tg_word
+      tg_word2#(Tg1Bits, Tg2Bits)::word_t w;
+      assign w   = rd_tg;
+      assign tg1 = w.tg1;
+    end else begin : gen_tg_word
+      tg_word1#(Tg1Bits)::word_t w;
+      assign w   = rd_tg;
+      assign tg1 = w.tg1;
+    end
     irnuc_mul_parts #(
       .ABits   (Tg1Bits),
       .BBits   (UBits),
@@ -306,7 +329,7 @@ module tc_poly
       .rst_ni (rst_ni),
       .en_i   (en),
       .valid_i(rd_valid),
-      .a_i    (rd_tg[Tg1Bits-1:0]),
+      .a_i    (tg1),
       .b_i    (rd_u),
       .side_i (1'b0),
       .valid_o(g1_valid),
@@ -333,7 +356,7 @@ module tc_poly
         .rst_ni (rst_ni),
         .en_i   (en),
         .valid_i(rd_valid),
-        .a_i    (rd_tg[TgWordBits-1:Tg1Bits]),
+        .a_i    (gen_tg_word.w.tg2),
         .b_i    (rd_u2),
         .side_i (1'b0),
         .valid_o(g2_valid),

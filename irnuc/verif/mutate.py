@@ -425,15 +425,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "end else if (join_take) begin",
         "the held frame word follows every pixel", "piecewise14"),
     _mm("top_tc_reading_ref_swapped", "method_dpc_top.sv",
-        ".s_reading_i(frame[ReadingBits-1:0]),\n        .s_t_ref_i  (frame[ReadingBits +: "
-        "ReadingBits]),",
-        ".s_reading_i(frame[ReadingBits +: ReadingBits]),\n        .s_t_ref_i  "
-        "(frame[ReadingBits-1:0]),", "the reading and t_ref swapped", "tcoffset14"),
-    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (coef[TwoPointBits +: QuadBits]),",
+        ".s_reading_i(fw.reading),\n        .s_t_ref_i  (fw.t_ref),",
+        ".s_reading_i(fw.t_ref),\n        .s_t_ref_i  (fw.reading),",
+        "the reading and t_ref swapped", "tcoffset14"),
+    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (w.quad.quad),",
         ".s_quad_i    (coef[TwoPointBits - 1 +: QuadBits]),",
         "the quad word read one bit low", "quadratic14"),
-    _mm("top_one_point_bad", "method_dpc_top.sv", "      assign bad    = coef[OffsetBits];",
-        "      assign bad    = coef[OffsetBits-1];", "one_point's bad flag from the offset's "
+    _mm("top_one_point_bad", "method_dpc_top.sv",
+        "      assign offset = w.offset;\n      assign bad    = w.bad;\n    end else",
+        "      assign offset = w.offset;\n      assign bad    = coef[OffsetBits-1];\n    end else",
+        "one_point's bad flag from the offset's "
         "sign", "onepoint14"),
     _mm("top_table_weight_low", "method_dpc_top.sv", ".s_weight_i (frame[WeightFracBits:0]),",
         ".s_weight_i ({1'b0, frame[WeightFracBits-1:0]}),",
@@ -566,9 +567,10 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
     return out
 
 
-def baseline_check(mutants: Sequence[Mutant]) -> None:
+def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
     """The design itself must pass the mutation suite on every configuration the mutants
-    use (else every mutant would look killed); raises :class:`RtlError` otherwise."""
+    use (else every mutant would look killed); raises :class:`RtlError` otherwise. A pass
+    is cached, keyed like a mutant's verdict (the RTL, the suite, the configuration)."""
     from irnuc import cosim
 
     seen: set[tuple[str, str, str]] = set()
@@ -577,6 +579,11 @@ def baseline_check(mutants: Sequence[Mutant]) -> None:
         if (cfg.digest(), m.top, m.suite) in seen:
             continue
         seen.add((cfg.digest(), m.top, m.suite))
+        key = digest({"rtl": rtl_digest(), "suite": _suite_digest(), "config": cfg.digest(),
+                      "top": m.top, "module": m.suite})
+        passed = cache_dir("mutate", "baseline") / f"{cfg.name}-{key}.passed"
+        if use_cache and passed.is_file():
+            continue
         bld = cosim.build(m.top, cfg)
         xml = (cache_dir("mutate", "baseline")
                / f"{cfg.name}-{cfg.digest()[:8]}-{m.suite.rsplit('.', 1)[-1]}.xml")
@@ -586,11 +593,12 @@ def baseline_check(mutants: Sequence[Mutant]) -> None:
         if bad or not res:
             raise cosim.RtlError(f"the unmutated design fails the mutation suite on "
                                  f"{cfg.name} ({', '.join(bad) or 'no result'}); see {xml}")
+        write_text_atomic(passed, json.dumps(sorted(res)) + "\n")
 
 
 def _remove_failed_builds(hdl: Path) -> None:
     """Remove the build folders of a mutant copy that did not build (no stamp file)."""
-    from irnuc.cosim.build import sim_build_dir
+    from irnuc.cosim.builds import sim_build_dir
 
     for spec in sim_build_dir().glob("*/irnuc_build_spec.json"):
         try:
@@ -645,7 +653,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
     mutants = list(CATALOGUE if mutants is None else mutants)
     results = []
     with open_executor(workers, scheduler) as handle:  # a bad --scheduler fails first
-        baseline_check(mutants)
+        baseline_check(mutants, use_cache)
         futures = [handle.executor.submit(_job, asdict(m), use_cache) for m in mutants]
         for i, fut in enumerate(futures):
             results.append(fut.result())
