@@ -8,7 +8,13 @@
 // back from the simulated tops and compares them with irnuc.cosim.stages.
 package irnuc_stage_pkg;
 
+  import irnuc_pkg::*;
   import irnuc_method_pkg::*;
+
+  // Width of an operand as a signed word (an unsigned one gains a zero sign bit).
+  function automatic int unsigned as_signed(input int unsigned bits, input bit is_signed);
+    return is_signed ? bits : bits + 32'd1;
+  endfunction
 
   // ---- the sum of a base method's core (core_sum's Kind) --------------------------------
   typedef enum logic [1:0] {
