@@ -73,6 +73,11 @@ MODULE_FILES |= {
     "blind_drift": (*_PKG, *_BLIND),
     "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_CORE_SUM,
                                              *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
+    "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
+    "ffc_mean": ("ffc_mean.sv",),
+    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "ffc_ctrl.sv", "ffc_mean.sv",
+                                           *_CORE_SUM, *_CORE_OUT, *_DPC,
+                                           "method_ffc_top.sv"))),
 }
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
@@ -220,7 +225,12 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
 # ---- the stages -------------------------------------------------------------------------
 
 #: The composition top of each stage (a configuration has at most one stage).
-STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top"}
+STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top", "ffc": "method_ffc_top"}
+#: The base methods each stage top composes with (its parameter ``Method``).
+STAGE_BASES: dict[str, tuple[str, ...]] = {
+    "method_drift_top": ("one_point", "two_point"),
+    "method_ffc_top": ("one_point", "two_point", "quadratic"),
+}
 
 
 def stage_top(cfg: PipelineConfig) -> str | None:
@@ -242,11 +252,17 @@ def _format_parameters(cfg: PipelineConfig, name: str, prefix: str) -> dict[str,
 
 def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of a stage top: those of ``method_dpc_top`` for the base method
-    and the stage's (blind_drift: ``BlindMax``, ``Drift*``, ``DriftGain*``)."""
+    and the stage's (blind_drift: ``BlindMax``, ``Drift*``, ``DriftGain*``; ffc:
+    ``FfcFrames``, ``FfcHold``, ``Ffc*``). Raises :class:`UserError` for a base method the
+    stage top does not compose with (:data:`STAGE_BASES`)."""
     want = stage_top(cfg)
     if want != top:
         raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has no {top} "
                         f"(its top: {want or 'method_dpc_top'})")
+    if cfg.base_method not in STAGE_BASES[top]:
+        raise UserError(f"pipeline {cfg.name!r}: {top} composes {cfg.stages[0]} with "
+                        f"{', '.join(STAGE_BASES[top])}, not {cfg.base_method!r} (not in "
+                        f"RTL yet)")
     params = {**cfg.rtl_parameters(), **_base_parameters(cfg)}
     params.pop("Tables", None)
     if cfg.has("blind_drift"):
@@ -254,4 +270,8 @@ def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
                    **_format_parameters(cfg, "drift", "Drift")}
         g = cfg.format("drift_gain")
         params |= {"DriftGainIntBits": g.int_bits, "DriftGainFracBits": g.frac_bits}
+    if cfg.has("ffc"):
+        params |= {"FfcFrames": int(cfg.ffc_frames or 1),
+                   "FfcHold": int(cfg.ffc_output == "hold"),
+                   **_format_parameters(cfg, "ffc", "Ffc")}
     return params

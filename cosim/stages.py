@@ -8,7 +8,11 @@ The pixel and coefficient streams are those of ``method_dpc_top`` for the base m
 * ``s_blind`` (blind_drift): per frame its blind codes, or partial sums of them, the last
   flagged; :func:`blind_items` makes them, :func:`blind_codes_for` gives the golden model
   codes of the same sum;
-* the FFC streams and sequencing: :mod:`irnuc.cosim.ffc_seq`.
+* ``method_ffc_top``: ``s_foff`` (the offset correction in effect, every frame),
+  ``s_acc`` (the accumulator, in the frames that add to it and in the refresh frame),
+  ``m_acc`` and ``m_foff`` (the new accumulator and the new corrections), and the frames
+  held (no output); :func:`ffc_run` makes them from one run of the golden model over the
+  sequence.
 
 The golden model is ``nuc_fixed.method_top`` frame by frame (blind_drift has no state
 between frames); :class:`StageScoreboard` is the method scoreboard with the stage's values
@@ -27,9 +31,11 @@ from irnuc.cosim.methods import MethodFrame, MethodScoreboard
 from irnuc.cosim.stream import frame_drive
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.cores import drift_sub, lin_core
+from irnuc.nuc_fixed.ffc import FfcState
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, frame_coefficients, method_top
 
-__all__ = ["DriftFrame", "StageScoreboard", "blind_codes_for", "blind_items", "drift_frames"]
+__all__ = ["DriftFrame", "FfcRun", "StageScoreboard", "blind_codes_for", "blind_items",
+           "drift_frames", "ffc_run"]
 
 
 @dataclass(frozen=True)
@@ -111,3 +117,78 @@ class StageScoreboard(MethodScoreboard):
                        xfrac=cfg.format("drift").frac_bits, signed_x=True)
         return (f"{line} | blind_drift: delta {fr.delta} x' {int(xd.ravel()[0])} s' "
                 f"{int(res.s.ravel()[0])} r' {int(res.r.ravel()[0])} (F = {res.frac})")
+
+
+@dataclass(frozen=True)
+class FfcRun:
+    """A sequence of frames for ``method_ffc_top`` and the golden model's view of it.
+
+    ``frames`` are the sequence's frames (``expected``: the golden output, or the repeated
+    frame where it is held); ``held`` marks the frames with no output; ``foff_in`` and
+    ``acc_in`` are the per-frame words of ``s_foff`` and ``s_acc`` (None: the frame reads
+    no accumulator); ``acc_out`` and ``foff_out`` the expected ``m_acc`` and ``m_foff``
+    words (None: none in that frame); ``targets`` the targets of the mean passes.
+    """
+
+    frames: list[MethodFrame]
+    shutter: np.ndarray
+    held: np.ndarray
+    foff_in: list[np.ndarray]
+    acc_in: list[np.ndarray | None]
+    acc_out: list[np.ndarray | None]
+    foff_out: list[np.ndarray | None]
+    targets: tuple[int, ...]
+
+
+def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bool],
+            golden: PipelineConfig | None = None) -> FfcRun:
+    """The streams and expected outputs of a sequence of frames (each (H, W), one
+    calibration) with these shutter flags, from one run of ``nuc_fixed.method_top`` over
+    the whole sequence (``golden``: another configuration to check against on purpose).
+
+    The accumulator words come from the golden model's sequencer
+    (:class:`~irnuc.nuc_fixed.ffc.FfcState`), the refreshed corrections from
+    ``MethodOutput.offsets`` (the k-th used from the frame after the k-th mean pass on; a
+    mean pass in the last frame has no refresh frame here).
+    """
+    cfg = coeffs.cfg
+    g = coeffs if golden is None else MethodCoefficients(golden, coeffs.fields,
+                                                         coeffs.registers)
+    x = np.stack([np.asarray(r, dtype=np.int64) for r in raws])
+    sh = np.asarray(shutter, dtype=bool)
+    res = method_top(x, g, FrameInputs(shutter=sh))
+    state = FfcState(cfg=g.cfg, offset=np.zeros(x.shape[1:], np.int64))
+    offset = np.zeros(x.shape[1:], np.int64)
+    acc_in: list[np.ndarray | None] = []
+    acc_out: list[np.ndarray | None] = []
+    foff_in: list[np.ndarray] = []
+    foff_out: list[np.ndarray | None] = []
+    pending: np.ndarray | None = None  # the accumulator of a mean pass, for its refresh
+    k = 0
+    drive = frame_drive(coeffs)
+    frames = []
+    for i in range(x.shape[0]):
+        foff_in.append(offset)
+        read = pending
+        if pending is not None:
+            offset = res.offsets[k]
+            foff_out.append(offset)
+            k += 1
+            pending = None
+        else:
+            foff_out.append(None)
+        before = None if state.acc is None else np.array(state.acc)
+        count = state.count
+        done = state.step(x[i], bool(sh[i]))
+        added = bool(sh[i]) and state.count == count + 1
+        if added and count > 0:
+            read = before
+        acc_in.append(read)
+        acc_out.append(np.array(state.acc) if added else None)
+        if done:
+            pending = np.array(state.acc)
+        frames.append(MethodFrame(raw=x[i], coeffs=coeffs, reading=None, drive=drive,
+                                  expected=np.asarray(res.y[i], dtype=np.int64)))
+    held = np.zeros(x.shape[0], bool) if res.held is None else np.asarray(res.held, bool)
+    return FfcRun(frames=frames, shutter=sh, held=held, foff_in=foff_in, acc_in=acc_in,
+                  acc_out=acc_out, foff_out=foff_out, targets=tuple(res.targets))
