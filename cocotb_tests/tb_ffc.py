@@ -1,4 +1,4 @@
-"""cocotb tests of the stage top ``method_ffc_top`` (one_point / two_point / quadratic +
+"""cocotb tests of the stage top ``method_ffc_top`` (one_point / two_point / quadratic / tc_offset +
 ffc), run through ``cocotb_tests/test_method_ffc_top.py``.
 
 Chain: a shutter sequence (seeded) -> :func:`irnuc.cosim.stages.ffc_run` (one run of
@@ -18,7 +18,7 @@ import numpy as np
 from cocotb.triggers import ClockCycles
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw
+from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
 from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
 from irnuc.cosim.scoreboard import Scoreboard
 from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
@@ -67,6 +67,9 @@ def _calibration(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
                                 1 << (cfg.offset_frac_bits + 6), size=(h, w))
     if "quad" in fields:
         fields["quad"]["quad"] = rng.integers(-(1 << 9), 1 << 9, size=(h, w))
+    for m in ("tc", "tg"):
+        for k in fields.get(m, {}):
+            fields[m][k] = rng.integers(-64, 65, size=(h, w))
     regs = dict(c.registers)
     if "gain" in regs:
         regs["gain"] = 1 << cfg.gain_frac_bits
@@ -92,8 +95,9 @@ def _raws(cfg: PipelineConfig, shutter: list[int], h: int, w: int, rng: np.rando
 def _run_of(cfg: PipelineConfig, golden: PipelineConfig, rng: np.random.Generator,
             shutter: list[int], shape: tuple[int, int], kind: str = "camera") -> FfcRun:
     c = _calibration(cfg, *shape, rng, kind)
+    readings = [random_reading(cfg, c, rng) for _ in shutter]
     return ffc_run(c, _raws(cfg, shutter, *shape, rng, kind), [bool(s) for s in shutter],
-                   golden=golden)
+                   readings=readings, golden=golden)
 
 
 def _unsigned(a: np.ndarray, bits: int) -> np.ndarray:

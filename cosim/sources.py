@@ -76,7 +76,7 @@ MODULE_FILES |= {
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
     "ffc_mean": ("ffc_mean.sv",),
     "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "ffc_ctrl.sv", "ffc_mean.sv",
-                                           *_CORE_SUM, *_CORE_OUT, *_DPC,
+                                           *_TC, *_CORE_SUM, *_CORE_OUT, *_DPC,
                                            "method_ffc_top.sv"))),
 }
 
@@ -229,7 +229,7 @@ STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top", "ffc": "method_
 #: The base methods each stage top composes with (its parameter ``Method``).
 STAGE_BASES: dict[str, tuple[str, ...]] = {
     "method_drift_top": ("one_point", "two_point"),
-    "method_ffc_top": ("one_point", "two_point", "quadratic"),
+    "method_ffc_top": ("one_point", "two_point", "quadratic", "tc_offset"),
 }
 
 

@@ -141,9 +141,10 @@ class FfcRun:
 
 
 def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bool],
+            readings: list[int | None] | None = None,
             golden: PipelineConfig | None = None) -> FfcRun:
     """The streams and expected outputs of a sequence of frames (each (H, W), one
-    calibration) with these shutter flags, from one run of ``nuc_fixed.method_top`` over
+    calibration) with these shutter flags and FPA readings (tc_offset), from one run of ``nuc_fixed.method_top`` over
     the whole sequence (``golden``: another configuration to check against on purpose).
 
     The accumulator words come from the golden model's sequencer
@@ -156,7 +157,9 @@ def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bo
                                                          coeffs.registers)
     x = np.stack([np.asarray(r, dtype=np.int64) for r in raws])
     sh = np.asarray(shutter, dtype=bool)
-    res = method_top(x, g, FrameInputs(shutter=sh))
+    rd = list(readings) if readings is not None else [None] * x.shape[0]
+    res = method_top(x, g, FrameInputs(
+        shutter=sh, reading=None if rd[0] is None else np.asarray(rd, dtype=np.int64)))
     state = FfcState(cfg=g.cfg, offset=np.zeros(x.shape[1:], np.int64))
     offset = np.zeros(x.shape[1:], np.int64)
     acc_in: list[np.ndarray | None] = []
@@ -165,7 +168,6 @@ def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bo
     foff_out: list[np.ndarray | None] = []
     pending: np.ndarray | None = None  # the accumulator of a mean pass, for its refresh
     k = 0
-    drive = frame_drive(coeffs)
     frames = []
     for i in range(x.shape[0]):
         foff_in.append(offset)
@@ -187,7 +189,8 @@ def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bo
         acc_out.append(np.array(state.acc) if added else None)
         if done:
             pending = np.array(state.acc)
-        frames.append(MethodFrame(raw=x[i], coeffs=coeffs, reading=None, drive=drive,
+        frames.append(MethodFrame(raw=x[i], coeffs=coeffs, reading=rd[i],
+                                  drive=frame_drive(coeffs, rd[i]),
                                   expected=np.asarray(res.y[i], dtype=np.int64)))
     held = np.zeros(x.shape[0], bool) if res.held is None else np.asarray(res.held, bool)
     return FfcRun(frames=frames, shutter=sh, held=held, foff_in=foff_in, acc_in=acc_in,

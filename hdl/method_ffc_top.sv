@@ -1,11 +1,11 @@
-// FFC composition top: one_point, two_point or quadratic with the shutter offset refresh,
+// FFC composition top: one_point, two_point, quadratic or tc_offset with the shutter offset refresh,
 // then the DPC (docs/datapath.md "ffc"; docs/rtl.md "Stages"; nuc_fixed.method_top for a
 // method "<base>+ffc").
 //
 // Streams (valid/ready), each input behind its own input register and each output behind
 // its own output register (irnuc_spill_register):
-//   s_pix    raw pixels with sof/eol, the frame word s_pix_frame_i (read at sof: one_point's
-//            gain register; else one unused bit) and the frame's shutter flag
+//   s_pix    raw pixels with sof/eol, the frame word s_pix_frame_i (read at sof, as
+//            method_dpc_top: one_point's gain register, tc_offset's reading and t_ref) and the frame's shutter flag
 //            s_pix_shutter_i (read at sof);
 //   s_coef   one coefficient word per pixel, as method_dpc_top;
 //   s_foff   the FFC offset correction of every pixel (memory ffc_offset: S Ci.Cf), every
@@ -33,7 +33,7 @@ module method_ffc_top
   import irnuc_method_pkg::*;
   import irnuc_stage_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_pkg::method_e: 0, 1 or 3
+  parameter int unsigned Method         = 1,  // irnuc_pkg::method_e: 0, 1, 3 or 4
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
@@ -47,6 +47,18 @@ module method_ffc_top
   parameter int unsigned QuadIntBits    = 10,
   parameter int unsigned QuadFracBits   = 6,
   parameter int unsigned SquareBits     = 18,
+  parameter int unsigned Tc1IntBits     = 13,
+  parameter int unsigned Tc1FracBits    = 3,
+  parameter int unsigned Tc2IntBits     = 12,
+  parameter int unsigned Tc2FracBits    = 4,
+  parameter int unsigned Tg1IntBits     = 2,
+  parameter int unsigned Tg1FracBits    = 14,
+  parameter int unsigned Tg2IntBits     = 2,
+  parameter int unsigned Tg2FracBits    = 14,
+  parameter int unsigned TcOrder        = 2,
+  parameter int unsigned TcGain         = 0,
+  parameter int unsigned ReadingBits    = 14,
+  parameter int unsigned ReadingRangeBits = 11,
   parameter int unsigned FfcFrames      = 8,
   parameter int unsigned FfcHold        = 1,  // ffc_output: 1 hold, 0 pass
   parameter int unsigned FfcIntBits     = 12,
@@ -58,9 +70,16 @@ module method_ffc_top
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
   localparam int unsigned QuadBits      = QuadIntBits + QuadFracBits,
+  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
+                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0)
+                                                        : 0,
   localparam int unsigned CoefBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits,
-                                                           1, QuadBits, 1, 0),
-  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, 1, 1, 1),
+                                                           1, QuadBits, TcWordBits,
+                                                           TgWordBits),
+  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, 1, ReadingBits,
+                                                          1),
   localparam int unsigned NShift        = $clog2(FfcFrames),
   localparam int unsigned AccBits       = AdcBits + NShift,
   localparam int unsigned CBits         = FfcIntBits + FfcFracBits,
@@ -144,8 +163,8 @@ module method_ffc_top
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
     assert (MethodSel == MethodOnePoint || MethodSel == MethodTwoPoint
-            || MethodSel == MethodQuadratic)
-      else $fatal(1, "method_ffc_top: Method = %0d; the RTL composes ffc with one_point (0), two_point (1) and quadratic (3)",
+            || MethodSel == MethodQuadratic || MethodSel == MethodTcOffset)
+      else $fatal(1, "method_ffc_top: Method = %0d; the RTL composes ffc with one_point (0), two_point (1), quadratic (3) and tc_offset (4)",
                   Method);
     assert (MaxWidth >= 1 && MaxWidth <= 65535 && MaxHeight >= 1 && MaxHeight <= 65535)
       else $fatal(1, "method_ffc_top: MaxWidth = %0d, MaxHeight = %0d outside 1..65535",
@@ -232,7 +251,8 @@ module method_ffc_top
 
   // The division starts when a refresh frame's first pixel waits and every pixel of the
   // mean frame has been summed (none in flight between the join and ffc_mean).
-  localparam int unsigned FlightBits = $clog2(Latency + 8);
+  // At most Latency + 4 pixels sit between the join and ffc_mean, and tc_poly's (below 32).
+  localparam int unsigned FlightBits = $clog2(Latency + 40);
 
   logic                  mean_valid, target_valid, div_busy, started_q, start;
   logic [FlightBits-1:0] flight_q;
@@ -284,7 +304,7 @@ module method_ffc_top
   assign need_target = pix_sof && ctrl_mode.refresh;
   assign join_valid  = pix_valid && coef_valid && foff_valid && (!need_acc || acc_valid)
                        && (!need_target || (started_q && target_valid));
-  assign join_take   = join_valid && en;
+  assign join_take   = join_valid && join_ready;
   assign pix_ready   = join_take;
   assign coef_ready  = join_take;
   assign foff_ready  = join_take;
@@ -304,51 +324,120 @@ module method_ffc_top
 
   assign frame = pix_sof ? pix_frame : frame_q;
 
-  logic [GainBits-1:0]   gain;
-  logic [OffsetBits-1:0] offset;
-  logic [QuadBits-1:0]   quad;
+  // ---- the front: the frame's coefficients of the pixel ----------------------------------------
+  // The pixel's side band: {x, the accumulator core's input (acc_new, or the read
+  // accumulator in the refresh pass), acc_new, the correction read, mean, refresh, write,
+  // hold, sof, eol, bad}. acc_new = x (a run's first frame) or acc + x.
+  localparam int unsigned Pass = AdcBits + 2 * AccBits + CBits + 7;
+
+  logic [AccBits-1:0]    acc_new;
+  logic [Pass-1:0]       join_pass, f_pass;
+  logic                  join_ready, f_valid;
+  logic [GainBits-1:0]   f_gain;
+  logic [OffsetBits-1:0] f_offset;
+  logic [QuadBits-1:0]   f_quad;
   logic                  bad;
 
-  if (MethodSel == MethodOnePoint) begin : gen_one_point
-    // coeffs: offset, bad; the gain is the frame's register.
-    coef_one_point#(OffsetBits)::word_t w;
-    assign w      = coef;
-    assign gain   = frame[GainBits-1:0];
-    assign offset = w.offset;
-    assign bad    = w.bad;
-    assign quad   = '0;
-  end else if (MethodSel == MethodQuadratic) begin : gen_quadratic
-    // coeffs: gain, offset, bad | quad: quad.
-    typedef struct packed {
-      quad_word#(QuadBits)::word_t              quad;
-      coef_word#(GainBits, OffsetBits)::word_t  coeffs;
-    } stream_t;
-    stream_t w;
-    assign w      = coef;
-    assign gain   = w.coeffs.gain;
-    assign offset = w.coeffs.offset;
-    assign bad    = w.coeffs.bad;
-    assign quad   = w.quad.quad;
-    logic unused_frame;
-    assign unused_frame = ^frame;
-  end else begin : gen_two_point
-    // coeffs: gain, offset, bad.
-    coef_word#(GainBits, OffsetBits)::word_t w;
-    assign w      = coef;
-    assign gain   = w.gain;
-    assign offset = w.offset;
-    assign bad    = w.bad;
-    assign quad   = '0;
-    logic unused_frame;
-    assign unused_frame = ^frame;
+  assign acc_new   = mode.acc_first ? AccBits'(pix_data) : acc_in + AccBits'(pix_data);
+  assign join_pass = {pix_data, mode.refresh ? acc_in : acc_new, acc_new, foff_in, mode.mean,
+                      mode.refresh, mode.acc_first || mode.acc_add, mode.hold, pix_sof,
+                      pix_eol, bad};
+
+  if (MethodSel == MethodTcOffset) begin : gen_tc_offset
+    // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
+    // t_ref. tc_poly gives the frame's gain and offset of the pixel (a stream stage).
+    localparam int unsigned TwoPointBits = coef_word_bits(GainBits, OffsetBits);
+    coef_word#(GainBits, OffsetBits)::word_t     coeffs;
+    frame_tc_offset#(ReadingBits)::word_t        fw;
+    logic [((TcGain != 0) ? TgWordBits : 1)-1:0] tg;
+    assign coeffs = coef[TwoPointBits-1:0];
+    assign fw     = frame;
+    assign bad    = coeffs.bad;
+    assign f_quad = '0;
+    if (TcGain != 0) begin : gen_tg
+      assign tg = coef[TwoPointBits + TcWordBits +: TgWordBits];
+    end else begin : gen_no_tg
+      assign tg = 1'b0;
+    end
+
+    tc_poly #(
+      .GainIntBits     (GainIntBits),
+      .GainFracBits    (GainFracBits),
+      .OffsetIntBits   (OffsetIntBits),
+      .OffsetFracBits  (OffsetFracBits),
+      .Tc1IntBits      (Tc1IntBits),
+      .Tc1FracBits     (Tc1FracBits),
+      .Tc2IntBits      (Tc2IntBits),
+      .Tc2FracBits     (Tc2FracBits),
+      .Tg1IntBits      (Tg1IntBits),
+      .Tg1FracBits     (Tg1FracBits),
+      .Tg2IntBits      (Tg2IntBits),
+      .Tg2FracBits     (Tg2FracBits),
+      .TcOrder         (TcOrder),
+      .TcGain          (TcGain != 0),
+      .ReadingBits     (ReadingBits),
+      .ReadingRangeBits(ReadingRangeBits),
+      .Rounding        (Rounding),
+      .UserBits        (Pass)
+    ) u_coef (
+      .clk_i      (clk_i),
+      .rst_ni     (rst_ni),
+      .s_valid_i  (join_valid),
+      .s_ready_o  (join_ready),
+      .s_reading_i(fw.reading),
+      .s_t_ref_i  (fw.t_ref),
+      .s_gain_i   (coeffs.gain),
+      .s_offset_i (coeffs.offset),
+      .s_tc_i     (coef[TwoPointBits +: TcWordBits]),
+      .s_tg_i     (tg),
+      .s_user_i   (join_pass),
+      .m_valid_o  (f_valid),
+      .m_ready_i  (en),
+      .m_gain_o   (f_gain),
+      .m_offset_o (f_offset),
+      .m_user_o   (f_pass)
+    );
+  end else begin : gen_direct
+    // The pixel's words go straight to stage 1.
+    assign f_valid    = join_valid;
+    assign join_ready = en;
+    assign f_pass     = join_pass;
+    if (MethodSel == MethodOnePoint) begin : gen_one_point
+      // coeffs: offset, bad; the gain is the frame's register.
+      coef_one_point#(OffsetBits)::word_t w;
+      assign w        = coef;
+      assign f_gain   = frame[GainBits-1:0];
+      assign f_offset = w.offset;
+      assign bad      = w.bad;
+      assign f_quad   = '0;
+    end else if (MethodSel == MethodQuadratic) begin : gen_quadratic
+      // coeffs: gain, offset, bad | quad: quad.
+      typedef struct packed {
+        quad_word#(QuadBits)::word_t             quad;
+        coef_word#(GainBits, OffsetBits)::word_t coeffs;
+      } stream_t;
+      stream_t w;
+      assign w        = coef;
+      assign f_gain   = w.coeffs.gain;
+      assign f_offset = w.coeffs.offset;
+      assign bad      = w.coeffs.bad;
+      assign f_quad   = w.quad.quad;
+      logic unused_frame;
+      assign unused_frame = ^frame;
+    end else begin : gen_two_point
+      // coeffs: gain, offset, bad.
+      coef_word#(GainBits, OffsetBits)::word_t w;
+      assign w        = coef;
+      assign f_gain   = w.gain;
+      assign f_offset = w.offset;
+      assign bad      = w.bad;
+      assign f_quad   = '0;
+      logic unused_frame;
+      assign unused_frame = ^frame;
+    end
   end
 
-  // ---- stage 1: the accumulator ----------------------------------------------------------------
-  // acc_new = x (a run's first frame) or acc + x; the accumulator core takes acc_new (the
-  // mean pass) or the read accumulator (the refresh pass).
-  logic [AccBits-1:0] acc_new;
-  assign acc_new = mode.acc_first ? AccBits'(pix_data) : acc_in + AccBits'(pix_data);
-
+  // ---- stage 1 ------------------------------------------------------------------------------
   localparam int unsigned Side = 6 + AccBits + CBits;  // {mean, refresh, write, hold, acc, foff, sof, eol}
 
   logic                  s1_valid_q;
@@ -365,29 +454,19 @@ module method_ffc_top
     if (!rst_ni) begin
       s1_valid_q <= 1'b0;
     end else if (en) begin
-      s1_valid_q <= join_valid;
+      s1_valid_q <= f_valid;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_s1
     if (en) begin
-      s1_x_q       <= pix_data;
-      s1_acc_q     <= mode.refresh ? acc_in : acc_new;
-      s1_acc_new_q <= acc_new;
-      s1_gain_q    <= gain;
-      s1_offset_q  <= offset;
-      s1_quad_q    <= quad;
-      s1_foff_q    <= foff_in;
-      s1_mean_q    <= mode.mean;
-      s1_refresh_q <= mode.refresh;
-      s1_write_q   <= mode.acc_first || mode.acc_add;
-      s1_hold_q    <= mode.hold;
-      s1_sof_q     <= pix_sof;
-      s1_eol_q     <= pix_eol;
-      s1_bad_q     <= bad;
+      {s1_x_q, s1_acc_q, s1_acc_new_q, s1_foff_q, s1_mean_q, s1_refresh_q, s1_write_q,
+       s1_hold_q, s1_sof_q, s1_eol_q, s1_bad_q} <= f_pass;
+      s1_gain_q   <= f_gain;
+      s1_offset_q <= f_offset;
+      s1_quad_q   <= f_quad;
     end
   end
-
   // ---- the two sums --------------------------------------------------------------------------
   logic               sum_valid, asum_valid;
   logic [SumBits-1:0] sum_s;
@@ -685,6 +764,8 @@ module method_ffc_top
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && mean_valid))
         else $error("method_ffc_top: a mean pixel summed that was never counted in");
+      a_flight_room: assert (!(flight_q == '1 && join_take && mode.mean && !mean_valid))
+        else $error("method_ffc_top: more mean pixels in flight than the count holds");
     end
   end
 `endif
