@@ -212,6 +212,13 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top in STAGE_TOPS.values():
         return stage_parameters(top, cfg)
+    if top in _STAGE_BLOCKS:
+        want = stage_top(cfg)
+        if want is None:
+            raise UserError(f"pipeline {cfg.name!r}: {top} is a block of the stage tops; "
+                            f"method {cfg.method!r} has no stage")
+        p = stage_parameters(want, cfg)
+        return {k: p[k] for k in _STAGE_BLOCKS[top] if k in p}
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
     if top in _METHOD_MODULES:
@@ -230,6 +237,19 @@ STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top", "ffc": "method_
 STAGE_BASES: dict[str, tuple[str, ...]] = {
     "method_drift_top": ("one_point", "two_point"),
     "method_ffc_top": ("one_point", "two_point", "quadratic", "tc_offset"),
+}
+
+
+#: The blocks of the stage tops and the parameters of their top each takes (the lint of
+#: every module, at the sizes it gets in its top).
+_STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
+    "blind_drift": ("AdcBits", "BlindMax", "DriftIntBits", "DriftFracBits", "DriftRounding",
+                    "DriftOverflow", "DriftGainIntBits", "DriftGainFracBits"),
+    "drift_sub": ("AdcBits", "DriftIntBits", "DriftFracBits"),
+    "core_sum": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits"),
+    "core_out": ("OutBits", "Rounding", "Overflow"),
+    "ffc_ctrl": ("FfcFrames",),
+    "ffc_mean": (),
 }
 
 

@@ -144,15 +144,15 @@ def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bo
             readings: list[int | None] | None = None,
             golden: PipelineConfig | None = None) -> FfcRun:
     """The streams and expected outputs of a sequence of frames (each (H, W), one
-    calibration) with these shutter flags and FPA readings (tc_offset), from one run of ``nuc_fixed.method_top`` over
-    the whole sequence (``golden``: another configuration to check against on purpose).
+    calibration) with these shutter flags and FPA readings (tc_offset), from one run of
+    ``nuc_fixed.method_top`` over the whole sequence (``golden``: another configuration to
+    check against on purpose).
 
     The accumulator words come from the golden model's sequencer
     (:class:`~irnuc.nuc_fixed.ffc.FfcState`), the refreshed corrections from
     ``MethodOutput.offsets`` (the k-th used from the frame after the k-th mean pass on; a
     mean pass in the last frame has no refresh frame here).
     """
-    cfg = coeffs.cfg
     g = coeffs if golden is None else MethodCoefficients(golden, coeffs.fields,
                                                          coeffs.registers)
     x = np.stack([np.asarray(r, dtype=np.int64) for r in raws])

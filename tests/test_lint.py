@@ -16,6 +16,12 @@ MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_regis
 #: The modules of the correction methods, linted with every method configuration.
 METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
                   "table_interp", "interp_weight")
+#: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
+#: configuration of those stages and the mode variants.
+STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_drift",),
+                 "drift_sub": ("blind_drift",), "core_sum": ("blind_drift", "ffc"),
+                 "core_out": ("blind_drift", "ffc"), "method_ffc_top": ("ffc",),
+                 "ffc_ctrl": ("ffc",), "ffc_mean": ("ffc",)}
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
               "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
@@ -76,6 +82,33 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
     assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
 
 
+def _stage_cases() -> list[tuple[str, str, dict[str, object]]]:
+    """(module, configuration, changes): every stage module with every configuration of
+    its stages, and variants reaching the other rounding and overflow branches and the
+    ffc pass/hold modes."""
+    names = [n for n in pipeline_names(method=None) if load_pipeline(n).stages]
+    cases = [(m, n, {}) for m, stages in STAGE_MODULES.items() for n in names
+             if set(load_pipeline(n).stages) & set(stages)]
+    for m in ("method_drift_top", "blind_drift"):
+        cases.append((m, "drift14", {"formats": {"drift": {"rounding": "truncate",
+                                                           "overflow": "wrap"}}}))
+        cases.append((m, "drift14", {"rounding": "half_even", "overflow": "wrap"}))
+    cases.append(("method_ffc_top", "ffc14", {"ffc_output": "pass", "ffc_frames": 1,
+                                              "formats": {"ffc": {"rounding": "half_even",
+                                                                  "overflow": "wrap"}}}))
+    cases.append(("method_ffc_top", "quadffc14", {"ffc_output": "hold", "rounding": "truncate"}))
+    return cases
+
+
+@pytest.mark.parametrize(("module", "config", "changes"), _stage_cases())
+def test_lint_clean_stages(module: str, config: str, changes: dict[str, object]) -> None:
+    cfg = load_pipeline(config)
+    cfg = cfg.replace(**changes) if changes else cfg
+    proc = lint(module, cfg)
+    report = proc.stdout + proc.stderr
+    assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
+
+
 def test_one_module_per_file() -> None:
     """One module (or the one package) per file, named like the file; every file linted."""
     paths = sorted(HDL_DIR.glob("*.sv")) + sorted(SIM_HDL_DIR.glob("*.sv"))
@@ -86,7 +119,8 @@ def test_one_module_per_file() -> None:
         assert units[0].split()[1].rstrip("#(;") == path.stem
         if units[0].startswith("package "):
             continue
-        assert path.stem in MODULES + METHOD_MODULES, f"{path.name} is not in the lint list"
+        linted = (*MODULES, *METHOD_MODULES, *STAGE_MODULES)
+        assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 
 
