@@ -438,7 +438,12 @@ BANDWIDTH_FRAME, BANDWIDTH_FPS = (640, 480), 60.0
 
 def default_top(cfg) -> str:
     """The top ``irnuc synth`` builds for a configuration: ``nuc_dpc_top`` for the two-point
-    method (as before the methods), ``method_dpc_top`` for the other base methods."""
+    method (as before the methods), ``method_dpc_top`` for the other base methods, the
+    stage's top (``method_drift_top``, ``method_ffc_top``) for a method with a stage."""
+    from irnuc.cosim.sources import stage_top
+
+    if cfg.stages:
+        return stage_top(cfg) or "method_dpc_top"
     return "nuc_dpc_top" if cfg.method == "two_point" else "method_dpc_top"
 
 
