@@ -118,6 +118,7 @@ module blind_drift #(
 
   // ---- the multiply, MSB first ------------------------------------------------------------
   logic signed [BdBits-1:0]   bd_q;
+  logic signed [ProdBits-1:0] bd_neg_q;  // -bd, for the sign bit (one adder per cycle)
   logic        [GainBits-1:0] m_q;     // shifted left: bit GainBits-1 is the next bit
   logic        [CountBits-1:0] count_q; // bits left after the current one
   logic signed [ProdBits-1:0] p_q;
@@ -144,7 +145,7 @@ module blind_drift #(
     if (!m_q[GainBits-1]) begin
       addend = '0;
     end else if (first_q) begin
-      addend = -ProdBits'(bd_q);  // the sign bit weighs -2^(MW-1)
+      addend = bd_neg_q;  // the sign bit weighs -2^(MW-1)
     end else begin
       addend = ProdBits'(bd_q);
     end
@@ -155,6 +156,8 @@ module blind_drift #(
       bd_q    <= $signed({1'b0, bsum_next[SumBits-1:0]}) - $signed({1'b0, blind_ref_i});
       m_q     <= drift_gain_i;
       count_q <= CountBits'(GainBits - 1);
+      bd_neg_q <= ProdBits'($signed({1'b0, blind_ref_i})
+                            - $signed({1'b0, bsum_next[SumBits-1:0]}));
       p_q     <= '0;
       first_q <= 1'b1;
     end else if (state_q == BdMul) begin

@@ -3,7 +3,7 @@
 // with v = ROUND_(F' - Cf)(s_acc << (F' - F)) per pixel (formed by the enclosing top).
 //
 // The mean frame's pixels are summed as they pass (valid_i, good_i); start_i (the frame
-// has passed) starts one restoring division, one quotient bit a cycle (NumBits cycles):
+// has passed) starts one restoring division, one quotient bit a cycle (NumBits cycles, then the clamp into a register):
 // q = floor((2 sum + n) / 2n) is the half-up quotient of sum / n for sum >= 0; a negative
 // sum gives T = 0 (its rounded quotient is at most 0), as does n_good = 0 (the golden
 // model refuses it). The target is then held on target_o (target_valid_o) until the next
@@ -60,22 +60,29 @@ module ffc_mean #(
   logic [DenBits-1:0]   rem_q;
   logic [CountBits-1:0] count_q;
   logic                 zero_q;  // sum < 0 or n = 0: T = 0
-  logic                 busy_q, valid_q;
+  logic                 busy_q, valid_q, done_q;
+  logic [TBits-1:0]     target_q;
   logic [DenBits:0]     rem_shift;
   logic                 fits;
 
   assign rem_shift = {rem_q, num_q[NumBits-1]};
   assign fits      = rem_shift >= {1'b0, den_q};
 
+  // busy: the division; done: one cycle more, the clamp into target_q; then valid.
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_ctrl
     if (!rst_ni) begin
       busy_q  <= 1'b0;
+      done_q  <= 1'b0;
       valid_q <= 1'b0;
     end else if (start_i) begin
       busy_q  <= 1'b1;
+      done_q  <= 1'b0;
       valid_q <= 1'b0;
     end else if (busy_q && count_q == CountBits'(1)) begin
       busy_q  <= 1'b0;
+      done_q  <= 1'b1;
+    end else if (done_q) begin
+      done_q  <= 1'b0;
       valid_q <= 1'b1;
     end
   end
@@ -97,10 +104,15 @@ module ffc_mean #(
 
   localparam logic [TBits-1:0] TMax = '1;
 
-  // num_q holds the quotient when the division is done.
-  assign target_o       = zero_q ? '0
-                        : (num_q > NumBits'(TMax)) ? TMax : num_q[TBits-1:0];
+  // num_q holds the quotient when the division is done: clamped into the target register.
+  always_ff @(posedge clk_i) begin : p_target
+    if (done_q) begin
+      target_q <= zero_q ? '0 : (num_q > NumBits'(TMax)) ? TMax : num_q[TBits-1:0];
+    end
+  end
+
+  assign target_o       = target_q;
   assign target_valid_o = valid_q;
-  assign busy_o         = busy_q;
+  assign busy_o         = busy_q || done_q;
 
 endmodule

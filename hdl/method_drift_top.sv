@@ -197,15 +197,19 @@ module method_drift_top
   logic                  bad;
 
   if (MethodSel == MethodOnePoint) begin : gen_one_point
-    // coeffs: offset, bad; the gain is the frame's register.
+    // coeffs: offset, bad (the generated word struct); the gain is the frame's register.
+    coef_one_point#(OffsetBits)::word_t w;
+    assign w      = coef;
     assign gain   = frame[GainBits-1:0];
-    assign offset = coef[OffsetBits-1:0];
-    assign bad    = coef[OffsetBits];
+    assign offset = w.offset;
+    assign bad    = w.bad;
   end else begin : gen_two_point
-    // coeffs: gain, offset, bad.
-    assign gain   = coef[GainBits-1:0];
-    assign offset = coef[GainBits +: OffsetBits];
-    assign bad    = coef[GainBits + OffsetBits];
+    // coeffs: gain, offset, bad (the generated word struct).
+    coef_word#(GainBits, OffsetBits)::word_t w;
+    assign w      = coef;
+    assign gain   = w.gain;
+    assign offset = w.offset;
+    assign bad    = w.bad;
     logic unused_frame;
     assign unused_frame = ^frame;
   end

@@ -298,7 +298,7 @@ module method_ffc_top
   assign ffc_target_o       = target;
 
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
-  logic need_acc, need_target;
+  logic need_acc, need_target, join_ready;
 
   assign need_acc    = mode.acc_rd;
   assign need_target = pix_sof && ctrl_mode.refresh;
@@ -332,7 +332,7 @@ module method_ffc_top
 
   logic [AccBits-1:0]    acc_new;
   logic [Pass-1:0]       join_pass, f_pass;
-  logic                  join_ready, f_valid;
+  logic                  f_valid;
   logic [GainBits-1:0]   f_gain;
   logic [OffsetBits-1:0] f_offset;
   logic [QuadBits-1:0]   f_quad;
@@ -546,22 +546,47 @@ module method_ffc_top
   logic unused_asum;
   assign unused_asum = ^{asum_valid, asum_side};
 
-  // ---- stage R: ffc_refresh and the mean's v ------------------------------------------------
+  // ---- stage D: sa aligned and the refresh's difference ---------------------------------------
   logic [SxBits-1:0]   sx;
   logic [DiffBits-1:0] diff;
-  logic [VBits-1:0]    v_d;
-  logic [DiffBits-RShift:0] dr;
-  logic [CBits-1:0]    dc_d;
 
   assign sx   = SxBits'($signed(asum_s)) << (RFrac - AFracBits);
   assign diff = (DiffBits'(target) << RShift) - DiffBits'($signed(sx));
+
+  logic                d_valid_q;
+  logic [SxBits-1:0]   d_sx_q;
+  logic [DiffBits-1:0] d_diff_q;
+  logic [SumBits-1:0]  d_sum_q;
+  logic [Side:0]       d_side_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_d_valid
+    if (!rst_ni) begin
+      d_valid_q <= 1'b0;
+    end else if (en) begin
+      d_valid_q <= sum_valid;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_d
+    if (en) begin
+      d_sx_q   <= sx;
+      d_diff_q <= diff;
+      d_sum_q  <= sum_s;
+      d_side_q <= sum_side;
+    end
+  end
+
+  // ---- stage R: ffc_refresh's ROUND and OVF, the mean's v ----------------------------------
+  logic [VBits-1:0]         v_d;
+  logic [DiffBits-RShift:0] dr;
+  logic [CBits-1:0]         dc_d;
 
   irnuc_round #(
     .InBits  (SxBits),
     .FracBits(RShift),
     .Rounding(FfcRounding)
   ) u_round_v (
-    .s_i(sx),
+    .s_i(d_sx_q),
     .r_o(v_d)
   );
 
@@ -570,7 +595,7 @@ module method_ffc_top
     .FracBits(RShift),
     .Rounding(FfcRounding)
   ) u_round_dc (
-    .s_i(diff),
+    .s_i(d_diff_q),
     .r_o(dr)
   );
 
@@ -595,24 +620,24 @@ module method_ffc_top
     if (!rst_ni) begin
       r_valid_q <= 1'b0;
     end else if (en) begin
-      r_valid_q <= sum_valid;
+      r_valid_q <= d_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_r
     if (en) begin
-      r_sum_q     <= sum_s;
-      r_c_q       <= sum_side[Side-1] ? dc_d : sum_side[3 +: CBits];
+      r_sum_q     <= d_sum_q;
+      r_c_q       <= d_side_q[Side-1] ? dc_d : d_side_q[3 +: CBits];
       r_dc_q      <= dc_d;
       r_v_q       <= v_d;
-      r_acc_q     <= sum_side[3 + CBits +: AccBits];
-      r_mean_q    <= sum_side[Side];
-      r_refresh_q <= sum_side[Side-1];
-      r_write_q   <= sum_side[Side-2];
-      r_hold_q    <= sum_side[Side-3];
-      r_sof_q     <= sum_side[2];
-      r_eol_q     <= sum_side[1];
-      r_bad_q     <= sum_side[0];
+      r_acc_q     <= d_side_q[3 + CBits +: AccBits];
+      r_mean_q    <= d_side_q[Side];
+      r_refresh_q <= d_side_q[Side-1];
+      r_write_q   <= d_side_q[Side-2];
+      r_hold_q    <= d_side_q[Side-3];
+      r_sof_q     <= d_side_q[2];
+      r_eol_q     <= d_side_q[1];
+      r_bad_q     <= d_side_q[0];
     end
   end
 
