@@ -103,6 +103,8 @@ class StageScoreboard(MethodScoreboard):
         f = int(np.searchsorted(self._starts, index, side="right")) - 1
         fr = self._frames[f]
         if not isinstance(fr, DriftFrame):
+            if self.golden.has("ffc"):
+                return f"{line} | ffc: the golden s above is without the FFC term"
             return line
         w = fr.raw.shape[1]
         off = index - self._starts[f]
