@@ -12,10 +12,11 @@
 // cycle (MSB first, the sign bit's weight negative), then the rounding and the overflow;
 // delta leaves on m_drift, one item per frame, which the top takes with the frame's first
 // active pixel. The next frame's codes are summed meanwhile; its last item waits until
-// the multiplier is free. Latency from the last item taken to delta valid: MW + 4 cycles.
+// the multiplier is free. Latency from the last item taken to delta valid: MW + 5 cycles.
 //
 //   u_in    input register (irnuc_spill_register): registered s_blind_ready_o
 //   sum     bsum, restarted after a last item
+//   load    the frame's sum registered (state BdLoad), then bd and -bd beside it
 //   mul     p = 2 p + (m_i ? +-bd : 0), MW cycles (state BdMul)
 //   round   r = ROUND_(Mf - Df)(p) (irnuc_round), registered (state BdRound)
 //   u_out   OVF (irnuc_clip) into the output register (irnuc_spill_register, two entries)
@@ -90,11 +91,12 @@ module blind_drift #(
     .data_o ({in_last, in_data})
   );
 
-  typedef enum logic [1:0] {
-    BdIdle  = 2'd0,  // summing; a last item starts the multiply
-    BdMul   = 2'd1,  // one bit of m a cycle
-    BdRound = 2'd2,  // the rounded product is registered
-    BdPush  = 2'd3   // delta waits for room in the output register
+  typedef enum logic [2:0] {
+    BdIdle  = 3'd0,  // summing; a last item starts the multiply
+    BdLoad  = 3'd1,  // bd, -bd and m are loaded from the registered sum
+    BdMul   = 3'd2,  // one bit of m a cycle
+    BdRound = 3'd3,  // the rounded product is registered
+    BdPush  = 3'd4   // delta waits for room in the output register
   } bd_state_e;
 
   bd_state_e            state_q;
@@ -131,7 +133,8 @@ module blind_drift #(
       state_q <= BdIdle;
     end else begin
       unique case (state_q)
-        BdIdle:  if (take && in_last) state_q <= BdMul;
+        BdIdle:  if (take && in_last) state_q <= BdLoad;
+        BdLoad:  state_q <= BdMul;
         BdMul:   if (count_q == '0) state_q <= BdRound;
         BdRound: state_q <= BdPush;
         BdPush:  if (out_ready) state_q <= BdIdle;
@@ -151,13 +154,26 @@ module blind_drift #(
     end
   end
 
-  always_ff @(posedge clk_i) begin : p_mul
+  // The frame's sum and the registers, sampled with its last item (the multiply starts
+  // from flops: a clock enable of the wide registers driven by a flop, not by the input).
+  logic [SumBits-1:0]  bsum_last_q;
+  logic [SumBits-1:0]  ref_q;
+  logic [GainBits-1:0] gain_q;
+
+  always_ff @(posedge clk_i) begin : p_last
     if (state_q == BdIdle && take && in_last) begin
-      bd_q    <= $signed({1'b0, bsum_next[SumBits-1:0]}) - $signed({1'b0, blind_ref_i});
-      m_q     <= drift_gain_i;
+      bsum_last_q <= bsum_next[SumBits-1:0];
+      ref_q       <= blind_ref_i;
+      gain_q      <= drift_gain_i;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_mul
+    if (state_q == BdLoad) begin
+      bd_q    <= $signed({1'b0, bsum_last_q}) - $signed({1'b0, ref_q});
+      m_q     <= gain_q;
       count_q <= CountBits'(GainBits - 1);
-      bd_neg_q <= ProdBits'($signed({1'b0, blind_ref_i})
-                            - $signed({1'b0, bsum_next[SumBits-1:0]}));
+      bd_neg_q <= ProdBits'($signed({1'b0, ref_q}) - $signed({1'b0, bsum_last_q}));
       p_q     <= '0;
       first_q <= 1'b1;
     end else if (state_q == BdMul) begin

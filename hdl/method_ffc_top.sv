@@ -27,7 +27,7 @@
 // and the DPC. The mean frame's v over good pixels give the target T (ffc_mean, one
 // division, before the refresh frame's first pixel is taken; ffc_target_o).
 // One pixel per clock, no bubbles, but for the division: a refresh frame's first pixel
-// waits for the target (NumBits + 2 cycles after the mean frame's last pixel).
+// waits for the target (NumBits + 3 cycles after the mean frame's last pixel).
 module method_ffc_top
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
@@ -576,10 +576,9 @@ module method_ffc_top
     end
   end
 
-  // ---- stage R: ffc_refresh's ROUND and OVF, the mean's v ----------------------------------
+  // ---- stage R: ffc_refresh's ROUND, the mean's v --------------------------------------------
   logic [VBits-1:0]         v_d;
-  logic [DiffBits-RShift:0] dr;
-  logic [CBits-1:0]         dc_d;
+  logic [DiffBits-RShift:0] dr_d;
 
   irnuc_round #(
     .InBits  (SxBits),
@@ -596,25 +595,14 @@ module method_ffc_top
     .Rounding(FfcRounding)
   ) u_round_dc (
     .s_i(d_diff_q),
-    .r_o(dr)
+    .r_o(dr_d)
   );
 
-  irnuc_clip #(
-    .InBits   (DiffBits + 1 - RShift),
-    .OutBits  (CBits),
-    .OutSigned(1'b1),
-    .Overflow (FfcOverflow)
-  ) u_clip_dc (
-    .v_i(dr),
-    .y_o(dc_d)
-  );
-
-  logic                  r_valid_q;
-  logic [SumBits-1:0]    r_sum_q;
-  logic [CBits-1:0]      r_c_q, r_dc_q;
-  logic [VBits-1:0]      r_v_q;
-  logic [AccBits-1:0]    r_acc_q;
-  logic                  r_mean_q, r_refresh_q, r_write_q, r_hold_q, r_sof_q, r_eol_q, r_bad_q;
+  logic                     r_valid_q;
+  logic [SumBits-1:0]       r_sum_q;
+  logic [DiffBits-RShift:0] r_dr_q;
+  logic [VBits-1:0]         r_v_q;
+  logic [Side:0]            r_side_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_r_valid
     if (!rst_ni) begin
@@ -626,24 +614,58 @@ module method_ffc_top
 
   always_ff @(posedge clk_i) begin : p_r
     if (en) begin
-      r_sum_q     <= d_sum_q;
-      r_c_q       <= d_side_q[Side-1] ? dc_d : d_side_q[3 +: CBits];
-      r_dc_q      <= dc_d;
-      r_v_q       <= v_d;
-      r_acc_q     <= d_side_q[3 + CBits +: AccBits];
-      r_mean_q    <= d_side_q[Side];
-      r_refresh_q <= d_side_q[Side-1];
-      r_write_q   <= d_side_q[Side-2];
-      r_hold_q    <= d_side_q[Side-3];
-      r_sof_q     <= d_side_q[2];
-      r_eol_q     <= d_side_q[1];
-      r_bad_q     <= d_side_q[0];
+      r_sum_q  <= d_sum_q;
+      r_dr_q   <= dr_d;
+      r_v_q    <= v_d;
+      r_side_q <= d_side_q;
     end
   end
 
-  assign mean_valid = en && r_valid_q && r_mean_q;
-  assign mean_good  = !r_bad_q;
+  assign mean_valid = en && r_valid_q && r_side_q[Side];
+  assign mean_good  = !r_side_q[0];
   assign mean_v     = $signed(r_v_q);
+
+  // ---- stage C: ffc_refresh's OVF, the correction of the pixel ----------------------------
+  logic [CBits-1:0] dc_d;
+
+  irnuc_clip #(
+    .InBits   (DiffBits + 1 - RShift),
+    .OutBits  (CBits),
+    .OutSigned(1'b1),
+    .Overflow (FfcOverflow)
+  ) u_clip_dc (
+    .v_i(r_dr_q),
+    .y_o(dc_d)
+  );
+
+  logic                  c_valid_q;
+  logic [SumBits-1:0]    c_sum_q;
+  logic [CBits-1:0]      c_c_q, c_dc_q;
+  logic [AccBits-1:0]    c_acc_q;
+  logic                  c_refresh_q, c_write_q, c_hold_q, c_sof_q, c_eol_q, c_bad_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_c_valid
+    if (!rst_ni) begin
+      c_valid_q <= 1'b0;
+    end else if (en) begin
+      c_valid_q <= r_valid_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_c
+    if (en) begin
+      c_sum_q     <= r_sum_q;
+      c_c_q       <= r_side_q[Side-1] ? dc_d : r_side_q[3 +: CBits];
+      c_dc_q      <= dc_d;
+      c_acc_q     <= r_side_q[3 + CBits +: AccBits];
+      c_refresh_q <= r_side_q[Side-1];
+      c_write_q   <= r_side_q[Side-2];
+      c_hold_q    <= r_side_q[Side-3];
+      c_sof_q     <= r_side_q[2];
+      c_eol_q     <= r_side_q[1];
+      c_bad_q     <= r_side_q[0];
+    end
+  end
 
   // ---- stage T: the FFC term added ---------------------------------------------------------
   logic                t_valid_q;
@@ -655,16 +677,16 @@ module method_ffc_top
     if (!rst_ni) begin
       t_valid_q <= 1'b0;
     end else if (en) begin
-      t_valid_q <= r_valid_q;
+      t_valid_q <= c_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_t
     if (en) begin
-      t_sum_q  <= TotBits'($signed(r_sum_q))
-                  + (TotBits'($signed(r_c_q)) << (FracBits - FfcFracBits));
-      t_user_q <= {r_hold_q, r_write_q, r_acc_q, r_refresh_q, r_dc_q, r_sof_q, r_eol_q,
-                   r_bad_q};
+      t_sum_q  <= TotBits'($signed(c_sum_q))
+                  + (TotBits'($signed(c_c_q)) << (FracBits - FfcFracBits));
+      t_user_q <= {c_hold_q, c_write_q, c_acc_q, c_refresh_q, c_dc_q, c_sof_q, c_eol_q,
+                   c_bad_q};
     end
   end
 
