@@ -70,6 +70,25 @@ MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
+# ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
+_SPKG = (*_PKG, "irnuc_stage_pkg.sv")
+_CORE_SUM = (*_ARITH, "core_sum.sv")
+_CORE_OUT = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
+_BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
+MODULE_FILES |= {
+    "core_sum": (*_SPKG, *_CORE_SUM),
+    "core_out": (*_PKG, *_CORE_OUT),
+    "drift_sub": ("drift_sub.sv",),
+    "blind_drift": (*_PKG, *_BLIND),
+    "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_CORE_SUM,
+                                             *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
+    "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
+    "ffc_mean": ("ffc_mean.sv",),
+    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "ffc_ctrl.sv", "ffc_mean.sv",
+                                           *_TC, *_CORE_SUM, *_CORE_OUT, *_DPC,
+                                           "method_ffc_top.sv"))),
+}
+
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
 ASSERT_DEFINE = "+define+IRNUC_ASSERT"
@@ -132,12 +151,20 @@ def method_parameters(cfg: PipelineConfig) -> dict[str, int]:
     Raises :class:`UserError` for a method with stages (``blind_drift``, ``ffc``): the RTL
     has the base methods.
     """
-    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
+    from irnuc.nuc_fixed.config import BASE_METHODS
 
     if cfg.stages:
         raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has stages "
-                        f"({', '.join(cfg.stages)}); the RTL (method_dpc_top) implements the "
-                        f"base methods {', '.join(BASE_METHODS)}")
+                        f"({', '.join(cfg.stages)}); method_dpc_top implements the "
+                        f"base methods {', '.join(BASE_METHODS)} (the stages: "
+                        f"{', '.join(STAGE_TOPS.values())})")
+    return _base_parameters(cfg)
+
+
+def _base_parameters(cfg: PipelineConfig) -> dict[str, int]:
+    """:func:`method_parameters` of the base method of any configuration."""
+    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
+
     out = {"Method": BASE_METHODS.index(cfg.base_method)}
     for f in cfg.formats:
         if f.name in _METHOD_FORMATS:
@@ -221,6 +248,15 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
+    if top in STAGE_TOPS.values():
+        return stage_parameters(top, cfg)
+    if top in _STAGE_BLOCKS:
+        want = stage_top(cfg)
+        if want is None:
+            raise UserError(f"pipeline {cfg.name!r}: {top} is a block of the stage tops; "
+                            f"method {cfg.method!r} has no stage")
+        p = stage_parameters(want, cfg)
+        return {k: p[k] for k in _STAGE_BLOCKS[top] if k in p}
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
     if top in _METHOD_MODULES:
@@ -229,3 +265,71 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
             return {k: v for k, v in params.items() if k != "Tables"}
     keep = _MODULE_PARAMETERS.get(top)
     return params if keep is None else {k: params[k] for k in keep if k in params}
+
+
+# ---- the stages -------------------------------------------------------------------------
+
+#: The composition top of each stage (a configuration has at most one stage).
+STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top", "ffc": "method_ffc_top"}
+#: The base methods each stage top composes with (its parameter ``Method``).
+STAGE_BASES: dict[str, tuple[str, ...]] = {
+    "method_drift_top": ("one_point", "two_point"),
+    "method_ffc_top": ("one_point", "two_point", "quadratic", "tc_offset"),
+}
+
+
+#: The blocks of the stage tops and the parameters of their top each takes (the lint of
+#: every module, at the sizes it gets in its top).
+_STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
+    "blind_drift": ("AdcBits", "BlindMax", "DriftIntBits", "DriftFracBits", "DriftRounding",
+                    "DriftOverflow", "DriftGainIntBits", "DriftGainFracBits"),
+    "drift_sub": ("AdcBits", "DriftIntBits", "DriftFracBits"),
+    "core_sum": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits"),
+    "core_out": ("OutBits", "Rounding", "Overflow"),
+    "ffc_ctrl": ("FfcFrames",),
+    "ffc_mean": (),
+}
+
+
+def stage_top(cfg: PipelineConfig) -> str | None:
+    """The composition top of a configuration with a stage (None without one)."""
+    for stage in cfg.stages:
+        if stage in STAGE_TOPS:
+            return STAGE_TOPS[stage]
+    return None
+
+
+def _format_parameters(cfg: PipelineConfig, name: str, prefix: str) -> dict[str, int]:
+    from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
+
+    f = cfg.format(name)
+    return {f"{prefix}IntBits": f.int_bits, f"{prefix}FracBits": f.frac_bits,
+            f"{prefix}Rounding": ROUNDING_MODES[f.rounding],
+            f"{prefix}Overflow": OVERFLOW_MODES[f.overflow]}
+
+
+def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
+    """The SV parameters of a stage top: those of ``method_dpc_top`` for the base method
+    and the stage's (blind_drift: ``BlindMax``, ``Drift*``, ``DriftGain*``; ffc:
+    ``FfcFrames``, ``FfcHold``, ``Ffc*``). Raises :class:`UserError` for a base method the
+    stage top does not compose with (:data:`STAGE_BASES`)."""
+    want = stage_top(cfg)
+    if want != top:
+        raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has no {top} "
+                        f"(its top: {want or 'method_dpc_top'})")
+    if cfg.base_method not in STAGE_BASES[top]:
+        raise UserError(f"pipeline {cfg.name!r}: {top} composes {cfg.stages[0]} with "
+                        f"{', '.join(STAGE_BASES[top])}, not {cfg.base_method!r} (not in "
+                        f"RTL yet)")
+    params = {**cfg.rtl_parameters(), **_base_parameters(cfg)}
+    params.pop("Tables", None)
+    if cfg.has("blind_drift"):
+        params |= {"BlindMax": int(cfg.blind_max or 1),
+                   **_format_parameters(cfg, "drift", "Drift")}
+        g = cfg.format("drift_gain")
+        params |= {"DriftGainIntBits": g.int_bits, "DriftGainFracBits": g.frac_bits}
+    if cfg.has("ffc"):
+        params |= {"FfcFrames": int(cfg.ffc_frames or 1),
+                   "FfcHold": int(cfg.ffc_output == "hold"),
+                   **_format_parameters(cfg, "ffc", "Ffc")}
+    return params

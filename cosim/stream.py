@@ -37,9 +37,8 @@ __all__ = ["FrameDrive", "coef_stream_bits", "frame_drive", "frame_word", "frame
 
 def stream_memories(cfg: PipelineConfig) -> list[str]:
     """The memories in the coefficient word, bit 0 first (table_interp: ``lower`` and
-    ``upper``, the frame's tables j and j + 1)."""
-    if cfg.stages:
-        raise ValueError(f"method {cfg.method!r}: the RTL streams the base methods only")
+    ``upper``, the frame's tables j and j + 1): the base method's calibration memories (a
+    stage's runtime memories have streams of their own, :mod:`irnuc.cosim.stages`)."""
     if cfg.base_method == "table_interp":
         return ["lower", "upper"]
     return [m.name for m in cfg.memories.values() if m.source == "calibration"]

@@ -62,6 +62,7 @@ __all__ = [
     "ECP5_SPEED_DEFAULT",
     "FLIP_FLOP_CELLS",
     "SYNTH_TOPS",
+    "tops_for",
     "TARGET_MHZ",
     "SynthError",
     "comb_paths",
@@ -438,12 +439,32 @@ BANDWIDTH_FRAME, BANDWIDTH_FPS = (640, 480), 60.0
 
 
 #: The modules ``irnuc synth --top`` takes: the bare cores and the AXI wrapper.
-SYNTH_TOPS = ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
+SYNTH_TOPS = ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top", "method_drift_top",
+              "method_ffc_top")
+
+
+def tops_for(cfg) -> tuple[str, ...]:
+    """The tops that implement a configuration's method: its stage's top when it has a
+    stage; for two_point the bare core, the methods' top and the AXI wrapper; for every
+    other base method ``method_dpc_top``."""
+    from irnuc.cosim.sources import stage_top
+
+    if cfg.stages:
+        top = stage_top(cfg)
+        return (top,) if top else ()
+    if cfg.method == "two_point":
+        return ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
+    return ("method_dpc_top",)
 
 
 def default_top(cfg) -> str:
     """The top ``irnuc synth`` builds for a configuration: ``nuc_dpc_top`` for the two-point
-    method (as before the methods), ``method_dpc_top`` for the other base methods."""
+    method (as before the methods), ``method_dpc_top`` for the other base methods, the
+    stage's top (``method_drift_top``, ``method_ffc_top``) for a method with a stage."""
+    from irnuc.cosim.sources import stage_top
+
+    if cfg.stages:
+        return stage_top(cfg) or "method_dpc_top"
     return "nuc_dpc_top" if cfg.method == "two_point" else "method_dpc_top"
 
 

@@ -2,11 +2,12 @@
 
 While the shutter is closed the array sees a uniform source. The FFC unit adds the raw
 codes of N = 2^n shutter frames per pixel into an accumulator of A + n bits
-(:func:`ffc_accumulate`); after the N-th frame it evaluates the base method's sum on the
-accumulator (the mean of the N frames with n fraction bits: the same core with its input
-widened by n bits, coefficients of the last shutter frame) and writes, per pixel, the
-offset correction that brings that pixel to the target level (:func:`ffc_refresh`). The
-correction is added to the sum of every later frame, from the next frame start. The
+(:func:`ffc_accumulate`); after the N-th frame the target is taken (the mean pass,
+:func:`ffc_mean_target`), and in the next frame (the refresh pass) it evaluates the base
+method's sum on the accumulator (the mean of the N frames with n fraction bits: the same
+core with its input widened by n bits, coefficients of that frame) and writes, per pixel,
+the offset correction that brings that pixel to the target level (:func:`ffc_refresh`).
+The correction is added to the sum of every frame from that one on. The
 frames while the shutter is closed are held (the last corrected frame is repeated) or
 passed, as ``ffc_output`` says (:class:`FfcState` models the sequencing).
 """

@@ -8,8 +8,10 @@ The composition of the RTL modules per frame (docs/datapath.md, "Method top"):
    from the reading (``tc_poly``, ``table_interp``);
 3. ``drift_sub`` (blind_drift), then the base core with the FFC offset correction (ffc);
 4. ``dpc_core`` with the bad map, unchanged for every method;
-5. ffc: the shutter frame is accumulated; after the N-th the refresh writes the new
-   correction, used from the next frame; shutter frames are held or passed.
+5. ffc: the shutter frame is accumulated; after the N-th the target is taken (the
+   mean pass, with that frame's coefficients) and the refresh pass runs in the next frame,
+   with that frame's coefficients, whose correction already uses the new offsets;
+   shutter frames are held or passed.
 
 :class:`MethodCoefficients` holds a calibration's per-pixel codes and registers (from
 :func:`irnuc.nuc_fixed.methods_cal.calibrate_plan` or read back from a memory image).
@@ -134,8 +136,15 @@ class MethodOutput:
     y : (N, H, W) corrected frames after DPC (uint16 if B <= 16 else uint32).
     delta : (N,) int64 blind drift code of each frame (blind_drift), else None.
     ffc_offset : (H, W) the FFC correction after the last frame (ffc), else None.
-    refreshes : indices of the frames after which an FFC refresh ran.
+    refreshes : indices of the frames after which an FFC refresh ran (the N-th frame of
+        each complete shutter run; the refresh pass is the frame after it).
     held : (N,) bool, frames whose output repeats an earlier frame (ffc hold).
+    targets : the target level T of every refresh (U B.Cf codes), in order.
+    offsets : the correction every refresh wrote ((H, W) int64 each), in order. A refresh
+        whose pass would come after the last frame is computed with the last frame's
+        coefficients (``pending`` says so).
+    pending : the last accumulation completed with the last frame, so its refresh pass
+        (the next frame) was not seen.
     """
 
     y: np.ndarray
@@ -143,6 +152,9 @@ class MethodOutput:
     ffc_offset: np.ndarray | None = None
     refreshes: tuple[int, ...] = ()
     held: np.ndarray | None = None
+    targets: tuple[int, ...] = ()
+    offsets: tuple[np.ndarray, ...] = ()
+    pending: bool = False
 
 
 def needs(cfg: PipelineConfig) -> tuple[str, ...]:
@@ -247,6 +259,13 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     last: np.ndarray | None = None
     keys = [None] * n if reading is None else [int(v) for v in reading]
     is_shut = np.zeros(n, bool) if shutter is None else shutter
+    # A completed accumulation waiting for its refresh pass: (accumulator, target). The
+    # pass runs in the next frame with that frame's coefficients (the hardware evaluates
+    # the accumulator beside that frame's pixels; docs/datapath.md "ffc").
+    pending: tuple[np.ndarray, int] | None = None
+    targets: list[int] = []
+    offsets: list[np.ndarray] = []
+    fc: dict[str, np.ndarray] = {}
     i = 0
     while i < n:
         key = keys[i]
@@ -254,6 +273,10 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             cache.clear()  # a reading usually repeats for many frames; keep one set
             cache[key] = frame_coefficients(coeffs, key)
         fc = cache[key]
+        if state is not None and pending is not None:
+            state.offset = _refresh(coeffs, fc, *pending)
+            offsets.append(state.offset)
+            pending = None
         # Frames i..j-1 share their coefficients and nothing changes state between them
         # (an open shutter): one pass over the stack, as the per-frame pass would give.
         j = i + 1
@@ -273,11 +296,15 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             else:
                 out[i] = yi[0]
             if state.step(x3[i], True):
-                nb = ffc_shift(cfg)
-                ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
-                tgt = (ffc_mean_target(ref.s, ref.frac, ~coeffs.bad, cfg)
-                       if ffc_target is None else ffc_target)
-                state.offset = ffc_refresh(ref.s, ref.frac, tgt, cfg)
+                # The mean pass: the target from this frame's coefficients.
+                if ffc_target is None:
+                    nb = ffc_shift(cfg)
+                    ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
+                    tgt = ffc_mean_target(ref.s, ref.frac, ~coeffs.bad, cfg)
+                else:
+                    tgt = int(ffc_target)
+                targets.append(tgt)
+                pending = (np.asarray(state.acc), tgt)
                 state.refreshes.append(i)
         else:
             if state is not None:
@@ -285,6 +312,21 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             out[i:j] = yi
             last = out[j - 1]
         i = j
+    if state is not None and pending is not None:
+        # The refresh pass would be the next frame: its coefficients are not known here,
+        # the last frame's stand in.
+        state.offset = _refresh(coeffs, fc, *pending)
+        offsets.append(state.offset)
     return MethodOutput(y=out.reshape(x.shape), delta=delta,
                         ffc_offset=None if state is None else state.offset,
-                        refreshes=tuple(state.refreshes) if state else (), held=held)
+                        refreshes=tuple(state.refreshes) if state else (), held=held,
+                        targets=tuple(targets), offsets=tuple(offsets),
+                        pending=pending is not None)
+
+
+def _refresh(coeffs: MethodCoefficients, fc: Mapping[str, np.ndarray], acc: np.ndarray,
+             target: int) -> np.ndarray:
+    """The refresh pass: the base core on the accumulator (``fc``: the coefficients of
+    the frame the pass runs in), then ``ffc_refresh`` towards ``target``."""
+    ref = base_core(coeffs, fc, acc, xfrac=ffc_shift(coeffs.cfg), sum_only=True)
+    return ffc_refresh(ref.s, ref.frac, target, coeffs.cfg)

@@ -21,6 +21,12 @@ METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_read
 #: protocol checkers take no configuration (once).
 AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer")
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
+#: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
+#: configuration of those stages and the mode variants.
+STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_drift",),
+                 "drift_sub": ("blind_drift",), "core_sum": ("blind_drift", "ffc"),
+                 "core_out": ("blind_drift", "ffc"), "method_ffc_top": ("ffc",),
+                 "ffc_ctrl": ("ffc",), "ffc_mean": ("ffc",)}
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
               "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
@@ -90,6 +96,33 @@ def test_lint_clean_axi(module: str, config: str) -> None:
     assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
 
 
+def _stage_cases() -> list[tuple[str, str, dict[str, object]]]:
+    """(module, configuration, changes): every stage module with every configuration of
+    its stages, and variants reaching the other rounding and overflow branches and the
+    ffc pass/hold modes."""
+    names = [n for n in pipeline_names(method=None) if load_pipeline(n).stages]
+    cases = [(m, n, {}) for m, stages in STAGE_MODULES.items() for n in names
+             if set(load_pipeline(n).stages) & set(stages)]
+    for m in ("method_drift_top", "blind_drift"):
+        cases.append((m, "drift14", {"formats": {"drift": {"rounding": "truncate",
+                                                           "overflow": "wrap"}}}))
+        cases.append((m, "drift14", {"rounding": "half_even", "overflow": "wrap"}))
+    cases.append(("method_ffc_top", "ffc14", {"ffc_output": "pass", "ffc_frames": 1,
+                                              "formats": {"ffc": {"rounding": "half_even",
+                                                                  "overflow": "wrap"}}}))
+    cases.append(("method_ffc_top", "quadffc14", {"ffc_output": "hold", "rounding": "truncate"}))
+    return cases
+
+
+@pytest.mark.parametrize(("module", "config", "changes"), _stage_cases())
+def test_lint_clean_stages(module: str, config: str, changes: dict[str, object]) -> None:
+    cfg = load_pipeline(config)
+    cfg = cfg.replace(**changes) if changes else cfg
+    proc = lint(module, cfg)
+    report = proc.stdout + proc.stderr
+    assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
+
+
 def test_one_module_per_file() -> None:
     """One module (or the one package) per file, named like the file; every file linted."""
     paths = sorted(HDL_DIR.glob("*.sv")) + sorted(SIM_HDL_DIR.glob("*.sv"))
@@ -100,7 +133,7 @@ def test_one_module_per_file() -> None:
         assert units[0].split()[1].rstrip("#(;") == path.stem
         if units[0].startswith("package "):
             continue
-        linted = MODULES + METHOD_MODULES + AXI_MODULES + AXI_CHECKERS
+        linted = (*MODULES, *METHOD_MODULES, *AXI_MODULES, *AXI_CHECKERS, *STAGE_MODULES)
         assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 

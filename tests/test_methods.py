@@ -20,7 +20,13 @@ from irnuc.nuc_fixed import load_pipeline, nuc_core, pipeline_names
 from irnuc.nuc_fixed.cores import drift_sub, lin_core, pwl_core, quad_core
 from irnuc.nuc_fixed.drift import blind_drift
 from irnuc.nuc_fixed.ffc import ffc_mean_target, ffc_refresh
-from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
+from irnuc.nuc_fixed.method_top import (
+    FrameInputs,
+    MethodCoefficients,
+    base_core,
+    frame_coefficients,
+    method_top,
+)
 from irnuc.nuc_fixed.tempcomp import interp_coeffs, interp_weight, tc_coeffs, tc_reading
 
 METHOD_CONFIGS = [n for n in pipeline_names(method=None) if n not in pipeline_names()]
@@ -224,7 +230,31 @@ def test_every_method_matches_the_exact_reference(name: str) -> None:
     acc = np.zeros((h, w), np.int64)
     count = 0
     last = None
+    pending = None  # (accumulator, target): the refresh pass is the next frame
+
+    def acc_sums(k: int, acc: np.ndarray) -> tuple[list[int], int]:
+        """The core's sums on the accumulator with frame k's coefficients, and F."""
+        nbits = cfg.ffc_frames.bit_length() - 1
+        sums, fr_list = [], []
+        for i in range(h * w):
+            p = _pix(c, i)
+            if cfg.base_method == "tc_offset":
+                p["gain"], p["offset"] = ref_tc(cfg, int(reading[k]), p["t_ref"], p)
+            s, f = ref_core(cfg, int(acc.flat[i]), nbits, p, None)
+            sums.append(s)
+            fr_list.append(f)
+        return sums, fr_list[0]
+
     for k in range(n):
+        if pending is not None:
+            # The refresh pass, with this frame's coefficients (docs/datapath.md "ffc").
+            _, cf, _, cr, co = fmt(cfg, "ffc")
+            sums, f0 = acc_sums(k, pending[0])
+            fr = max(f0, cf)
+            ffc = np.array([ovf(rnd(pending[1] * 2 ** (fr - cf) - s * 2 ** (fr - f0),
+                                    fr - cf, cr), cfg.format("ffc").bits, True, co)
+                            for s in sums]).reshape(h, w)
+            pending = None
         want = np.empty((h, w), np.int64)
         for i in range(h * w):
             p = _pix(c, i)
@@ -257,29 +287,57 @@ def test_every_method_matches_the_exact_reference(name: str) -> None:
             acc = x[k].astype(np.int64) if count == 0 else acc + x[k]
             count += 1
             if count == cfg.ffc_frames:
-                nbits = cfg.ffc_frames.bit_length() - 1
-                _, cf, _, cr, co = fmt(cfg, "ffc")
-                sums, fr_list = [], []
-                for i in range(h * w):
-                    p = _pix(c, i)
-                    if cfg.base_method == "tc_offset":
-                        p["gain"], p["offset"] = ref_tc(cfg, int(reading[k]), p["t_ref"], p)
-                    s, f = ref_core(cfg, int(acc.flat[i]), nbits, p, None)
-                    sums.append(s)
-                    fr_list.append(f)
-                fr = max(fr_list[0], cf)
-                vals = [rnd(s * 2 ** (fr - fr_list[0]), fr - cf, cr) for s in sums]
+                _, cf, _, cr, _ = fmt(cfg, "ffc")
+                sums, f0 = acc_sums(k, acc)
+                fr = max(f0, cf)
+                vals = [rnd(s * 2 ** (fr - f0), fr - cf, cr) for s in sums]
                 gv = [v for v, g in zip(vals, good.ravel(), strict=True) if g]
                 tgt = min(max(rdiv(sum(gv), len(gv), "half_up"), 0),
                           2 ** (cfg.out_bits + cf) - 1)
-                ffc = np.array([ovf(rnd(tgt * 2 ** (fr - cf) - s * 2 ** (fr - fr_list[0]),
-                                        fr - cf, cr), cfg.format("ffc").bits, True, co)
-                                for s in sums]).reshape(h, w)
+                pending = (acc.copy(), tgt)
         elif cfg.has("ffc") and not shutter[k]:
             count = 0
     if cfg.has("ffc"):
         assert res.refreshes == (3 + cfg.ffc_frames - 1,)
         assert np.array_equal(res.ffc_offset, ffc)
+        assert len(res.offsets) == 1 and np.array_equal(res.offsets[0], ffc)
+        assert not res.pending
+
+
+def test_ffc_refresh_pass_uses_the_next_frame_and_a_pending_one_the_last() -> None:
+    """The refresh pass takes the coefficients of the frame after the N-th (tc_offset: its
+    reading); a run that ends with the sequence is refreshed with the last frame's."""
+    cfg = load_pipeline("tcffc14")
+    rng = np.random.default_rng(11)
+    h, w = 4, 6
+    c = random_coeffs(cfg, rng)
+    # Moderate codes (no saturation): unit gain, offsets of a few codes, an offset slope.
+    z = np.zeros((h, w), np.int64)
+    c = MethodCoefficients(cfg, {
+        "coeffs": {"gain": z + 16384 + rng.integers(-300, 300, (h, w)),
+                   "offset": rng.integers(-80, 80, (h, w)), "bad": z.astype(bool)},
+        "tc": {"tc1": rng.integers(-400, 400, (h, w)), "tc2": z},
+        "tg": {"tg1": z, "tg2": z}}, {**c.registers, "t_ref": 8000})
+    n = cfg.ffc_frames
+    x = rng.integers(3000, 9000, (n + 1, h, w))
+    reading = np.r_[np.full(n, 8000), 8000 + 700]
+    shut = np.r_[np.ones(n, bool), False]
+    res = method_top(x, c, FrameInputs(reading=reading, shutter=shut))
+    acc = x[:n].sum(axis=0)
+    nb = n.bit_length() - 1
+    fc_last = frame_coefficients(c, int(reading[n - 1]))
+    fc_next = frame_coefficients(c, int(reading[n]))
+    ref = base_core(c, fc_last, acc, xfrac=nb, sum_only=True)
+    tgt = ffc_mean_target(ref.s, ref.frac, ~c.bad, cfg)
+    nxt = base_core(c, fc_next, acc, xfrac=nb, sum_only=True)
+    want = ffc_refresh(nxt.s, nxt.frac, tgt, cfg)
+    assert res.targets == (tgt,) and not res.pending
+    assert np.array_equal(res.ffc_offset, want) and np.array_equal(res.offsets[0], want)
+    assert not np.array_equal(want, ffc_refresh(ref.s, ref.frac, tgt, cfg))
+    # The sequence ends with the N-th frame: pending, the last frame's coefficients.
+    end = method_top(x[:n], c, FrameInputs(reading=reading[:n], shutter=shut[:n]))
+    assert end.pending and end.refreshes == (n - 1,)
+    assert np.array_equal(end.ffc_offset, ffc_refresh(ref.s, ref.frac, tgt, cfg))
 
 
 @pytest.mark.parametrize("name", pipeline_names())

@@ -42,7 +42,7 @@ def run_synth(args: argparse.Namespace) -> int:
         plain_name,
         write_text_atomic,
     )
-    from irnuc.cosim.synth import SYNTH_TOPS, synth_configs
+    from irnuc.cosim.synth import SYNTH_TOPS, synth_configs, tops_for
     from irnuc.nuc_fixed.rtl_spec import PIPELINE_RANGES
 
     out = claim_output_folder(args.out, kind="synth")
@@ -58,11 +58,13 @@ def run_synth(args: argparse.Namespace) -> int:
             raise UserError(f"{flag} {v} is outside the allowed range {lo}..{hi}")
     if args.top is not None and args.top not in SYNTH_TOPS:
         raise UserError(f"--top {args.top!r}: expected one of {', '.join(SYNTH_TOPS)}")
-    if args.top == "irnuc_axis_top":
+    if args.top is not None:
         for c, p in zip(cfgs, args.pipeline, strict=True):
-            if c.method != "two_point":
-                raise UserError(f"--top irnuc_axis_top --pipeline {p}: method {c.method!r}; "
-                                "irnuc_axis_top wraps the two-point core (method two_point)")
+            fits = tops_for(c)
+            if args.top not in fits:
+                what = "+".join((c.method, *c.stages))
+                raise UserError(f"--top {args.top} --pipeline {p}: method {what!r} is built "
+                                f"by {', '.join(fits) or 'no top'}")
     if not 1.0 <= args.freq <= 1000.0:
         raise UserError(f"--freq {args.freq:g} is outside the allowed range 1..1000 MHz")
     if not 0 <= args.seed < 2**31:

@@ -104,6 +104,17 @@ def _mm(id: str, file: str, find: str, replace: str, what: str, config: str, **k
     return Mutant(id, file, find, replace, what, config=config, **{**_METHOD, **kw})
 
 
+_DRIFT = {"top": "method_drift_top", "suite": "irnuc.cocotb_tests.tb_stage",
+          "config": "drift14"}
+_FFC = {"top": "method_ffc_top", "suite": "irnuc.cocotb_tests.tb_ffc", "config": "ffc14"}
+
+
+def _ms(id: str, file: str, find: str, replace: str, what: str, stage: dict, **kw: Any
+        ) -> Mutant:
+    """A mutant run in a stage top with its testbench (``stage``: _DRIFT or _FFC)."""
+    return Mutant(id, file, find, replace, what, **{**stage, **kw})
+
+
 _HALF_UP = (("rounding", "half_up"),)
 _WRAP = (("rounding", "truncate"), ("overflow", "wrap"))
 
@@ -451,6 +462,63 @@ CATALOGUE: tuple[Mutant, ...] = (
     _m("lb_no_output_reg", "irnuc_line_buffer.sv", "    assign rd_data_o = out_q;",
        "    assign rd_data_o = rd_data_q;",
        "the line buffer's output register bypassed (the word one item early)"),
+    # ---- the stages: blind_drift (method_drift_top), ffc (method_ffc_top) -------------------
+    _ms("bd_sign_bit_positive", "blind_drift.sv", "addend = bd_neg_q;",
+        "addend = ProdBits'(bd_q);", "the drift gain's sign bit weighs +2^(MW-1)", _DRIFT),
+    _ms("bd_sum_not_restarted", "blind_drift.sv",
+        "bsum_q <= in_last ? '0 : bsum_next[SumBits-1:0];",
+        "bsum_q <= bsum_next[SumBits-1:0];",
+        "the blind sum runs on across frames", _DRIFT),
+    _ms("bd_ref_halved", "blind_drift.sv", "ref_q       <= blind_ref_i;",
+        "ref_q       <= blind_ref_i >> 1;", "blind_ref read one bit low", _DRIFT),
+    _ms("bd_last_while_busy", "blind_drift.sv",
+        "assign in_ready  = !in_last || state_q == BdIdle;", "assign in_ready  = 1'b1;",
+        "a frame's last item taken while the multiplier is busy", _DRIFT),
+    _ms("ds_no_frac_shift", "drift_sub.sv", "(XBits'(x_i) << DriftFracBits)", "XBits'(x_i)",
+        "x not aligned to delta's fraction bits", _DRIFT),
+    _ms("ds_delta_zero_extended", "drift_sub.sv", "XBits'($signed(delta_i))",
+        "XBits'(delta_i)", "a negative delta zero-extended", _DRIFT),
+    _ms("cs_offset_unsigned", "core_sum.sv",
+        "assign leaves[Parts] = SumBits'($signed(mul_offset)) << (FracBits - OffsetFracBits);",
+        "assign leaves[Parts] = SumBits'(mul_offset) << (FracBits - OffsetFracBits);",
+        "the linear core's offset zero-extended", _DRIFT),
+    _ms("co_round_no_enable", "core_out.sv",
+        "    if (en_o) begin\n      rnd_q      <= rnd_d;",
+        "    if (1'b1) begin\n      rnd_q      <= rnd_d;",
+        "the rounding register moves while the output stalls", _DRIFT),
+    _ms("dt_delta_latched_only", "method_drift_top.sv",
+        "assign delta = pix_sof ? drift : delta_q;", "assign delta = delta_q;",
+        "a frame's first pixel takes the previous frame's delta", _DRIFT),
+    _ms("fc_count_kept_when_open", "ffc_ctrl.sv",
+        "count_q   <= !shutter_i ? '0 :", "count_q   <= !shutter_i ? count_q :",
+        "an open frame does not end the shutter run", _FFC),
+    _ms("fc_hold_before_open", "ffc_ctrl.sv",
+        "mode_o.hold      = Hold && shutter_i && open_q;",
+        "mode_o.hold      = Hold && shutter_i;",
+        "shutter frames held before any open frame was output", _FFC),
+    _ms("fm_no_half", "ffc_mean.sv", "num_q   <= (NumBits'(sum_q) << 1) + NumBits'(n_q);",
+        "num_q   <= (NumBits'(sum_q) << 1);", "the target truncated, not rounded half up",
+        _FFC),
+    _ms("fm_bad_counted", "ffc_mean.sv", "end else if (valid_i && good_i) begin",
+        "end else if (valid_i) begin", "bad pixels in the target's mean", _FFC),
+    _ms("ft_refresh_uses_old", "method_ffc_top.sv",
+        "c_c_q       <= r_side_q[Side-1] ? dc_d : r_side_q[3 +: CBits];",
+        "c_c_q       <= r_side_q[3 +: CBits];",
+        "the refresh frame corrected with the old words", _FFC),
+    _ms("ft_first_frame_adds", "method_ffc_top.sv",
+        "assign acc_new   = mode.acc_first ? AccBits'(pix_data) : acc_in + AccBits'(pix_data);",
+        "assign acc_new   = acc_in + AccBits'(pix_data);",
+        "a run's first frame adds to a stale accumulator", _FFC),
+    _ms("ft_fork_forgets_sent", "method_ffc_top.sv",
+        "sent_q <= sent_q | (dest_valid & dest_ready);", "sent_q <= sent_q;",
+        "the output fork sends an item again to a stream that took it", _FFC),
+    _ms("ft_quad_dropped", "method_ffc_top.sv", "assign f_quad   = w.quad.quad;",
+        "assign f_quad   = '0;", "quadratic + ffc without the quadratic term", _FFC,
+        config="quadffc14"),
+    _ms("ft_tc_reading_ref_swapped", "method_ffc_top.sv",
+        ".s_reading_i(fw.reading),\n      .s_t_ref_i  (fw.t_ref),",
+        ".s_reading_i(fw.t_ref),\n      .s_t_ref_i  (fw.reading),",
+        "tc_offset + ffc: the reading and t_ref swapped", _FFC, config="tcffc14"),
     # ---- nuc_dpc_top ---------------------------------------------------------------------
     _m("top_coef_without_pixel", "nuc_dpc_top.sv",
        "assign coef_ready = nuc_in_ready && pix_valid;", "assign coef_ready = nuc_in_ready;",

@@ -1,0 +1,240 @@
+"""cocotb tests of the stage top ``method_ffc_top`` (one_point / two_point / quadratic / tc_offset +
+ffc), run through ``cocotb_tests/test_method_ffc_top.py``.
+
+Chain: a shutter sequence (seeded) -> :func:`irnuc.cosim.stages.ffc_run` (one run of
+``nuc_fixed.method_top`` over the sequence: the expected pixels, accumulator words,
+refreshed corrections and held frames) -> the drive engine's sources on ``s_pix`` (with
+the frame's shutter flag), ``s_coef``, ``s_foff`` (the correction in effect: the host's
+memory, written back from ``m_foff``) and ``s_acc`` (the accumulator, written back from
+``m_acc``), with pause patterns -> DUT -> sinks with backpressure on ``m_pix``, ``m_acc``
+and ``m_foff`` -> one in-order scoreboard per output stream, and the target register
+``ffc_target_o`` against the golden targets. Widths are read back from the DUT.
+"""
+
+from __future__ import annotations
+
+import cocotb
+import numpy as np
+from cocotb.triggers import ClockCycles
+
+from irnuc.cocotb_tests import tb_lib
+from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
+from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
+from irnuc.cosim.scoreboard import Scoreboard
+from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
+from irnuc.cosim.stream import coef_stream_bits, frame_word_bits
+from irnuc.nuc_fixed import PipelineConfig
+from irnuc.nuc_fixed.method_top import MethodCoefficients
+from irnuc.nuc_fixed.widths import ffc_shift
+
+
+async def _setup(dut, salt: int) -> tb_lib.Env:
+    """Clock, reset, the configuration and a seeded rng; the widths of every stream and
+    of the target register read back from the DUT against the layouts."""
+    env = await tb_lib.setup(dut, salt)
+    cfg = env.cfg
+    buses = {p: StreamBus.from_prefix(dut, p)
+             for p in ("s_pix", "s_coef", "s_foff", "s_acc", "m_acc", "m_foff", "m_pix")}
+    mem = cfg.memories
+    got = (buses["s_pix"].width("data"), buses["s_pix"].width("frame"),
+           buses["s_coef"].width("data"), buses["s_foff"].width("data"),
+           buses["s_acc"].width("data"), buses["m_acc"].width("data"),
+           buses["m_foff"].width("data"), buses["m_pix"].width("data"),
+           len(dut.ffc_target_o))
+    want = (cfg.adc_bits, frame_word_bits(cfg), coef_stream_bits(cfg),
+            mem["ffc_offset"].word_bits, mem["ffc_acc"].word_bits, mem["ffc_acc"].word_bits,
+            mem["ffc_offset"].word_bits, cfg.out_bits, cfg.registers["ffc_target"].width)
+    assert got == want, f"widths (pixel, frame word, coefficient word, s_foff, s_acc, " \
+                        f"m_acc, m_foff, output, target) {got}; the layouts give {want}"
+    return env
+
+
+def _calibration(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
+                 kind: str) -> MethodCoefficients:
+    """``random``: every field over its code range; ``camera``: gains near 1, small
+    offsets and quadratic terms (the corrections then stay inside the ffc format)."""
+    c = random_coefficients(cfg, h, w, rng, biased=kind == "random")
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    co = fields["coeffs"]
+    co["bad"] = co["bad"].copy()
+    co["bad"][0, 0] = False  # a target needs a good pixel
+    if kind == "random":
+        return MethodCoefficients(cfg, fields, c.registers)
+    if "gain" in co:
+        one = 1 << cfg.gain_frac_bits
+        co["gain"] = one + rng.integers(-one // 8, one // 8 + 1, size=(h, w))
+    co["offset"] = rng.integers(-(1 << (cfg.offset_frac_bits + 6)),
+                                1 << (cfg.offset_frac_bits + 6), size=(h, w))
+    if "quad" in fields:
+        fields["quad"]["quad"] = rng.integers(-(1 << 9), 1 << 9, size=(h, w))
+    for m in ("tc", "tg"):
+        for k in fields.get(m, {}):
+            fields[m][k] = rng.integers(-64, 65, size=(h, w))
+    regs = dict(c.registers)
+    if "gain" in regs:
+        regs["gain"] = 1 << cfg.gain_frac_bits
+    return MethodCoefficients(cfg, fields, regs)
+
+
+def _raws(cfg: PipelineConfig, shutter: list[int], h: int, w: int, rng: np.random.Generator,
+          kind: str) -> list[np.ndarray]:
+    """Scene frames (random codes) and shutter frames (a level with a fixed pattern and
+    temporal noise; ``random``: any codes)."""
+    top = (1 << cfg.adc_bits) - 1
+    level = int(rng.integers(top // 4, 3 * top // 4))
+    pattern = rng.integers(-200, 201, size=(h, w))
+    out = []
+    for s in shutter:
+        if s and kind != "random":
+            out.append(np.clip(level + pattern + rng.integers(-8, 9, size=(h, w)), 0, top))
+        else:
+            out.append(random_raw(cfg, h, w, rng, biased=kind == "random"))
+    return out
+
+
+def _run_of(cfg: PipelineConfig, golden: PipelineConfig, rng: np.random.Generator,
+            shutter: list[int], shape: tuple[int, int], kind: str = "camera") -> FfcRun:
+    c = _calibration(cfg, *shape, rng, kind)
+    readings = [random_reading(cfg, c, rng) for _ in shutter]
+    return ffc_run(c, _raws(cfg, shutter, *shape, rng, kind), [bool(s) for s in shutter],
+                   readings=readings, golden=golden)
+
+
+def _unsigned(a: np.ndarray, bits: int) -> np.ndarray:
+    return np.asarray(a, dtype=np.int64) & ((1 << bits) - 1)
+
+
+async def run_sequence(dut, run: FfcRun, golden: PipelineConfig, rng: np.random.Generator,
+                       idle: float | str = 0.0, backpressure: float | str = 0.0
+                       ) -> dict[str, Sink]:
+    """Reset the DUT (the golden model's run starts from the sequencer's reset state and
+    zero corrections), drive the sequence and check every output stream and the target;
+    return the sinks."""
+    await reset(dut, 2)
+    pix_bus = StreamBus.from_prefix(dut, "s_pix", extra=("frame_width_i", "frame_height_i"))
+    cols: dict[str, list[np.ndarray]] = {k: [] for k in pix_bus.names}
+    for fr, sh in zip(run.frames, run.shutter, strict=True):
+        h, w = fr.raw.shape
+        sof, eol = tb_lib.markers(h, w)
+        for k, v in (("data", fr.raw.ravel()), ("sof", sof), ("eol", eol),
+                     ("frame", np.full(h * w, fr.drive.frame_word, dtype=object)),
+                     ("shutter", np.full(h * w, int(sh))), ("frame_width", np.full(h * w, w)),
+                     ("frame_height", np.full(h * w, h))):
+            cols[k].append(np.asarray(v, dtype=object))
+    cbits = len(dut.s_foff_data_i)
+    acc_items = [a.ravel() for a in run.acc_in if a is not None]
+    sources = [
+        Source(pix_bus, {k: np.concatenate(v) for k, v in cols.items()}, idle, rng),
+        Source(StreamBus.from_prefix(dut, "s_coef"),
+               {"data": np.concatenate([f.drive.words.ravel() for f in run.frames])}, idle,
+               rng),
+        Source(StreamBus.from_prefix(dut, "s_foff"),
+               {"data": np.concatenate([_unsigned(f.ravel(), cbits) for f in run.foff_in])},
+               idle, rng),
+        Source(StreamBus.from_prefix(dut, "s_acc"),
+               {"data": np.concatenate(acc_items) if acc_items else np.zeros(0, np.int64)},
+               idle, rng),
+    ]
+    shown = [f for f, held in zip(run.frames, run.held, strict=True) if not held]
+    acc_want = [a.ravel() for a in run.acc_out if a is not None]
+    foff_want = [_unsigned(a.ravel(), cbits) for a in run.foff_out if a is not None]
+    sinks = {
+        "m_pix": Sink(StreamBus.from_prefix(dut, "m_pix"), backpressure, rng,
+                      expect=sum(f.raw.size for f in shown)),
+        "m_acc": Sink(StreamBus.from_prefix(dut, "m_acc"), backpressure, rng,
+                      expect=sum(a.size for a in acc_want)),
+        "m_foff": Sink(StreamBus.from_prefix(dut, "m_foff"), backpressure, rng,
+                       expect=sum(a.size for a in foff_want)),
+    }
+    await run_streams(dut, sources, list(sinks.values()))
+    await ClockCycles(dut.clk_i, 4)  # nothing more may come
+    for s in sinks.values():
+        s.bus.ready.value = 1
+    await ClockCycles(dut.clk_i, 40)
+    extra = {k: int(s.bus.valid.value) for k, s in sinks.items()}
+    sb = StageScoreboard(golden)
+    for fr in shown:
+        sb.expect_frame(fr)
+    tb_lib.assert_passed(tb_lib.score(sb, sinks["m_pix"]))
+    for name, want in (("m_acc", acc_want), ("m_foff", foff_want)):
+        wsb = Scoreboard(("data",))
+        if want:
+            wsb.expect(data=np.concatenate(want))
+        tb_lib.assert_passed(tb_lib.score(wsb, sinks[name]))
+    assert not any(extra.values()), f"outputs after the sequence: {extra}"
+    if run.targets and any(f is not None for f in run.foff_out):
+        assert int(dut.ffc_target_valid_o.value) == 1, "no target after a mean pass"
+        assert int(dut.ffc_target_o.value) == run.targets[-1], \
+            f"target {int(dut.ffc_target_o.value)}, the golden model's {run.targets[-1]}"
+    return sinks
+
+
+def _n(cfg: PipelineConfig) -> int:
+    return 1 << ffc_shift(cfg)
+
+
+@cocotb.test()
+async def shutter_sequence_full_rate(dut) -> None:
+    """Open frames, a shutter run of N frames (accumulated, held or passed), the refresh
+    frame, a short run (no refresh), open frames: every stream exact at valid = ready = 1,
+    the refreshed corrections used from the refresh frame on."""
+    env = await _setup(dut, 0)
+    n = _n(env.cfg)
+    seq = [0, 0] + [1] * n + [0, 0] + [1] * max(1, n // 2) + [0]
+    run = _run_of(env.cfg, env.golden, env.rng, seq, (6, 10))
+    assert any(f is not None for f in run.foff_out), "no refresh in the sequence"
+    await run_sequence(dut, run, env.golden, env.rng)
+
+
+@cocotb.test()
+async def shutter_sequence_patterns(dut) -> None:
+    """The shutter sequence with idle cycles on every input and backpressure on every
+    output (a shutter event and the refresh under backpressure), every pattern pair."""
+    env = await _setup(dut, 1)
+    n = _n(env.cfg)
+    for idle, bp in (("random", "random"), ("bursty", "alternate"), ("none", "bursty")):
+        seq = [0] + [1] * n + [0, 1, 0]
+        run = _run_of(env.cfg, env.golden, env.rng, seq, (4, 7))
+        await run_sequence(dut, run, env.golden, env.rng, idle=idle, backpressure=bp)
+
+
+@cocotb.test()
+async def refresh_edges(dut) -> None:
+    """Shutter frames before any open frame (passed even with hold), a refresh frame that
+    is itself a shutter frame, two full runs back to back apart by one open frame, and
+    1x1 / 1x3 frames far shorter than the pipeline and the target's division."""
+    env = await _setup(dut, 2)
+    n = _n(env.cfg)
+    for shape in ((5, 6), (1, 1), (1, 3)):
+        seq = [1] * (n + 2) + [0] + [1] * n + [0, 0]
+        run = _run_of(env.cfg, env.golden, env.rng, seq, shape)
+        await run_sequence(dut, run, env.golden, env.rng, backpressure="random")
+
+
+@cocotb.test()
+async def random_calibrations(dut) -> None:
+    """Every coefficient over its whole code range and random shutter images: sums,
+    targets and corrections saturate; still exact."""
+    env = await _setup(dut, 3)
+    n = _n(env.cfg)
+    seq = [0] + [1] * n + [0, 0] + [1] * n + [1, 0]
+    run = _run_of(env.cfg, env.golden, env.rng, seq, (4, 8), kind="random")
+    await run_sequence(dut, run, env.golden, env.rng, idle="random", backpressure="random")
+
+
+@cocotb.test()
+async def checker_detects_mismatch(dut) -> None:
+    """Against the golden model with another rounding of the correction the check must
+    fail with mismatching outputs (of m_pix or m_foff), not a timeout."""
+    env = await _setup(dut, 4)
+    cfg = env.cfg
+    other = cfg.replace(formats={"ffc": {"rounding": "truncate"}})
+    assert other.format("ffc").rounding != cfg.format("ffc").rounding
+    n = _n(cfg)
+    run = _run_of(cfg, other, env.rng, [0] + [1] * n + [0, 0], (6, 10))
+    try:
+        await run_sequence(dut, run, other, env.rng)
+    except AssertionError as e:
+        assert "mismatching" in str(e) and " 0 mismatching" not in str(e), str(e)
+    else:
+        raise AssertionError("no mismatch against another rounding of the correction")
