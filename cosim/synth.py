@@ -62,7 +62,6 @@ __all__ = [
     "ECP5_SPEED_DEFAULT",
     "FLIP_FLOP_CELLS",
     "SYNTH_TOPS",
-    "tops_for",
     "TARGET_MHZ",
     "SynthError",
     "comb_paths",
@@ -74,6 +73,7 @@ __all__ = [
     "synth_ecp5",
     "synth_xc7",
     "tool_versions",
+    "tops_for",
 ]
 
 #: nextpnr-ecp5's default speed grade, the slowest of the LFE5U parts (6, 7, 8).
