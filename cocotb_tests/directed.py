@@ -41,7 +41,7 @@ def corner_coefficients(cfg: PipelineConfig, rng: np.random.Generator
     # Extremes, full cross product.
     for x in (0, xmax):
         for g in (0, gmax):
-            for o in sorted({omin, -1, 0, 1, omax} & set(range(omin, omax + 1))):
+            for o in sorted({v for v in (omin, -1, 0, 1, omax) if omin <= v <= omax}):
                 add(x, g, o, "max_max" if (x, g) == (xmax, gmax) else "extreme")
     # The largest value reaches above 2^B - 1 only for some widths: claim it only then.
     top = Fraction(xmax * gmax, 1 << gf) + Fraction(omax, 1 << of)

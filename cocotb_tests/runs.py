@@ -1,5 +1,11 @@
 """Glue between pytest and the cocotb runs: one simulation per (top, configuration,
-testbench module), cached for the session, one pytest test per cocotb test."""
+testbench module) and pytest session, one pytest test per cocotb test.
+
+Under pytest the results go to one folder of the session (:func:`set_results_root`, set
+by ``cocotb_tests/conftest.py`` to ``<pytest basetemp>/cocotb_results``, shared by the
+pytest-xdist workers): the first worker that needs a simulation runs it under a file lock
+and marks it done; any other test of any worker that needs it reads its results. Outside
+pytest every call runs its simulation (into the irnuc cache's ``cocotb_results``)."""
 
 from __future__ import annotations
 
@@ -10,9 +16,24 @@ from pathlib import Path
 from types import ModuleType
 
 from irnuc import cosim
+from irnuc.common.io import file_lock
 from irnuc.cosim import cocotb_test_names, metrics
 from irnuc.cosim.coverage import COVERAGE_ENV
 from irnuc.nuc_fixed import PipelineConfig
+
+#: The session's results folder (None: outside a pytest session).
+_SESSION_ROOT: Path | None = None
+
+
+def set_results_root(path: Path | None) -> None:
+    """Make ``path`` the folder of this pytest session's simulation results."""
+    global _SESSION_ROOT
+    _SESSION_ROOT = None if path is None else Path(path)
+
+
+def results_root() -> Path:
+    """Where :func:`run_module` writes (the session's folder, else the irnuc cache's)."""
+    return _SESSION_ROOT if _SESSION_ROOT is not None else cosim.results_dir()
 
 __all__ = ["case_params", "check_case", "cocotb_test_names", "coverage_json", "module_metrics",
            "run_case", "run_module", "waves_requested"]
@@ -32,15 +53,19 @@ def run_module(top: str, cfg: PipelineConfig, module: str, seed: int = 1
     those after it); its assertion lines from the simulator log are added to the message.
     """
     waves = waves_requested()
-    bld = cosim.build(top, cfg, waves=waves)
     cov = coverage_json(top, cfg, module)
-    cov.unlink(missing_ok=True)
-    metrics_file = cov.with_suffix(".metrics.jsonl")
-    metrics_file.unlink(missing_ok=True)
-    xml = cosim.run(bld, module, env={"IRNUC_SEED": str(seed), COVERAGE_ENV: str(cov),
-                                      metrics.METRICS_ENV: str(metrics_file)},
-                    seed=seed, waves=waves, results_xml=cov.with_suffix(".xml"))
-    results = cosim.read_results(xml)
+    xml = cov.with_suffix(".xml")
+    done = cov.with_suffix(f".s{seed}.done")
+    with file_lock(cov.with_suffix(".lock")):
+        if _SESSION_ROOT is None or not done.is_file():
+            bld = cosim.build(top, cfg, waves=waves)
+            for stale in (cov, cov.with_suffix(".metrics.jsonl"), done):
+                stale.unlink(missing_ok=True)
+            cosim.run(bld, module, env={"IRNUC_SEED": str(seed), COVERAGE_ENV: str(cov),
+                                        metrics.METRICS_ENV: str(cov.with_suffix(".metrics.jsonl"))},
+                      seed=seed, waves=waves, results_xml=xml)
+            done.touch()
+        results = cosim.read_results(xml)
     fired = cosim.assertion_failures(xml)
     if fired:
         note = "\nRTL assertions failed (simulation stopped):\n" + "\n".join(fired[:10])
@@ -58,7 +83,7 @@ def module_metrics(top: str, cfg: PipelineConfig, module: str) -> list[dict]:
 def coverage_json(top: str, cfg: PipelineConfig, module: str) -> Path:
     """The functional-coverage file a :func:`run_module` run exports."""
     tag = f"{cfg.name}-{cfg.digest()[:8]}-{top}-{module.rsplit('.', 1)[-1]}"
-    return cosim.results_dir() / f"{tag}.coverage.json"
+    return results_root() / f"{tag}.coverage.json"
 
 
 def case_params(tb: ModuleType, configs: Sequence[str]) -> list[tuple[str, str]]:
@@ -77,5 +102,5 @@ def check_case(results: dict[str, cosim.CaseResult], case: str) -> None:
     if case not in results:
         raise AssertionError(f"cocotb test {case!r} did not run; results: {sorted(results)}")
     res = results[case]
-    assert res.passed, f"cocotb test {case} failed:\n{res.message}"
+    assert res.passed, f"cocotb test {case} failed:\n{res.message}\n(results in {results_root()})"
 

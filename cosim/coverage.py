@@ -587,7 +587,9 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     """The process's coverage model of ``top`` on ``cfg`` (made once)."""
     key = (top, cfg.digest())
     if key not in _MODELS:
-        _MODELS[key] = CoverageModel(top, cfg)
+        from irnuc.cosim.method_coverage import METHOD_TOPS, MethodCoverageModel
+
+        _MODELS[key] = (MethodCoverageModel if top in METHOD_TOPS else CoverageModel)(top, cfg)
     return _MODELS[key]
 
 

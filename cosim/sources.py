@@ -18,26 +18,43 @@ HDL_DIR = Path(irnuc.hdl.__file__).resolve().parent
 #: not the design.
 SIM_HDL_DIR = Path(__file__).resolve().parent / "hdl"
 
-_PKG = ("irnuc_pkg.sv",)
+_PKG = ("irnuc_pkg.sv", "irnuc_method_pkg.sv")
 _ASSERT = ("irnuc_stream_assert.sv",)
 _FRAME = ("irnuc_frame_assert.sv",)
 _SPILL = (*_ASSERT, "irnuc_spill_register.sv")
-_NUC = (*_SPILL, "irnuc_mul_parts.sv", "irnuc_add_tree.sv", "nuc_core.sv")
-_DPC = (*_SPILL, *_FRAME, "irnuc_mul_parts.sv", "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
+_MUL = ("irnuc_dsp_mul.sv", "irnuc_mul_parts.sv")
+_ARITH = (*_MUL, "irnuc_add_tree.sv", "irnuc_round.sv", "irnuc_clip.sv")
+_NUC = (*_SPILL, *_MUL, "irnuc_add_tree.sv", "nuc_core.sv")
+_DPC = (*_SPILL, *_FRAME, *_MUL, "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
         "dpc_ctrl.sv", "dpc_core.sv")
+_PWL = (*_SPILL, *_ARITH, "pwl_core.sv")
+_QUAD = (*_SPILL, *_ARITH, "quad_core.sv")
+_TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
+_TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
 #: Module -> the HDL files it needs, in dependency order (one module per file; the
-#: package first). Files are looked up in ``hdl/``, then in ``cosim/hdl/``.
+#: packages first). Files are looked up in ``hdl/``, then in ``cosim/hdl/``.
 MODULE_FILES: dict[str, tuple[str, ...]] = {
     "nuc_core": (*_PKG, *_NUC),
     "dpc_core": (*_PKG, *_DPC),
     "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_DPC, "nuc_dpc_top.sv"))),
+    "pwl_core": (*_PKG, *_PWL),
+    "quad_core": (*_PKG, *_QUAD),
+    "tc_poly": (*_PKG, *_TC),
+    "table_interp": (*_PKG, *_TABLE),
+    "method_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_PWL, *_QUAD, *_TC, *_TABLE,
+                                           *_DPC, "method_dpc_top.sv"))),
     "dpc_ctrl": (*_PKG, "dpc_ctrl.sv"),
     "irnuc_spill_register": _SPILL,
     "irnuc_stream_assert": _ASSERT,
     "irnuc_frame_assert": (*_PKG, *_FRAME),
     "irnuc_add_tree": ("irnuc_add_tree.sv",),
-    "irnuc_mul_parts": (*_PKG, "irnuc_mul_parts.sv"),
+    "irnuc_mul_parts": (*_PKG, *_MUL),
+    "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
+    "irnuc_round": (*_PKG, "irnuc_round.sv"),
+    "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
+    "tc_reading": (*_PKG, *_MUL, "irnuc_add_tree.sv", "tc_reading.sv"),
+    "interp_weight": (*_PKG, "interp_weight.sv"),
     "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
     "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
 }
@@ -48,15 +65,84 @@ MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv
 #: simulation build and the lint define it, synthesis does not.
 ASSERT_DEFINE = "+define+IRNUC_ASSERT"
 
-#: The parameters each sub-module takes (``nuc_dpc_top`` takes all of them).
+_BASE = ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
+         "OutBits", "Rounding", "Overflow")
+_COEF = ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits")
+
+#: The parameters each sub-module takes (``nuc_dpc_top`` and ``method_dpc_top`` take all
+#: of theirs).
 _MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
-    "nuc_core": ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
-                 "OutBits", "Rounding", "Overflow"),
+    "nuc_core": _BASE,
     "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
     "dpc_ctrl": ("MaxWidth", "MaxHeight"),
+    "nuc_dpc_top": (*_BASE, "MaxWidth", "MaxHeight"),
     "irnuc_pkg_probe": ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
                         "OutBits"),
+    "pwl_core": ("AdcBits", "GainIntBits", "GainFracBits", "KneeIntBits", "KneeFracBits",
+                 "LevelIntBits", "LevelFracBits", "OutBits", "Rounding", "Overflow"),
+    "quad_core": (*_BASE, "QuadIntBits", "QuadFracBits", "SquareBits"),
+    "tc_poly": (*_COEF, "Tc1IntBits", "Tc1FracBits", "Tc2IntBits", "Tc2FracBits",
+                "Tg1IntBits", "Tg1FracBits", "Tg2IntBits", "Tg2FracBits", "TcOrder", "TcGain",
+                "ReadingBits", "ReadingRangeBits", "Rounding"),
+    "tc_reading": ("ReadingBits", "ReadingRangeBits"),
+    "table_interp": (*_COEF, "WeightFracBits", "WeightRounding"),
+    "interp_weight": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
 }
+
+#: The module each base method's datapath is checked in on its own (method_dpc_top holds
+#: every method; these are the method's own cores).
+METHOD_CORES: dict[str, tuple[str, ...]] = {
+    "one_point": ("nuc_core",),
+    "two_point": ("nuc_core",),
+    "piecewise": ("pwl_core",),
+    "quadratic": ("quad_core",),
+    "tc_offset": ("tc_poly", "tc_reading", "nuc_core"),
+    "table_interp": ("table_interp", "interp_weight", "nuc_core"),
+}
+
+#: The method formats method_dpc_top takes (``<Name>IntBits``, ``<Name>FracBits``).
+_METHOD_FORMATS = ("knee", "level", "quad", "tc1", "tc2", "tg1", "tg2", "weight")
+#: Method parameters as SystemVerilog parameters (the names of nuc_fixed.layout.rtl_package).
+_METHOD_FIELDS = {"square_bits": "SquareBits", "tc_order": "TcOrder",
+                  "reading_bits": "ReadingBits", "reading_range_bits": "ReadingRangeBits",
+                  "tables": "Tables"}
+
+
+def _sv_name(text: str) -> str:
+    return "".join(p[:1].upper() + p[1:] for p in text.split("_") if p)
+
+
+def method_parameters(cfg: PipelineConfig) -> dict[str, int]:
+    """The SV parameters of ``method_dpc_top`` (and its cores) beyond
+    :meth:`~PipelineConfig.rtl_parameters`: ``Method`` (the index in
+    :data:`~irnuc.nuc_fixed.config.BASE_METHODS`, ``irnuc_method_pkg::method_e``), every
+    method format's ``<Name>IntBits``/``<Name>FracBits`` (``WeightRounding`` too), and the
+    method fields (``SquareBits``, ``TcOrder``, ``TcGain``, ``ReadingBits``, ...).
+
+    Raises :class:`UserError` for a method with stages (``blind_drift``, ``ffc``): the RTL
+    has the base methods.
+    """
+    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
+
+    if cfg.stages:
+        raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has stages "
+                        f"({', '.join(cfg.stages)}); the RTL (method_dpc_top) implements the "
+                        f"base methods {', '.join(BASE_METHODS)}")
+    out = {"Method": BASE_METHODS.index(cfg.base_method)}
+    for f in cfg.formats:
+        if f.name in _METHOD_FORMATS:
+            out[f"{_sv_name(f.name)}IntBits"] = f.int_bits
+            out[f"{_sv_name(f.name)}FracBits"] = f.frac_bits
+        if f.name == "weight":
+            out["WeightRounding"] = ROUNDING_MODES[f.rounding]
+    for field, name in _METHOD_FIELDS.items():
+        value = getattr(cfg, field)
+        if value is not None:
+            out[name] = int(value)
+    if cfg.tc_gain is not None:
+        out["TcGain"] = int(cfg.tc_gain)
+    return out
+
 
 #: Parameters of the generic building blocks for a configuration: the sizes they get
 #: inside nuc_dpc_top (for the lint of every module).
@@ -68,8 +154,17 @@ _BLOCK_PARAMETERS = {
     "irnuc_mul_parts": lambda p: {"ABits": p["AdcBits"],
                                   "BBits": p["GainIntBits"] + p["GainFracBits"]},
     "irnuc_line_buffer": lambda p: {"Depth": p["MaxWidth"], "DataBits": 2 * p["OutBits"] + 2},
+    "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
+                              "Rounding": p["Rounding"]},
+    "irnuc_clip": lambda p: {"InBits": p["OutBits"] + 4, "OutBits": p["OutBits"],
+                             "Overflow": p["Overflow"]},
+    "irnuc_dsp_mul": lambda p: {},
 }
 
+
+#: Modules whose parameters include the method's (method_parameters).
+_METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
+                   "table_interp", "interp_weight")
 
 def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     """HDL files needed to elaborate module ``top``.
@@ -90,5 +185,9 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
+    if top in _METHOD_MODULES:
+        params = {**params, **method_parameters(cfg)}
+        if top == "method_dpc_top":
+            return {k: v for k, v in params.items() if k != "Tables"}
     keep = _MODULE_PARAMETERS.get(top)
-    return params if keep is None else {k: params[k] for k in keep}
+    return params if keep is None else {k: params[k] for k in keep if k in params}

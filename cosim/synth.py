@@ -167,11 +167,48 @@ def _run_yosys(workdir: Path, name: str, passes: Sequence[str],
 
 
 def _read_slang(sources: Sequence[str | os.PathLike], top: str,
-                params: Mapping[str, int]) -> str:
-    files = " ".join(str(Path(s).resolve()) for s in sources)
+                params: Mapping[str, int], primitives: Path | None = None) -> str:
+    files = [str(Path(s).resolve()) for s in sources]
     gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
     # SYNTHESIS: parameter checks and protocol assertions stay out (`ifndef SYNTHESIS).
-    return f"read_slang -D SYNTHESIS --top {top} {gens} {files}"
+    defines = "-D SYNTHESIS"
+    if primitives is not None:
+        # ECP5: the DSPs and block RAMs are instantiated with their registers
+        # (irnuc_dsp_mul, irnuc_line_buffer), declared by Yosys' ECP5 cell library.
+        defines += " -D IRNUC_ECP5"
+        files.append(str(primitives))
+    return f"read_slang {defines} --top {top} {gens} {' '.join(files)}"
+
+
+#: ECP5 primitives the RTL instantiates (the IRNUC_ECP5 branches).
+ECP5_PRIMITIVES = ("MULT18X18D", "DP16KD")
+
+
+def ecp5_primitives(workdir: Path) -> Path:
+    """A Verilog file with Yosys' own declarations (black boxes) of :data:`ECP5_PRIMITIVES`,
+    cut from the pyosys wheel's ECP5 cell library, for the slang front end."""
+    share = _pyosys_share() / "ecp5"
+    text = (share / "cells_bb.v").read_text() + (share / "cells_sim.v").read_text()
+    out = []
+    for name in ECP5_PRIMITIVES:
+        m = re.search(r"(\(\* blackbox \*\)\s*)?module " + name + r"\b.*?endmodule", text, re.S)
+        if m is None:
+            raise SynthError(f"the pyosys ECP5 cell library does not declare {name}")
+        out.append(m.group(0))
+    workdir.mkdir(parents=True, exist_ok=True)
+    path = workdir / "ecp5_primitives.v"
+    path.write_text("\n\n".join(out) + "\n")
+    return path
+
+
+def _pyosys_share() -> Path:
+    """The pyosys wheel's Yosys data folder (``+/`` in Yosys commands)."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("pyosys")
+    if spec is None or not spec.submodule_search_locations:
+        raise SynthError("pyosys is not installed (pip install pyosys)")
+    return Path(next(iter(spec.submodule_search_locations))) / "share"
 
 
 def _cell_counts(stat_json: Path) -> dict[str, int]:
@@ -235,7 +272,7 @@ def synth_ecp5(sources: Sequence[str | os.PathLike], top: str, params: Mapping[s
     t0 = time.perf_counter()
     net = wd / f"{top}.json"
     log = _run_yosys(wd, "synth_ecp5", [
-        _read_slang(sources, top, params),
+        _read_slang(sources, top, params, primitives=ecp5_primitives(wd)),
         f"synth_ecp5 -top {top} -json {net.name}",
         "tee -q -o stat_ecp5.json stat -json",
     ])
@@ -377,7 +414,7 @@ def tool_versions() -> dict[str, str]:
 # ---- irnuc synth: one configuration, cached; many, on the executor ------------------------
 
 #: Version of the flow below (part of the cache key: bump it when the flow changes).
-FLOW_VERSION = 1
+FLOW_VERSION = 2  # 2: ECP5 DSPs instantiated with their registers (IRNUC_ECP5)
 #: Where irnuc synth places and routes: the ECP5 part and the clock it aims at.
 ECP5_DEVICE, ECP5_PACKAGE, TARGET_MHZ = "85k", "CABGA381", 150.0
 #: The xc7 and ECP5 figures every result carries (docs/rtl.md).
@@ -395,12 +432,41 @@ def _package_versions() -> dict[str, str]:
     return out
 
 
-def synth_config(cfg, *, top: str = "nuc_dpc_top", max_width: int | None = None,
+#: Frame size and rate of the external-memory bandwidth figure (a VGA camera at 60 Hz).
+BANDWIDTH_FRAME, BANDWIDTH_FPS = (640, 480), 60.0
+
+
+def default_top(cfg) -> str:
+    """The top ``irnuc synth`` builds for a configuration: ``nuc_dpc_top`` for the two-point
+    method (as before the methods), ``method_dpc_top`` for the other base methods."""
+    return "nuc_dpc_top" if cfg.method == "two_point" else "method_dpc_top"
+
+
+def memory_traffic(cfg) -> dict:
+    """What the method's coefficients cost outside the FPGA, per pixel and per second.
+
+    ``coef_bits_per_pixel``: the calibration memories' words of a pixel (table_interp: all
+    K tables); ``stream_bits_per_pixel``: the coefficient word the RTL reads per pixel
+    (``s_coef_data_i`` of method_dpc_top; table_interp: two tables); ``bandwidth_MBps``:
+    that stream at :data:`BANDWIDTH_FRAME` and :data:`BANDWIDTH_FPS` (10^6 bytes/s).
+    """
+    from irnuc.cosim.stream import coef_stream_bits
+
+    cal = sum(m.word_bits for m in cfg.memories.values() if m.source == "calibration")
+    stream = coef_stream_bits(cfg)
+    w, h = BANDWIDTH_FRAME
+    return {"coef_bits_per_pixel": cal, "stream_bits_per_pixel": stream,
+            "bandwidth_MBps": round(stream * w * h * BANDWIDTH_FPS / 8e6, 3),
+            "bandwidth_frame": [w, h], "bandwidth_fps": BANDWIDTH_FPS}
+
+
+def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
                  max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
                  freq_mhz: float = TARGET_MHZ, seed: int = 1, use_cache: bool = True) -> dict:
     """Area and Fmax of ``top`` for a pipeline configuration: the API of ``irnuc synth``.
 
-    Synthesizes for xc7 and ECP5 (pyosys), places and routes the ECP5 netlist
+    ``top`` defaults to :func:`default_top` (``method_dpc_top`` for every base method but
+    two-point). Synthesizes for xc7 and ECP5 (pyosys), places and routes the ECP5 netlist
     (nextpnr-ecp5, LFE5U-85F CABGA381, speed grade ``speed``, aiming at ``freq_mhz``) and
     returns ``fmax_mhz``, ``xc7`` ({lut, ff, dsp, bram18, bram36, lutram}), ``ecp5``
     ({lut4, ff, mult18, dp16kd, lutram, ccu2c}), ``tools`` (versions), ``config`` and
@@ -419,6 +485,7 @@ def synth_config(cfg, *, top: str = "nuc_dpc_top", max_width: int | None = None,
     changes = {k: v for k, v in (("max_width", max_width), ("max_height", max_height))
                if v is not None}
     cfg = cfg.replace(**changes) if changes else cfg
+    top = top or default_top(cfg)
     params = top_parameters(top, cfg)
     sources = hdl_sources(top)
     settings = {"top": top, "params": params, "device": ECP5_DEVICE, "package": ECP5_PACKAGE,
@@ -429,7 +496,8 @@ def synth_config(cfg, *, top: str = "nuc_dpc_top", max_width: int | None = None,
     result_file = root / key / "synth.json"
     # The key is the design (sources, parameters, flow), not the configuration's name: a
     # cached result is told as the configuration asked for, never as the one that made it.
-    asked = {"config": cfg.to_dict(), "config_digest": cfg.digest()}
+    asked = {"config": cfg.to_dict(), "config_digest": cfg.digest(),
+             "method": cfg.method, "memory": memory_traffic(cfg)}
     if use_cache and result_file.is_file():
         return {**json.loads(result_file.read_text()), **asked, "cached": True}
     with file_lock(root / f".{key}.lock"):
@@ -451,7 +519,7 @@ def synth_config(cfg, *, top: str = "nuc_dpc_top", max_width: int | None = None,
             "tools": tool_versions(),
             "top": top, "device": f"LFE5U-{ECP5_DEVICE.upper()}F", "package": ECP5_PACKAGE,
             "speed": int(speed), "target_mhz": float(freq_mhz), "seed": int(seed),
-            "config": cfg.to_dict(), "config_digest": cfg.digest(), "source_digest": key,
+            **asked, "source_digest": key,
             "seconds": {"xc7": xc7["seconds"], "ecp5": ecp5["seconds"],
                         "place_route": pnr["seconds"]},
         }

@@ -5,22 +5,24 @@
 // Neighbours outside the frame are masked, never padded.
 //
 // Structure: a line buffer of MaxWidth words {row-2, row-1} (value and bad flag of the two
-// rows above the incoming item, one memory, one read and one write port, registered read)
-// and a 3x3 window. dpc_ctrl decides which item (pixel or phantom) enters the window and
+// rows above the incoming item, one memory, one read and one write port, read data
+// registered twice: the block RAM's read and output registers) and a 3x3 window. dpc_ctrl decides which item (pixel or phantom) enters the window and
 // where the window centres (one row and one column behind the newest item); see there for
 // the frame/flush FSM and the back-to-back frame rule.
 //
 // Pipeline (every register moves with one enable, en = "the output register can take an
 // item", a flop: no path runs from m_ready_i, s_valid_i or the frame size to s_ready_o):
 //   u_in     input register (irnuc_spill_register)
-//   window   the item enters: line buffer word read one item ahead, written one item late
+//   window   the item enters: line buffer word read two items ahead, written one item late
+//   mask     the in-frame good neighbours, floor(n/2) and R[n], registered
 //   u_sum    masked neighbour values and floor(n/2) summed, 4 stages (irnuc_add_tree):
 //            M = S + floor(n/2); n and its reciprocal R[n] travel along
-//   u_mul    M * R[n] as DSP-sized partial products, registered (irnuc_mul_parts)
+//   u_mul    M * R[n] as DSP-sized partial products, the DSPs' input and output registers
+//            (irnuc_mul_parts, two stages)
 //   u_prod   their sum, clog2(parts) stages; mean = (M * R[n]) >> K
 //   u_out    output register (irnuc_spill_register)
-// Latency after the window: 8 + clog2(parts) cycles from a pixel at s_* to the output it
-// completes (parts = ceil((B+3)/17) * ceil((B+7)/17): minimal 8, typical14 9, wide16 10);
+// Latency after the window: 10 + clog2(parts) cycles from a pixel at s_* to the output it
+// completes (parts = ceil((B+3)/17) * ceil((B+7)/17): minimal 10, typical14 11, wide16 12);
 // the output of pixel (r, c) is completed by input (r+1, c+1), see docs/rtl.md.
 module dpc_core
   import irnuc_pkg::*;
@@ -138,14 +140,15 @@ module dpc_core
   // win_q[row][col]: row 0 top, col 0 left (oldest column); column 2 is the newest item.
   logic [EntBits-1:0]   win_q [3][3];
   logic [EntBits-1:0]   col_top, col_mid, col_new;
-  logic [2*EntBits-1:0] lb_rd_data, lb_next_q;
+  logic [2*EntBits-1:0] lb_next;
 
   // Phantom rows lie outside the frame; their content is masked, zero keeps it tidy.
   assign col_new = phantom ? '0 : {in_bad, in_pix};
 
   // Word of a column: {row two above, row just above} the item entering at that column.
-  // It is read two items ahead, passes lb_next_q (the block RAM's output goes straight into
-  // a register), and is written one item late ({mid, new} of the item, from the window).
+  // It is read two items ahead and leaves the line buffer's output register (the block
+  // RAM's own: its output goes straight into a register) one item later, as lb_next; it is
+  // written one item late ({mid, new} of the item, from the window).
   irnuc_line_buffer #(
     .Depth   (MaxWidth),
     .DataBits(2 * EntBits)
@@ -156,7 +159,7 @@ module dpc_core
     .wr_data_i({win_q[1][2], win_q[2][2]}),
     .rd_en_i  (take),
     .rd_addr_i(lb_rd_addr),
-    .rd_data_o(lb_rd_data)
+    .rd_data_o(lb_next)
   );
 
   // With W <= 3 the word comes from the item W before, which was written in the same cycle
@@ -169,13 +172,12 @@ module dpc_core
     end else if (lb_w3) begin
       {col_top, col_mid} = {win_q[1][0], win_q[2][0]};
     end else begin
-      {col_top, col_mid} = lb_next_q;
+      {col_top, col_mid} = lb_next;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_window
     if (take) begin
-      lb_next_q <= lb_rd_data;
       for (int r = 0; r < 3; r++) begin
         win_q[r][0] <= win_q[r][1];
         win_q[r][1] <= win_q[r][2];
@@ -227,6 +229,29 @@ module dpc_core
     endcase
   end
 
+  // The masked neighbours, floor(n/2) and R[n] are registered before the sum: the mask,
+  // the count and the table are one stage, the adders the next ones.
+  logic                    mask_valid_q;
+  logic [8:0][NumBits-1:0] mask_leaves_q;
+  logic [RecBits-1:0]      mask_recip_q;
+  logic [CtrBits-1:0]      mask_ctr_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_mask_valid
+    if (!rst_ni) begin
+      mask_valid_q <= 1'b0;
+    end else if (en) begin
+      mask_valid_q <= win_valid;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_mask
+    if (en) begin
+      mask_leaves_q <= nb_leaves;
+      mask_recip_q  <= nb_recip;
+      mask_ctr_q    <= {win_sof, win_eol, nb_count != 4'd0, win_q[1][1]};
+    end
+  end
+
   logic               sum_valid;
   logic [NumBits-1:0] sum_m;
   logic [RecBits-1:0] sum_recip;
@@ -240,9 +265,9 @@ module dpc_core
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .en_i    (en),
-    .valid_i (win_valid),
-    .leaves_i(nb_leaves),
-    .side_i  ({nb_recip, win_sof, win_eol, nb_count != 4'd0, win_q[1][1]}),
+    .valid_i (mask_valid_q),
+    .leaves_i(mask_leaves_q),
+    .side_i  ({mask_recip_q, mask_ctr_q}),
     .valid_o (sum_valid),
     .sum_o   (sum_m),
     .side_o  ({sum_recip, sum_ctr})

@@ -51,6 +51,16 @@ package irnuc_pkg;
     OverflowWrap = 1'd1  // keep the low B bits
   } overflow_e;
   localparam int unsigned OverflowCount = 2;
+  // ---- base correction method of method_dpc_top (module parameter Method; the order of nuc_fixed.config.BASE_METHODS)
+  typedef enum logic [2:0] {
+    MethodOnePoint = 3'd0,  // per-pixel offset, global gain register
+    MethodTwoPoint = 3'd1,  // per-pixel gain and offset
+    MethodPiecewise = 3'd2,  // two gains meeting at a per-pixel knee
+    MethodQuadratic = 3'd3,  // gain, offset and a quadratic term
+    MethodTcOffset = 3'd4,  // coefficients polynomial in the FPA reading
+    MethodTableInterp = 3'd5  // two tables interpolated by a weight
+  } method_e;
+  localparam int unsigned MethodCount = 6;
   // ---- coef_word, version 1: coefficient word of the two-point NUC, memory image version 1
   // (fields from bit 0 up: gain [GainBits], offset [OffsetBits], bad [1])
   function automatic int unsigned coef_word_bits(
@@ -78,6 +88,181 @@ package irnuc_pkg;
       logic bad;  // defective-pixel flag
       logic [OffsetBits-1:0] offset;  // offset code, two's complement
       logic [GainBits-1:0] gain;  // gain code, unsigned
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- coef_one_point, version 2: coefficient word of one_point (the gain is a register)
+  // (fields from bit 0 up: offset [OffsetBits], bad [1])
+  function automatic int unsigned coef_one_point_bits(input int unsigned offset_bits);
+    return offset_bits + 32'd1;
+  endfunction
+  function automatic int unsigned coef_one_point_offset_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned coef_one_point_bad_lsb(input int unsigned offset_bits);
+    return offset_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class coef_one_point #(
+    parameter int unsigned OffsetBits = 1
+  );
+    typedef struct packed {
+      logic bad;  // defective-pixel flag
+      logic [OffsetBits-1:0] offset;  // offset code, two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- coef_piecewise, version 2: coefficient word of piecewise
+  // (fields from bit 0 up: gain_lo [GainBits], gain_hi [GainBits], knee [KneeBits], bad [1])
+  function automatic int unsigned coef_piecewise_bits(
+    input int unsigned gain_bits,
+    input int unsigned knee_bits);
+    return gain_bits + gain_bits + knee_bits + 32'd1;
+  endfunction
+  function automatic int unsigned coef_piecewise_gain_lo_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned coef_piecewise_gain_hi_lsb(input int unsigned gain_bits);
+    return gain_bits;
+  endfunction
+  function automatic int unsigned coef_piecewise_knee_lsb(input int unsigned gain_bits);
+    return gain_bits + gain_bits;
+  endfunction
+  function automatic int unsigned coef_piecewise_bad_lsb(
+    input int unsigned gain_bits,
+    input int unsigned knee_bits);
+    return gain_bits + gain_bits + knee_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class coef_piecewise #(
+    parameter int unsigned GainBits = 1,
+    parameter int unsigned KneeBits = 1
+  );
+    typedef struct packed {
+      logic bad;  // defective-pixel flag
+      logic [KneeBits-1:0] knee;  // knee, ADC codes, unsigned
+      logic [GainBits-1:0] gain_hi;  // gain above the knee, unsigned
+      logic [GainBits-1:0] gain_lo;  // gain at and below the knee, unsigned
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- quad_word, version 2: quadratic's second memory
+  // (fields from bit 0 up: quad [QuadBits])
+  function automatic int unsigned quad_word_bits(input int unsigned quad_bits);
+    return quad_bits;
+  endfunction
+  function automatic int unsigned quad_word_quad_lsb();
+    return 32'd0;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class quad_word #(
+    parameter int unsigned QuadBits = 1
+  );
+    typedef struct packed {
+      logic [QuadBits-1:0] quad;  // quadratic term at x = 2^A, two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- tc_word1, version 2: tc_offset's offset polynomial of order 1
+  // (fields from bit 0 up: tc1 [Tc1Bits])
+  function automatic int unsigned tc_word1_bits(input int unsigned tc1_bits);
+    return tc1_bits;
+  endfunction
+  function automatic int unsigned tc_word1_tc1_lsb();
+    return 32'd0;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class tc_word1 #(
+    parameter int unsigned Tc1Bits = 1
+  );
+    typedef struct packed {
+      logic [Tc1Bits-1:0] tc1;  // offset change per v, two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- tc_word2, version 2: tc_offset's offset polynomial of order 2
+  // (fields from bit 0 up: tc1 [Tc1Bits], tc2 [Tc2Bits])
+  function automatic int unsigned tc_word2_bits(
+    input int unsigned tc1_bits,
+    input int unsigned tc2_bits);
+    return tc1_bits + tc2_bits;
+  endfunction
+  function automatic int unsigned tc_word2_tc1_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned tc_word2_tc2_lsb(input int unsigned tc1_bits);
+    return tc1_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class tc_word2 #(
+    parameter int unsigned Tc1Bits = 1,
+    parameter int unsigned Tc2Bits = 1
+  );
+    typedef struct packed {
+      logic [Tc2Bits-1:0] tc2;  // offset change per v^2, two's complement
+      logic [Tc1Bits-1:0] tc1;  // offset change per v, two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- tg_word1, version 2: tc_offset's gain polynomial of order 1 (tc_gain)
+  // (fields from bit 0 up: tg1 [Tg1Bits])
+  function automatic int unsigned tg_word1_bits(input int unsigned tg1_bits);
+    return tg1_bits;
+  endfunction
+  function automatic int unsigned tg_word1_tg1_lsb();
+    return 32'd0;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class tg_word1 #(
+    parameter int unsigned Tg1Bits = 1
+  );
+    typedef struct packed {
+      logic [Tg1Bits-1:0] tg1;  // gain change per v, two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- tg_word2, version 2: tc_offset's gain polynomial of order 2 (tc_gain)
+  // (fields from bit 0 up: tg1 [Tg1Bits], tg2 [Tg2Bits])
+  function automatic int unsigned tg_word2_bits(
+    input int unsigned tg1_bits,
+    input int unsigned tg2_bits);
+    return tg1_bits + tg2_bits;
+  endfunction
+  function automatic int unsigned tg_word2_tg1_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned tg_word2_tg2_lsb(input int unsigned tg1_bits);
+    return tg1_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class tg_word2 #(
+    parameter int unsigned Tg1Bits = 1,
+    parameter int unsigned Tg2Bits = 1
+  );
+    typedef struct packed {
+      logic [Tg2Bits-1:0] tg2;  // gain change per v^2, two's complement
+      logic [Tg1Bits-1:0] tg1;  // gain change per v, two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- frame_tc_offset, version 2: tc_offset's frame word (method_dpc_top's s_pix_frame_i, read with the frame's first pixel)
+  // (fields from bit 0 up: reading [ReadingBits], t_ref [ReadingBits])
+  function automatic int unsigned frame_tc_offset_bits(input int unsigned reading_bits);
+    return reading_bits + reading_bits;
+  endfunction
+  function automatic int unsigned frame_tc_offset_reading_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned frame_tc_offset_t_ref_lsb(input int unsigned reading_bits);
+    return reading_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class frame_tc_offset #(
+    parameter int unsigned ReadingBits = 1
+  );
+    typedef struct packed {
+      logic [ReadingBits-1:0] t_ref;  // the reading the polynomials are centred at, unsigned
+      logic [ReadingBits-1:0] reading;  // the frame's FPA reading, unsigned
     } word_t;
   endclass
   /* verilator lint_on DECLFILENAME */

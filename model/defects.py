@@ -547,7 +547,8 @@ def _check_rails(v_low: float, v_high: float) -> tuple[float, float]:
 
 
 def apply_voltage_defects(
-    v: np.ndarray, defects: DefectMap, v_low: float, v_high: float, v_reset: float
+    v: np.ndarray, defects: DefectMap, v_low: float, v_high: float, v_reset: float,
+    *, copy: bool = True,
 ) -> np.ndarray:
     """Apply the output-voltage defects to integrator output voltages.
 
@@ -562,10 +563,13 @@ def apply_voltage_defects(
     v_reset : float
         Integrator reference (reset) level, V, read by DEAD pixels.
 
+    copy : bool
+        False: change ``v`` in place (a float64 array the caller owns) instead of a copy.
+
     Returns
     -------
     numpy.ndarray
-        New float64 array, same shape: DEAD -> ``v_reset``, STUCK_LOW -> ``v_low``,
+        float64 array (new unless ``copy`` is False), same shape: DEAD -> ``v_reset``, STUCK_LOW -> ``v_low``,
         STUCK_HIGH -> ``v_high``, STUCK_VALUE -> ``v_low + level * (v_high - v_low)``,
         HOT/COLD -> ``v + level * (v_high - v_low)``; other pixels unchanged. Not clipped.
     """
@@ -573,18 +577,35 @@ def apply_voltage_defects(
         raise ConfigError(f"defects = {defects!r} is not a DefectMap")
     lo, hi = _check_rails(v_low, v_high)
     vr = check_scalar("v_reset", v_reset, unit="V")
-    out = np.array(v, dtype=np.float64, copy=True)
+    out = np.array(v, dtype=np.float64, copy=True) if copy else v
     if out.ndim < 2 or out.shape[-2:] != defects.shape:
         raise ConfigError(
             f"v has shape {out.shape}; expected (..., {defects.shape[0]}, {defects.shape[1]})"
         )
+    apply_voltage_defects_at(out, voltage_defect_index(defects), lo, hi, vr)
+    return out
+
+
+VoltageDefects = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def voltage_defect_index(defects: DefectMap) -> VoltageDefects:
+    """(flat index, kind, level) of the defective pixels of a map: what
+    :func:`apply_voltage_defects_at` needs, computed once per sensor."""
+    idx = np.flatnonzero(defects.kind)
+    return idx, defects.kind.reshape(-1)[idx], defects.level.reshape(-1)[idx]
+
+
+def apply_voltage_defects_at(out: np.ndarray, index: VoltageDefects, lo: float, hi: float,
+                             vr: float) -> None:
+    """:func:`apply_voltage_defects` in place on a float64 array ``out`` (..., H, W), with
+    the defects given by :func:`voltage_defect_index` and checked rails lo, hi and reset
+    level vr (V)."""
+    idx, kind, level = index
+    if idx.size == 0:
+        return
     # Work on the defective pixels only: a handful out of a frame.
     flat = out.reshape(*out.shape[:-2], -1)
-    idx = np.flatnonzero(defects.kind)
-    if idx.size == 0:
-        return out
-    kind = defects.kind.reshape(-1)[idx]
-    level = defects.level.reshape(-1)[idx]
     span = hi - lo
     vals = flat[..., idx]
     vals = np.where(kind == DefectKind.DEAD, vr, vals)
@@ -594,7 +615,6 @@ def apply_voltage_defects(
     offset = (kind == DefectKind.HOT) | (kind == DefectKind.COLD)
     vals = np.where(offset, vals + level * span, vals)
     flat[..., idx] = vals
-    return out
 
 
 def noisy_sigma(defects: DefectMap, v_low: float, v_high: float) -> np.ndarray | None:

@@ -88,15 +88,15 @@ def add_noise(v: np.ndarray, sigma: np.ndarray | float, seed: int, first_frame: 
 
 
 def add_noise_at(v: np.ndarray, index: np.ndarray, sigma: np.ndarray, seed: int,
-                 first_frame: int) -> np.ndarray:
+                 first_frame: int, *, copy: bool = True) -> np.ndarray:
     """v plus white noise on some pixels only (one draw per such pixel and frame).
 
     Used when temporal noise is off but some pixels have a NOISY defect: the other pixels
     need no draw at all. ``index`` holds the flat (row-major) positions of those pixels in
     a frame and ``sigma`` their standard deviations, V; frames are seeded as in
-    :func:`add_noise`.
+    :func:`add_noise`. ``copy`` False adds in place (a C-ordered array the caller owns).
     """
-    out = v.copy()
+    out = v.copy() if copy else v
     flat = out.reshape(v.shape[0], -1)
     for k in range(v.shape[0]):
         rng = frame_rng(seed, first_frame + k)

@@ -20,7 +20,9 @@ import math
 import warnings
 from collections import Counter
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -30,14 +32,16 @@ from irnuc.model import noise as _noise
 from irnuc.model import readout as _readout
 from irnuc.model.config import config_digest
 from irnuc.model.core import bolometer as _kb
+from irnuc.model.core import stream as _ks
 from irnuc.model.core import warmstart as _kw
 from irnuc.model.defects import (
     DefectKind,
     DefectMap,
     DefectSpec,
-    apply_voltage_defects,
+    apply_voltage_defects_at,
     inject_defects,
     noisy_sigma,
+    voltage_defect_index,
 )
 from irnuc.model.fpa import BLIND, BOUNDARY, ArrayLayout, draw_pixel_parameters
 from irnuc.model.optics import cone_factor, cos4_map, focal_length_from_fov
@@ -120,6 +124,30 @@ class RunContext:
         if self.env is not None and "T_substrate" in self.env:
             return np.asarray(self.env["T_substrate"], dtype=np.float64)
         return np.full(n, float(self.cfg["environment"]["T_substrate"]))
+
+
+#: Pixel-frames below which a kernel runs on one thread. A pass over one VGA frame takes
+#: about a millisecond; splitting it saves little, and on a busy machine the wait for the
+#: second thread's core costs several times more (measured: 13 ms for a VGA frame on one
+#: thread, 28 ms on two, with the machine's other jobs running). Chunks of many frames
+#: are split.
+PARALLEL_MIN_WORK = 1_000_000
+
+
+@contextmanager
+def threads_for(work: int) -> Iterator[None]:
+    """Run the numba kernels inside on one thread when ``work`` (pixel-frames) is small."""
+    import numba
+
+    if work >= PARALLEL_MIN_WORK:
+        yield
+        return
+    before = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(before)
 
 
 # ---- static stages ---------------------------------------------------------------------
@@ -227,13 +255,31 @@ def housing_power(ctx: RunContext, view: np.ndarray, L_cam: Any, L_s: Any) -> np
     base = _base(ctx.cfg)
     q = base * ((1.0 - view) * L_cam - net * L_s)
     if ctx.cfg["fpa"]["skim_shield"] == "substrate":
-        blind = ctx.layout.kind_map() == BLIND
-        q = np.where(blind, base * (L_s - net * L_s), q)
+        q = np.where(_blind_mask(ctx.layout), base * (L_s - net * L_s), q)
     return q
+
+
+@dataclass(frozen=True)
+class HousingFrames:
+    """The housing power of frames whose housing or substrate temperature varies: the
+    radiances of each frame, evaluated pixel by pixel inside the power pass
+    (:func:`model.core.stream.power`) instead of as an (N, rows, cols) array."""
+
+    seen: np.ndarray
+    L_cam: np.ndarray  # (N,) W m^-2 sr^-1
+    L_s: np.ndarray  # (N,)
+
+
+@lru_cache(maxsize=8)
+def _blind_mask(layout: ArrayLayout) -> np.ndarray:
+    return layout.kind_map() == BLIND
 
 
 def _stage_housing(ctx: RunContext, inp: dict) -> dict:
     L_cam, L_s = inp["L_env"]
+    if np.ndim(L_s):
+        return {"q_env": HousingFrames(inp["seen"], np.asarray(L_cam, np.float64).reshape(-1),
+                                       np.asarray(L_s, np.float64).reshape(-1))}
     return {"q_env": housing_power(ctx, inp["seen"], L_cam, L_s)}
 
 
@@ -298,18 +344,31 @@ def _stage_power(ctx: RunContext, inp: dict) -> dict:
     if L.ndim == 1:
         L = L[:, None, None]
     q_env = inp["q_env"]
-    Q = inp["k_scene"][None] * L
-    Q += q_env[None] if q_env.ndim == 2 else q_env
+    resp = inp["defect_resp"]
+    # The sum and the responsivity in one pass: (k L + q) resp, as numpy would round it.
+    Q = np.empty((L.shape[0], *ctx.layout.shape))
+    rs, cs = ctx.layout.active_slice
+    none = np.empty((0, 0))
+    if isinstance(q_env, HousingFrames):  # per frame: (q_env, seen, blind, L_cam, L_s)
+        housing = (none, True, q_env.seen, _blind_mask(ctx.layout), q_env.L_cam, q_env.L_s)
+    else:
+        housing = (q_env, False, none, np.empty((0, 0), bool), np.empty(0), np.empty(0))
+    q, per_frame, seen, blind, L_cam, L_s = housing
+    net = 1.0 if ctx.cfg["bolometer"]["net_radiation"] else 0.0
+    with threads_for(Q.size):
+        _ks.power(inp["k_scene"], L, L.shape[1] == 1, q, per_frame, seen, blind,
+                  _base(ctx.cfg), net, ctx.cfg["fpa"]["skim_shield"] == "substrate", L_cam,
+                  L_s, resp if resp is not None else none, rs.start, cs.start, Q)
     if "shutter_view" in inp:
-        _shutter_power(ctx, inp, Q)
-    defects: DefectMap = inp["defects"]
-    if (defects.resp != 1.0).any():
-        Q[(slice(None), *ctx.layout.active_slice)] *= defects.resp
+        # the frames it overwrites need the defects' responsivity too
+        _shutter_power(ctx, inp, Q, resp)
     return {"Q": Q}
 
 
-def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray) -> None:
-    """Replace, in the frames whose shutter is closed, the scene by the shutter (in place)."""
+def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None:
+    """Replace, in the frames whose shutter is closed, the scene by the shutter (in place);
+    ``resp``: the defects' responsivity factor (H, W) to apply to those frames (None:
+    none)."""
     env = ctx.env
     if env is None or "shutter" not in env:
         return
@@ -328,6 +387,8 @@ def _shutter_power(ctx: RunContext, inp: dict, Q: np.ndarray) -> None:
         lc = L_cam[n] if L_cam.size > 1 else L_cam[0]
         ls = L_s[n] if L_s.size > 1 else L_s[0]
         Q[n] = _base(ctx.cfg) * view * L_sh[k] + housing_power(ctx, view, lc, ls)
+        if resp is not None:
+            Q[(n, *ctx.layout.active_slice)] *= resp
 
 
 def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray],
@@ -344,11 +405,12 @@ def _solve(ctx: RunContext, Q: np.ndarray, params: Mapping[str, np.ndarray],
     Q = np.ascontiguousarray(Q)
     temps = [float(ctx.cfg["environment"]["T_substrate"])] if T_s is None else list(T_s)
     parts = [slice(None)] if T_s is None else [slice(n, n + 1) for n in range(shape[0])]
-    for sl, Ts in zip(parts, temps, strict=True):
-        _kb.solve_frames(Q[sl], params["R_ref"], params["g"], params["C"], B, b["T_ref"], Ts,
-                         b["bias_current"], b["t_int"], BOLOMETER_VARIANTS[b["variant"]],
-                         b["rtol"], b["max_iter"], b["runaway_temperature"], dT[sl], v[sl],
-                         status[sl], iters[sl])
+    with threads_for(Q.size):
+        for sl, Ts in zip(parts, temps, strict=True):
+            _kb.solve_frames(Q[sl], params["R_ref"], params["g"], params["C"], B, b["T_ref"],
+                             Ts, b["bias_current"], b["t_int"], BOLOMETER_VARIANTS[b["variant"]],
+                             b["rtol"], b["max_iter"], b["runaway_temperature"], dT[sl], v[sl],
+                             status[sl], iters[sl])
     return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
 
 
@@ -365,8 +427,11 @@ def _stage_coefficients(ctx: RunContext, inp: dict) -> dict:
 
 
 def _stage_reference_solution(ctx: RunContext, inp: dict) -> dict:
-    """The solve's reference: every pixel solved (cold) once, looking at a uniform scene at
-    the housing temperature with the configuration's environment (docs/model.md)."""
+    """The solve's reference: every pixel solved once, looking at a uniform scene at the
+    housing temperature with the configuration's environment (docs/model.md). The nominal
+    pixel is solved first (neighbour-started, :func:`model.core.bolometer.solve_frames`)
+    and every pixel is then solved from it, as a frame from its reference: the spread of
+    the pixels is small, so this takes two Newton steps where the cold solve takes three."""
     b = ctx.cfg["bolometer"]
     L_cam, L_s = inp["L_env"]
     Q = inp["k_scene"] * L_cam
@@ -375,21 +440,38 @@ def _stage_reference_solution(ctx: RunContext, inp: dict) -> dict:
     if (defects.resp != 1.0).any():
         Q[ctx.layout.active_slice] *= defects.resp
     p, coef = inp["params"], inp["solve_coef"]
-    sol = _solve(ctx, Q[None], p)
+    # The nominal pixel at the typical power of the array.
+    q_nom = float(np.median(Q[::7, ::7]))
+    nominal = {k: np.full((1, 1), float(b[k])) for k in ("R_ref", "g", "C")}
+    one = _solve(ctx, np.full((1, 1, 1), q_nom), nominal)
+    coef_nom = _stage_coefficients(ctx, {"params": nominal})["solve_coef"]
+    start = _reference_state(ctx, np.full((1, 1), q_nom), nominal, coef_nom, one)
+    full = {k: np.ascontiguousarray(np.broadcast_to(v, Q.shape)) if isinstance(v, np.ndarray)
+            else v for k, v in start.items()}
+    sol = _solve_predicted(ctx, {"solve_reference": full, "solve_coef": coef, "params": p},
+                           Q[None], None, T_s=np.array([float(ctx.cfg["environment"]
+                                                                 ["T_substrate"])]))
+    return {"solve_reference": _reference_state(ctx, Q, p, coef, sol)}
+
+
+def _reference_state(ctx: RunContext, Q: np.ndarray, p: Mapping[str, np.ndarray],
+                     coef: Mapping[str, Any], sol: Mapping[str, np.ndarray]) -> dict[str, Any]:
+    """Predictor maps (:func:`model.core.warmstart.reference_state`) of a solved frame."""
+    b = ctx.cfg["bolometer"]
     B = _kb.activation_temperature(b["tcr"], b["T_ref"])
     T_s = float(ctx.cfg["environment"]["T_substrate"])
     shape = Q.shape
     c, s, ds = (np.empty(shape, np.float32) for _ in range(3))
     e = np.empty(shape)
-    inv_T = sol["v_bolo"][0]  # reused: the reference's 1/T, 1/K
+    inv_T = np.empty(shape)
     _kw.reference_state(Q, coef["fq"], p["g"], coef["variant"], coef["b"], p["R_ref"], B, T_s,
                         sol["dT"][0], sol["v_bolo"][0], sol["status"][0], b["bias_current"],
                         c, s, ds, e, inv_T)
-    return {"solve_reference": {"inv_T": inv_T, "e": e, "c": c, "s": s, "ds": ds}}
+    return {"inv_T": inv_T, "e": e, "c": c, "s": s, "ds": ds}
 
 
 def _solve_predicted(ctx: RunContext, inp: dict, Q: np.ndarray | None,
-                     A: np.ndarray | None) -> dict:
+                     A: np.ndarray | None, T_s: np.ndarray | None = None) -> dict:
     b = ctx.cfg["bolometer"]
     ref, coef, p = inp["solve_reference"], inp["solve_coef"], inp["params"]
     B = _kb.activation_temperature(b["tcr"], b["T_ref"])
@@ -398,12 +480,13 @@ def _solve_predicted(ctx: RunContext, inp: dict, Q: np.ndarray | None,
     src = np.ascontiguousarray(src)
     n = src.shape[0]
     dT, v, status, iters = _kw.empty_solution(src.shape)
-    _kw.solve_frames_predicted(src, src, A is not None, p["R_ref"], p["g"], coef["fq"],
-                               coef["variant"],
-                               coef["b"], B, b["T_ref"], ctx.substrate(n), b["bias_current"],
-                               b["rtol"], b["max_iter"], b["runaway_temperature"],
-                               ref["inv_T"], ref["e"], ref["c"], ref["s"], ref["ds"],
-                               dT, v, status, iters)
+    with threads_for(src.size):
+        _kw.solve_frames_predicted(src, src, A is not None, p["R_ref"], p["g"], coef["fq"],
+                                   coef["variant"], coef["b"], B, b["T_ref"],
+                                   ctx.substrate(n) if T_s is None else T_s,
+                                   b["bias_current"], b["rtol"], b["max_iter"],
+                                   b["runaway_temperature"], ref["inv_T"], ref["e"], ref["c"],
+                                   ref["s"], ref["ds"], dT, v, status, iters)
     return {"v_bolo": v, "dT": dT, "status": status, "iters": iters}
 
 
@@ -425,8 +508,9 @@ def _stage_bolometer_lagged(ctx: RunContext, inp: dict) -> dict:
         ctx.state["lagged"] = st
     T_s = ctx.substrate(n)
     theta = np.empty(Q.shape)
-    _kw.lagged_rise(Q, p["g"], st["decay"], T_s, st["T_prev"], st["theta"], st["has"],
-                    theta)
+    with threads_for(Q.size):
+        _kw.lagged_rise(Q, p["g"], st["decay"], T_s, st["T_prev"], st["theta"], st["has"],
+                        theta)
     st.update(theta=theta[-1].copy(), T_prev=float(T_s[-1]), has=True)
     return _solve_predicted(ctx, inp, None, theta)
 
@@ -458,8 +542,9 @@ def _stage_bolometer_transient(ctx: RunContext, inp: dict) -> dict:
     after = s.frame_period - s.pulse_start - b["t_int"]
     last = status[-1] != _kb.STATUS_OK
     relaxed = np.empty(p["g"].size)
-    _kw.carry_theta(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
-                    p["g"].ravel(), p["C"].ravel(), after, 0.0, 0.0, last.ravel(), relaxed)
+    with threads_for(relaxed.size):
+        _kw.relax_after_pulse(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
+                              p["g"].ravel(), p["C"].ravel(), after, last.ravel(), relaxed)
     ctx.state["transient"] = {"theta": relaxed.reshape(p["g"].shape), "T_prev": float(T_s[-1]),
                               "failed": last, "status": status[-1].copy()}
     ctx.counts["transient_pulses"] += int(status.size)
@@ -496,14 +581,27 @@ def _make_skim_stage(mode: str) -> Stage:
 def _stage_integrator(ctx: RunContext, inp: dict) -> dict:
     r = ctx.cfg["readout"]
     act = (slice(None), *ctx.layout.active_slice)
-    v = _readout.integrate(inp["v_bolo"][act], inp["v_ref"], r["gain"], r["v_reset"])
-    v = apply_voltage_defects(v, inp["defects"], r["v_low"], r["v_high"], r["v_reset"])
+    v_bolo = inp["v_bolo"]
+    v = np.empty((v_bolo.shape[0], *ctx.layout.active_shape))
+    rs, cs = ctx.layout.active_slice
+    with threads_for(v.size):
+        _ks.integrate_frames(v_bolo, rs.start, cs.start, inp["v_ref"], r["gain"], r["v_reset"], v)
+    apply_voltage_defects_at(v, inp["defect_index"], r["v_low"], r["v_high"], r["v_reset"])
     failed = (inp["status"][act] != _kb.STATUS_OK) if np.count_nonzero(inp["status"]) else None
     if failed is not None and failed.any():
         # A runaway or unsolved pixel drives its integrator into the high rail; it is
         # counted in Frames.diagnostics, never passed on as NaN.
         v[failed] = r["v_high"]
     return {"v_int": v}
+
+
+def _stage_defect_index(ctx: RunContext, inp: dict) -> dict:
+    """What the per-frame stages need of the defects, found once per sensor: the output
+    defects' pixels (:func:`model.defects.voltage_defect_index`) and the responsivity
+    factor over the active area (None when no pixel has one)."""
+    d: DefectMap = inp["defects"]
+    return {"defect_index": voltage_defect_index(d),
+            "defect_resp": d.resp if (d.resp != 1.0).any() else None}
 
 
 def _stage_noisy_pixels(ctx: RunContext, inp: dict) -> dict:
@@ -525,8 +623,9 @@ def _stage_noise(ctx: RunContext, inp: dict) -> dict:
         if noisy is None:
             return {"v_out": inp["v_int"]}
         ctx.counts["noise_frames"] += inp["v_int"].shape[0]
+        # v_int is this chunk's own array, used by nothing else: add in place.
         return {"v_out": _noise.add_noise_at(inp["v_int"], noisy[1], noisy[2], ctx.seed,
-                                             ctx.first_frame)}
+                                             ctx.first_frame, copy=False)}
     sigma2: np.ndarray | float = n["readout_sigma"] ** 2
     if n["johnson"]:
         act = (slice(None), *ctx.layout.active_slice)
@@ -650,7 +749,7 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     # The housing and substrate radiance of every frame replace the configuration's (which
     # the solve's reference still uses) when they vary; housing power and skim voltage follow.
     L_key = "L_env_frames" if env_varies else "L_env"
-    power_in = ("L_scene", "k_scene", "q_env", "defects")
+    power_in = ("L_scene", "k_scene", "q_env", "defect_resp")
     if key.shutter:
         power_in += ("shutter_view", L_key)
     stages = [
@@ -666,8 +765,10 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
         Stage("solve_reference", ("L_env", "k_scene", "seen", "defects", "params", "solve_coef"),
               ("solve_reference",), False, _stage_reference_solution),
         _make_skim_stage(cfg["readout"]["skimming"]),
-        Stage("integrator", ("v_bolo", "v_ref", "defects", "status"), ("v_int",), True,
+        Stage("integrator", ("v_bolo", "v_ref", "defect_index", "status"), ("v_int",), True,
               _stage_integrator),
+        Stage("defect_index", ("defects",), ("defect_index", "defect_resp"), False,
+              _stage_defect_index),
         Stage("reference_layout", (), ("reference_positions",), False, _stage_reference_layout),
         Stage("reference_pixels", ("v_bolo", "status", "dT", "reference_positions"),
               ("blind_codes",), True, _stage_reference_pixels),
@@ -1051,26 +1152,27 @@ def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene:
 
 def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:
     status = values["status"]
-    act = (slice(None), *pipe.layout.active_slice)
-    dT = values["dT"][act]
+    rs, cs = pipe.layout.active_slice
     # Failures are rare: count them only when there are any.
     counts = (np.bincount(status.reshape(-1), minlength=4) if np.count_nonzero(status)
               else np.zeros(4, np.int64))
-    if counts[_kb.STATUS_INVALID]:  # those hold 0 K (-T_s), no rise of the pixel's own
-        dT = dT[status[act] != _kb.STATUS_INVALID]
+    codes = values.get("codes")
+    top = (1 << pipe.cfg["adc"]["bits"]) - 1
+    # Invalid pixels hold 0 K (-T_s), no rise of the pixel's own: left out.
+    lo, hi, total, count, n_low, n_high = _ks.frame_statistics(
+        values["dT"], status, rs.start, rs.stop, cs.start, cs.stop,
+        codes if codes is not None else np.zeros(0, np.uint16), top)
     diag: dict[str, Any] = {
-        "temperature_rise_K": {"min": float(dT.min()) if dT.size else math.nan,
-                               "mean": float(dT.mean()) if dT.size else math.nan,
-                               "max": float(dT.max()) if dT.size else math.nan},
+        "temperature_rise_K": {"min": lo if count else math.nan,
+                               "mean": total / count if count else math.nan,
+                               "max": hi if count else math.nan},
         "solver_failures": {"no_convergence": int(counts[_kb.STATUS_NO_CONVERGENCE]),
                             "runaway": int(counts[_kb.STATUS_RUNAWAY]),
                             "invalid": int(counts[_kb.STATUS_INVALID])},
     }
-    if "codes" in values:
-        top = (1 << pipe.cfg["adc"]["bits"]) - 1
-        hist_ends = values["codes"].reshape(-1)
-        diag["clipped_low"] = int(np.count_nonzero(hist_ends == 0))
-        diag["clipped_high"] = int(np.count_nonzero(hist_ends == top))
+    if codes is not None:
+        diag["clipped_low"] = int(n_low)
+        diag["clipped_high"] = int(n_high)
     failures = sum(diag["solver_failures"].values())
     if failures:
         warnings.warn(f"{failures} pixel solve(s) failed (thermal runaway or no convergence): "

@@ -50,10 +50,6 @@ class Scene:
                 f"scene {self.kind!r}: unknown parameter(s) {sorted(unknown)}; "
                 f"allowed {sorted(allowed)}")
 
-    @property
-    def is_uniform(self) -> bool:
-        return self.kind == "uniform"
-
 
 def check_temps(temps: Sequence[float] | np.ndarray | None, *, required: bool = True) -> np.ndarray:
     """Scene base temperatures, K: finite, > 0, one per frame."""

@@ -149,8 +149,7 @@ def calibrate(
     offset = np.where(defined, t_lo - gain * stats.mean_lo, 0.0)
 
     gfmt, ofmt = gain_format(cfg), offset_format(cfg)
-    gcode, gover = gfmt.quantize(gain, rounding)
-    ocode, oover = ofmt.quantize(offset, rounding)
+    gcode, ocode, gover, oover = quantize_coefficients(gain, offset, cfg, rounding)
     gover &= defined
     oover &= defined
     reasons[gover] |= np.uint16(Reason.GAIN_RANGE)
@@ -160,14 +159,7 @@ def calibrate(
     reasons[outl & defined] |= np.uint16(Reason.OFFSET_OUTLIER)
     bad = reasons != 0
     good = ~bad
-    if not good.any():
-        raise InputError("every pixel was flagged bad; check the thresholds and the frames")
-
-    # Flagged pixels get the median codes, so an uncorrectable pixel still looks plausible.
-    gfill = int(np.median(gcode[good]))
-    ofill = int(np.median(ocode[good]))
-    gcode_out = np.where(bad, gfill, gcode)
-    ocode_out = np.where(bad, ofill, ocode)
+    gcode_out, ocode_out, (gfill, ofill) = fill_flagged(gcode, ocode, bad)  # fails if none good
 
     calibratable = (reasons & int(_NOT_CALIBRATABLE)) == 0
     counts = {r.name: int(((reasons & int(r)) != 0).sum()) for r in Reason}
@@ -210,6 +202,30 @@ def calibrate(
                        reasons=reasons, gain=gain, offset=offset, summary=summary)
 
 
+def quantize_coefficients(gain: np.ndarray, offset: np.ndarray, cfg: PipelineConfig,
+                          rounding: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Float gains (output codes per ADC code) and offsets (output codes) to the codes of
+    ``cfg``'s gain and offset formats, rounded with ``rounding``, saturating.
+
+    Returns (gain codes, offset codes, gain saturated, offset saturated), all (H, W).
+    """
+    gcode, gover = gain_format(cfg).quantize(gain, rounding)
+    ocode, oover = offset_format(cfg).quantize(offset, rounding)
+    return gcode, ocode, gover, oover
+
+
+def fill_flagged(gain_code: np.ndarray, offset_code: np.ndarray, bad: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
+    """Flagged pixels get the median codes of the good ones, so that an uncorrectable pixel
+    still looks plausible; returns the filled codes and the (gain, offset) fill codes.
+    Raises :class:`InputError` when no pixel is good."""
+    good = ~np.asarray(bad, dtype=bool)
+    if not good.any():
+        raise InputError("every pixel was flagged bad; check the thresholds and the frames")
+    gfill, ofill = int(np.median(gain_code[good])), int(np.median(offset_code[good]))
+    return np.where(good, gain_code, gfill), np.where(good, offset_code, ofill), (gfill, ofill)
+
+
 def summary_text(cal: Calibration) -> str:
     """A short human-readable report of a calibration."""
     s = cal.summary
@@ -242,4 +258,5 @@ def summary_text(cal: Calibration) -> str:
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["Calibration", "calibrate", "reason_names", "summary_text"]
+__all__ = ["Calibration", "calibrate", "fill_flagged", "quantize_coefficients", "reason_names",
+           "summary_text"]

@@ -144,6 +144,9 @@ DPC_RECIP_GUARD_BITS = 6
 SUM_BITS_MAX = 62
 #: Leaves of the DPC's adder tree: 8 neighbour values and floor(n/2) (dpc_core's u_sum).
 DPC_SUM_LEAVES = 9
+#: Register stages of one multiply: the DSP block's input and output registers
+#: (irnuc_dsp_mul; ECP5's MULT18X18D is instantiated with both).
+MUL_STAGES = 2
 
 CONSTANTS: tuple[Constant, ...] = (
     Constant("MulChunkBits", MUL_CHUNK_BITS,
@@ -177,7 +180,16 @@ OVERFLOW = Enum("overflow_e", 1, (
     EnumLiteral("saturate", "OverflowSaturate", 0, "clamp to 0 .. 2^B - 1"),
     EnumLiteral("wrap", "OverflowWrap", 1, "keep the low B bits"),
 ), "overflow of the NUC output (module parameter Overflow)")
-ENUMS: tuple[Enum, ...] = (ROUNDING, OVERFLOW)
+METHOD = Enum("method_e", 3, (
+    EnumLiteral("one_point", "MethodOnePoint", 0, "per-pixel offset, global gain register"),
+    EnumLiteral("two_point", "MethodTwoPoint", 1, "per-pixel gain and offset"),
+    EnumLiteral("piecewise", "MethodPiecewise", 2, "two gains meeting at a per-pixel knee"),
+    EnumLiteral("quadratic", "MethodQuadratic", 3, "gain, offset and a quadratic term"),
+    EnumLiteral("tc_offset", "MethodTcOffset", 4, "coefficients polynomial in the FPA reading"),
+    EnumLiteral("table_interp", "MethodTableInterp", 5, "two tables interpolated by a weight"),
+), "base correction method of method_dpc_top (module parameter Method; the order of "
+   "nuc_fixed.config.BASE_METHODS)")
+ENUMS: tuple[Enum, ...] = (ROUNDING, OVERFLOW, METHOD)
 #: Configuration value -> RTL code.
 ROUNDING_MODES: dict[str, int] = ROUNDING.codes
 OVERFLOW_MODES: dict[str, int] = OVERFLOW.codes
@@ -187,7 +199,60 @@ COEF_WORD = WordLayout("coef_word", 1, (
     Field("offset", "OffsetBits", "offset code, two's complement"),
     Field("bad", 1, "defective-pixel flag"),
 ), "coefficient word of the two-point NUC, memory image version 1")
-LAYOUTS: tuple[WordLayout, ...] = (COEF_WORD,)
+# The calibration memories of the other methods (memory image version 2; the two-point
+# word above serves quadratic, tc_offset and table_interp as their ``coeffs`` / tables) and
+# the frame word of tc_offset. A memory's fields from bit 0 up, as PipelineConfig.memories
+# (tests/test_rtl_spec.py checks every method configuration of pipelines.toml).
+COEF_ONE_POINT = WordLayout("coef_one_point", 2, (
+    Field("offset", "OffsetBits", "offset code, two's complement"),
+    Field("bad", 1, "defective-pixel flag"),
+), "coefficient word of one_point (the gain is a register)")
+COEF_PIECEWISE = WordLayout("coef_piecewise", 2, (
+    Field("gain_lo", "GainBits", "gain at and below the knee, unsigned"),
+    Field("gain_hi", "GainBits", "gain above the knee, unsigned"),
+    Field("knee", "KneeBits", "knee, ADC codes, unsigned"),
+    Field("bad", 1, "defective-pixel flag"),
+), "coefficient word of piecewise")
+QUAD_WORD = WordLayout("quad_word", 2, (
+    Field("quad", "QuadBits", "quadratic term at x = 2^A, two's complement"),
+), "quadratic's second memory")
+TC_WORD_1 = WordLayout("tc_word1", 2, (
+    Field("tc1", "Tc1Bits", "offset change per v, two's complement"),
+), "tc_offset's offset polynomial of order 1")
+TC_WORD_2 = WordLayout("tc_word2", 2, (
+    Field("tc1", "Tc1Bits", "offset change per v, two's complement"),
+    Field("tc2", "Tc2Bits", "offset change per v^2, two's complement"),
+), "tc_offset's offset polynomial of order 2")
+TG_WORD_1 = WordLayout("tg_word1", 2, (
+    Field("tg1", "Tg1Bits", "gain change per v, two's complement"),
+), "tc_offset's gain polynomial of order 1 (tc_gain)")
+TG_WORD_2 = WordLayout("tg_word2", 2, (
+    Field("tg1", "Tg1Bits", "gain change per v, two's complement"),
+    Field("tg2", "Tg2Bits", "gain change per v^2, two's complement"),
+), "tc_offset's gain polynomial of order 2 (tc_gain)")
+FRAME_TC_OFFSET = WordLayout("frame_tc_offset", 2, (
+    Field("reading", "ReadingBits", "the frame's FPA reading, unsigned"),
+    Field("t_ref", "ReadingBits", "the reading the polynomials are centred at, unsigned"),
+), "tc_offset's frame word (method_dpc_top's s_pix_frame_i, read with the frame's first "
+   "pixel)")
+LAYOUTS: tuple[WordLayout, ...] = (COEF_WORD, COEF_ONE_POINT, COEF_PIECEWISE, QUAD_WORD,
+                                   TC_WORD_1, TC_WORD_2, TG_WORD_1, TG_WORD_2, FRAME_TC_OFFSET)
+
+
+def memory_layout(cfg_method: str, memory: str, tc_order: int = 2) -> WordLayout:
+    """The spec's layout of calibration memory ``memory`` of a base method (the two-point
+    word for ``coeffs`` of two_point, quadratic and tc_offset and every table)."""
+    if memory == "coeffs":
+        return {"one_point": COEF_ONE_POINT, "piecewise": COEF_PIECEWISE}.get(cfg_method,
+                                                                             COEF_WORD)
+    if memory.startswith("table"):
+        return COEF_WORD
+    by_order = {"tc": (TC_WORD_1, TC_WORD_2), "tg": (TG_WORD_1, TG_WORD_2)}
+    if memory in by_order:
+        return by_order[memory][tc_order - 1]
+    if memory == "quad":
+        return QUAD_WORD
+    raise KeyError(f"no layout of memory {memory!r} of {cfg_method!r}")
 
 
 # ---------------------------------------------------------------------------------------
@@ -224,17 +289,19 @@ def pipeline_stages(top: str, adc_bits: int, gain_bits: int, out_bits: int) -> l
     ``nuc_dpc_top``), in order, one name per register (docs/rtl.md, "Architecture"),
     ending with ``flush`` for the DPC's flush state where the top has a DPC.
 
-    From the RTL's structure: nuc_core's sum tree has clog2(parts + 1) levels, dpc_core's
-    clog2(DPC_SUM_LEAVES) and its product tree clog2(parts); ``tb_top``'s
+    From the RTL's structure: a multiply is :data:`MUL_STAGES` registers (the DSP block's
+    input and output registers, irnuc_dsp_mul); nuc_core's sum tree has clog2(parts + 1)
+    levels, dpc_core registers its neighbour mask before its sum tree of
+    clog2(DPC_SUM_LEAVES) levels, its product tree has clog2(parts); ``tb_top``'s
     ``reset_each_stage`` checks the top's latency against this model in simulation.
     """
-    nuc = (["nuc_input", "nuc_product"]
+    nuc = (["nuc_input"] + ["nuc_product"] * MUL_STAGES
            + ["nuc_sum"] * clog2(mul_parts(adc_bits, gain_bits) + 1)
            + ["nuc_round", "nuc_output"])
     num_bits, rec_bits = out_bits + 3, dpc_recip_shift(out_bits) + 1
-    dpc = (["dpc_input", "dpc_window"] + ["dpc_sum"] * clog2(DPC_SUM_LEAVES)
-           + ["dpc_multiply"] + ["dpc_product"] * clog2(mul_parts(num_bits, rec_bits))
-           + ["dpc_output"])
+    dpc = (["dpc_input", "dpc_window", "dpc_mask"] + ["dpc_sum"] * clog2(DPC_SUM_LEAVES)
+           + ["dpc_multiply"] * MUL_STAGES
+           + ["dpc_product"] * clog2(mul_parts(num_bits, rec_bits)) + ["dpc_output"])
     if top == "nuc_core":
         stages = nuc
     elif top == "dpc_core":
@@ -347,7 +414,9 @@ def replace_block(text: str, block: str) -> str:
 
 
 #: Parameters of the probe (a subset of the pipeline's): the widths the layouts need.
-PROBE_PARAMETERS: dict[str, int] = {"GainIntBits": 2, "GainFracBits": 14, "OffsetIntBits": 12,
+PROBE_PARAMETERS: dict[str, int] = {"KneeBits": 16, "QuadBits": 16, "Tc1Bits": 16, "Tc2Bits": 16,
+                                    "Tg1Bits": 16, "Tg2Bits": 16, "ReadingBits": 14,
+                                    "GainIntBits": 2, "GainFracBits": 14, "OffsetIntBits": 12,
                                     "OffsetFracBits": 4, "OutBits": 14}
 #: Derived probe parameters that name layout widths.
 _PROBE_DERIVED: dict[str, str] = {"GainBits": "GainIntBits + GainFracBits",
@@ -460,10 +529,11 @@ def probe_values() -> dict[str, int]:
 
 
 __all__ = [
-    "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS", "DPC_SUM_LEAVES", "ENUMS",
-    "FRAME_DIM_MAX", "LAYOUTS", "MUL_CHUNK_BITS", "OVERFLOW", "OVERFLOW_MODES",
-    "PIPELINE_RANGES", "RANGES", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX", "Constant",
-    "Enum", "EnumLiteral", "Field", "Range", "WordLayout", "clog2", "dpc_recip",
-    "dpc_recip_shift", "mul_chunks", "mul_parts", "pipeline_stages", "sv_package_block",
-    "sv_probe",
+    "COEF_ONE_POINT", "COEF_PIECEWISE", "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS",
+    "DPC_SUM_LEAVES", "ENUMS", "FRAME_DIM_MAX", "FRAME_TC_OFFSET", "LAYOUTS", "METHOD",
+    "MUL_CHUNK_BITS", "MUL_STAGES", "OVERFLOW", "OVERFLOW_MODES", "PIPELINE_RANGES",
+    "QUAD_WORD", "RANGES", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX", "TC_WORD_1",
+    "TC_WORD_2", "TG_WORD_1", "TG_WORD_2", "Constant", "Enum", "EnumLiteral", "Field", "Range",
+    "WordLayout", "clog2", "dpc_recip", "dpc_recip_shift", "memory_layout", "mul_chunks",
+    "mul_parts", "pipeline_stages", "sv_package_block", "sv_probe",
 ]

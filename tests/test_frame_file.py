@@ -104,3 +104,29 @@ def test_bad_fields_are_one_line_errors_naming_the_key(tmp_path, change, fragmen
     with pytest.raises(UserError, match="--frames") as err:
         load_frames(str(p))
     assert fragment in str(err.value) and "\n" not in str(err.value)
+
+
+def test_calibrate_and_correct_read_model_frames_and_sequences(tmp_path):
+    """Calibrate on plain frames, correct a drift sequence, both through load_frames; the
+    correction of a memory-mapped sequence is the golden model's of its codes."""
+    from irnuc.nuc_fixed import nuc_dpc_top, read_memimage
+
+    small = ["--set", "fpa.active_rows=12", "--set", "fpa.active_cols=16"]
+    assert main(["frames", "-q", *small, "--temps", "300,340", "--repeats", "4", "--out",
+                 str(tmp_path / "cal_frames")]) == 0
+    assert main(["calibrate", "-q", "--frames", str(tmp_path / "cal_frames"), "--out",
+                 str(tmp_path / "cal")]) == 0
+    toml = tmp_path / "s.toml"
+    toml.write_text('[sequence]\nframe_rate = 30.0\nduration = 1.0\nhousing = 300.0\n'
+                    'scene = 320.0\n[sequence.fpa]\nprofile = "ramp"\nstart = 300.0\n'
+                    'rate = 30.0\n[sequence.shutter]\nat = [0.5]\nframes = 2\n')
+    assert main(["frames", "-q", *small, "--sequence", str(toml), "--params", "--out",
+                 str(tmp_path / "seq")]) == 0
+    assert main(["correct", "-q", "--frames", str(tmp_path / "seq"), "--coeffs",
+                 str(tmp_path / "cal"), "--out", str(tmp_path / "corr")]) == 0
+    seq = load_frames(str(tmp_path / "seq"))
+    assert seq["param_R_ref"].shape == (12 + 6, 16 + 6)
+    words, cfg = read_memimage(tmp_path / "cal", "typical14", source="hex")
+    with np.load(tmp_path / "corr" / "corrected.npz") as z:
+        np.testing.assert_array_equal(z["corrected"], nuc_dpc_top(np.asarray(seq["codes"]),
+                                                                  words, cfg))

@@ -7,6 +7,7 @@ from __future__ import annotations
 import pytest
 
 from irnuc.reports.studies import hwcost as H
+from irnuc.reports.studies.sweep import SweepPoint
 
 
 def test_bram_blocks_pick_the_best_aspect_ratio() -> None:
@@ -31,8 +32,13 @@ def test_vga_coefficients_go_to_external_memory_a_tiny_frame_fits() -> None:
 
 
 def _pt(i: int, gi: int, gf: int, oi: int, of: int, err: float) -> dict:
-    return {"index": i, "gain_int_bits": gi, "gain_frac_bits": gf, "offset_int_bits": oi,
-            "offset_frac_bits": of, "bits_per_pixel": gi + gf + oi + of + 1, "err_max_lsb": err}
+    """A point's record as the sweep writes it (SweepPoint.record), with an error."""
+    p = SweepPoint(index=i, adc_bits=14, out_bits=14, gain_int_bits=gi, gain_frac_bits=gf,
+                   offset_int_bits=oi, offset_frac_bits=of, rounding="half_even",
+                   coeff_rounding="half_even", pipeline="typical14")
+    rec = {**p.record(), "err_max_lsb": err}
+    assert rec["bits_per_pixel"] == gi + gf + oi + of + 1 and rec["label"] == f"U{gi}.{gf} / S{oi}.{of}"
+    return rec
 
 
 GRID = [_pt(k, 1, gf, 12, of, 2.0 ** (10 - gf) + 0.5 * 2.0 ** -of)

@@ -56,3 +56,37 @@ def test_irnuc_subpackages_and_version(tmp_path: Path) -> None:
     irnuc_cli = Path(sys.executable).with_name("irnuc")
     ver = subprocess.run([str(irnuc_cli), "--version"], capture_output=True, text=True)
     assert ver.stdout.strip() == f"irnuc {res.stdout.strip()}"
+
+
+#: Names that shadow a module today, in code of other issues (each to be renamed there;
+#: the test fails when one is gone, so that the list only shrinks).
+KNOWN_SHADOWS = {
+    "irnuc.reports.studies.precision.figures",  # the split work-precision study's package
+    "irnuc.nuc_fixed.method_top",  # the methods' top-level function over its module
+}
+
+
+def test_no_name_shadows_a_module() -> None:
+    """No package binds the name of one of its modules to something else (then
+    ``import irnuc.<pkg>.<module> as m`` would not give the module)."""
+    import importlib
+    import pkgutil
+    import types
+
+    import irnuc
+
+    shadowed = []
+    todo = [irnuc]
+    while todo:
+        pkg = todo.pop()
+        for info in pkgutil.iter_modules(pkg.__path__):
+            if info.name.startswith("test_") or info.name == "conftest":
+                continue
+            full = f"{pkg.__name__}.{info.name}"
+            obj = vars(pkg).get(info.name)
+            if obj is not None and not isinstance(obj, types.ModuleType):
+                shadowed.append(full)
+            if info.ispkg:
+                todo.append(importlib.import_module(full))
+    assert set(shadowed) - KNOWN_SHADOWS == set(), f"names that shadow a module: {shadowed}"
+    assert KNOWN_SHADOWS <= set(shadowed), "a known shadow is gone: take it off the list"

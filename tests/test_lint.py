@@ -11,7 +11,15 @@ from irnuc.nuc_fixed import load_pipeline, pipeline_names
 #: irnuc.cosim.top_parameters), the simulation-only package probe and batch transactor.
 MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_register",
            "irnuc_stream_assert", "irnuc_frame_assert", "irnuc_add_tree", "irnuc_mul_parts",
-           "irnuc_line_buffer", "irnuc_pkg_probe", "nuc_dpc_batch")
+           "irnuc_line_buffer", "irnuc_pkg_probe", "nuc_dpc_batch", "irnuc_dsp_mul",
+           "irnuc_round", "irnuc_clip")
+#: The modules of the correction methods, linted with every method configuration.
+METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
+                  "table_interp", "interp_weight")
+#: Each method module and the methods it serves (method_dpc_top: every one).
+_METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
+              "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
+              "table_interp": ("table_interp",), "interp_weight": ("table_interp",)}
 
 
 def _configs() -> list[tuple[str, dict[str, object]]]:
@@ -32,6 +40,42 @@ def test_lint_clean(module: str, config: str, changes: dict[str, object]) -> Non
     assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
 
 
+def _method_cases() -> list[tuple[str, str, dict[str, object]]]:
+    """(module, configuration, changes): every method module with every configuration of
+    its methods, and the mode variants that reach the other generate branches (tc_offset of
+    order 1 without tc2/tg2, every rounding and overflow mode)."""
+    from irnuc.nuc_fixed import PipelineConfig
+
+    names = [n for n in pipeline_names(method=None) if "+" not in load_pipeline(n).method]
+    cases = []
+    for module in METHOD_MODULES:
+        for n in names:
+            cfg = load_pipeline(n)
+            if cfg.base_method in _METHOD_OF.get(module, (cfg.base_method,)):
+                cases.append((module, n, {}))
+    d = load_pipeline("tcgain14").to_dict()
+    d["formats"] = {k: v for k, v in d["formats"].items() if k not in ("tc2", "tg2")}
+    order1 = PipelineConfig(**{**d, "tc_order": 1, "name": "tcgain14_order1"})
+    for module in ("method_dpc_top", "tc_poly", "tc_reading"):
+        cases.append((module, order1, {}))  # type: ignore[arg-type]
+    for module in ("method_dpc_top", "pwl_core", "quad_core"):
+        for r in ("truncate", "half_even"):
+            cases.append((module, "piecewise14" if module != "quad_core" else "quadratic14",
+                          {"rounding": r, "overflow": "wrap"}))
+    cases.append(("interp_weight", "table14",
+                  {"formats": {"weight": {"rounding": "half_even", "frac_bits": 0}}}))
+    return cases
+
+
+@pytest.mark.parametrize(("module", "config", "changes"), _method_cases())
+def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> None:
+    cfg = config if not isinstance(config, str) else load_pipeline(config)
+    cfg = cfg.replace(**changes) if changes else cfg
+    proc = lint(module, cfg)
+    report = proc.stdout + proc.stderr
+    assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
+
+
 def test_one_module_per_file() -> None:
     """One module (or the one package) per file, named like the file; every file linted."""
     paths = sorted(HDL_DIR.glob("*.sv")) + sorted(SIM_HDL_DIR.glob("*.sv"))
@@ -42,7 +86,7 @@ def test_one_module_per_file() -> None:
         assert units[0].split()[1].rstrip("#(;") == path.stem
         if units[0].startswith("package "):
             continue
-        assert path.stem in MODULES, f"{path.name} is not in the lint list"
+        assert path.stem in MODULES + METHOD_MODULES, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 
 

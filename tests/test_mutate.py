@@ -46,7 +46,14 @@ def test_a_stale_mutant_is_a_clear_error() -> None:
 @pytest.mark.cosim
 @pytest.mark.slow
 def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
+    # The verdicts in a cache of their own; the Verilator builds (the baseline's, the
+    # runtime objects) shared with the session.
+    from irnuc.common.cache import cache_dir
+
+    builds = cache_dir("sim_build")
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    (tmp_path / "cache").mkdir()
+    (tmp_path / "cache" / "sim_build").symlink_to(builds, target_is_directory=True)
     assert mutate.cached_summary() is None
     picked = mutate.catalogue(["spill_half_rate", "ctrl_idle_read_col"])
     # A change no test can see, without an argument: must be reported as survived (the
@@ -70,9 +77,13 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     assert cached is not None and cached["rtl_digest"] == mutate.rtl_digest()
     assert cached["killing_tests"] == {"spill_half_rate":
                                        by_id["spill_half_rate"]["killed_by"]}
-    # A second run comes from the cache.
+    # A second run comes from the cache (the baseline's pass too: its run would leave a
+    # fresh results file).
+    baseline_xml = next((tmp_path / "cache" / "mutate" / "baseline").glob("*.xml"))
+    stamp = baseline_xml.stat().st_mtime_ns
     again = mutate.run_mutants(picked, workers=0)
     assert all(r["cached"] for r in again["mutants"])
+    assert baseline_xml.stat().st_mtime_ns == stamp
     # The command line (its own process: the test layer does not import irnuc.cli):
     # --out claimed, mutate.json written from the cache; a bad id is one line, exit 2.
     irnuc = Path(sys.executable).with_name("irnuc")

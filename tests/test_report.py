@@ -120,6 +120,36 @@ def test_summary_contents(small_run) -> None:
     assert len(s["sections"]["paper"]["variants"]) >= 2
 
 
+def test_labels_and_widths_come_from_the_types(small_run) -> None:
+    """Every label and width the report shows is the one the typed point gives
+    (SweepPoint.record: FixedFormat's text, the configuration's widths), and the report's
+    code re-derives none from integer fields."""
+    from irnuc.nuc_fixed import gain_format, offset_format
+    from irnuc.reports.studies.sweep import SweepPoint
+
+    _, out, _, _ = small_run
+    s = json.loads((out / "summary.json").read_text())
+    fields = SweepPoint.__dataclass_fields__
+    h = (out / "index.html").read_text()
+    for p in s["sections"]["sweep"]["points"]:
+        pt = SweepPoint(**{k: p[k] for k in fields})
+        cfg = pt.config(*s["sections"]["sweep"]["frame"])
+        g, o = gain_format(cfg), offset_format(cfg)
+        assert (p["label"], p["gain_format"], p["offset_format"]) == (f"{g} / {o}", str(g), str(o))
+        assert (p["gain_bits"], p["offset_bits"], p["bits_per_pixel"]) == (
+            cfg.gain_bits, cfg.offset_bits, cfg.word_bits)
+        assert f"sweep.point.{p['key']}.err_max_lsb" in s["metrics"]
+        assert f"<td class='l'>{p['label']}</td>" in h
+    rec = s["sections"]["sweep"]["recommended"]
+    assert f"gain {rec['gain_format']}, offset" in h
+    # No label or width built from the integer fields anywhere in the report's code.
+    code = [*Path(report.__file__).parent.rglob("*.py"),
+            *Path(report.__file__).parent.rglob("*.j2")]
+    pattern = re.compile(r"[US]\{[^}]*int_bits|int_bits\W+\s*\+|\.gain_int_bits \}\}")
+    hits = [f"{f.name}: {m.group(0)}" for f in code for m in pattern.finditer(f.read_text())]
+    assert not hits, hits
+
+
 def test_planted_regression_is_caught(small_run, tmp_path, capsys) -> None:
     _, out, cfg, junit = small_run
     base = json.loads((out / "summary.json").read_text())

@@ -83,14 +83,15 @@ def test_coefficient_layout_against_pack_words() -> None:
 
 
 def test_stage_model_of_typical14() -> None:
-    """typical14 (A = 14, GW = 16, B = 14): one partial product in nuc_core (one sum stage:
-    clog2(2)), 9 leaves in dpc_core (4 stages) and 1 x 2 partial products of its divider
-    (one product stage), as docs/rtl.md lists."""
+    """typical14 (A = 14, GW = 16, B = 14): one partial product in nuc_core (two DSP
+    registers, one sum stage: clog2(2)), the DPC's mask register, 9 leaves in dpc_core (4
+    stages) and 1 x 2 partial products of its divider (two DSP registers, one product
+    stage), as docs/rtl.md lists."""
     s = rtl_spec.pipeline_stages("nuc_dpc_top", 14, 16, 14)
-    assert s == ["top_input", "nuc_input", "nuc_product", "nuc_sum", "nuc_round",
-                 "nuc_output", "dpc_input", "dpc_window", "dpc_sum_1", "dpc_sum_2",
-                 "dpc_sum_3", "dpc_sum_4", "dpc_multiply", "dpc_product", "dpc_output",
-                 "flush"]
+    assert s == ["top_input", "nuc_input", "nuc_product_1", "nuc_product_2", "nuc_sum",
+                 "nuc_round", "nuc_output", "dpc_input", "dpc_window", "dpc_mask",
+                 "dpc_sum_1", "dpc_sum_2", "dpc_sum_3", "dpc_sum_4", "dpc_multiply_1",
+                 "dpc_multiply_2", "dpc_product", "dpc_output", "flush"]
     with pytest.raises(ValueError, match="no stage model"):
         rtl_spec.pipeline_stages("other", 14, 16, 14)
 
@@ -106,7 +107,7 @@ def test_python_users_read_the_spec() -> None:
         load_pipeline("minimal").replace(max_width=hi + 1)
 
 
-def test_one_config_error_and_no_shadowed_module() -> None:
+def test_one_config_error_and_model_validate_is_the_module() -> None:
     import importlib
 
     from irnuc.common.errors import ConfigError

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import os
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import pytest
 
@@ -20,16 +21,18 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 TB_TOP = tb_top.__name__
 
 
-def _simulators() -> list[int]:
-    """PIDs of running Verilated cocotb models (their executable is the top's name)."""
+def _simulators(under: Path) -> list[int]:
+    """PIDs of running Verilated cocotb models (their executable is the top's name) working
+    in a folder under ``under`` (not those of other tests running in parallel)."""
     pids = []
     for d in os.listdir("/proc"):
         if d.isdigit():
             try:
                 exe = os.readlink(f"/proc/{d}/exe")
+                cwd = os.readlink(f"/proc/{d}/cwd")
             except OSError:
                 continue
-            if exe.endswith("/nuc_dpc_top"):
+            if exe.endswith("/nuc_dpc_top") and cwd.startswith(str(under)):
                 pids.append(int(d))
     return pids
 
@@ -57,12 +60,11 @@ def test_timeout_stops_only_that_test_and_its_simulator(tmp_path) -> None:
     cfg = load_pipeline("minimal")
     case = SuiteCase("nuc_dpc_top", cfg, TB_TOP, tests=("model_frames",))
     cosim.build("nuc_dpc_top", cfg)  # built outside the timer, as run_suite does
-    before = set(_simulators())
     # A limit far below what the test needs: it must end as "timeout", not hang.
     res = run_suite([case], tmp_path, timeout_base=0.3)
     assert [o.status for o in res.outcomes] == ["timeout"]
     assert "stopped" in res.outcomes[0].message
-    assert set(_simulators()) <= before, "a simulator survived the timeout"
+    assert not _simulators(tmp_path), "a simulator survived the timeout"
 
 
 def test_run_suite_collects_coverage(tmp_path) -> None:

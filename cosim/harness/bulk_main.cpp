@@ -1,20 +1,27 @@
-// Bulk co-simulation harness for nuc_dpc_top (Verilator --cc --exe, no cocotb, no VPI).
+// Bulk co-simulation harness for nuc_dpc_top and method_dpc_top (Verilator --cc --exe, no
+// cocotb, no VPI).
 //
 // Reads the whole stimulus from raw binary files, clocks the Verilated model itself and
 // writes every output pixel to a raw binary file; cosim/bulk.py (run_bulk) writes the
 // inputs with ndarray.tofile, reads the outputs with np.fromfile and compares them with
-// the golden model in numpy. Not part of the design.
+// the golden model in numpy. Not part of the design. The top is chosen at build time by
+// bulk_top.h in the build folder (written by cosim/bulk.py): it includes the model's
+// header, names its class BulkTop and sets BULK_FRAME_WORD when the top has the frame
+// word port s_pix_frame_i (method_dpc_top).
 //
-// Usage: nuc_dpc_bulk PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED]
+// Usage: nuc_dpc_bulk PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED [FRAMES LIMBS]]
 //   PIX      N raw codes, little-endian unsigned of PIXBYTES (2 or 4) bytes each
-//   COEF     W*H coefficient words, little-endian uint64 (docs/datapath.md word layout),
-//            one image sent again with every frame
+//   COEF     coefficient images: M images of W*H words, each word LIMBS little-endian
+//            uint64 (bit 0 first; docs/datapath.md, docs/rtl.md "Methods")
 //   OUT      written: one little-endian uint32 per output pixel,
 //            bit 31 sof, bit 30 eol, bits [OutBits-1:0] the corrected code
 //   N        pixels (a whole number of W x H frames, streamed back to back)
 //   IDLE_PCT percent of cycles each input source stays idle (0 = always valid)
 //   STALL_PCT percent of cycles the output is back-pressured (0 = always ready)
 //   SEED     seed of the xorshift generator behind IDLE_PCT and STALL_PCT
+//   FRAMES   per frame two little-endian uint64: the image it streams (0..M-1) and its
+//            frame word (s_pix_frame_i); without it every frame streams image 0 (M = 1)
+//   LIMBS    uint64 words per coefficient word (default 1)
 // Prints one JSON line: cycles, outputs, extra outputs, first/last output cycle,
 // frame_err, stall_cycles (cycles between the first and the last output with the output
 // back-pressured: last - first + 1 = outputs + stall_cycles when no cycle is lost).
@@ -34,21 +41,24 @@
 #include <type_traits>
 #include <vector>
 
-#include "Vnuc_dpc_top.h"
+#include "bulk_top.h"
 #include "verilated.h"
 
 namespace {
 
-// Coefficient words of up to 64 bits fit the port types Verilator uses (CData..QData);
-// wider ports (VlWide) get the low 64 bits and zeros above.
+// A word of `limbs` uint64 (bit 0 first) onto a port: the port types Verilator uses hold
+// up to 64 bits (CData..QData), wider ports are VlWide (32-bit words); bits above the port
+// are dropped.
 template <typename T>
-void set_word(T& port, uint64_t w) {
+void set_word(T& port, const uint64_t* w, uint32_t limbs) {
     if constexpr (std::is_integral_v<T>) {
-        port = static_cast<T>(w);
+        port = static_cast<T>(w[0]);
     } else {
-        for (auto& x : port.m_storage) x = 0;
-        port.m_storage[0] = static_cast<uint32_t>(w);
-        port.m_storage[1] = static_cast<uint32_t>(w >> 32);
+        constexpr size_t n = sizeof(port.m_storage) / sizeof(port.m_storage[0]);
+        for (size_t i = 0; i < n; ++i) {
+            const size_t k = i / 2;
+            port.m_storage[i] = k < limbs ? static_cast<uint32_t>(w[k] >> (32 * (i % 2))) : 0;
+        }
     }
 }
 
@@ -93,10 +103,19 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
 
     const std::vector<P> pix = read_file<P>(argv[1], n);
     const uint64_t frame = uint64_t(w) * h;
-    const std::vector<uint64_t> coef = read_file<uint64_t>(argv[2], frame);
+    const uint64_t frames = n / frame;
+    const uint32_t limbs = argc > 12 ? static_cast<uint32_t>(std::atoi(argv[12])) : 1;
+    if (limbs < 1 || limbs > 8) die("LIMBS must be in 1..8, got", argc > 12 ? argv[12] : "");
+    // Per frame: the image it streams and its frame word.
+    std::vector<uint64_t> fwords(2 * frames, 0);
+    if (argc > 11) fwords = read_file<uint64_t>(argv[11], 2 * frames);
+    uint64_t images = 1;
+    for (uint64_t f = 0; f < frames; ++f)
+        if (fwords[2 * f] + 1 > images) images = fwords[2 * f] + 1;
+    const std::vector<uint64_t> coef = read_file<uint64_t>(argv[2], images * frame * limbs);
     std::vector<uint32_t> out(n);
 
-    auto top = std::make_unique<Vnuc_dpc_top>(ctx);
+    auto top = std::make_unique<BulkTop>(ctx);
     Rng rng(seed);
 
     // Reset: asserted with the clock low, three edges, released between edges.
@@ -122,6 +141,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     uint64_t stalls = 0, stalls_at_last = 0;  // output not ready, counted from the first output
     bool pv = false, cv = false;  // valid held until the transfer (AXI-Stream rule)
     uint64_t ppos = 0, cpos = 0;  // position in the frame of the next pixel and word
+    uint64_t pf = 0, cf = 0;      // frame of the next pixel and word
     uint32_t px = 0;              // column of the next pixel
     while (oi < n) {
         if (cycle >= limit) {
@@ -136,8 +156,11 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
             top->s_pix_data_i = pix[pi];
             top->s_pix_sof_i = ppos == 0;
             top->s_pix_eol_i = px == w - 1;
+#ifdef BULK_FRAME_WORD
+            set_word(top->s_pix_frame_i, &fwords[2 * pf + 1], 1);
+#endif
         }
-        if (cv) set_word(top->s_coef_data_i, coef[cpos]);
+        if (cv) set_word(top->s_coef_data_i, &coef[(fwords[2 * cf] * frame + cpos) * limbs], limbs);
         top->s_pix_valid_i = pv;
         top->s_coef_valid_i = cv;
         top->m_pix_ready_i = rdy;
@@ -160,13 +183,19 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
         if (pfire) {
             ++pi;
             pv = false;
-            if (++ppos == frame) ppos = 0;
+            if (++ppos == frame) {
+                ppos = 0;
+                ++pf;
+            }
             if (++px == w) px = 0;
         }
         if (cfire) {
             ++ci;
             cv = false;
-            if (++cpos == frame) cpos = 0;
+            if (++cpos == frame) {
+                cpos = 0;
+                ++cf;
+            }
         }
     }
     // A few more cycles, inputs idle and output ready: nothing more may come out.
@@ -174,7 +203,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     top->s_pix_valid_i = 0;
     top->s_coef_valid_i = 0;
     top->m_pix_ready_i = 1;
-    for (uint32_t i = 0; i < w + 16; ++i) {
+    for (uint32_t i = 0; i < w + 64; ++i) {
         top->eval();
         extra += top->m_pix_valid_o;
         top->clk_i = 1;
@@ -201,7 +230,8 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
 int main(int argc, char** argv) {
     if (argc < 8) {
         std::fprintf(stderr,
-                     "usage: %s PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED]\n",
+                     "usage: %s PIX COEF OUT N W H PIXBYTES [IDLE_PCT STALL_PCT SEED "
+                     "[FRAMES LIMBS]]\n",
                      argv[0]);
         return 2;
     }

@@ -6,6 +6,13 @@
 module irnuc_pkg_probe
   import irnuc_pkg::*;
 #(
+  parameter int unsigned KneeBits = 16,
+  parameter int unsigned QuadBits = 16,
+  parameter int unsigned Tc1Bits = 16,
+  parameter int unsigned Tc2Bits = 16,
+  parameter int unsigned Tg1Bits = 16,
+  parameter int unsigned Tg2Bits = 16,
+  parameter int unsigned ReadingBits = 14,
   parameter int unsigned GainIntBits = 2,
   parameter int unsigned GainFracBits = 14,
   parameter int unsigned OffsetIntBits = 12,
@@ -45,6 +52,14 @@ module irnuc_pkg_probe
   output logic [0:0] enum_overflowwrap_o,
   output logic [7:0] count_overflow_e_o,
   output logic [31:0] const_overflow_count_o,
+  output logic [2:0] enum_methodonepoint_o,
+  output logic [2:0] enum_methodtwopoint_o,
+  output logic [2:0] enum_methodpiecewise_o,
+  output logic [2:0] enum_methodquadratic_o,
+  output logic [2:0] enum_methodtcoffset_o,
+  output logic [2:0] enum_methodtableinterp_o,
+  output logic [7:0] count_method_e_o,
+  output logic [31:0] const_method_count_o,
   input  logic [coef_word_bits(GainBits, OffsetBits)-1:0] coef_word_word_i,
   output logic [coef_word_bits(GainBits, OffsetBits)-1:0] coef_word_word_o,
   output logic [7:0] coef_word_bits_o,
@@ -57,6 +72,75 @@ module irnuc_pkg_probe
   input  logic coef_word_bad_i,
   output logic coef_word_bad_o,
   output logic [7:0] coef_word_bad_lsb_o,
+  input  logic [coef_one_point_bits(OffsetBits)-1:0] coef_one_point_word_i,
+  output logic [coef_one_point_bits(OffsetBits)-1:0] coef_one_point_word_o,
+  output logic [7:0] coef_one_point_bits_o,
+  input  logic [OffsetBits-1:0] coef_one_point_offset_i,
+  output logic [OffsetBits-1:0] coef_one_point_offset_o,
+  output logic [7:0] coef_one_point_offset_lsb_o,
+  input  logic coef_one_point_bad_i,
+  output logic coef_one_point_bad_o,
+  output logic [7:0] coef_one_point_bad_lsb_o,
+  input  logic [coef_piecewise_bits(GainBits, KneeBits)-1:0] coef_piecewise_word_i,
+  output logic [coef_piecewise_bits(GainBits, KneeBits)-1:0] coef_piecewise_word_o,
+  output logic [7:0] coef_piecewise_bits_o,
+  input  logic [GainBits-1:0] coef_piecewise_gain_lo_i,
+  output logic [GainBits-1:0] coef_piecewise_gain_lo_o,
+  output logic [7:0] coef_piecewise_gain_lo_lsb_o,
+  input  logic [GainBits-1:0] coef_piecewise_gain_hi_i,
+  output logic [GainBits-1:0] coef_piecewise_gain_hi_o,
+  output logic [7:0] coef_piecewise_gain_hi_lsb_o,
+  input  logic [KneeBits-1:0] coef_piecewise_knee_i,
+  output logic [KneeBits-1:0] coef_piecewise_knee_o,
+  output logic [7:0] coef_piecewise_knee_lsb_o,
+  input  logic coef_piecewise_bad_i,
+  output logic coef_piecewise_bad_o,
+  output logic [7:0] coef_piecewise_bad_lsb_o,
+  input  logic [quad_word_bits(QuadBits)-1:0] quad_word_word_i,
+  output logic [quad_word_bits(QuadBits)-1:0] quad_word_word_o,
+  output logic [7:0] quad_word_bits_o,
+  input  logic [QuadBits-1:0] quad_word_quad_i,
+  output logic [QuadBits-1:0] quad_word_quad_o,
+  output logic [7:0] quad_word_quad_lsb_o,
+  input  logic [tc_word1_bits(Tc1Bits)-1:0] tc_word1_word_i,
+  output logic [tc_word1_bits(Tc1Bits)-1:0] tc_word1_word_o,
+  output logic [7:0] tc_word1_bits_o,
+  input  logic [Tc1Bits-1:0] tc_word1_tc1_i,
+  output logic [Tc1Bits-1:0] tc_word1_tc1_o,
+  output logic [7:0] tc_word1_tc1_lsb_o,
+  input  logic [tc_word2_bits(Tc1Bits, Tc2Bits)-1:0] tc_word2_word_i,
+  output logic [tc_word2_bits(Tc1Bits, Tc2Bits)-1:0] tc_word2_word_o,
+  output logic [7:0] tc_word2_bits_o,
+  input  logic [Tc1Bits-1:0] tc_word2_tc1_i,
+  output logic [Tc1Bits-1:0] tc_word2_tc1_o,
+  output logic [7:0] tc_word2_tc1_lsb_o,
+  input  logic [Tc2Bits-1:0] tc_word2_tc2_i,
+  output logic [Tc2Bits-1:0] tc_word2_tc2_o,
+  output logic [7:0] tc_word2_tc2_lsb_o,
+  input  logic [tg_word1_bits(Tg1Bits)-1:0] tg_word1_word_i,
+  output logic [tg_word1_bits(Tg1Bits)-1:0] tg_word1_word_o,
+  output logic [7:0] tg_word1_bits_o,
+  input  logic [Tg1Bits-1:0] tg_word1_tg1_i,
+  output logic [Tg1Bits-1:0] tg_word1_tg1_o,
+  output logic [7:0] tg_word1_tg1_lsb_o,
+  input  logic [tg_word2_bits(Tg1Bits, Tg2Bits)-1:0] tg_word2_word_i,
+  output logic [tg_word2_bits(Tg1Bits, Tg2Bits)-1:0] tg_word2_word_o,
+  output logic [7:0] tg_word2_bits_o,
+  input  logic [Tg1Bits-1:0] tg_word2_tg1_i,
+  output logic [Tg1Bits-1:0] tg_word2_tg1_o,
+  output logic [7:0] tg_word2_tg1_lsb_o,
+  input  logic [Tg2Bits-1:0] tg_word2_tg2_i,
+  output logic [Tg2Bits-1:0] tg_word2_tg2_o,
+  output logic [7:0] tg_word2_tg2_lsb_o,
+  input  logic [frame_tc_offset_bits(ReadingBits)-1:0] frame_tc_offset_word_i,
+  output logic [frame_tc_offset_bits(ReadingBits)-1:0] frame_tc_offset_word_o,
+  output logic [7:0] frame_tc_offset_bits_o,
+  input  logic [ReadingBits-1:0] frame_tc_offset_reading_i,
+  output logic [ReadingBits-1:0] frame_tc_offset_reading_o,
+  output logic [7:0] frame_tc_offset_reading_lsb_o,
+  input  logic [ReadingBits-1:0] frame_tc_offset_t_ref_i,
+  output logic [ReadingBits-1:0] frame_tc_offset_t_ref_o,
+  output logic [7:0] frame_tc_offset_t_ref_lsb_o,
   output logic [64:1][7:0] mul_chunks_o,
   output logic [24:1][7:0] dpc_recip_shift_o,
   input  logic [3:0] recip_n_i,
@@ -100,6 +184,18 @@ module irnuc_pkg_probe
   assign count_overflow_e_o = 8'(overflow_any.num());
   logic unused_overflow;
   assign unused_overflow = ^overflow_any;  // num() is of the type
+  assign enum_methodonepoint_o = MethodOnePoint;
+  assign enum_methodtwopoint_o = MethodTwoPoint;
+  assign enum_methodpiecewise_o = MethodPiecewise;
+  assign enum_methodquadratic_o = MethodQuadratic;
+  assign enum_methodtcoffset_o = MethodTcOffset;
+  assign enum_methodtableinterp_o = MethodTableInterp;
+  assign const_method_count_o = 32'(MethodCount);
+  method_e method_any;
+  assign method_any = MethodOnePoint;
+  assign count_method_e_o = 8'(method_any.num());
+  logic unused_method;
+  assign unused_method = ^method_any;  // num() is of the type
   typedef coef_word#(GainBits, OffsetBits)::word_t coef_word_t;
   coef_word_t coef_word_packed, coef_word_unpacked;
   assign coef_word_word_o = coef_word_packed;
@@ -116,6 +212,115 @@ module irnuc_pkg_probe
     coef_word_packed.gain = coef_word_gain_i;
     coef_word_packed.offset = coef_word_offset_i;
     coef_word_packed.bad = coef_word_bad_i;
+  end
+  typedef coef_one_point#(OffsetBits)::word_t coef_one_point_t;
+  coef_one_point_t coef_one_point_packed, coef_one_point_unpacked;
+  assign coef_one_point_word_o = coef_one_point_packed;
+  assign coef_one_point_unpacked = coef_one_point_t'(coef_one_point_word_i);
+  assign coef_one_point_bits_o = 8'($bits(coef_one_point_t));
+  assign coef_one_point_offset_o = coef_one_point_unpacked.offset;
+  assign coef_one_point_offset_lsb_o = 8'(coef_one_point_offset_lsb());
+  assign coef_one_point_bad_o = coef_one_point_unpacked.bad;
+  assign coef_one_point_bad_lsb_o = 8'(coef_one_point_bad_lsb(OffsetBits));
+  always_comb begin : p_pack_coef_one_point
+    coef_one_point_packed = '0;
+    coef_one_point_packed.offset = coef_one_point_offset_i;
+    coef_one_point_packed.bad = coef_one_point_bad_i;
+  end
+  typedef coef_piecewise#(GainBits, KneeBits)::word_t coef_piecewise_t;
+  coef_piecewise_t coef_piecewise_packed, coef_piecewise_unpacked;
+  assign coef_piecewise_word_o = coef_piecewise_packed;
+  assign coef_piecewise_unpacked = coef_piecewise_t'(coef_piecewise_word_i);
+  assign coef_piecewise_bits_o = 8'($bits(coef_piecewise_t));
+  assign coef_piecewise_gain_lo_o = coef_piecewise_unpacked.gain_lo;
+  assign coef_piecewise_gain_lo_lsb_o = 8'(coef_piecewise_gain_lo_lsb());
+  assign coef_piecewise_gain_hi_o = coef_piecewise_unpacked.gain_hi;
+  assign coef_piecewise_gain_hi_lsb_o = 8'(coef_piecewise_gain_hi_lsb(GainBits));
+  assign coef_piecewise_knee_o = coef_piecewise_unpacked.knee;
+  assign coef_piecewise_knee_lsb_o = 8'(coef_piecewise_knee_lsb(GainBits));
+  assign coef_piecewise_bad_o = coef_piecewise_unpacked.bad;
+  assign coef_piecewise_bad_lsb_o = 8'(coef_piecewise_bad_lsb(GainBits, KneeBits));
+  always_comb begin : p_pack_coef_piecewise
+    coef_piecewise_packed = '0;
+    coef_piecewise_packed.gain_lo = coef_piecewise_gain_lo_i;
+    coef_piecewise_packed.gain_hi = coef_piecewise_gain_hi_i;
+    coef_piecewise_packed.knee = coef_piecewise_knee_i;
+    coef_piecewise_packed.bad = coef_piecewise_bad_i;
+  end
+  typedef quad_word#(QuadBits)::word_t quad_word_t;
+  quad_word_t quad_word_packed, quad_word_unpacked;
+  assign quad_word_word_o = quad_word_packed;
+  assign quad_word_unpacked = quad_word_t'(quad_word_word_i);
+  assign quad_word_bits_o = 8'($bits(quad_word_t));
+  assign quad_word_quad_o = quad_word_unpacked.quad;
+  assign quad_word_quad_lsb_o = 8'(quad_word_quad_lsb());
+  always_comb begin : p_pack_quad_word
+    quad_word_packed = '0;
+    quad_word_packed.quad = quad_word_quad_i;
+  end
+  typedef tc_word1#(Tc1Bits)::word_t tc_word1_t;
+  tc_word1_t tc_word1_packed, tc_word1_unpacked;
+  assign tc_word1_word_o = tc_word1_packed;
+  assign tc_word1_unpacked = tc_word1_t'(tc_word1_word_i);
+  assign tc_word1_bits_o = 8'($bits(tc_word1_t));
+  assign tc_word1_tc1_o = tc_word1_unpacked.tc1;
+  assign tc_word1_tc1_lsb_o = 8'(tc_word1_tc1_lsb());
+  always_comb begin : p_pack_tc_word1
+    tc_word1_packed = '0;
+    tc_word1_packed.tc1 = tc_word1_tc1_i;
+  end
+  typedef tc_word2#(Tc1Bits, Tc2Bits)::word_t tc_word2_t;
+  tc_word2_t tc_word2_packed, tc_word2_unpacked;
+  assign tc_word2_word_o = tc_word2_packed;
+  assign tc_word2_unpacked = tc_word2_t'(tc_word2_word_i);
+  assign tc_word2_bits_o = 8'($bits(tc_word2_t));
+  assign tc_word2_tc1_o = tc_word2_unpacked.tc1;
+  assign tc_word2_tc1_lsb_o = 8'(tc_word2_tc1_lsb());
+  assign tc_word2_tc2_o = tc_word2_unpacked.tc2;
+  assign tc_word2_tc2_lsb_o = 8'(tc_word2_tc2_lsb(Tc1Bits));
+  always_comb begin : p_pack_tc_word2
+    tc_word2_packed = '0;
+    tc_word2_packed.tc1 = tc_word2_tc1_i;
+    tc_word2_packed.tc2 = tc_word2_tc2_i;
+  end
+  typedef tg_word1#(Tg1Bits)::word_t tg_word1_t;
+  tg_word1_t tg_word1_packed, tg_word1_unpacked;
+  assign tg_word1_word_o = tg_word1_packed;
+  assign tg_word1_unpacked = tg_word1_t'(tg_word1_word_i);
+  assign tg_word1_bits_o = 8'($bits(tg_word1_t));
+  assign tg_word1_tg1_o = tg_word1_unpacked.tg1;
+  assign tg_word1_tg1_lsb_o = 8'(tg_word1_tg1_lsb());
+  always_comb begin : p_pack_tg_word1
+    tg_word1_packed = '0;
+    tg_word1_packed.tg1 = tg_word1_tg1_i;
+  end
+  typedef tg_word2#(Tg1Bits, Tg2Bits)::word_t tg_word2_t;
+  tg_word2_t tg_word2_packed, tg_word2_unpacked;
+  assign tg_word2_word_o = tg_word2_packed;
+  assign tg_word2_unpacked = tg_word2_t'(tg_word2_word_i);
+  assign tg_word2_bits_o = 8'($bits(tg_word2_t));
+  assign tg_word2_tg1_o = tg_word2_unpacked.tg1;
+  assign tg_word2_tg1_lsb_o = 8'(tg_word2_tg1_lsb());
+  assign tg_word2_tg2_o = tg_word2_unpacked.tg2;
+  assign tg_word2_tg2_lsb_o = 8'(tg_word2_tg2_lsb(Tg1Bits));
+  always_comb begin : p_pack_tg_word2
+    tg_word2_packed = '0;
+    tg_word2_packed.tg1 = tg_word2_tg1_i;
+    tg_word2_packed.tg2 = tg_word2_tg2_i;
+  end
+  typedef frame_tc_offset#(ReadingBits)::word_t frame_tc_offset_t;
+  frame_tc_offset_t frame_tc_offset_packed, frame_tc_offset_unpacked;
+  assign frame_tc_offset_word_o = frame_tc_offset_packed;
+  assign frame_tc_offset_unpacked = frame_tc_offset_t'(frame_tc_offset_word_i);
+  assign frame_tc_offset_bits_o = 8'($bits(frame_tc_offset_t));
+  assign frame_tc_offset_reading_o = frame_tc_offset_unpacked.reading;
+  assign frame_tc_offset_reading_lsb_o = 8'(frame_tc_offset_reading_lsb());
+  assign frame_tc_offset_t_ref_o = frame_tc_offset_unpacked.t_ref;
+  assign frame_tc_offset_t_ref_lsb_o = 8'(frame_tc_offset_t_ref_lsb(ReadingBits));
+  always_comb begin : p_pack_frame_tc_offset
+    frame_tc_offset_packed = '0;
+    frame_tc_offset_packed.reading = frame_tc_offset_reading_i;
+    frame_tc_offset_packed.t_ref = frame_tc_offset_t_ref_i;
   end
   for (genvar b = 1; b <= 64; b++) begin : gen_mul_chunks
     assign mul_chunks_o[b] = 8'(mul_chunks(b));

@@ -31,8 +31,14 @@ def add_frames_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--scene", default="uniform", choices=("uniform", "gradient", "disk", "map"))
     p.add_argument("--scene-param", action="append", default=[], metavar="KEY=VALUE",
                    help="scene parameter, e.g. --scene-param disk_temperature=360")
-    p.add_argument("--temps", default="300", help="scene temperatures in K, comma-separated")
-    p.add_argument("--repeats", type=int, default=1, help="frames per temperature (1..100000)")
+    p.add_argument("--temps", default=None,
+                   help="scene temperatures in K, comma-separated (default: 300)")
+    p.add_argument("--repeats", type=int, default=None,
+                   help="frames per temperature (1..100000; default: 1)")
+    p.add_argument("--sequence", default=None, metavar="FILE.toml",
+                   help="a drift sequence (frame rate, duration, FPA / housing / scene "
+                        "profiles, shutter, FPA sensor; docs/sequences.md) instead of "
+                        "--temps: frames in time order, streamed to the file in chunks")
     p.add_argument("--seed", type=int, default=0, help="seed of every random draw (>= 0)")
     p.add_argument("--params", action="store_true", help="also write the per-pixel parameters")
     add_out(p, "out/frames")
@@ -44,14 +50,23 @@ def run_frames(args: argparse.Namespace) -> int:
     from irnuc import model
     from irnuc.common.errors import UserError
     from irnuc.common.io import claim_output_folder, output_folder
-    from irnuc.model.fpa_sensor import constant_fields
+    from irnuc.model.fpa_sensor import PLAIN_FRAME_RATE, FpaSensor, constant_fields
     from irnuc.model.pipeline import check_simulation_memory
     from irnuc.model.scenes import check_temps, scene_temperatures
+    from irnuc.model.sequence import file_arrays
 
     scene_params = parse_assignments(args.scene_param, "--scene-param")
     out = claim_output_folder(args.out, kind="frames", inputs={
         "--sensor": args.sensor if Path(args.sensor).exists() else None,
-        "--scene-param path": scene_params.get("path")})
+        "--scene-param path": scene_params.get("path"), "--sequence": args.sequence})
+    if args.sequence is not None:
+        for flag, value in (("--temps", args.temps), ("--repeats", args.repeats)):
+            if value is not None:
+                raise UserError(f"{flag} and --sequence: the sequence gives every frame's "
+                                f"scene temperature; give one of them")
+        return _run_sequence(args, out, scene_params)
+    args.temps = "300" if args.temps is None else args.temps
+    args.repeats = 1 if args.repeats is None else args.repeats
     if not 1 <= args.repeats <= 100_000:
         raise UserError(f"--repeats {args.repeats} is outside the allowed range 1..100000")
     if args.seed < 0 or args.seed > 2**63 - 1:
@@ -93,8 +108,8 @@ def run_frames(args: argparse.Namespace) -> int:
         stderr(f"irnuc frames: warning: {n_failed} of {status.size} pixel solves failed "
                f"({kinds}); those pixels read the high rail")
     env = cfg["environment"]
-    arrays = frame_file_arrays(fr, constant_fields(fr.temps, env["T_substrate"], env["T_cam"],
-                                                   seed=args.seed))
+    arrays = file_arrays(fr, constant_fields(fr.temps, env["T_substrate"], env["T_cam"],
+                                             seed=args.seed), FpaSensor(), PLAIN_FRAME_RATE)
     if args.params:
         for key, value in fr.outputs["params"].items():
             arrays[f"param_{key}"] = value
@@ -108,36 +123,65 @@ def run_frames(args: argparse.Namespace) -> int:
     return 0
 
 
-def frame_file_arrays(fr: Any, fields: dict[str, Any], sensor: Any = None,
-                      frame_rate: float | None = None) -> dict[str, Any]:
-    """Every array of a frame file but the codes: the per-frame fields, the FPA sensor's
-    settings, the reference pixels' codes and positions, the ground truth and metadata."""
-    import json
+def _run_sequence(args: argparse.Namespace, out: Path, scene_params: dict[str, Any]) -> int:
+    """``irnuc frames --sequence FILE.toml``: the frames streamed to the file chunk by chunk."""
+    import shutil
 
     import numpy as np
 
-    from irnuc.common.framefile import FORMAT_VERSION
-    from irnuc.model.fpa_sensor import PLAIN_FRAME_RATE, FpaSensor
+    from irnuc import model
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import output_folder
+    from irnuc.common.memory import format_bytes
+    from irnuc.model.pipeline import check_simulation_memory
+    from irnuc.model.scenes import scene_temperatures
+    from irnuc.model.sequence import load_sequence, prepare, sequence_file_bytes, write_sequence
 
-    lay = fr.config["fpa"]
-    origin = (lay["blind"][0] + lay["boundary"][0], lay["blind"][2] + lay["boundary"][2])
-    arrays: dict[str, Any] = {
-        "format_version": np.int64(FORMAT_VERSION),
-        "temps": np.asarray(fields["scene_K"], dtype=np.float64),
-        **fields,
-        **(sensor or FpaSensor()).arrays(),
-        "frame_rate": np.float64(frame_rate or PLAIN_FRAME_RATE),
-        "blind_codes": fr.blind_codes,
-        "blind_positions": fr.blind_positions,
-        "active_origin": np.array(origin, dtype=np.int32),
-        "defect_kind": fr.defect_kind,
-        "defect_pattern": fr.defect_pattern,
-        "adc_bits": np.int64(fr.adc_bits),
-        "seed": np.int64(fr.seed),
-        "config_json": np.array(fr.config_json()),
-        "diagnostics_json": np.array(json.dumps(fr.diagnostics)),
-    }
-    return arrays
+    if args.seed < 0 or args.seed > 2**63 - 1:
+        raise UserError(f"--seed {args.seed} is outside the allowed range 0..2^63-1")
+    cfg = load_sensor_arg(args.sensor, parse_assignments(args.set, "--set"))
+    seq = load_sequence(args.sequence, "--sequence")
+    scene = model.Scene(args.scene, scene_params)
+    f = cfg["fpa"]
+    try:
+        scene_temperatures(scene, np.asarray([300.0]), (f["active_rows"], f["active_cols"]))
+    except model.ConfigError as exc:
+        raise UserError(f"--scene {args.scene} --scene-param: {exc}") from None
+    run = prepare(cfg, seq, scene, seed=args.seed)
+    outputs = ["codes", "params"] if args.params else ["codes"]
+    check_simulation_memory(cfg, run.chunk_frames, outputs, what=(
+        f"--sequence: chunks of {run.chunk_frames} frame(s) of fpa.active_rows x "
+        f"fpa.active_cols = {f['active_rows']} x {f['active_cols']} pixels"))
+    need = sequence_file_bytes(cfg, seq)
+    parent = out.resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    free = shutil.disk_usage(parent).free
+    if need > free:
+        raise UserError(f"--out {out}: the {seq.n_frames} frames need {format_bytes(need)} on "
+                        f"disk, {format_bytes(free)} are free there")
+    say(f"{seq.n_frames} frames at {seq.frame_rate:g} Hz; thermal model {run.thermal}: "
+        f"{run.thermal_reason}")
+    extra: dict[str, Any] = {}
+    if args.params:
+        params = run.pipe.run(run.schedule.scene_K[:0], ["params"])["params"]
+        extra = {f"param_{k}": v for k, v in params.items()}
+    bar = progress("frames") if seq.n_frames > run.chunk_frames else None
+    with output_folder(out, kind="frames") as tmp:
+        fr = write_sequence(run, tmp / FRAMES_NAME, progress=bar, extra=extra)
+    d = fr.diagnostics
+    n_failed = sum(d["solver_failures"].values())
+    if n_failed:
+        kinds = ", ".join(k.replace("_", " ") for k, v in d["solver_failures"].items() if v)
+        stderr(f"irnuc frames: warning: {n_failed} pixel solve(s) failed over the sequence "
+               f"({kinds}); those pixels read the high rail")
+    closed = int(run.fields["shutter"].sum())
+    say(f"wrote {out / FRAMES_NAME}: {seq.n_frames} frame(s) of {f['active_rows']}x"
+        f"{f['active_cols']} codes ({format_bytes(need)}), {closed} with the shutter closed, "
+        f"FPA {run.schedule.fpa_K.min():.4g}..{run.schedule.fpa_K.max():.4g} K, housing "
+        f"{run.schedule.T_cam_K.min():.4g}..{run.schedule.T_cam_K.max():.4g} K, "
+        f"{fr.blind_codes.shape[1]} reference pixels, clipped {d['clipped_low']} low / "
+        f"{d['clipped_high']} high")
+    return 0
 
 
 def write_frame_file(path: Path, codes: Any, arrays: dict[str, Any]) -> None:

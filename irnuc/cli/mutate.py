@@ -44,10 +44,10 @@ def run_mutate(args: argparse.Namespace) -> int:
 
         from irnuc.verif import SuiteCase, run_suite
 
-        cfgs = {m.pipeline().digest(): m.pipeline() for m in mutants}
+        cases = {(m.pipeline().digest(), m.top, m.suite): SuiteCase(m.top, m.pipeline(), m.suite)
+                 for m in mutants}
         with tempfile.TemporaryDirectory() as tmp:
-            res = run_suite([SuiteCase(mutate.SUITE_TOP, c, mutate.SUITE_MODULE)
-                             for c in cfgs.values()], tmp, coverage=True)
+            res = run_suite(list(cases.values()), tmp, coverage=True)
         cov = res.coverage
     with output_folder(out, kind="mutate") as tmp:
         write_text_atomic(tmp / "mutate.json", json.dumps(summary, indent=1) + "\n")

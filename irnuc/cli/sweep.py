@@ -157,8 +157,7 @@ def run_sweep_command(args: argparse.Namespace) -> int:
         best = res.points[sm["best"]]
         say(f"smallest widths with {args.error_metric} <= {args.max_error:g}: "
             f"{sm['bits_per_pixel']} bit/pixel, "
-            f"gain U{best['gain_int_bits']}.{best['gain_frac_bits']}, offset "
-            f"S{best['offset_int_bits']}.{best['offset_frac_bits']} "
+            f"gain {best['gain_format']}, offset {best['offset_format']} "
             f"({best[args.error_metric]:.4g}; {len(sm['points'])} combination(s) at that cost)")
     else:
         print(f"no swept width meets {args.error_metric} <= {args.max_error:g}", file=sys.stderr)

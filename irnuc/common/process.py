@@ -36,10 +36,17 @@ class ChildTimeout(ToolError):
     """A child process group ran past its time limit and was killed."""
 
 
+def python_module(module: str, *args: str | Path) -> list[str]:
+    """The command running ``python -m module args`` in this interpreter, without the
+    current folder on ``sys.path`` (``-P``: a file there, an ``inspect.py`` say, must not
+    shadow a module)."""
+    return [sys.executable, "-P", "-m", module, *map(str, args)]
+
+
 def _is_irnuc_child(cmd: Sequence[str]) -> bool:
     """An irnuc entry point that arms :func:`die_with_parent` itself."""
-    return (len(cmd) >= 3 and str(cmd[0]) == sys.executable and str(cmd[1]) == "-m"
-            and str(cmd[2]).startswith("irnuc."))
+    return (len(cmd) >= 4 and cmd[:3] == [sys.executable, "-P", "-m"]
+            and str(cmd[3]).startswith("irnuc."))
 
 
 def run_child(cmd: Sequence[str], *, timeout: float | None = None,
@@ -57,7 +64,7 @@ def run_child(cmd: Sequence[str], *, timeout: float | None = None,
     """
     args = [str(c) for c in cmd]
     if not single_process and not _is_irnuc_child(args):
-        args = [sys.executable, "-m", "irnuc.common._reaper", *args]
+        args = python_module("irnuc.common._reaper", *args)
     out = open(log, "w") if log is not None else (subprocess.PIPE if capture else None)
     try:
         proc = subprocess.Popen(args, stdout=out,

@@ -64,6 +64,10 @@ class Mutant:
     equivalent: str | None = None
     #: further (find, replace) pairs in the same file, for a change at several sites
     also: tuple[tuple[str, str], ...] = ()
+    #: the top and the testbench module of the mutant's suite (the methods' modules run in
+    #: method_dpc_top with tb_method, interp_weight alone with its testbench)
+    top: str = SUITE_TOP
+    suite: str = SUITE_MODULE
 
     def apply(self, text: str) -> str:
         for find, replace in ((self.find, self.replace), *self.also):
@@ -78,11 +82,26 @@ class Mutant:
         from irnuc.nuc_fixed import load_pipeline
 
         cfg = load_pipeline(self.config)
-        return cfg.replace(**dict(self.changes)) if self.changes else cfg
+        if not self.changes:
+            return cfg
+        # ``formats`` changes are nested pairs: ((name, ((field, value), ...)), ...).
+        ch = {k: ({n: dict(f) for n, f in v} if k == "formats" else v) for k, v in self.changes}
+        return cfg.replace(**ch)
 
 
 def _m(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
     return Mutant(id, file, find, replace, what, **kw)
+
+
+_METHOD = {"top": "method_dpc_top", "suite": "irnuc.cocotb_tests.tb_method"}
+_IW = {"top": "interp_weight", "suite": "irnuc.cocotb_tests.tb_interp_weight",
+       "config": "table14"}
+
+
+def _mm(id: str, file: str, find: str, replace: str, what: str, config: str, **kw: Any
+        ) -> Mutant:
+    """A mutant run in method_dpc_top (tb_method) on a method configuration."""
+    return Mutant(id, file, find, replace, what, config=config, **{**_METHOD, **kw})
 
 
 _HALF_UP = (("rounding", "half_up"),)
@@ -146,8 +165,10 @@ CATALOGUE: tuple[Mutant, ...] = (
     # ---- irnuc_mul_parts ----------------------------------------------------------------
     _m("mul_part_shift", "irnuc_mul_parts.sv", "<< (ALsb + BLsb);", "<< (ALsb + BLsb + 1);",
        "partial product placed one bit too high"),
-    _m("mul_side_no_enable", "irnuc_mul_parts.sv", "    if (en_i) side_q <= side_i;",
-       "    side_q <= side_i;", "multiplier side band moves while stalled"),
+    _m("mul_side_no_enable", "irnuc_mul_parts.sv",
+       "    if (en_i) begin\n      side_q[0] <= side_i;",
+       "    if (1'b1) begin\n      side_q[0] <= side_i;",
+       "multiplier side band moves while stalled"),
     # ---- irnuc_line_buffer --------------------------------------------------------------
     _m("lb_read_always", "irnuc_line_buffer.sv", "    if (rd_en_i) begin",
        "    if (1'b1) begin", "the line buffer reads while no item is taken"),
@@ -229,13 +250,13 @@ CATALOGUE: tuple[Mutant, ...] = (
        "assign lb_wr_addr_o  = AddrBits'(col_q);",
        "line buffer written at the current column, not the previous item's"),
     # ---- dpc_core ------------------------------------------------------------------------
-    _m("dpc_rows_swapped", "dpc_core.sv", "{col_top, col_mid} = lb_next_q;",
-       "{col_mid, col_top} = lb_next_q;", "line-buffer rows swapped (neighbours swapped)"),
+    _m("dpc_rows_swapped", "dpc_core.sv", "{col_top, col_mid} = lb_next;",
+       "{col_mid, col_top} = lb_next;", "line-buffer rows swapped (neighbours swapped)"),
     _m("dpc_no_right_mask", "dpc_core.sv",
        "(c == 0 && win_left) || (c == 2 && win_right));", "(c == 0 && win_left));",
        "the right border is not masked"),
     _m("dpc_w3_from_ram", "dpc_core.sv",
-       "{col_top, col_mid} = {win_q[1][0], win_q[2][0]};", "{col_top, col_mid} = lb_next_q;",
+       "{col_top, col_mid} = {win_q[1][0], win_q[2][0]};", "{col_top, col_mid} = lb_next;",
        "W = 3 reads the stale line-buffer word"),
     _m("dpc_no_rounding", "dpc_core.sv", "nb_leaves[8] = NumBits'(nb_count >> 1);",
        "nb_leaves[8] = '0;", "the mean is truncated instead of rounded half up"),
@@ -245,6 +266,185 @@ CATALOGUE: tuple[Mutant, ...] = (
        "a bad pixel without good neighbours is replaced by 0"),
     _m("dpc_recip_8_as_7", "dpc_core.sv", "4'd8:    nb_recip = RecBits'(dpc_recip(OutBits, 8));",
        "4'd8:    nb_recip = RecBits'(dpc_recip(OutBits, 7));", "n = 8 divides by 7"),
+    # ---- irnuc_dsp_mul, the multipliers' registers (behaviour of the DSP blocks) ----------
+    _m("dsp_no_input_reg", "irnuc_dsp_mul.sv", "      p_q <= a_q * b_q;",
+       "      p_q <= a_i * b_i;", "the product skips the DSP's input register (one stage "
+       "early against its valid and side band)"),
+    _m("dsp_no_enable", "irnuc_dsp_mul.sv", "    if (en_i) begin\n      a_q <= a_i;",
+       "    if (1'b1) begin\n      a_q <= a_i;", "the DSP registers move while stalled"),
+    _m("mul_valid_one_stage", "irnuc_mul_parts.sv", "assign valid_o = valid_q[1];",
+       "assign valid_o = valid_q[0];", "the product's valid one stage early"),
+    _mm("mul_a_top_unsigned", "irnuc_mul_parts.sv",
+        "      assign a_chunk = 18'($signed(a_i[ALsb +: AWide]));",
+        "      assign a_chunk = 18'(a_i[ALsb +: AWide]);",
+        "the top chunk of a signed A operand zero-extended (pwl_core: d = x - k < 0)",
+        "piecewise14"),
+    _mm("mul_b_top_unsigned", "irnuc_mul_parts.sv",
+        "        assign b_chunk = 18'($signed(b_i[BLsb +: BWide]));",
+        "        assign b_chunk = 18'(b_i[BLsb +: BWide]);",
+        "the top chunk of a signed B operand zero-extended (tc_poly: c1 * u with u < 0)",
+        "tcoffset14"),
+    # ---- irnuc_round, irnuc_clip (the methods' rounding and saturation) ------------------
+    _mm("round_half_up_no_inc", "irnuc_round.sv", "    assign inc = s_i[FracBits-1];",
+        "    assign inc = 1'b0;", "half_up rounds down (pwl_core)", "piecewise14"),
+    _mm("round_half_even_no_odd", "irnuc_round.sv",
+        "assign inc = s_i[FracBits-1] & (sticky | s_i[FracBits]);",
+        "assign inc = s_i[FracBits-1] & sticky;", "half_even: ties of odd integers dropped",
+        "quadratic14", changes=(("rounding", "half_even"),)),
+    _mm("round_half_even_no_sticky", "irnuc_round.sv",
+        "assign inc = s_i[FracBits-1] & (sticky | s_i[FracBits]);",
+        "assign inc = s_i[FracBits-1] & s_i[FracBits];",
+        "half_even: the bits below the half are ignored", "quadratic14",
+        changes=(("rounding", "half_even"),)),
+    _mm("round_unsigned", "irnuc_round.sv",
+        "assign r_o = OutBits'($signed(s_i[InBits-1:FracBits])) + OutBits'(inc);",
+        "assign r_o = OutBits'(s_i[InBits-1:FracBits]) + OutBits'(inc);",
+        "the shifted sum is not sign-extended", "quadratic14"),
+    _mm("clip_low_value", "irnuc_clip.sv", "        y_o = '0;\n      end else if (too_big)",
+        "        y_o = OutBits'(1);\n      end else if (too_big)",
+        "saturation below zero gives 1", "piecewise14"),
+    _mm("clip_high_bit", "irnuc_clip.sv", "assign too_big = |v_i[InBits-2:OutBits];",
+        "assign too_big = |v_i[InBits-2:OutBits+1];",
+        "saturation above the range misses its lowest bit", "quadratic14"),
+    _mm("clip_signed_min", "irnuc_clip.sv",
+        "          y_o = OutBits'(1) << (OutBits - 1);     // the most negative code",
+        "          y_o = '0;", "signed saturation below the range gives 0 (tc_poly's offset)",
+        "tcoffset14"),
+    _mm("clip_signed_negative_fit", "irnuc_clip.sv",
+        "assign fits = (v_i[InBits-1:OutBits-1] == '0) || (v_i[InBits-1:OutBits-1] == '1);",
+        "assign fits = (v_i[InBits-1:OutBits-1] == '0);",
+        "every negative offset saturates (tc_poly)", "tcoffset14"),
+    _mm("clip_wrap_msb", "irnuc_clip.sv", "    assign y_o = OutBits'($signed(v_i));\n    logic "
+        "unused_neg;\n    assign unused_neg = neg;\n  end else if",
+        "    assign y_o = OutBits'(v_i[OutBits-2:0]);\n    logic "
+        "unused_neg;\n    assign unused_neg = neg;\n  end else if",
+        "wrap loses the top bit", "piecewise14", changes=_WRAP),
+    # ---- pwl_core --------------------------------------------------------------------------
+    _mm("pwl_segments_swapped", "pwl_core.sv", "(xa <= ka) ? in_gain_lo : in_gain_hi;",
+        "(xa >= ka) ? in_gain_lo : in_gain_hi;", "the two segments' gains swapped",
+        "piecewise14"),
+    _mm("pwl_segment_at_knee", "pwl_core.sv", "(xa <= ka) ? in_gain_lo : in_gain_hi;",
+        "(xa < ka) ? in_gain_lo : in_gain_hi;", "x at the knee takes g_hi",
+        "piecewise14",
+        equivalent="at the knee d = 0, so d * g = 0 whichever gain is taken: the same sum, "
+                   "the same output for every input"),
+    _mm("pwl_level_align", "pwl_core.sv", "SumBits'(mul_level) << LShift;",
+        "SumBits'(mul_level) << (LShift + 1);", "the level aligned one bit too high",
+        "piecewise14"),
+    _mm("pwl_level_signed", "pwl_core.sv", "SumBits'(mul_level) << LShift;",
+        "SumBits'($signed(mul_level)) << LShift;",
+        "the level sign-extended (levels of 2^(LW-1) and above go negative)", "piecewise14"),
+    _mm("pwl_knee_align", "pwl_core.sv", "assign xa = DiffBits'(in_pix) << DBits;",
+        "assign xa = DiffBits'(in_pix) << (DBits - 1);",
+        "x aligned to the knee with one fraction bit too few", "piecewise14"),
+    # ---- quad_core -------------------------------------------------------------------------
+    _mm("quad_square_shift", "quad_core.sv", "assign sq_xq = sq_xsq[XsqBits-1:SqShift];",
+        "assign sq_xq = XqBits'(sq_xsq >> (SqShift + 1));",
+        "the square shifted one bit too far", "quadratic14"),
+    _mm("quad_q_unsigned", "quad_core.sv",
+        "    .ABits   (QuadBits),\n    .BBits   (XqBits),\n    .ASigned (1'b1),",
+        "    .ABits   (QuadBits),\n    .BBits   (XqBits),\n    .ASigned (1'b0),",
+        "the quadratic term read as unsigned", "quadratic14"),
+    _mm("quad_qp_align", "quad_core.sv", "qp_parts[k] << (FracBits + ExtFrac - QpFrac);",
+        "qp_parts[k] << (FracBits + ExtFrac - QpFrac + 1);",
+        "the quadratic term aligned one bit too high", "quadratic14"),
+    _mm("quad_floor_off", "quad_core.sv", "assign sum_s = sum_ext[ExtBits-1:ExtFrac];",
+        "assign sum_s = SumBits'(sum_ext >> (ExtFrac - 1));",
+        "one floored bit too few dropped", "quadratic14"),
+    _mm("quad_offset_unsigned", "quad_core.sv", "ExtBits'($signed(mul_offset))",
+        "ExtBits'(mul_offset)", "the offset zero-extended", "quadratic14"),
+    # ---- tc_reading, tc_poly -------------------------------------------------------------
+    _mm("tc_diff_swapped", "tc_reading.sv",
+        "diff_q      <= $signed(CmpBits'(reading_i)) - $signed(CmpBits'(t_ref_i));",
+        "diff_q      <= $signed(CmpBits'(t_ref_i)) - $signed(CmpBits'(reading_i));",
+        "u = t_ref - t", "tcoffset14"),
+    _mm("tc_clamp_value", "tc_reading.sv", "        u_q <= UBits'(Lim);",
+        "        u_q <= UBits'(Lim - 1);", "the upper clamp one code low", "tcoffset14"),
+    _mm("tc_no_low_clamp", "tc_reading.sv", "      end else if (diff_q < -Lim) begin",
+        "      end else if (1'b0) begin", "readings far below t_ref are not clamped",
+        "tcoffset14"),
+    _mm("tc_u2_shift", "tc_reading.sv",
+        "assign u2_o = sq_sum[2*ReadingRangeBits-1:ReadingRangeBits];",
+        "assign u2_o = sq_sum[2*ReadingRangeBits-2:ReadingRangeBits-1];",
+        "u2 shifted one bit too little", "tcoffset14"),
+    _mm("tc_c1_align", "tc_poly.sv", "assign o_leaves[1 + k] = c1_parts[k] << O1Shift;",
+        "assign o_leaves[1 + k] = c1_parts[k] << (O1Shift + 1);",
+        "the linear offset term aligned one bit too high", "tcoffset14"),
+    _mm("tc_c2_dropped", "tc_poly.sv",
+        "assign o_leaves[1 + P1 + k] = c2_parts[k] << O2Shift;",
+        "assign o_leaves[1 + P1 + k] = '0;", "the quadratic offset term dropped",
+        "tcoffset14"),
+    _mm("tc_offset_round_frac", "tc_poly.sv", "    .FracBits(O0Shift),",
+        "    .FracBits(O0Shift - 1),", "the offset polynomial rounded one bit too few",
+        "tcoffset14"),
+    _mm("tc_g2_u2_signed", "tc_poly.sv",
+        "        .ABits   (Tg2Bits),\n        .BBits   (U2Bits),\n        .ASigned (1'b1),\n"
+        "        .BSigned (1'b0),",
+        "        .ABits   (Tg2Bits),\n        .BBits   (U2Bits),\n        .ASigned (1'b1),\n"
+        "        .BSigned (1'b1),",
+        "u2 read as signed in the gain polynomial", "tcgain14"),
+    _mm("tc_gain_clip_signed", "tc_poly.sv",
+        "    .OutBits  (GainBits),\n    .OutSigned(1'b0),",
+        "    .OutBits  (GainBits),\n    .OutSigned(1'b1),",
+        "the gain polynomial saturated as a signed code", "tcgain14"),
+    # ---- table_interp, interp_weight -----------------------------------------------------
+    _mm("ti_diff_swapped", "table_interp.sv",
+        "dg_q          <= DgBits'(in_gain1) - DgBits'(in_gain0);",
+        "dg_q          <= DgBits'(in_gain0) - DgBits'(in_gain1);",
+        "the gain difference reversed", "table14"),
+    _mm("ti_offset_unsigned", "table_interp.sv",
+        "DoBits'($signed(in_offset1)) - DoBits'($signed(in_offset0))",
+        "DoBits'(in_offset1) - DoBits'(in_offset0)",
+        "the offsets zero-extended before their difference", "table14"),
+    _mm("ti_round_truncate", "table_interp.sv",
+        "    .InBits  (PgBits),\n    .FracBits(WeightFracBits),\n    .Rounding(WeightRounding)",
+        "    .InBits  (PgBits),\n    .FracBits(WeightFracBits),\n    .Rounding(0)",
+        "the gain interpolation truncated instead of the weight's rounding", "table14"),
+    _m("iw_select_strict", "interp_weight.sv", "if (table_readings_i[i] <= t_q) begin",
+       "if (table_readings_i[i] < t_q) begin",
+       "a reading equal to a table's reading picks the table below", **_IW),
+    _m("iw_clamp_top", "interp_weight.sv", "end else if (above_q[ReadingBits-1:0] >= span_q) begin",
+       "end else if (above_q[ReadingBits-1:0] > span_q) begin",
+       "num = span is divided instead of taken as 1", **_IW),
+    _m("iw_half_even_no_odd", "interp_weight.sv",
+       "(twice_rem == {2'b00, span_q} && quot_q[0]);", "(twice_rem == {2'b00, span_q});",
+       "half_even weights round ties up", **{**_IW, "changes": (
+           ("formats", (("weight", (("rounding", "half_even"),)),)),)}),
+    _m("iw_no_order_check", "interp_weight.sv",
+       "      if (table_readings_i[i + 1] <= table_readings_i[i]) begin",
+       "      if (1'b0) begin", "unordered table readings not flagged", **_IW),
+    _m("iw_bit_position", "interp_weight.sv",
+       "quot_q  <= quot_q | (WBits'(fits) << (count_q - CountBits'(1)));",
+       "quot_q  <= quot_q | (WBits'(fits) << count_q);",
+       "quotient bits one place too high", **_IW),
+    # ---- method_dpc_top, the DPC and line buffer of the methods ------------------------
+    _mm("top_frame_every_pixel", "method_dpc_top.sv",
+        "assign frame = pix_sof ? pix_frame : frame_q;", "assign frame = pix_frame;",
+        "every pixel's frame word is used, not the first pixel's", "onepoint14"),
+    _mm("top_frame_latch_any", "method_dpc_top.sv", "end else if (join_take && pix_sof) begin",
+        "end else if (join_take) begin",
+        "the held frame word follows every pixel", "piecewise14"),
+    _mm("top_tc_reading_ref_swapped", "method_dpc_top.sv",
+        ".s_reading_i(frame[ReadingBits-1:0]),\n        .s_t_ref_i  (frame[ReadingBits +: "
+        "ReadingBits]),",
+        ".s_reading_i(frame[ReadingBits +: ReadingBits]),\n        .s_t_ref_i  "
+        "(frame[ReadingBits-1:0]),", "the reading and t_ref swapped", "tcoffset14"),
+    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (coef[TwoPointBits +: QuadBits]),",
+        ".s_quad_i    (coef[TwoPointBits - 1 +: QuadBits]),",
+        "the quad word read one bit low", "quadratic14"),
+    _mm("top_one_point_bad", "method_dpc_top.sv", "      assign bad    = coef[OffsetBits];",
+        "      assign bad    = coef[OffsetBits-1];", "one_point's bad flag from the offset's "
+        "sign", "onepoint14"),
+    _mm("top_table_weight_low", "method_dpc_top.sv", ".s_weight_i (frame[WeightFracBits:0]),",
+        ".s_weight_i ({1'b0, frame[WeightFracBits-1:0]}),",
+        "w = 2^Wf read as 0", "table14"),
+    _m("dpc_mask_no_enable", "dpc_core.sv",
+       "    if (en) begin\n      mask_leaves_q <= nb_leaves;",
+       "    if (1'b1) begin\n      mask_leaves_q <= nb_leaves;",
+       "the DPC's neighbour mask register moves while stalled"),
+    _m("lb_no_output_reg", "irnuc_line_buffer.sv", "    assign rd_data_o = out_q;",
+       "    assign rd_data_o = rd_data_q;",
+       "the line buffer's output register bypassed (the word one item early)"),
     # ---- nuc_dpc_top ---------------------------------------------------------------------
     _m("top_coef_without_pixel", "nuc_dpc_top.sv",
        "assign coef_ready = nuc_in_ready && pix_valid;", "assign coef_ready = nuc_in_ready;",
@@ -293,6 +493,8 @@ def _mutant_key(m: Mutant) -> str:
     d = asdict(m)
     if not d["also"]:
         del d["also"]  # keys of one-site mutants as before the field existed
+    if (d["top"], d["suite"]) == (SUITE_TOP, SUITE_MODULE):
+        del d["top"], d["suite"]  # and of the mutants of the two-point suite
     return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": d})
 
 
@@ -332,14 +534,14 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
         f.write_text(m.apply(f.read_text()))
         killed_by, message, invalid = None, "", False
         try:
-            bld = cosim.build(SUITE_TOP, cfg, hdl_dir=hdl)
+            bld = cosim.build(m.top, cfg, hdl_dir=hdl)
         except cosim.RtlError as exc:
             invalid, message = True, str(exc)[:600]
             _remove_failed_builds(hdl)
         if bld is not None:
             xml = work / "results.xml"
             try:
-                res = cosim.read_results(cosim.run(bld, SUITE_MODULE, results_xml=xml,
+                res = cosim.read_results(cosim.run(bld, m.suite, results_xml=xml,
                                                    timeout=timeout))
                 fired = cosim.assertion_failures(xml)
                 failed = [r for r in res.values() if not r.passed]
@@ -364,30 +566,38 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
     return out
 
 
-def baseline_check(mutants: Sequence[Mutant]) -> None:
+def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
     """The design itself must pass the mutation suite on every configuration the mutants
-    use (else every mutant would look killed); raises :class:`RtlError` otherwise."""
+    use (else every mutant would look killed); raises :class:`RtlError` otherwise. A pass
+    is cached, keyed like a mutant's verdict (the RTL, the suite, the configuration)."""
     from irnuc import cosim
 
-    seen: set[str] = set()
+    seen: set[tuple[str, str, str]] = set()
     for m in mutants:
         cfg = m.pipeline()
-        if cfg.digest() in seen:
+        if (cfg.digest(), m.top, m.suite) in seen:
             continue
-        seen.add(cfg.digest())
-        bld = cosim.build(SUITE_TOP, cfg)
-        xml = cache_dir("mutate", "baseline") / f"{cfg.name}-{cfg.digest()[:8]}.xml"
-        res = cosim.read_results(cosim.run(bld, SUITE_MODULE, results_xml=xml,
+        seen.add((cfg.digest(), m.top, m.suite))
+        key = digest({"rtl": rtl_digest(), "suite": _suite_digest(), "config": cfg.digest(),
+                      "top": m.top, "module": m.suite})
+        passed = cache_dir("mutate", "baseline") / f"{cfg.name}-{key}.passed"
+        if use_cache and passed.is_file():
+            continue
+        bld = cosim.build(m.top, cfg)
+        xml = (cache_dir("mutate", "baseline")
+               / f"{cfg.name}-{cfg.digest()[:8]}-{m.suite.rsplit('.', 1)[-1]}.xml")
+        res = cosim.read_results(cosim.run(bld, m.suite, results_xml=xml,
                                            timeout=RUN_TIMEOUT))
         bad = [r.name for r in res.values() if not r.passed]
         if bad or not res:
             raise cosim.RtlError(f"the unmutated design fails the mutation suite on "
                                  f"{cfg.name} ({', '.join(bad) or 'no result'}); see {xml}")
+        write_text_atomic(passed, json.dumps(sorted(res)) + "\n")
 
 
 def _remove_failed_builds(hdl: Path) -> None:
     """Remove the build folders of a mutant copy that did not build (no stamp file)."""
-    from irnuc.cosim.build import sim_build_dir
+    from irnuc.cosim.builds import sim_build_dir
 
     for spec in sim_build_dir().glob("*/irnuc_build_spec.json"):
         try:
@@ -398,9 +608,15 @@ def _remove_failed_builds(hdl: Path) -> None:
 
 
 def _job(m: dict, use_cache: bool) -> dict:
-    return run_mutant(Mutant(**{**m, "changes": tuple(tuple(c) for c in m["changes"]),
+    return run_mutant(Mutant(**{**m, "changes": _tuples(m["changes"]),
                                 "also": tuple(tuple(c) for c in m["also"])}),
                       use_cache=use_cache)
+
+
+def _tuples(v: Any) -> Any:
+    """Lists (of a round trip through asdict / JSON) back to the nested tuples of
+    ``changes``."""
+    return tuple(_tuples(x) for x in v) if isinstance(v, list | tuple) else v
 
 
 def summarize(results: Sequence[dict], total_catalogue: int | None = None) -> dict:
@@ -436,7 +652,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
     mutants = list(CATALOGUE if mutants is None else mutants)
     results = []
     with open_executor(workers, scheduler) as handle:  # a bad --scheduler fails first
-        baseline_check(mutants)
+        baseline_check(mutants, use_cache)
         futures = [handle.executor.submit(_job, asdict(m), use_cache) for m in mutants]
         for i, fut in enumerate(futures):
             results.append(fut.result())

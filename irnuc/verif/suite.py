@@ -32,7 +32,7 @@ from typing import Any
 
 from irnuc.common.io import write_text_atomic
 from irnuc.cosim import metrics as tb_metrics
-from irnuc.cosim.build import (
+from irnuc.cosim.builds import (
     Build,
     SimulationTimeout,
     assertion_failures,

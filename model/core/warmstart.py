@@ -31,6 +31,7 @@ import numpy as np
 from numba import njit, prange
 
 from irnuc.model.core.bolometer import (
+    ROOT_ATOL,
     STATUS_INVALID,
     STATUS_OK,
     STATUS_RUNAWAY,
@@ -99,74 +100,29 @@ def reference_state(Q, fq, g, variant, b, R_ref, B, T_s, dT, v, status, I, c_out
                     c = x - s * _rise(Q[i, j], fq, g, i, j, variant) + ds * T_s
                     e = R / R_ref[i, j]
             c_out[i, j] = c
-            inv_T_out[i, j] = 1.0 / (T_s + x)
+            inv_T_out[i, j] = 1.0 / (T_s + x) if T_s + x > 0.0 else math.nan
             s_out[i, j] = s
             ds_out[i, j] = ds
             e_out[i, j] = e
 
 
 @njit(cache=True)
-def exp_near(z):
-    """e^z for the tiny exponents of a converged Newton step: 1 + z + z^2/2 when
-    |z| < 2e-6 (relative error below z^3/6 < 1.4e-18), else
-    :func:`model.core.bolometer.exp_small`."""
-    if abs(z) < 2e-6:
-        return 1.0 + z * (1.0 + 0.5 * z)
-    return exp_small(z)
-
-
-@njit(cache=True)
-def _first_step(a, b, R_ref, B, Ts, rtol, x0, e_r, inv_Tr):
-    """The first Newton step from the prediction x0 (K), with the convergence test of
-    :func:`model.core.bolometer.newton_negative_tcr_warm`.
-
-    e_r = R/R_ref at the reference temperature 1/inv_Tr (K) gives R(T_s + x0) without a
-    fresh exponential. Returns (done, x, R): done when the step met the tolerance (x is
-    then the root, R its resistance, ohm); otherwise x and R are the step's result for
-    the full iteration to go on from, x NaN if the step left the bracket (a, inf).
-    """
-    atol = rtol * 1e-3
-    T = Ts + x0
-    inv_T = 1.0 / T
-    R = R_ref * (e_r * exp_near(B * (inv_T - inv_Tr)))
-    h = x0 - a - b * R
-    bRB = b * R * B * inv_T * inv_T  # -d(b R)/dT > 0
-    dh = 1.0 + bRB
-    inv_dh = 1.0 / dh
-    step = h * inv_dh
-    xn = x0 - step
-    if not (xn > a and (h <= 0.0 or xn < x0)):  # the bracket of the full iteration
-        return False, math.nan, R
-    tol = rtol * abs(xn) + atol
-    done = abs(step) <= tol
-    if not done and abs(step) < 1e-4 * (abs(x0) + 1.0):
-        K = abs(bRB * (B * inv_T + 2.0) * inv_T) * 0.5 * inv_dh
-        done = K * step * step <= 0.01 * tol
-    # 1/(T (T - step)) = inv_T^2 (1 + step inv_T) to a relative (step/T)^2: R at xn.
-    z = B * step * inv_T * inv_T * (1.0 + step * inv_T)
-    return done, xn, R * exp_near(z)
-
-
-@njit(cache=True)
 def _solve_pixel(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, T_max, I, x0, e_r, inv_Tr):
-    """One pixel: (x, v, status, iterations) from the prediction x0, or the bracketed
-    solver when the pixel has no reference (e_r NaN)."""
+    """One pixel the branch-free path left: the safeguarded Newton iteration of
+    :func:`model.core.bolometer.newton_negative_tcr_warm` from the prediction x0 (K) and
+    R(T_s + x0)/R_ref from the reference, or the bracketed solver of
+    :func:`model.core.bolometer.solve_delta_t` when the pixel has no reference (e_r NaN).
+    Returns (x, v, status, iterations)."""
     st = STATUS_OK
     if e_r > 0.0 and Ts + a > 0.0 and Ts + x0 > 0.0:
-        done, x, R = _first_step(a, b, R_ref, B, Ts, rtol, x0, e_r, inv_Tr)
-        it = 1
-        if not done:
-            # Go on from the step (or from the prediction, if the step left the bracket).
-            start = x if math.isfinite(x) else x0
-            e_start = R / R_ref if math.isfinite(x) else math.nan
-            x, st, it, R = newton_negative_tcr_warm(a, b, R_ref, B, T_ref, Ts, rtol, max_iter,
-                                                    start, e_start)
-            it += 1
+        e0 = e_r * exp_small(B * (1.0 / (Ts + x0) - inv_Tr))
+        x, st, it, R = newton_negative_tcr_warm(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, x0,
+                                                e0)
         v = I * R
     else:
         x, st, it = solve_delta_t(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, math.nan, T_max)
         if st == STATUS_INVALID:
-            v = math.nan
+            v = 0.0  # at 0 K, where it fell (as solve_row)
         else:
             v = I * resistance(Ts + x, R_ref, B, T_ref)
     if st == STATUS_OK and not Ts + x <= T_max:
@@ -194,15 +150,19 @@ def _exp_poly(z):
     return p * z + 1.0
 
 
-@njit(cache=True, error_model="numpy")
-def _newton_lane(x, a, b, R, B, Ts, rtol, atol):
-    """One Newton step of h(x) = x - a - b R(T_s + x) at x (K) with R = R(T_s + x) (ohm),
-    and the convergence test of :func:`model.core.bolometer.newton_negative_tcr_warm`.
+#: Largest |exponent| of a Newton step's resistance update by the degree-4 polynomial
+#: (relative error below |z|^5/120 < 1e-17).
+STEP_EXP_MAX = 1e-3
 
-    Returns (xn, R(T_s + xn), converged, exponent of the R update).
+
+@njit(cache=True, error_model="numpy")
+def _newton_lane(x, inv_T, a, b, R, B, rtol, atol):
+    """One Newton step of h(x) = x - a - b R(T_s + x) at x (K), with inv_T = 1/(T_s + x)
+    and R = R(T_s + x) (ohm), and the convergence test of
+    :func:`model.core.bolometer.newton_negative_tcr_warm`.
+
+    Returns (xn, R(T_s + xn), 1/(T_s + xn), converged, exponent of the R update).
     """
-    T = Ts + x
-    inv_T = 1.0 / T
     h = x - a - b * R
     bRB = b * R * B * inv_T * inv_T  # -d(b R)/dT > 0
     dh = 1.0 + bRB
@@ -213,39 +173,58 @@ def _newton_lane(x, a, b, R, B, Ts, rtol, atol):
     K = abs(bRB * (B * inv_T + 2.0) * inv_T) * 0.5 * inv_dh
     conv = (abs(step) <= tol) | ((abs(step) < 1e-4 * (abs(x) + 1.0))
                                  & (K * step * step <= 0.01 * tol))
-    # 1/(T (T - step)) = inv_T^2 (1 + step inv_T + ...): R at xn.
-    z = B * step * inv_T * inv_T * (1.0 + step * inv_T + (step * inv_T) ** 2)
-    return xn, R * _exp_poly(z), conv, z
+    # 1/T_n = 1/(T - step) = inv_T / (1 - step inv_T); R at xn from exp(B (1/T_n - 1/T)).
+    u = step * inv_T
+    inv_Tn = inv_T / (1.0 - u)
+    z = B * u * inv_Tn
+    E = 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z * (1.0 / 24.0))))
+    return xn, R * E, inv_Tn, conv, z
+
+
+#: ``done`` codes of :func:`_predict_row`: not taken (solve the pixel again), or the Newton
+#: steps taken; PENDING: valid after one step, but not yet converged.
+PENDING = 3
 
 
 @njit(cache=True, error_model="numpy")
 def _predict_row(src, p1, p2, R_ref, b, B, Ts, rtol, T_max, inv_Tr, e_r, c_r, s_r, ds_r,
-                 x_out, R_out, done_out):
+                 x_out, R_out, inv_T, done_out):
     """Prediction and up to two Newton steps of one row, a = src p1 p2 (K), written without
     branches (and with IEEE division, ``error_model='numpy'``) so that the compiler
-    vectorizes it. ``done_out`` (the Newton steps taken, 0 for none) marks the pixels
-    that met the tolerance with every
-    exponent inside the polynomial's range and the iterate inside the bracket (a, inf);
-    the others are solved again by :func:`_solve_pixel`."""
-    atol = rtol * 1e-3
+    vectorizes it; the second step only when some pixel of the row needs it. ``done_out``
+    (the Newton steps taken, 0 for none) marks the pixels that met the tolerance with
+    every exponent inside its polynomial's range and the iterate inside the bracket
+    (a, inf); the others are solved again by :func:`_solve_pixel`. ``inv_T``: scratch."""
+    atol = ROOT_ATOL
+    pending = 0
     for j in range(x_out.shape[0]):
         a = src[j] * p1[j] * p2[j]
         x0 = np.float64(c_r[j]) + np.float64(s_r[j]) * a - np.float64(ds_r[j]) * Ts
         T0 = Ts + x0
-        z0 = B * (1.0 / T0 - inv_Tr[j])
+        inv_T0 = 1.0 / T0
+        z0 = B * (inv_T0 - inv_Tr[j])
         R0 = R_ref[j] * (e_r[j] * _exp_poly(z0))
-        bb = b[j]
-        x1, R1, c1, z1 = _newton_lane(x0, a, bb, R0, B, Ts, rtol, atol)
-        x2, R2, c2, z2 = _newton_lane(x1, a, bb, R1, B, Ts, rtol, atol)
+        x1, R1, inv_T1, c1, z1 = _newton_lane(x0, inv_T0, a, b[j], R0, B, rtol, atol)
         # For h concave and increasing, every Newton step lands at or left of the root:
         # after the first one the iteration climbs to it and stays in the bracket.
-        valid = ((abs(z0) <= POLY_EXP_MAX) & (abs(z1) <= POLY_EXP_MAX) & (e_r[j] > 0.0)
+        valid = ((abs(z0) <= POLY_EXP_MAX) & (abs(z1) <= STEP_EXP_MAX) & (e_r[j] > 0.0)
                  & (Ts + a > 0.0) & (T0 > 0.0) & (x1 > a))
-        x = x1 if c1 else x2
-        ok = valid & (c1 | ((abs(z2) <= POLY_EXP_MAX) & c2)) & (Ts + x <= T_max)
-        x_out[j] = x
-        R_out[j] = R1 if c1 else R2
-        done_out[j] = (1 if c1 else 2) if ok else 0
+        x_out[j] = x1
+        R_out[j] = R1
+        inv_T[j] = inv_T1
+        code = (1 if Ts + x1 <= T_max else 0) if c1 else PENDING
+        done_out[j] = code if valid else 0
+        pending += 1 if valid and not c1 else 0
+    if pending == 0:
+        return
+    for j in range(x_out.shape[0]):
+        a = src[j] * p1[j] * p2[j]
+        x2, R2, _, c2, z2 = _newton_lane(x_out[j], inv_T[j], a, b[j], R_out[j], B, rtol, atol)
+        ok = c2 & (abs(z2) <= STEP_EXP_MAX) & (Ts + x2 <= T_max)
+        second = done_out[j] == PENDING
+        x_out[j] = x2 if second else x_out[j]
+        R_out[j] = R2 if second else R_out[j]
+        done_out[j] = (2 if ok else 0) if second else done_out[j]
 
 
 @njit(cache=True, error_model="numpy")
@@ -274,35 +253,37 @@ def solve_frames_predicted(Q, A, use_A, R_ref, g, fq, variant, b, B, T_ref, T_s,
     """
     n_frames, rows, cols = dT_out.shape
     fq_row = fq.shape[0] > 1
-    for k in prange(n_frames * rows):
-        n = k // rows
-        i = k - n * rows
-        Ts = T_s[n]
+    # Row by row, all frames of the chunk: a row's per-pixel maps stay in cache.
+    for i in prange(rows):
         R_row = np.empty(cols)
+        inv_T = np.empty(cols)
         p1 = np.empty(cols)
         p2 = np.empty(cols)
         done = np.empty(cols, np.uint8)
         _row_scale(g[i], fq[i] if fq_row else fq[0], variant, use_A, p1, p2)
-        _predict_row(A[n, i] if use_A else Q[n, i], p1, p2, R_ref[i], b[i], B, Ts, rtol,
-                     T_max, inv_Tr[i], e_r[i], c_r[i], s_r[i], ds_r[i], dT_out[n, i], R_row,
-                     done)
-        for j in range(cols):
-            if done[j]:
-                v_out[n, i, j] = I * R_row[j]
-                status_out[n, i, j] = STATUS_OK
-                iters_out[n, i, j] = done[j]
-                continue
-            if use_A:
-                a = A[n, i, j]
-            else:
-                a = _rise(Q[n, i, j], fq, g, i, j, variant)
-            x0 = np.float64(c_r[i, j]) + np.float64(s_r[i, j]) * a - np.float64(ds_r[i, j]) * Ts
-            x, v, st, it = _solve_pixel(a, b[i, j], R_ref[i, j], B, T_ref, Ts, rtol, max_iter,
-                                        T_max, I, x0, e_r[i, j], inv_Tr[i, j])
-            dT_out[n, i, j] = x
-            v_out[n, i, j] = v
-            status_out[n, i, j] = st
-            iters_out[n, i, j] = it
+        for n in range(n_frames):
+            Ts = T_s[n]
+            _predict_row(A[n, i] if use_A else Q[n, i], p1, p2, R_ref[i], b[i], B, Ts, rtol,
+                         T_max, inv_Tr[i], e_r[i], c_r[i], s_r[i], ds_r[i], dT_out[n, i],
+                         R_row, inv_T, done)
+            for j in range(cols):
+                if done[j]:
+                    v_out[n, i, j] = I * R_row[j]
+                    status_out[n, i, j] = STATUS_OK
+                    iters_out[n, i, j] = done[j]
+                    continue
+                if use_A:
+                    a = A[n, i, j]
+                else:
+                    a = _rise(Q[n, i, j], fq, g, i, j, variant)
+                x0 = (np.float64(c_r[i, j]) + np.float64(s_r[i, j]) * a
+                      - np.float64(ds_r[i, j]) * Ts)
+                x, v, st, it = _solve_pixel(a, b[i, j], R_ref[i, j], B, T_ref, Ts, rtol,
+                                            max_iter, T_max, I, x0, e_r[i, j], inv_Tr[i, j])
+                dT_out[n, i, j] = x
+                v_out[n, i, j] = v
+                status_out[n, i, j] = st
+                iters_out[n, i, j] = it
 
 
 @njit(cache=True, parallel=True)
@@ -319,38 +300,29 @@ def lagged_rise(Q, g, decay, T_s, T_prev, theta_prev, has_prev, theta_out):
     """
     n_frames, rows, cols = Q.shape
     for i in prange(rows):
-        for j in range(cols):
-            ig = 1.0 / g[i, j]
-            d = decay[i, j]
-            th = theta_prev[i, j]
-            Tp = T_prev
-            start = has_prev
-            for n in range(n_frames):
-                eq = Q[n, i, j] * 1.0 * ig
+        th = theta_prev[i].copy()
+        for n in range(n_frames):
+            start = has_prev or n > 0
+            dTs = (T_prev - T_s[0]) if n == 0 else (T_s[n - 1] - T_s[n])
+            for j in range(cols):
+                eq = Q[n, i, j] * 1.0 * (1.0 / g[i, j])
                 if start:
-                    th = eq + (th + (Tp - T_s[n]) - eq) * d
+                    th[j] = eq + (th[j] + dTs - eq) * decay[i, j]
                 else:
-                    th = eq
-                    start = True
-                Tp = T_s[n]
-                theta_out[n, i, j] = th
+                    th[j] = eq
+                theta_out[n, i, j] = th[j]
 
 
 @njit(cache=True, parallel=True)
-def carry_theta(theta_end, Q, g, C, after, Ts_last, Ts_next, failed, out):
-    """Rise at the start of the next frame from the rise at the end of a pulse (K).
-
-    Relaxes over ``after`` seconds (the rest of the frame), then the substrate step from
-    Ts_last to Ts_next: the same operations as :func:`model.core.transient.integrate_frames`
-    between two frames, so a sequence split into chunks gives the same bits. A failed pixel
-    restarts from 0 (its frames are railed; the caller keeps its status).
-    """
+def relax_after_pulse(theta_end, Q, g, C, after, failed, out):
+    """Rise (K) at the end of a frame from the rise at the end of its pulse: the unbiased
+    relaxation over ``after`` seconds by :func:`model.core.transient.relax`, the operation
+    :func:`model.core.transient.integrate_frames` does between two frames (the substrate
+    step follows at the next frame's start), so a sequence split into chunks gives the same
+    bits. A failed pixel restarts from 0 (its frames are railed; the caller keeps its
+    status)."""
     for p in prange(theta_end.shape[0]):
-        if failed[p]:
-            out[p] = 0.0
-        else:
-            th = relax(theta_end[p], Q[p], g[p], C[p], after)
-            out[p] = th + (Ts_last - Ts_next)
+        out[p] = 0.0 if failed[p] else relax(theta_end[p], Q[p], g[p], C[p], after)
 
 
 def empty_solution(shape):

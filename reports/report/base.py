@@ -19,10 +19,6 @@ import numpy as np
 FLOAT_REL_TOL = 1e-6
 FLOAT_ABS_TOL = 1e-9
 
-#: Phase names, in the order they run (summary.json's ``phases``).
-PHASES = ("frames", "calibration", "sweep", "synth", "paper", "cosim", "precision")
-
-
 @dataclass
 class Report:
     """Everything a run collects: sections, metrics, figures and phase times."""
@@ -34,6 +30,9 @@ class Report:
     phases: dict[str, float] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     verbose: bool = True
+    #: The typed results of the studies, for the phases after the one that ran them
+    #: (``sweep``: :class:`irnuc.reports.studies.sweep.SweepResult`); not serialised.
+    studies: dict[str, Any] = field(default_factory=dict)
 
     def metric(self, name: str, value: float | int | None, better: str, unit: str = "",
                abs_tol: float | None = None, rel_tol: float | None = None) -> None:
@@ -74,8 +73,3 @@ def progress(label: str, enabled: bool) -> Callable[[int, int], None] | None:
 
     return ProgressBar(label)
 
-
-def point_key(p: dict[str, Any]) -> str:
-    """The metric name of a sweep point (its widths and roundings)."""
-    return (f"U{p['gain_int_bits']}.{p['gain_frac_bits']}_S{p['offset_int_bits']}.{p['offset_frac_bits']}"
-            f"_A{p['adc_bits']}_B{p['out_bits']}_{p['rounding']}_{p['coeff_rounding']}")

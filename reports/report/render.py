@@ -106,8 +106,7 @@ def paper_context(p: Mapping[str, Any]) -> dict[str, Any]:
         "physics": f"{100 * physics:.1f} %", "seed": f"{100 * seed:.1f} %", "between": between,
         "grange": f"gains {gl:.3f} to {gh:.3f}",
         "steps": " and ".join(f"{(gh - gl) * 2 ** b:.1f}" for b in bits[:2]),
-        "intbits": ", ".join(f"U{g}.{b}/S{o}.{b}"
-                             for (g, o), b in zip(main["int_bits"], bits, strict=True)),
+        "intbits": ", ".join(main["labels"]),
     }
 
 
@@ -121,8 +120,8 @@ def headline(rep: Report, summary: Mapping[str, Any]) -> list[tuple[str, str]]:
         r = s["sweep"].get("recommended")
         tol = s["sweep"]["tolerance"]
         if r:
-            text = (f"U{r['gain_int_bits']}.{r['gain_frac_bits']} gain, S{r['offset_int_bits']}."
-                    f"{r['offset_frac_bits']} offset: {r['bits_per_pixel']} bit/pixel, "
+            text = (f"{r['gain_format']} gain, {r['offset_format']} offset: "
+                    f"{r['bits_per_pixel']} bit/pixel, "
                     f"{tol['metric']} {fmt(r['error'])}")
             if r.get("synth"):
                 x = r["synth"]["xc7"]
@@ -203,10 +202,6 @@ def render_precision_page(result: Mapping[str, Any]) -> str:
     return environment().get_template("precision.html.j2").render(result=result, comps=comps)
 
 
-def _label(p: Mapping[str, Any]) -> str:
-    return f"U{p['gain_int_bits']}.{p['gain_frac_bits']} / S{p['offset_int_bits']}.{p['offset_frac_bits']}"
-
-
 def calibration_rows(c: Mapping[str, Any]) -> dict[str, Any]:
     return {
         "kinds": [[k, v["pixels"], v["found"], v["recall"]] for k, v in c["per_kind"].items()],
@@ -222,7 +217,7 @@ def sweep_rows(s: Mapping[str, Any]) -> dict[str, Any]:
     for p in s["points"]:
         hw = p.get("hw") or {}
         m = p["memory"]
-        rows.append([_label(p), p["bits_per_pixel"], p["err_max_lsb"], p["err_rms_lsb"],
+        rows.append([p["label"], p["bits_per_pixel"], p["err_max_lsb"], p["err_rms_lsb"],
                      p["residual_nu"], p["radial_fraction"], m["xc7_bram36"], m["ecp5_dp16kd"],
                      hw.get("xc7.lut"), hw.get("xc7.ff"), hw.get("xc7.dsp"), hw.get("fmax_mhz"),
                      hw.get("source"), p.get("datapath_cost"),
@@ -235,18 +230,16 @@ def sweep_rows(s: Mapping[str, Any]) -> dict[str, Any]:
     rec = None
     if r:
         m = r["memory"]
-        mem = [["gain word", f"U{r['gain_int_bits']}.{r['gain_frac_bits']}",
-                f"{r['gain_int_bits'] + r['gain_frac_bits']} bits"],
-               ["offset word", f"S{r['offset_int_bits']}.{r['offset_frac_bits']}",
-                f"{r['offset_int_bits'] + r['offset_frac_bits']} bits"],
+        mem = [["gain word", r["gain_format"], f"{r['gain_bits']} bits"],
+               ["offset word", r["offset_format"], f"{r['offset_bits']} bits"],
                ["bad-pixel flag", "", "1 bit"],
                ["coefficient word", "", f"{r['bits_per_pixel']} bits per pixel"],
                ["per frame", f"{m['pixels']} pixels",
                 f"{m['bits_per_frame']} bits = {m['bits_per_frame'] / 8 / 1024:.1f} KiB"],
                ["on chip, xc7", f"{m['xc7_bram36']} RAMB36E1",
-                "fits an XC7A100T (135)" if m["xc7_fits"] else "more than an XC7A100T has (135)"],
+                _fits(m["xc7_fits"], m["xc7_device"], m["xc7_bram36_available"])],
                ["on chip, ECP5", f"{m['ecp5_dp16kd']} DP16KD",
-                "fits an LFE5U-85F (208)" if m["ecp5_fits"] else "more than an LFE5U-85F has (208)"],
+                _fits(m["ecp5_fits"], m["ecp5_device"], m["ecp5_dp16kd_available"])],
                ["external memory", f"{m['external_bytes_per_pixel']} B per pixel on the bus",
                 f"{m['external_bytes_per_frame'] / 2**20:.2f} MiB per frame, "
                 f"{m['external_mbyte_per_s']:.1f} MB/s at {m['frame_rate_hz']:g} frames/s"]]
@@ -263,6 +256,10 @@ def sweep_rows(s: Mapping[str, Any]) -> dict[str, Any]:
                    f"{m['pixels']} pixels"]]
         rec = {"r": r, "memory": mem, "datapath": dp}
     return {"head": head, "rows": rows, "rec": rec}
+
+
+def _fits(fits: bool, device: str, blocks: int) -> str:
+    return f"fits an {device} ({blocks})" if fits else f"more than an {device} has ({blocks})"
 
 
 def synth_rows(sy: Mapping[str, Any]) -> dict[str, Any]:

@@ -113,7 +113,7 @@ def netd_mK(sensor: StudySensor, fpa_K: float, scene_K: float, resp_out: float,
 
     hook = getattr(model, "netd", None)
     if callable(hook):  # the drift-sequence work's figure, once it exists
-        return float(hook(sensor.config(fpa_K, fpa_K), scene_K)) * 1000.0
+        return float(hook(sensor.config(fpa_K, fpa_K, noise=True), scene_K)) * 1000.0
     codes, _ = frames_at(sensor, fpa_K, fpa_K, [scene_K], repeats=frames, noise=True)
     sd = float(np.median(codes.astype(np.float64).std(axis=0, ddof=1)))
     return 1000.0 * sd * out_per_adc / resp_out

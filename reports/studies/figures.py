@@ -211,8 +211,7 @@ def hardware_fronts(points: Sequence[Mapping[str, Any]], metric: str, max_error:
         if recommended is not None and by_index[recommended].get(key) is not None:
             r = by_index[recommended]
             ax.semilogy([r[key]], [err[recommended]], "*", ms=15, color="C3",
-                        label=f"recommended U{r['gain_int_bits']}.{r['gain_frac_bits']} / "
-                              f"S{r['offset_int_bits']}.{r['offset_frac_bits']}")
+                        label=f"recommended {r['label']}")
         ax.set_xlabel(label)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel(metric.replace("_", " "))

@@ -54,7 +54,9 @@ def coefficient_memory(bits_per_pixel: int, rows: int, cols: int,
         "bits_per_pixel": int(bits_per_pixel), "pixels": n,
         "bits_per_frame": int(bits_per_pixel) * n,
         "xc7_bram36": xc7, "xc7_fits": xc7 <= XC7_BRAM36_AVAILABLE,
+        "xc7_device": XC7_DEVICE, "xc7_bram36_available": XC7_BRAM36_AVAILABLE,
         "ecp5_dp16kd": ecp5, "ecp5_fits": ecp5 <= ECP5_DP16KD_AVAILABLE,
+        "ecp5_device": ECP5_DEVICE, "ecp5_dp16kd_available": ECP5_DP16KD_AVAILABLE,
         "external_bytes_per_pixel": bus_bytes,
         "external_bytes_per_frame": bus_bytes * n,
         "external_mbyte_per_s": round(bus_bytes * n * frame_rate_hz / 1e6, 3),
@@ -63,9 +65,8 @@ def coefficient_memory(bits_per_pixel: int, rows: int, cols: int,
 
 
 def widths(p: Mapping[str, Any]) -> tuple[int, int]:
-    """(gain word bits, offset word bits) of a sweep point."""
-    return (int(p["gain_int_bits"]) + int(p["gain_frac_bits"]),
-            int(p["offset_int_bits"]) + int(p["offset_frac_bits"]))
+    """(gain word bits, offset word bits) of a sweep point (its configuration's)."""
+    return int(p["gain_bits"]), int(p["offset_bits"])
 
 
 def fit_indices(points: Sequence[Mapping[str, Any]], n: int = 4) -> list[int]:

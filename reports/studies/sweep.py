@@ -36,19 +36,18 @@ import numpy as np
 from irnuc.common.errors import UserError
 from irnuc.common.executor import ExecutorHandle, open_executor
 
+
+class SweepError(UserError):
+    """A sweep specification is invalid (names the field, the value and the allowed range)."""
+
+
 ROUNDINGS = ("truncate", "half_up", "half_even")
 # The reference calibration's wide formats: no good pixel's coefficient saturates there.
 _REF_GAIN = (8, 20)
 _REF_OFFSET_EXTRA = 10  # offset integer bits = ADC bits + this (|gain * x| < 2^(A + 8))
 
 
-class SweepError(UserError):
-    """A sweep specification is invalid (names the field, the value and the allowed range)."""
-
-
-# ---------------------------------------------------------------------------------------
-# Specification
-# ---------------------------------------------------------------------------------------
+# ---- specification ------------------------------------------------------------------------
 @dataclass(frozen=True)
 class SensorSpec:
     """Which frames a sweep calibrates on and evaluates.
@@ -196,14 +195,36 @@ class SweepPoint:
             max_height=max(base.max_height, height),
             description="bit-width sweep point")
 
+    def formats(self):  # -> tuple[nuc_fixed.FixedFormat, nuc_fixed.FixedFormat]
+        """The gain and offset formats of the point (unsigned gain, signed offset: what
+        ``nuc_fixed.gain_format`` / ``offset_format`` give for its configuration)."""
+        from irnuc.nuc_fixed import FixedFormat
+
+        return (FixedFormat(self.gain_int_bits, self.gain_frac_bits, signed=False),
+                FixedFormat(self.offset_int_bits, self.offset_frac_bits, signed=True))
+
     def label(self) -> str:
-        return (f"U{self.gain_int_bits}.{self.gain_frac_bits} / S{self.offset_int_bits}."
-                f"{self.offset_frac_bits}")
+        """``U2.14 / S12.4``: the formats as ``FixedFormat`` writes them."""
+        g, o = self.formats()
+        return f"{g} / {o}"
+
+    def key(self) -> str:
+        """The point's name in metric keys: formats, ADC and output widths, roundings."""
+        g, o = self.formats()
+        return f"{g}_{o}_A{self.adc_bits}_B{self.out_bits}_{self.rounding}_{self.coeff_rounding}"
+
+    def record(self) -> dict[str, Any]:
+        """The point as the JSON fields every result of it carries (summary.schema.json,
+        ``point``): its fields, label, key, formats and the widths its configuration
+        derives. Whatever shows a point reads these, never re-deriving them."""
+        cfg = self.config(1, 1)
+        g, o = self.formats()
+        return {**asdict(self), "label": f"{g} / {o}", "key": self.key(),
+                "gain_format": str(g), "offset_format": str(o), "gain_bits": cfg.gain_bits,
+                "offset_bits": cfg.offset_bits, "bits_per_pixel": cfg.word_bits}
 
 
-# ---------------------------------------------------------------------------------------
-# Calibration set (frames + float NUC), built once in the parent
-# ---------------------------------------------------------------------------------------
+# ---- calibration set (frames + float NUC), built once in the parent ----------------------
 @dataclass
 class CalibrationSet:
     """Frames and the float two-point NUC of one (ADC bits, output bits) pair.
@@ -362,35 +383,31 @@ def resolve_points(axes: SweepAxes, sets: Mapping[tuple[int | None, int | None],
     return out
 
 
-# ---------------------------------------------------------------------------------------
-# One point (runs in a worker)
-# ---------------------------------------------------------------------------------------
+# ---- one point (runs in a worker) --------------------------------------------------------
 def quantized_nuc(cs: CalibrationSet, point: SweepPoint) -> tuple[np.ndarray, dict[str, Any]]:
     """Fixed-point NUC output (N, H, W) of the evaluation frames at one point.
 
     Coefficients are quantized from the float calibration with the point's coefficient
-    rounding, saturating (as :func:`nuc_fixed.calibrate.calibrate` does); bad pixels get
-    the median codes of the good pixels.
+    rounding, saturating, and bad pixels get the median codes of the good pixels: the
+    steps of :func:`nuc_fixed.calibrate.calibrate` (``quantize_coefficients``,
+    ``fill_flagged``).
     """
-    from irnuc.nuc_fixed import gain_format, nuc_core, offset_format
+    from irnuc.nuc_fixed import nuc_core
+    from irnuc.nuc_fixed.calibrate import fill_flagged, quantize_coefficients
 
     h, w = cs.gain.shape
     cfg = point.config(h, w)
-    gcode, gover = gain_format(cfg).quantize(cs.gain, point.coeff_rounding)
-    ocode, oover = offset_format(cfg).quantize(cs.offset, point.coeff_rounding)
-    good = cs.good
-    gcode = np.where(good, gcode, int(np.median(gcode[good])))
-    ocode = np.where(good, ocode, int(np.median(ocode[good])))
+    gcode, ocode, gover, oover = quantize_coefficients(cs.gain, cs.offset, cfg,
+                                                       point.coeff_rounding)
+    gcode, ocode, _ = fill_flagged(gcode, ocode, cs.bad)
     y = nuc_core(cs.raw_eval, gcode, ocode, cfg)
+    good = cs.good
     info = {
         "gain_saturated_fraction": float(gover[good].mean()),
         "offset_saturated_fraction": float(oover[good].mean()),
         "gain_saturated": int(gover[good].sum()),
         "offset_saturated": int(oover[good].sum()),
-        "bits_per_pixel": cfg.word_bits,
         "bits_per_frame": cfg.word_bits * h * w,
-        "gain_bits": cfg.gain_bits,
-        "offset_bits": cfg.offset_bits,
     }
     return y, info
 
@@ -428,7 +445,7 @@ def evaluate_point(cs: CalibrationSet, point: SweepPoint, threads: int | None = 
 
             numba.set_num_threads(old)
     headline_from = [r for r in per_temp if not r["calibration_point"]] or per_temp
-    rec: dict[str, Any] = {**asdict(point), **info}
+    rec: dict[str, Any] = {**point.record(), **info}
     for key in HEADLINE:
         vals = [r[key] for r in headline_from]
         if key == "psnr_db":  # worst = lowest; None (zero error) is the best
@@ -441,9 +458,7 @@ def evaluate_point(cs: CalibrationSet, point: SweepPoint, threads: int | None = 
     return rec
 
 
-# ---------------------------------------------------------------------------------------
-# Executors: processes, in-process, or Dask through the same submit/collect code
-# ---------------------------------------------------------------------------------------
+# ---- executors: processes, in-process, or Dask through the same submit/collect code ------
 def run_points(handle: ExecutorHandle,
                tasks: Sequence[tuple[SweepPoint, tuple[int | None, int | None]]],
                sets: Mapping[tuple[int | None, int | None], CalibrationSet],
@@ -462,20 +477,23 @@ def run_points(handle: ExecutorHandle,
     return [results[i] for i in sorted(results)]
 
 
-# ---------------------------------------------------------------------------------------
-# Whole sweep
-# ---------------------------------------------------------------------------------------
+# ---- whole sweep -------------------------------------------------------------------------
 ERROR_METRICS = ("err_max_lsb", "err_rms_lsb", "residual_nu", "residual_nu_adc_lsb", "radial_rms_lsb")
 
 
 @dataclass
 class SweepResult:
+    """A whole sweep: ``points`` holds each point's results (JSON-ready, the fields of
+    :meth:`SweepPoint.record` and the metrics), ``sweep_points`` the typed points of the
+    same index (their configurations)."""
+
     sensor: SensorSpec
     axes: SweepAxes
     points: list[dict[str, Any]]
     sets: dict[tuple[int | None, int | None], CalibrationSet]
     executor: str
     seconds: dict[str, float]
+    sweep_points: list[SweepPoint] = field(default_factory=list)
 
     def frame_shape(self) -> tuple[int, int]:
         return next(iter(self.sets.values())).gain.shape
@@ -562,7 +580,7 @@ def run_sweep(sensor: SensorSpec, axes: SweepAxes, *, workers: int = 2, schedule
         desc = handle.description
         seconds["points"] = time.perf_counter() - t0
     return SweepResult(sensor=sensor, axes=axes, points=points, sets=dict(sets), executor=desc,
-                       seconds=seconds)
+                       seconds=seconds, sweep_points=[p for p, _ in tasks])
 
 
 #: The most values one list argument may expand to (a sweep of more is a typo).

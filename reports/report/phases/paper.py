@@ -82,7 +82,8 @@ def phase_paper(rep: Report, progress: bool) -> None:
                              "err_max_lsb": [q["per_temp"][k]["err_max_lsb"] for q in pts],
                              "radial_fraction": [q["per_temp"][k]["radial_fraction"] for q in pts],
                              "gain_range": list(cs.coefficient_range()["gain"]),
-                             "int_bits": [[q["gain_int_bits"], q["offset_int_bits"]] for q in pts]})
+                             "int_bits": [[q["gain_int_bits"], q["offset_int_bits"]] for q in pts],
+                             "labels": [q["label"] for q in pts]})
                 if main_set is None:
                     main_set, main_points, main_sensor = cs, tasks, sensor
         # Table 2 images: uncorrected and each fraction width at every grid temperature.

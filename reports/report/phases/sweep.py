@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from irnuc.reports.report.base import Report, point_key, progress
+from irnuc.reports.report.base import Report, progress
 from irnuc.reports.report.phases.calibration import sensor_overrides
 
 #: LUTs one DSP48E1 counts for on the datapath axis (an 18 x 25 multiplier in fabric).
@@ -51,19 +51,23 @@ def check_sweep(s: Mapping[str, Any], source: str) -> None:
                  pipeline_name="sweep.pipeline")
 
 
-def recommended_config(p: Mapping[str, Any], rows: int, cols: int):
-    """The pipeline configuration of a sweep point for the configured frame (line buffers
-    of ``cols`` pixels, frames of up to ``rows`` lines)."""
-    from irnuc.reports.studies.sweep import SweepPoint
+#: The fields of a point's record (``SweepPoint.record``) the recommended entry repeats.
+_POINT_FIELDS = ("index", "label", "gain_format", "offset_format", "gain_bits", "offset_bits",
+                 "gain_int_bits", "gain_frac_bits", "offset_int_bits", "offset_frac_bits",
+                 "adc_bits", "out_bits", "rounding", "coeff_rounding", "bits_per_pixel",
+                 "err_max_lsb", "memory")
 
-    fields = {k: p[k] for k in SweepPoint.__dataclass_fields__}
-    cfg = SweepPoint(**fields).config(rows, cols)
+
+def recommended_config(point: Any, rows: int, cols: int, recommended: bool = False):
+    """The pipeline configuration of a sweep point (a ``SweepPoint``) for the configured
+    frame (line buffers of ``cols`` pixels, frames of up to ``rows`` lines)."""
+    g, o = point.formats()
+    cfg = point.config(rows, cols)
     return cfg.replace(
-        name="recommended" if p.get("recommended") else f"sweep{p['index']}",
+        name="recommended" if recommended else f"sweep{point.index}",
         max_width=cols, max_height=rows,
-        description=(f"U{p['gain_int_bits']}.{p['gain_frac_bits']} gain, S{p['offset_int_bits']}."
-                     f"{p['offset_frac_bits']} offset, from the bit-width sweep of irnuc report "
-                     f"({p['bits_per_pixel']} bits per pixel)"))
+        description=(f"{g} gain, {o} offset, from the bit-width sweep of irnuc report "
+                     f"({cfg.word_bits} bits per pixel)"))
 
 
 def _recommended_entry(rep: Report, p: Mapping[str, Any], metric: str, frame: tuple[int, int],
@@ -71,20 +75,15 @@ def _recommended_entry(rep: Report, p: Mapping[str, Any], metric: str, frame: tu
     from irnuc.reports.studies.hwcost import grid_edges
 
     rows, cols = frame
-    cfg = recommended_config({**p, "recommended": True}, rows, cols)
+    cfg = recommended_config(rep.studies["sweep"].sweep_points[p["index"]], rows, cols,
+                             recommended=True)
     edges = grid_edges(p, {k: axes[k] for k in SWEPT_AXES if k in axes})
     for e in edges:
         rep.notes.append(f"the recommended widths lie on the {e['edge']} edge of the swept "
                          f"{e['axis']} ({p[e['axis']]}); widen the sweep: {e['widen']}")
     return {
-        "index": p["index"],
-        "gain_int_bits": p["gain_int_bits"], "gain_frac_bits": p["gain_frac_bits"],
-        "offset_int_bits": p["offset_int_bits"], "offset_frac_bits": p["offset_frac_bits"],
-        "adc_bits": p["adc_bits"], "out_bits": p["out_bits"], "rounding": p["rounding"],
-        "coeff_rounding": p["coeff_rounding"],
-        "bits_per_pixel": p["bits_per_pixel"], "err_max_lsb": p["err_max_lsb"],
-        "metric": metric, "error": p[metric], "candidates": candidates,
-        "memory": p["memory"], "edges": edges,
+        **{k: p[k] for k in _POINT_FIELDS},
+        "metric": metric, "error": p[metric], "candidates": candidates, "edges": edges,
         "pipeline": cfg.to_dict(), "pipeline_digest": cfg.digest(), "pipeline_toml": cfg.to_toml(),
         "cosim": None, "synth": None,
     }
@@ -103,6 +102,7 @@ def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None
         sensor, axes = sweep_specs(s)
         res = run_sweep(sensor, axes, workers=s.get("workers", 2), scheduler=scheduler,
                         progress=progress("sweep", show_progress))
+        rep.studies["sweep"] = res
         d = res.to_dict(max_error=max_error, metric=metric)
         rows, cols = res.frame_shape()
         for p in d["points"]:
@@ -126,7 +126,7 @@ def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None
     rep.metric("sweep.best_residual_nu", min(p["residual_nu"] for p in pts), "lower")
     rep.metric("sweep.smallest_bits_per_pixel", sm["bits_per_pixel"], "lower", "bit")
     for p in pts:
-        k = point_key(p)
+        k = p["key"]
         rep.metric(f"sweep.point.{k}.err_max_lsb", p["err_max_lsb"], "lower", "LSB")
         rep.metric(f"sweep.point.{k}.err_rms_lsb", p["err_rms_lsb"], "lower", "LSB")
         rep.metric(f"sweep.point.{k}.residual_nu", p["residual_nu"], "lower")
@@ -165,7 +165,8 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
         fit = fit_indices(pts, int(sy.get("fit_points", 4)))
         cand = recommend(pts, max_error, metric)["candidates"][:3]  # in order of error
         todo = sorted(set(fit) | set(cand))
-        cfgs = [recommended_config(pts[i], rows, cols) for i in todo]
+        typed = rep.studies["sweep"].sweep_points
+        cfgs = [recommended_config(typed[i], rows, cols) for i in todo]
         results = synth_configs(cfgs, workers=int(sy.get("workers", 2)), scheduler=scheduler,
                                 progress=progress("synth", show_progress),
                                 speed=int(sy.get("speed", 6)), freq_mhz=float(sy.get("freq_mhz", 150.0)),
@@ -194,8 +195,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     d["synth"] = {
         "frame": [rows, cols], "dsp_lut_equivalent": dsp_w,
         "fit_indices": fit, "synthesized": [
-            {"index": i, "label": f"U{pts[i]['gain_int_bits']}.{pts[i]['gain_frac_bits']}/"
-                                  f"S{pts[i]['offset_int_bits']}.{pts[i]['offset_frac_bits']}",
+            {"index": i, "label": pts[i]["label"],
              "used_for_fit": i in fit, "fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"], "ecp5": r["ecp5"],
              "predicted": model.predict(widths(pts[i])), "cached": bool(r.get("cached")),
              "seconds": r.get("seconds"), "config_digest": r.get("config_digest")}

@@ -22,7 +22,7 @@ from types import ModuleType
 from irnuc.common.cache import cache_dir
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.io import file_lock, write_text_atomic
-from irnuc.common.process import ChildTimeout, run_child
+from irnuc.common.process import ChildTimeout, python_module, run_child
 from irnuc.cosim._cocotb_adapter import PORTS_ONLY
 from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
 from irnuc.cosim.verilator import (
@@ -48,6 +48,11 @@ FAST_ARGS: tuple[str, ...] = ("-O3", "--x-assign", "fast", "--x-initial", "fast"
 #: Verilator code coverage of a ``coverage=True`` build: line (statement and branch) and
 #: toggle coverage, per module (irnuc.cosim.coverage.code_coverage reads the result).
 COVERAGE_ARGS: tuple[str, ...] = ("--coverage-line", "--coverage-toggle")
+#: The modules whose ``assert`` statements cocotb has pytest rewrite (cocotb's
+#: ``COCOTB_REWRITE_ASSERTION_FILES``): the testbenches, not every module imported in the
+#: simulator (cocotb's default ``*.py`` rewrites numpy, numba and irnuc on every run,
+#: seconds per simulation, as nothing can be cached under ``PYTHONDONTWRITEBYTECODE``).
+REWRITE_ASSERTION_FILES = "tb_*.py"
 
 
 class SimulationTimeout(RtlError):
@@ -148,7 +153,7 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
                           "waves": waves, "always": True, "log_file": str(log)}}
         spec_file = build_dir / "irnuc_build_spec.json"
         write_text_atomic(spec_file, json.dumps(spec))
-        proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
+        proc = run_child(python_module("irnuc.cosim._child", spec_file),
                          log=build_dir / "runner.log")
         if proc.returncode != 0:
             raise RtlError(f"Verilator build of {top} for {cfg.name} failed (exit "
@@ -202,7 +207,10 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     coverage_file(results_xml).unlink(missing_ok=True)
     test_dir = results_xml.parent / (results_xml.stem + ".run")
     test_dir.mkdir(parents=True, exist_ok=True)
-    extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()), **(env or {})}
+    extra_env = {"IRNUC_CONFIG_JSON": json.dumps(bld.cfg.to_dict()),
+                 "COCOTB_REWRITE_ASSERTION_FILES": os.environ.get(
+                     "COCOTB_REWRITE_ASSERTION_FILES", REWRITE_ASSERTION_FILES),
+                 **(env or {})}
     wave_file = results_xml.with_suffix(waves_suffix())
     test_args = ["--trace-file", str(wave_file)] if waves else []
     plusargs = ([f"+verilator+coverage+file+{coverage_file(results_xml)}"]
@@ -221,7 +229,7 @@ def run(bld: Build, test_module: str, *, env: Mapping[str, str] | None = None,
     # so the child does not inherit PYTEST_CURRENT_TEST: every result goes to the XML.
     child_env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
     try:
-        proc = run_child([sys.executable, "-m", "irnuc.cosim._child", str(spec_file)],
+        proc = run_child(python_module("irnuc.cosim._child", spec_file),
                          timeout=timeout, env=child_env, log=test_dir / "runner.log")
     except ChildTimeout as exc:
         raise SimulationTimeout(f"simulation of {bld.top} ({test_module}) stopped: {exc}; "

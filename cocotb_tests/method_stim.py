@@ -1,0 +1,172 @@
+"""Stimulus for the correction methods in RTL: random calibrations over every code range,
+FPA readings around the method's breakpoints, and corner frames chosen to hit every
+coverage bin of the method (``irnuc.cosim.method_coverage``).
+
+Every value comes from the configuration's formats and memory layouts
+(``PipelineConfig.memories`` / ``registers``); every draw takes the caller's generator.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from irnuc.cosim.method_coverage import frame_classes, method_points
+from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.layout import field_range
+from irnuc.nuc_fixed.method_top import MethodCoefficients
+
+
+@dataclass(frozen=True)
+class FramePlan:
+    """A frame to drive: its calibration, raw codes and FPA reading (or None)."""
+
+    coeffs: MethodCoefficients
+    raw: np.ndarray
+    reading: int | None
+
+
+def _codes(rng: np.random.Generator, lo: int, hi: int, shape: tuple[int, ...],
+           biased: bool) -> np.ndarray:
+    """Uniform codes in [lo, hi]; ``biased``: a quarter at the ends or 0, a quarter with
+    their low bits cleared (sums then fall on exact halves: rounding ties)."""
+    v = rng.integers(lo, hi + 1, size=shape, dtype=np.int64)
+    if not biased:
+        return v
+    kind = rng.integers(0, 8, size=shape)
+    ends = np.array([lo, hi, 0 if lo <= 0 <= hi else lo], dtype=np.int64)
+    v = np.where(kind == 0, ends[rng.integers(0, 3, size=shape)], v)
+    bits = max(1, int(hi - lo).bit_length())
+    zeros = rng.integers(0, bits, size=shape)
+    cleared = (v >> zeros) << zeros
+    return np.where((kind == 1) | (kind == 2), np.clip(cleared, lo, hi), v)
+
+
+def random_registers(cfg: PipelineConfig, rng: np.random.Generator,
+                     biased: bool = False) -> dict[str, object]:
+    """Calibration registers of the method, in their code ranges (table readings strictly
+    increasing)."""
+    out: dict[str, object] = {}
+    for r in cfg.registers.values():
+        if r.source != "calibration":
+            continue
+        lo, hi = field_range(r.width, r.signed)
+        if r.name == "table_readings":
+            k = r.count
+            span = hi - lo + 1
+            gaps = rng.integers(1, max(2, span // (k + 1)), size=k)
+            start = int(rng.integers(lo, max(lo + 1, span - int(gaps.sum()))))
+            out[r.name] = tuple(int(v) for v in start + np.cumsum(gaps) - gaps[0])
+        elif r.name == "t_ref":
+            # Near the middle of the reading range, so both clamps can be reached.
+            mid = (hi + 1) // 2
+            out[r.name] = int(np.clip(mid + rng.integers(-(hi // 8) - 1, hi // 8 + 2), lo, hi))
+        else:
+            out[r.name] = int(_codes(rng, lo, hi, (), biased))
+    return out
+
+
+def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
+                        bad_fraction: float = 0.05, biased: bool = False,
+                        registers: dict[str, object] | None = None) -> MethodCoefficients:
+    """Every calibration memory's fields drawn over their code ranges; one bad map for all
+    tables (table_interp)."""
+    bad = rng.random((h, w)) < bad_fraction
+    fields: dict[str, dict[str, np.ndarray]] = {}
+    for m in cfg.memories.values():
+        if m.source != "calibration":
+            continue
+        vals: dict[str, np.ndarray] = {}
+        for f in m.fields:
+            if f.name == "bad":
+                vals[f.name] = bad.copy()
+            else:
+                lo, hi = field_range(f.width, f.signed)
+                vals[f.name] = _codes(rng, lo, hi, (h, w), biased)
+        fields[m.name] = vals
+    regs = random_registers(cfg, rng, biased) if registers is None else registers
+    return MethodCoefficients(cfg=cfg, fields=fields, registers=regs)
+
+
+def reading_marks(cfg: PipelineConfig, coeffs: MethodCoefficients) -> list[int]:
+    """The readings where the method's frame values change behaviour: t_ref and the
+    clamps (tc_offset), the table readings and the midpoints between them (table_interp:
+    w = 1/2 on an even span, a rounding tie)."""
+    if cfg.base_method == "tc_offset":
+        lim = (1 << int(cfg.reading_range_bits or 1)) - 1
+        t = int(coeffs.registers["t_ref"])
+        return [t, t - lim - 1, t - lim, t + lim, t + lim + 1, t - 1, t + 1]
+    rs = [int(v) for v in coeffs.registers["table_readings"]]
+    return rs + [(a + b) // 2 for a, b in itertools.pairwise(rs)] + [rs[0] - 1, rs[-1] + 1]
+
+
+def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
+                   rng: np.random.Generator, mark: int | None = None) -> int | None:
+    """An FPA reading for a frame (None for methods without one): anywhere, or near the
+    method's breakpoints (:func:`reading_marks`); ``mark`` picks breakpoint ``mark``
+    exactly (cyclically)."""
+    if cfg.base_method not in ("tc_offset", "table_interp"):
+        return None
+    hi = (1 << int(cfg.reading_bits or 1)) - 1
+    marks = reading_marks(cfg, coeffs)
+    if mark is not None:
+        return int(np.clip(marks[mark % len(marks)], 0, hi))
+    kind = int(rng.integers(0, 4))
+    if kind == 0:
+        return int(rng.integers(0, hi + 1))
+    base = marks[int(rng.integers(0, len(marks)))]
+    return int(np.clip(base + rng.integers(-3, 4) * (kind - 1), 0, hi))
+
+
+def random_raw(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
+               biased: bool = False) -> np.ndarray:
+    return _codes(rng, 0, (1 << cfg.adc_bits) - 1, (h, w), biased)
+
+
+def _corner_candidate(cfg: PipelineConfig, rng: np.random.Generator, h: int, w: int,
+                      index: int) -> FramePlan:
+    """A biased random frame; per method some pixels are put on its breakpoints, and every
+    other candidate's reading is a breakpoint (:func:`reading_marks`, in turn)."""
+    c = random_coefficients(cfg, h, w, rng, bad_fraction=0.0, biased=True)
+    raw = random_raw(cfg, h, w, rng, biased=True)
+    base = cfg.base_method
+    for name in ("gain", "level"):  # the global registers at 0, their largest code, other
+        r = cfg.registers.get(name)
+        if r is not None and r.source == "calibration" and index % 3 < 2:
+            c.registers[name] = (0, (1 << r.width) - 1)[index % 3]
+    if base == "piecewise":
+        # Knees exactly at some pixels' codes (d = 0).
+        kf = cfg.format("knee").frac_bits
+        at = rng.random((h, w)) < 0.25
+        c.fields["coeffs"]["knee"] = np.where(at, raw << kf, c.fields["coeffs"]["knee"])
+    return FramePlan(coeffs=c, raw=raw, reading=random_reading(
+        cfg, c, rng, mark=index // 2 if index % 2 == 0 else None))
+
+
+def corner_frames(cfg: PipelineConfig, rng: np.random.Generator, h: int = 8, w: int = 8,
+                  pool: int = 60) -> list[FramePlan]:
+    """Frames that together hit every method bin of :func:`method_points` (but the
+    frame-boundary one), chosen greedily from ``pool`` biased random frames.
+
+    Raises AssertionError naming the bins the pool missed (the generator must reach them).
+    """
+    points, _ = method_points(cfg)
+    want = {(p, b) for p, bins in points.items() if p != "method.frame_word" for b in bins}
+    cands = []
+    for i in range(pool):
+        fp = _corner_candidate(cfg, rng, h, w, i)
+        got = {(p, b) for p, bins in frame_classes(fp.coeffs, fp.raw, fp.reading).items()
+               for b in bins}
+        cands.append((fp, got & want))
+    chosen: list[FramePlan] = []
+    left = set(want)
+    while left:
+        fp, got = max(cands, key=lambda c: len(c[1] & left))
+        if not got & left:
+            break
+        chosen.append(fp)
+        left -= got
+    assert not left, f"{cfg.name}: no corner frame reaches {sorted(left)}"
+    return chosen

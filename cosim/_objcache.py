@@ -1,0 +1,122 @@
+"""Verilator's runtime objects, compiled once and shared by every build.
+
+Every cocotb build compiles the same Verilator runtime (``verilated.cpp``,
+``verilated_vpi.cpp``, ``verilated_threads.cpp``, ``verilated_dpi.cpp``, with coverage or
+tracing ``verilated_cov.cpp`` and the FST writer): about half of a build's compile time,
+although nothing in them depends on the design. After a build, :func:`store` keeps them
+in the irnuc cache under a key of everything their compilation depends on (the generated
+makefiles' settings, the Verilator and compiler versions); before the next build's
+``make``, :func:`seed` copies them into the new build folder, newer than its makefile, so
+make links them instead of compiling them again. The design's own objects (the model and
+cocotb's ``verilator.cpp``, which includes the model's header) are always compiled.
+
+Run by the cocotb runner between Verilator and make (``cosim._cocotb_adapter``):
+``python -m irnuc.cosim._objcache seed|store BUILD_DIR``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from irnuc.common.cache import cache_dir
+from irnuc.common.digest import digest
+
+
+def _makefiles(build_dir: Path) -> tuple[Path, Path]:
+    """The build's generated makefile and class list (``<prefix>.mk``,
+    ``<prefix>_classes.mk``; the prefix is ``Vtop`` for cocotb's builds)."""
+    (classes,) = build_dir.glob("*_classes.mk")
+    return classes.with_name(classes.name.removesuffix("_classes.mk") + ".mk"), classes
+
+
+def _global_objects(build_dir: Path) -> list[str]:
+    """The runtime objects the build's makefiles list (``VM_GLOBAL_FAST``/``_SLOW``)."""
+    text = _makefiles(build_dir)[1].read_text()
+    names: list[str] = []
+    for block in re.findall(r"VM_GLOBAL_(?:FAST|SLOW) \+= \\\n((?:  \S+ \\\n)*)", text):
+        names += [ln.strip().rstrip("\\").strip() for ln in block.splitlines()]
+    return [f"{n}.o" for n in names if n]
+
+
+def _compiler() -> str:
+    cxx = os.environ.get("CXX", "c++")
+    try:
+        out = subprocess.run([cxx, "--version"], capture_output=True, text=True, check=False)
+        return out.stdout.splitlines()[0] if out.stdout else cxx
+    except OSError:
+        return cxx
+
+
+def key(build_dir: Path) -> str:
+    """What the runtime objects of ``build_dir`` depend on: the makefiles' settings (not
+    the design-specific class lists and targets), the Verilator headers' folder and the
+    compiler."""
+    mk_file, classes_file = _makefiles(build_dir)
+    mk = [ln for ln in mk_file.read_text().splitlines()
+          if not re.match(r"(default:|\S+: \$\(VK_USER_OBJS\)|VM_(MOD)?PREFIX)", ln)]
+    classes = [ln for ln in classes_file.read_text().splitlines()
+               if ln.startswith("VM_") and "+=" not in ln]
+    return digest({"mk": mk, "classes": classes, "globals": _global_objects(build_dir),
+                   "compiler": _compiler()})
+
+
+def _store_dir(build_dir: Path) -> Path:
+    return cache_dir("sim_build", "_runtime") / key(build_dir)
+
+
+def seed(build_dir: Path) -> int:
+    """Copy the cached runtime objects (and their dependency files) into ``build_dir``,
+    stamped now; return how many (0 when none are cached yet)."""
+    src = _store_dir(build_dir)
+    if not src.is_dir():
+        return 0
+    n = 0
+    for obj in _global_objects(build_dir):
+        for name in (obj, obj.removesuffix(".o") + ".d"):
+            if (src / name).is_file():
+                shutil.copyfile(src / name, build_dir / name)
+                os.utime(build_dir / name)  # newer than the makefile generated just before
+                n += 1
+    return n
+
+
+def store(build_dir: Path) -> bool:
+    """Keep ``build_dir``'s runtime objects for the next builds (once per key; the folder
+    is filled aside and renamed into place). Returns whether it stored them."""
+    dst = _store_dir(build_dir)
+    objs = _global_objects(build_dir)
+    if dst.is_dir() or not objs or not all((build_dir / o).is_file() for o in objs):
+        return False
+    tmp = Path(tempfile.mkdtemp(prefix=".runtime-", dir=dst.parent))
+    for obj in objs:
+        for name in (obj, obj.removesuffix(".o") + ".d"):
+            if (build_dir / name).is_file():
+                shutil.copyfile(build_dir / name, tmp / name)
+    try:
+        tmp.rename(dst)
+    except OSError:  # another build stored them first
+        shutil.rmtree(tmp, ignore_errors=True)
+        return False
+    return True
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 2 or argv[0] not in ("seed", "store"):
+        print("usage: python -m irnuc.cosim._objcache seed|store BUILD_DIR", file=sys.stderr)
+        return 2
+    build_dir = Path(argv[1])
+    if argv[0] == "seed":
+        seed(build_dir)
+    else:
+        store(build_dir)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

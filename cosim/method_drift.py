@@ -1,0 +1,165 @@
+"""Co-simulation of the correction methods on drift sequences of the physics model.
+
+A camera's FPA temperature drifts frame after frame; the methods exist for that. Here
+every base method is calibrated on the model (``nuc_fixed.plan.run_plan`` and
+``nuc_fixed.fit.calibrate_points``, one plan for all), then a sequence of frames with the
+FPA temperature ramping (``environment.T_substrate`` and ``T_cam`` set per frame, the
+on-die sensor's reading per frame, a scene moving in temperature) is corrected by the
+RTL (the bulk harness of ``method_dpc_top``, :mod:`irnuc.cosim.method_bulk`) and by the
+golden model, and every output pixel is compared.
+
+:func:`run_campaign` is the API of ``benchmarks/bench_methods_cosim.py``;
+``cocotb_tests/test_method_bulk.py`` runs it on small frames.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
+
+__all__ = ["DriftSequence", "calibrate_methods", "drift_sequence", "run_campaign"]
+
+#: The calibration plan of the campaign: scenes and FPA points, K (the plan of
+#: tests/test_methods_calibrate.py), two frames per point.
+PLAN_SCENES = (290.0, 330.0, 370.0)
+PLAN_FPA = (288.0, 298.0, 308.0)
+
+
+@dataclass(frozen=True)
+class DriftSequence:
+    """Frames of a drifting camera.
+
+    Attributes
+    ----------
+    codes : (N, H, W) raw codes
+    fpa_K : (N,) FPA temperature of each frame, K
+    scene_K : (N,) scene base temperature, K
+    reading : (N,) the on-die sensor's reading, codes
+    """
+
+    codes: np.ndarray
+    fpa_K: np.ndarray
+    scene_K: np.ndarray
+    reading: np.ndarray
+
+
+def _overrides(shape: tuple[int, int], extra: Mapping[str, Any] | None) -> dict[str, Any]:
+    return {"fpa.active_rows": int(shape[0]), "fpa.active_cols": int(shape[1]),
+            **dict(extra or {})}
+
+
+def drift_sequence(frames: int, shape: tuple[int, int] = (480, 640), *,
+                   fpa_K: tuple[float, float] = (289.0, 307.0),
+                   scene_K: tuple[float, float] = (295.0, 360.0), scene: str = "gradient",
+                   sensor: str = "default", overrides: Mapping[str, Any] | None = None,
+                   seed: int = 0) -> DriftSequence:
+    """``frames`` frames with the FPA (and housing) temperature ramping linearly over
+    ``fpa_K`` and the scene over ``scene_K``; the default on-die sensor reads each frame.
+
+    Every frame is the model at that frame's temperatures (``environment.T_substrate`` =
+    ``environment.T_cam`` = the FPA temperature), one seed throughout: the same pixels
+    drift.
+    """
+    from irnuc import model
+    from irnuc.model.fpa_sensor import FpaSensor
+    from irnuc.nuc_fixed.plan import sensor_config
+
+    t_fpa = np.linspace(fpa_K[0], fpa_K[1], frames)
+    t_scene = np.linspace(scene_K[0], scene_K[1], frames)
+    codes = []
+    ov = _overrides(shape, overrides)
+    for tf, ts in zip(t_fpa, t_scene, strict=True):
+        cfg = sensor_config(sensor, {**ov, "environment.T_substrate": float(tf),
+                                     "environment.T_cam": float(tf)})
+        codes.append(model.simulate(cfg, [float(ts)], scene, seed=seed).codes[0])
+    reading = FpaSensor().read(t_fpa, seed=seed)
+    return DriftSequence(codes=np.stack(codes), fpa_K=t_fpa, scene_K=t_scene, reading=reading)
+
+
+def calibrate_methods(cfgs: Sequence[PipelineConfig], shape: tuple[int, int], *,
+                      frames: int = 2, sensor: str = "default",
+                      overrides: Mapping[str, Any] | None = None, seed: int = 0
+                      ) -> dict[str, MethodCoefficients]:
+    """Every configuration calibrated on one plan run on the model (name -> codes)."""
+    from irnuc.nuc_fixed.fit import calibrate_points
+    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+
+    plan = CalibrationPlan(scene=PLAN_SCENES, fpa=PLAN_FPA, frames=frames)
+    pts = run_plan(plan, sensor, _overrides(shape, overrides), seed=seed)
+    return {c.name: calibrate_points(pts, c).coeffs for c in cfgs}
+
+
+@dataclass
+class MethodRun:
+    """One method's campaign result."""
+
+    name: str
+    method: str
+    frames: int
+    pixels: int
+    compared: int
+    mismatches: int
+    missing: int
+    extra: int
+    frame_err: bool
+    cycles: int
+    sim_seconds: float
+    golden_seconds: float
+    readings: tuple[int, int]
+    lines: list[str] = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        return (self.mismatches == 0 and self.missing == 0 and self.extra == 0
+                and not self.frame_err and self.compared == self.pixels)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "method": self.method, "frames": self.frames,
+                "pixels": self.pixels, "compared": self.compared,
+                "mismatches": self.mismatches, "missing": self.missing, "extra": self.extra,
+                "frame_err": self.frame_err, "cycles": self.cycles, "passed": self.passed,
+                "sim_seconds": round(self.sim_seconds, 3),
+                "golden_seconds": round(self.golden_seconds, 3),
+                "sim_pixels_per_s": round(self.pixels / max(self.sim_seconds, 1e-9)),
+                "reading_range": list(self.readings), "lines": self.lines[:10]}
+
+
+def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
+                 shape: tuple[int, int] = (480, 640), *, shards: int = 2,
+                 idle_percent: int = 0, stall_percent: int = 0, seed: int = 0,
+                 sequence: DriftSequence | None = None,
+                 coeffs: Mapping[str, MethodCoefficients] | None = None) -> list[MethodRun]:
+    """Calibrate every configuration on the model, make a drift sequence, and co-simulate
+    each method on it (bulk harness, bit for bit against ``method_top``)."""
+    from irnuc.cosim.bulk import build_bulk
+    from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
+
+    seq = sequence or drift_sequence(frames, shape, seed=seed)
+    cals = coeffs or calibrate_methods(cfgs, shape, seed=seed)
+    out = []
+    for cfg in cfgs:
+        c = cals[cfg.name]
+        needs = cfg.base_method in ("tc_offset", "table_interp")
+        rd = seq.reading if needs else None
+        t0 = time.perf_counter()
+        expected = method_top(seq.codes, c, FrameInputs(reading=rd)).y
+        t_golden = time.perf_counter() - t0
+        bld = build_bulk(cfg, top="method_dpc_top")
+        res = run_method_bulk(bld, c, seq.codes, rd, shards=shards, seed=seed + 1,
+                              idle_percent=idle_percent, stall_percent=stall_percent)
+        chk = check_method_bulk(res, c, seq.codes, rd, expected=expected)
+        out.append(MethodRun(name=cfg.name, method=cfg.method, frames=seq.codes.shape[0],
+                             pixels=int(seq.codes.size), compared=chk.compared,
+                             mismatches=chk.mismatches, missing=chk.missing, extra=chk.extra,
+                             frame_err=res.frame_err, cycles=res.cycles,
+                             sim_seconds=res.sim_seconds, golden_seconds=t_golden,
+                             readings=(int(seq.reading.min()), int(seq.reading.max())),
+                             lines=list(chk.lines)))
+    return out

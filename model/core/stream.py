@@ -1,0 +1,131 @@
+"""Kernels of the per-frame passes of the pipeline, one pass over the pixels each.
+
+* :func:`power`: the absorbed power of frames, Q = k L_scene + q_env with a fixed housing
+  term, or with q_env = eps A pi ((1 - seen) L_cam - net L_s) per frame (the skimming
+  pixels under a substrate shield: eps A pi (L_s - net L_s)); then times the defects'
+  responsivity over the active area. The same operations in the same order as the numpy
+  expressions they replace, so the same bits;
+* :func:`integrate_frames`: the integrator, v_reset + gain (v_ref - v_bolo);
+* :func:`frame_statistics`: the diagnostics of frames (temperature-rise range and sum over
+  the active area, codes at either end of the ADC range).
+
+The inner loops run over one row without branches and with IEEE arithmetic
+(``error_model='numpy'``) so that the compiler vectorizes them.
+"""
+
+import math
+
+from numba import njit, prange
+
+from irnuc.model.core.bolometer import STATUS_INVALID
+
+
+@njit(cache=True, error_model="numpy")
+def _scale_active(row, resp_row, c0):
+    """row[c0 + j] *= resp_row[j]: the defects' responsivity over the active columns."""
+    for j in range(resp_row.shape[0]):
+        row[c0 + j] *= resp_row[j]
+
+
+@njit(cache=True, error_model="numpy")
+def _row_static(out, k, L, L_row, uniform, q):
+    if uniform:
+        for j in range(out.shape[0]):
+            out[j] = k[j] * L + q[j]
+    else:
+        for j in range(out.shape[0]):
+            out[j] = k[j] * L_row[j] + q[j]
+
+
+@njit(cache=True, error_model="numpy")
+def _row_frames(out, k, L, L_row, uniform, seen, blind, base, net, substrate_shield, lc, ls):
+    shield = base * (ls - net * ls)
+    for j in range(out.shape[0]):  # the housing term, then the scene
+        q = base * ((1.0 - seen[j]) * lc - net * ls)
+        out[j] = shield if substrate_shield and blind[j] else q
+    _row_static(out, k, L, L_row, uniform, out)
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def power(k_scene, L_scene, uniform, q_env, per_frame, seen, blind, base, net,
+          substrate_shield, L_cam, L_s, resp, r0, c0, out):
+    """Absorbed power (N, rows, cols), W: k L_scene plus the housing term, times the
+    defects' responsivity ``resp`` (H, W) over the active area at (r0, c0) (an empty array:
+    none).
+
+    k_scene (rows, cols): scene coupling (W per W m^-2 sr^-1); L_scene (N, 1, 1) for a
+    uniform scene (``uniform``), else (N, rows, cols), W m^-2 sr^-1. The housing term is
+    q_env (rows, cols), W, or with ``per_frame`` the frame's own: eps A pi ((1 - seen)
+    L_cam - net L_s) with seen (rows, cols) the scene fraction of the hemisphere, base =
+    eps A pi (m^2 sr), net 1 with net radiation (else 0), L_cam and L_s (N,) the housing
+    and substrate radiance (W m^-2 sr^-1), and the skimming pixels (``blind``) under a
+    ``substrate_shield``: eps A pi (L_s - net L_s).
+    """
+    n_frames, rows, _ = out.shape
+    has_resp = resp.size > 0
+    H = resp.shape[0]
+    for i in prange(rows):
+        ia = i - r0
+        for n in range(n_frames):
+            L_row = L_scene[n, 0] if uniform else L_scene[n, i]
+            if per_frame:
+                _row_frames(out[n, i], k_scene[i], L_scene[n, 0, 0], L_row, uniform, seen[i],
+                            blind[i], base, net, substrate_shield, L_cam[n], L_s[n])
+            else:
+                _row_static(out[n, i], k_scene[i], L_scene[n, 0, 0], L_row, uniform,
+                            q_env[i])
+            if has_resp and 0 <= ia < H:
+                _scale_active(out[n, i], resp[ia], c0)
+
+
+@njit(cache=True, error_model="numpy")
+def _row_integrate(out, v_row, c0, ref, ref_row, per_col, gain, v_reset):
+    if per_col:
+        for j in range(out.shape[0]):
+            out[j] = (ref_row[j] - v_row[c0 + j]) * gain + v_reset
+    else:
+        for j in range(out.shape[0]):
+            out[j] = (ref - v_row[c0 + j]) * gain + v_reset
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def integrate_frames(v_bolo, r0, c0, v_ref, gain, v_reset, out):
+    """Integrator output (N, H, W), V: v_reset + gain (v_ref - v_bolo) over the active
+    area starting at (r0, c0) of the full array; v_ref (N, H, 1), (N, 1, W) or (N, 1, 1)
+    broadcasts over the rows and columns (:func:`model.readout.integrate`, same bits)."""
+    n_frames, rows, _ = out.shape
+    per_row = v_ref.shape[1] > 1
+    per_col = v_ref.shape[2] > 1
+    for i in prange(rows):
+        ri = i if per_row else i - i  # one integer type (prange counts unsigned)
+        for n in range(n_frames):
+            _row_integrate(out[n, i], v_bolo[n, r0 + i], c0, v_ref[n, ri, 0], v_ref[n, ri],
+                           per_col, gain, v_reset)
+
+
+@njit(cache=True)
+def frame_statistics(dT, status, r0, r1, c0, c1, codes, top):
+    """(min, max, sum, count of dT over rows r0:r1, cols c0:c1 of the pixels whose status
+    is not STATUS_INVALID (they hold 0 K, no rise of their own) and finite; codes == 0;
+    codes == top) of (N, rows, cols) rises (K) and status, and (N, H, W) codes."""
+    lo = math.inf
+    hi = -math.inf
+    total = 0.0
+    count = 0
+    for n in range(dT.shape[0]):
+        for i in range(r0, r1):
+            for j in range(c0, c1):
+                x = dT[n, i, j]
+                if status[n, i, j] != STATUS_INVALID and math.isfinite(x):
+                    lo = min(lo, x)
+                    hi = max(hi, x)
+                    total += x
+                    count += 1
+    n_low = 0
+    n_high = 0
+    flat = codes.reshape(-1)
+    for k in range(flat.shape[0]):
+        c = flat[k]
+        n_low += c == 0
+        n_high += c == top
+    return lo, hi, total, count, n_low, n_high
