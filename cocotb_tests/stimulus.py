@@ -42,64 +42,64 @@ def class_value(cls: str, vmax: int, rng: np.random.Generator, avoid: int | None
     return int(rng.choice(choices))
 
 
+def pair_walk(symbols: Sequence[str]) -> list[str]:
+    """A sequence over ``symbols`` in which every ordered pair (a, b), a = b included,
+    occurs once as consecutive elements (an Eulerian circuit of the complete directed
+    graph with loops, by Hierholzer's algorithm; k^2 + 1 elements)."""
+    if not symbols:
+        return []
+    out_edges = {a: list(symbols) for a in symbols}
+    stack, walk = [symbols[0]], []
+    while stack:
+        v = stack[-1]
+        if out_edges[v]:
+            stack.append(out_edges[v].pop())
+        else:
+            walk.append(stack.pop())
+    return walk[::-1]
+
+
 def size_walk(cfg: PipelineConfig, rng: np.random.Generator,
               budget: int = coverage.SIZE_CLASS_FRAME_BUDGET) -> list[tuple[int, int]]:
-    """(H, W) of consecutive frames such that every width-class change and every
-    height-class change (from any class to any class, the size changing) occurs between
-    two consecutive frames, and every width class x height class is a frame. Frames above
-    ``budget`` pixels are not used (a MaxWidth x MaxHeight frame of a large maximum).
-    Greedy: each next frame covers the most missing bins, the cheaper on ties."""
-    wc, hc = coverage.dim_classes(cfg.max_width), coverage.dim_classes(cfg.max_height)
-    if cfg.max_width * cfg.max_height == 1:
+    """(H, W) of consecutive frames in which every width-class change and every
+    height-class change (from any class to any class, :data:`coverage.SIZE_CLASSES`) occurs
+    between two consecutive frames of different sizes, and every width class x height
+    class is a frame (a MaxWidth x MaxHeight frame only within ``budget`` pixels).
+
+    Three walks, concatenated: the width classes in :func:`pair_walk` order with the
+    height 1, moved to 2 (when it can) where the width class repeats so that the size
+    changes; the same for the heights; then every class pair as a frame. A repeated class
+    with one value (1, 2, 3, max) and the other dimension's maximum 1 cannot change the
+    size: that change is left out (the coverage model removes its bin)."""
+    mw, mh = cfg.max_width, cfg.max_height
+    if mw * mh == 1:
         return [(1, 1), (1, 1)]
-
-    def cost(cw: str, ch: str) -> int:
-        return (cfg.max_width if cw == "max" else 8 if cw == "small" else int(cw)) * \
-               (cfg.max_height if ch == "max" else 8 if ch == "small" else int(ch))
-
-    cands = [(cw, ch) for cw in wc for ch in hc if cost(cw, ch) <= budget or (cw, ch) == ("1", "1")]
-    need_w = {(a, b) for a in wc for b in wc}
-    need_h = {(a, b) for a in hc for b in hc}
-    need_x = set(cands)
-    # A change needs the size to change: (1 -> 1) in width needs the height to change.
     frames: list[tuple[int, int]] = []
-    cur: tuple[str, str] | None = None
-    while need_w or need_h or need_x:
-        def gain(c: tuple[str, str]) -> int:
-            g = int(c in need_x)
-            if cur is not None:
-                g += int((cur[0], c[0]) in need_w) + int((cur[1], c[1]) in need_h)
-            return g
 
-        def opens(c: tuple[str, str]) -> int:
-            return sum(a == c[0] for a, _ in need_w) + sum(a == c[1] for a, _ in need_h)
+    def dim_walk(classes: Sequence[str], vmax: int, omax: int) -> list[tuple[int, int]]:
+        """(value, other value) of one walk over the classes of one dimension."""
+        out: list[tuple[int, int]] = []
+        other = 1
+        for cls in pair_walk(classes):
+            prev = out[-1] if out else None
+            v = class_value(cls, vmax, rng, prev[0] if prev else None)
+            if prev is not None and v == prev[0]:
+                if omax < 2:
+                    continue  # cannot change the size: that bin is removed
+                other = 3 - other
+            out.append((v, other))
+        return out
 
-        order = rng.permutation(len(cands))
-        best = max((cands[i] for i in order),
-                   key=lambda c: (gain(c), opens(c) > 0, -cost(*c)))
-        if gain(best) == 0 and opens(best) == 0:
-            break  # what is left cannot be reached (frames above the budget)
-        h = class_value(best[1], cfg.max_height, rng,
-                        frames[-1][0] if frames and cur and cur[1] == best[1] else None)
-        w = class_value(best[0], cfg.max_width, rng,
-                        frames[-1][1] if frames and cur and cur[0] == best[0] else None)
-        if frames and (h, w) == frames[-1]:
-            # Same classes and the same size: no change. Move the dimension that can move.
-            if best[1] != "1" and best[1] != "max" and h > 1:
-                h = h - 1 if best[1] != "small" else class_value("small", cfg.max_height, rng, h)
-            else:
-                frames.append((h, w))
-                need_x.discard(best)
-                cur = best
+    frames += [(h, w) for w, h in dim_walk(coverage.dim_classes(mw), mw, mh)]
+    frames += list(dim_walk(coverage.dim_classes(mh), mh, mw))
+    for cw in coverage.dim_classes(mw):
+        for ch in coverage.dim_classes(mh):
+            if cw == ch == "max" and mw * mh > budget:
                 continue
-        if cur is not None and (h, w) != frames[-1]:
-            need_w.discard((cur[0], best[0]))
-            need_h.discard((cur[1], best[1]))
-        need_x.discard(best)
-        frames.append((h, w))
-        cur = best
-        if len(frames) > 400:  # pragma: no cover - the greedy always makes progress
-            break
+            hw = (class_value(ch, mh, rng), class_value(cw, mw, rng))
+            if frames and hw == frames[-1]:
+                frames.append((1, 1) if hw != (1, 1) else (1, 2) if mw > 1 else (2, 1))
+            frames.append(hw)
     return frames
 
 
@@ -194,7 +194,7 @@ def pipeline_capacity(cfg: PipelineConfig) -> int:
     return stages.index("dpc_window") + 4
 
 
-class size_gate(Iterator[bool]):  # noqa: N801 - used like pause_pattern's generators
+class size_gate(Iterator[bool]):  # lower case: used like pause_pattern's generators
     """Pause generator of the pixel source: pause while the next item is the first pixel of
     a frame whose size may not be applied yet.
 
@@ -277,7 +277,6 @@ def nuc_preimage(cfg: PipelineConfig, y: np.ndarray
     targets = [y]
     if cfg.overflow == "wrap":
         targets += [y - (1 << cfg.out_bits), y + (1 << cfg.out_bits)]
-    half = (1 << (f - 1)) - 1 if f > 0 else 0
     for r in targets:
         for g in gains:
             todo = ~found
@@ -360,7 +359,8 @@ def dpc_neighbourhoods(cfg: PipelineConfig, rng: np.random.Generator,
                        bins: Sequence[tuple[int, int, str]],
                        intervals: Sequence[tuple[int, int]],
                        preimage: Callable[[np.ndarray], tuple] | None = None,
-                       frame: tuple[int, int] = (12, 12)) -> Neighbourhoods:
+                       frame: tuple[int, int] = (12, 12), max_frames: int = 12
+                       ) -> Neighbourhoods:
     """Frames whose bad pixels hit the bins ``(n, residue, range)``: each target is the
     centre of a 3 x 3 tile (tiles side by side, as many per frame as fit), bad, with n good
     in-frame neighbours (the others bad) whose values, drawn from ``intervals`` (the DPC's
@@ -368,7 +368,7 @@ def dpc_neighbourhoods(cfg: PipelineConfig, rng: np.random.Generator,
 
     ``preimage`` maps the values to NUC inputs (:func:`nuc_preimage`; None: the values are
     driven as they are, for ``dpc_core``). A bin for which no sum or no preimage was found
-    is listed in ``missing``."""
+    is listed in ``missing``, as are those beyond ``max_frames`` frames."""
     h, w = min(frame[0], cfg.max_height), min(frame[1], cfg.max_width)
     # Tile centres: every third row and column (a 1- or 2-wide frame: its only column).
     rows = list(range(1, h - 1, 3)) or [0] if h >= 3 else list(range(0, h, 3))
@@ -378,6 +378,9 @@ def dpc_neighbourhoods(cfg: PipelineConfig, rng: np.random.Generator,
     out = Neighbourhoods([], [], [], [], [], [])
     queue = list(bins)
     while queue:
+        if len(out.raw) >= max_frames:  # a small maximum frame: the rest is missing
+            out.missing.extend(queue)
+            break
         vals = rng.integers(0, full + 1, size=(h, w), dtype=np.int64)
         if intervals:
             spans = np.array([b - a + 1 for a, b in intervals], dtype=float)
@@ -386,7 +389,7 @@ def dpc_neighbourhoods(cfg: PipelineConfig, rng: np.random.Generator,
             span = np.array([b - a for a, b in intervals])[k]
             vals = lo + (rng.random((h, w)) * (span + 1)).astype(np.int64).clip(0, span)
         bad = rng.random((h, w)) < 0.1
-        placed = []
+        placed, where = [], []
         for r, c in centres:
             if not queue:
                 break
@@ -397,9 +400,12 @@ def dpc_neighbourhoods(cfg: PipelineConfig, rng: np.random.Generator,
                 out.missing.append((n, res, rng_cls))
                 continue
             lo, hi = coverage._range_sums(n, cfg.out_bits, rng_cls)
-            sums = [s for s in range(lo + (res - lo) % n, hi + 1, n)]
+            first = lo + (res - lo) % n
+            count = (hi - first) // n + 1 if first <= hi else 0
+            sums = [first + n * int(i) for i in rng.choice(count, size=min(8, count),
+                                                            replace=False)] if count else []
             split = None
-            for s in (rng.choice(sums, size=min(8, len(sums)), replace=False) if sums else []):
+            for s in sums:
                 split = _split_sum(int(s), n, intervals, rng)
                 if split is not None:
                     break
@@ -415,14 +421,27 @@ def dpc_neighbourhoods(cfg: PipelineConfig, rng: np.random.Generator,
                 vals[rr, cc] = v
             bad[r, c] = True
             placed.append((n, res, rng_cls))
+            where.append((r, c))
         if not placed and queue:
             continue
         if preimage is not None:
             x, g, o, ok = preimage(vals.ravel())
+            if not ok.any():
+                raise AssertionError("no NUC input gives any of the DPC input codes drawn")
             if not ok.all():
-                raise AssertionError(
-                    f"no NUC input gives the DPC input codes {sorted(set(vals.ravel()[~ok]))[:8]}"
-                    " (nuc_output_intervals claims them)")
+                # Codes inside the NUC's output range that no input gives (coarse offset
+                # and product steps): take found codes there; the targets of the tiles
+                # touched are listed as missing (coverage is sampled from the frame).
+                src = rng.choice(np.flatnonzero(ok), size=int((~ok).sum()))
+                for arr in (x, g, o):
+                    arr[~ok] = arr[src]
+                flat = vals.ravel()
+                flat[~ok] = flat[src]
+                vals = flat.reshape(h, w)
+                hit = ~ok.reshape(h, w)
+                for (r, c), target in zip(where, placed, strict=True):
+                    if hit[max(r - 1, 0):r + 2, max(c - 1, 0):c + 2].any():
+                        out.missing.append(target)
             raw = x.reshape(h, w)
             words = pack_words(g.reshape(h, w), o.reshape(h, w), bad, cfg)
         else:

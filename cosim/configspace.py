@@ -93,6 +93,9 @@ class Branch:
     when: Callable[[PipelineConfig], bool]
     block: str | None = None
     text: str | None = None
+    #: Why no configuration of this top elaborates the branch in simulation (None: some
+    #: configuration must).
+    never: str | None = None
 
     @property
     def key(self) -> str:
@@ -101,6 +104,17 @@ class Branch:
 
 def _gen(module: str, block: str, when: Callable[[PipelineConfig], bool]) -> Branch:
     return Branch(module, block, when, block=block)
+
+
+def _not_here(module: str, block: str, why: str) -> Branch:
+    """A generate block that no configuration of this top elaborates in simulation."""
+    return Branch(module, block, lambda c: False, block=block, never=why)
+
+
+def _mul_pairs(c: PipelineConfig) -> tuple[tuple[int, int], ...]:
+    """(ABits, BBits) of nuc_dpc_top's two irnuc_mul_parts instances (x * g, M * R[n])."""
+    return ((c.adc_bits, c.gain_bits),
+            (c.out_bits + 3, rtl_spec.dpc_recip_shift(c.out_bits) + 1))
 
 
 def _ternary(module: str, name: str, text: str, when: Callable[[PipelineConfig], bool]
@@ -154,6 +168,12 @@ BRANCHES: tuple[Branch, ...] = (
     # ---- irnuc_mul_parts (nuc x * g, dpc M * R[n]) -------------------------------------------
     _gen("irnuc_mul_parts", "gen_a", _ALWAYS),
     _gen("irnuc_mul_parts", "gen_a/gen_b", _ALWAYS),
+    _gen("irnuc_mul_parts", "gen_a/gen_zero", _ALWAYS),
+    _gen("irnuc_mul_parts", "gen_a/gen_b/gen_zero", _ALWAYS),
+    _not_here("irnuc_mul_parts", "gen_a/gen_sign", "signed operands: the method tops only"),
+    _not_here("irnuc_mul_parts", "gen_a/gen_b/gen_sign", "signed operands: the method tops only"),
+    _gen("irnuc_mul_parts", "gen_a/gen_b/gen_part_high",
+         lambda c: any(a + b < 36 for a, b in _mul_pairs(c))),
     _ternary("irnuc_mul_parts", "partial_chunk",
              "(ABits - ALsb < MulChunkBits) ? ABits - ALsb : MulChunkBits",
              lambda c: any(w % rtl_spec.MUL_CHUNK_BITS for w in _operands(c))),
@@ -183,6 +203,11 @@ BRANCHES: tuple[Branch, ...] = (
              lambda c: c.max_width == 1),
     _ternary("dpc_core", "columns", "(MaxWidth > 1) ? $clog2(MaxWidth) : 1",
              lambda c: c.max_width > 1),
+    _gen("irnuc_line_buffer", "gen_inferred", _ALWAYS),
+    _not_here("irnuc_line_buffer", "gen_dp16kd",
+              "ECP5 block RAM: only with IRNUC_ECP5 defined (irnuc synth), never simulated"),
+    _not_here("irnuc_line_buffer", "gen_dp16kd/gen_tile",
+              "ECP5 block RAM: only with IRNUC_ECP5 defined (irnuc synth), never simulated"),
     _ternary("irnuc_line_buffer", "one_word", "(Depth > 1) ? $clog2(Depth) : 1",
              lambda c: c.max_width == 1),
     _ternary("irnuc_line_buffer", "words", "(Depth > 1) ? $clog2(Depth) : 1",
@@ -259,7 +284,8 @@ class ConfigSpace:
         """Every bin of :meth:`classes`."""
         out = {"config.modes": tuple(f"{r}+{o}" for r, o in MODES),
                "config.frac_order": FRAC_ORDERS, "config.shape": SHAPES,
-               "config.branch": tuple(dict.fromkeys(b.key for b in self.branches))}
+               "config.branch": tuple(dict.fromkeys(b.key for b in self.branches
+                                                    if b.never is None))}
         for name, (lo, hi) in self.fields.items():
             out[f"config.range.{name}"] = ("min", "inner", "max") if hi > lo + 1 else (
                 ("min", "max") if hi > lo else ("min",))

@@ -237,6 +237,32 @@ def small_maximum_removals(cfg: PipelineConfig) -> dict[str, dict[Any, str]]:
     return out
 
 
+def dpc_arith_bins(cfg: PipelineConfig, top: str
+                   ) -> tuple[list[tuple[int, int, str]], dict[tuple[int, int, str], str]]:
+    """The bins (good-neighbour count n, residue of the sum mod n, range of the mean) of
+    ``dpc.arith`` that ``top`` on ``cfg`` can reach, and those it cannot with the reason
+    (more neighbours than the maximum frame gives; no sum of n DPC input codes with that
+    residue and range: for ``nuc_dpc_top`` the codes are the NUC's outputs)."""
+    c = cfg
+    nmax = max_neighbours(c.max_width, c.max_height)
+    values = (nuc_output_intervals(c) if top == "nuc_dpc_top"
+              else [(0, (1 << c.out_bits) - 1)])
+    bins, why = [], {}
+    for n in range(1, 9):
+        for r in range(n):
+            for rng in DPC_RANGES:
+                key = (n, r, rng)
+                if n > nmax:
+                    why[key] = (f"a frame of at most {c.max_height} x {c.max_width} "
+                                f"gives a pixel at most {nmax} in-frame neighbours")
+                elif dpc_arith_unreachable(n, r, rng, c.out_bits, values):
+                    why[key] = (f"no sum of {n} values of {values} (the DPC's input "
+                                f"codes here) has residue {r} and a {rng} mean")
+                else:
+                    bins.append(key)
+    return bins, why
+
+
 def reset_window(cfg: PipelineConfig) -> tuple[tuple[int, int], tuple[int, int], list[int]]:
     """Frames A and B of the reset window and its offsets: cycles from A's last pixel
     taken at the input (``-RESET_WINDOW_BEFORE``) until B's first output can leave (A's
@@ -357,26 +383,17 @@ class CoverageModel:
             if c.max_width * c.max_height == 1:
                 why.update({f"{a}->{b}": "a 1 x 1 maximum: the frame size never changes"
                             for a in have for b in have})
+            elif (c.max_height if dim == "width" else c.max_width) == 1:
+                # The other dimension is always 1: a class keeps the size unless it has
+                # two values (small: 4 .. min(max - 1, 8)).
+                why.update({f"{a}->{a}": f"Max{'Height' if dim == 'width' else 'Width'} = 1 "
+                            f"and one {dim} of class {a}: the size cannot change"
+                            for a in have if a != "small" or vmax < 6})
             point(f"frame.change_{dim}", self._remove(f"frame.change_{dim}", bins, why))
 
     def _dpc_arith(self, point: Callable[[str, Sequence[Any]], None], top: str) -> None:
-        c = self.cfg
-        nmax = max_neighbours(c.max_width, c.max_height)
-        values = (nuc_output_intervals(c) if top == "nuc_dpc_top"
-                  else [(0, (1 << c.out_bits) - 1)])
-        bins, why = [], {}
-        for n in range(1, 9):
-            for r in range(n):
-                for rng in DPC_RANGES:
-                    key = (n, r, rng)
-                    bins.append(key)
-                    if n > nmax:
-                        why[key] = (f"a frame of at most {c.max_height} x {c.max_width} "
-                                    f"gives a pixel at most {nmax} in-frame neighbours")
-                    elif dpc_arith_unreachable(n, r, rng, c.out_bits, values):
-                        why[key] = (f"no sum of {n} values of {values} (the DPC's input "
-                                    f"codes here) has residue {r} and a {rng} mean")
-        point("dpc.arith", self._remove("dpc.arith", bins, why))
+        bins, why = dpc_arith_bins(self.cfg, top)
+        point("dpc.arith", self._remove("dpc.arith", bins + list(why), why))
 
     def _above_max_reachable(self) -> bool:
         """The golden model at the largest code, gain and offset rounds above 2^B - 1."""
