@@ -73,11 +73,6 @@ def _dpc_parts(c: PipelineConfig) -> int:
     return rtl_spec.mul_parts(c.out_bits + 3, rtl_spec.dpc_recip_shift(c.out_bits) + 1)
 
 
-def _operands(c: PipelineConfig) -> tuple[int, ...]:
-    """Operand widths of every irnuc_mul_parts instance of nuc_dpc_top."""
-    return (c.adc_bits, c.gain_bits, c.out_bits + 3, rtl_spec.dpc_recip_shift(c.out_bits) + 1)
-
-
 @dataclass(frozen=True)
 class Branch:
     """One parameter-dependent branch of one module.
@@ -174,12 +169,18 @@ BRANCHES: tuple[Branch, ...] = (
     _not_here("irnuc_mul_parts", "gen_a/gen_b/gen_sign", "signed operands: the method tops only"),
     _gen("irnuc_mul_parts", "gen_a/gen_b/gen_part_high",
          lambda c: any(a + b < 36 for a, b in _mul_pairs(c))),
-    _ternary("irnuc_mul_parts", "partial_chunk",
-             "(ABits - ALsb < MulChunkBits) ? ABits - ALsb : MulChunkBits",
-             lambda c: any(w % rtl_spec.MUL_CHUNK_BITS for w in _operands(c))),
-    _ternary("irnuc_mul_parts", "full_chunk",
-             "(ABits - ALsb < MulChunkBits) ? ABits - ALsb : MulChunkBits",
-             lambda c: any(w >= rtl_spec.MUL_CHUNK_BITS for w in _operands(c))),
+    # The last chunk of an operand takes what is left; the others are full chunks (an
+    # operand wider than one chunk).
+    _ternary("irnuc_mul_parts", "a_last_chunk", "(i == AChunks - 1) ? ABits - ALsb : ChunkBits",
+             _ALWAYS),
+    _ternary("irnuc_mul_parts", "a_inner_chunk",
+             "(i == AChunks - 1) ? ABits - ALsb : ChunkBits",
+             lambda c: any(a > rtl_spec.MUL_CHUNK_BITS for a, _ in _mul_pairs(c))),
+    _ternary("irnuc_mul_parts", "b_last_chunk", "(j == BChunks - 1) ? BBits - BLsb : ChunkBits",
+             _ALWAYS),
+    _ternary("irnuc_mul_parts", "b_inner_chunk",
+             "(j == BChunks - 1) ? BBits - BLsb : ChunkBits",
+             lambda c: any(b > rtl_spec.MUL_CHUNK_BITS for _, b in _mul_pairs(c))),
     # ---- irnuc_add_tree (nuc sum, dpc sum, dpc product) -----------------------------------
     _gen("irnuc_add_tree", "gen_single", lambda c: _dpc_parts(c) == 1),
     _gen("irnuc_add_tree", "gen_tree", _ALWAYS),
