@@ -20,6 +20,10 @@ from irnuc.cocotb_tests.tb_lib import golden_frame
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import nuc_core, pack_words, unpack_words
 
+#: Tests that random configurations (configspace) leave out, with the reason.
+RANDOM_CONFIG_SKIP = {"model_frames": "the physics model's frames need a sensor-like format "
+                                      "(enough ADC bits and pixels for a calibration)"}
+
 #: Pause patterns of the inputs (idle) and of the output (backpressure), all combinations
 #: in ``stream_patterns`` (cocotb_tests/test_nuc_dpc_top.py makes each a pytest parameter).
 IDLE = coverage.IDLE_PATTERNS

@@ -38,11 +38,6 @@ def test_stream_pattern(config: str, idle: str, backpressure: str) -> None:
         assert lines[-1]["stalls"] > 0, "the sink never stalled"
 
 
-#: tb_top tests the random configurations leave out, with the reason.
-RANDOM_SKIP = {"model_frames": "the physics model's frames need a sensor-like format (enough "
-                               "ADC bits and pixels for a calibration)"}
-
-
 def _ci_configs() -> dict[str, PipelineConfig]:
     return {c.name: c for c in configspace.ci_sample("nuc_dpc_top")}
 
@@ -51,10 +46,10 @@ def _ci_configs() -> dict[str, PipelineConfig]:
 def test_random_configuration(config: str) -> None:
     """The fixed random sample of legal configurations (``configspace.ci_sample``: with
     the named ones, every rounding x overflow mode, fraction order, maximum-frame shape and
-    parameter branch of hdl/) through every tb_top test but :data:`RANDOM_SKIP`."""
+    parameter branch of hdl/) through every tb_top test but ``tb_top.RANDOM_CONFIG_SKIP``."""
     cfg = _ci_configs()[config]
     assert configspace.space("nuc_dpc_top").legal(cfg) is None
-    cases = [t for t in cosim.cocotb_test_names(tb_top) if t not in RANDOM_SKIP]
+    cases = [t for t in cosim.cocotb_test_names(tb_top) if t not in tb_top.RANDOM_CONFIG_SKIP]
     xml = results_root() / f"{cfg.name}-{cfg.digest()[:8]}-nuc_dpc_top-random.xml"
     with file_lock(xml.with_suffix(".lock")):
         cosim.run(cosim.build("nuc_dpc_top", cfg), MODULE, testcase=cases,
