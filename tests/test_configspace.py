@@ -58,15 +58,16 @@ def test_draws_are_seeded_legal_and_stratified() -> None:
 def test_legal_rejects_out_of_range_and_wide_words() -> None:
     sp = cs.space(TOP)
     base = sp.sample(1, seed=3)[0]
-    hi = rtl_spec.PIPELINE_RANGES["out_bits"][1]
-    wide = base.to_dict() | {"adc_bits": 16, "gain_int_bits": 8, "gain_frac_bits": 16,
-                             "offset_int_bits": 16, "offset_frac_bits": 16, "out_bits": hi}
-    try:
-        cfg = PipelineConfig(**wide)
-    except ConfigError:
-        pytest.skip("the widest words are illegal for PipelineConfig itself")
-    if cfg.word_bits > cs.WORD_BITS_MAX:
-        assert "64" in (sp.legal(cfg) or "")
+    # 16.16 gain and 32.0 offset: a 65-bit word (16 + 16 + 32 + 1), a 49-bit sum (legal).
+    wide = PipelineConfig(**(base.to_dict() | {
+        "adc_bits": 1, "gain_int_bits": 16, "gain_frac_bits": 16, "offset_int_bits": 32,
+        "offset_frac_bits": 0}))
+    assert wide.word_bits == 65
+    assert "64" in (sp.legal(wide) or "")
+    assert sp.legal(base.replace(max_width=1)) is None
+    narrow = sp.fields | {"max_width": (1, 8)}
+    assert "max_width" in (cs.ConfigSpace(TOP, fields=narrow).legal(
+        base.replace(max_width=9)) or "")
     with pytest.raises(ConfigError, match="max_dim"):
         sp.sample(1, seed=1, max_dim=0)
 
