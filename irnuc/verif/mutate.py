@@ -46,6 +46,10 @@ SUITE_MODULE = tb_top.__name__
 SUITE_TOP = "nuc_dpc_top"
 #: Wall-time limit of one mutant's simulation (a mutant may hang the stream).
 RUN_TIMEOUT = 300.0
+#: A mutant of the package also runs the package check (every constant, width function and
+#: the DPC reciprocal table against the shared-constants spec) after the suite passed.
+PKG_FILE = "irnuc_pkg.sv"
+PKG_TOP, PKG_SUITE = "irnuc_pkg_probe", "irnuc.cocotb_tests.tb_pkg"
 
 
 @dataclass(frozen=True)
@@ -495,6 +499,8 @@ def _mutant_key(m: Mutant) -> str:
         del d["also"]  # keys of one-site mutants as before the field existed
     if (d["top"], d["suite"]) == (SUITE_TOP, SUITE_MODULE):
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
+        if d["file"] == PKG_FILE:
+            d["package_check"] = PKG_SUITE  # the verdict includes the package check
     return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": d})
 
 
@@ -564,6 +570,8 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
                 if failed:
                     killed_by = failed[0].name
                     message = (fired[0] if fired else failed[0].message)[:600]
+                elif m.file == PKG_FILE and m.suite == SUITE_MODULE:
+                    killed_by, message = _package_check(m, cfg, hdl, work, timeout)
             except cosim.SimulationTimeout as exc:
                 killed_by, message = "timeout", str(exc)[:600]
             except cosim.RtlError as exc:
@@ -580,6 +588,24 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
             shutil.rmtree(bld.build_dir, ignore_errors=True)
     write_text_atomic(cache, json.dumps(out, indent=1))
     return out
+
+
+def _package_check(m: Mutant, cfg, hdl: Path, work: Path, timeout: float
+                   ) -> tuple[str | None, str]:
+    """The package check (``tb_pkg``) on the mutated package: (killing test, message) or
+    (None, "") when it passes."""
+    from irnuc import cosim
+
+    bld = cosim.build(PKG_TOP, cfg, hdl_dir=hdl)
+    try:
+        xml = work / "pkg.xml"
+        res = cosim.read_results(cosim.run(bld, PKG_SUITE, results_xml=xml, timeout=timeout))
+        failed = [r for r in res.values() if not r.passed]
+        if failed:
+            return f"tb_pkg.{failed[0].name}", failed[0].message[:600]
+        return None, ""
+    finally:
+        shutil.rmtree(bld.build_dir, ignore_errors=True)
 
 
 def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
