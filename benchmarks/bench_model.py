@@ -39,7 +39,8 @@ from scipy.optimize import fsolve
 from irnuc import model
 from irnuc.model.core import bolometer as kb
 from irnuc.model.core import warmstart as kw
-from irnuc.model.pipeline import BOLOMETER_VARIANTS, Pipeline
+from irnuc.model.pipeline import Pipeline
+from irnuc.model.stages import BOLOMETER_VARIANTS
 
 
 def best_of(fn, repeats: int) -> float:

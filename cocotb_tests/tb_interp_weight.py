@@ -37,11 +37,17 @@ async def _compute(dut, reading: int, readings: list[int], bits: int) -> tuple[i
 
 
 def _cases(cfg, rng: np.random.Generator) -> list[tuple[int, list[int]]]:
-    """Readings at, between, below and above random table readings; rounding ties; a
-    span of 1; the ends of the reading range."""
+    """Readings at, between, below and above random table readings; exact rounding ties
+    of both quotient parities; a span of 1; the ends of the reading range."""
     k = int(cfg.tables or 2)
     hi = (1 << int(cfg.reading_bits or 1)) - 1
     out: list[tuple[int, list[int]]] = []
+    # Exact rounding ties: with spans of 2^(Wf+1), an odd num gives num/2, a fraction of
+    # exactly 1/2, on an even (num = 1, 5) and an odd (num = 3, 7) quotient.
+    span = 1 << (cfg.format("weight").frac_bits + 1)
+    if (k - 1) * span <= hi:
+        rs = [i * span for i in range(k)]
+        out += [(r + n, rs) for r in rs[:-1] for n in (1, 3, 5, 7) if n < span]
     for trial in range(40):
         if trial == 0:
             rs = list(range(k))                     # spans of 1 from 0

@@ -13,7 +13,9 @@ testbenches touch only the top level's ports, so :data:`PORTS_ONLY` replaces it 
 Verilator control file that marks the top module's signals ``public_flat_rw`` and nothing
 else (Verilator 5.048: ``public_flat_rw -module "<top>" -var "*"``); the same hook puts
 the shared Verilator runtime objects (``cosim._objcache``) into the build folder between
-Verilator and make, so that each build compiles only its design.
+Verilator and make, so that each build compiles only its design, and sets the
+precompiled-header option the wheel's ``verilated.mk`` leaves empty on the runner's make
+command (:func:`fix_pch_option`).
 """
 
 from __future__ import annotations
@@ -73,6 +75,23 @@ def replace_public_flag(cmd: Sequence[str], replacement: Sequence[str]) -> list[
     return [*cmd[:i], *replacement, *cmd[i + 1:]]
 
 
+#: The wheel's verilated.mk leaves the compiler's "include this precompiled header" option
+#: empty (``CFG_CXXFLAGS_PCH_I =``), which breaks the parallel build Verilator chooses for a
+#: design it splits into several C++ files (irnuc_axis_top): g++ and clang take -include.
+PCH_MAKE_OVERRIDE = "CFG_CXXFLAGS_PCH_I=-include"
+
+
+def fix_pch_option(cmds: list) -> list:
+    """The runner's build commands with the precompiled-header option set on its make
+    command (a command-line variable of make overrides the makefile's)."""
+    make = [i for i, c in enumerate(cmds) if c and Path(str(c[0])).name == "make"]
+    if len(make) != 1:
+        raise RtlError("cocotb's Verilator build no longer runs make once; update "
+                       "irnuc/cosim/_cocotb_adapter.py")
+    cmds[make[0]] = [*cmds[make[0]], PCH_MAKE_OVERRIDE]
+    return cmds
+
+
 def share_runtime_objects(cmds: list, build_dir: Path) -> list:
     """The runner's two build commands (Verilator, then make) with the shared Verilator
     runtime objects copied in between and kept after (``cosim._objcache``)."""
@@ -110,6 +129,6 @@ def wheel_runner(visibility: str = PORTS_ONLY):
             if visibility == PORTS_ONLY:
                 vlt = ports_only_control_file(Path(self.build_dir), str(self.hdl_toplevel))
                 cmds[0] = replace_public_flag(cmds[0], [str(vlt)])
-            return share_runtime_objects(cmds, Path(self.build_dir))
+            return fix_pch_option(share_runtime_objects(cmds, Path(self.build_dir)))
 
     return WheelVerilator()

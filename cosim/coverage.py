@@ -604,9 +604,12 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     """The process's coverage model of ``top`` on ``cfg`` (made once)."""
     key = (top, cfg.digest())
     if key not in _MODELS:
+        from irnuc.cosim.axis_coverage import AXIS_TOPS, AxisCoverageModel
         from irnuc.cosim.method_coverage import METHOD_TOPS, MethodCoverageModel
 
-        _MODELS[key] = (MethodCoverageModel if top in METHOD_TOPS else CoverageModel)(top, cfg)
+        cls = (MethodCoverageModel if top in METHOD_TOPS else
+               AxisCoverageModel if top in AXIS_TOPS else CoverageModel)
+        _MODELS[key] = cls(top, cfg)
     return _MODELS[key]
 
 

@@ -5,7 +5,8 @@ The coverpoints of :class:`MethodCoverageModel` extend :class:`~irnuc.cosim.cove
 decided from the golden model's values of what was driven and checked:
 
 ============================ ===================================================================
-``method.round``             the core's sum s below / at (even, odd) / above one half
+``method.round``             the core's sum s below / at (even, odd) / above one half, on
+                             good pixels with r in range (where it reaches the output)
 ``method.range``             r below 0, in range, above 2^B - 1
 ``method.frame_word``        at a frame boundary the frame word changed, changed with a frame
                              shorter than the pipeline (4 pixels or fewer), stayed
@@ -98,7 +99,10 @@ def frame_classes(coeffs: MethodCoefficients, raw: np.ndarray, reading: int | No
     fc = frame_coefficients(coeffs, reading)
     res = base_core(coeffs, fc, raw)
     if res.frac > 0:
-        hit("method.round", ROUND_BINS, _round_class(res.s, res.frac))
+        # Only where the rounding reaches the output: a good pixel (DPC replaces a bad
+        # one) whose result is in range (OUT would clip the difference away).
+        seen = ~np.asarray(coeffs.bad, dtype=bool) & (res.r >= 0) & (res.r < (1 << cfg.out_bits))
+        hit("method.round", ROUND_BINS, _round_class(res.s[..., seen], res.frac))
     hit("method.range", RANGE_BINS, _three(res.r, 0, (1 << cfg.out_bits) - 1))
     f = coeffs.fields
     if base == "one_point":

@@ -58,6 +58,15 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
     "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
 }
+# The AXI top: the core, the framer, the register file and the AXI protocol checkers.
+_AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
+MODULE_FILES["irnuc_axil_regs"] = (*_PKG, "irnuc_axil_regs.sv")
+MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
+MODULE_FILES["irnuc_axis_assert"] = ("irnuc_axis_assert.sv",)
+MODULE_FILES["irnuc_axil_assert"] = (*_PKG, "irnuc_axil_assert.sv")
+MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
+    *MODULE_FILES["nuc_dpc_top"], *_AXI_ASSERT, "irnuc_axil_regs.sv", "irnuc_axis_framer.sv",
+    "irnuc_axis_top.sv")))
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
@@ -75,6 +84,7 @@ _MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
     "nuc_core": _BASE,
     "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
     "dpc_ctrl": ("MaxWidth", "MaxHeight"),
+    "irnuc_axis_framer": (*_COEF, "AdcBits", "MaxWidth", "MaxHeight"),
     "nuc_dpc_top": (*_BASE, "MaxWidth", "MaxHeight"),
     "irnuc_pkg_probe": ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
                         "OutBits"),
@@ -154,12 +164,38 @@ _BLOCK_PARAMETERS = {
     "irnuc_mul_parts": lambda p: {"ABits": p["AdcBits"],
                                   "BBits": p["GainIntBits"] + p["GainFracBits"]},
     "irnuc_line_buffer": lambda p: {"Depth": p["MaxWidth"], "DataBits": 2 * p["OutBits"] + 2},
+    "irnuc_axis_assert": lambda p: {"DataBits": 8 * ((p["AdcBits"] + 7) // 8), "UserBits": 1},
+    "irnuc_axil_assert": lambda p: {},
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
                               "Rounding": p["Rounding"]},
     "irnuc_clip": lambda p: {"InBits": p["OutBits"] + 4, "OutBits": p["OutBits"],
                              "Overflow": p["Overflow"]},
     "irnuc_dsp_mul": lambda p: {},
 }
+
+#: The method register slots of irnuc_axil_regs (parameter <Name>RegBits) and the
+#: PipelineConfig.registers each holds.
+_REG_SLOTS = {"GainRegBits": "gain", "LevelRegBits": "level", "ReadingRegBits": "reading",
+              "TRefRegBits": "t_ref", "BlindSumRegBits": "blind_sum",
+              "BlindRefRegBits": "blind_ref", "DriftGainRegBits": "drift_gain",
+              "FfcTargetRegBits": "ffc_target"}
+
+
+def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
+    """The parameters of ``irnuc_axil_regs`` for ``cfg``: the widths and modes, the method
+    (code, stages) and the width of every method register (0 where the method has none)."""
+    from irnuc.nuc_fixed.regmap import config_params
+
+    p = cfg.rtl_parameters()
+    c = config_params(cfg)
+    regs = cfg.registers
+    table = regs.get("table_readings")
+    return {**p, "MethodCode": c["MethodCode"], "HasBlindDrift": c["HasBlindDrift"],
+            "HasFfc": c["HasFfc"], "FfcFrames": c["FfcFrames"],
+            "CoefLayoutVersion": c["CoefLayoutVersion"],
+            **{k: (regs[n].width if n in regs else 0) for k, n in _REG_SLOTS.items()},
+            "TableReadings": table.count if table else 0,
+            "TableReadingBits": table.width if table else 1}
 
 
 #: Modules whose parameters include the method's (method_parameters).
@@ -183,6 +219,8 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's)."""
     hdl_sources(top)
     params = cfg.rtl_parameters()
+    if top == "irnuc_axil_regs":
+        return register_file_parameters(cfg)
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
     if top in _METHOD_MODULES:

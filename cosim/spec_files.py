@@ -1,6 +1,7 @@
 """The files generated from the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`):
-the block between the markers of ``hdl/irnuc_pkg.sv`` and the whole package probe
-``cosim/hdl/irnuc_pkg_probe.sv``.
+the block between the markers of ``hdl/irnuc_pkg.sv``, the whole package probe
+``cosim/hdl/irnuc_pkg_probe.sv`` and, in a checkout, the register map's documentation
+``docs/registers.md`` (:func:`irnuc.nuc_fixed.regmap.markdown`).
 
 ``python -m irnuc.cosim.spec_files --write`` rewrites them; ``--check`` (the default)
 lists the stale ones and exits 1. ``tests/test_rtl_spec.py`` runs the check.
@@ -13,16 +14,21 @@ from pathlib import Path
 
 from irnuc.common.io import write_text_atomic
 from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR
-from irnuc.nuc_fixed import rtl_spec
+from irnuc.nuc_fixed import regmap, rtl_spec
 
 PACKAGE = HDL_DIR / "irnuc_pkg.sv"
 PROBE = SIM_HDL_DIR / "irnuc_pkg_probe.sv"
+#: The register map's page (only in a checkout: docs/ is not installed).
+REGISTERS_DOC = HDL_DIR.parent / "docs" / "registers.md"
 
 
 def expected() -> dict[Path, str]:
     """Each generated file and the text it must have."""
-    return {PACKAGE: rtl_spec.replace_block(PACKAGE.read_text(), rtl_spec.sv_package_block()),
-            PROBE: rtl_spec.sv_probe()}
+    out = {PACKAGE: rtl_spec.replace_block(PACKAGE.read_text(), rtl_spec.sv_package_block()),
+           PROBE: rtl_spec.sv_probe()}
+    if REGISTERS_DOC.parent.is_dir():
+        out[REGISTERS_DOC] = regmap.markdown()
+    return out
 
 
 def stale() -> list[Path]:

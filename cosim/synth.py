@@ -61,6 +61,7 @@ __all__ = [
     "ECP5_PACKAGE",
     "ECP5_SPEED_DEFAULT",
     "FLIP_FLOP_CELLS",
+    "SYNTH_TOPS",
     "TARGET_MHZ",
     "SynthError",
     "comb_paths",
@@ -434,6 +435,10 @@ def _package_versions() -> dict[str, str]:
 
 #: Frame size and rate of the external-memory bandwidth figure (a VGA camera at 60 Hz).
 BANDWIDTH_FRAME, BANDWIDTH_FPS = (640, 480), 60.0
+
+
+#: The modules ``irnuc synth --top`` takes: the bare cores and the AXI wrapper.
+SYNTH_TOPS = ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
 
 
 def default_top(cfg) -> str:

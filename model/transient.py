@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from irnuc.model import graph as _graph
 from irnuc.model import pipeline as _pl
 from irnuc.model.config import apply_overrides
 from irnuc.model.core import bolometer as _kb
@@ -437,13 +438,13 @@ def simulate_transient(
     pipe = pipes[T_cfg]
     pipe.counts["transient"] += 1
     pipe.counts["transient_pulses"] += int(res.status.size)
-    ctx = _pl.RunContext(cfg, pipe.layout, scene, seed, temps=t, first_frame=0,
+    ctx = _graph.RunContext(cfg, pipe.layout, scene, seed, temps=t, first_frame=0,
                          counts=pipe.counts)
     values: dict[str, Any] = {**pipe._static, **static, "Q": Q, "v_bolo": res.v_bolo,
                               "dT": res.dT_mean, "status": res.status, "iters": res.substeps,
                               "dT_end": res.dT_end, "substeps": res.substeps}
     products = [TRANSIENT_OUTPUTS[o] for o in outputs]
-    _pl.run_planned(pipe.stages, ctx, values, products)
+    _graph.run_planned(pipe.stages, ctx, values, products)
     if progress is not None:
         progress(2, 2)
     diagnostics = _pl._diagnostics(pipe, values)

@@ -14,16 +14,19 @@ mode encodings and word layouts, each written here once.
   ``tests/test_rtl_spec.py`` fails while either is stale, and ``cocotb_tests/tb_pkg.py``
   reads every item back from the simulated RTL and compares it with this module.
 
-To add a constant, a range, an enum or a word layout (a per-method coefficient word, the
-fields of an AXI4-Lite register, its offset as a :class:`Constant`): add it to
-:data:`CONSTANTS`, :data:`RANGES`, :data:`ENUMS` or :data:`LAYOUTS`, regenerate, and use
-the generated name in the RTL (docs/architecture.md, "Shared constants").
+To add a constant, a range, an enum or a word layout (a per-method coefficient word): add it
+to :data:`CONSTANTS`, :data:`RANGES`, :data:`ENUMS` or :data:`LAYOUTS`, regenerate, and use
+the generated name in the RTL (docs/architecture.md, "Shared constants"). The AXI4-Lite
+register map is written in ``nuc_fixed/registers.toml``; its offsets, field positions and
+resets become :data:`REGISTER_CONSTANTS` (part of :data:`CONSTANTS`).
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+
+from irnuc.nuc_fixed import regmap as _regmap
 
 # ---------------------------------------------------------------------------------------
 # Items
@@ -148,6 +151,12 @@ DPC_SUM_LEAVES = 9
 #: (irnuc_dsp_mul; ECP5's MULT18X18D is instantiated with both).
 MUL_STAGES = 2
 
+#: The AXI4-Lite register map of irnuc_axis_top (nuc_fixed/registers.toml, read by
+#: :mod:`irnuc.nuc_fixed.regmap`): its identity, every offset, field position and width and
+#: numeric reset value, as package constants (``RegCtrlOffset``, ``RegCtrlNucEnLsb``, ...).
+REGISTER_CONSTANTS: tuple[Constant, ...] = tuple(
+    Constant(name, value, doc) for name, value, doc in _regmap.sv_constants())
+
 CONSTANTS: tuple[Constant, ...] = (
     Constant("MulChunkBits", MUL_CHUNK_BITS,
              "operand chunk of the multipliers (one DSP block per partial product)"),
@@ -156,6 +165,7 @@ CONSTANTS: tuple[Constant, ...] = (
     Constant("DpcRecipGuardBits", DPC_RECIP_GUARD_BITS,
              "DPC reciprocal shift K = OutBits + this"),
     Constant("SumBitsMax", SUM_BITS_MAX, "widest NUC sum (int64 golden model, one spare bit)"),
+    *REGISTER_CONSTANTS,
 )
 
 RANGES: tuple[Range, ...] = (
@@ -532,8 +542,8 @@ __all__ = [
     "COEF_ONE_POINT", "COEF_PIECEWISE", "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS",
     "DPC_SUM_LEAVES", "ENUMS", "FRAME_DIM_MAX", "FRAME_TC_OFFSET", "LAYOUTS", "METHOD",
     "MUL_CHUNK_BITS", "MUL_STAGES", "OVERFLOW", "OVERFLOW_MODES", "PIPELINE_RANGES",
-    "QUAD_WORD", "RANGES", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX", "TC_WORD_1",
-    "TC_WORD_2", "TG_WORD_1", "TG_WORD_2", "Constant", "Enum", "EnumLiteral", "Field", "Range",
-    "WordLayout", "clog2", "dpc_recip", "dpc_recip_shift", "memory_layout", "mul_chunks",
-    "mul_parts", "pipeline_stages", "sv_package_block", "sv_probe",
+    "QUAD_WORD", "RANGES", "REGISTER_CONSTANTS", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX",
+    "TC_WORD_1", "TC_WORD_2", "TG_WORD_1", "TG_WORD_2", "Constant", "Enum", "EnumLiteral",
+    "Field", "Range", "WordLayout", "clog2", "dpc_recip", "dpc_recip_shift", "memory_layout",
+    "mul_chunks", "mul_parts", "pipeline_stages", "sv_package_block", "sv_probe",
 ]

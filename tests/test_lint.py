@@ -16,6 +16,11 @@ MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_regis
 #: The modules of the correction methods, linted with every method configuration.
 METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
                   "table_interp", "interp_weight")
+#: The AXI wrapper of the two-point core and its parts, linted with every two-point
+#: configuration (their parameters are widths and the frame limit, not the modes); the
+#: protocol checkers take no configuration (once).
+AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer")
+AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
               "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
@@ -76,6 +81,15 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
     assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
 
 
+@pytest.mark.parametrize(("module", "config"),
+                         [(m, c) for m in AXI_MODULES for c in pipeline_names()]
+                         + [(m, "minimal") for m in AXI_CHECKERS])
+def test_lint_clean_axi(module: str, config: str) -> None:
+    proc = lint(module, load_pipeline(config))
+    report = proc.stdout + proc.stderr
+    assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
+
+
 def test_one_module_per_file() -> None:
     """One module (or the one package) per file, named like the file; every file linted."""
     paths = sorted(HDL_DIR.glob("*.sv")) + sorted(SIM_HDL_DIR.glob("*.sv"))
@@ -86,7 +100,8 @@ def test_one_module_per_file() -> None:
         assert units[0].split()[1].rstrip("#(;") == path.stem
         if units[0].startswith("package "):
             continue
-        assert path.stem in MODULES + METHOD_MODULES, f"{path.name} is not in the lint list"
+        linted = MODULES + METHOD_MODULES + AXI_MODULES + AXI_CHECKERS
+        assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 
 

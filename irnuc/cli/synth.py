@@ -12,6 +12,11 @@ def add_synth_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--pipeline", action="append", required=True, metavar="NAME|FILE.toml",
                    help="NUC + DPC configuration: a name in nuc_fixed/pipelines.toml or a "
                         "pipeline TOML file; repeat it to synthesize several (in parallel)")
+    p.add_argument("--top", default=None, metavar="MODULE",
+                   help="the module to synthesize: nuc_dpc_top, method_dpc_top or "
+                        "irnuc_axis_top (the AXI4-Stream/AXI4-Lite wrapper of the two-point "
+                        "core); default: the pipeline's bare core (nuc_dpc_top for "
+                        "two_point, method_dpc_top for the other base methods)")
     p.add_argument("--max-width", type=int, default=None,
                    help="line-buffer length to synthesize (default: the pipeline's max_width)")
     p.add_argument("--max-height", type=int, default=None,
@@ -37,7 +42,7 @@ def run_synth(args: argparse.Namespace) -> int:
         plain_name,
         write_text_atomic,
     )
-    from irnuc.cosim.synth import synth_configs
+    from irnuc.cosim.synth import SYNTH_TOPS, synth_configs
     from irnuc.nuc_fixed.rtl_spec import PIPELINE_RANGES
 
     out = claim_output_folder(args.out, kind="synth")
@@ -51,6 +56,13 @@ def run_synth(args: argparse.Namespace) -> int:
         lo, hi = PIPELINE_RANGES[field]
         if v is not None and not lo <= v <= hi:
             raise UserError(f"{flag} {v} is outside the allowed range {lo}..{hi}")
+    if args.top is not None and args.top not in SYNTH_TOPS:
+        raise UserError(f"--top {args.top!r}: expected one of {', '.join(SYNTH_TOPS)}")
+    if args.top == "irnuc_axis_top":
+        for c, p in zip(cfgs, args.pipeline, strict=True):
+            if c.method != "two_point":
+                raise UserError(f"--top irnuc_axis_top --pipeline {p}: method {c.method!r}; "
+                                "irnuc_axis_top wraps the two-point core (method two_point)")
     if not 1.0 <= args.freq <= 1000.0:
         raise UserError(f"--freq {args.freq:g} is outside the allowed range 1..1000 MHz")
     if not 0 <= args.seed < 2**31:
@@ -62,7 +74,7 @@ def run_synth(args: argparse.Namespace) -> int:
                                        ("max_height", args.max_height)) if v is not None})
     results = synth_configs(cfgs, workers=args.workers if len(cfgs) > 1 else 0,
                             scheduler=args.scheduler, progress=progress("synth"),
-                            max_width=args.max_width, max_height=args.max_height,
+                            top=args.top, max_width=args.max_width, max_height=args.max_height,
                             speed=args.speed, freq_mhz=args.freq, seed=args.seed,
                             use_cache=not args.no_cache)
     with output_folder(out, kind="synth") as tmp:
@@ -78,7 +90,7 @@ def run_synth(args: argparse.Namespace) -> int:
             write_text_atomic(tmp / "synth.json", json.dumps(index, indent=1) + "\n")
     for r in results:
         x, e = r["xc7"], r["ecp5"]
-        say(f"{r['config']['name']} ({r['config']['max_width']} x {r['config']['max_height']}): "
+        say(f"{r['config']['name']} {r['top']} ({r['config']['max_width']} x {r['config']['max_height']}): "
             f"Fmax {r['fmax_mhz']:.1f} MHz (ECP5-85k speed {r['speed']}); xc7 {x['lut']} LUT, "
             f"{x['ff']} FF, {x['dsp']} DSP48, {x['bram18']} RAMB18, {x['bram36']} RAMB36, "
             f"{x['lutram']} LUTRAM; ECP5 {e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, "

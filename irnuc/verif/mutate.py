@@ -281,8 +281,9 @@ CATALOGUE: tuple[Mutant, ...] = (
     _mm("mul_a_top_unsigned", "irnuc_mul_parts.sv",
         "      assign a_chunk = 18'($signed(a_i[ALsb +: AWide]));",
         "      assign a_chunk = 18'(a_i[ALsb +: AWide]);",
-        "the top chunk of a signed A operand zero-extended (pwl_core: d = x - k < 0)",
-        "piecewise14"),
+        "the top chunk of a signed A operand zero-extended (tc_poly: tc1 * u with tc1 < 0 in a "
+        "16-bit chunk; pwl_core's 18-bit difference fills its chunk, where the two agree)",
+        "tcoffset14"),
     _mm("mul_b_top_unsigned", "irnuc_mul_parts.sv",
         "        assign b_chunk = 18'($signed(b_i[BLsb +: BWide]));",
         "        assign b_chunk = 18'(b_i[BLsb +: BWide]);",
@@ -409,11 +410,15 @@ CATALOGUE: tuple[Mutant, ...] = (
        "a reading equal to a table's reading picks the table below", **_IW),
     _m("iw_clamp_top", "interp_weight.sv", "end else if (above_q[ReadingBits-1:0] >= span_q) begin",
        "end else if (above_q[ReadingBits-1:0] > span_q) begin",
-       "num = span is divided instead of taken as 1", **_IW),
+       "num = span is divided instead of taken as 1 (seen only when the weight truncates: "
+       "the division leaves 2^Wf - 1 and a remainder that rounds up to 2^Wf)",
+       **{**_IW, "changes": (("formats", (("weight", (("rounding", "truncate"),)),)),)}),
     _m("iw_half_even_no_odd", "interp_weight.sv",
        "(twice_rem == {2'b00, span_q} && quot_q[0]);", "(twice_rem == {2'b00, span_q});",
-       "half_even weights round ties up", **{**_IW, "changes": (
-           ("formats", (("weight", (("rounding", "half_even"),)),)),)}),
+       "half_even weights round ties up (a tie needs a span of 2^(Wf+1) or more: 8-bit "
+       "readings with Wf = 6; table14's 14-bit readings with Wf = 15 never tie)",
+       **{**_IW, "changes": (("tables", 2), ("reading_bits", 8), ("formats", (
+           ("weight", (("rounding", "half_even"), ("frac_bits", 6))),)))}),
     _m("iw_no_order_check", "interp_weight.sv",
        "      if (table_readings_i[i + 1] <= table_readings_i[i]) begin",
        "      if (1'b0) begin", "unordered table readings not flagged", **_IW),
@@ -429,15 +434,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "end else if (join_take) begin",
         "the held frame word follows every pixel", "piecewise14"),
     _mm("top_tc_reading_ref_swapped", "method_dpc_top.sv",
-        ".s_reading_i(frame[ReadingBits-1:0]),\n        .s_t_ref_i  (frame[ReadingBits +: "
-        "ReadingBits]),",
-        ".s_reading_i(frame[ReadingBits +: ReadingBits]),\n        .s_t_ref_i  "
-        "(frame[ReadingBits-1:0]),", "the reading and t_ref swapped", "tcoffset14"),
-    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (coef[TwoPointBits +: QuadBits]),",
+        ".s_reading_i(fw.reading),\n        .s_t_ref_i  (fw.t_ref),",
+        ".s_reading_i(fw.t_ref),\n        .s_t_ref_i  (fw.reading),",
+        "the reading and t_ref swapped", "tcoffset14"),
+    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (w.quad.quad),",
         ".s_quad_i    (coef[TwoPointBits - 1 +: QuadBits]),",
         "the quad word read one bit low", "quadratic14"),
-    _mm("top_one_point_bad", "method_dpc_top.sv", "      assign bad    = coef[OffsetBits];",
-        "      assign bad    = coef[OffsetBits-1];", "one_point's bad flag from the offset's "
+    _mm("top_one_point_bad", "method_dpc_top.sv",
+        "      assign offset = w.offset;\n      assign bad    = w.bad;\n    end else",
+        "      assign offset = w.offset;\n      assign bad    = coef[OffsetBits-1];\n    end else",
+        "one_point's bad flag from the offset's "
         "sign", "onepoint14"),
     _mm("top_table_weight_low", "method_dpc_top.sv", ".s_weight_i (frame[WeightFracBits:0]),",
         ".s_weight_i ({1'b0, frame[WeightFracBits-1:0]}),",

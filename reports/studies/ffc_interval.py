@@ -17,16 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from irnuc.reports.studies.drift_common import (
-    PLAN,
-    StudySensor,
-    calibrate_methods,
-    fpn,
-    frames_at,
-    netd_mK,
-    pyplot,
-    responsivity,
-)
+from irnuc.reports.studies import drift_common as dc
 
 NAME = "ffc_interval"
 TITLE = "Residual fixed pattern against time since the last FFC, FPA ramping"
@@ -47,7 +38,7 @@ def longest_period(t_min: np.ndarray, fpn_mK: np.ndarray, netd: float) -> float 
     return float(t0 + (netd - f0) / (f1 - f0) * (t1 - t0))
 
 
-def run(quick: bool = False, sensor: StudySensor | None = None, scene_K: float = 330.0,
+def run(quick: bool = False, sensor: dc.StudySensor | None = None, scene_K: float = 330.0,
         ffc_fpa: float = 300.0, max_change_K: float = 6.0,
         progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
     """Residual against FPA change after one FFC, for each method and ramp (JSON-ready)."""
@@ -56,22 +47,22 @@ def run(quick: bool = False, sensor: StudySensor | None = None, scene_K: float =
     from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 
     t0 = time.perf_counter()
-    sensor = sensor or StudySensor(rows=24 if quick else 48, cols=32 if quick else 64)
+    sensor = sensor or dc.StudySensor(rows=24 if quick else 48, cols=32 if quick else 64)
     # Dense near the FFC, where a method without temperature compensation crosses the NETD.
     grid = (0.0, 0.1, 0.3, 1.0, 3.0, 6.0) if quick else (
         0.0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0)
     changes = np.asarray([d for d in grid if d <= max_change_K])
-    cal = calibrate_methods(sensor, (*METHODS, "typical14"), PLAN)
+    cal = dc.calibrate_methods(sensor, (*METHODS, "typical14"), dc.PLAN)
     base = cal["cal"]["ffc14"]
-    r_out = responsivity(base.targets, PLAN["scene"])(scene_K)
+    r_out = dc.responsivity(base.targets, dc.PLAN["scene"])(scene_K)
     good = ~np.logical_or.reduce([c.bad for c in cal["cal"].values()])
     n_ffc = int(base.cfg.ffc_frames or 1)
-    shutter_raw, _ = frames_at(sensor, ffc_fpa, ffc_fpa, [ffc_fpa], repeats=n_ffc)
+    shutter_raw, _ = dc.frames_at(sensor, ffc_fpa, ffc_fpa, [ffc_fpa], repeats=n_ffc)
     reading0 = int(cal["plan"].fpa_sensor.read(ffc_fpa)[0])
     scene_raw = []
     readings = []
     for i, d in enumerate(changes):
-        raw, _ = frames_at(sensor, ffc_fpa + d, ffc_fpa + d, [scene_K])
+        raw, _ = dc.frames_at(sensor, ffc_fpa + d, ffc_fpa + d, [scene_K])
         scene_raw.append(raw[0])
         readings.append(int(cal["plan"].fpa_sensor.read(ffc_fpa + d)[0]))
         if progress:
@@ -85,10 +76,10 @@ def run(quick: bool = False, sensor: StudySensor | None = None, scene_K: float =
         y = method_top(scene_raw, c.coeffs, FrameInputs(
             reading=np.asarray(readings), shutter=np.zeros(len(changes), bool)),
             ffc_offset=ref.ffc_offset).y
-        curves[c.cfg.method] = [fpn(f, good) / r_out * 1e3 for f in y]
+        curves[c.cfg.method] = [dc.fpn(f, good) / r_out * 1e3 for f in y]
     y2 = method_top(scene_raw, cal["cal"]["typical14"].coeffs).y
-    curves["two_point (no FFC)"] = [fpn(f, good) / r_out * 1e3 for f in y2]
-    netd = netd_mK(sensor, ffc_fpa, scene_K, r_out,
+    curves["two_point (no FFC)"] = [dc.fpn(f, good) / r_out * 1e3 for f in y2]
+    netd = dc.netd_mK(sensor, ffc_fpa, scene_K, r_out,
                    out_per_adc=2.0 ** (base.cfg.out_bits - base.cfg.adc_bits))
     ramps = {}
     for rate in RATES_K_PER_MIN:
@@ -113,7 +104,7 @@ def figure(result: dict[str, Any]) -> bytes:
     """Residual against time since the FFC, one panel per ramp, the NETD."""
     from irnuc.reports.studies.figures import png
 
-    plt = pyplot()
+    plt = dc.pyplot()
     ramps = result["ramps"]
     fig, axes = plt.subplots(1, len(ramps), figsize=(5.2 * len(ramps), 3.8), squeeze=False)
     for ax, (rname, ramp) in zip(axes[0], ramps.items(), strict=True):

@@ -57,3 +57,8 @@ case("synth-pipeline-name-absolute", Y, "--pipeline {t}/named.toml --pipeline mi
 case("synth-pipeline-name-hidden", Y, "--pipeline {t}/named.toml",
      ("--pipeline", "'.x'", "plain name"), "a pipeline table named as a hidden file",
      setup=_pipeline_named('".x"'))
+case("synth-top-unknown", Y, "--pipeline minimal --top nuc_dpc_topp",
+     ("--top", "nuc_dpc_topp", "irnuc_axis_top"), "a top module irnuc synth does not build")
+case("synth-top-axis-other-method", Y, "--pipeline piecewise14 --top irnuc_axis_top",
+     ("--top irnuc_axis_top", "piecewise", "two_point"),
+     "the AXI wrapper with a method it does not wrap")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import contextlib
 import math
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -47,18 +47,12 @@ class Point:
     failed: bool = False
 
 
-@contextlib.contextmanager
-def single_thread() -> Iterator[None]:
+def single_thread() -> contextlib.AbstractContextManager[None]:
     """Time on one numba thread: on a shared machine, waiting for a second busy core
     would dominate the small problems and make the timings noise."""
-    import numba
+    from irnuc.model.graph import threads_for
 
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        yield
-    finally:
-        numba.set_num_threads(old)
+    return threads_for(0)
 
 
 def best_time(fn: Callable[[], Any], repeats: int) -> float:

@@ -1,0 +1,436 @@
+// Frames the AXI4-Stream video input for the core and joins each pixel with its coefficient
+// word (docs/integration.md "Frames and markers").
+//
+// Video (UG934: tuser[0] = start of frame on a frame's first pixel, tlast = end of line on
+// a line's last pixel) is counted against the programmed frame size, so the core always
+// gets whole frames of exactly that size, with its own sof/eol:
+//   AxisWait   a beat with start of frame opens a frame; any other beat is dropped
+//              (sof_late, counted once per run of dropped beats);
+//   AxisFrame  beats are pixels. A start of frame inside a frame (sof_early) closes the
+//              frame first: filler pixels (raw code 0) up to its last pixel, then the beat
+//              opens the next frame. tlast before the line's last pixel (eol_early): filler
+//              pixels complete the line. No tlast on the line's last pixel (eol_late): the
+//              line ends there and the beats up to the next tlast are dropped;
+//   AxisPad    filler pixels (the input waits);
+//   AxisDrop   beats dropped up to a tlast (a start of frame there ends the drop).
+// UG934 recommends passing early markers on (shorter lines or frames); the core's 3x3
+// window and its one-word-per-pixel coefficient stream need the programmed geometry, so
+// here they are padded instead, and counted.
+//
+// The frame start takes the pending settings (frame size, enables, the frame word of the
+// method's registers): the registers change what the core does only at a frame start. A
+// changed frame size (size_dirty_i) first waits until the previous frame has left the core
+// (no item between this module's output and the core's output), so the core sees every
+// frame with its own size.
+//
+// Coefficients: one word per pixel, fillers included, in raster order. With coef_sync
+// (CTRL.coef_sync) the word's tlast must mark the frame's last pixel: early (coef_early),
+// the frame's remaining pixels get the neutral word (unity gain, zero offset, not bad) and
+// no word is taken; late (coef_late), the words up to the next tlast are dropped before the
+// next frame's first pixel. Either way the next frame starts aligned with the stream.
+// With nuc_en = 0 a pixel gets unity gain and zero offset; with dpc_en = 0 its bad flag is
+// cleared (the word is taken all the same).
+//
+// Every decision comes from registers (the input registers of the top, this module's
+// state, counters and flags); the output is a spill register, so every output is a flop.
+module irnuc_axis_framer
+  import irnuc_pkg::*;
+#(
+  parameter int unsigned AdcBits        = 14,
+  parameter int unsigned GainIntBits    = 2,
+  parameter int unsigned GainFracBits   = 14,
+  parameter int unsigned OffsetIntBits  = 12,
+  parameter int unsigned OffsetFracBits = 4,
+  parameter int unsigned MaxWidth       = 1024,
+  parameter int unsigned MaxHeight      = 1024,
+  parameter int unsigned FrameBits      = 1,  // the frame word (method registers), >= 1
+  // Derived, do not override.
+  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned WordBits      = coef_word_bits(GainBits, OffsetBits),
+  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
+  // Items between this module's output and the core's output: fewer than the core's
+  // window (MaxWidth + 1) plus its registers; 256 is ample.
+  localparam int unsigned FlightBits    = $clog2(MaxWidth + 256 + 1)
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+  // Video beats (from the input register of s_axis_video).
+  input  logic                  vid_valid_i,
+  output logic                  vid_ready_o,
+  input  logic [AdcBits-1:0]    vid_data_i,
+  input  logic                  vid_sof_i,
+  input  logic                  vid_eol_i,
+  // Coefficient words (from the input register of s_axis_coef).
+  input  logic                  coef_valid_i,
+  output logic                  coef_ready_o,
+  input  logic [WordBits-1:0]   coef_data_i,
+  input  logic                  coef_last_i,
+  // Pending settings (the register file); *_m1 = value - 1, *_is1 = value is 1.
+  input  logic [WidthBits-1:0]  pend_width_i,
+  input  logic [HeightBits-1:0] pend_height_i,
+  input  logic [WidthBits-1:0]  pend_width_m1_i,
+  input  logic [HeightBits-1:0] pend_height_m1_i,
+  input  logic                  pend_width_is1_i,
+  input  logic                  pend_height_is1_i,
+  input  logic                  size_dirty_i,
+  input  logic                  pend_nuc_en_i,
+  input  logic                  pend_dpc_en_i,
+  input  logic                  pend_coef_sync_i,
+  input  logic [FrameBits-1:0]  pend_frame_i,
+  // The frame being corrected: its size (to the core) and its last line's index.
+  output logic [WidthBits-1:0]  act_width_o,
+  output logic [HeightBits-1:0] act_height_o,
+  output logic [HeightBits-1:0] act_height_m1_o,
+  // Items to the core: the pixel, its word, its markers and the frame word.
+  output logic                  m_valid_o,
+  input  logic                  m_ready_i,
+  output logic [AdcBits-1:0]    m_raw_o,
+  output logic [WordBits-1:0]   m_word_o,
+  output logic                  m_sof_o,
+  output logic                  m_eol_o,
+  output logic [FrameBits-1:0]  m_frame_o,
+  // An item left the core (m_axis_video transfer).
+  input  logic                  core_out_i,
+  // A frame starts now (its first item is sent): the pending settings are taken.
+  output logic                  start_o,
+  // Events, one cycle each (registered), for the register file.
+  output logic                  frame_start_o,
+  output logic                  beat_o,       // a beat was taken (pixel or dropped)
+  output logic                  drop_o,       // ... and dropped
+  output logic                  pad_o,        // a filler pixel was sent
+  output logic                  sof_early_o,
+  output logic                  sof_late_o,
+  output logic                  eol_early_o,
+  output logic                  eol_late_o,
+  output logic                  coef_early_o,
+  output logic                  coef_late_o,
+  output logic                  in_frame_o
+);
+
+  typedef coef_word#(GainBits, OffsetBits)::word_t coef_word_t;
+
+  // Unity gain when the format holds 1.0, else its largest code (U0.Gf).
+  localparam logic [GainBits-1:0] NeutralGain = (GainIntBits > 0) ? GainBits'(1) << GainFracBits
+                                                                  : '1;
+
+`ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
+      else $fatal(1, "irnuc_axis_framer: MaxWidth = %0d outside %0d..%0d", MaxWidth,
+                  MaxWidthMin, MaxWidthMax);
+    assert (MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "irnuc_axis_framer: MaxHeight = %0d outside %0d..%0d", MaxHeight,
+                  MaxHeightMin, MaxHeightMax);
+    assert (FrameBits >= 1)
+      else $fatal(1, "irnuc_axis_framer: FrameBits = %0d must be at least 1", FrameBits);
+  end
+`endif
+
+  // ---- state ----------------------------------------------------------------------------
+  axis_vid_state_e  vst_q, vst_d;
+  axis_coef_state_e cst_q, cst_d;
+  // Position of the next item, counted down: columns and lines left after it, and whether
+  // it is the last of its line / the last line.
+  logic [WidthBits-1:0]  xr_q, xr_d;
+  logic [HeightBits-1:0] yr_q, yr_d;
+  logic                  xl_q, xl_d, yl_q, yl_d;
+  logic                  pad_frame_q, pad_frame_d;  // AxisPad up to the frame's end
+  logic                  done_q, done_d;            // AxisDrop after the frame's last pixel
+  logic                  late_q, late_d;            // AxisWait: this run's sof_late is counted
+  // The active frame's settings.
+  logic [WidthBits-1:0]  act_w_q, act_wm1_q;
+  logic [HeightBits-1:0] act_h_q, act_hm1_q;
+  logic                  act_w_is1_q, act_nuc_q, act_dpc_q, act_sync_q;
+  // Items in flight to the core's output, and the drain before a new frame size.
+  logic [FlightBits-1:0] flight_q;
+  logic                  empty_q, drained_q;
+
+  // ---- what happens this cycle ----------------------------------------------------------
+  logic start_ok, starting, pix_item, pad_item, item, word_ok, fire;
+  logic take_beat, drop_beat, take_coef, last;
+  logic eff_nuc, eff_dpc, eff_sync;
+  logic out_ready;
+
+  // A new frame size waits for the drain (drained_q is at least a cycle after the write,
+  // so the position registers are preloaded from the new size).
+  assign start_ok = !size_dirty_i || drained_q;
+  assign starting = (vst_q == AxisWait);
+  assign pix_item = (vid_valid_i && !vid_sof_i && (vst_q == AxisFrame))
+                    || (vid_valid_i && vid_sof_i && starting && start_ok);
+  assign pad_item = (vst_q == AxisPad);
+  assign item     = pix_item || pad_item;
+  assign word_ok  = (cst_q == CoefNormal && coef_valid_i) || (cst_q == CoefFill);
+  assign fire     = item && word_ok && out_ready;
+  assign last     = xl_q && yl_q;
+
+  // The start item takes the pending settings; the others the active ones.
+  assign eff_nuc  = starting ? pend_nuc_en_i : act_nuc_q;
+  assign eff_dpc  = starting ? pend_dpc_en_i : act_dpc_q;
+  assign eff_sync = starting ? pend_coef_sync_i : act_sync_q;
+
+  // Beats dropped: without start of frame while waiting; in AxisDrop, except a start of
+  // frame (it opens the next frame, or closes this one early).
+  assign drop_beat = vid_valid_i && !vid_sof_i && (starting || vst_q == AxisDrop);
+  assign take_beat = (fire && pix_item) || drop_beat;
+  assign take_coef = (fire && cst_q == CoefNormal) || (cst_q == CoefSkip && coef_valid_i);
+
+  assign vid_ready_o  = take_beat;
+  assign coef_ready_o = take_coef;
+  assign start_o      = fire && starting;
+
+  // ---- next state ---------------------------------------------------------------------------
+  // Each register's next value with and without an item sent, from registers only; `fire`
+  // picks one at the end (the deepest signal passes a single multiplexer).
+  always_comb begin : p_next
+    // Position: one step per item. The frame's last item, and waiting, load the pending
+    // size: the position of the next frame's first pixel.
+    logic [WidthBits-1:0]  xr_f, xr_n;
+    logic [HeightBits-1:0] yr_f, yr_n;
+    logic                  xl_f, yl_f, xl_n, yl_n;
+    axis_vid_state_e       vst_f, vst_n;
+    axis_coef_state_e      cst_f, cst_n;
+    logic                  pad_frame_f, pad_frame_n, done_f;
+
+    if (starting) begin
+      {xr_n, xl_n, yr_n, yl_n} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
+                                  pend_height_is1_i};
+    end else begin
+      {xr_n, xl_n, yr_n, yl_n} = {xr_q, xl_q, yr_q, yl_q};
+    end
+    if (last) begin
+      {xr_f, xl_f, yr_f, yl_f} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
+                                  pend_height_is1_i};
+    end else if (xl_q) begin
+      xr_f = starting ? pend_width_m1_i : act_wm1_q;
+      xl_f = starting ? pend_width_is1_i : act_w_is1_q;
+      yr_f = yr_q - HeightBits'(1);
+      yl_f = (yr_q == HeightBits'(1));
+    end else begin
+      xr_f = xr_q - WidthBits'(1);
+      xl_f = (xr_q == WidthBits'(1));
+      yr_f = yr_q;
+      yl_f = yl_q;
+    end
+
+    // Video, no item sent: a start of frame inside a frame closes it (sof_early); a drop
+    // ends with a tlast (or with a start of frame after the frame's last pixel).
+    vst_n       = vst_q;
+    pad_frame_n = pad_frame_q;
+    unique case (vst_q)
+      AxisFrame: begin
+        if (vid_valid_i && vid_sof_i) begin
+          vst_n       = AxisPad;
+          pad_frame_n = 1'b1;
+        end
+      end
+      AxisDrop: begin
+        if (vid_valid_i && vid_sof_i) begin
+          vst_n       = done_q ? AxisWait : AxisPad;
+          pad_frame_n = 1'b1;
+        end else if (drop_beat && vid_eol_i) begin
+          vst_n = done_q ? AxisWait : AxisFrame;
+        end
+      end
+      default: ;
+    endcase
+    // Video, an item sent: a pixel's own tlast (early: pad the line; missing on the line's
+    // last pixel: drop up to the next tlast); the frame's last item closes it.
+    vst_f       = AxisFrame;
+    pad_frame_f = pad_frame_q;
+    done_f      = done_q;
+    if (vst_q == AxisPad) begin
+      if (last) begin
+        vst_f = AxisWait;
+      end else if (!(xl_q && !pad_frame_q)) begin
+        vst_f = AxisPad;
+      end
+    end else if (vid_eol_i && !xl_q) begin
+      vst_f       = AxisPad;
+      pad_frame_f = 1'b0;
+    end else if (!vid_eol_i && xl_q) begin
+      vst_f  = AxisDrop;
+      done_f = yl_q;
+    end else if (last) begin
+      vst_f = AxisWait;
+    end
+
+    // Coefficients (with coef_sync): tlast early, fill the frame; missing, skip to one.
+    cst_n = cst_q;
+    if (cst_q == CoefSkip && take_coef && coef_last_i) begin
+      cst_n = CoefNormal;
+    end
+    cst_f = cst_q;
+    if (cst_q == CoefFill) begin
+      cst_f = last ? CoefNormal : CoefFill;
+    end else if (cst_q == CoefNormal && eff_sync && coef_last_i && !last) begin
+      cst_f = CoefFill;
+    end else if (cst_q == CoefNormal && eff_sync && !coef_last_i && last) begin
+      cst_f = CoefSkip;
+    end
+
+    xr_d        = fire ? xr_f : xr_n;
+    xl_d        = fire ? xl_f : xl_n;
+    yr_d        = fire ? yr_f : yr_n;
+    yl_d        = fire ? yl_f : yl_n;
+    vst_d       = fire ? vst_f : vst_n;
+    cst_d       = fire ? cst_f : cst_n;
+    pad_frame_d = fire ? pad_frame_f : pad_frame_n;
+    done_d      = fire ? done_f : done_q;
+    late_d      = starting ? (late_q || drop_beat) && !fire : 1'b0;
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
+    if (!rst_ni) begin
+      vst_q       <= AxisWait;
+      cst_q       <= CoefNormal;
+      xr_q        <= '0;
+      yr_q        <= '0;
+      xl_q        <= 1'b1;
+      yl_q        <= 1'b1;
+      pad_frame_q <= 1'b0;
+      done_q      <= 1'b0;
+      late_q      <= 1'b0;
+    end else begin
+      vst_q       <= vst_d;
+      cst_q       <= cst_d;
+      xr_q        <= xr_d;
+      yr_q        <= yr_d;
+      xl_q        <= xl_d;
+      yl_q        <= yl_d;
+      pad_frame_q <= pad_frame_d;
+      done_q      <= done_d;
+      late_q      <= late_d;
+    end
+  end
+
+  // ---- the active settings: taken with a frame's first item -----------------------------
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_active
+    if (!rst_ni) begin
+      act_w_q     <= WidthBits'(MaxWidth);
+      act_wm1_q   <= WidthBits'(MaxWidth - 1);
+      act_w_is1_q <= (MaxWidth == 1);
+      act_h_q     <= HeightBits'(MaxHeight);
+      act_hm1_q   <= HeightBits'(MaxHeight - 1);
+      act_nuc_q   <= 1'b1;
+      act_dpc_q   <= 1'b1;
+      act_sync_q  <= 1'b1;
+    end else if (fire && starting) begin
+      act_w_q     <= pend_width_i;
+      act_wm1_q   <= pend_width_m1_i;
+      act_w_is1_q <= pend_width_is1_i;
+      act_h_q     <= pend_height_i;
+      act_hm1_q   <= pend_height_m1_i;
+      act_nuc_q   <= pend_nuc_en_i;
+      act_dpc_q   <= pend_dpc_en_i;
+      act_sync_q  <= pend_coef_sync_i;
+    end
+  end
+
+  assign act_width_o     = act_w_q;
+  assign act_height_o    = act_h_q;
+  assign act_height_m1_o = act_hm1_q;
+
+  // ---- items in flight: the drain before a new frame size --------------------------------
+  logic [FlightBits-1:0] flight_d;
+
+  always_comb begin : p_flight
+    flight_d = flight_q;
+    if (fire && !core_out_i) begin
+      flight_d = flight_q + FlightBits'(1);
+    end else if (!fire && core_out_i) begin
+      flight_d = flight_q - FlightBits'(1);
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_drain
+    if (!rst_ni) begin
+      flight_q  <= '0;
+      empty_q   <= 1'b1;
+      drained_q <= 1'b0;
+    end else begin
+      flight_q  <= flight_d;
+      empty_q   <= (flight_q == '0) && !fire;  // an item leaves only when one is in flight
+      drained_q <= empty_q && size_dirty_i && starting && !fire;
+    end
+  end
+
+  // ---- the item: pixel or filler, and its word -------------------------------------------
+  coef_word_t word;
+
+  always_comb begin : p_word
+    word = coef_word_t'(coef_data_i);
+    if (cst_q == CoefFill || !eff_nuc) begin
+      word.gain   = NeutralGain;
+      word.offset = '0;
+    end
+    if (cst_q == CoefFill || !eff_dpc) begin
+      word.bad = 1'b0;
+    end
+  end
+
+  logic [AdcBits-1:0] raw;
+  assign raw = pad_item ? '0 : vid_data_i;
+
+  irnuc_spill_register #(.DataBits(FrameBits + 2 + AdcBits + WordBits)) u_out (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(fire),
+    .ready_o(out_ready),
+    .data_i ({starting ? pend_frame_i : '0, starting, xl_q, raw, word}),
+    .valid_o(m_valid_o),
+    .ready_i(m_ready_i),
+    .data_o ({m_frame_o, m_sof_o, m_eol_o, m_raw_o, m_word_o})
+  );
+
+  // ---- events ---------------------------------------------------------------------------
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_events
+    if (!rst_ni) begin
+      frame_start_o <= 1'b0;
+      beat_o        <= 1'b0;
+      drop_o        <= 1'b0;
+      pad_o         <= 1'b0;
+      sof_early_o   <= 1'b0;
+      sof_late_o    <= 1'b0;
+      eol_early_o   <= 1'b0;
+      eol_late_o    <= 1'b0;
+      coef_early_o  <= 1'b0;
+      coef_late_o   <= 1'b0;
+      in_frame_o    <= 1'b0;
+    end else begin
+      frame_start_o <= fire && starting;
+      beat_o        <= take_beat;
+      drop_o        <= drop_beat;
+      pad_o         <= fire && pad_item;
+      sof_early_o   <= vid_valid_i && vid_sof_i && ((vst_q == AxisFrame)
+                                                    || (vst_q == AxisDrop && !done_q));
+      sof_late_o    <= drop_beat && starting && !late_q;
+      eol_early_o   <= fire && pix_item && vid_eol_i && !xl_q;
+      eol_late_o    <= fire && pix_item && !vid_eol_i && xl_q;
+      coef_early_o  <= fire && cst_q == CoefNormal && eff_sync && coef_last_i && !last;
+      coef_late_o   <= fire && cst_q == CoefNormal && eff_sync && !coef_last_i && last;
+      in_frame_o    <= (vst_d != AxisWait);
+    end
+  end
+
+`ifdef IRNUC_ASSERT
+  // Protocol assertions of the input and output streams: in the spill registers of the top
+  // (vid, coef) and u_out. The count of items in flight never wraps:
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_flight_range: assert (!(core_out_i && flight_q == '0))
+        else $error("irnuc_axis_framer: an item left the core that was never sent");
+    end
+  end
+`endif
+
+endmodule

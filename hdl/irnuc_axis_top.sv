@@ -1,0 +1,419 @@
+// The NUC + DPC core with the interfaces a video system integrates (docs/integration.md):
+//   s_axis_video  raw pixels, AXI4-Stream video (UG934): tuser[0] start of frame, tlast
+//                 end of line; the code in tdata[AdcBits-1:0], the bits above ignored
+//   s_axis_coef   coefficient words, one per pixel in raster order, as a DMA reads the
+//                 memory image of irnuc calibrate: word in tdata[WordBits-1:0] (the image's
+//                 bytes of one word, little-endian), tlast on each frame's last word
+//   m_axis_video  corrected pixels, AXI4-Stream video; the code in tdata[OutBits-1:0], the
+//                 bits above 0
+//   s_axil        the register file (docs/registers.md), irq_o its interrupt
+// One clock, one asynchronous active-low reset (release it synchronously: a reset
+// synchronizer or the system's reset block). AXI port names follow the AXI specification
+// (the prefix finds the interface in Vivado, LiteX and cocotbext-axi), the others the
+// lowRISC style of the rest of the RTL.
+//
+//   s_axis_video -> u_vid_in --\
+//                               u_framer (frames, markers, join, enables) -> u_core -> m_axis_video
+//   s_axis_coef  -> u_coef_in --/        ^ pending settings, events v
+//   s_axil <-> u_regs (register file, counters, interrupt)
+//
+// nuc_dpc_top stays the bare core: its two input streams move in lockstep here (one item
+// of the framer is a pixel and its word). Every output port is a flop.
+module irnuc_axis_top
+  import irnuc_pkg::*;
+#(
+  parameter int unsigned AdcBits        = 14,
+  parameter int unsigned GainIntBits    = 2,
+  parameter int unsigned GainFracBits   = 14,
+  parameter int unsigned OffsetIntBits  = 12,
+  parameter int unsigned OffsetFracBits = 4,
+  parameter int unsigned OutBits        = 14,
+  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth       = 1024,
+  parameter int unsigned MaxHeight      = 1024,
+  // Derived, do not override.
+  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned WordBits      = coef_word_bits(GainBits, OffsetBits),
+  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
+  // AXI4-Stream data are whole bytes.
+  localparam int unsigned VidInBits     = 8 * ((AdcBits + 7) / 8),
+  localparam int unsigned VidOutBits    = 8 * ((OutBits + 7) / 8),
+  localparam int unsigned CoefBits      = 8 * ((WordBits + 7) / 8),
+  localparam int unsigned AddrBits      = RegAddrBits
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+  // Raw video in.
+  input  logic [VidInBits-1:0]  s_axis_video_tdata,
+  input  logic                  s_axis_video_tvalid,
+  output logic                  s_axis_video_tready,
+  input  logic                  s_axis_video_tlast,
+  input  logic [0:0]            s_axis_video_tuser,
+  // Coefficient words in.
+  input  logic [CoefBits-1:0]   s_axis_coef_tdata,
+  input  logic                  s_axis_coef_tvalid,
+  output logic                  s_axis_coef_tready,
+  input  logic                  s_axis_coef_tlast,
+  // Corrected video out.
+  output logic [VidOutBits-1:0] m_axis_video_tdata,
+  output logic                  m_axis_video_tvalid,
+  input  logic                  m_axis_video_tready,
+  output logic                  m_axis_video_tlast,
+  output logic [0:0]            m_axis_video_tuser,
+  // Registers.
+  input  logic [AddrBits-1:0]   s_axil_awaddr,
+  input  logic [2:0]            s_axil_awprot,
+  input  logic                  s_axil_awvalid,
+  output logic                  s_axil_awready,
+  input  logic [31:0]           s_axil_wdata,
+  input  logic [3:0]            s_axil_wstrb,
+  input  logic                  s_axil_wvalid,
+  output logic                  s_axil_wready,
+  output logic [1:0]            s_axil_bresp,
+  output logic                  s_axil_bvalid,
+  input  logic                  s_axil_bready,
+  input  logic [AddrBits-1:0]   s_axil_araddr,
+  input  logic [2:0]            s_axil_arprot,
+  input  logic                  s_axil_arvalid,
+  output logic                  s_axil_arready,
+  output logic [31:0]           s_axil_rdata,
+  output logic [1:0]            s_axil_rresp,
+  output logic                  s_axil_rvalid,
+  input  logic                  s_axil_rready,
+  // Interrupt (level, active high): framing errors, frame done, FFC done, as enabled.
+  output logic                  irq_o
+);
+
+  // The two-point core has no frame word (method registers) and no FFC unit.
+  localparam int unsigned FrameBits = 1;
+
+`ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
+      else $fatal(1, "irnuc_axis_top: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
+                  MaxWidthMax);
+    assert (MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
+      else $fatal(1, "irnuc_axis_top: MaxHeight = %0d outside %0d..%0d", MaxHeight,
+                  MaxHeightMin, MaxHeightMax);
+  end
+`endif
+
+  // ---- input registers -------------------------------------------------------------------
+  logic               vid_valid, vid_ready, vid_sof, vid_eol;
+  logic [AdcBits-1:0] vid_data;
+  logic               coef_valid, coef_ready, coef_last;
+  logic [WordBits-1:0] coef_data;
+
+  irnuc_spill_register #(.DataBits(AdcBits + 2)) u_vid_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_axis_video_tvalid),
+    .ready_o(s_axis_video_tready),
+    .data_i ({s_axis_video_tuser[0], s_axis_video_tlast, s_axis_video_tdata[AdcBits-1:0]}),
+    .valid_o(vid_valid),
+    .ready_i(vid_ready),
+    .data_o ({vid_sof, vid_eol, vid_data})
+  );
+
+  irnuc_spill_register #(.DataBits(WordBits + 1)) u_coef_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_axis_coef_tvalid),
+    .ready_o(s_axis_coef_tready),
+    .data_i ({s_axis_coef_tlast, s_axis_coef_tdata[WordBits-1:0]}),
+    .valid_o(coef_valid),
+    .ready_i(coef_ready),
+    .data_o ({coef_last, coef_data})
+  );
+
+  // ---- register file -----------------------------------------------------------------------
+  logic [WidthBits-1:0]  pend_w, pend_wm1, act_w;
+  logic [HeightBits-1:0] pend_h, pend_hm1, act_h, act_hm1;
+  logic                  pend_w_is1, pend_h_is1, size_dirty, pend_nuc, pend_dpc, pend_sync;
+  logic [7:0][63:0]      slots;
+  logic [RegTableReadingCount-1:0][31:0] table_readings;
+  logic                  start, frame_start, beat, drop, pad, in_frame;
+  logic                  sof_early, sof_late, eol_early, eol_late, coef_early, coef_late;
+  logic                  pix_out, frame_out, core_err;
+  logic                  ffc_start;
+  logic [RegFfcCtrlFramesBits-1:0] ffc_frames;
+
+  irnuc_axil_regs #(
+    .AdcBits       (AdcBits),
+    .GainIntBits   (GainIntBits),
+    .GainFracBits  (GainFracBits),
+    .OffsetIntBits (OffsetIntBits),
+    .OffsetFracBits(OffsetFracBits),
+    .OutBits       (OutBits),
+    .Rounding      (Rounding),
+    .Overflow      (Overflow),
+    .MaxWidth      (MaxWidth),
+    .MaxHeight     (MaxHeight),
+    .MethodCode    (1)  // two_point (nuc_fixed.config.BASE_METHODS)
+  ) u_regs (
+    .clk_i           (clk_i),
+    .rst_ni          (rst_ni),
+    .s_axil_awaddr_i (s_axil_awaddr),
+    .s_axil_awvalid_i(s_axil_awvalid),
+    .s_axil_awready_o(s_axil_awready),
+    .s_axil_wdata_i  (s_axil_wdata),
+    .s_axil_wstrb_i  (s_axil_wstrb),
+    .s_axil_wvalid_i (s_axil_wvalid),
+    .s_axil_wready_o (s_axil_wready),
+    .s_axil_bresp_o  (s_axil_bresp),
+    .s_axil_bvalid_o (s_axil_bvalid),
+    .s_axil_bready_i (s_axil_bready),
+    .s_axil_araddr_i (s_axil_araddr),
+    .s_axil_arvalid_i(s_axil_arvalid),
+    .s_axil_arready_o(s_axil_arready),
+    .s_axil_rdata_o  (s_axil_rdata),
+    .s_axil_rresp_o  (s_axil_rresp),
+    .s_axil_rvalid_o (s_axil_rvalid),
+    .s_axil_rready_i (s_axil_rready),
+    .width_o         (pend_w),
+    .height_o        (pend_h),
+    .width_m1_o      (pend_wm1),
+    .height_m1_o     (pend_hm1),
+    .width_is1_o     (pend_w_is1),
+    .height_is1_o    (pend_h_is1),
+    .size_dirty_o    (size_dirty),
+    .nuc_en_o        (pend_nuc),
+    .dpc_en_o        (pend_dpc),
+    .coef_sync_o     (pend_sync),
+    .slot_o          (slots),
+    .table_o         (table_readings),
+    .start_i         (start),
+    .frame_start_i   (frame_start),
+    .beat_i          (beat),
+    .drop_i          (drop),
+    .pad_i           (pad),
+    .pix_out_i       (pix_out),
+    .frame_out_i     (frame_out),
+    .sof_early_i     (sof_early),
+    .sof_late_i      (sof_late),
+    .eol_early_i     (eol_early),
+    .eol_late_i      (eol_late),
+    .coef_early_i    (coef_early),
+    .coef_late_i     (coef_late),
+    .in_frame_i      (in_frame),
+    .core_err_i      (core_err),
+    .ffc_start_o     (ffc_start),
+    .ffc_frames_o    (ffc_frames),
+    .ffc_busy_i      (1'b0),
+    .ffc_done_i      (1'b0),
+    .irq_o           (irq_o)
+  );
+
+  // ---- framer ---------------------------------------------------------------------------------
+  logic                 item_valid, item_ready, item_sof, item_eol;
+  logic [AdcBits-1:0]   item_raw;
+  logic [WordBits-1:0]  item_word;
+  logic [FrameBits-1:0] item_frame;
+
+  irnuc_axis_framer #(
+    .AdcBits       (AdcBits),
+    .GainIntBits   (GainIntBits),
+    .GainFracBits  (GainFracBits),
+    .OffsetIntBits (OffsetIntBits),
+    .OffsetFracBits(OffsetFracBits),
+    .MaxWidth      (MaxWidth),
+    .MaxHeight     (MaxHeight),
+    .FrameBits     (FrameBits)
+  ) u_framer (
+    .clk_i            (clk_i),
+    .rst_ni           (rst_ni),
+    .vid_valid_i      (vid_valid),
+    .vid_ready_o      (vid_ready),
+    .vid_data_i       (vid_data),
+    .vid_sof_i        (vid_sof),
+    .vid_eol_i        (vid_eol),
+    .coef_valid_i     (coef_valid),
+    .coef_ready_o     (coef_ready),
+    .coef_data_i      (coef_data),
+    .coef_last_i      (coef_last),
+    .pend_width_i     (pend_w),
+    .pend_height_i    (pend_h),
+    .pend_width_m1_i  (pend_wm1),
+    .pend_height_m1_i (pend_hm1),
+    .pend_width_is1_i (pend_w_is1),
+    .pend_height_is1_i(pend_h_is1),
+    .size_dirty_i     (size_dirty),
+    .pend_nuc_en_i    (pend_nuc),
+    .pend_dpc_en_i    (pend_dpc),
+    .pend_coef_sync_i (pend_sync),
+    .pend_frame_i     ('0),
+    .act_width_o      (act_w),
+    .act_height_o     (act_h),
+    .act_height_m1_o  (act_hm1),
+    .m_valid_o        (item_valid),
+    .m_ready_i        (item_ready),
+    .m_raw_o          (item_raw),
+    .m_word_o         (item_word),
+    .m_sof_o          (item_sof),
+    .m_eol_o          (item_eol),
+    .m_frame_o        (item_frame),
+    .core_out_i       (pix_out),
+    .start_o          (start),
+    .frame_start_o    (frame_start),
+    .beat_o           (beat),
+    .drop_o           (drop),
+    .pad_o            (pad),
+    .sof_early_o      (sof_early),
+    .sof_late_o       (sof_late),
+    .eol_early_o      (eol_early),
+    .eol_late_o       (eol_late),
+    .coef_early_o     (coef_early),
+    .coef_late_o      (coef_late),
+    .in_frame_o       (in_frame)
+  );
+
+  // ---- the bare core: its pixel and coefficient inputs move together ------------------------
+  logic               core_pix_ready, core_coef_ready, core_valid, core_sof, core_eol;
+  logic [OutBits-1:0] core_data;
+
+  assign item_ready = core_pix_ready && core_coef_ready;
+
+  nuc_dpc_top #(
+    .AdcBits       (AdcBits),
+    .GainIntBits   (GainIntBits),
+    .GainFracBits  (GainFracBits),
+    .OffsetIntBits (OffsetIntBits),
+    .OffsetFracBits(OffsetFracBits),
+    .OutBits       (OutBits),
+    .Rounding      (Rounding),
+    .Overflow      (Overflow),
+    .MaxWidth      (MaxWidth),
+    .MaxHeight     (MaxHeight)
+  ) u_core (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .frame_width_i (act_w),
+    .frame_height_i(act_h),
+    .s_pix_valid_i (item_valid),
+    .s_pix_ready_o (core_pix_ready),
+    .s_pix_data_i  (item_raw),
+    .s_pix_sof_i   (item_sof),
+    .s_pix_eol_i   (item_eol),
+    .s_coef_valid_i(item_valid),
+    .s_coef_ready_o(core_coef_ready),
+    .s_coef_data_i (item_word),
+    .m_pix_valid_o (core_valid),
+    .m_pix_ready_i (m_axis_video_tready),
+    .m_pix_data_o  (core_data),
+    .m_pix_sof_o   (core_sof),
+    .m_pix_eol_o   (core_eol),
+    .frame_err_o   (core_err)
+  );
+
+  assign m_axis_video_tvalid = core_valid;
+  assign m_axis_video_tdata  = VidOutBits'(core_data);
+  assign m_axis_video_tlast  = core_eol;
+  assign m_axis_video_tuser  = core_sof;
+
+  // ---- output frames: the last line's end ---------------------------------------------------
+  logic [HeightBits-1:0] out_row_q;
+  logic                  frame_out_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_out_frames
+    if (!rst_ni) begin
+      out_row_q   <= '0;
+      frame_out_q <= 1'b0;
+    end else begin
+      frame_out_q <= core_valid && m_axis_video_tready && core_eol && (out_row_q == act_hm1);
+      if (core_valid && m_axis_video_tready && core_eol) begin
+        out_row_q <= (out_row_q == act_hm1) ? '0 : out_row_q + HeightBits'(1);
+      end
+    end
+  end
+
+  assign pix_out   = core_valid && m_axis_video_tready;
+  assign frame_out = frame_out_q;
+
+  // Not used by the two-point core: AxPROT, the tdata bits above the code, the method
+  // registers and the FFC controls (docs/integration.md).
+  logic unused_inputs;
+  assign unused_inputs = ^{s_axil_awprot, s_axil_arprot, slots, table_readings, item_frame,
+                           ffc_start, ffc_frames};
+  if (VidInBits > AdcBits) begin : gen_vid_pad
+    logic unused_vid;
+    assign unused_vid = ^s_axis_video_tdata[VidInBits-1:AdcBits];
+  end
+  if (CoefBits > WordBits) begin : gen_coef_pad
+    logic unused_coef;
+    assign unused_coef = ^s_axis_coef_tdata[CoefBits-1:WordBits];
+  end
+
+`ifdef IRNUC_ASSERT
+  // Every AXI port is checked; so are the two spill registers behind the inputs.
+  irnuc_axis_assert #(.DataBits(VidInBits), .UserBits(1)) u_assert_vid_in (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(s_axis_video_tvalid),
+    .tready_i(s_axis_video_tready),
+    .tdata_i (s_axis_video_tdata),
+    .tlast_i (s_axis_video_tlast),
+    .tuser_i (s_axis_video_tuser)
+  );
+  irnuc_axis_assert #(.DataBits(CoefBits), .UserBits(1)) u_assert_coef_in (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(s_axis_coef_tvalid),
+    .tready_i(s_axis_coef_tready),
+    .tdata_i (s_axis_coef_tdata),
+    .tlast_i (s_axis_coef_tlast),
+    .tuser_i (1'b0)
+  );
+  irnuc_axis_assert #(.DataBits(VidOutBits), .UserBits(1)) u_assert_vid_out (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(m_axis_video_tvalid),
+    .tready_i(m_axis_video_tready),
+    .tdata_i (m_axis_video_tdata),
+    .tlast_i (m_axis_video_tlast),
+    .tuser_i (m_axis_video_tuser)
+  );
+  irnuc_axil_assert #(.AddrBits(AddrBits)) u_assert_axil (
+    .clk_i    (clk_i),
+    .rst_ni   (rst_ni),
+    .awaddr_i (s_axil_awaddr),
+    .awprot_i (s_axil_awprot),
+    .awvalid_i(s_axil_awvalid),
+    .awready_i(s_axil_awready),
+    .wdata_i  (s_axil_wdata),
+    .wstrb_i  (s_axil_wstrb),
+    .wvalid_i (s_axil_wvalid),
+    .wready_i (s_axil_wready),
+    .bresp_i  (s_axil_bresp),
+    .bvalid_i (s_axil_bvalid),
+    .bready_i (s_axil_bready),
+    .araddr_i (s_axil_araddr),
+    .arprot_i (s_axil_arprot),
+    .arvalid_i(s_axil_arvalid),
+    .arready_i(s_axil_arready),
+    .rdata_i  (s_axil_rdata),
+    .rresp_i  (s_axil_rresp),
+    .rvalid_i (s_axil_rvalid),
+    .rready_i (s_axil_rready)
+  );
+
+  // The core's two inputs hold the same items, so their readies agree.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_lockstep: assert (core_pix_ready == core_coef_ready)
+        else $error("irnuc_axis_top: the core's pixel and coefficient readies differ");
+    end
+  end
+`endif
+
+endmodule

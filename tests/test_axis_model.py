@@ -1,0 +1,110 @@
+"""The golden model of ``irnuc_axis_top``'s framing (``irnuc.nuc_fixed.axis``) on small
+hand-made streams whose frames and counts are written out here by hand (the rules of
+docs/integration.md, "Frames and markers"). The RTL is checked against the same model in
+``cocotb_tests/tb_axis.py``."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from irnuc.nuc_fixed import load_pipeline
+from irnuc.nuc_fixed.axis import FrameSettings, axis_framer, axis_top, neutral_gain
+from irnuc.nuc_fixed.memimage import pack_words, unpack_words
+from irnuc.nuc_fixed.top import nuc_dpc_top
+
+CFG = load_pipeline("minimal")
+S23 = FrameSettings(width=3, height=2)  # 2 lines of 3 pixels
+
+
+def _words(n: int, last_at: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """n distinct legal words (gain k + 1, offset 0, good), tlast at the given indices."""
+    w = pack_words(np.arange(1, n + 1), np.zeros(n, int), np.zeros(n, bool), CFG)
+    last = np.zeros(n, bool)
+    last[list(last_at)] = True
+    return w, last
+
+
+def _run(data, sof, eol, words, settings=(S23,)):
+    return axis_framer(data, sof, eol, *words, list(settings), CFG)
+
+
+def test_well_formed_frame() -> None:
+    fr = _run([1, 2, 3, 4, 5, 6], [1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 1], _words(6, (5,)))
+    assert len(fr.frames) == 1 and not fr.open_frame
+    assert fr.frames[0].raw.tolist() == [[1, 2, 3], [4, 5, 6]]
+    g, _, _ = unpack_words(fr.frames[0].words, CFG)
+    assert g.tolist() == [[1, 2, 3], [4, 5, 6]]
+    assert fr.counts == {"sof_early": 0, "sof_late": 0, "eol_early": 0, "eol_late": 0,
+                         "coef_early": 0, "coef_late": 0, "frames_in": 1, "beats": 6,
+                         "dropped": 0, "padded": 0}
+
+
+def test_sof_late_drops_beats_before_the_start_once_per_run() -> None:
+    fr = _run([9, 9, 1, 2, 3, 4, 5, 6], [0, 0, 1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 1, 0, 0, 1],
+              _words(6, (5,)))
+    assert fr.frames[0].raw.tolist() == [[1, 2, 3], [4, 5, 6]]
+    assert (fr.counts["sof_late"], fr.counts["dropped"], fr.counts["beats"]) == (1, 2, 8)
+
+
+def test_eol_early_pads_the_line() -> None:
+    # Line 0 ends after 2 pixels: one filler (raw 0, the next word) completes it.
+    fr = _run([1, 2, 4, 5, 6], [1, 0, 0, 0, 0], [0, 1, 0, 0, 1], _words(6, (5,)))
+    assert fr.frames[0].raw.tolist() == [[1, 2, 0], [4, 5, 6]]
+    assert fr.frames[0].filler.tolist() == [[False, False, True], [False] * 3]
+    assert (fr.counts["eol_early"], fr.counts["padded"], fr.counts["beats"]) == (1, 1, 5)
+
+
+def test_eol_late_drops_up_to_the_next_tlast() -> None:
+    # Line 0 runs 2 beats long (7, 8): they are dropped, line 1 is whole.
+    fr = _run([1, 2, 3, 7, 8, 4, 5, 6], [1, 0, 0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 1, 0, 0, 1],
+              _words(6, (5,)))
+    assert fr.frames[0].raw.tolist() == [[1, 2, 3], [4, 5, 6]]
+    assert (fr.counts["eol_late"], fr.counts["dropped"], fr.counts["padded"]) == (1, 2, 0)
+
+
+def test_sof_early_completes_the_frame_then_opens_the_next() -> None:
+    # Frame 0 stops after 4 pixels; 2 fillers, then frame 1 is whole.
+    data = [1, 2, 3, 4, 11, 12, 13, 14, 15, 16]
+    sof = [1, 0, 0, 0, 1, 0, 0, 0, 0, 0]
+    eol = [0, 0, 1, 0, 0, 0, 1, 0, 0, 1]
+    fr = _run(data, sof, eol, _words(12, (5, 11)))
+    assert [f.raw.tolist() for f in fr.frames] == [[[1, 2, 3], [4, 0, 0]],
+                                                   [[11, 12, 13], [14, 15, 16]]]
+    assert (fr.counts["sof_early"], fr.counts["padded"], fr.counts["frames_in"]) == (1, 2, 2)
+
+
+def test_coef_early_gives_the_rest_of_the_frame_the_neutral_word() -> None:
+    words = _words(6, (3, 5))  # tlast on word 3: pixels 4 and 5 get the neutral word
+    fr = _run([1, 2, 3, 4, 5, 6], [1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 1], words)
+    g, o, b = unpack_words(fr.frames[0].words, CFG)
+    assert g.ravel().tolist() == [1, 2, 3, 4, neutral_gain(CFG), neutral_gain(CFG)]
+    assert not o[1, 1:].any() and not b.any()
+    assert fr.counts["coef_early"] == 1 and fr.words_taken == 4
+    assert neutral_gain(CFG) == 1 << CFG.gain_frac_bits  # 1.0 in U1.3
+
+
+def test_coef_late_drops_words_up_to_the_next_tlast() -> None:
+    words = _words(9, (8,))  # frame 0's image runs 3 words long
+    fr = _run([1, 2, 3, 4, 5, 6], [1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 1], words)
+    assert unpack_words(fr.frames[0].words, CFG)[0].ravel().tolist() == [1, 2, 3, 4, 5, 6]
+    assert fr.counts["coef_late"] == 1 and fr.words_taken == 9
+
+
+def test_enables_and_the_core() -> None:
+    words = pack_words(np.full(6, 5), np.full(6, 3), np.array([0, 0, 0, 0, 1, 0], bool), CFG)
+    last = np.arange(6) == 5
+    stream = ([10, 20, 30, 40, 50, 60], [1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 1])
+    off = FrameSettings(3, 2, nuc_en=False, dpc_en=False)
+    fr = axis_framer(*stream, words, last, [off], CFG)
+    g, o, b = unpack_words(fr.frames[0].words, CFG)
+    assert (g == neutral_gain(CFG)).all() and not o.any() and not b.any()
+    out = axis_top(*stream, words, last, [S23], CFG)
+    want = nuc_dpc_top(np.array([[10, 20, 30], [40, 50, 60]]), words.reshape(2, 3), CFG)
+    assert out.data.tolist() == want.ravel().tolist()
+    assert out.sof.tolist() == [1, 0, 0, 0, 0, 0] and out.eol.tolist() == [0, 0, 1, 0, 0, 1]
+
+
+def test_words_running_out_is_an_error() -> None:
+    with pytest.raises(ValueError, match="ran out"):
+        _run([1, 2, 3, 4, 5, 6], [1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 1], _words(4, ()))
