@@ -90,3 +90,86 @@ def test_code_coverage_from_a_coverage_dat(tmp_path) -> None:
     assert cc["nuc_core"]["line"] == {"hit": 1, "total": 2, "percent": 50.0}
     assert cc["nuc_core"]["toggle"]["percent"] == 50.0
     assert cc["nuc_core"]["missed_lines"] == ["nuc_core.sv:12"]
+
+
+# ---- the new stimulus can close its own bins (pure Python, no simulation) --------------------
+
+def _stimulus_configs():
+    from irnuc.cosim import configspace
+
+    return (configspace.named() + list(configspace.ci_sample())
+            + configspace.campaign_sample(18, seed=3, max_dim=64))
+
+
+def test_size_walk_hits_every_size_bin_the_model_keeps() -> None:
+    """For named, CI-sample and random configurations (maxima from 1 x 1 up), the size walk
+    of tb_top.size_class_changes hits every bin of frame.size_class and of the size
+    changes that the coverage model keeps, and the model removes only what no size walk
+    can reach (every removed bin has a reason)."""
+    import numpy as np
+
+    from irnuc.cocotb_tests import stimulus
+
+    for i, cfg in enumerate(_stimulus_configs()):
+        m = coverage.CoverageModel("nuc_dpc_top", cfg, prefix=f"walk{i}")
+        sizes = stimulus.size_walk(cfg, np.random.default_rng(i))
+        assert all(1 <= h <= cfg.max_height and 1 <= w <= cfg.max_width for h, w in sizes)
+        m.sample_size_changes(sizes, [True] * len(sizes))
+        snap = m.snapshot()["configurations"][coverage.config_label(cfg)]["coverpoints"]
+        for point in ("frame.size_class", "frame.change_width", "frame.change_height"):
+            p = snap.get(point, {"bins": {}, "removed": {}})
+            missing = [b for b, n in p["bins"].items() if n == 0]
+            assert not missing, f"{cfg.name} {point}: the walk misses {missing}"
+            assert all(p["removed"].values())
+
+
+def test_dpc_neighbourhoods_hit_their_bins_on_the_named_configurations() -> None:
+    """The DPC neighbourhoods of tb_top.dpc_arithmetic hit every kept dpc.arith bin of the
+    named configurations: sampled from the frames they make, through the golden NUC of
+    the inputs found for them (not from the generator's own bookkeeping)."""
+    import numpy as np
+
+    from irnuc.cocotb_tests import stimulus
+    from irnuc.cosim import configspace
+    from irnuc.nuc_fixed import nuc_core, unpack_words
+
+    for i, cfg in enumerate(configspace.named()):
+        bins = coverage.dpc_arith_bins(cfg, "nuc_dpc_top")[0]
+        nb = stimulus.dpc_neighbourhoods(cfg, np.random.default_rng(i), bins,
+                                         coverage.nuc_output_intervals(cfg),
+                                         preimage=lambda v, c=cfg: stimulus.nuc_preimage(c, v))
+        assert not nb.missing, (cfg.name, nb.missing[:5])
+        m = coverage.CoverageModel("nuc_dpc_top", cfg, prefix=f"arith{i}")
+        for raw, words in zip(nb.raw, nb.words, strict=True):
+            g, o, bad = unpack_words(words, cfg)
+            m.sample_dpc_arith(nuc_core(raw, g, o, cfg), bad)
+        hits = m.snapshot()["configurations"][cfg.name]["coverpoints"]["dpc.arith"]["bins"]
+        assert len(hits) == len(bins) and all(hits.values()), cfg.name
+
+
+def test_sample_dpc_arith_by_hand() -> None:
+    """One bad pixel in the middle of a 3 x 3 frame with two bad neighbours: n = 6 good
+    neighbours; their sum and its residue and range, counted by hand."""
+    import numpy as np
+
+    from irnuc.nuc_fixed import load_pipeline
+
+    cfg = load_pipeline("minimal")  # 6-bit output: full scale 63
+    y = np.array([[60, 61, 62], [63, 0, 60], [5, 7, 63]])
+    bad = np.zeros((3, 3), bool)
+    bad[1, 1] = bad[2, 0] = bad[2, 1] = True
+    m = coverage.CoverageModel("nuc_dpc_top", cfg, prefix="byhand")
+    m.sample_dpc_arith(y, bad)
+    hits = m.snapshot()["configurations"]["minimal"]["coverpoints"]["dpc.arith"]["bins"]
+    # Pixel (1, 1): good 60, 61, 62, 63, 60, 63 -> n = 6, S = 369, 369 % 6 = 3, mean 61.5
+    # >= 7/8 * 63: high. Pixel (2, 0): good (1, 0) = 63 only -> n = 1, residue 0, high.
+    # Pixel (2, 1): good 63, 60, 63 -> n = 3, S = 186, residue 0, mean 62: high.
+    assert {k for k, v in hits.items() if v} == {"(6, 3, 'high')", "(1, 0, 'high')",
+                                                  "(3, 0, 'high')"}
+    y2 = np.array([[4, 5, 9], [1, 2, 3]])
+    bad2 = np.array([[False, True, False], [False, False, False]])
+    m2 = coverage.CoverageModel("nuc_dpc_top", cfg, prefix="byhand2")
+    m2.sample_dpc_arith(y2, bad2)
+    # (0, 1): good 4, 9, 1, 2, 3 -> n = 5, S = 19, residue 4, mean 3.8 <= 63 / 4: low.
+    hits2 = m2.snapshot()["configurations"]["minimal"]["coverpoints"]["dpc.arith"]["bins"]
+    assert {k for k, v in hits2.items() if v} == {"(5, 4, 'low')"}

@@ -26,6 +26,13 @@ configuration) with ``cocotb_coverage.coverage`` (``CoverPoint``, ``CoverCross``
 ``stream.back_to_back`` consecutive frames without a bubble at full rate
 ``reset.stage``       reset while the oldest item is in each pipeline stage of the top, and
                       during the DPC's flush
+``reset.window``      reset at every cycle of a window around a frame's end, the DPC's flush
+                      and the next frame's start (offsets from the frame's last pixel)
+``frame.size_class``  frames of every width class x height class (1, 2, 3, small, max)
+``frame.change_width`` back-to-back size changes with the previous frame still in the
+``frame.change_height`` pipeline, from every width (height) class to every width (height) class
+``dpc.arith``         bad pixels with every good-neighbour count n x residue of the
+                      neighbour sum mod n x range of their mean (low, middle, near full scale)
 ===================== ==========================================================================
 
 A testbench samples through the model and calls :func:`export` (the whole database as
@@ -45,7 +52,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -72,6 +79,20 @@ FRAME_ERRORS = ("sof_missing", "sof_unexpected", "eol_missing", "eol_unexpected"
 #: Pause patterns of the stream sources and sinks (cocotb_tests.streams.pause_pattern).
 IDLE_PATTERNS = ("none", "random", "bursty", "alternate")
 BACKPRESSURE_PATTERNS = ("none", "random", "bursty", "alternate")
+#: Size classes of a frame dimension: 1, 2, 3 (the counters' special paths), small (4 up
+#: to the maximum, exclusive) and max (the maximum, when it is at least 4).
+SIZE_CLASSES = ("1", "2", "3", "small", "max")
+#: Largest frame (pixels) the size-class stimulus drives: a MaxWidth x MaxHeight frame
+#: above it is not driven (its bin is removed with that reason).
+SIZE_CLASS_FRAME_BUDGET = 4096
+#: Range of the mean of a bad pixel's good neighbours: low (at most a quarter of full
+#: scale), near full scale (at least seven eighths), middle (in between).
+DPC_RANGES = ("low", "mid", "high")
+#: Frames of the reset window (``tb_top.reset_window``): frame A, then frame B of another
+#: size back to back (each dimension clipped to the maximum), and cycles of the window
+#: before A's last pixel is taken at the input.
+RESET_WINDOW_FRAMES = ((2, 4), (3, 3))
+RESET_WINDOW_BEFORE = 2
 
 
 def pipeline_stages(top: str, cfg: PipelineConfig) -> list[str]:
@@ -79,6 +100,181 @@ def pipeline_stages(top: str, cfg: PipelineConfig) -> list[str]:
     docs/rtl.md, "Architecture"), ending with ``flush`` for the DPC's flush state: the
     stage model of :func:`irnuc.nuc_fixed.rtl_spec.pipeline_stages` for ``cfg``'s widths."""
     return rtl_spec.pipeline_stages(top, cfg.adc_bits, cfg.gain_bits, cfg.out_bits)
+
+
+def dim_class(v: int, vmax: int) -> str:
+    """Size class of a frame dimension ``v`` of at most ``vmax`` (:data:`SIZE_CLASSES`)."""
+    if v == vmax and vmax >= 4:
+        return "max"
+    return str(v) if v <= 3 else "small"
+
+
+def dim_classes(vmax: int) -> tuple[str, ...]:
+    """The size classes a dimension of maximum ``vmax`` has."""
+    return tuple(c for c in SIZE_CLASSES if {"1": True, "2": vmax >= 2, "3": vmax >= 3,
+                                             "small": vmax >= 5, "max": vmax >= 4}[c])
+
+
+def size_class_budget(cfg: PipelineConfig) -> bool:
+    """Whether the size-class stimulus drives a MaxWidth x MaxHeight frame."""
+    return cfg.max_width * cfg.max_height <= SIZE_CLASS_FRAME_BUDGET
+
+
+def dpc_range(s: int, n: int, out_bits: int) -> str:
+    """Range class of the mean S / n of a bad pixel's n good neighbours (sum S)."""
+    full = n * ((1 << out_bits) - 1)
+    if 4 * s <= full:
+        return "low"
+    return "high" if 8 * s >= 7 * full else "mid"
+
+
+def _range_sums(n: int, out_bits: int, rng: str) -> tuple[int, int]:
+    """The sums S of n neighbours whose mean is in range class ``rng`` (an interval)."""
+    full = n * ((1 << out_bits) - 1)
+    low_hi, high_lo = full // 4, -(-7 * full // 8)
+    return {"low": (0, low_hi), "mid": (low_hi + 1, high_lo - 1), "high": (high_lo, full)}[rng]
+
+
+def max_neighbours(max_width: int, max_height: int) -> int:
+    """Most good in-frame neighbours a pixel of a frame of at most this size can have."""
+    w, h = min(max_width, 3), min(max_height, 3)
+    return w * h - 1
+
+
+def sum_intervals(values: Sequence[tuple[int, int]], n: int) -> list[tuple[int, int]]:
+    """The sums of n values, each from one of the intervals ``values`` (inclusive), as
+    intervals (a sum of intervals is the interval of the sums)."""
+    out: set[tuple[int, int]] = set()
+
+    def rec(k: int, start: int, lo: int, hi: int) -> None:
+        if k == n:
+            out.add((lo, hi))
+            return
+        for i in range(start, len(values)):
+            rec(k + 1, i, lo + values[i][0], hi + values[i][1])
+
+    rec(0, 0, 0, 0)
+    return sorted(out)
+
+
+def dpc_arith_unreachable(n: int, r: int, rng: str, out_bits: int,
+                          values: Sequence[tuple[int, int]]) -> bool:
+    """Whether no sum of n neighbour values from the intervals ``values`` lies in range
+    class ``rng`` with residue r mod n."""
+    lo, hi = _range_sums(n, out_bits, rng)
+    for a, b in sum_intervals(values, n):
+        a, b = max(a, lo), min(b, hi)
+        if a <= b and a + (r - a) % n <= b:
+            return False
+    return True
+
+
+def nuc_output_intervals(cfg: PipelineConfig) -> list[tuple[int, int]]:
+    """The NUC output codes of ``cfg`` (the DPC's input values) as intervals: OUT of every
+    r between the smallest (x = 0, g = 0, the most negative offset) and the largest
+    (largest code, gain and offset) sum, saturated or wrapped. The r between are all
+    reachable when the offset spans more than one step of the product (always for the
+    configurations drawn here; ``tb_top.dpc_arithmetic`` finds a preimage of every value
+    it uses and fails if one is missing)."""
+    it = nuc_core(np.array([0, (1 << cfg.adc_bits) - 1]),
+                  np.array([0, (1 << cfg.gain_bits) - 1]),
+                  np.array([-(1 << (cfg.offset_bits - 1)), (1 << (cfg.offset_bits - 1)) - 1]),
+                  cfg, intermediates=True)
+    lo, hi = int(it.r[0]), int(it.r[1])
+    full = (1 << cfg.out_bits) - 1
+    if cfg.overflow == "saturate":
+        return [(min(max(lo, 0), full), min(max(hi, 0), full))]
+    if hi - lo >= full:
+        return [(0, full)]
+    a, b = lo & full, hi & full
+    return [(a, b)] if a <= b else [(0, b), (a, full)]
+
+
+def small_maximum_removals(cfg: PipelineConfig) -> dict[str, dict[Any, str]]:
+    """Bins of the frame and DPC coverpoints that a configuration with a small maximum
+    frame (MaxWidth or MaxHeight below 3) cannot reach, with the reason."""
+    mw, mh = cfg.max_width, cfg.max_height
+    size = f"MaxWidth = {mw}, MaxHeight = {mh}"
+    out: dict[str, dict[Any, str]] = {k: {} for k in (
+        "dpc.neighbours", "dpc.position", "dpc.bad_shape", "frame.size", "frame.transition",
+        "frame.error", "dpc.n_x_position")}
+    # Most neighbours of each position class in a frame of at most mh x mw.
+    reach = {"thin": min(2, max(mw, mh) - 1),
+             "corner": 3 if mw >= 2 and mh >= 2 else -1,
+             "edge": 5 if (mw >= 3 and mh >= 2) or (mh >= 3 and mw >= 2) else -1,
+             "interior": 8 if mw >= 3 and mh >= 3 else -1}
+    for pos, most in reach.items():
+        if most < 0:
+            out["dpc.position"][pos] = f"{size}: no {pos} pixel"
+        for n in range(max(most, 0) + (most >= 0), MAX_NEIGHBOURS[pos] + 1):
+            out["dpc.n_x_position"][(n, pos)] = f"{size}: a {pos} pixel has at most {most} " \
+                                               "in-frame neighbours"
+    nmax = max(reach.values())
+    for n in range(nmax + 1, 9):
+        out["dpc.neighbours"][n] = f"{size}: a pixel has at most {nmax} in-frame neighbours"
+    if mw * mh == 1:
+        for shape in ("cluster", "uncorrectable", "whole_row", "whole_column", "all_bad"):
+            out["dpc.bad_shape"][shape] = f"{size}: every frame is one pixel"
+        out["frame.error"]["sof_unexpected"] = f"{size}: every pixel starts a frame"
+    if mw == 1:
+        out["dpc.bad_shape"]["whole_row"] = f"{size}: a row is one pixel"
+        out["frame.error"]["eol_unexpected"] = f"{size}: every pixel ends a line"
+    if mh == 1:
+        out["dpc.bad_shape"]["whole_column"] = f"{size}: a column is one pixel"
+    for cls, need in (("1xN", mw >= 3), ("Nx1", mh >= 3), ("small", mw >= 3 and mh >= 3),
+                      ("width_max", mw >= 2), ("height_max", mh >= 2)):
+        if not need:
+            out["frame.size"][cls] = f"{size}: no frame of this class"
+    for tr, need in (("width_only", mw >= 2), ("height_only", mh >= 2),
+                     ("both", mw >= 2 and mh >= 2)):
+        if not need:
+            out["frame.transition"][tr] = f"{size}: the size cannot change this way"
+    for cause, port, vmax in (("width_over_max", "width", mw), ("height_over_max", "height",
+                                                                   mh)):
+        if vmax == (1 << rtl_spec.clog2(vmax + 1)) - 1:
+            out["frame.error"][cause] = (f"Max{port.title()} = {vmax}: the {port} port is "
+                                         "all ones at the maximum")
+    return out
+
+
+def dpc_arith_bins(cfg: PipelineConfig, top: str
+                   ) -> tuple[list[tuple[int, int, str]], dict[tuple[int, int, str], str]]:
+    """The bins (good-neighbour count n, residue of the sum mod n, range of the mean) of
+    ``dpc.arith`` that ``top`` on ``cfg`` can reach, and those it cannot with the reason
+    (more neighbours than the maximum frame gives; no sum of n DPC input codes with that
+    residue and range: for ``nuc_dpc_top`` the codes are the NUC's outputs)."""
+    c = cfg
+    nmax = max_neighbours(c.max_width, c.max_height)
+    values = (nuc_output_intervals(c) if top == "nuc_dpc_top"
+              else [(0, (1 << c.out_bits) - 1)])
+    bins, why = [], {}
+    for n in range(1, 9):
+        for r in range(n):
+            for rng in DPC_RANGES:
+                key = (n, r, rng)
+                if n > nmax:
+                    why[key] = (f"a frame of at most {c.max_height} x {c.max_width} "
+                                f"gives a pixel at most {nmax} in-frame neighbours")
+                elif dpc_arith_unreachable(n, r, rng, c.out_bits, values):
+                    why[key] = (f"no sum of {n} values of {values} (the DPC's input "
+                                f"codes here) has residue {r} and a {rng} mean")
+                else:
+                    bins.append(key)
+    return bins, why
+
+
+def reset_window(cfg: PipelineConfig) -> tuple[tuple[int, int], tuple[int, int], list[int]]:
+    """Frames A and B of the reset window and its offsets: cycles from A's last pixel
+    taken at the input (``-RESET_WINDOW_BEFORE``) until B's first output can leave (A's
+    last pixel through the pipeline to the window, A's flush of W_A + 1 phantoms, B's
+    first W_B + 1 items and the stages after the window, and one more)."""
+    (ha, wa), (hb, wb) = ((min(h, cfg.max_height), min(w, cfg.max_width))
+                          for h, w in RESET_WINDOW_FRAMES)
+    if (hb, wb) == (ha, wa):  # a 1 x N or N x 1 maximum: make B another size if possible
+        hb, wb = (ha, 1) if wa > 1 else (1, wa) if ha > 1 else (hb, wb)
+    stages = pipeline_stages("nuc_dpc_top", cfg)[:-1]
+    end = len(stages) + (wa + 1) + (wb + 1) + 1
+    return (ha, wa), (hb, wb), list(range(-RESET_WINDOW_BEFORE, end + 1))
 
 
 class CoverageModel:
@@ -98,6 +294,8 @@ class CoverageModel:
         dpc = top in ("dpc_core", "nuc_dpc_top")
 
         def point(name: str, bins: Sequence[Any]) -> None:
+            if not bins:  # every bin removed (with its reason): no coverpoint
+                return
             full = f"{prefix}.{name}"
 
             @CoverPoint(full, xf=lambda v: v, bins=list(bins))
@@ -121,14 +319,19 @@ class CoverageModel:
                     "above_max": "the largest x * g + o stays below 2^B"}
             point(f"nuc.range.{cfg.overflow}", bins)
         if dpc:
-            point("dpc.neighbours", range(9))
-            point("dpc.position", POSITIONS)
-            point("dpc.bad_shape", BAD_SHAPES)
-            sizes = list(FRAME_SIZES)
-            point("frame.size", sizes)
-            point("frame.transition", TRANSITIONS)
-            point("frame.error", FRAME_ERRORS)
+            small = small_maximum_removals(cfg)
+            for name, bins in (("dpc.neighbours", range(9)), ("dpc.position", POSITIONS),
+                               ("dpc.bad_shape", BAD_SHAPES), ("frame.size", FRAME_SIZES),
+                               ("frame.transition", TRANSITIONS),
+                               ("frame.error", FRAME_ERRORS)):
+                point(name, self._remove(name, list(bins), small.get(name, {})))
             ign = [(n, p) for p in POSITIONS for n in range(MAX_NEIGHBOURS[p] + 1, 9)]
+            reasons = {str((n, p)): f"a {p} pixel has at most {MAX_NEIGHBOURS[p]} in-frame "
+                                    "neighbours" for n, p in ign}
+            for (n, p), why in small.get("dpc.n_x_position", {}).items():
+                if (n, p) not in ign:
+                    ign.append((n, p))
+                    reasons[str((n, p))] = why
             cross = f"{prefix}.dpc.n_x_position"
 
             @CoverCross(cross, items=[f"{prefix}.dpc.neighbours", f"{prefix}.dpc.position"],
@@ -137,16 +340,61 @@ class CoverageModel:
                 pass
 
             self._cross = sample_cross
-            self.removed["dpc.n_x_position"] = {
-                str((n, p)): f"a {p} pixel has at most {MAX_NEIGHBOURS[p]} in-frame "
-                             "neighbours" for n, p in ign}
+            self.removed["dpc.n_x_position"] = reasons
+            self._frame_removals(point)
+            self._dpc_arith(point, top)
         point("stream.idle", IDLE_PATTERNS)
         point("stream.backpressure", BACKPRESSURE_PATTERNS)
         point("stream.back_to_back", ("frames",))
         if top in ("nuc_core", "dpc_core", "nuc_dpc_top"):
             point("reset.stage", pipeline_stages(top, cfg))
+        if top == "nuc_dpc_top":
+            point("reset.window", reset_window(cfg)[2])
 
     # ---- helpers -----------------------------------------------------------------------
+    def _remove(self, name: str, bins: list, why: dict) -> list:
+        """Drop the bins ``why`` names from ``bins`` and record them as removed."""
+        for b, reason in why.items():
+            if b in bins:
+                bins.remove(b)
+                self.removed.setdefault(name, {})[str(b)] = reason
+        return bins
+
+    def _frame_removals(self, point: Callable[[str, Sequence[Any]], None]) -> None:
+        """Frame size classes and size changes (the bins a small maximum cannot reach are
+        removed with the reason); the frame sizes and transitions of small maxima."""
+        c = self.cfg
+        wc, hc = dim_classes(c.max_width), dim_classes(c.max_height)
+        bins = [f"{w}x{h}" for w in SIZE_CLASSES for h in SIZE_CLASSES]
+        why = {f"{w}x{h}": f"MaxWidth = {c.max_width}, MaxHeight = {c.max_height}: no frame "
+               f"of width class {w} and height class {h}"
+               for w in SIZE_CLASSES for h in SIZE_CLASSES if w not in wc or h not in hc}
+        if not size_class_budget(c) and "max" in wc and "max" in hc:
+            why["maxxmax"] = (f"a MaxWidth x MaxHeight frame ({c.max_width * c.max_height} "
+                              f"pixels) exceeds the size-class budget of "
+                              f"{SIZE_CLASS_FRAME_BUDGET}; random configurations with small "
+                              "maxima drive it")
+        point("frame.size_class", self._remove("frame.size_class", bins, why))
+        for dim, have, vmax in (("width", wc, c.max_width), ("height", hc, c.max_height)):
+            bins = [f"{a}->{b}" for a in SIZE_CLASSES for b in SIZE_CLASSES]
+            why = {f"{a}->{b}": f"Max{dim.title()} = {vmax}: no {dim} of class "
+                   f"{a if a not in have else b}"
+                   for a in SIZE_CLASSES for b in SIZE_CLASSES if a not in have or b not in have}
+            if c.max_width * c.max_height == 1:
+                why.update({f"{a}->{b}": "a 1 x 1 maximum: the frame size never changes"
+                            for a in have for b in have})
+            elif (c.max_height if dim == "width" else c.max_width) == 1:
+                # The other dimension is always 1: a class keeps the size unless it has
+                # two values (small: 4 .. min(max - 1, 8)).
+                why.update({f"{a}->{a}": f"Max{'Height' if dim == 'width' else 'Width'} = 1 "
+                            f"and one {dim} of class {a}: the size cannot change"
+                            for a in have if a != "small" or vmax < 6})
+            point(f"frame.change_{dim}", self._remove(f"frame.change_{dim}", bins, why))
+
+    def _dpc_arith(self, point: Callable[[str, Sequence[Any]], None], top: str) -> None:
+        bins, why = dpc_arith_bins(self.cfg, top)
+        point("dpc.arith", self._remove("dpc.arith", bins + list(why), why))
+
     def _above_max_reachable(self) -> bool:
         """The golden model at the largest code, gain and offset rounds above 2^B - 1."""
         c = self.cfg
@@ -207,6 +455,40 @@ class CoverageModel:
                 self._cross(k, p)
         for shape in bad_shapes(bad):
             self.sample("dpc.bad_shape", shape)
+
+    def sample_dpc_arith(self, y: np.ndarray, bad: np.ndarray) -> None:
+        """Good-neighbour count x sum residue x range of every bad pixel with good
+        neighbours, from the DPC's input codes ``y`` (H, W) of one checked frame."""
+        bad = np.asarray(bad, dtype=bool)
+        if not bad.any():
+            return
+        y = np.asarray(y, dtype=np.int64)
+        h, w = bad.shape
+        good = np.pad(~bad, 1)
+        vals = np.pad(np.where(bad, 0, y), 1)
+        s = sum(vals[1 + dy:1 + dy + h, 1 + dx:1 + dx + w] for dy in (-1, 0, 1)
+                for dx in (-1, 0, 1) if (dy, dx) != (0, 0))
+        n = sum(good[1 + dy:1 + dy + h, 1 + dx:1 + dx + w].astype(np.int64)
+                for dy in (-1, 0, 1) for dx in (-1, 0, 1) if (dy, dx) != (0, 0))
+        seen = {(int(k), int(ss) % int(k), dpc_range(int(ss), int(k), self.cfg.out_bits))
+                for k, ss in zip(n[bad], s[bad], strict=True) if k > 0}
+        for key in sorted(seen):
+            self.sample("dpc.arith", key)
+
+    def sample_size_changes(self, sizes: Sequence[tuple[int, int]],
+                            full: Sequence[bool]) -> None:
+        """Size classes of frames driven and checked, and their size changes: ``full[i]``
+        tells whether frame i + 1 started with frame i still in the pipeline."""
+        c = self.cfg
+        for h, w in sizes:
+            self.sample("frame.size_class",
+                        f"{dim_class(w, c.max_width)}x{dim_class(h, c.max_height)}")
+        for (h0, w0), (h1, w1), f in zip(sizes, sizes[1:], full, strict=False):
+            if f and (h0, w0) != (h1, w1):
+                self.sample("frame.change_width", f"{dim_class(w0, c.max_width)}->"
+                            f"{dim_class(w1, c.max_width)}")
+                self.sample("frame.change_height", f"{dim_class(h0, c.max_height)}->"
+                            f"{dim_class(h1, c.max_height)}")
 
     def sample_frames(self, sizes: Sequence[tuple[int, int]], gaps: Sequence[int]) -> None:
         """Frame transitions: ``sizes`` of consecutive frames, ``gaps[i]`` idle cycles of the

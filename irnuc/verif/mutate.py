@@ -46,6 +46,10 @@ SUITE_MODULE = tb_top.__name__
 SUITE_TOP = "nuc_dpc_top"
 #: Wall-time limit of one mutant's simulation (a mutant may hang the stream).
 RUN_TIMEOUT = 300.0
+#: A mutant of the package also runs the package check (every constant, width function and
+#: the DPC reciprocal table against the shared-constants spec) after the suite passed.
+PKG_FILE = "irnuc_pkg.sv"
+PKG_TOP, PKG_SUITE = "irnuc_pkg_probe", "irnuc.cocotb_tests.tb_pkg"
 
 
 @dataclass(frozen=True)
@@ -569,6 +573,8 @@ def _mutant_key(m: Mutant) -> str:
         del d["also"]  # keys of one-site mutants as before the field existed
     if (d["top"], d["suite"]) == (SUITE_TOP, SUITE_MODULE):
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
+        if d["file"] == PKG_FILE:
+            d["package_check"] = PKG_SUITE  # the verdict includes the package check
     return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": d})
 
 
@@ -586,18 +592,33 @@ class MutantResult:
     cached: bool = False
 
 
-def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOUT) -> dict:
-    """Apply, build and run one mutant; a JSON-ready :class:`MutantResult` (cached)."""
+def _suite_cases(m: Mutant, cfg) -> list[str] | None:
+    """The cocotb tests a mutant runs on ``cfg``: all, but on a configuration that is not
+    a named one the tb_top tests that need a sensor-like format are left out
+    (``tb_top.RANDOM_CONFIG_SKIP``)."""
+    from irnuc.cosim import cocotb_test_names
+    from irnuc.nuc_fixed import pipeline_names
+
+    if m.suite != SUITE_MODULE or cfg.name in pipeline_names():
+        return None
+    return [t for t in cocotb_test_names(tb_top) if t not in tb_top.RANDOM_CONFIG_SKIP]
+
+
+def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOUT,
+               cfg=None) -> dict:
+    """Apply, build and run one mutant; a JSON-ready :class:`MutantResult` (cached).
+    ``cfg``: run on this configuration instead of the mutant's own."""
     from irnuc import cosim
     from irnuc.cosim.coverage import config_label
 
-    key = _mutant_key(m)
+    key = _mutant_key(m) if cfg is None else digest({"mutant": _mutant_key(m),
+                                                     "config": cfg.to_dict()})
     cache = cache_dir("mutate", "mutants") / f"{m.id}-{key}.json"
     if use_cache and cache.is_file():
         out = json.loads(cache.read_text())
         out["cached"] = True
         return out
-    cfg = m.pipeline()
+    cfg = cfg if cfg is not None else m.pipeline()
     t0 = time.perf_counter()
     work = Path(tempfile.mkdtemp(prefix=f"{m.id}.", dir=cache_dir("mutate", "work")))
     bld = None
@@ -616,12 +637,15 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
             xml = work / "results.xml"
             try:
                 res = cosim.read_results(cosim.run(bld, m.suite, results_xml=xml,
+                                                   testcase=_suite_cases(m, cfg),
                                                    timeout=timeout))
                 fired = cosim.assertion_failures(xml)
                 failed = [r for r in res.values() if not r.passed]
                 if failed:
                     killed_by = failed[0].name
                     message = (fired[0] if fired else failed[0].message)[:600]
+                elif m.file == PKG_FILE and m.suite == SUITE_MODULE:
+                    killed_by, message = _package_check(m, cfg, hdl, work, timeout)
             except cosim.SimulationTimeout as exc:
                 killed_by, message = "timeout", str(exc)[:600]
             except cosim.RtlError as exc:
@@ -638,6 +662,24 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
             shutil.rmtree(bld.build_dir, ignore_errors=True)
     write_text_atomic(cache, json.dumps(out, indent=1))
     return out
+
+
+def _package_check(m: Mutant, cfg, hdl: Path, work: Path, timeout: float
+                   ) -> tuple[str | None, str]:
+    """The package check (``tb_pkg``) on the mutated package: (killing test, message) or
+    (None, "") when it passes."""
+    from irnuc import cosim
+
+    bld = cosim.build(PKG_TOP, cfg, hdl_dir=hdl)
+    try:
+        xml = work / "pkg.xml"
+        res = cosim.read_results(cosim.run(bld, PKG_SUITE, results_xml=xml, timeout=timeout))
+        failed = [r for r in res.values() if not r.passed]
+        if failed:
+            return f"tb_pkg.{failed[0].name}", failed[0].message[:600]
+        return None, ""
+    finally:
+        shutil.rmtree(bld.build_dir, ignore_errors=True)
 
 
 def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
@@ -752,5 +794,86 @@ def cached_summary() -> dict | None:
         return None
 
 
-__all__ = ["CATALOGUE", "Mutant", "cached_summary", "catalogue", "rtl_digest", "run_mutant",
-           "run_mutants", "summarize"]
+# ---- several configurations ---------------------------------------------------------------
+
+def elaborates_differently(m: Mutant, cfg, hdl_root: Path | None = None) -> bool:
+    """Whether the mutant's RTL elaborates (Verilator, ``irnuc.cosim.elaborate``) to
+    another design than the unmutated RTL on ``cfg``: where it does not, no test on that
+    configuration can tell them apart. A mutant that does not elaborate differs."""
+    from irnuc.cosim import elaborate
+    from irnuc.cosim.verilator import RtlError
+
+    base = _base_elaboration(m.top, cfg.digest(), cfg)
+    with tempfile.TemporaryDirectory(prefix=f"{m.id}.elab.", dir=hdl_root) as tmp:
+        hdl = Path(tmp) / "hdl"
+        shutil.copytree(HDL_DIR, hdl, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+        f = hdl / m.file
+        f.write_text(m.apply(f.read_text()))
+        try:
+            return elaborate.elaborate(m.top, cfg, hdl).digest != base
+        except RtlError:
+            return True
+
+
+_BASE: dict[tuple[str, str], str] = {}
+
+
+def _base_elaboration(top: str, key: str, cfg) -> str:
+    from irnuc.cosim import elaborate
+
+    if (top, key) not in _BASE:
+        _BASE[(top, key)] = elaborate.elaborate(top, cfg).digest
+    return _BASE[(top, key)]
+
+
+def run_per_configuration(mutants: Sequence[Mutant], configs: Sequence, *,
+                          use_cache: bool = True,
+                          progress: Callable[[str, str, str], None] | None = None) -> dict:
+    """Each two-point mutant (``nuc_dpc_top``) on every configuration of ``configs`` where
+    its code elaborates differently; the score per configuration and per mutant.
+
+    Returns ``{"configurations": {name: {killed, survived, equivalent, same, score}},
+    "mutants": {id: {name: status}}, "overall": {...}}``: status ``same`` where the
+    mutant elaborates to the unmutated design (not run); a mutant is killed overall when
+    some configuration kills it."""
+    from irnuc import cosim
+
+    per_cfg: dict[str, dict[str, Any]] = {}
+    per_mut: dict[str, dict[str, str]] = {}
+    for cfg in configs:
+        bld = cosim.build(SUITE_TOP, cfg)  # the design must pass first (else every mutant dies)
+        xml = cache_dir("mutate", "baseline") / f"{cfg.name}-{cfg.digest()[:8]}-percfg.xml"
+        probe = Mutant("baseline", "", "", "", "")
+        res = cosim.read_results(cosim.run(bld, SUITE_MODULE, results_xml=xml,
+                                           testcase=_suite_cases(probe, cfg),
+                                           timeout=RUN_TIMEOUT))
+        bad = [r.name for r in res.values() if not r.passed]
+        if bad or not res:
+            raise cosim.RtlError(f"the unmutated design fails tb_top on {cfg.name}: "
+                                 f"{', '.join(bad) or 'no result'}; see {xml}")
+        row = {"killed": 0, "survived": 0, "equivalent": 0, "same": 0, "invalid": 0}
+        for m in mutants:
+            if m.top != SUITE_TOP:
+                continue
+            if not elaborates_differently(m, cfg):
+                status = "same"
+            else:
+                status = run_mutant(m, use_cache=use_cache, cfg=cfg)["status"]
+            row[status] += 1
+            per_mut.setdefault(m.id, {})[cfg.name] = status
+            if progress is not None:
+                progress(cfg.name, m.id, status)
+        non_eq = row["killed"] + row["survived"]
+        row["score"] = round(row["killed"] / non_eq, 4) if non_eq else None
+        per_cfg[cfg.name] = row
+    killed = [i for i, v in per_mut.items() if "killed" in v.values()]
+    survived = [i for i, v in per_mut.items() if i not in killed and "survived" in v.values()]
+    return {"configurations": per_cfg, "mutants": per_mut,
+            "overall": {"killed": len(killed), "survived": len(survived),
+                        "survivors": survived,
+                        "score": round(len(killed) / (len(killed) + len(survived)), 4)
+                        if killed or survived else None}}
+
+
+__all__ = ["CATALOGUE", "Mutant", "cached_summary", "catalogue", "elaborates_differently",
+           "rtl_digest", "run_mutant", "run_mutants", "run_per_configuration", "summarize"]
