@@ -10,9 +10,6 @@ two-point configuration (none removed).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
-
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS, CoverageModel
 from irnuc.nuc_fixed.axis import EVENTS
 from irnuc.nuc_fixed.config import PipelineConfig
@@ -51,14 +48,6 @@ class AxisCoverageModel(CoverageModel):
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         super().__init__(top, cfg, prefix)
-        from cocotb_coverage.coverage import CoverPoint
-
-        def point(name: str, bins: Sequence[Any]) -> None:
-            @CoverPoint(f"{prefix}.{name}", xf=lambda v: v, bins=list(bins))
-            def sample(v: Any) -> None:
-                pass
-
-            self._samplers[name] = sample
-
+        point = self.add_point
         for name, bins in AXIS_POINTS.items():
             point(name, bins)

@@ -285,7 +285,7 @@ class CoverageModel:
     """
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
-        from cocotb_coverage.coverage import CoverCross, CoverPoint
+        from cocotb_coverage.coverage import CoverCross
 
         self.top, self.cfg, self.prefix = top, cfg, prefix
         self.removed: dict[str, dict[str, str]] = {}
@@ -293,16 +293,7 @@ class CoverageModel:
         nuc = top in ("nuc_core", "nuc_dpc_top")
         dpc = top in ("dpc_core", "nuc_dpc_top")
 
-        def point(name: str, bins: Sequence[Any]) -> None:
-            if not bins:  # every bin removed (with its reason): no coverpoint
-                return
-            full = f"{prefix}.{name}"
-
-            @CoverPoint(full, xf=lambda v: v, bins=list(bins))
-            def sample(v: Any) -> None:
-                pass
-
-            self._samplers[name] = sample
+        point = self.add_point
 
         if nuc:
             f = cfg.frac_bits
@@ -405,6 +396,19 @@ class CoverageModel:
 
     def has(self, name: str) -> bool:
         return name in self._samplers
+
+    def add_point(self, name: str, bins: Sequence[Any]) -> None:
+        """Register coverpoint ``<prefix>.<name>`` with ``bins`` (none: every bin was
+        removed with its reason, so no coverpoint; sampling it is then ignored)."""
+        if not bins:
+            return
+        from cocotb_coverage.coverage import CoverPoint
+
+        @CoverPoint(f"{self.prefix}.{name}", xf=lambda v: v, bins=list(bins))
+        def sample(v: Any) -> None:
+            pass
+
+        self._samplers[name] = sample
 
     def sample(self, name: str, value: Any, times: int = 1) -> None:
         """One hit (or ``times``) of ``value`` on coverpoint ``name``; unknown names of

@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
@@ -262,15 +261,7 @@ class MethodCoverageModel(CoverageModel):
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         super().__init__(top, cfg, prefix)
-        from cocotb_coverage.coverage import CoverPoint
-
-        def point(name: str, bins: Sequence[Any]) -> None:
-            @CoverPoint(f"{prefix}.{name}", xf=lambda v: v, bins=list(bins))
-            def sample(v: Any) -> None:
-                pass
-
-            self._samplers[name] = sample
-
+        point = self.add_point
         points, removed = method_points(cfg, top)
         if top == "method_dpc_top":
             points |= {"frame.size": ("1x1", "1xN", "Nx1", "small"),
