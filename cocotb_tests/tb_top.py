@@ -284,58 +284,115 @@ async def frame_size_changes(dut) -> None:
 
 
 async def _inject(dut, cfg, rng, cause: str) -> int:
-    """One frame-error cause alone (or none: ``control``); returns frame_err_o after it."""
+    """One marker cause of frame_err_o alone (or none: ``control``), from a reset; returns
+    frame_err_o after the frame."""
     await reset(dut)
     h, w = min(cfg.max_height, 3), min(cfg.max_width, 4)
-    gcfg = cfg
-    hb, wb = (1, 2) if cfg.max_width >= 2 else (2, 1)  # frame B: another size than A
-    if cause in ("sof_missing", "sof_unexpected", "eol_missing", "eol_unexpected", "control"):
-        frames = _random_frames(rng, cfg, gcfg, 1, h, w)
-        pix, coef = tb_lib.top_sources(dut, frames)
-        row = {"sof_missing": 0, "sof_unexpected": min(w + 1, h * w - 1), "eol_missing": w - 1,
-               "eol_unexpected": 1 if w > 2 else 0}.get(cause)
-        if row is not None:
-            pix.toggle(row, cause[:3])
-        await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, expect=h * w))
-        await ClockCycles(dut.clk_i, 2)
-        return int(dut.frame_err_o.value)
-    # An illegal size: legal when the frame's first pixel is taken at both ports with an
-    # assertion (top and dpc_core), made illegal while that pixel waits in dpc_core's input
-    # register for the flush of the previous frame (another size) to end.
-    wa = min(cfg.max_width, 16)
-    frames = (_random_frames(rng, cfg, gcfg, 1, 1, wa)
-              + _random_frames(rng, cfg, gcfg, 1, hb, wb))
+    frames = _random_frames(rng, cfg, cfg, 1, h, w)
     pix, coef = tb_lib.top_sources(dut, frames)
-    del pix.values[wa + 1:], coef.values[wa + 1:]  # frame A and B's first pixel only
-    nuc = len(coverage.pipeline_stages("nuc_core", cfg))
-    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut),
-                      stop=lambda c: pix.done and c >= pix.taken[-1] + nuc + 4)
+    row = {"sof_missing": 0, "sof_unexpected": min(w + 1, h * w - 1), "eol_missing": w - 1,
+           "eol_unexpected": 1 if w > 2 else 0}.get(cause)
+    if row is not None:
+        pix.toggle(row, cause[:3])
+    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, expect=h * w))
+    await ClockCycles(dut.clk_i, 2)
+    return int(dut.frame_err_o.value)
+
+
+SIZE_CAUSES = ("width_zero", "height_zero", "width_over_max", "height_over_max")
+
+
+def _size_frames(cfg) -> tuple[tuple[int, int], tuple[int, int]] | None:
+    """Frame A and frame B of :func:`_inject_size`, or None when the maximum frame is too
+    small: B's first pixel must reach dpc_ctrl before A's flush ends although it may be
+    offered only once A's first pixel was sampled there (the frame size rule), so A's
+    pixels and flush (H W + W + 1 items) must outlast the D stages before the window."""
+    hb, wb = (1, 2) if cfg.max_width >= 2 else (2, 1)
+    if hb > cfg.max_height:
+        return None
+    d = stimulus.DpcSchedule(cfg, [(1, 1)]).d
+    wa = min(cfg.max_width, 8)
+    ha = min(cfg.max_height, -(-(d + 2) // wa))
+    if (ha, wa) == (hb, wb) or ha * wa + wa < d + 1:
+        return None
+    return (ha, wa), (hb, wb)
+
+
+async def _inject_size(dut, cfg, rng, cause: str | None) -> int:
+    """An illegal frame size (``cause``) seen by dpc_ctrl's check alone, or none (None: the
+    same stimulus with the legal size); returns frame_err_o.
+
+    From a reset, frame A (legal) runs at full rate and frame B's first pixel (another
+    legal size) follows as soon as the frame size rule allows, so it passes both
+    ``a_frame_size`` points (top and dpc_core input) legally and then waits in dpc_core's
+    input register for A's flush; the size is made illegal while it waits. B's first pixel
+    carries the markers the illegal size asks for (eol low for a width that is not 1), so
+    no marker check fires with it. Checked: frame_err_o is 0 until the size changes, A's
+    outputs are exact, B's pixel was taken by dpc_ctrl after the change, and no output
+    follows A's.
+    """
+    await reset(dut)
+    (ha, wa), (hb, wb) = _size_frames(cfg)
+    frames = _random_frames(rng, cfg, cfg, 1, ha, wa) + _random_frames(rng, cfg, cfg, 1, hb, wb)
+    sizes = [(ha, wa), (hb, wb)]
+    pix, coef = tb_lib.top_sources(dut, frames)
+    nb = ha * wa + 1
+    del pix.values[nb:], coef.values[nb:]  # frame A and B's first pixel only
     wbits, hbits = len(dut.frame_width_i), len(dut.frame_height_i)
-    bad = {"width_zero": (0, None), "height_zero": (None, 0),
+    bad = {None: (None, None), "width_zero": (0, None), "height_zero": (None, 0),
            "width_over_max": (min(cfg.max_width + 1, (1 << wbits) - 1), None),
            "height_over_max": (None, min(cfg.max_height + 1, (1 << hbits) - 1))}[cause]
-    if bad[0] is not None:
-        dut.frame_width_i.value = bad[0]
-    if bad[1] is not None:
-        dut.frame_height_i.value = bad[1]
-    dut.m_pix_ready_i.value = 1
-    await ClockCycles(dut.clk_i, wa + 8)
+    if bad[0] is not None and wb == 1:
+        pix.toggle(nb - 1, "eol")  # an illegal width has no last column at column 0
+    gate = stimulus.size_gate(cfg, sizes, "schedule")
+    gate.source = pix
+    pix.pause = gate
+    d = gate.schedule.d
+    changed: dict[str, int] = {}
+
+    def step(c: int) -> bool:
+        gate.tick(c)
+        # After the edge that put B's first pixel into dpc_core's input register.
+        if len(pix.taken) == nb and not changed and c >= pix.taken[-1] + d - 1:
+            changed.update(cycle=c, err=int(dut.frame_err_o.value))
+            if bad[0] is not None:
+                dut.frame_width_i.value = bad[0]
+            if bad[1] is not None:
+                dut.frame_height_i.value = bad[1]
+        return False
+
+    sink = tb_lib.top_sink(dut, expect=ha * wa)
+    await run_streams(dut, [pix, coef], sink, stop=step)
+    await ClockCycles(dut.clk_i, 4)
+    assert changed, f"{cause}: frame B's first pixel never reached dpc_core"
+    assert changed["err"] == 0, f"{cause}: frame_err_o set before the size changed"
+    tb_lib.assert_passed(tb_lib.check_frames(frames[:1], sink, cfg))
+    gate.schedule.update(pix.taken)
+    took = gate.schedule.first_taken(1)
+    assert took is not None and took >= changed["cycle"] + 2, (
+        f"{cause}: dpc_ctrl took frame B's first pixel at cycle {took}, before the size "
+        f"changed at {changed['cycle']} had been registered")
+    assert int(dut.m_pix_valid_o.value) == 0, f"{cause}: an output after frame A's"
     return int(dut.frame_err_o.value)
 
 
 @cocotb.test()
 async def frame_error_causes(dut) -> None:
     """Every cause of frame_err_o alone sets it (sof missing or unexpected, eol missing or
-    unexpected, width or height 0 or above the maximum); a clean frame does not; reset
-    clears it."""
+    unexpected, width or height 0 or above the maximum); the same stimulus without the
+    cause does not; reset clears it."""
     cfg, _, rng = await _setup(dut, 10)
     assert await _inject(dut, cfg, rng, "control") == 0, "frame_err_o set by a clean frame"
     wrong = []
     # Causes a small maximum cannot produce (coverage.small_maximum_removals says why);
-    # a 1 x 1 maximum cannot hold a first pixel back behind a flush of another size.
+    # a maximum frame too small to hold a first pixel back behind a flush of another size
+    # (_size_frames) cannot make an illegal size reach dpc_ctrl alone.
     cannot = set(coverage.small_maximum_removals(cfg)["frame.error"])
-    if cfg.max_width * cfg.max_height == 1:
-        cannot |= {"width_zero", "height_zero", "width_over_max", "height_over_max"}
+    if _size_frames(cfg) is None:
+        cannot |= set(SIZE_CAUSES)
+    else:
+        assert await _inject_size(dut, cfg, rng, None) == 0, (
+            "frame_err_o set by a legal size applied while a first pixel waited")
     for cause in coverage.FRAME_ERRORS:
         if cause in cannot:
             continue
@@ -343,7 +400,10 @@ async def frame_error_causes(dut) -> None:
             continue
         if cause == "height_over_max" and cfg.max_height >= (1 << len(dut.frame_height_i)) - 1:
             continue
-        err = await _inject(dut, cfg, rng, cause)
+        if cause in SIZE_CAUSES:
+            err = await _inject_size(dut, cfg, rng, cause)
+        else:
+            err = await _inject(dut, cfg, rng, cause)
         if err != 1:
             wrong.append(cause)
         else:
