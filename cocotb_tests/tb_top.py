@@ -302,77 +302,50 @@ async def _inject(dut, cfg, rng, cause: str) -> int:
 SIZE_CAUSES = ("width_zero", "height_zero", "width_over_max", "height_over_max")
 
 
-def _size_frames(cfg) -> tuple[tuple[int, int], tuple[int, int]] | None:
-    """Frame A and frame B of :func:`_inject_size`, or None when the maximum frame is too
-    small: B's first pixel must reach dpc_ctrl before A's flush ends although it may be
-    offered only once A's first pixel was sampled there (the frame size rule), so A's
-    pixels and flush (H W + W + 1 items) must outlast the D stages before the window."""
-    hb, wb = (1, 2) if cfg.max_width >= 2 else (2, 1)
-    if hb > cfg.max_height:
-        return None
-    d = stimulus.DpcSchedule(cfg, [(1, 1)]).d
-    wa = min(cfg.max_width, 8)
-    ha = min(cfg.max_height, -(-(d + 2) // wa))
-    if (ha, wa) == (hb, wb) or ha * wa + wa < d + 1:
-        return None
-    return (ha, wa), (hb, wb)
-
-
 async def _inject_size(dut, cfg, rng, cause: str | None) -> int:
     """An illegal frame size (``cause``) seen by dpc_ctrl's check alone, or none (None: the
     same stimulus with the legal size); returns frame_err_o.
 
-    From a reset, frame A (legal) runs at full rate and frame B's first pixel (another
-    legal size) follows as soon as the frame size rule allows, so it passes both
-    ``a_frame_size`` points (top and dpc_core input) legally and then waits in dpc_core's
-    input register for A's flush; the size is made illegal while it waits. B's first pixel
-    carries the markers the illegal size asks for (eol low for a width that is not 1), so
-    no marker check fires with it. Checked: frame_err_o is 0 until the size changes, A's
-    outputs are exact, B's pixel was taken by dpc_ctrl after the change, and no output
-    follows A's.
+    From a reset, with the output's ready low: two 1 x 1 frames, whose two outputs fill
+    dpc_core's output register, so its enable drops and dpc_ctrl stops in Idle; then frame
+    B's first pixel (1 x 1, legal) passes both ``a_frame_size`` points (top and dpc_core
+    input) and waits in dpc_core's input register; the size is made illegal while it
+    waits, then ready rises. B's pixel carries the markers the illegal size asks for (eol
+    low for a width that is not 1), so no marker check fires with it. Checked: frame_err_o
+    is 0 until then, the two outputs are exact, and after them the outputs are those of a
+    legal B (its output) or, with an illegal size, none (the frame never completes).
+    Works on every maximum frame, 1 x 1 included.
     """
     await reset(dut)
-    (ha, wa), (hb, wb) = _size_frames(cfg)
-    frames = _random_frames(rng, cfg, cfg, 1, ha, wa) + _random_frames(rng, cfg, cfg, 1, hb, wb)
-    sizes = [(ha, wa), (hb, wb)]
-    pix, coef = tb_lib.top_sources(dut, frames)
-    nb = ha * wa + 1
-    del pix.values[nb:], coef.values[nb:]  # frame A and B's first pixel only
+    frames = _random_frames(rng, cfg, cfg, 3, 1, 1)
+    stages = coverage.pipeline_stages("nuc_dpc_top", cfg)[:-1]
+    d = stages.index("dpc_window")
     wbits, hbits = len(dut.frame_width_i), len(dut.frame_height_i)
     bad = {None: (None, None), "width_zero": (0, None), "height_zero": (None, 0),
            "width_over_max": (min(cfg.max_width + 1, (1 << wbits) - 1), None),
            "height_over_max": (None, min(cfg.max_height + 1, (1 << hbits) - 1))}[cause]
-    if bad[0] is not None and wb == 1:
-        pix.toggle(nb - 1, "eol")  # an illegal width has no last column at column 0
-    gate = stimulus.size_gate(cfg, sizes, "schedule")
-    gate.source = pix
-    pix.pause = gate
-    d = gate.schedule.d
-    changed: dict[str, int] = {}
-
-    def step(c: int) -> bool:
-        gate.tick(c)
-        # After the edge that put B's first pixel into dpc_core's input register.
-        if len(pix.taken) == nb and not changed and c >= pix.taken[-1] + d - 1:
-            changed.update(cycle=c, err=int(dut.frame_err_o.value))
-            if bad[0] is not None:
-                dut.frame_width_i.value = bad[0]
-            if bad[1] is not None:
-                dut.frame_height_i.value = bad[1]
-        return False
-
-    sink = tb_lib.top_sink(dut, expect=ha * wa)
-    await run_streams(dut, [pix, coef], sink, stop=step)
-    await ClockCycles(dut.clk_i, 4)
-    assert changed, f"{cause}: frame B's first pixel never reached dpc_core"
-    assert changed["err"] == 0, f"{cause}: frame_err_o set before the size changed"
-    tb_lib.assert_passed(tb_lib.check_frames(frames[:1], sink, cfg))
-    gate.schedule.update(pix.taken)
-    took = gate.schedule.first_taken(1)
-    assert took is not None and took >= changed["cycle"] + 2, (
-        f"{cause}: dpc_ctrl took frame B's first pixel at cycle {took}, before the size "
-        f"changed at {changed['cycle']} had been registered")
-    assert int(dut.m_pix_valid_o.value) == 0, f"{cause}: an output after frame A's"
+    dut.m_pix_ready_i.value = 0
+    pix, coef = tb_lib.top_sources(dut, frames[:2])
+    await run_streams(dut, [pix, coef], [],
+                      stop=lambda c: pix.done and c >= pix.taken[-1] + len(stages) + 8)
+    assert int(dut.m_pix_valid_o.value) == 1, "the first two outputs did not arrive"
+    pix, coef = tb_lib.top_sources(dut, frames[2:])
+    if bad[0] is not None:
+        pix.toggle(0, "eol")  # an illegal width has no last column at column 0
+    await run_streams(dut, [pix, coef], [], stop=lambda c: pix.done and c >= pix.taken[-1] + d + 2)
+    assert int(dut.frame_err_o.value) == 0, f"{cause}: frame_err_o set before the size changed"
+    if bad[0] is not None:
+        dut.frame_width_i.value = bad[0]
+    if bad[1] is not None:
+        dut.frame_height_i.value = bad[1]
+    await ClockCycles(dut.clk_i, 2)
+    n = 2 if cause else 3
+    sink = tb_lib.top_sink(dut, expect=n)
+    await run_streams(dut, [], sink)
+    dut.m_pix_ready_i.value = 1
+    await ClockCycles(dut.clk_i, len(stages) + 8)
+    tb_lib.assert_passed(tb_lib.check_frames(frames[:n], sink, cfg))
+    assert int(dut.m_pix_valid_o.value) == 0, f"{cause}: an output after the expected {n}"
     return int(dut.frame_err_o.value)
 
 
@@ -384,15 +357,10 @@ async def frame_error_causes(dut) -> None:
     cfg, _, rng = await _setup(dut, 10)
     assert await _inject(dut, cfg, rng, "control") == 0, "frame_err_o set by a clean frame"
     wrong = []
-    # Causes a small maximum cannot produce (coverage.small_maximum_removals says why);
-    # a maximum frame too small to hold a first pixel back behind a flush of another size
-    # (_size_frames) cannot make an illegal size reach dpc_ctrl alone.
+    assert await _inject_size(dut, cfg, rng, None) == 0, (
+        "frame_err_o set by the size-cause stimulus with a legal size")
+    # Causes a small maximum cannot produce (coverage.small_maximum_removals says why).
     cannot = set(coverage.small_maximum_removals(cfg)["frame.error"])
-    if _size_frames(cfg) is None:
-        cannot |= set(SIZE_CAUSES)
-    else:
-        assert await _inject_size(dut, cfg, rng, None) == 0, (
-            "frame_err_o set by a legal size applied while a first pixel waited")
     for cause in coverage.FRAME_ERRORS:
         if cause in cannot:
             continue
