@@ -284,58 +284,83 @@ async def frame_size_changes(dut) -> None:
 
 
 async def _inject(dut, cfg, rng, cause: str) -> int:
-    """One frame-error cause alone (or none: ``control``); returns frame_err_o after it."""
+    """One marker cause of frame_err_o alone (or none: ``control``), from a reset; returns
+    frame_err_o after the frame."""
     await reset(dut)
     h, w = min(cfg.max_height, 3), min(cfg.max_width, 4)
-    gcfg = cfg
-    hb, wb = (1, 2) if cfg.max_width >= 2 else (2, 1)  # frame B: another size than A
-    if cause in ("sof_missing", "sof_unexpected", "eol_missing", "eol_unexpected", "control"):
-        frames = _random_frames(rng, cfg, gcfg, 1, h, w)
-        pix, coef = tb_lib.top_sources(dut, frames)
-        row = {"sof_missing": 0, "sof_unexpected": min(w + 1, h * w - 1), "eol_missing": w - 1,
-               "eol_unexpected": 1 if w > 2 else 0}.get(cause)
-        if row is not None:
-            pix.toggle(row, cause[:3])
-        await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, expect=h * w))
-        await ClockCycles(dut.clk_i, 2)
-        return int(dut.frame_err_o.value)
-    # An illegal size: legal when the frame's first pixel is taken at both ports with an
-    # assertion (top and dpc_core), made illegal while that pixel waits in dpc_core's input
-    # register for the flush of the previous frame (another size) to end.
-    wa = min(cfg.max_width, 16)
-    frames = (_random_frames(rng, cfg, gcfg, 1, 1, wa)
-              + _random_frames(rng, cfg, gcfg, 1, hb, wb))
+    frames = _random_frames(rng, cfg, cfg, 1, h, w)
     pix, coef = tb_lib.top_sources(dut, frames)
-    del pix.values[wa + 1:], coef.values[wa + 1:]  # frame A and B's first pixel only
-    nuc = len(coverage.pipeline_stages("nuc_core", cfg))
-    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut),
-                      stop=lambda c: pix.done and c >= pix.taken[-1] + nuc + 4)
+    row = {"sof_missing": 0, "sof_unexpected": min(w + 1, h * w - 1), "eol_missing": w - 1,
+           "eol_unexpected": 1 if w > 2 else 0}.get(cause)
+    if row is not None:
+        pix.toggle(row, cause[:3])
+    await run_streams(dut, [pix, coef], tb_lib.top_sink(dut, expect=h * w))
+    await ClockCycles(dut.clk_i, 2)
+    return int(dut.frame_err_o.value)
+
+
+SIZE_CAUSES = ("width_zero", "height_zero", "width_over_max", "height_over_max")
+
+
+async def _inject_size(dut, cfg, rng, cause: str | None) -> int:
+    """An illegal frame size (``cause``) seen by dpc_ctrl's check alone, or none (None: the
+    same stimulus with the legal size); returns frame_err_o.
+
+    From a reset, with the output's ready low: two 1 x 1 frames, whose two outputs fill
+    dpc_core's output register, so its enable drops and dpc_ctrl stops in Idle; then frame
+    B's first pixel (1 x 1, legal) passes both ``a_frame_size`` points (top and dpc_core
+    input) and waits in dpc_core's input register; the size is made illegal while it
+    waits, then ready rises. B's pixel carries the markers the illegal size asks for (eol
+    low for a width that is not 1), so no marker check fires with it. Checked: frame_err_o
+    is 0 until then, the two outputs are exact, and after them the outputs are those of a
+    legal B (its output) or, with an illegal size, none (the frame never completes).
+    Works on every maximum frame, 1 x 1 included.
+    """
+    await reset(dut)
+    frames = _random_frames(rng, cfg, cfg, 3, 1, 1)
+    stages = coverage.pipeline_stages("nuc_dpc_top", cfg)[:-1]
+    d = stages.index("dpc_window")
     wbits, hbits = len(dut.frame_width_i), len(dut.frame_height_i)
-    bad = {"width_zero": (0, None), "height_zero": (None, 0),
+    bad = {None: (None, None), "width_zero": (0, None), "height_zero": (None, 0),
            "width_over_max": (min(cfg.max_width + 1, (1 << wbits) - 1), None),
            "height_over_max": (None, min(cfg.max_height + 1, (1 << hbits) - 1))}[cause]
+    dut.m_pix_ready_i.value = 0
+    pix, coef = tb_lib.top_sources(dut, frames[:2])
+    await run_streams(dut, [pix, coef], [],
+                      stop=lambda c: pix.done and c >= pix.taken[-1] + len(stages) + 8)
+    assert int(dut.m_pix_valid_o.value) == 1, "the first two outputs did not arrive"
+    pix, coef = tb_lib.top_sources(dut, frames[2:])
+    if bad[0] is not None:
+        pix.toggle(0, "eol")  # an illegal width has no last column at column 0
+    await run_streams(dut, [pix, coef], [], stop=lambda c: pix.done and c >= pix.taken[-1] + d + 2)
+    assert int(dut.frame_err_o.value) == 0, f"{cause}: frame_err_o set before the size changed"
     if bad[0] is not None:
         dut.frame_width_i.value = bad[0]
     if bad[1] is not None:
         dut.frame_height_i.value = bad[1]
+    await ClockCycles(dut.clk_i, 2)
+    n = 2 if cause else 3
+    sink = tb_lib.top_sink(dut, expect=n)
+    await run_streams(dut, [], sink)
     dut.m_pix_ready_i.value = 1
-    await ClockCycles(dut.clk_i, wa + 8)
+    await ClockCycles(dut.clk_i, len(stages) + 8)
+    tb_lib.assert_passed(tb_lib.check_frames(frames[:n], sink, cfg))
+    assert int(dut.m_pix_valid_o.value) == 0, f"{cause}: an output after the expected {n}"
     return int(dut.frame_err_o.value)
 
 
 @cocotb.test()
 async def frame_error_causes(dut) -> None:
     """Every cause of frame_err_o alone sets it (sof missing or unexpected, eol missing or
-    unexpected, width or height 0 or above the maximum); a clean frame does not; reset
-    clears it."""
+    unexpected, width or height 0 or above the maximum); the same stimulus without the
+    cause does not; reset clears it."""
     cfg, _, rng = await _setup(dut, 10)
     assert await _inject(dut, cfg, rng, "control") == 0, "frame_err_o set by a clean frame"
     wrong = []
-    # Causes a small maximum cannot produce (coverage.small_maximum_removals says why);
-    # a 1 x 1 maximum cannot hold a first pixel back behind a flush of another size.
+    assert await _inject_size(dut, cfg, rng, None) == 0, (
+        "frame_err_o set by the size-cause stimulus with a legal size")
+    # Causes a small maximum cannot produce (coverage.small_maximum_removals says why).
     cannot = set(coverage.small_maximum_removals(cfg)["frame.error"])
-    if cfg.max_width * cfg.max_height == 1:
-        cannot |= {"width_zero", "height_zero", "width_over_max", "height_over_max"}
     for cause in coverage.FRAME_ERRORS:
         if cause in cannot:
             continue
@@ -343,7 +368,10 @@ async def frame_error_causes(dut) -> None:
             continue
         if cause == "height_over_max" and cfg.max_height >= (1 << len(dut.frame_height_i)) - 1:
             continue
-        err = await _inject(dut, cfg, rng, cause)
+        if cause in SIZE_CAUSES:
+            err = await _inject_size(dut, cfg, rng, cause)
+        else:
+            err = await _inject(dut, cfg, rng, cause)
         if err != 1:
             wrong.append(cause)
         else:

@@ -105,3 +105,36 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     err = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(err) == 1 and "--only nope: no such mutant" in err[0]
     assert not (tmp_path / "o2").exists()
+
+
+def test_configs_of_the_per_configuration_run() -> None:
+    from irnuc.cosim import configspace
+
+    sample = [c.name for c in configspace.ci_sample()]
+    got = [c.name for c in mutate.configurations("sample, minimal")]
+    assert got == [*sample, "minimal"] and len(set(got)) == len(got)
+    assert [c.name for c in mutate.configurations("minimal")] == ["minimal"]
+    for spec, msg in (("minimall", "did you mean 'minimal'"), ("sample,sample", "more than once"),
+                      ("", "empty name"), ("minimal,", "empty name"),
+                      (sample[0], "no such configuration")):
+        with pytest.raises(ValueError, match=msg):
+            mutate.configurations(spec)
+
+
+def test_equivalence_on_some_configurations_only() -> None:
+    from irnuc.cosim import configspace
+
+    by_id = {m.id: m for m in mutate.CATALOGUE}
+    narrow = {c.name: c for c in configspace.ci_sample()}["ci20-004"]
+    assert narrow.max_width == 3
+    for mid in ("ctrl_ahead_start", "ctrl_write_current_col"):
+        m = by_id[mid]
+        assert m.equivalence() is None  # not equivalent everywhere: counted on its own config
+        assert m.equivalence(m.pipeline()) is None and m.pipeline().max_width > 3
+        assert m.equivalence(narrow).startswith("max_width <= 3: ")
+    # The argument rests on dpc_core taking the column word from the window for W <= 3.
+    core = (HDL_DIR / "dpc_core.sv").read_text()
+    assert "if (lb_w1) begin" in core and "end else if (lb_w3) begin" in core
+    # A mutant equivalent everywhere stays so on every configuration.
+    m = by_id["ctrl_idle_read_col"]
+    assert m.equivalence(narrow) == m.equivalence() == m.equivalent

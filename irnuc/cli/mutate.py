@@ -12,6 +12,12 @@ def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--only", action="append", default=[], metavar="ID",
                    help="run only this mutant of the catalogue (repeatable; see --list)")
     p.add_argument("--list", action="store_true", help="list the catalogue and exit")
+    p.add_argument("--configs", metavar="LIST",
+                   help="run each selected mutant of nuc_dpc_top on every configuration of "
+                        "LIST (comma-separated: 'sample', the CI sample of random legal "
+                        "configurations, and named configurations, e.g. sample,minimal) "
+                        "where its code elaborates differently, one at a time, and print "
+                        "the score per configuration (no coverage run)")
     p.epilog = ("exit status: 0 when every non-equivalent mutant was killed, 1 when one "
                 "survived, 2 for bad input, 3 when a tool failed")
     add_executor(p, "run the mutants", workers=1, cache="a mutant's result")
@@ -35,6 +41,8 @@ def run_mutate(args: argparse.Namespace) -> int:
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
     mutants = mutate.catalogue(args.only)  # an unknown id is a one-line error, before work
+    if args.configs is not None:
+        return _run_per_configuration(args, mutants)
     out = claim_output_folder(args.out, kind="mutate")
     summary = mutate.run_mutants(mutants, workers=args.workers, scheduler=args.scheduler,
                                  use_cache=not args.no_cache, progress=progress("mutate"))
@@ -64,6 +72,42 @@ def run_mutate(args: argparse.Namespace) -> int:
     say(f"wrote {out / 'mutate.json'}")
     # A surviving non-equivalent mutant is a bug the suite would miss: fail like a test.
     return 1 if summary["survived"] else 0
+
+
+def _run_per_configuration(args: argparse.Namespace, mutants: list) -> int:
+    """``--configs``: each two-point mutant on each configuration; mutate.json holds the
+    score per configuration and the status of every mutant on every configuration."""
+    import json
+
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
+    from irnuc.verif import mutate
+
+    configs = mutate.configurations(args.configs)
+    two_point = [m for m in mutants if m.top == mutate.SUITE_TOP]
+    if not two_point:
+        raise UserError("--configs: none of the selected mutants runs in nuc_dpc_top (the "
+                        "per-configuration run takes the mutants of the two-point suite)")
+    out = claim_output_folder(args.out, kind="mutate")
+
+    def show(cfg: str, mid: str, status: str) -> None:
+        say(f"{cfg:12s} {mid:28s} {status}", level=2)
+
+    res = mutate.run_per_configuration(two_point, configs, use_cache=not args.no_cache,
+                                       progress=show)
+    with output_folder(out, kind="mutate") as tmp:
+        write_text_atomic(tmp / "mutate.json", json.dumps(res, indent=1) + "\n")
+    for name, row in res["configurations"].items():
+        score = "-" if row["score"] is None else f"{100 * row['score']:.1f} %"
+        say(f"{name:12s} {row['killed']} killed, {row['survived']} survived, "
+            f"{row['equivalent']} equivalent, {row['same']} same (not run): score {score}")
+    ov = res["overall"]
+    say(f"overall: {ov['killed']} killed on some configuration, {ov['survived']} survived"
+        + (f" ({', '.join(ov['survivors'])})" if ov["survivors"] else "")
+        + (f"; {len(mutants) - len(two_point)} mutants of other tops left out"
+           if len(two_point) < len(mutants) else ""))
+    say(f"wrote {out / 'mutate.json'}")
+    return 1 if ov["survived"] else 0
 
 
 COMMANDS = {

@@ -72,6 +72,19 @@ class Mutant:
     #: method_dpc_top with tb_method, interp_weight alone with its testbench)
     top: str = SUITE_TOP
     suite: str = SUITE_MODULE
+    #: equivalent on some configurations only: (pipeline field, largest value, why), the
+    #: mutant is equivalent on a configuration whose field is at most that value
+    equivalent_when: tuple[tuple[str, int, str], ...] = ()
+
+    def equivalence(self, cfg=None) -> str | None:
+        """Why no test can kill the mutant on ``cfg`` (a pipeline configuration; None: on
+        every configuration), or None."""
+        if self.equivalent or cfg is None:
+            return self.equivalent
+        for name, most, why in self.equivalent_when:
+            if getattr(cfg, name) <= most:
+                return f"{name} <= {most}: {why}"
+        return None
 
     def apply(self, text: str) -> str:
         for find, replace in ((self.find, self.replace), *self.also):
@@ -91,6 +104,15 @@ class Mutant:
         # ``formats`` changes are nested pairs: ((name, ((field, value), ...)), ...).
         ch = {k: ({n: dict(f) for n, f in v} if k == "formats" else v) for k, v in self.changes}
         return cfg.replace(**ch)
+
+
+#: Why a mutant of the line buffer's addresses is equivalent on a maximum width of 3 or less.
+_LB_UNUSED = ("every legal frame is then at most 3 wide, and for a latched width of 1, 2 or "
+              "3 dpc_core takes the column word from the window (lb_w1/lb_w2/lb_w3), never "
+              "from the line buffer's read data, so no line-buffer address reaches an "
+              "output; the branch that differs (the look-ahead start 3, the RAM data) is "
+              "used only after an illegal width 0, which frame_err_o flags and after which "
+              "the outputs are unspecified")
 
 
 def _m(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
@@ -242,7 +264,8 @@ CATALOGUE: tuple[Mutant, ...] = (
        "(col_q + WidthBits'(1) == geo_wm2_q);", "end of row one column early"),
     _m("ctrl_ahead_start", "dpc_ctrl.sv", "fw_is3_q ? WidthBits'(0) : WidthBits'(3);",
        "fw_is3_q ? WidthBits'(0) : WidthBits'(2);",
-       "line-buffer look-ahead starts one column late"),
+       "line-buffer look-ahead starts one column late",
+       equivalent_when=(("max_width", 3, _LB_UNUSED),)),
     _m("ctrl_idle_read_col", "dpc_ctrl.sv", ": AddrBits'(2))", ": AddrBits'(1))",
        "line-buffer read address in Idle off by one",
        equivalent="the mutated branch is taken for W >= 3, where the word read in Idle is "
@@ -263,7 +286,8 @@ CATALOGUE: tuple[Mutant, ...] = (
        "win_top_q    <= or_last_q;", "top border flag from the last row"),
     _m("ctrl_write_current_col", "dpc_ctrl.sv", "assign lb_wr_addr_o  = prev_col_q;",
        "assign lb_wr_addr_o  = AddrBits'(col_q);",
-       "line buffer written at the current column, not the previous item's"),
+       "line buffer written at the current column, not the previous item's",
+       equivalent_when=(("max_width", 3, _LB_UNUSED),)),
     # ---- dpc_core ------------------------------------------------------------------------
     _m("dpc_rows_swapped", "dpc_core.sv", "{col_top, col_mid} = lb_next;",
        "{col_mid, col_top} = lb_next;", "line-buffer rows swapped (neighbours swapped)"),
@@ -571,6 +595,8 @@ def _mutant_key(m: Mutant) -> str:
     d = asdict(m)
     if not d["also"]:
         del d["also"]  # keys of one-site mutants as before the field existed
+    if not d["equivalent_when"]:
+        del d["equivalent_when"]  # and of mutants equivalent nowhere or everywhere
     if (d["top"], d["suite"]) == (SUITE_TOP, SUITE_MODULE):
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
         if d["file"] == PKG_FILE:
@@ -650,11 +676,12 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
                 killed_by, message = "timeout", str(exc)[:600]
             except cosim.RtlError as exc:
                 killed_by, message = "simulation", str(exc)[:600]
+        why = m.equivalence(cfg)
         status = ("invalid" if invalid else "killed" if killed_by else
-                  "equivalent" if m.equivalent else "survived")
+                  "equivalent" if why else "survived")
         out = asdict(MutantResult(id=m.id, file=m.file, what=m.what, config=config_label(cfg),
                                   status=status, killed_by=killed_by, message=message,
-                                  equivalent=m.equivalent,
+                                  equivalent=why,
                                   seconds=round(time.perf_counter() - t0, 2)))
     finally:
         shutil.rmtree(work, ignore_errors=True)
@@ -725,7 +752,9 @@ def _remove_failed_builds(hdl: Path) -> None:
 
 def _job(m: dict, use_cache: bool) -> dict:
     return run_mutant(Mutant(**{**m, "changes": _tuples(m["changes"]),
-                                "also": tuple(tuple(c) for c in m["also"])}),
+                                "also": tuple(tuple(c) for c in m["also"]),
+                                "equivalent_when": tuple(tuple(c) for c in
+                                                         m["equivalent_when"])}),
                       use_cache=use_cache)
 
 
@@ -826,6 +855,43 @@ def _base_elaboration(top: str, key: str, cfg) -> str:
     return _BASE[(top, key)]
 
 
+#: The ``--configs`` word for the CI sample of random legal configurations.
+SAMPLE = "sample"
+
+
+def configurations(spec: str) -> list:
+    """The configurations of ``irnuc mutate --configs``: a comma-separated list of named
+    two-point pipelines (``pipelines.toml``) and ``sample`` (``configspace.ci_sample()``,
+    the fixed random sample CI runs), in the order given. A one-line error (UserError)
+    for an empty list, an unknown name or a name given twice."""
+    from irnuc.common.schema import nearest
+    from irnuc.cosim import configspace
+
+    names = {c.name: c for c in configspace.named(SUITE_TOP)}
+    words = [w.strip() for w in spec.split(",")]
+    if not spec.strip() or "" in words:
+        raise UserError(f"--configs {spec!r}: an empty name; give a comma-separated list of "
+                        f"{SAMPLE!r} and named configurations ({', '.join(names)})")
+    out = []
+    for w in words:
+        if words.count(w) > 1:
+            raise UserError(f"--configs {w}: given more than once")
+        if w == SAMPLE:
+            out += configspace.ci_sample(SUITE_TOP)
+        elif w in names:
+            out.append(names[w])
+        else:
+            raise UserError(f"--configs {w}: no such configuration"
+                            f"{nearest(w, [SAMPLE, *names])} (allowed: {SAMPLE!r} and "
+                            f"{', '.join(names)})")
+    seen = [c.name for c in out]
+    twice = sorted({n for n in seen if seen.count(n) > 1})
+    if twice:
+        raise UserError(f"--configs: configuration {twice[0]} given twice (it is in the "
+                        f"sample and named)")
+    return out
+
+
 def run_per_configuration(mutants: Sequence[Mutant], configs: Sequence, *,
                           use_cache: bool = True,
                           progress: Callable[[str, str, str], None] | None = None) -> dict:
@@ -875,5 +941,6 @@ def run_per_configuration(mutants: Sequence[Mutant], configs: Sequence, *,
                         if killed or survived else None}}
 
 
-__all__ = ["CATALOGUE", "Mutant", "cached_summary", "catalogue", "elaborates_differently",
-           "rtl_digest", "run_mutant", "run_mutants", "run_per_configuration", "summarize"]
+__all__ = ["CATALOGUE", "SAMPLE", "Mutant", "cached_summary", "catalogue", "configurations",
+           "elaborates_differently", "rtl_digest", "run_mutant", "run_mutants",
+           "run_per_configuration", "summarize"]
