@@ -145,7 +145,7 @@ def test_noise_command_prints_and_writes_the_figures(tmp_path, capsys):
     assert "NETD measured" in text and "NETD closed form" in text and "sigma_tvh" in text
     res = json.loads((out / "noise.json").read_text())
     assert set(res["noise_3d"]["codes"]) == set(nm.COMPONENTS)
-    assert res["agreement"]["within_3_sigma"]
+    assert res["agreement"]["judged"] and res["agreement"]["within_3_sigma"]
     assert res["frames_used"] == 120 - 4 - 2 * res["settle_frames"]
     assert (out / "noise.png").stat().st_size > 10_000
     assert len(res["responsivity_per_frame_codes_per_K"]["closed_form"]) == res["frames_used"]
@@ -163,3 +163,22 @@ def test_noise_command_bad_flags(tmp_path, capsys, extra, fragment):
     assert main(["noise", "--frames", str(frames), *extra, "--out", str(tmp_path / "n")]) == 2
     err = capsys.readouterr().err
     assert fragment in err and len(err.strip().splitlines()) == 1
+
+
+def test_noise_free_frames_are_compared_but_not_judged(tmp_path, capsys):
+    """Without temporal noise the closed form is the ADC's LSB/sqrt(12) and the frames'
+    rounding is deterministic: the difference is printed, no verdict (neither a pass nor
+    an OUTSIDE)."""
+    toml = tmp_path / "s.toml"
+    toml.write_text('[sequence]\nframe_rate = 30.0\nduration = 2.0\nhousing = 300.0\n'
+                    '[sequence.fpa]\nprofile = "ramp"\nstart = 300.0\nrate = 2.0\n'
+                    '[sequence.scene]\nprofile = "constant"\nvalue = 300.0\n')
+    frames, out = tmp_path / "f", tmp_path / "n"
+    assert main(["frames", "-q", "--sequence", str(toml), "--set", "fpa.active_rows=16",
+                 "--set", "fpa.active_cols=20", "--set", "noise.enabled=false", "--out",
+                 str(frames)]) == 0
+    assert main(["noise", "--frames", str(frames), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "not judged" in text and "OUTSIDE" not in text
+    res = json.loads((out / "noise.json").read_text())
+    assert res["agreement"]["judged"] is False and res["agreement"]["within_3_sigma"] is None

@@ -166,8 +166,13 @@ def run(args: argparse.Namespace) -> int:
         both = float(np.hypot(measured.uncertainty_K, closed.uncertainty_K))
         diff = measured.netd_K - closed.netd_K
         result["netd_closed_form"] = closed.as_dict()
+        # Without analog noise the ADC's rounding of noiseless frames is deterministic, not
+        # the uniform noise of the closed form, and neither side has an uncertainty for
+        # that: the comparison is reported, not judged.
+        judged = closed.uncertainty_K > 0.0
         result["agreement"] = {"difference_mK": diff * 1e3, "combined_uncertainty_mK": both * 1e3,
-                               "within_3_sigma": bool(abs(diff) <= 3.0 * both)}
+                               "judged": judged,
+                               "within_3_sigma": bool(abs(diff) <= 3.0 * both) if judged else None}
         result["responsivity_per_frame_codes_per_K"] = {
             "frame": idx.tolist(), "closed_form": resp_frames.tolist()}
     with output_folder(out, kind="noise") as tmp:
@@ -190,7 +195,9 @@ def _summary(result: dict[str, Any], measured: Any, closed: Any, n3: Any, resp: 
         a = result["agreement"]
         say(f"NETD closed form {c['netd_mK']:.4g} +/- {c['uncertainty_mK']:.2g} mK  "
             f"(difference {a['difference_mK']:.3g} mK, "
-            f"{'within' if a['within_3_sigma'] else 'OUTSIDE'} 3 combined standard errors)"
+            + ("not judged" if not a["judged"] else
+               f"{'within' if a['within_3_sigma'] else 'OUTSIDE'} 3 combined standard errors")
+            + ")"
             + (f"; {c['notes']}" if c["notes"] else ""))
     say("3D noise        codes        mK")
     for name, meaning in COMPONENTS.items():
