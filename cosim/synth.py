@@ -69,6 +69,7 @@ __all__ = [
     "summarize_ecp5",
     "summarize_xc7",
     "synth_config",
+    "synth_key",
     "synth_configs",
     "synth_ecp5",
     "synth_xc7",
@@ -486,6 +487,33 @@ def memory_traffic(cfg) -> dict:
             "bandwidth_frame": [w, h], "bandwidth_fps": BANDWIDTH_FPS}
 
 
+def _synth_design(cfg, top: str | None, max_width: int | None, max_height: int | None,
+                  speed: int, freq_mhz: float, seed: int) -> tuple:
+    """What :func:`synth_config` synthesizes: (configuration with the frame limits applied,
+    top, parameters, sources, cache key over sources, parameters, flow and tool versions)."""
+    from irnuc.common.digest import files_digest
+    from irnuc.cosim.sources import hdl_sources, top_parameters
+
+    changes = {k: v for k, v in (("max_width", max_width), ("max_height", max_height))
+               if v is not None}
+    cfg = cfg.replace(**changes) if changes else cfg
+    top = top or default_top(cfg)
+    params = top_parameters(top, cfg)
+    sources = hdl_sources(top)
+    settings = {"top": top, "params": params, "device": ECP5_DEVICE, "package": ECP5_PACKAGE,
+                "speed": int(speed), "freq_mhz": float(freq_mhz), "seed": int(seed),
+                "flow": FLOW_VERSION, "packages": _package_versions()}
+    return cfg, top, params, sources, files_digest(sources, settings)
+
+
+def synth_key(cfg, *, top: str | None = None, max_width: int | None = None,
+              max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
+              freq_mhz: float = TARGET_MHZ, seed: int = 1) -> str:
+    """The cache key (``source_digest``) :func:`synth_config` files its result under, for
+    the same arguments, without synthesizing."""
+    return _synth_design(cfg, top, max_width, max_height, speed, freq_mhz, seed)[-1]
+
+
 def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
                  max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
                  freq_mhz: float = TARGET_MHZ, seed: int = 1, use_cache: bool = True) -> dict:
@@ -504,20 +532,10 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
     the same sources and parameters returns at once.
     """
     from irnuc.common.cache import cache_dir
-    from irnuc.common.digest import files_digest
     from irnuc.common.io import file_lock, write_text_atomic
-    from irnuc.cosim.sources import hdl_sources, top_parameters
 
-    changes = {k: v for k, v in (("max_width", max_width), ("max_height", max_height))
-               if v is not None}
-    cfg = cfg.replace(**changes) if changes else cfg
-    top = top or default_top(cfg)
-    params = top_parameters(top, cfg)
-    sources = hdl_sources(top)
-    settings = {"top": top, "params": params, "device": ECP5_DEVICE, "package": ECP5_PACKAGE,
-                "speed": int(speed), "freq_mhz": float(freq_mhz), "seed": int(seed),
-                "flow": FLOW_VERSION, "packages": _package_versions()}
-    key = files_digest(sources, settings)
+    cfg, top, params, sources, key = _synth_design(cfg, top, max_width, max_height, speed,
+                                                   freq_mhz, seed)
     root = cache_dir("synth")
     result_file = root / key / "synth.json"
     # The key is the design (sources, parameters, flow), not the configuration's name: a

@@ -53,9 +53,13 @@ def test_irnuc_synth_minimal_and_its_cache(tmp_path, monkeypatch, capsys) -> Non
     assert again["cached"] is True
     assert {k: again[k] for k in ("fmax_mhz", "xc7", "ecp5", "source_digest")} == {
         k: r[k] for k in ("fmax_mhz", "xc7", "ecp5", "source_digest")}
-    # Another line length is another design: another cache entry.
-    other = synth.synth_config(cfg, max_width=48, use_cache=True)
-    assert other["source_digest"] != r["source_digest"] and other["config"]["max_width"] == 48
+    # The result is filed under the key synth_key gives; another line length, top, speed
+    # or seed is another design: another cache entry (keys compared, nothing synthesized).
+    assert synth.synth_key(cfg) == r["source_digest"]
+    others = {synth.synth_key(cfg, max_width=48), synth.synth_key(cfg, max_height=48),
+              synth.synth_key(cfg, top="nuc_core"), synth.synth_key(cfg, speed=8),
+              synth.synth_key(cfg, seed=2)}
+    assert len(others) == 5 and r["source_digest"] not in others
 
 
 def test_typical14_line_buffer_is_block_ram(tmp_path) -> None:
