@@ -195,8 +195,10 @@ def test_sigkill_leaves_old_or_new_report_and_no_child(tmp_path) -> None:
     # Trial 0: cold (its own empty cache: syntheses and the Verilator build running);
     # then the cache of this test session (warmed by the tiny report above), so that trial
     # 1 runs to the end quickly and later trials are killed anywhere in a warm run.
-    plan = [("kill", rng.uniform(4.0, 20.0)), ("finish", None)] + [
-        ("kill", rng.uniform(0.5, 12.0)) for _ in range(3)]
+    # Delays from the test's seed: the cold run is killed in its syntheses or its build, the
+    # warm ones anywhere from the sweep's workers to the co-simulation.
+    plan = [("kill", rng.uniform(3.0, 10.0)), ("finish", None)] + [
+        ("kill", rng.uniform(0.5, 8.0)) for _ in range(2)]
     for trial, (what, delay) in enumerate(plan):
         if trial == 1:
             _share_warm_cache(tmp_path / "cache")
