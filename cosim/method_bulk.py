@@ -215,13 +215,16 @@ def ffc_schedule(run: FfcRun) -> np.ndarray:
 
 
 def run_ffc_bulk(bld: Build, run: FfcRun, *, idle_percent: int = 0, stall_percent: int = 0,
-                 seed: int = 1, work_dir: Path | None = None) -> BulkResult:
+                 seed: int = 1, work_dir: Path | None = None,
+                 writeback: bool = True) -> BulkResult:
     """Stream an FFC sequence (:func:`irnuc.cosim.stages.ffc_run`: frames, shutter flags,
     readings, one calibration) through the bulk harness of ``method_ffc_top``, from reset.
 
     The harness is the external memory: ``s_foff`` reads the corrections the DUT wrote on
     ``m_foff`` (zeros before the first refresh), ``s_acc`` the accumulator it wrote on
-    ``m_acc``, each word once written. Other arguments as
+    ``m_acc``, each word once written. ``writeback=False`` drops the corrections written
+    back (s_foff streams the zeros after reset throughout: a camera whose write-back
+    fails; the negative control of the check). Other arguments as
     :func:`irnuc.cosim.bulk.run_bulk` (one process); check with :func:`check_ffc_bulk`.
     """
     if bld.top != "method_ffc_top":
@@ -240,7 +243,10 @@ def run_ffc_bulk(bld: Build, run: FfcRun, *, idle_percent: int = 0, stall_percen
     stage = StageStreams(outputs=int((~run.held).sum()) * pixels,
                          acc_n=sum(a is not None for a in run.acc_out) * pixels,
                          foff_n=sum(a is not None for a in run.foff_out) * pixels)
-    return run_frames(bld, x, images, np.column_stack([info, ffc_schedule(run)]),
+    sched = ffc_schedule(run)
+    if not writeback:
+        sched[:, 1] = 0
+    return run_frames(bld, x, images, np.column_stack([info, sched]),
                       idle_percent=idle_percent, stall_percent=stall_percent, seed=seed,
                       work_dir=work_dir, stage=stage)
 
