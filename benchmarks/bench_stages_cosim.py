@@ -30,10 +30,8 @@ CONFIGS = ("drift14", "ffc14", "quadffc14", "tcffc14")
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--frames", type=int, default=20)
-    ap.add_argument("--height", type=int, default=480)
-    ap.add_argument("--width", type=int, default=640)
-    ap.add_argument("--seed", type=int, default=1)
+    for name, default in (("frames", 20), ("height", 480), ("width", 640), ("seed", 1)):
+        ap.add_argument(f"--{name}", type=int, default=default)
     ap.add_argument("--ffc-every", type=int, default=None,
                     help="frames from one shutter closing to the next (default: frames // 2)")
     ap.add_argument("--only", action="append", default=[], choices=CONFIGS)

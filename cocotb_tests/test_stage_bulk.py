@@ -73,6 +73,7 @@ def test_stage_bulk_streams_under_gaps_and_backpressure() -> None:
     and the refresh frame (8 frames), every blind item of every frame."""
     _, seq, cal = _sequence("drift14", 4)
     frames = drift_frames(cal, list(seq.codes), list(seq.blind_codes))
+    assert len({f.delta for f in frames}) == 4, "the FPA drift moves no frame's delta"
     res = run_drift_bulk(_build("drift14"), frames, idle_percent=30, stall_percent=30,
                          seed=4, shards=2)
     chk = check_drift_bulk(res, frames)

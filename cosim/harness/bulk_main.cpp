@@ -107,6 +107,23 @@ struct Options {
 
 Options parse_options(int argc, char** argv, int first);
 
+// Every input stream idle and every output's ready at `ready` (reset, the idle tail).
+template <typename T>
+void idle_streams(T* top, bool ready) {
+    top->s_pix_valid_i = 0;
+    top->s_coef_valid_i = 0;
+    top->m_pix_ready_i = ready;
+#ifdef BULK_BLIND
+    top->s_blind_valid_i = 0;
+#endif
+#ifdef BULK_FFC
+    top->s_foff_valid_i = 0;
+    top->s_acc_valid_i = 0;
+    top->m_acc_ready_i = ready;
+    top->m_foff_ready_i = ready;
+#endif
+}
+
 // xorshift64*: a cheap, seedable generator for idle gaps and backpressure.
 struct Rng {
     uint64_t s;
@@ -221,19 +238,10 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     top->rst_ni = 0;
     top->frame_width_i = w;
     top->frame_height_i = h;
-    top->s_pix_valid_i = 0;
-    top->s_coef_valid_i = 0;
-    top->m_pix_ready_i = 0;
+    idle_streams(top.get(), false);
 #ifdef BULK_BLIND
-    top->s_blind_valid_i = 0;
     set_word(top->blind_ref_i, &opt.blind_ref, 1);
     set_word(top->drift_gain_i, &opt.drift_gain, 1);
-#endif
-#ifdef BULK_FFC
-    top->s_foff_valid_i = 0;
-    top->s_acc_valid_i = 0;
-    top->m_acc_ready_i = 0;
-    top->m_foff_ready_i = 0;
 #endif
     top->eval();
     for (int i = 0; i < 3; ++i) {
@@ -342,22 +350,22 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
 #ifdef BULK_FFC
         const bool ffire = fv && top->s_foff_ready_o;
         const bool afire = av && top->s_acc_ready_o;
-        if (ardy && top->m_acc_valid_o) {
-            if (ao == opt.acc_n) {
-                std::printf("{\"error\": \"more than %" PRIu64 " m_acc words\", \"cycles\": %"
-                            PRIu64 "}\n", opt.acc_n, cycle);
-                return 1;
+        // A write-back word into the memory; one more than expected is an error.
+        const auto write = [&](std::vector<uint64_t>& mem, uint64_t& count, uint64_t word,
+                               const char* what) {
+            if (count == mem.size()) {
+                std::printf("{\"error\": \"more than %zu %s words\", \"cycles\": %" PRIu64
+                            "}\n", mem.size(), what, cycle);
+                return false;
             }
-            acc_mem[ao++] = get_word(top->m_acc_data_o);
-        }
-        if (frdy && top->m_foff_valid_o) {
-            if (fo == opt.foff_n) {
-                std::printf("{\"error\": \"more than %" PRIu64 " m_foff words\", \"cycles\": %"
-                            PRIu64 "}\n", opt.foff_n, cycle);
-                return 1;
-            }
-            foff_mem[fo++] = get_word(top->m_foff_data_o);
-        }
+            mem[count++] = word;
+            return true;
+        };
+        if (ardy && top->m_acc_valid_o && !write(acc_mem, ao, get_word(top->m_acc_data_o), "m_acc"))
+            return 1;
+        if (frdy && top->m_foff_valid_o
+            && !write(foff_mem, fo, get_word(top->m_foff_data_o), "m_foff"))
+            return 1;
 #endif
         top->clk_i = 1;
         top->eval();
@@ -403,18 +411,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     }
     // A few more cycles, inputs idle and outputs ready: nothing more may come out.
     uint64_t extra = 0;
-    top->s_pix_valid_i = 0;
-    top->s_coef_valid_i = 0;
-    top->m_pix_ready_i = 1;
-#ifdef BULK_BLIND
-    top->s_blind_valid_i = 0;
-#endif
-#ifdef BULK_FFC
-    top->s_foff_valid_i = 0;
-    top->s_acc_valid_i = 0;
-    top->m_acc_ready_i = 1;
-    top->m_foff_ready_i = 1;
-#endif
+    idle_streams(top.get(), true);
     for (uint32_t i = 0; i < w + 64; ++i) {
         top->eval();
         extra += top->m_pix_valid_o;
