@@ -1,5 +1,5 @@
-"""Bulk co-simulation: a C++ harness around the Verilated ``nuc_dpc_top`` or
-``method_dpc_top``.
+"""Bulk co-simulation: a C++ harness around the Verilated ``nuc_dpc_top``,
+``method_dpc_top`` or a stage top (``method_drift_top``, ``method_ffc_top``).
 
 The harness (``harness/bulk_main.cpp``, Verilator ``--cc --exe``, no cocotb, no VPI)
 reads raw binary stimulus, clocks the model itself and writes raw binary outputs; the
@@ -8,7 +8,10 @@ outputs are checked by the one scoreboard (:class:`~irnuc.cosim.scoreboard.TopSc
 (each resets the DUT); ``check_bulk`` compares every output of every shard, first with a
 direct numpy comparison and, when anything differs, with the scoreboard's triage. The
 methods' stimulus (coefficient images per frame, frame words) and check are in
-:mod:`irnuc.cosim.method_bulk`, on :func:`run_frames`.
+:mod:`irnuc.cosim.method_bulk`, on :func:`run_frames`; the stage tops' extra streams
+(blind items; the FFC accumulator and corrections written out and read back by the
+harness, which plays the external memory) are given to :func:`run_frames` as a
+:class:`StageStreams`.
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ import json
 import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +39,10 @@ from irnuc.nuc_fixed.validate import InputError, check_frame_shape, int_array
 BULK_HARNESS = Path(__file__).resolve().with_name("harness") / "bulk_main.cpp"
 #: Name of the bulk executable inside its build folder.
 BULK_EXE = "nuc_dpc_bulk"
+#: The tops the harness drives and what its header defines for each (bulk_main.cpp).
+BULK_TOPS = {"nuc_dpc_top": "", "method_dpc_top": "#define BULK_FRAME_WORD 1\n",
+             "method_drift_top": "#define BULK_FRAME_WORD 1\n#define BULK_BLIND 1\n",
+             "method_ffc_top": "#define BULK_FRAME_WORD 1\n#define BULK_FFC 1\n"}
 #: Output word of the harness: bit 31 sof, bit 30 eol, low bits the corrected code.
 _SOF_BIT, _EOL_BIT = 31, 30
 
@@ -43,8 +50,9 @@ _SOF_BIT, _EOL_BIT = 31, 30
 def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None) -> Build:
     """Build (cached) the bulk harness of ``top`` for ``cfg``.
 
-    ``top`` defaults to ``nuc_dpc_top`` for the two-point method and ``method_dpc_top``
-    for the other base methods (:func:`irnuc.cosim.synth.default_top`). The executable is
+    ``top`` defaults to ``nuc_dpc_top`` for the two-point method, ``method_dpc_top``
+    for the other base methods and the stage's top for a method with a stage
+    (:func:`irnuc.cosim.synth.default_top`). The executable is
     ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness source. A build
     takes about 10-15 s on 2 cores. ``assertions=False`` leaves the protocol assertions
     out: only for measuring what they cost (benchmarks/bench_cosim.py); every
@@ -53,8 +61,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     from irnuc.cosim.synth import default_top
 
     top = top or default_top(cfg)
-    if top not in ("nuc_dpc_top", "method_dpc_top"):
-        raise UserError(f"top {top!r}: the bulk harness drives nuc_dpc_top or method_dpc_top")
+    if top not in BULK_TOPS:
+        raise UserError(f"top {top!r}: the bulk harness drives {', '.join(BULK_TOPS)}")
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
@@ -64,8 +72,7 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
         log = build_dir / "build.log"
         # The harness includes bulk_top.h: the model's header, its class and its ports.
         (build_dir / "bulk_top.h").write_text(
-            f'#include "V{top}.h"\nusing BulkTop = V{top};\n'
-            + ("#define BULK_FRAME_WORD 1\n" if top == "method_dpc_top" else ""))
+            f'#include "V{top}.h"\nusing BulkTop = V{top};\n' + BULK_TOPS[top])
         cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
                "-CFLAGS", f"-I{build_dir}",
@@ -86,7 +93,7 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
             raise RtlError(f"Verilator build of the bulk harness failed (exit "
                            f"{proc.returncode}); see {log}")
 
-    tag = "" if top == "nuc_dpc_top" else "-method"
+    tag = {"nuc_dpc_top": "", "method_dpc_top": "-method"}.get(top, "-" + top.split("_")[1])
     build_dir = cached_build(f"{cfg.name}-bulk{tag}{'' if assertions else '-noassert'}-{key}",
                              {"top": top, "harness": BULK_HARNESS.name, "config": cfg.to_dict(),
                               "params": params, "args": list(FAST_ARGS)}, make)
@@ -119,6 +126,35 @@ class BulkResult:
     sim_seconds: float
     stall_cycles: int = 0  # output back-pressured between the first and the last output
     shards: int = 1  # harness processes that ran in parallel (run_bulk's ``shards``)
+    #: Items the stage's inputs took: (s_blind, 0) or (s_foff, s_acc).
+    stage_taken: tuple[int, int] = (0, 0)
+    #: method_ffc_top: the m_acc and m_foff words written, in order (uint64).
+    acc: np.ndarray | None = None
+    foff: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class StageStreams:
+    """The stage top's extra streams for :func:`run_frames` (``frame_info`` then has the
+    stage's columns, docs/cosim.md "Bulk harness").
+
+    ``blind``: method_drift_top's ``s_blind`` items (uint64), frame after frame, with each
+    frame's item count in ``frame_info[:, 2]``; ``registers``: ``blind_ref`` and
+    ``drift_gain`` as two's complement bit patterns. method_ffc_top: ``outputs`` m_pix
+    outputs (held frames have none), ``acc_n`` / ``foff_n`` m_acc / m_foff words expected;
+    ``frame_info[:, 2:5]`` hold the shutter flag and the write-back frames s_foff and s_acc
+    read (k + 1, 0: none).
+    """
+
+    blind: np.ndarray | None = None
+    registers: dict[str, int] = field(default_factory=dict)
+    outputs: int | None = None
+    acc_n: int = 0
+    foff_n: int = 0
+
+    @property
+    def ffc(self) -> bool:
+        return self.blind is None and self.outputs is not None
 
 
 def _check_percent(name: str, value: int) -> int:
@@ -178,10 +214,13 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
 
 def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: np.ndarray, *,
                idle_percent: int = 0, stall_percent: int = 0, seed: int = 1,
-               work_dir: Path | None = None, shards: int = 1) -> BulkResult:
+               work_dir: Path | None = None, shards: int = 1,
+               stage: StageStreams | None = None) -> BulkResult:
     """The harness on checked stimulus: ``frames`` (N, H, W) raw codes, ``images``
-    (M, H, W, L) coefficient words as L uint64 limbs (bit 0 first), ``frame_info`` (N, 2):
-    the image each frame streams and its frame word. Arguments as :func:`run_bulk`."""
+    (M, H, W, L) coefficient words as L uint64 limbs (bit 0 first), ``frame_info`` (N, C):
+    the image each frame streams, its frame word and (stage tops) the stage's columns;
+    ``stage``: the stage top's streams. Other arguments as :func:`run_bulk`; the FFC
+    top runs in one process (its state crosses frames)."""
     cfg = bld.cfg
     _check_percent("idle_percent", idle_percent)
     _check_percent("stall_percent", stall_percent)
@@ -193,7 +232,9 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
         with tempfile.TemporaryDirectory(dir=cache_dir("bulk")) as tmp:
             return run_frames(bld, frames, images, frame_info, idle_percent=idle_percent,
                               stall_percent=stall_percent, seed=seed, work_dir=Path(tmp),
-                              shards=shards)
+                              shards=shards, stage=stage)
+    if stage is not None and stage.ffc and shards != 1:
+        raise UserError(f"shards = {shards}: the FFC top's state crosses frames; use shards = 1")
     n_frames, h, w = frames.shape
     limbs = images.shape[-1]
     pix_dtype = np.uint16 if cfg.adc_bits <= 16 else np.uint32
@@ -202,6 +243,13 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
     coef_file = work_dir / "coef.bin"
     np.ascontiguousarray(images, dtype="<u8").tofile(coef_file)
     parts = [p for p in np.array_split(np.arange(n_frames), shards) if p.size]
+    cols = frame_info.shape[1]
+    opts = [] if cols == 2 else [f"cols={cols}"]
+    if stage is not None:
+        opts += [f"{k}={int(v)}" for k, v in stage.registers.items()]
+    blind_at = None
+    if stage is not None and stage.blind is not None:
+        blind_at = np.concatenate([[0], np.cumsum(frame_info[:, 2].astype(np.int64))])
     from irnuc.common.process import run_child
 
     def one(cmd: list[str]) -> dict:
@@ -224,16 +272,29 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
             out_file.unlink(missing_ok=True)  # never read a previous run's outputs
             np.ascontiguousarray(frames[part[0]:part[-1] + 1], dtype=pix_dtype).tofile(pix_file)
             np.ascontiguousarray(frame_info[part[0]:part[-1] + 1], dtype="<u8").tofile(info_file)
+            extra = list(opts)
+            if blind_at is not None and stage is not None and stage.blind is not None:
+                blind_file = work_dir / f"blind{i}.bin"
+                np.ascontiguousarray(stage.blind[blind_at[part[0]]:blind_at[part[-1] + 1]],
+                                     dtype="<u8").tofile(blind_file)
+                extra.append(f"blind={blind_file}")
+            if stage is not None and stage.ffc:
+                (work_dir / "acc.bin").unlink(missing_ok=True)
+                (work_dir / "foff.bin").unlink(missing_ok=True)
+                extra += [f"outputs={stage.outputs}", f"acc={work_dir / 'acc.bin'}",
+                          f"acc_n={stage.acc_n}", f"foff={work_dir / 'foff.bin'}",
+                          f"foff_n={stage.foff_n}"]
             if i == 0:
                 t0 = time.perf_counter()
             jobs.append(pool.submit(one, [
                 str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
                 str(part.size * h * w), str(w), str(h), str(np.dtype(pix_dtype).itemsize),
                 str(idle_percent), str(stall_percent), str((seed + i) % (1 << 64)),
-                str(info_file), str(limbs)]))
+                str(info_file), str(limbs), *extra]))
             outs.append(out_file)
         infos = [j.result() for j in jobs]
     sim_seconds = time.perf_counter() - t0
+    ffc = stage is not None and stage.ffc
     out = np.concatenate([np.fromfile(f, dtype="<u4") for f in outs])
     mask = np.uint32((1 << cfg.out_bits) - 1)
     spans = sum(int(i["last_out_cycle"]) - int(i["first_out_cycle"]) for i in infos)
@@ -250,6 +311,10 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
                       sum(int(i["inputs_taken"][1]) for i in infos)),
         sim_seconds=sim_seconds, stall_cycles=sum(int(i.get("stall_cycles", 0)) for i in infos),
         shards=len(infos),
+        stage_taken=(sum(int(i["inputs_taken"][2]) for i in infos),
+                     sum(int(i["inputs_taken"][3]) for i in infos)),
+        acc=np.fromfile(work_dir / "acc.bin", dtype="<u8") if ffc else None,
+        foff=np.fromfile(work_dir / "foff.bin", dtype="<u8") if ffc else None,
     )
 
 

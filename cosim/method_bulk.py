@@ -8,6 +8,12 @@ both. :func:`run_method_bulk` streams the frames through the harness of
 index into them), :func:`check_method_bulk` compares every output with
 ``nuc_fixed.method_top`` bit for bit (numpy first; the scoreboard's triage lines on a
 difference).
+
+The stage tops: :func:`run_drift_bulk` / :func:`check_drift_bulk` (``method_drift_top``,
+the frames of :func:`irnuc.cosim.stages.drift_frames` with their blind items) and
+:func:`run_ffc_bulk` / :func:`check_ffc_bulk` (``method_ffc_top``, a sequence of
+:func:`irnuc.cosim.stages.ffc_run`; the harness writes the FFC accumulator and corrections
+back and reads them in, as the camera's external memory would).
 """
 
 from __future__ import annotations
@@ -18,16 +24,18 @@ import numpy as np
 
 from irnuc.common.errors import UserError
 from irnuc.cosim.builds import Build
-from irnuc.cosim.bulk import BulkResult, exact_stream, flag_lines, run_frames
+from irnuc.cosim.bulk import BulkResult, StageStreams, exact_stream, flag_lines, run_frames
 from irnuc.cosim.methods import MethodScoreboard, golden_frames
-from irnuc.cosim.scoreboard import ScoreResult
+from irnuc.cosim.scoreboard import Scoreboard, ScoreResult
+from irnuc.cosim.stages import DriftFrame, FfcRun, StageScoreboard
 from irnuc.cosim.stream import frame_word, stream_limbs
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
 from irnuc.nuc_fixed.tempcomp import interp_weight
 from irnuc.nuc_fixed.validate import InputError, check_frame_shape, int_array
 
-__all__ = ["check_method_bulk", "method_stimulus", "run_method_bulk"]
+__all__ = ["check_drift_bulk", "check_ffc_bulk", "check_method_bulk", "ffc_schedule",
+           "method_stimulus", "run_drift_bulk", "run_ffc_bulk", "run_method_bulk"]
 
 
 def _readings(coeffs: MethodCoefficients, n: int, readings: object | None) -> list[int | None]:
@@ -115,3 +123,175 @@ def check_method_bulk(res: BulkResult, coeffs: MethodCoefficients, raw: object,
     return ScoreResult(compared=r.compared, mismatches=r.mismatches, missing=r.missing,
                        extra=r.extra + res.extra, lines=[*r.lines, *flag_lines(res)],
                        first_index=r.first_index, flag_errors=int(res.frame_err))
+
+
+# ---- the stage tops -------------------------------------------------------------------------
+
+def _unsigned(value: int, bits: int) -> int:
+    return int(value) & ((1 << bits) - 1)
+
+
+def run_drift_bulk(bld: Build, frames: list[DriftFrame], *, idle_percent: int = 0,
+                   stall_percent: int = 0, seed: int = 1, work_dir: Path | None = None,
+                   shards: int = 1) -> BulkResult:
+    """Stream :func:`irnuc.cosim.stages.drift_frames` (each frame's blind items, pixels and
+    coefficient words; one calibration) through the bulk harness of ``method_drift_top``.
+
+    The registers ``blind_ref`` and ``drift_gain`` are the calibration's. Other arguments
+    as :func:`irnuc.cosim.bulk.run_bulk`; check with :func:`check_drift_bulk`.
+    """
+    if bld.top != "method_drift_top":
+        raise UserError(f"{bld.top} is not method_drift_top; use cosim.build_bulk(cfg) of a "
+                        "blind_drift configuration")
+    if not frames:
+        raise InputError("no frames to stream")
+    coeffs = frames[0].coeffs
+    cfg = bld.cfg
+    if coeffs.cfg != cfg:
+        raise InputError(f"the coefficients are of {coeffs.cfg.name!r}, the build of {cfg.name!r}")
+    if any(f.coeffs is not coeffs for f in frames):
+        raise InputError("the frames of one bulk run share one calibration")
+    x = int_array("raw", np.stack([f.raw for f in frames]), 0, (1 << cfg.adc_bits) - 1)
+    h, w = check_frame_shape("raw", x.shape, cfg)
+    if (h, w) != coeffs.shape:
+        raise InputError(f"raw frames are {(h, w)} but the coefficients are {coeffs.shape}")
+    images, info = method_stimulus(coeffs, [None] * len(frames))
+    counts = np.array([f.blind.size for f in frames], dtype=np.uint64)  # type: ignore[union-attr]
+    regs = cfg.registers
+    stage = StageStreams(
+        blind=np.concatenate([f.blind for f in frames]).astype(np.uint64),  # type: ignore[misc]
+        registers={"blind_ref": _unsigned(coeffs.registers["blind_ref"], regs["blind_ref"].width),
+                   "drift_gain": _unsigned(coeffs.registers["drift_gain"],
+                                           regs["drift_gain"].width)})
+    return run_frames(bld, x, images, np.column_stack([info, counts]),
+                      idle_percent=idle_percent, stall_percent=stall_percent, seed=seed,
+                      work_dir=work_dir, shards=shards, stage=stage)
+
+
+def check_drift_bulk(res: BulkResult, frames: list[DriftFrame],
+                     max_report: int = 10) -> ScoreResult:
+    """Check a :func:`run_drift_bulk` run bit for bit against the frames' golden outputs
+    (:func:`irnuc.cosim.stages.drift_frames`, possibly of another configuration on
+    purpose); every blind item must have been taken."""
+    exp = np.concatenate([f.expected.ravel() for f in frames]).astype(np.int64)
+    n_blind = sum(int(f.blind.size) for f in frames)  # type: ignore[union-attr]
+    taken = [] if res.stage_taken[0] == n_blind else [
+        f"s_blind took {res.stage_taken[0]} of {n_blind} items"]
+    if exact_stream(res, exp) and not taken:
+        return ScoreResult(compared=exp.size, mismatches=0, missing=0, extra=0, lines=[])
+    golden = frames[0].coeffs.cfg if frames else None
+    sb = StageScoreboard(golden, max_report=max_report)  # type: ignore[arg-type]
+    for fr in frames:
+        sb.expect_frame(fr)
+    sb.observe_arrays(data=res.data, sof=res.sof, eol=res.eol)
+    r = sb.result()
+    return ScoreResult(compared=r.compared, mismatches=r.mismatches, missing=r.missing,
+                       extra=r.extra + res.extra, lines=[*r.lines, *flag_lines(res), *taken],
+                       first_index=r.first_index, flag_errors=int(res.frame_err) + len(taken))
+
+
+def ffc_schedule(run: FfcRun) -> np.ndarray:
+    """(N, 3) uint64 per frame: the shutter flag, the write-back frame s_foff reads (k + 1:
+    the k-th refresh frame's m_foff words; 0: the zeros after reset) and the one s_acc
+    reads (k + 1: the k-th m_acc frame; 0: none), from the golden run's streams."""
+    n = len(run.frames)
+    out = np.zeros((n, 3), dtype=np.uint64)
+    refreshes = writes = 0
+    last_acc: np.ndarray | None = None
+    for i in range(n):
+        out[i, 0] = bool(run.shutter[i])
+        out[i, 1] = refreshes
+        if run.acc_in[i] is not None:
+            # The golden run reads the accumulator last written: so does the memory.
+            if last_acc is None or not np.array_equal(run.acc_in[i], last_acc):
+                raise InputError(f"frame {i} reads an accumulator no frame wrote")
+            out[i, 2] = writes
+        if run.foff_out[i] is not None:
+            refreshes += 1
+        if run.acc_out[i] is not None:
+            writes += 1
+            last_acc = run.acc_out[i]
+    return out
+
+
+def run_ffc_bulk(bld: Build, run: FfcRun, *, idle_percent: int = 0, stall_percent: int = 0,
+                 seed: int = 1, work_dir: Path | None = None,
+                 writeback: bool = True) -> BulkResult:
+    """Stream an FFC sequence (:func:`irnuc.cosim.stages.ffc_run`: frames, shutter flags,
+    readings, one calibration) through the bulk harness of ``method_ffc_top``, from reset.
+
+    The harness is the external memory: ``s_foff`` reads the corrections the DUT wrote on
+    ``m_foff`` (zeros before the first refresh), ``s_acc`` the accumulator it wrote on
+    ``m_acc``, each word once written. ``writeback=False`` drops the corrections written
+    back (s_foff streams the zeros after reset throughout: a camera whose write-back
+    fails; the negative control of the check). Other arguments as
+    :func:`irnuc.cosim.bulk.run_bulk` (one process); check with :func:`check_ffc_bulk`.
+    """
+    if bld.top != "method_ffc_top":
+        raise UserError(f"{bld.top} is not method_ffc_top; use cosim.build_bulk(cfg) of an "
+                        "ffc configuration")
+    coeffs = run.frames[0].coeffs
+    cfg = bld.cfg
+    if coeffs.cfg != cfg:
+        raise InputError(f"the coefficients are of {coeffs.cfg.name!r}, the build of {cfg.name!r}")
+    x = int_array("raw", np.stack([f.raw for f in run.frames]), 0, (1 << cfg.adc_bits) - 1)
+    h, w = check_frame_shape("raw", x.shape, cfg)
+    rds = [f.reading for f in run.frames]
+    images, info = method_stimulus(coeffs, _readings(coeffs, len(rds), None if rds[0] is None
+                                                     else rds))
+    pixels = h * w
+    stage = StageStreams(outputs=int((~run.held).sum()) * pixels,
+                         acc_n=sum(a is not None for a in run.acc_out) * pixels,
+                         foff_n=sum(a is not None for a in run.foff_out) * pixels)
+    sched = ffc_schedule(run)
+    if not writeback:
+        sched[:, 1] = 0
+    return run_frames(bld, x, images, np.column_stack([info, sched]),
+                      idle_percent=idle_percent, stall_percent=stall_percent, seed=seed,
+                      work_dir=work_dir, stage=stage)
+
+
+def _words(res: BulkResult, name: str, want: list[np.ndarray | None], bits: int,
+           max_report: int) -> ScoreResult:
+    got = getattr(res, name)
+    parts = [np.asarray(a, dtype=np.int64).ravel() & ((1 << bits) - 1)
+             for a in want if a is not None]
+    exp = np.concatenate(parts) if parts else np.zeros(0, np.int64)
+    got = np.zeros(0, np.int64) if got is None else got.astype(np.int64)
+    if got.size == exp.size and np.array_equal(got, exp):
+        return ScoreResult(compared=exp.size, mismatches=0, missing=0, extra=0, lines=[])
+    sb = Scoreboard(("data",), max_report=max_report)
+    sb.expect(data=exp)
+    sb.observe_arrays(data=got)
+    r = sb.result()
+    return ScoreResult(compared=r.compared, mismatches=r.mismatches, missing=r.missing,
+                       extra=r.extra, lines=[f"m_{name}: {line}" for line in r.lines],
+                       first_index=r.first_index)
+
+
+def check_ffc_bulk(res: BulkResult, run: FfcRun, max_report: int = 10
+                   ) -> dict[str, ScoreResult]:
+    """Check a :func:`run_ffc_bulk` run bit for bit against the golden run ``run``
+    (possibly of another configuration or other stimulus on purpose): ``m_pix`` (every
+    frame not held), ``m_acc`` and ``m_foff`` (their words, in order)."""
+    shown = [f for f, held in zip(run.frames, run.held, strict=True) if not held]
+    exp = (np.concatenate([f.expected.ravel() for f in shown]).astype(np.int64) if shown
+           else np.zeros(0, np.int64))
+    cfg = run.frames[0].coeffs.cfg
+    mem = cfg.memories
+    out = {"m_acc": _words(res, "acc", run.acc_out, mem["ffc_acc"].word_bits, max_report),
+           "m_foff": _words(res, "foff", run.foff_out, mem["ffc_offset"].word_bits,
+                            max_report)}
+    if exact_stream(res, exp):
+        out["m_pix"] = ScoreResult(compared=exp.size, mismatches=0, missing=0, extra=0,
+                                   lines=[])
+        return out
+    sb = StageScoreboard(cfg, max_report=max_report)
+    for fr in shown:
+        sb.expect_frame(fr)
+    sb.observe_arrays(data=res.data, sof=res.sof, eol=res.eol)
+    r = sb.result()
+    out["m_pix"] = ScoreResult(compared=r.compared, mismatches=r.mismatches, missing=r.missing,
+                               extra=r.extra + res.extra, lines=[*r.lines, *flag_lines(res)],
+                               first_index=r.first_index, flag_errors=int(res.frame_err))
+    return out

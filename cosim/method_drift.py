@@ -42,12 +42,18 @@ class DriftSequence:
     fpa_K : (N,) FPA temperature of each frame, K
     scene_K : (N,) scene base temperature, K
     reading : (N,) the on-die sensor's reading, codes
+    blind_codes : (N, K) the reference pixels read beside each frame, codes (None: the
+        sensor has none)
+    shutter : (N,) bool, the shutter closed (the frame images it at the housing
+        temperature), or None: open throughout
     """
 
     codes: np.ndarray
     fpa_K: np.ndarray
     scene_K: np.ndarray
     reading: np.ndarray
+    blind_codes: np.ndarray | None = None
+    shutter: np.ndarray | None = None
 
 
 def _overrides(shape: tuple[int, int], extra: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -59,13 +65,15 @@ def drift_sequence(frames: int, shape: tuple[int, int] = (480, 640), *,
                    fpa_K: tuple[float, float] = (289.0, 307.0),
                    scene_K: tuple[float, float] = (295.0, 360.0), scene: str = "gradient",
                    sensor: str = "default", overrides: Mapping[str, Any] | None = None,
-                   seed: int = 0) -> DriftSequence:
+                   seed: int = 0, shutter: Sequence[bool] | None = None) -> DriftSequence:
     """``frames`` frames with the FPA (and housing) temperature ramping linearly over
     ``fpa_K`` and the scene over ``scene_K``; the default on-die sensor reads each frame.
 
     Every frame is the model at that frame's temperatures (``environment.T_substrate`` =
     ``environment.T_cam`` = the FPA temperature), one seed throughout: the same pixels
-    drift.
+    drift. ``shutter`` (one flag per frame): a closed frame images the shutter, a uniform
+    blackbody at the housing temperature, instead of the scene. Each frame's reference
+    pixels (``blind_codes``) are kept.
     """
     from irnuc import model
     from irnuc.model.fpa_sensor import FpaSensor
@@ -73,14 +81,25 @@ def drift_sequence(frames: int, shape: tuple[int, int] = (480, 640), *,
 
     t_fpa = np.linspace(fpa_K[0], fpa_K[1], frames)
     t_scene = np.linspace(scene_K[0], scene_K[1], frames)
-    codes = []
+    closed = (np.zeros(frames, bool) if shutter is None
+              else np.asarray(list(shutter), dtype=bool))
+    if closed.shape != (frames,):
+        raise ValueError(f"shutter holds {closed.size} flags for {frames} frames")
+    codes, blind = [], []
     ov = _overrides(shape, overrides)
-    for tf, ts in zip(t_fpa, t_scene, strict=True):
+    for tf, ts, sh in zip(t_fpa, t_scene, closed, strict=True):
         cfg = sensor_config(sensor, {**ov, "environment.T_substrate": float(tf),
                                      "environment.T_cam": float(tf)})
-        codes.append(model.simulate(cfg, [float(ts)], scene, seed=seed).codes[0])
+        fr = (model.simulate(cfg, [float(tf)], "uniform", seed=seed) if sh
+              else model.simulate(cfg, [float(ts)], scene, seed=seed))
+        codes.append(fr.codes[0])
+        b = getattr(fr, "blind_codes", None)
+        if b is not None and np.size(b):
+            blind.append(np.asarray(b).reshape(-1))
     reading = FpaSensor().read(t_fpa, seed=seed)
-    return DriftSequence(codes=np.stack(codes), fpa_K=t_fpa, scene_K=t_scene, reading=reading)
+    return DriftSequence(codes=np.stack(codes), fpa_K=t_fpa, scene_K=t_scene, reading=reading,
+                         blind_codes=np.stack(blind) if len(blind) == frames else None,
+                         shutter=None if shutter is None else closed)
 
 
 def calibrate_methods(cfgs: Sequence[PipelineConfig], shape: tuple[int, int], *,
