@@ -266,6 +266,10 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
                        f"{c.get('timeout', 0)} timed out")
     if c is not None and c.get("mismatches"):
         reasons.append(f"co-simulation: {c['mismatches']} pixel mismatch(es)")
+    tc = ((rep.sections.get("temperature") or {}).get("recommended") or {}).get("cosim")
+    if tc and tc.get("passed") is False:
+        reasons.append(f"temperature co-simulation: {tc['mismatches']} pixel mismatch(es) of "
+                       f"{tc['pixels_compared']} compared")
     summary["status"] = "fail" if reasons else "pass"
     summary["status_reasons"] = reasons
     return _clean(json.loads(json.dumps(summary, default=_json_default)))
