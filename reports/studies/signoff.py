@@ -182,21 +182,24 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
                         "worst_fpn_mK": max(p[2] for p in per)})
             continue
         n_ffc = int(cfg.ffc_frames or 1)
+        # Shutter events and the frames after them repeat across the periods (every
+        # period's events lie on one grid of temperatures): each computed once.
+        refs: dict[float, np.ndarray] = {}
+        seen: dict[tuple[float, float], tuple[float, float]] = {}
         for period in spec.ffc_periods_min:
             events = ffc_events(lo, hi, spec.ramp_K_per_min * period)
             saw = []  # [time min, FPA K, worst mK]
             worst_lsb = 0.0
             for k, temps in sawtooth_segments(grid, events, hi):
-                sraw, sblind, srd = shutter[events[k]]
-                ref = method_top(np.repeat(sraw, n_ffc, axis=0), cal.coeffs, FrameInputs(
-                    reading=np.full(n_ffc, srd), blind_codes=np.repeat(sblind, n_ffc, axis=0),
-                    shutter=np.ones(n_ffc, bool)))
                 for t in temps:
-                    raw, blind, rd = frames[t]
-                    y = method_top(raw, cal.coeffs, FrameInputs(
-                        reading=np.full(len(scenes), rd), blind_codes=blind,
-                        shutter=np.zeros(len(scenes), bool)), ffc_offset=ref.ffc_offset).y
-                    w_lsb, w_mk = _worst(y, good, scenes, r_of)
+                    if (events[k], t) not in seen:
+                        raw, blind, rd = frames[t]
+                        y = method_top(raw, cal.coeffs, FrameInputs(
+                            reading=np.full(len(scenes), rd), blind_codes=blind,
+                            shutter=np.zeros(len(scenes), bool)),
+                            ffc_offset=_refresh(refs, events[k], shutter, cal, n_ffc)).y
+                        seen[events[k], t] = _worst(y, good, scenes, r_of)
+                    w_lsb, w_mk = seen[events[k], t]
                     worst_lsb = max(worst_lsb, w_lsb)
                     saw.append([(t - lo) / spec.ramp_K_per_min, t, w_mk])
             out.append({**rec0, "ffc_period_min": float(period), "ffc_events": len(events),
@@ -204,6 +207,20 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
                         "per_fpa": _per_fpa_worst(saw),
                         "worst_fpn_lsb": worst_lsb, "worst_fpn_mK": max(s[2] for s in saw)})
     return out
+
+
+def _refresh(refs: dict[float, np.ndarray], t0: float, shutter: Mapping[float, tuple], cal: Any,
+             n: int) -> np.ndarray:
+    """The FFC correction after the shutter event at ``t0`` (``n`` shutter frames), kept in
+    ``refs``."""
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+
+    if t0 not in refs:
+        sraw, sblind, srd = shutter[t0]
+        refs[t0] = method_top(np.repeat(sraw, n, axis=0), cal.coeffs, FrameInputs(
+            reading=np.full(n, srd), blind_codes=np.repeat(sblind, n, axis=0),
+            shutter=np.ones(n, bool))).ffc_offset
+    return refs[t0]
 
 
 def _per_fpa_worst(saw: Sequence[Sequence[float]]) -> list[list[float]]:
