@@ -306,12 +306,14 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         else:
             rep.notes.append("temperature: no valid point in the sweep")
         d["images"] = _end_images(res, d["recommended"])
+        t1 = time.perf_counter()
+        res_fig = {**res, "points": pts, "tolerance_mK": tol, "fronts": d["fronts"]}
+        for cap, png in figures(res_fig, d["recommended"], d["images"]):
+            rep.figure("temperature", cap, png)
+        _camera_figure(rep, res)
+        times["figures"] = round(time.perf_counter() - t1, 3)
         d["seconds"] = times
     rep.sections["temperature"] = d
-    res_fig = {**res, "points": pts, "tolerance_mK": tol, "fronts": d["fronts"]}
-    for cap, png in figures(res_fig, d["recommended"], d["images"]):
-        rep.figure("temperature", cap, png)
-    _camera_figure(rep, res)
     temperature_metrics(rep, d)
 
 
