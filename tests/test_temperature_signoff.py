@@ -237,3 +237,56 @@ def test_method_points_on_a_tiny_sensor() -> None:
     assert short["worst_fpn_mK"] <= long_["worst_fpn_mK"]
     assert at_end[292.0] >= min(p[1] for p in short["per_fpa"])
     assert np.isfinite(short["worst_fpn_lsb"]) and short["memory_bits"] > two[0]["memory_bits"]
+
+
+# ---- co-simulation of the recommendation -----------------------------------------------------
+def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch) -> None:
+    from irnuc.cosim import sequence_bulk
+    from irnuc.reports.report.summary import make_summary
+
+    seen = {}
+
+    def fake(cfg, *, frames, shape, seed, ffc_every, fpa_K):
+        seen.update(name=cfg.name, w=cfg.max_width, h=cfg.max_height, f=cfg.gain_frac_bits,
+                    frames=frames, shape=shape, ffc_every=ffc_every, fpa_K=fpa_K)
+        return {"pixels_compared": frames * shape[0] * shape[1], "mismatches": 2, "passed": False,
+                "ffc_events": 0, "top": "method_dpc_top", "seconds": 0.5, "lines": ["frame 0 ..."]}
+
+    monkeypatch.setattr(sequence_bulk, "cosim_sequence", fake)
+    t = {"cosim_frames": 20, "cosim_rows": 12, "cosim_cols": 16, "cosim_seed": 3}
+    c = tp._cosim(t, {"config": "typical14", "frac_bits": 9}, (288.0, 308.0))
+    assert seen == {"name": "recommended_temperature", "w": 16, "h": 12, "f": 9, "frames": 20,
+                    "shape": (12, 16), "ffc_every": None, "fpa_K": (288.0, 308.0)}
+    assert (c["pixels_compared"], c["mismatches"], c["passed"]) == (20 * 12 * 16, 2, False)
+    sec = _section()
+    sec["recommended"]["cosim"] = c
+    rep = Report(config={"name": "x"}, verbose=False)
+    rep.sections["temperature"] = sec
+    tp.temperature_metrics(rep, sec)
+    s = make_summary(rep, [], None, None)
+    assert s["status"] == "fail"
+    assert any("temperature co-simulation: 2 pixel mismatch" in r for r in s["status_reasons"])
+
+
+def test_stage_method_not_in_the_bulk_harness_is_not_a_pass(monkeypatch) -> None:
+    from irnuc.common.errors import UserError
+    from irnuc.cosim import sequence_bulk
+
+    def refuse(cfg, **kw):
+        raise UserError(f"pipeline {cfg.name!r}: the stage tops are not in the bulk harness")
+
+    monkeypatch.setattr(sequence_bulk, "cosim_sequence", refuse)
+    t = {"cosim_frames": 2, "cosim_rows": 4, "cosim_cols": 4}
+    c = tp._cosim(t, {"config": "ffc14", "frac_bits": 8}, (288.0, 308.0))
+    assert c["ffc_every"] == 8  # a shutter method gets its shutter runs
+    assert c["passed"] is None and c["mismatches"] is None and c["pixels_compared"] == 0
+    assert "stage tops" in c["not_run"]
+    rep = Report(config={}, verbose=False)
+    sec = _section()
+    sec["recommended"]["cosim"] = c
+    _validator().validate(sec)
+    tp.temperature_metrics(rep, sec)
+    assert "temperature.recommended.cosim.mismatches" not in rep.metrics
+    # a base method's refusal is an error, never skipped
+    with pytest.raises(UserError):
+        tp._cosim(t, {"config": "typical14", "frac_bits": 8}, (288.0, 308.0))
