@@ -278,7 +278,7 @@ def test_stage_method_not_in_the_bulk_harness_is_not_a_pass(monkeypatch) -> None
     monkeypatch.setattr(sequence_bulk, "cosim_sequence", refuse)
     t = {"cosim_frames": 2, "cosim_rows": 4, "cosim_cols": 4}
     c = tp._cosim(t, {"config": "ffc14", "frac_bits": 8}, (288.0, 308.0))
-    assert c["ffc_every"] == 8  # a shutter method gets its shutter runs
+    assert c["ffc_every"] == 10  # a shutter method gets its shutter runs
     assert c["passed"] is None and c["mismatches"] is None and c["pixels_compared"] == 0
     assert "stage tops" in c["not_run"]
     rep = Report(config={}, verbose=False)

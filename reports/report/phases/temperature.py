@@ -32,7 +32,7 @@ DEFAULTS: dict[str, Any] = {
     "frac_bits": [6, 8, 10, 12, 14], "ffc_periods_min": [0.25, 0.5, 1.0, 2.0],
     "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
     "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
-    "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 8,
+    "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
     "dsp_lut_equivalent": 200.0,
 }
 
