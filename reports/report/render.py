@@ -237,6 +237,7 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
     fr = t["fronts"]
     on_m = set(fr["memory_bits"]["overall"])
     on_d = set((fr.get("datapath_cost") or {}).get("overall") or [])
+    on_own = {i for ids in fr["memory_bits"]["per_method"].values() for i in ids}
     head = ["point", "method", "f", "FFC min", "worst mK", "worst LSB", "bit/px", "read bit/px",
             "MB/s", "xc7 LUT", "DSP", "Fmax MHz", "cost from", "LUT+DSP", "meets", "front"]
     rows = []
@@ -251,7 +252,8 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
                      p["read_bits_per_frame"], p.get("bandwidth_MBps"), hw.get("xc7.lut"),
                      hw.get("xc7.dsp"), hw.get("fmax_mhz"), hw.get("source"),
                      p.get("datapath_cost"), p.get("meets_tolerance"),
-                     ("M" if p["index"] in on_m else "") + ("D" if p["index"] in on_d else "")])
+                     ("M" if p["index"] in on_m else "") + ("D" if p["index"] in on_d else "")
+                     + ("m" if p["index"] in on_own else "")])
     bits = sorted({p["frac_bits"] for p in t["points"]})
     table: dict[str, dict[int, float | None]] = {}
     for p in t["points"]:
