@@ -290,3 +290,17 @@ def test_stage_method_not_in_the_bulk_harness_is_not_a_pass(monkeypatch) -> None
     # a base method's refusal is an error, never skipped
     with pytest.raises(UserError):
         tp._cosim(t, {"config": "typical14", "frac_bits": 8}, (288.0, 308.0))
+
+
+def test_a_sweep_without_a_valid_point_fails_the_report() -> None:
+    from irnuc.reports.report.summary import make_summary
+
+    sec = _section()
+    sec["points"] = [_pt(0, "piecewise14", 1, 1, 0.0, valid=False)]
+    sec["recommended"] = None
+    rep = Report(config={"name": "x"}, verbose=False)
+    rep.sections["temperature"] = sec
+    tp.temperature_metrics(rep, sec)
+    s = make_summary(rep, [], None, None)
+    assert s["status"] == "fail"
+    assert any("no valid point" in r for r in s["status_reasons"])
