@@ -524,7 +524,8 @@ def figures(result: Mapping[str, Any], rec: Mapping[str, Any] | None,
         ax.set_xlabel(label)
         ax.set_ylabel("worst residual, mK")
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=6, ncol=2)
+    if axes[0].get_legend_handles_labels()[0]:
+        axes[0].legend(fontsize=6, ncol=2)
     out.append(("Pareto fronts of the worst residual against coefficient memory (left) and "
                 "against the datapath cost (right); the star is the recommendation, the "
                 "dashed line the tolerance", png(fig)))
