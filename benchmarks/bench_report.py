@@ -6,17 +6,28 @@ Runs, each in a subprocess with its own output folder:
    syntheses, numba kernels and the work-precision study all made anew), with ``--hog``
    CPU-bound processes running beside it (default 1: a busy loop, as another engineer's
    job would be), to show the report passes on its first run on a loaded machine;
-2. ``warm``: the same cache again, no hog (the issue's goal: <= 60 s on 2 cores);
+2. ``warm``: the same cache again, no hog (the goal: <= 90 s on 2 cores, every phase with
+   the Temperature section's);
 3. ``warm_hog``: the same cache, with the hog;
-4. ``baseline`` (measured in the same run): the same configuration with the same cache and
+4. ``quick_first`` and ``quick``: ``--quick`` on the same cache, no hog, twice: the first
+   makes what only the quick configuration needs (its syntheses, builds and study), the
+   second is the warm quick run (the goal: <= 30 s);
+5. ``baseline`` (measured in the same run): the same configuration with the same cache and
    ``--no-cosim``: the report's compute-only part (frames, calibration, sweep, cached
-   syntheses, paper, cached precision), to normalize the co-simulation's share.
+   syntheses, paper, temperature, cached precision), to normalize the co-simulation's share.
 
-Each run's exit status, wall time and the phases of its ``summary.json`` are reported; the
-last line printed is one JSON object with ``warm_goal_ratio`` (warm total / 60 s) and
-``warm_vs_baseline`` (warm total / baseline total).
+Each run's exit status, wall time, the phases of its ``summary.json`` and the parts of the
+``temperature`` phase (its sweep, anchors, synthesis, co-simulation, figures) are reported;
+the last line printed is one JSON object with ``warm_goal_ratio`` (warm total / 90 s),
+``quick_goal_ratio`` (quick total / 30 s) and ``warm_vs_baseline`` (warm total / baseline
+total).
 
-Usage: ``python benchmarks/bench_report.py [--config default] [--hog 1] [--keep]``
+``--runs`` picks the runs (default all: ``cold,warm,warm_hog,quick,baseline``);
+``--shared-cache`` uses the user's irnuc cache instead of a fresh one (no cold run then:
+for timing the warm runs on a machine that already built everything).
+
+Usage: ``python benchmarks/bench_report.py [--config default] [--hog 1] [--runs ...]
+[--shared-cache] [--keep]``
 """
 
 from __future__ import annotations
@@ -31,7 +42,9 @@ import tempfile
 import time
 from pathlib import Path
 
-GOAL_WARM_S = 60.0
+GOAL_WARM_S = 90.0
+GOAL_QUICK_S = 30.0
+RUNS = ("cold", "warm", "warm_hog", "quick_first", "quick", "baseline")
 HOG = "import time\nt = time.time()\nwhile time.time() - t < 3600:\n    sum(i * i for i in range(10000))\n"
 
 
@@ -56,6 +69,14 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int) -
         c = s["sections"].get("cosim") or {}
         rec["cosim"] = {k: c.get(k) for k in ("tests", "passed", "failed", "timeout", "pixels",
                                                "mismatches", "build_seconds")}
+        t = s["sections"].get("temperature") or {}
+        r = t.get("recommended") or {}
+        rec["temperature_parts_s"] = t.get("seconds")
+        rec["temperature_cached_study"] = t.get("cached")
+        rec["temperature_recommended"] = {k: r.get(k) for k in (
+            "key", "worst_fpn_mK", "meets_tolerance", "memory_bits", "bandwidth_MBps")} | {
+            "cosim_pixels": (r.get("cosim") or {}).get("pixels_compared"),
+            "cosim_mismatches": (r.get("cosim") or {}).get("mismatches")} if r else None
     else:
         rec["stderr"] = proc.stderr[-2000:]
     print(json.dumps(rec), flush=True)
@@ -67,28 +88,57 @@ def main() -> None:
     ap.add_argument("--config", default="default")
     ap.add_argument("--hog", type=int, default=1, help="CPU-bound processes beside the cold run")
     ap.add_argument("--keep", action="store_true", help="keep the cache and output folders")
+    ap.add_argument("--runs", default=",".join(RUNS),
+                    help=f"comma-separated runs among {', '.join(RUNS)}")
+    ap.add_argument("--shared-cache", action="store_true",
+                    help="use the user's irnuc cache (no fresh one: the cold run is skipped)")
     args = ap.parse_args()
+    runs = [r.strip() for r in args.runs.split(",") if r.strip()]
+    unknown = sorted(set(runs) - set(RUNS))
+    if unknown:
+        ap.error(f"--runs: unknown {', '.join(unknown)} (known: {', '.join(RUNS)})")
+    if args.shared_cache and "cold" in runs:
+        runs.remove("cold")
     root = Path(tempfile.mkdtemp(prefix="bench_report_"))
-    env = {**os.environ, "IRNUC_CACHE_DIR": str(root / "cache")}
+    env = dict(os.environ)
+    if not args.shared_cache:
+        env["IRNUC_CACHE_DIR"] = str(root / "cache")
     cfg = ["--config", args.config]
+    plan = {"cold": (cfg, args.hog), "warm": (cfg, 0), "warm_hog": (cfg, args.hog),
+            "quick_first": ([*cfg, "--quick"], 0), "quick": ([*cfg, "--quick"], 0),
+            "baseline": ([*cfg, "--no-cosim"], 0)}
+    got: dict[str, dict] = {}
     try:
-        cold = _run("cold", cfg, env, root / "cold", args.hog)
-        warm = _run("warm", cfg, env, root / "warm", 0)
-        warm_hog = _run("warm_hog", cfg, env, root / "warm_hog", args.hog)
-        base = _run("baseline", [*cfg, "--no-cosim"], env, root / "baseline", 0)
+        for name in RUNS:
+            if name in runs:
+                a, hog = plan[name]
+                got[name] = _run(name, a, env, root / name, hog)
     finally:
         if not args.keep:
             shutil.rmtree(root, ignore_errors=True)
+
+    def field(run: str, key: str):
+        return got[run].get(key) if run in got else None
+
+    warm, quick, base = field("warm", "wall_s"), field("quick", "wall_s"), field("baseline", "wall_s")
     result = {
         "config": args.config, "cpu_count": os.cpu_count(), "hogs": args.hog,
-        "cold_s": cold["wall_s"], "cold_rc": cold["returncode"], "cold_phases_s": cold.get("phases_s"),
-        "warm_s": warm["wall_s"], "warm_rc": warm["returncode"], "warm_phases_s": warm.get("phases_s"),
-        "warm_hog_s": warm_hog["wall_s"], "warm_hog_rc": warm_hog["returncode"],
-        "warm_hog_phases_s": warm_hog.get("phases_s"),
-        "baseline_no_cosim_s": base["wall_s"], "baseline_phases_s": base.get("phases_s"),
-        "warm_goal_s": GOAL_WARM_S,
-        "warm_goal_ratio": round(warm["wall_s"] / GOAL_WARM_S, 3),
-        "warm_vs_baseline": round(warm["wall_s"] / base["wall_s"], 3),
+        "cache": "shared" if args.shared_cache else "fresh", "runs": runs,
+        "cold_s": field("cold", "wall_s"), "cold_rc": field("cold", "returncode"),
+        "cold_phases_s": field("cold", "phases_s"),
+        "warm_s": warm, "warm_rc": field("warm", "returncode"), "warm_phases_s": field("warm", "phases_s"),
+        "warm_temperature_parts_s": field("warm", "temperature_parts_s"),
+        "warm_hog_s": field("warm_hog", "wall_s"), "warm_hog_rc": field("warm_hog", "returncode"),
+        "warm_hog_phases_s": field("warm_hog", "phases_s"),
+        "quick_first_s": field("quick_first", "wall_s"),
+        "quick_s": quick, "quick_rc": field("quick", "returncode"),
+        "quick_phases_s": field("quick", "phases_s"),
+        "baseline_no_cosim_s": base, "baseline_phases_s": field("baseline", "phases_s"),
+        "temperature_recommended": field("warm", "temperature_recommended"),
+        "warm_goal_s": GOAL_WARM_S, "quick_goal_s": GOAL_QUICK_S,
+        "warm_goal_ratio": round(warm / GOAL_WARM_S, 3) if warm else None,
+        "quick_goal_ratio": round(quick / GOAL_QUICK_S, 3) if quick else None,
+        "warm_vs_baseline": round(warm / base, 3) if warm and base else None,
     }
     print(json.dumps(result))
 

@@ -72,6 +72,28 @@ def test_recommendation_is_synthesized_and_cosimulated(tiny_run) -> None:
     assert on_disk["functional"]["configurations"][label]["hit"] == f["hit"]
 
 
+def test_temperature_section_in_summary_and_html(tiny_run) -> None:
+    _, out = tiny_run
+    s = json.loads((out / "summary.json").read_text())
+    t = s["sections"]["temperature"]
+    assert {p["config"] for p in t["points"]} == {"typical14", "ffc14"}
+    assert len(t["points"]) == 4 and "temperature" in s["phases"]
+    r = t["recommended"]
+    # the choice follows the rule: cheapest meeting the tolerance, else the lowest residual
+    meeting = [p for p in t["points"] if p["worst_fpn_mK"] <= t["tolerance_mK"]]
+    if meeting:
+        assert r["meets_tolerance"] and r["memory_bits"] == min(p["memory_bits"] for p in meeting)
+    else:
+        assert not r["meets_tolerance"]
+        assert r["worst_fpn_mK"] == min(p["worst_fpn_mK"] for p in t["points"])
+    assert t["tolerance_mK"] == 0.5 * t["netd_mK"]
+    assert s["metrics"]["temperature.recommended.worst_fpn_mK"]["value"] == r["worst_fpn_mK"]
+    h = (out / "index.html").read_text()
+    for text in ("id='temperature'", "FFC sawtooth", "3D noise", "Camera-temperature test",
+                 "Residual against fraction bits per method"):
+        assert text in h, text
+
+
 def test_html_shows_fronts_costs_and_cosim_detail(tiny_run) -> None:
     _, out = tiny_run
     h = (out / "index.html").read_text()

@@ -113,6 +113,37 @@ SCHEMA: dict[str, Any] = table({
         "coverage": {"type": "boolean"},
         "seed": number(0, 2**31 - 1, integer=True),
     }, ("pipelines", "tests")),
+    "temperature": table({
+        "preset": {"type": "string", "minLength": 1},
+        "seed": _SEED,
+        "rows": number(3, 512, integer=True),
+        "cols": number(3, 512, integer=True),
+        "overrides": {"type": "object"},
+        "fpa_K": {"type": "array", "items": _KELVIN, "minItems": 2, "maxItems": 2},
+        "fpa_step_K": number(0.01, 100.0, unit="K"),
+        "scene_K": {"type": "array", "items": _KELVIN, "minItems": 1, "maxItems": 16},
+        "ramp_K_per_min": number(0.0, 100.0, lo_open=True, unit="K/min"),
+        "methods": {"type": "array", "minItems": 1, "maxItems": 32,
+                    "items": {"type": "string", "minLength": 1}},
+        "frac_bits": _ints(0, 24),
+        "ffc_periods_min": {"type": "array", "items": number(0.0, 1e4, lo_open=True, unit="min"),
+                            "minItems": 1, "maxItems": 16},
+        "tolerance_netd": number(0.0, 1e3, lo_open=True),
+        "tolerance_mK": number(0.0, 1e6, lo_open=True, unit="mK"),
+        "frame_rate_hz": number(0.0, 1e5, lo_open=True, unit="Hz"),
+        "bandwidth_frame": {"type": "array", "items": number(1, 16384, integer=True),
+                            "minItems": 2, "maxItems": 2},
+        "noise_frames": number(2, 1000, integer=True),
+        "workers": number(0, 256, integer=True),
+        "synth": {"type": "boolean"},
+        "cosim": {"type": "boolean"},
+        "cosim_frames": number(1, 10_000, integer=True),
+        "cosim_rows": number(3, 4096, integer=True),
+        "cosim_cols": number(3, 4096, integer=True),
+        "cosim_seed": number(0, 2**31 - 1, integer=True),
+        "ffc_every": number(2, 10_000, integer=True),
+        "dsp_lut_equivalent": number(0, 100_000),
+    }),
     "precision": table({
         "quick": {"type": "boolean"},
         "components": {"type": "array", "items": {"type": "string"}, "minItems": 1},
@@ -166,7 +197,7 @@ def _set_dotted(d: dict[str, Any], dotted: str, value: Any, source: str) -> None
 
 
 #: The sections that run a phase: a configuration without any checks nothing.
-PHASE_SECTIONS = ("sensor", "sweep", "paper", "cosim", "precision")
+PHASE_SECTIONS = ("sensor", "sweep", "paper", "temperature", "cosim", "precision")
 #: Model fields a section sets by its own keys (never by ``overrides`` beside them).
 _FRAME_FIELDS = {"fpa.active_rows": "rows", "fpa.active_cols": "cols"}
 
@@ -214,6 +245,43 @@ def _check_precision(cfg: Mapping[str, Any], source: str) -> None:
             raise ReportError(f"{source}: precision.{exc}") from None
 
 
+def _check_temperature(cfg: Mapping[str, Any], source: str) -> None:
+    """The ``[temperature]`` section: its preset, overrides and methods resolved, its
+    ranges ordered, before any work."""
+    t = cfg.get("temperature")
+    if t is None:
+        return
+    from irnuc import model
+    from irnuc.nuc_fixed import load_pipeline
+
+    known = model.preset_names()
+    preset = t.get("preset", "default")
+    if preset not in known:
+        raise ReportError(f"{source}: temperature.preset = {preset!r} is not a sensor preset"
+                          f"{nearest(preset, known)} (known: {', '.join(known)})")
+    over = dict(t.get("overrides") or {})
+    for key in ("environment.T_substrate", "environment.T_cam", *_FRAME_FIELDS):
+        if key in over:
+            raise ReportError(f"{source}: temperature.overrides[{key!r}]: set by the sign-off "
+                              "(temperature.fpa_K, temperature.rows/cols), not by an override")
+    try:
+        model.load_preset(preset, over)
+    except UserError as exc:
+        raise ReportError(f"{source}: temperature.overrides: {exc}") from None
+    lo, hi = t.get("fpa_K", (288.0, 308.0))
+    if not lo < hi:
+        raise ReportError(f"{source}: temperature.fpa_K = [{lo:g}, {hi:g}]: the first must be "
+                          "below the second")
+    for name in t.get("methods", ()):
+        try:
+            load_pipeline(name)
+        except (ValueError, UserError) as exc:
+            raise ReportError(f"{source}: temperature.methods: {exc}") from None
+    if "tolerance_mK" in t and "tolerance_netd" in t:
+        raise ReportError(f"{source}: temperature.tolerance_mK and temperature.tolerance_netd "
+                          "both given: set the tolerance one way")
+
+
 def check_runs_something(cfg: Mapping[str, Any], source: str, *, no_cosim: bool = False,
                          junit: bool = False) -> None:
     """A report that would run no phase is an error, never a PASS that checked nothing
@@ -231,6 +299,7 @@ def _check_more(cfg: Mapping[str, Any], source: str) -> None:
     (presets, pipelines, components, tests) resolved before any work."""
     _check_frames(cfg, source)
     _check_precision(cfg, source)
+    _check_temperature(cfg, source)
     for sec in ("sensor", "sweep", "paper"):
         s = cfg.get(sec)
         if s and "t_low" in s and "t_high" in s and not s["t_low"] < s["t_high"]:

@@ -136,6 +136,8 @@ def headline(rep: Report, summary: Mapping[str, Any]) -> list[tuple[str, str]]:
         else:
             text = "none in the sweep"
         rows.append((f"recommended coefficient widths ({tol['metric']} ≤ {tol['max_error']:g})", text))
+    if s.get("temperature"):
+        rows.append(temperature_headline(s["temperature"]))
     if "paper" in s:
         p = s["paper"]
         rows.append(("residual NU at 350 K, f = " + ", ".join(map(str, p["frac_bits"])),
@@ -181,9 +183,11 @@ def render_report(rep: Report, summary: Mapping[str, Any]) -> str:
                if (sections.get("sweep") or {}).get("synth") else None),
         "co": cosim_rows(sections["cosim"]) if "cosim" in sections else None,
         "pr": precision_rows(sections["precision"]) if "precision" in sections else None,
+        "tm": temperature_rows(sections["temperature"]) if "temperature" in sections else None,
         "prov_rows": provenance_rows(summary["provenance"], summary, bool(rep.config.get("quick"))),
         "bl": baseline_rows(summary["baseline"]) if "baseline" in summary else None,
-        "nav": [k for k in ("calibration", "sweep", "synth", "paper", "cosim", "precision")
+        "nav": [k for k in ("calibration", "sweep", "synth", "paper", "temperature", "cosim",
+                            "precision")
                 if k in sections or (k == "synth" and (sections.get("sweep") or {}).get("synth"))]
         + (["baseline"] if "baseline" in summary else []),
     }
@@ -200,6 +204,97 @@ def render_precision_page(result: Mapping[str, Any]) -> str:
               "failed": [{**m, "label": failure_label(m["reason"])} for m in c["missing"]]}
              for c, (cap, png) in zip(result["components"], figs, strict=True)]
     return environment().get_template("precision.html.j2").render(result=result, comps=comps)
+
+
+def temperature_headline(t: Mapping[str, Any]) -> tuple[str, str]:
+    """The headline row of the Temperature section."""
+    r = t.get("recommended")
+    title = f"drifting camera: method, widths, FFC period (residual ≤ {t['tolerance']})"
+    if not r:
+        return title, "no valid point in the sweep"
+    text = (f"{r['config']} ({r['method']}), {r['frac_bits']} fraction bits"
+            + (f", FFC every {r['ffc_period_min']:g} min" if r["ffc_period_min"] else "")
+            + f": {r['worst_fpn_mK']:.3g} mK worst residual, {r['memory_bits']} bit/pixel, "
+            f"{r['bandwidth_MBps']:.0f} MB/s")
+    if not r["meets_tolerance"]:
+        text += " — NO POINT MEETS THE TOLERANCE (lowest residual shown)"
+    if r.get("synth"):
+        text += f"; {r['synth']['top']} Fmax {r['synth']['fmax_mhz']:.1f} MHz"
+    c = r.get("cosim")
+    if c and not c.get("not_run"):
+        text += (f"; co-simulated on {c['frames']} frames of {c['shape'][1]} × {c['shape'][0]}: "
+                 f"{c['pixels_compared']} pixels, {c['mismatches']} mismatches")
+    elif c:
+        text += "; not co-simulated"
+    if r.get("edges"):
+        text += " — ON THE EDGE of the swept grid"
+    return title, text
+
+
+def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
+    """Tables of the Temperature section: the points, the fraction-bit table per method,
+    the 3D noise, the camera-temperature test, the recommendation's cost."""
+    fr = t["fronts"]
+    on_m = set(fr["memory_bits"]["overall"])
+    on_d = set((fr.get("datapath_cost") or {}).get("overall") or [])
+    on_own = {i for ids in fr["memory_bits"]["per_method"].values() for i in ids}
+    head = ["point", "method", "f", "FFC min", "worst mK", "worst LSB", "bit/px", "read bit/px",
+            "MB/s", "xc7 LUT", "DSP", "Fmax MHz", "cost from", "LUT+DSP", "meets", "front"]
+    rows = []
+    for p in t["points"]:
+        if not p.get("valid"):
+            rows.append([p["key"], p["method"], p["frac_bits"], None, None, None, None, None, None,
+                         None, None, None, p.get("reason", "invalid"), None, None, ""])
+            continue
+        hw = p.get("hw") or {}
+        rows.append([p["key"], p["method"], p["frac_bits"], p.get("ffc_period_min"),
+                     p["worst_fpn_mK"], p["worst_fpn_lsb"], p["memory_bits"],
+                     p["read_bits_per_frame"], p.get("bandwidth_MBps"), hw.get("xc7.lut"),
+                     hw.get("xc7.dsp"), hw.get("fmax_mhz"), hw.get("source"),
+                     p.get("datapath_cost"), p.get("meets_tolerance"),
+                     ("M" if p["index"] in on_m else "") + ("D" if p["index"] in on_d else "")
+                     + ("m" if p["index"] in on_own else "")])
+    bits = sorted({p["frac_bits"] for p in t["points"]})
+    table: dict[str, dict[int, float | None]] = {}
+    for p in t["points"]:
+        name = p["config"] + (f" (FFC {p['ffc_period_min']:g} min)"
+                              if p.get("ffc_period_min") is not None else "")
+        table.setdefault(name, {})[p["frac_bits"]] = p["worst_fpn_mK"] if p.get("valid") else None
+    bit_rows = [[n, *[v.get(b) for b in bits]] for n, v in table.items()]
+    n3 = [[k, c["meaning"], c["sigma_mK"], c["sigma_se_mK"], c["naive_mK"]]
+          for k, c in t["noise_3d"]["components"].items()]
+    cam = []
+    for prof, rec in t["camera_temperature"]["profiles"].items():
+        for label in ("two_point", "two_point+blind_drift"):
+            cam.append([prof, label, rec[label]["worst_level_error_mK"], rec[label]["worst_fpn_mK"]])
+    r = t.get("recommended")
+    cost = []
+    if r:
+        m = r["memory"]
+        xc7_fit = _fits(m["xc7_fits"], m["xc7_device"], m["xc7_bram36_available"])
+        ecp5_fit = _fits(m["ecp5_fits"], m["ecp5_device"], m["ecp5_dp16kd_available"])
+        cost = [["coefficient words", ", ".join(f"{k} {v}" for k, v in r["widths"].items())],
+                ["memory per pixel", f"{r['memory_bits']} bits ({r['calibration_bits']} calibration, "
+                 f"{r['runtime_bits']} runtime)"],
+                ["per frame", f"{m['pixels']} pixels: {m['bits_per_frame'] / 8 / 1024:.1f} KiB; "
+                 f"{m['xc7_bram36']} RAMB36E1 ({xc7_fit}), {m['ecp5_dp16kd']} DP16KD ({ecp5_fit})"],
+                ["external memory", f"{r['read_bits_per_frame']} bits read per pixel per frame: "
+                 f"{r['bandwidth_MBps']:.1f} MB/s at {m['frame_rate_hz']:g} frames/s; the RTL's "
+                 f"coefficient stream {r['stream']['stream_bits_per_pixel']} bits per pixel"]]
+        if r.get("synth"):
+            sy = r["synth"]
+            x, e = sy["xc7"], sy["ecp5"]
+            cost += [["synthesized top", f"{sy['top']}: {sy['why']}"],
+                     ["xc7", f"{x['lut']} LUT, {x['ff']} FF, {x['dsp']} DSP48E1, {x['bram36']} RAMB36"],
+                     ["ECP5", f"{e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, {e['dp16kd']} DP16KD"],
+                     ["Fmax (nextpnr-ecp5)", f"{sy['fmax_mhz']:.1f} MHz on {sy['device']} speed "
+                      f"{sy['speed']} (aiming at {sy['target_mhz']:g} MHz)"]]
+            if sy.get("prediction_error"):
+                pe = sy["prediction_error"]
+                cost.append(["cost model at this point", "predicted − synthesized: "
+                             + ", ".join(f"{k} {fmt(v)}" for k, v in pe.items())])
+    return {"head": head, "rows": rows, "bits_head": ["configuration", *[f"f = {b}" for b in bits]],
+            "bits": bit_rows, "noise3d": n3, "cam": cam, "cost": cost}
 
 
 def calibration_rows(c: Mapping[str, Any]) -> dict[str, Any]:

@@ -21,7 +21,8 @@ from typing import Any
 from irnuc.reports.report.base import Report
 from irnuc.reports.report.config import check_runs_something, config_path, load_report_config
 
-OUTPUTS = ("index.html", "summary.json", "junit.xml", "coverage.json", "recommended.toml")
+OUTPUTS = ("index.html", "summary.json", "junit.xml", "coverage.json", "recommended.toml",
+           "recommended_temperature.toml")
 
 
 def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] | None = None,
@@ -33,6 +34,7 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
     from irnuc.reports.report.phases.paper import phase_paper
     from irnuc.reports.report.phases.precision import phase_precision
     from irnuc.reports.report.phases.sweep import phase_sweep, phase_synth
+    from irnuc.reports.report.phases.temperature import phase_temperature
 
     rep = Report(config=copy.deepcopy(dict(config)), verbose=progress)
     if "sensor" in config:
@@ -43,6 +45,8 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
             phase_synth(rep, scheduler, progress)
     if "paper" in config:
         phase_paper(rep, progress)
+    if "temperature" in config:
+        phase_temperature(rep, scheduler, progress)
     phase_cosim(rep, out, junit, no_cosim)
     if "precision" in config:
         phase_precision(rep, progress)
@@ -73,6 +77,9 @@ def write_outputs(rep: Report, summary: dict[str, Any], out: Path) -> None:
     r = (summary["sections"].get("sweep") or {}).get("recommended")
     if r:
         write_text_atomic(out / "recommended.toml", r["pipeline_toml"])
+    t = (summary["sections"].get("temperature") or {}).get("recommended")
+    if t:
+        write_text_atomic(out / "recommended_temperature.toml", t["pipeline_toml"])
     write_text_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
     write_text_atomic(out / "index.html", render_report(rep, summary))
 

@@ -266,6 +266,14 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
                        f"{c.get('timeout', 0)} timed out")
     if c is not None and c.get("mismatches"):
         reasons.append(f"co-simulation: {c['mismatches']} pixel mismatch(es)")
+    tsec = rep.sections.get("temperature")
+    if tsec is not None and not any(p.get("valid") for p in tsec["points"]):
+        reasons.append("temperature: no valid point in the sweep (every width illegal or "
+                       "saturating): nothing was signed off")
+    tc = ((tsec or {}).get("recommended") or {}).get("cosim")
+    if tc and tc.get("passed") is False:
+        reasons.append(f"temperature co-simulation: {tc['mismatches']} pixel mismatch(es) of "
+                       f"{tc['pixels_compared']} compared")
     summary["status"] = "fail" if reasons else "pass"
     summary["status_reasons"] = reasons
     return _clean(json.loads(json.dumps(summary, default=_json_default)))

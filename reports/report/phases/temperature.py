@@ -1,0 +1,412 @@
+"""Phase ``temperature``: the sign-off of a drifting camera (docs/reports.md, "Temperature").
+
+1. The sweep (:mod:`irnuc.reports.studies.signoff`, on the sweep executor, cached): methods
+   x coefficient fraction widths x FFC periods over the FPA range, the worst residual fixed
+   pattern (mK, LSB) of every point, its coefficient memory and external-memory bandwidth.
+2. The datapath cost of every point: ``irnuc synth`` of each method's shipped configuration
+   (its own top, cached: the anchors), moved to the point's gain and offset word widths by
+   the slopes of the bit-width sweep's cost model (``[synth]``), with that model's stated
+   error; the recommendation itself is synthesized and its prediction error stated.
+3. The recommendation: the cheapest point meeting the tolerance (``tolerance_mK``, default
+   ``tolerance_netd`` x the NETD), its edges on the swept grid; when no point meets it, the
+   point of lowest residual, flagged. Synthesized with ``irnuc_axis_top`` when the AXI top
+   implements the method (``tops_for``), else with the method's own top.
+4. The recommendation co-simulated bit-exact on a drifting model sequence through the bulk
+   harness (``irnuc.cosim.sequence_bulk.cosim_sequence``).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from typing import Any
+
+from irnuc.reports.report.base import Report, progress
+
+#: The figures of a synthesis the sign-off keeps per point (dotted: family.resource).
+HW_KEYS = ("xc7.lut", "xc7.ff", "xc7.dsp", "xc7.bram36", "ecp5.lut4", "ecp5.ff", "ecp5.mult18",
+           "ecp5.dp16kd", "fmax_mhz")
+DEFAULTS: dict[str, Any] = {
+    "preset": "default", "seed": 4, "rows": 24, "cols": 32, "fpa_K": [288.0, 308.0],
+    "fpa_step_K": 1.0, "scene_K": [280.0, 330.0, 380.0], "ramp_K_per_min": 2.0,
+    "frac_bits": [6, 8, 10, 12, 14], "ffc_periods_min": [0.25, 0.5, 1.0, 2.0],
+    "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
+    "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
+    "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
+    "dsp_lut_equivalent": 200.0,
+}
+
+
+def setting(t: Mapping[str, Any], key: str) -> Any:
+    return t.get(key, DEFAULTS[key])
+
+
+def spec_of(t: Mapping[str, Any]):
+    """The study specification of a ``[temperature]`` section."""
+    from irnuc.reports.studies.signoff import METHODS, SignoffSpec
+
+    return SignoffSpec(
+        preset=setting(t, "preset"), seed=int(setting(t, "seed")), rows=int(setting(t, "rows")),
+        cols=int(setting(t, "cols")), fpa_K=tuple(float(x) for x in setting(t, "fpa_K")),
+        fpa_step_K=float(setting(t, "fpa_step_K")),
+        scene_K=tuple(float(x) for x in setting(t, "scene_K")),
+        ramp_K_per_min=float(setting(t, "ramp_K_per_min")),
+        methods=tuple(t.get("methods", METHODS)),
+        frac_bits=tuple(int(x) for x in setting(t, "frac_bits")),
+        ffc_periods_min=tuple(float(x) for x in setting(t, "ffc_periods_min")),
+        frame_rate_hz=float(setting(t, "frame_rate_hz")),
+        bandwidth_frame=tuple(int(x) for x in setting(t, "bandwidth_frame")),
+        noise_frames=int(setting(t, "noise_frames")), overrides=dict(t.get("overrides") or {}))
+
+
+def point_config(p: Mapping[str, Any], rows: int | None = None, cols: int | None = None):
+    """The pipeline configuration of a sweep point (its method's shipped configuration with
+    every fraction width set to the point's), optionally for a ``rows`` x ``cols`` frame."""
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.reports.studies.method_bits import with_frac_bits
+
+    cfg = with_frac_bits(load_pipeline(p["config"]), int(p["frac_bits"]))
+    ch: dict[str, Any] = {"name": "recommended_temperature",
+                          "description": f"{p['config']} with {p['frac_bits']} fraction bits "
+                                         "everywhere, from the sign-off sweep of irnuc report"}
+    if rows and cols:
+        ch |= {"max_width": int(cols), "max_height": int(rows)}
+    return cfg.replace(**ch)
+
+
+def _flat(s: Mapping[str, Any]) -> dict[str, float]:
+    from irnuc.reports.studies.hwcost import synth_figures
+
+    f = synth_figures(s)
+    return {k: f[k] for k in HW_KEYS}
+
+
+def _slopes(rep: Report) -> tuple[dict[str, tuple[float, float]], dict[str, Any] | None]:
+    """Per figure, the bit-width sweep's cost model's (gain bit, offset bit) slopes, and
+    that model's stated error (none without a ``[synth]`` phase)."""
+    sy = (rep.sections.get("sweep") or {}).get("synth")
+    if not sy:
+        return {}, None
+    coef = sy["model"]["coefficients"]
+    slopes = {k: (float(coef[k][1]), float(coef[k][2])) for k in HW_KEYS if k in coef}
+    err = {k: (sy["model_error_all"].get(k) or {}).get("max_abs") for k in HW_KEYS}
+    return slopes, {"model": sy["model"]["form"], "max_abs_error_at_synthesized_points": err,
+                    "from": "the bit-width sweep's cost model ([synth])"}
+
+
+def predict(anchor: Mapping[str, float], anchor_w: tuple[int, int], w: tuple[int, int],
+            slopes: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+    """A method's figures at word widths ``w`` = (gain bits, offset bits): its synthesized
+    anchor at ``anchor_w`` moved along the cost model's slopes (unmoved without slopes)."""
+    out = {}
+    dg, do = w[0] - anchor_w[0], w[1] - anchor_w[1]
+    for k in HW_KEYS:
+        bg, bo = slopes.get(k, (0.0, 0.0))
+        v = float(anchor[k]) + bg * dg + bo * do
+        out[k] = v if k == "fmax_mhz" else max(0.0, v)
+    return out
+
+
+def datapath_cost(hw: Mapping[str, float], dsp_w: float) -> float:
+    from irnuc.reports.studies.hwcost import datapath_cost as dp
+
+    return round(dp(hw, dsp_w), 3)
+
+
+def synth_top(cfg) -> tuple[str, str]:
+    """The top the recommendation is synthesized with, and why."""
+    from irnuc.cosim.synth import default_top, tops_for
+
+    if "irnuc_axis_top" in tops_for(cfg):
+        return "irnuc_axis_top", "the AXI4-Stream/AXI4-Lite top (irnuc_axis_top) implements this method"
+    top = default_top(cfg)
+    return top, (f"irnuc_axis_top does not implement {cfg.method} yet: synthesized with the "
+                 f"method's own top ({top})")
+
+
+def _cost_points(rep: Report, t: Mapping[str, Any], d: dict[str, Any], scheduler: str | None,
+                 show: bool) -> None:
+    """Anchors synthesized (cached), every point's predicted datapath, the model's error."""
+    from irnuc.cosim.synth import default_top, synth_configs
+    from irnuc.nuc_fixed import load_pipeline
+
+    pts = d["points"]
+    dsp_w = float(setting(t, "dsp_lut_equivalent"))
+    if not setting(t, "synth"):
+        d["cost"] = None
+        return
+    names = list(dict.fromkeys(p["config"] for p in pts))
+    cfgs = [load_pipeline(n) for n in names]
+    res = synth_configs(cfgs, workers=int(setting(t, "workers")), scheduler=scheduler,
+                        progress=progress("temperature synth", show))
+    anchors = {}
+    for n, c, r in zip(names, cfgs, res, strict=True):
+        anchors[n] = {"top": default_top(c), "widths": [c.gain_bits, c.offset_bits],
+                      "figures": _flat(r), "cached": bool(r.get("cached")),
+                      "frame": [c.max_height, c.max_width]}
+    slopes, model = _slopes(rep)
+    for p in pts:
+        if not p.get("valid"):
+            p["hw"], p["datapath_cost"] = None, None
+            continue
+        a = anchors[p["config"]]
+        w = (int(p["gain_bits"]), int(p["offset_bits"]))
+        if tuple(a["widths"]) == w and p["frac_bits"] == _shipped_frac(p["config"]):
+            hw = {"source": "synthesized", **a["figures"]}
+        else:
+            hw = {"source": "model", **predict(a["figures"], tuple(a["widths"]), w, slopes)}
+        p["hw"] = hw
+        p["datapath_cost"] = datapath_cost(hw, dsp_w)
+    d["cost"] = {"anchors": anchors, "dsp_lut_equivalent": dsp_w,
+                 "model": model or {"model": "the anchor's figures at every width (no [synth] "
+                                             "section: no slopes)",
+                                    "max_abs_error_at_synthesized_points": None},
+                 "note": "the model moves the gain and offset words only; the other formats' "
+                         "widths (tc, quad, table, ffc) are not in it"}
+
+
+def _shipped_frac(name: str) -> int | None:
+    from irnuc.nuc_fixed import load_pipeline
+
+    cfg = load_pipeline(name)
+    fr = {cfg.gain_frac_bits, cfg.offset_frac_bits, *[f.frac_bits for f in cfg.formats]}
+    return fr.pop() if len(fr) == 1 else None
+
+
+def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
+    from irnuc.cosim.synth import synth_config
+
+    cfg = point_config(r)
+    top, why = synth_top(cfg)
+    s = synth_config(cfg, top=top)
+    fig = _flat(s)
+    pred = r.get("hw")
+    r["synth"] = {"top": top, "why": why, "fmax_mhz": s["fmax_mhz"], "xc7": s["xc7"],
+                  "ecp5": s["ecp5"], "device": s.get("device"), "speed": s.get("speed"),
+                  "target_mhz": s.get("target_mhz"), "cached": bool(s.get("cached")),
+                  "frame": [cfg.max_height, cfg.max_width],
+                  "critical_path": (s.get("critical_path") or [])[:8],
+                  "predicted": ({k: pred[k] for k in HW_KEYS} if pred else None),
+                  "prediction_error": ({k: round(pred[k] - fig[k], 3) for k in HW_KEYS}
+                                       if pred and pred.get("source") == "model" else None)}
+
+
+def _cosim(t: Mapping[str, Any], r: dict[str, Any], fpa_K: tuple[float, float]) -> dict[str, Any]:
+    """The recommendation on a drifting sequence (``cosim_frames`` frames of ``cosim_rows``
+    x ``cosim_cols``, the FPA ramping over ``fpa_K``) through the bulk harness."""
+    from irnuc.common.errors import UserError
+    from irnuc.cosim.sequence_bulk import cosim_sequence
+
+    frames = int(setting(t, "cosim_frames"))
+    shape = (int(setting(t, "cosim_rows")), int(setting(t, "cosim_cols")))
+    seed = int(setting(t, "cosim_seed"))
+    cfg = point_config(r, *shape)
+    ffc_every = int(setting(t, "ffc_every")) if cfg.has("ffc") else None
+    head = {"frames": frames, "shape": list(shape), "seed": seed, "ffc_every": ffc_every,
+            "fpa_K": list(fpa_K), "source": "irnuc.cosim.sequence_bulk.cosim_sequence"}
+    t0 = time.perf_counter()
+    try:
+        res = cosim_sequence(cfg, frames=frames, shape=shape, seed=seed, ffc_every=ffc_every,
+                             fpa_K=fpa_K)
+    except UserError as exc:
+        if not cfg.stages:
+            raise
+        # The bulk harness of the stage tops is still to come: said, never a pass.
+        return {**head, "pixels_compared": 0, "mismatches": None, "ffc_events": None,
+                "passed": None, "top": None, "seconds": round(time.perf_counter() - t0, 3),
+                "not_run": str(exc)}
+    return {**head, "pixels_compared": int(res["pixels_compared"]),
+            "mismatches": int(res["mismatches"]), "ffc_events": res.get("ffc_events"),
+            "passed": bool(res["passed"]), "top": res.get("top"),
+            "seconds": round(float(res.get("seconds") or time.perf_counter() - t0), 3),
+            "lines": list(res.get("lines") or [])[:10]}
+
+
+def tolerance_mK(t: Mapping[str, Any], netd_mK: float) -> tuple[float, str]:
+    """The tolerance (mK) and how it was set."""
+    if "tolerance_mK" in t:
+        return float(t["tolerance_mK"]), f"{float(t['tolerance_mK']):g} mK (tolerance_mK)"
+    k = float(setting(t, "tolerance_netd"))
+    return k * netd_mK, f"{k:g} x NETD = {k * netd_mK:.3g} mK (tolerance_netd)"
+
+
+def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[str, Any]:
+    """The recommendation: the cheapest point meeting ``tol``; else the lowest residual,
+    flagged ``meets_tolerance: false``."""
+    from irnuc.reports.studies.signoff import grid_edges, recommend
+
+    dp = {p["index"]: p["datapath_cost"] for p in pts if p.get("datapath_cost") is not None}
+    rec = recommend(pts, tol, dp)
+    valid = [p for p in pts if p.get("valid")]
+    if rec["found"]:
+        p, meets = pts[rec["index"]], True
+    elif valid:
+        p, meets = min(valid, key=lambda q: (q["worst_fpn_mK"], q["memory_bits"], q["index"])), False
+    else:
+        return {"found": False, "point": None, "candidates": []}
+    return {"found": True, "meets": meets, "point": p, "candidates": rec["candidates"],
+            "edges": grid_edges(p, pts, periods, meets)}
+
+
+def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -> None:
+    from irnuc.reports.studies.signoff import bandwidth_MBps, cached_signoff, figures, fronts
+
+    t = rep.config["temperature"]
+    t0 = time.perf_counter()
+    times: dict[str, float] = {}
+    with rep.phase("temperature"):
+        spec = spec_of(t)
+        res = cached_signoff(spec, workers=int(setting(t, "workers")), scheduler=scheduler,
+                             progress=progress("temperature", show_progress))
+        times["sweep"] = round(time.perf_counter() - t0, 3)
+        netd = float(res["netd_mK"])
+        tol, tol_text = tolerance_mK(t, netd)
+        pts = res["points"]
+        for p in pts:
+            if p.get("valid"):
+                p["bandwidth_MBps"] = bandwidth_MBps(p["read_bits_per_frame"], spec.bandwidth_frame,
+                                                     spec.frame_rate_hz)
+                p["meets_tolerance"] = p["worst_fpn_mK"] <= tol
+        d: dict[str, Any] = {k: res[k] for k in ("spec", "plan", "fpa_grid_K", "netd", "netd_mK",
+                                                 "noise_3d", "camera_temperature")}
+        d |= {"points": pts, "tolerance_mK": tol, "tolerance": tol_text, "cached": res["cached"],
+              "study_seconds": res["seconds"]}
+        t1 = time.perf_counter()
+        _cost_points(rep, t, d, scheduler, show_progress)
+        times["anchors"] = round(time.perf_counter() - t1, 3)
+        d["fronts"] = {"memory_bits": fronts(pts, "memory_bits"),
+                       "datapath_cost": fronts(pts, "datapath_cost") if d.get("cost") else None,
+                       "bandwidth_MBps": fronts(pts, "bandwidth_MBps")}
+        ch = choose(pts, tol, list(spec.ffc_periods_min))
+        d["recommended"] = None
+        if ch["found"]:
+            r = _recommended(ch, tol, netd, spec)
+            d["recommended"] = r
+            for e in r["edges"]:
+                rep.notes.append(f"temperature: the recommendation lies on the {e['edge']} edge of "
+                                 f"the swept {e['axis']}: {e['widen']}")
+            if not r["meets_tolerance"]:
+                rep.notes.append(f"temperature: no swept point meets {tol_text}; the recommendation "
+                                 f"is the lowest residual, {r['worst_fpn_mK']:.3g} mK ({r['key']})")
+            if setting(t, "synth"):
+                t1 = time.perf_counter()
+                _synth_recommended(t, r)
+                times["synth"] = round(time.perf_counter() - t1, 3)
+            if setting(t, "cosim"):
+                t1 = time.perf_counter()
+                r["cosim"] = _cosim(t, r, spec.fpa_K)
+                times["cosim"] = round(time.perf_counter() - t1, 3)
+                if r["cosim"].get("not_run"):
+                    rep.notes.append(f"temperature: not co-simulated: {r['cosim']['not_run']}")
+        else:
+            rep.notes.append("temperature: no valid point in the sweep")
+        d["images"] = _end_images(res, d["recommended"])
+        t1 = time.perf_counter()
+        res_fig = {**res, "points": pts, "tolerance_mK": tol, "fronts": d["fronts"]}
+        for cap, png in figures(res_fig, d["recommended"], d["images"]):
+            rep.figure("temperature", cap, png)
+        _camera_figure(rep, res)
+        times["figures"] = round(time.perf_counter() - t1, 3)
+        d["seconds"] = times
+    rep.sections["temperature"] = d
+    temperature_metrics(rep, d)
+
+
+def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> dict[str, Any]:
+    from irnuc.cosim.synth import memory_traffic
+    from irnuc.reports.studies.hwcost import coefficient_memory
+
+    p = ch["point"]
+    cfg = point_config(p)
+    keep = ("index", "key", "config", "method", "frac_bits", "ffc_period_min", "ffc_events",
+            "worst_fpn_mK", "worst_fpn_lsb", "memory_bits", "calibration_bits", "runtime_bits",
+            "read_bits_per_frame", "bandwidth_MBps", "gain_bits", "offset_bits", "formats",
+            "hw", "datapath_cost", "bad_fraction")
+    r = {k: p.get(k) for k in keep}
+    r |= {"meets_tolerance": ch["meets"], "tolerance_mK": tol, "netd_mK": netd,
+          "margin_mK": tol - p["worst_fpn_mK"], "candidates": ch["candidates"][:20],
+          "edges": ch["edges"], "widths": {"gain": f"{cfg.gain_bits} bits", "offset":
+                                           f"{cfg.offset_bits} bits", **p["formats"]},
+          "memory": coefficient_memory(p["memory_bits"], *spec.bandwidth_frame, spec.frame_rate_hz),
+          "stream": memory_traffic(cfg), "pipeline": cfg.to_dict(), "pipeline_toml": cfg.to_toml(),
+          "synth": None, "cosim": None}
+    return r
+
+
+def _end_images(res: Mapping[str, Any], r: Mapping[str, Any] | None) -> dict[str, Any] | None:
+    """Raw and corrected (the recommendation, golden model) images at both ends."""
+    if not r:
+        return None
+    import numpy as np
+
+    from irnuc.nuc_fixed.fit import calibrate_points
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+    from irnuc.reports.studies.signoff import spec_from_dict
+
+    spec = spec_from_dict(res["spec"])
+    sensor = spec.sensor()
+    plan = CalibrationPlan(scene=tuple(res["plan"]["scene"]), fpa=tuple(res["plan"]["fpa"]),
+                           frames=int(res["plan"]["frames"]))
+    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    cal = calibrate_points(pts, point_config(r))
+    out = {}
+    n = int(cal.cfg.ffc_frames or 1)
+    first = None
+    for key, e in res["ends"].items():
+        raw = np.asarray(e["raw"])[None]
+        blind = np.asarray(e["blind"])[None]
+        ffc = None
+        if cal.cfg.has("ffc"):  # a shutter event at the start of the drift
+            if first is None:
+                first = e
+            ref = method_top(np.repeat(raw, n, axis=0), cal.coeffs, FrameInputs(
+                reading=np.full(n, first["reading"]), blind_codes=np.repeat(blind, n, axis=0),
+                shutter=np.ones(n, bool)))
+            ffc = ref.ffc_offset
+        y = method_top(raw, cal.coeffs, FrameInputs(reading=np.array([e["reading"]]),
+                                                    blind_codes=blind, shutter=np.zeros(1, bool)),
+                       ffc_offset=ffc).y[0]
+        out[key] = {"fpa_K": e["fpa_K"], "scene_K": e["scene_K"], "raw": e["raw"],
+                    "corrected": y.tolist(), "good": (~cal.bad).tolist()}
+    return out
+
+
+def _camera_figure(rep: Report, res: Mapping[str, Any]) -> None:
+    from irnuc.reports.studies import camera_temperature
+
+    rep.figure("temperature", "The camera-temperature test (the paper repository's test_tcomp): "
+               "the housing warms, cools or holds while the FPA stays at the reference; "
+               "two_point with and without blind_drift",
+               camera_temperature.figure(res["camera_temperature"]))
+
+
+def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
+    """The section's metrics for ``--baseline`` (docs/reports.md)."""
+    rep.metric("temperature.netd_mK", d["netd_mK"], "info", "mK")
+    rep.metric("temperature.tolerance_mK", d["tolerance_mK"], "info", "mK")
+    rep.metric("temperature.points", len(d["points"]), "info")
+    for p in d["points"]:
+        if p.get("valid"):
+            rep.metric(f"temperature.point.{p['key']}.worst_fpn_mK", p["worst_fpn_mK"], "lower", "mK")
+            rep.metric(f"temperature.point.{p['key']}.worst_fpn_lsb", p["worst_fpn_lsb"], "lower",
+                       "LSB")
+    r = d.get("recommended")
+    rep.metric("temperature.recommended.meets_tolerance",
+               None if r is None else int(r["meets_tolerance"]), "higher")
+    if not r:
+        return
+    rep.metric("temperature.recommended.worst_fpn_mK", r["worst_fpn_mK"], "lower", "mK")
+    rep.metric("temperature.recommended.memory_bits", r["memory_bits"], "lower", "bit")
+    rep.metric("temperature.recommended.bandwidth_MBps", r["bandwidth_MBps"], "lower", "MB/s")
+    if r.get("synth"):
+        s = r["synth"]
+        rep.metric("temperature.recommended.synth.fmax_mhz", s["fmax_mhz"], "higher", "MHz",
+                   rel_tol=0.05)
+        for k in ("lut", "ff", "dsp"):
+            rep.metric(f"temperature.recommended.synth.xc7.{k}", s["xc7"][k], "lower", rel_tol=0.02)
+    c = r.get("cosim")
+    if c and not c.get("not_run"):
+        rep.metric("temperature.recommended.cosim.pixels", c["pixels_compared"], "info")
+        rep.metric("temperature.recommended.cosim.mismatches", c["mismatches"], "lower")
+        rep.metric("temperature.recommended.cosim.failed", int(not c["passed"]), "lower")

@@ -1,0 +1,306 @@
+"""The report's Temperature section (issue 22): the sign-off's choosing logic against
+hand-computed cases, its schema, its baseline comparison, its configuration errors, and one
+method's sweep on a tiny sensor."""
+
+from __future__ import annotations
+
+import copy
+import json
+
+import jsonschema
+import pytest
+
+from irnuc.cli import main
+from irnuc.reports.report.base import Report
+from irnuc.reports.report.phases import temperature as tp
+from irnuc.reports.report.summary import SCHEMA_PATH, compare_baseline
+from irnuc.reports.studies import signoff as so
+from irnuc.reports.studies.hwcost import coefficient_memory
+
+
+def _pt(i, config, mem, read, mk, period=None, frac=8, valid=True):
+    return {"index": i, "key": f"{config}_{i}", "config": config, "method": config, "frac_bits": frac,
+            "valid": valid, "memory_bits": mem, "read_bits_per_frame": read, "worst_fpn_mK": mk,
+            "worst_fpn_lsb": mk / 10, "ffc_period_min": period, "calibration_bits": mem,
+            "runtime_bits": 0}
+
+
+# ---- recommendation ---------------------------------------------------------------------------
+def test_recommend_cheapest_memory_then_bandwidth_then_datapath_then_period() -> None:
+    pts = [_pt(0, "a", 40, 40, 5.0), _pt(1, "b", 30, 30, 12.0),   # 1 misses the tolerance
+           _pt(2, "c", 32, 50, 9.0), _pt(3, "d", 32, 40, 9.9),    # same memory: 3 reads less
+           _pt(4, "e", 32, 40, 8.0, valid=False)]                 # invalid never chosen
+    r = so.recommend(pts, 10.0)
+    assert r == {"found": True, "index": 3, "candidates": [3, 2, 0]}
+    # datapath breaks a tie in memory and bandwidth
+    pts2 = [_pt(0, "a", 32, 40, 9.0), _pt(1, "b", 32, 40, 2.0)]
+    assert so.recommend(pts2, 10.0)["index"] == 1  # lower residual without datapath
+    assert so.recommend(pts2, 10.0, {0: 100.0, 1: 300.0})["index"] == 0
+    # the longest FFC period among equals; no shutter beats any period
+    pts3 = [_pt(0, "f", 64, 64, 3.0, 0.5), _pt(1, "f", 64, 64, 6.0, 2.0), _pt(2, "f", 64, 64, 5.0, 1.0)]
+    assert so.recommend(pts3, 10.0)["candidates"] == [1, 2, 0]
+    assert so.recommend([*pts3, _pt(3, "g", 64, 64, 9.0)], 10.0)["index"] == 3
+    # nothing meets
+    assert so.recommend(pts, 1.0) == {"found": False, "index": None, "candidates": []}
+
+
+def test_choose_falls_back_to_lowest_residual_flagged() -> None:
+    pts = [_pt(0, "a", 40, 40, 25.0, frac=8), _pt(1, "a", 48, 48, 22.0, frac=12),
+           _pt(2, "b", 20, 20, 22.0, frac=8)]
+    ch = tp.choose(pts, 10.0, [])
+    assert ch["meets"] is False and ch["point"]["index"] == 2  # equal residual: less memory
+    assert ch["candidates"] == []
+    # the fallback at the widest width warns that more bits may help
+    pts[1]["worst_fpn_mK"] = 21.0
+    ch = tp.choose(pts, 10.0, [])
+    assert ch["point"]["index"] == 1
+    assert [(e["axis"], e["edge"]) for e in ch["edges"]] == [("frac_bits", "top")]
+    ch = tp.choose(pts, 30.0, [])
+    assert ch["meets"] is True and ch["point"]["index"] == 2
+
+
+def test_grid_edges_hand_cases() -> None:
+    pts = [_pt(i, "m", 10 + i, 10, 1.0, frac=f) for i, f in enumerate((6, 8, 10))]
+    pts.append(_pt(3, "m", 99, 10, 1.0, frac=12, valid=False))  # invalid widths are not the grid
+    edges = {(e["axis"], e["edge"]) for e in so.grid_edges(pts[0], pts, [])}
+    assert edges == {("frac_bits", "bottom")}
+    assert {(e["axis"], e["edge"]) for e in so.grid_edges(pts[2], pts, [])} == {("frac_bits", "top")}
+    assert so.grid_edges(pts[1], pts, []) == []
+    f = _pt(4, "n", 50, 50, 1.0, period=2.0, frac=8)
+    g = _pt(5, "n", 50, 50, 1.0, period=0.5, frac=8)
+    both = [f, g, _pt(6, "n", 60, 60, 1.0, period=2.0, frac=10)]
+    assert {(e["axis"], e["edge"]) for e in so.grid_edges(f, both, [0.5, 1.0, 2.0])} == {
+        ("frac_bits", "bottom"), ("ffc_periods_min", "top")}
+    assert ("ffc_periods_min", "bottom") in {
+        (e["axis"], e["edge"]) for e in so.grid_edges(g, both, [0.5, 1.0, 2.0])}
+    # not meeting: only the ways that may lower the residual
+    assert {(e["axis"], e["edge"]) for e in so.grid_edges(g, both, [0.5, 2.0], meets=False)} == {
+        ("ffc_periods_min", "bottom")}
+
+
+def test_pareto_fronts_hand_computed() -> None:
+    # (memory, residual): a0 (10, 5) b1 (12, 3) c2 (12, 4) d3 (15, 3) e4 (20, 1) f5 (11, 9)
+    pts = [_pt(0, "x", 10, 0, 5.0), _pt(1, "x", 12, 0, 3.0), _pt(2, "y", 12, 0, 4.0),
+           _pt(3, "y", 15, 0, 3.0), _pt(4, "y", 20, 0, 1.0), _pt(5, "x", 11, 0, 9.0),
+           _pt(6, "x", 5, 0, 0.5, valid=False)]
+    fr = so.fronts(pts)
+    assert fr["overall"] == [0, 1, 4]
+    assert fr["per_method"] == {"x": [0, 1], "y": [2, 3, 4]}
+
+
+def test_ffc_events_and_sawtooth_segments() -> None:
+    assert so.ffc_events(288.0, 292.0, 1.5) == [288.0, 289.5, 291.0]
+    segs = so.sawtooth_segments([288.0, 290.0, 292.0], [288.0, 289.5, 291.0], 292.0)
+    # each refresh corrects its event's frame up to the frame on which the shutter closes
+    assert segs == [(0, [288.0, 289.5]), (1, [289.5, 290.0, 291.0]), (2, [291.0, 292.0])]
+    spec = so.SignoffSpec(fpa_K=(288.0, 290.5), fpa_step_K=1.0)
+    assert spec.fpa_grid().tolist() == [288.0, 289.0, 290.0, 290.5]
+
+
+def test_cost_prediction_moves_the_anchor_along_the_slopes() -> None:
+    anchor = {k: 100.0 for k in tp.HW_KEYS} | {"fmax_mhz": 150.0, "xc7.dsp": 3.0}
+    slopes = {"xc7.lut": (4.0, 2.0), "xc7.dsp": (0.0, -1.0), "fmax_mhz": (-0.5, 0.0)}
+    got = tp.predict(anchor, (16, 18), (18, 15), slopes)
+    assert got["xc7.lut"] == 100.0 + 4.0 * 2 + 2.0 * -3
+    assert got["xc7.dsp"] == 6.0
+    assert got["fmax_mhz"] == 149.0
+    assert got["ecp5.lut4"] == 100.0  # no slope: unmoved
+    assert tp.predict(anchor, (16, 18), (16, 0), {"xc7.ff": (0.0, 10.0)})["xc7.ff"] == 0.0  # clipped
+
+
+def test_tolerance_from_netd_or_mK() -> None:
+    assert tp.tolerance_mK({}, 20.0)[0] == pytest.approx(10.0)
+    assert tp.tolerance_mK({"tolerance_netd": 1.5}, 20.0)[0] == pytest.approx(30.0)
+    assert tp.tolerance_mK({"tolerance_mK": 7.0}, 20.0) == (7.0, "7 mK (tolerance_mK)")
+
+
+# ---- summary: schema and baseline -------------------------------------------------------------
+def _section() -> dict:
+    rec = {"key": "typical14_f8", "config": "typical14", "method": "two_point", "frac_bits": 8,
+           "widths": {"gain": "18 bits"}, "ffc_period_min": None, "worst_fpn_mK": 8.0,
+           "worst_fpn_lsb": 1.2, "netd_mK": 20.0, "tolerance_mK": 10.0, "meets_tolerance": True,
+           "memory_bits": 31, "bandwidth_MBps": 71.4, "edges": [], "pipeline": {},
+           "memory": coefficient_memory(31, 480, 640), "synth": None,
+           "cosim": {"frames": 20, "shape": [480, 640], "pixels_compared": 6144000, "mismatches": 0,
+                     "passed": True, "source": "x", "seconds": 1.0, "ffc_events": 0}}
+    pt = {**_pt(0, "typical14", 31, 31, 8.0), "per_fpa": [[288.0, 7.5], [308.0, 8.0]],
+          "bandwidth_MBps": 71.4, "meets_tolerance": True, "hw": None, "datapath_cost": None}
+    return {"spec": {}, "points": [pt], "netd_mK": 20.0, "netd": {}, "tolerance_mK": 10.0,
+            "tolerance": "0.5 x NETD", "noise_3d": {"components": {}}, "camera_temperature": {},
+            "fronts": {"memory_bits": {}, "datapath_cost": None, "bandwidth_MBps": {}},
+            "recommended": rec, "cost": None}
+
+
+def _validator(name: str = "temperature"):
+    schema = json.loads(SCHEMA_PATH.read_text())
+    sub = {"$ref": f"#/$defs/{name}", "$defs": schema["$defs"]}
+    return jsonschema.Draft202012Validator(sub)
+
+
+def test_temperature_section_schema() -> None:
+    v = _validator()
+    v.validate(_section())
+    bad = _section()
+    del bad["recommended"]["cosim"]["mismatches"]
+    with pytest.raises(jsonschema.ValidationError):
+        v.validate(bad)
+    with pytest.raises(jsonschema.ValidationError, match=r"(?s)'mismatches',.*On instance\['cosim'\]"):
+        _validator("temperature_recommended").validate(bad["recommended"])
+    bad = _section()
+    bad["recommended"]["worst_fpn_mK"] = -1.0
+    with pytest.raises(jsonschema.ValidationError):
+        v.validate(bad)
+    none = _section()
+    none["recommended"] = None
+    v.validate(none)
+    assert "temperature" in json.loads(SCHEMA_PATH.read_text())["properties"]["phases"][
+        "propertyNames"]["enum"]
+
+
+def test_baseline_compares_the_temperature_metrics() -> None:
+    base, now = Report(config={}, verbose=False), Report(config={}, verbose=False)
+    tp.temperature_metrics(base, _section())
+    worse = _section()
+    worse["recommended"]["worst_fpn_mK"] = 9.0
+    worse["recommended"]["cosim"]["mismatches"] = 3
+    worse["recommended"]["cosim"]["passed"] = False
+    worse["points"][0]["worst_fpn_mK"] = 8.5
+    tp.temperature_metrics(now, worse)
+    cmp = compare_baseline(now.metrics, base.metrics)
+    regressed = {e["metric"] for e in cmp["regressions"]}
+    assert regressed == {"temperature.recommended.worst_fpn_mK",
+                         "temperature.recommended.cosim.mismatches",
+                         "temperature.recommended.cosim.failed",
+                         "temperature.point.typical14_0.worst_fpn_mK"}
+    assert base.metrics["temperature.recommended.cosim.pixels"]["better"] == "info"
+    same = Report(config={}, verbose=False)
+    tp.temperature_metrics(same, copy.deepcopy(_section()))
+    assert compare_baseline(same.metrics, base.metrics)["regressions"] == []
+
+
+# ---- configuration ----------------------------------------------------------------------------
+@pytest.mark.parametrize(("text", "match"), [
+    ("[temperature]\nfpa_K = [308.0, 288.0]\n", "temperature.fpa_K = [308, 288]"),
+    ('[temperature]\nmethods = ["typical41"]\n', "temperature.methods"),
+    ("[temperature]\ntolerance_mK = 5.0\ntolerance_netd = 0.5\n", "set the tolerance one way"),
+    ("[temperature]\nfrac_bit = [8]\n", "did you mean 'frac_bits'"),
+    ('[temperature]\noverrides = { "environment.T_cam" = 300.0 }\n', "set by the sign-off"),
+    ("[temperature]\nffc_periods_min = [0.0]\n", "temperature.ffc_periods_min[0]"),
+])
+def test_bad_temperature_config_is_a_clear_error(tmp_path, capsys, text, match) -> None:
+    cfg = tmp_path / "bad.toml"
+    cfg.write_text(text)
+    assert main(["report", "--config", str(cfg), "--out", str(tmp_path / "o")]) == 2
+    assert match in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()
+
+
+def test_default_and_quick_temperature_sections() -> None:
+    from irnuc.reports.report.config import load_report_config
+
+    full = load_report_config("default")["temperature"]
+    quick = load_report_config("default", quick=True)["temperature"]
+    assert full["fpa_K"] == [288.0, 308.0] and full["ramp_K_per_min"] == 2.0
+    assert (full["cosim_frames"], full["cosim_rows"], full["cosim_cols"]) == (20, 480, 640)
+    assert len(quick["frac_bits"]) < len(full["frac_bits"])
+    assert quick["cosim_frames"] >= 20
+
+
+# ---- one method on a tiny sensor --------------------------------------------------------------
+def test_method_points_on_a_tiny_sensor() -> None:
+    import numpy as np
+
+    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+
+    spec = so.SignoffSpec(rows=6, cols=8, fpa_K=(288.0, 292.0), fpa_step_K=2.0,
+                          scene_K=(300.0, 340.0), frac_bits=(10,), ffc_periods_min=(0.5, 2.0))
+    sensor = spec.sensor()
+    plan = CalibrationPlan(scene=(290.0, 330.0, 370.0), fpa=(288.0, 298.0, 308.0), frames=1)
+    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    temps = [288.0, 289.0, 290.0, 291.0, 292.0]
+    frames = so._frames(sensor, temps, spec.scene_K, plan.fpa_sensor)
+    shutter = {t: (*so.dc.frames_at(sensor, t, t, [t]), int(plan.fpa_sensor.read(t)[0]))
+               for t in temps}
+    two = so.method_points(spec.to_dict(), "typical14", pts, frames, shutter)
+    assert len(two) == 1 and two[0]["ffc_period_min"] is None
+    assert [p[0] for p in two[0]["per_fpa"]] == [288.0, 290.0, 292.0]
+    assert two[0]["worst_fpn_mK"] == max(p[1] for p in two[0]["per_fpa"])
+    # a two-point correction drifts with the FPA: worst at an end of the range, not the middle
+    ends = max(two[0]["per_fpa"][0][1], two[0]["per_fpa"][-1][1])
+    assert ends > two[0]["per_fpa"][1][1]
+    ffc = so.method_points(spec.to_dict(), "ffc14", pts, frames, shutter)
+    assert [p["ffc_period_min"] for p in ffc] == [0.5, 2.0]
+    assert [p["ffc_events"] for p in ffc] == [5, 2]  # every 1 K, every 4 K from 288 K
+    short, long_ = ffc
+    # a refresh right at each frame's temperature beats one 4 K away at the range's end
+    at_end = {p[0]: p[1] for p in long_["per_fpa"]}
+    assert short["worst_fpn_mK"] <= long_["worst_fpn_mK"]
+    assert at_end[292.0] >= min(p[1] for p in short["per_fpa"])
+    assert np.isfinite(short["worst_fpn_lsb"]) and short["memory_bits"] > two[0]["memory_bits"]
+
+
+# ---- co-simulation of the recommendation -----------------------------------------------------
+def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch) -> None:
+    from irnuc.cosim import sequence_bulk
+    from irnuc.reports.report.summary import make_summary
+
+    seen = {}
+
+    def fake(cfg, *, frames, shape, seed, ffc_every, fpa_K):
+        seen.update(name=cfg.name, w=cfg.max_width, h=cfg.max_height, f=cfg.gain_frac_bits,
+                    frames=frames, shape=shape, ffc_every=ffc_every, fpa_K=fpa_K)
+        return {"pixels_compared": frames * shape[0] * shape[1], "mismatches": 2, "passed": False,
+                "ffc_events": 0, "top": "method_dpc_top", "seconds": 0.5, "lines": ["frame 0 ..."]}
+
+    monkeypatch.setattr(sequence_bulk, "cosim_sequence", fake)
+    t = {"cosim_frames": 20, "cosim_rows": 12, "cosim_cols": 16, "cosim_seed": 3}
+    c = tp._cosim(t, {"config": "typical14", "frac_bits": 9}, (288.0, 308.0))
+    assert seen == {"name": "recommended_temperature", "w": 16, "h": 12, "f": 9, "frames": 20,
+                    "shape": (12, 16), "ffc_every": None, "fpa_K": (288.0, 308.0)}
+    assert (c["pixels_compared"], c["mismatches"], c["passed"]) == (20 * 12 * 16, 2, False)
+    sec = _section()
+    sec["recommended"]["cosim"] = c
+    rep = Report(config={"name": "x"}, verbose=False)
+    rep.sections["temperature"] = sec
+    tp.temperature_metrics(rep, sec)
+    s = make_summary(rep, [], None, None)
+    assert s["status"] == "fail"
+    assert any("temperature co-simulation: 2 pixel mismatch" in r for r in s["status_reasons"])
+
+
+def test_stage_method_not_in_the_bulk_harness_is_not_a_pass(monkeypatch) -> None:
+    from irnuc.common.errors import UserError
+    from irnuc.cosim import sequence_bulk
+
+    def refuse(cfg, **kw):
+        raise UserError(f"pipeline {cfg.name!r}: the stage tops are not in the bulk harness")
+
+    monkeypatch.setattr(sequence_bulk, "cosim_sequence", refuse)
+    t = {"cosim_frames": 2, "cosim_rows": 4, "cosim_cols": 4}
+    c = tp._cosim(t, {"config": "ffc14", "frac_bits": 8}, (288.0, 308.0))
+    assert c["ffc_every"] == 10  # a shutter method gets its shutter runs
+    assert c["passed"] is None and c["mismatches"] is None and c["pixels_compared"] == 0
+    assert "stage tops" in c["not_run"]
+    rep = Report(config={}, verbose=False)
+    sec = _section()
+    sec["recommended"]["cosim"] = c
+    _validator().validate(sec)
+    tp.temperature_metrics(rep, sec)
+    assert "temperature.recommended.cosim.mismatches" not in rep.metrics
+    # a base method's refusal is an error, never skipped
+    with pytest.raises(UserError):
+        tp._cosim(t, {"config": "typical14", "frac_bits": 8}, (288.0, 308.0))
+
+
+def test_a_sweep_without_a_valid_point_fails_the_report() -> None:
+    from irnuc.reports.report.summary import make_summary
+
+    sec = _section()
+    sec["points"] = [_pt(0, "piecewise14", 1, 1, 0.0, valid=False)]
+    sec["recommended"] = None
+    rep = Report(config={"name": "x"}, verbose=False)
+    rep.sections["temperature"] = sec
+    tp.temperature_metrics(rep, sec)
+    s = make_summary(rep, [], None, None)
+    assert s["status"] == "fail"
+    assert any("no valid point" in r for r in s["status_reasons"])
