@@ -65,8 +65,11 @@ MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
 MODULE_FILES["irnuc_axis_assert"] = ("irnuc_axis_assert.sv",)
 MODULE_FILES["irnuc_axil_assert"] = (*_PKG, "irnuc_axil_assert.sv")
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["nuc_dpc_top"], *_AXI_ASSERT, "irnuc_axil_regs.sv", "irnuc_axis_framer.sv",
-    "irnuc_axis_top.sv")))
+    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
+    "irnuc_axil_regs.sv", "irnuc_axis_framer.sv", "irnuc_axis_top.sv")))
+#: The base methods irnuc_axis_top is built around (its parameter Method; table_interp
+#: needs the weight and the pair of tables chosen per frame: not wrapped yet).
+AXIS_METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset")
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
@@ -248,6 +251,10 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
+    if top == "irnuc_axis_top" and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+        p = {**params, **method_parameters(cfg)}
+        return {k: v for k, v in p.items() if k not in ("Tables", "WeightIntBits",
+                                                        "WeightFracBits", "WeightRounding")}
     if top in STAGE_TOPS.values():
         return stage_parameters(top, cfg)
     if top in _STAGE_BLOCKS:
