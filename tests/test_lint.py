@@ -87,8 +87,22 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
     assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
 
 
+def _axi_method_configs() -> list[str]:
+    """The method configurations irnuc_axis_top is built around (cosim.sources.AXIS_METHODS,
+    no stage, two_point aside)."""
+    from irnuc.cosim.sources import AXIS_METHODS
+
+    out = []
+    for n in pipeline_names(method=None):
+        cfg = load_pipeline(n)
+        if not cfg.stages and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+            out.append(n)
+    return out
+
+
 @pytest.mark.parametrize(("module", "config"),
                          [(m, c) for m in AXI_MODULES for c in pipeline_names()]
+                         + [("irnuc_axis_top", c) for c in _axi_method_configs()]
                          + [(m, "minimal") for m in AXI_CHECKERS])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
