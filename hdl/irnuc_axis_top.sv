@@ -16,7 +16,7 @@
 //
 //   s_axis_video -> u_vid_in --\
 //                               u_framer (frames, markers, join, enables) -> u_core -> m_axis_video
-//   s_axis_coef  -> coef buffer -/       ^ pending settings, events v
+//   s_axis_coef  -> u_coef_in --/        ^ pending settings, events v
 //   s_axil <-> u_regs (register file, counters, interrupt)
 //
 // The core is nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point,
@@ -180,7 +180,9 @@ module irnuc_axis_top
   logic               coef_valid, coef_ready, coef_last;
   logic [WordBits-1:0] coef_data;
 
-  irnuc_spill_register #(.DataBits(AdcBits + 2)) u_vid_in (
+  // Each input behind irnuc_axis_buffer: the framer's take decisions move only its
+  // pointers and flags, not the enables of its data registers (docs/rtl.md).
+  irnuc_axis_buffer #(.DataBits(AdcBits + 2)) u_vid_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_video_tvalid),
@@ -191,47 +193,16 @@ module irnuc_axis_top
     .data_o ({vid_sof, vid_eol, vid_data})
   );
 
-  // The coefficient input: a two-entry buffer like irnuc_spill_register (the same cycles:
-  // tready = "fewer than two words held", a flop; a word taken is at the output the next
-  // cycle), but each entry is written only from the port side and the output is the older
-  // entry picked by a read pointer: the framer's decision to take a word (coef_ready, the
-  // deepest signal of the wrapper) moves two flops and a count, not the enables of the
-  // wide word registers (the wrapper's critical path before, on minimal and tcoffset14).
-  logic [1:0][WordBits:0] coef_mem_q;
-  logic                   coef_wr_q, coef_rd_q, coef_full_q, coef_any_q;
-  logic                   coef_push, coef_pop;
-
-  assign coef_push = s_axis_coef_tvalid && !coef_full_q;
-  assign coef_pop  = coef_valid && coef_ready;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_coef_state
-    if (!rst_ni) begin
-      coef_wr_q   <= 1'b0;
-      coef_rd_q   <= 1'b0;
-      coef_full_q <= 1'b0;
-      coef_any_q  <= 1'b0;
-    end else begin
-      coef_wr_q <= coef_wr_q ^ coef_push;
-      coef_rd_q <= coef_rd_q ^ coef_pop;
-      if (coef_push && !coef_pop) begin
-        coef_full_q <= coef_any_q;
-        coef_any_q  <= 1'b1;
-      end else if (coef_pop && !coef_push) begin
-        coef_full_q <= 1'b0;
-        coef_any_q  <= coef_full_q;
-      end
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_coef_mem
-    if (coef_push) begin
-      coef_mem_q[coef_wr_q] <= {s_axis_coef_tlast, s_axis_coef_tdata[WordBits-1:0]};
-    end
-  end
-
-  assign s_axis_coef_tready       = !coef_full_q;
-  assign coef_valid               = coef_any_q;
-  assign {coef_last, coef_data}   = coef_mem_q[coef_rd_q];
+  irnuc_axis_buffer #(.DataBits(WordBits + 1)) u_coef_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_axis_coef_tvalid),
+    .ready_o(s_axis_coef_tready),
+    .data_i ({s_axis_coef_tlast, s_axis_coef_tdata[WordBits-1:0]}),
+    .valid_o(coef_valid),
+    .ready_i(coef_ready),
+    .data_o ({coef_last, coef_data})
+  );
 
   // ---- register file -----------------------------------------------------------------------
   logic [WidthBits-1:0]  pend_w, pend_wm1, act_w;
@@ -540,7 +511,7 @@ module irnuc_axis_top
   end
 
 `ifdef IRNUC_ASSERT
-  // Every AXI port is checked; so are the spill register and the buffer behind the inputs.
+  // Every AXI port is checked; the input buffers check their output sides.
   irnuc_axis_assert #(.DataBits(VidInBits), .UserBits(1)) u_assert_vid_in (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
@@ -558,14 +529,6 @@ module irnuc_axis_top
     .tdata_i (s_axis_coef_tdata),
     .tlast_i (s_axis_coef_tlast),
     .tuser_i (1'b0)
-  );
-  // The coefficient buffer's output side (the spill registers check their own).
-  irnuc_stream_assert #(.DataBits(WordBits + 1)) u_assert_coef_buf (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(coef_valid),
-    .ready_i(coef_ready),
-    .data_i ({coef_last, coef_data})
   );
   irnuc_axis_assert #(.DataBits(VidOutBits), .UserBits(1)) u_assert_vid_out (
     .clk_i   (clk_i),

@@ -19,7 +19,7 @@ METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_read
 #: The AXI wrapper of the two-point core and its parts, linted with every two-point
 #: configuration (their parameters are widths and the frame limit, not the modes); the
 #: protocol checkers take no configuration (once).
-AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer")
+AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_axis_buffer")
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
 #: configuration of those stages and the mode variants.

@@ -566,7 +566,7 @@ CATALOGUE: tuple[Mutant, ...] = (
        ".s_sof_i       (nuc_user[2]),\n    .s_eol_i       (nuc_user[1]),",
        ".s_sof_i       (nuc_user[1]),\n    .s_eol_i       (nuc_user[2]),",
        "sof and eol swapped on the way to dpc_core"),
-    # ---- irnuc_axis_top: the framer, the register file, the wrapper ------------------------
+    # ---- irnuc_axis_top: the framer, the input buffers, the register file, the wrapper ----
     _ma("ax_sof_late_every_beat", "irnuc_axis_framer.sv",
         "sof_late_o    <= drop_beat && starting && !late_q;",
         "sof_late_o    <= drop_beat && starting;",
@@ -581,6 +581,10 @@ CATALOGUE: tuple[Mutant, ...] = (
         "assign frame = !starting ? '0 : pend_frame_i;",
         "NUC off keeps one_point's gain register (no neutral frame word)",
         **_AXM, config="onepoint14"),
+    _ma("ax_buffer_read_stuck", "irnuc_axis_buffer.sv", "rd_q <= rd_q ^ pop;",
+        "rd_q <= rd_q;", "an input buffer keeps reading the same entry after a pop"),
+    _ma("ax_buffer_never_full", "irnuc_axis_buffer.sv", "full_q <= any_q;",
+        "full_q <= 1'b0;", "an input buffer takes a third item over an unread one"),
     _ma("ax_size_not_checked", "irnuc_axil_regs.sv",
         "assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal_q;",
         "assign wr_size  = wr && wsel_q[IxFrameSize];",
