@@ -158,3 +158,19 @@ def test_method_words_read_back_as_the_calibration(name: str) -> None:
     off = FrameSettings(5, 3, nuc_en=False, dpc_en=False, frame_word=settings.frame_word)
     out = axis_top(*video_beats([raw]), *coef_beats([drive.words]), [off], cfg)
     assert out.data.tolist() == np.clip(raw, 0, (1 << cfg.out_bits) - 1).ravel().tolist()
+
+
+def test_the_configurations_the_wrapper_is_built_around() -> None:
+    """``irnuc synth --top irnuc_axis_top`` takes the named configurations of the wrapped
+    base methods and no other (listed by hand), with the method's parameters."""
+    from irnuc.cosim.sources import top_parameters
+    from irnuc.cosim.synth import tops_for
+    from irnuc.nuc_fixed import pipeline_names
+
+    wrapped = {n for n in pipeline_names(method=None)
+               if "irnuc_axis_top" in tops_for(load_pipeline(n))}
+    assert wrapped == {"typical14", "wide16", "minimal", "onepoint14", "piecewise14",
+                       "quadratic14", "tcoffset14", "tcgain14"}
+    p = top_parameters("irnuc_axis_top", load_pipeline("tcoffset14"))
+    assert (p["Method"], p["ReadingBits"], p["TcOrder"]) == (4, 14, 2)
+    assert "Method" not in top_parameters("irnuc_axis_top", load_pipeline("typical14"))
