@@ -32,7 +32,8 @@
 // cleared (the word is taken all the same).
 //
 // Every decision comes from registers (the input registers of the top, this module's
-// state, counters and flags); the output is a spill register, so every output is a flop.
+// state, counters and flags); the output is a spill register, so every output is a flop
+// but the word, which is masked behind it (NUC off, DPC off, filler).
 module irnuc_axis_framer
   import irnuc_pkg::*;
 #(
@@ -359,15 +360,23 @@ module irnuc_axis_framer
   end
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
-  logic [WordBits-1:0]  word;
+  // The word enters the output register as it comes (0 for a filler) with two flags, and
+  // NUC off / DPC off / filler are applied behind it: the wide word's path from the input
+  // buffer passes one multiplexer, not the masks too (docs/rtl.md).
+  logic [WordBits-1:0]  word_in, out_word, word;
+  logic                 nuc_off, dpc_off, out_nuc_off, out_dpc_off;
   logic [FrameBits-1:0] frame;
 
+  assign word_in = (cst_q == CoefFill) ? '0 : coef_data_i;
+  assign nuc_off = (cst_q == CoefFill) || !eff_nuc;
+  assign dpc_off = (cst_q == CoefFill) || !eff_dpc;
+
   always_comb begin : p_word
-    word = coef_data_i;
-    if (cst_q == CoefFill || !eff_nuc) begin
+    word = out_word;
+    if (out_nuc_off) begin
       word = (word & BadMask) | (NeutralWord & ~BadMask);
     end
-    if (cst_q == CoefFill || !eff_dpc) begin
+    if (out_dpc_off) begin
       word = word & ~BadMask;
     end
   end
@@ -378,16 +387,18 @@ module irnuc_axis_framer
   logic [AdcBits-1:0] raw;
   assign raw = pad_item ? '0 : vid_data_i;
 
-  irnuc_spill_register #(.DataBits(FrameBits + 2 + AdcBits + WordBits)) u_out (
+  irnuc_spill_register #(.DataBits(FrameBits + 4 + AdcBits + WordBits)) u_out (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(fire),
     .ready_o(out_ready),
-    .data_i ({frame, starting, xl_q, raw, word}),
+    .data_i ({frame, starting, xl_q, nuc_off, dpc_off, raw, word_in}),
     .valid_o(m_valid_o),
     .ready_i(m_ready_i),
-    .data_o ({m_frame_o, m_sof_o, m_eol_o, m_raw_o, m_word_o})
+    .data_o ({m_frame_o, m_sof_o, m_eol_o, out_nuc_off, out_dpc_off, m_raw_o, out_word})
   );
+
+  assign m_word_o = word;
 
   // ---- events ---------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_events
