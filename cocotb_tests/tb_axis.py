@@ -35,6 +35,7 @@ from cocotbext.axi import (  # noqa: E402
 from irnuc.cocotb_tests import tb_lib  # noqa: E402
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern, reset  # noqa: E402
 from irnuc.cosim import coverage  # noqa: E402
+from irnuc.cosim.methods import MethodScoreboard, golden_frames  # noqa: E402
 from irnuc.cosim.scoreboard import TopScoreboard  # noqa: E402
 from irnuc.nuc_fixed import regmap  # noqa: E402
 from irnuc.nuc_fixed.axis import (  # noqa: E402
@@ -43,8 +44,11 @@ from irnuc.nuc_fixed.axis import (  # noqa: E402
     FrameSettings,
     axis_framer,
     coef_beats,
+    frame_method_inputs,
+    frame_word,
     video_beats,
 )
+from irnuc.nuc_fixed.config import BASE_METHODS  # noqa: E402
 
 TOP = "irnuc_axis_top"
 
@@ -139,12 +143,30 @@ class Bench:
         name = self.model.map.at(off).name if self.model.map.at(off) else f"0x{off:03x}"
         assert got == want, f"{name} reads 0x{got:08x}, the model says 0x{want:08x}"
 
+    def method_registers(self) -> dict[str, int]:
+        """The pending values of the method's registers (GAIN, LEVEL, READING, T_REF, ...) by
+        their configuration name, as the model holds them."""
+        out = {}
+        for name, r in self.cfg.registers.items():
+            if r.count == 1:
+                lo = self.model.get(f"{name.upper()}_LO")
+                out[name] = lo | (self.model.get(f"{name.upper()}_HI") << 32)
+        return out
+
+    async def write_method_register(self, name: str, value: int) -> None:
+        """Write a method register (configuration name) through its LO (and HI) words."""
+        await self.write(f"{name.upper()}_LO", int(value) & 0xFFFF_FFFF)
+        if self.cfg.registers[name].width > 32:
+            await self.write(f"{name.upper()}_HI", int(value) >> 32)
+
     def settings(self) -> FrameSettings:
-        """What a frame starting now takes (the pending CTRL and FRAME_SIZE)."""
+        """What a frame starting now takes (the pending CTRL, FRAME_SIZE and method
+        registers)."""
         m = self.model
         return FrameSettings(m.get("FRAME_SIZE", "width"), m.get("FRAME_SIZE", "height"),
                              bool(m.get("CTRL", "nuc_en")), bool(m.get("CTRL", "dpc_en")),
-                             bool(m.get("CTRL", "coef_sync")))
+                             bool(m.get("CTRL", "coef_sync")),
+                             frame_word(self.cfg, self.method_registers()))
 
     async def frame_size(self, h: int, w: int) -> None:
         await self.write("FRAME_SIZE", w | (h << 16))
@@ -225,9 +247,7 @@ class Bench:
         got = await self.receive(n, limit_cycles=40 * (len(video[0]) + n) + 2000)
         for task in pending:
             await task
-        sb = TopScoreboard(self.env.golden)
-        for f in fr.frames:
-            sb.expect_frames(f.raw, f.words)
+        sb = self._scoreboard(fr)
         sb.observe_arrays(**got)
         res = sb.result()
         tb_lib.record(label=label, compared=res.compared, errors=res.errors,
@@ -242,6 +262,24 @@ class Bench:
                 if fr.counts[ev]:
                     cov.sample("axis.marker", ev)
         return fr
+
+    def _scoreboard(self, fr: FramerResult):
+        """The in-order scoreboard expecting the frames the framer model handed to the core:
+        the two-point core's (TopScoreboard), or the method's (MethodScoreboard: each frame's
+        words and frame word read back as a calibration and a reading, corrected by
+        nuc_fixed.method_top)."""
+        golden = self.env.golden
+        if self.cfg.method == "two_point":
+            top = TopScoreboard(golden)
+            for f in fr.frames:
+                top.expect_frames(f.raw, f.words)
+            return top
+        sb = MethodScoreboard(golden)
+        for f in fr.frames:
+            coeffs, reading = frame_method_inputs(f, self.cfg)
+            for mf in golden_frames(coeffs, [f.raw], [reading], golden=golden):
+                sb.expect_frame(mf)
+        return sb
 
     async def _act(self, beat: int, fn) -> None:
         edge = RisingEdge(self.dut.clk_i)
@@ -317,7 +355,7 @@ async def register_map_reset(dut) -> None:
     fields = m.map["CONFIG"]
     got = {f.name: (config & f.mask) >> f.lsb for f in fields.fields}
     assert got["adc_bits"] == cfg.adc_bits and got["out_bits"] == cfg.out_bits
-    assert got["word_bits"] == cfg.word_bits and got["method"] == 1
+    assert got["word_bits"] == cfg.word_bits and got["method"] == BASE_METHODS.index("two_point")
     assert (await bench.read("FRAME_MAX")) == cfg.max_width | (cfg.max_height << 16)
     assert (await bench.read("ID")) == int.from_bytes(b"IRNC", "big")
     _export()

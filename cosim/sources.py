@@ -62,11 +62,16 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
 _AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
 MODULE_FILES["irnuc_axil_regs"] = (*_PKG, "irnuc_axil_regs.sv")
 MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
+MODULE_FILES["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
 MODULE_FILES["irnuc_axis_assert"] = ("irnuc_axis_assert.sv",)
 MODULE_FILES["irnuc_axil_assert"] = (*_PKG, "irnuc_axil_assert.sv")
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["nuc_dpc_top"], *_AXI_ASSERT, "irnuc_axil_regs.sv", "irnuc_axis_framer.sv",
+    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
+    "irnuc_axil_regs.sv", "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv",
     "irnuc_axis_top.sv")))
+#: The base methods irnuc_axis_top is built around (its parameter Method; table_interp
+#: needs the weight and the pair of tables chosen per frame: not wrapped yet).
+AXIS_METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset")
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
@@ -192,6 +197,7 @@ _BLOCK_PARAMETERS = {
                                   "BBits": p["GainIntBits"] + p["GainFracBits"]},
     "irnuc_line_buffer": lambda p: {"Depth": p["MaxWidth"], "DataBits": 2 * p["OutBits"] + 2},
     "irnuc_axis_assert": lambda p: {"DataBits": 8 * ((p["AdcBits"] + 7) // 8), "UserBits": 1},
+    "irnuc_axis_buffer": lambda p: {"DataBits": p["AdcBits"] + 2},
     "irnuc_axil_assert": lambda p: {},
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
                               "Rounding": p["Rounding"]},
@@ -248,6 +254,10 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
+    if top == "irnuc_axis_top" and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+        p = {**params, **method_parameters(cfg)}
+        return {k: v for k, v in p.items() if k not in ("Tables", "WeightIntBits",
+                                                        "WeightFracBits", "WeightRounding")}
     if top in STAGE_TOPS.values():
         return stage_parameters(top, cfg)
     if top in _STAGE_BLOCKS:

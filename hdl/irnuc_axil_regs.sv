@@ -38,6 +38,9 @@ module irnuc_axil_regs
   parameter int unsigned HasFfc            = 0,
   parameter int unsigned FfcFrames         = 1,
   parameter int unsigned CoefLayoutVersion = 1,
+  // Bits of one s_axis_coef word (the method's coefficient word; default two_point's).
+  parameter int unsigned CoefWordBits      = coef_word_bits(GainIntBits + GainFracBits,
+                                                            OffsetIntBits + OffsetFracBits),
   // Widths of the method registers (PipelineConfig.registers), 0 = not in this method.
   parameter int unsigned GainRegBits       = 0,
   parameter int unsigned LevelRegBits      = 0,
@@ -51,9 +54,6 @@ module irnuc_axil_regs
   parameter int unsigned TableReadingBits  = 1,
   // Derived, do not override.
   localparam int unsigned AddrBits         = RegAddrBits,
-  localparam int unsigned GainBits         = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits       = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned WordBits         = coef_word_bits(GainBits, OffsetBits),
   localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
   localparam int unsigned NumSlots         = 8,
@@ -602,7 +602,7 @@ module irnuc_axil_regs
                        | (32'(CoefLayoutVersion) << RegVersionCoefLayoutLsb);
     rvals[IxConfig]  = (32'(AdcBits) << RegConfigAdcBitsLsb)
                        | (32'(OutBits) << RegConfigOutBitsLsb)
-                       | (32'(WordBits) << RegConfigWordBitsLsb)
+                       | (32'(CoefWordBits) << RegConfigWordBitsLsb)
                        | (32'(MethodCode) << RegConfigMethodLsb)
                        | (32'(HasBlindDrift) << RegConfigBlindDriftLsb)
                        | (32'(HasFfc) << RegConfigFfcLsb)

@@ -32,7 +32,8 @@
 // cleared (the word is taken all the same).
 //
 // Every decision comes from registers (the input registers of the top, this module's
-// state, counters and flags); the output is a spill register, so every output is a flop.
+// state, counters and flags); the output is a spill register, so every output is a flop
+// but the word, which is masked behind it (NUC off, DPC off, filler).
 module irnuc_axis_framer
   import irnuc_pkg::*;
 #(
@@ -44,10 +45,18 @@ module irnuc_axis_framer
   parameter int unsigned MaxWidth       = 1024,
   parameter int unsigned MaxHeight      = 1024,
   parameter int unsigned FrameBits      = 1,  // the frame word (method registers), >= 1
+  // The coefficient word of the core (default: the two-point word) and its neutral
+  // values: NeutralWord replaces a word's bits outside BadMask (the bad flags) when NUC is
+  // off and is the whole word of a filler; NeutralFrame replaces the frame word when NUC
+  // is off (irnuc_axis_top sets them per method, docs/integration.md).
+  parameter int unsigned WordBits       = coef_word_bits(GainIntBits + GainFracBits,
+                                                         OffsetIntBits + OffsetFracBits),
+  parameter logic [WordBits-1:0] NeutralWord = WordBits'(
+    (GainIntBits > 0) ? (64'd1 << GainFracBits) : ((64'd1 << (GainIntBits + GainFracBits)) - 1)),
+  parameter logic [WordBits-1:0] BadMask = WordBits'(64'd1 << coef_word_bad_lsb(
+    GainIntBits + GainFracBits, OffsetIntBits + OffsetFracBits)),
+  parameter logic [FrameBits-1:0] NeutralFrame = '0,
   // Derived, do not override.
-  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned WordBits      = coef_word_bits(GainBits, OffsetBits),
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // Items between this module's output and the core's output: fewer than the core's
@@ -108,12 +117,6 @@ module irnuc_axis_framer
   output logic                  coef_late_o,
   output logic                  in_frame_o
 );
-
-  typedef coef_word#(GainBits, OffsetBits)::word_t coef_word_t;
-
-  // Unity gain when the format holds 1.0, else its largest code (U0.Gf).
-  localparam logic [GainBits-1:0] NeutralGain = (GainIntBits > 0) ? GainBits'(1) << GainFracBits
-                                                                  : '1;
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
@@ -357,32 +360,45 @@ module irnuc_axis_framer
   end
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
-  coef_word_t word;
+  // The word enters the output register as it comes (0 for a filler) with two flags, and
+  // NUC off / DPC off / filler are applied behind it: the wide word's path from the input
+  // buffer passes one multiplexer, not the masks too (docs/rtl.md).
+  logic [WordBits-1:0]  word_in, out_word, word;
+  logic                 nuc_off, dpc_off, out_nuc_off, out_dpc_off;
+  logic [FrameBits-1:0] frame;
+
+  assign word_in = (cst_q == CoefFill) ? '0 : coef_data_i;
+  assign nuc_off = (cst_q == CoefFill) || !eff_nuc;
+  assign dpc_off = (cst_q == CoefFill) || !eff_dpc;
 
   always_comb begin : p_word
-    word = coef_word_t'(coef_data_i);
-    if (cst_q == CoefFill || !eff_nuc) begin
-      word.gain   = NeutralGain;
-      word.offset = '0;
+    word = out_word;
+    if (out_nuc_off) begin
+      word = (word & BadMask) | (NeutralWord & ~BadMask);
     end
-    if (cst_q == CoefFill || !eff_dpc) begin
-      word.bad = 1'b0;
+    if (out_dpc_off) begin
+      word = word & ~BadMask;
     end
   end
+
+  // The frame word goes with a frame's first item (the core reads it at sof).
+  assign frame = !starting ? '0 : pend_nuc_en_i ? pend_frame_i : NeutralFrame;
 
   logic [AdcBits-1:0] raw;
   assign raw = pad_item ? '0 : vid_data_i;
 
-  irnuc_spill_register #(.DataBits(FrameBits + 2 + AdcBits + WordBits)) u_out (
+  irnuc_spill_register #(.DataBits(FrameBits + 4 + AdcBits + WordBits)) u_out (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(fire),
     .ready_o(out_ready),
-    .data_i ({starting ? pend_frame_i : '0, starting, xl_q, raw, word}),
+    .data_i ({frame, starting, xl_q, nuc_off, dpc_off, raw, word_in}),
     .valid_o(m_valid_o),
     .ready_i(m_ready_i),
-    .data_o ({m_frame_o, m_sof_o, m_eol_o, m_raw_o, m_word_o})
+    .data_o ({m_frame_o, m_sof_o, m_eol_o, out_nuc_off, out_dpc_off, m_raw_o, out_word})
   );
+
+  assign m_word_o = word;
 
   // ---- events ---------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_events

@@ -3,7 +3,9 @@
 //                 end of line; the code in tdata[AdcBits-1:0], the bits above ignored
 //   s_axis_coef   coefficient words, one per pixel in raster order, as a DMA reads the
 //                 memory image of irnuc calibrate: word in tdata[WordBits-1:0] (the image's
-//                 bytes of one word, little-endian), tlast on each frame's last word
+//                 bytes of one word, little-endian), tlast on each frame's last word; the
+//                 word of the configured method (method_dpc_top's s_coef: its calibration
+//                 memories concatenated, the first at bit 0)
 //   m_axis_video  corrected pixels, AXI4-Stream video; the code in tdata[OutBits-1:0], the
 //                 bits above 0
 //   s_axil        the register file (docs/registers.md), irq_o its interrupt
@@ -17,11 +19,16 @@
 //   s_axis_coef  -> u_coef_in --/        ^ pending settings, events v
 //   s_axil <-> u_regs (register file, counters, interrupt)
 //
-// nuc_dpc_top stays the bare core: its two input streams move in lockstep here (one item
-// of the framer is a pixel and its word). Every output port is a flop.
+// The core is nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point,
+// piecewise, quadratic and tc_offset; its two input streams move in lockstep here (one item
+// of the framer is a pixel and its word). A method's per-frame word comes from its registers
+// (GAIN, LEVEL, READING and T_REF), taken at a frame start like every shadowed register.
+// Every output port is a flop.
 module irnuc_axis_top
   import irnuc_pkg::*;
+  import irnuc_method_pkg::*;
 #(
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e (not table_interp)
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
@@ -32,10 +39,43 @@ module irnuc_axis_top
   parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned MaxWidth       = 1024,
   parameter int unsigned MaxHeight      = 1024,
+  // Formats and parameters of the base methods (method_dpc_top's; a method reads only its
+  // own; docs/datapath.md "Formats").
+  parameter int unsigned KneeIntBits    = 14,
+  parameter int unsigned KneeFracBits   = 2,
+  parameter int unsigned LevelIntBits   = 14,
+  parameter int unsigned LevelFracBits  = 4,
+  parameter int unsigned QuadIntBits    = 10,
+  parameter int unsigned QuadFracBits   = 6,
+  parameter int unsigned SquareBits     = 18,
+  parameter int unsigned Tc1IntBits     = 13,
+  parameter int unsigned Tc1FracBits    = 3,
+  parameter int unsigned Tc2IntBits     = 12,
+  parameter int unsigned Tc2FracBits    = 4,
+  parameter int unsigned Tg1IntBits     = 2,
+  parameter int unsigned Tg1FracBits    = 14,
+  parameter int unsigned Tg2IntBits     = 2,
+  parameter int unsigned Tg2FracBits    = 14,
+  parameter int unsigned TcOrder        = 2,
+  parameter int unsigned TcGain         = 0,
+  parameter int unsigned ReadingBits    = 14,
+  parameter int unsigned ReadingRangeBits = 11,
   // Derived, do not override.
+  localparam method_e     MethodSel     = method_e'(Method),
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned WordBits      = coef_word_bits(GainBits, OffsetBits),
+  localparam int unsigned LevelBits     = LevelIntBits + LevelFracBits,
+  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
+                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  // The coefficient word of the method (s_axis_coef) and the frame word of its registers.
+  localparam int unsigned WordBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits,
+                                                           KneeIntBits + KneeFracBits,
+                                                           QuadIntBits + QuadFracBits,
+                                                           TcWordBits, TgWordBits),
+  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, LevelBits,
+                                                          ReadingBits, 1),
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // AXI4-Stream data are whole bytes.
@@ -87,11 +127,44 @@ module irnuc_axis_top
   output logic                  irq_o
 );
 
-  // The two-point core has no frame word (method registers) and no FFC unit.
-  localparam int unsigned FrameBits = 1;
+  // The method's neutral words (NUC off, filler pixels; docs/integration.md) and its
+  // register slots; unity gain is 2^Gf when the format holds 1.0, else its largest code.
+  localparam logic [63:0] Unity = (GainIntBits > 0) ? (64'd1 << GainFracBits)
+                                                    : ((64'd1 << GainBits) - 64'd1);
+
+  function automatic logic [WordBits-1:0] neutral_word();
+    logic [WordBits-1:0] w;
+    w = '0;
+    unique case (MethodSel)
+      MethodOnePoint: ;  // offset 0 (the gain is the frame word's)
+      MethodPiecewise: begin
+        w |= WordBits'(Unity) << coef_piecewise_gain_lo_lsb();
+        w |= WordBits'(Unity) << coef_piecewise_gain_hi_lsb(GainBits);
+      end
+      default: w |= WordBits'(Unity) << coef_word_gain_lsb();  // the two-point word first
+    endcase
+    return w;
+  endfunction
+
+  function automatic logic [WordBits-1:0] bad_mask();
+    unique case (MethodSel)
+      MethodOnePoint:  return WordBits'(1) << coef_one_point_bad_lsb(OffsetBits);
+      MethodPiecewise: return WordBits'(1) << coef_piecewise_bad_lsb(GainBits,
+                                                                     KneeIntBits + KneeFracBits);
+      default:         return WordBits'(1) << coef_word_bad_lsb(GainBits, OffsetBits);
+    endcase
+  endfunction
+
+  localparam logic [WordBits-1:0]  NeutralWord  = neutral_word();
+  localparam logic [WordBits-1:0]  BadMask      = bad_mask();
+  localparam logic [FrameBits-1:0] NeutralFrame = (MethodSel == MethodOnePoint)
+                                                  ? FrameBits'(Unity) : '0;
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
+    assert (Method <= 32'(MethodTcOffset))
+      else $fatal(1, "irnuc_axis_top: Method = %0d outside 0..%0d (no table_interp)",
+                  Method, 32'(MethodTcOffset));
     assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
       else $fatal(1, "irnuc_axis_top: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
                   MaxWidthMax);
@@ -107,7 +180,9 @@ module irnuc_axis_top
   logic               coef_valid, coef_ready, coef_last;
   logic [WordBits-1:0] coef_data;
 
-  irnuc_spill_register #(.DataBits(AdcBits + 2)) u_vid_in (
+  // Each input behind irnuc_axis_buffer: the framer's take decisions move only its
+  // pointers and flags, not the enables of its data registers (docs/rtl.md).
+  irnuc_axis_buffer #(.DataBits(AdcBits + 2)) u_vid_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_video_tvalid),
@@ -118,7 +193,7 @@ module irnuc_axis_top
     .data_o ({vid_sof, vid_eol, vid_data})
   );
 
-  irnuc_spill_register #(.DataBits(WordBits + 1)) u_coef_in (
+  irnuc_axis_buffer #(.DataBits(WordBits + 1)) u_coef_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_coef_tvalid),
@@ -152,7 +227,15 @@ module irnuc_axis_top
     .Overflow      (Overflow),
     .MaxWidth      (MaxWidth),
     .MaxHeight     (MaxHeight),
-    .MethodCode    (1)  // two_point (nuc_fixed.config.BASE_METHODS)
+    .MethodCode    (Method),
+    // The memory image version of irnuc calibrate: 1 two_point, 2 the other methods
+    // (nuc_fixed.memimage; VERSION is checked against it by tb_axis).
+    .CoefLayoutVersion((MethodSel == MethodTwoPoint) ? 1 : 2),
+    .CoefWordBits  (WordBits),
+    .GainRegBits   ((MethodSel == MethodOnePoint) ? GainBits : 0),
+    .LevelRegBits  ((MethodSel == MethodPiecewise) ? LevelBits : 0),
+    .ReadingRegBits((MethodSel == MethodTcOffset) ? ReadingBits : 0),
+    .TRefRegBits   ((MethodSel == MethodTcOffset) ? ReadingBits : 0)
   ) u_regs (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -207,6 +290,24 @@ module irnuc_axis_top
     .irq_o           (irq_o)
   );
 
+  // ---- the frame word: the method's registers (slots of irnuc_axil_regs) --------------------
+  // one_point GAIN, piecewise LEVEL, tc_offset {T_REF, READING} (frame_tc_offset); none for
+  // two_point and quadratic. The framer takes it at a frame start.
+  logic [FrameBits-1:0] pend_frame;
+
+  if (MethodSel == MethodOnePoint) begin : gen_frame_gain
+    assign pend_frame = slots[0][FrameBits-1:0];
+  end else if (MethodSel == MethodPiecewise) begin : gen_frame_level
+    assign pend_frame = slots[1][FrameBits-1:0];
+  end else if (MethodSel == MethodTcOffset) begin : gen_frame_tc
+    frame_tc_offset#(ReadingBits)::word_t fw;
+    assign fw.reading = slots[2][ReadingBits-1:0];
+    assign fw.t_ref   = slots[3][ReadingBits-1:0];
+    assign pend_frame = fw;
+  end else begin : gen_frame_none
+    assign pend_frame = '0;
+  end
+
   // ---- framer ---------------------------------------------------------------------------------
   logic                 item_valid, item_ready, item_sof, item_eol;
   logic [AdcBits-1:0]   item_raw;
@@ -221,7 +322,11 @@ module irnuc_axis_top
     .OffsetFracBits(OffsetFracBits),
     .MaxWidth      (MaxWidth),
     .MaxHeight     (MaxHeight),
-    .FrameBits     (FrameBits)
+    .FrameBits     (FrameBits),
+    .WordBits      (WordBits),
+    .NeutralWord   (NeutralWord),
+    .BadMask       (BadMask),
+    .NeutralFrame  (NeutralFrame)
   ) u_framer (
     .clk_i            (clk_i),
     .rst_ni           (rst_ni),
@@ -244,7 +349,7 @@ module irnuc_axis_top
     .pend_nuc_en_i    (pend_nuc),
     .pend_dpc_en_i    (pend_dpc),
     .pend_coef_sync_i (pend_sync),
-    .pend_frame_i     ('0),
+    .pend_frame_i     (pend_frame),
     .act_width_o      (act_w),
     .act_height_o     (act_h),
     .act_height_m1_o  (act_hm1),
@@ -270,43 +375,102 @@ module irnuc_axis_top
     .in_frame_o       (in_frame)
   );
 
-  // ---- the bare core: its pixel and coefficient inputs move together ------------------------
+  // ---- the core: its pixel and coefficient inputs move together ----------------------------
+  // two_point: the bare core nuc_dpc_top; the other base methods: method_dpc_top, with the
+  // frame word on its pixel stream (read with sof).
   logic               core_pix_ready, core_coef_ready, core_valid, core_sof, core_eol;
   logic [OutBits-1:0] core_data;
 
   assign item_ready = core_pix_ready && core_coef_ready;
 
-  nuc_dpc_top #(
-    .AdcBits       (AdcBits),
-    .GainIntBits   (GainIntBits),
-    .GainFracBits  (GainFracBits),
-    .OffsetIntBits (OffsetIntBits),
-    .OffsetFracBits(OffsetFracBits),
-    .OutBits       (OutBits),
-    .Rounding      (Rounding),
-    .Overflow      (Overflow),
-    .MaxWidth      (MaxWidth),
-    .MaxHeight     (MaxHeight)
-  ) u_core (
-    .clk_i         (clk_i),
-    .rst_ni        (rst_ni),
-    .frame_width_i (act_w),
-    .frame_height_i(act_h),
-    .s_pix_valid_i (item_valid),
-    .s_pix_ready_o (core_pix_ready),
-    .s_pix_data_i  (item_raw),
-    .s_pix_sof_i   (item_sof),
-    .s_pix_eol_i   (item_eol),
-    .s_coef_valid_i(item_valid),
-    .s_coef_ready_o(core_coef_ready),
-    .s_coef_data_i (item_word),
-    .m_pix_valid_o (core_valid),
-    .m_pix_ready_i (m_axis_video_tready),
-    .m_pix_data_o  (core_data),
-    .m_pix_sof_o   (core_sof),
-    .m_pix_eol_o   (core_eol),
-    .frame_err_o   (core_err)
-  );
+  if (MethodSel == MethodTwoPoint) begin : gen_two_point
+    nuc_dpc_top #(
+      .AdcBits       (AdcBits),
+      .GainIntBits   (GainIntBits),
+      .GainFracBits  (GainFracBits),
+      .OffsetIntBits (OffsetIntBits),
+      .OffsetFracBits(OffsetFracBits),
+      .OutBits       (OutBits),
+      .Rounding      (Rounding),
+      .Overflow      (Overflow),
+      .MaxWidth      (MaxWidth),
+      .MaxHeight     (MaxHeight)
+    ) u_core (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .frame_width_i (act_w),
+      .frame_height_i(act_h),
+      .s_pix_valid_i (item_valid),
+      .s_pix_ready_o (core_pix_ready),
+      .s_pix_data_i  (item_raw),
+      .s_pix_sof_i   (item_sof),
+      .s_pix_eol_i   (item_eol),
+      .s_coef_valid_i(item_valid),
+      .s_coef_ready_o(core_coef_ready),
+      .s_coef_data_i (item_word),
+      .m_pix_valid_o (core_valid),
+      .m_pix_ready_i (m_axis_video_tready),
+      .m_pix_data_o  (core_data),
+      .m_pix_sof_o   (core_sof),
+      .m_pix_eol_o   (core_eol),
+      .frame_err_o   (core_err)
+    );
+    logic unused_frame;
+    assign unused_frame = ^item_frame;
+  end else begin : gen_method
+    method_dpc_top #(
+      .Method          (Method),
+      .AdcBits         (AdcBits),
+      .GainIntBits     (GainIntBits),
+      .GainFracBits    (GainFracBits),
+      .OffsetIntBits   (OffsetIntBits),
+      .OffsetFracBits  (OffsetFracBits),
+      .OutBits         (OutBits),
+      .Rounding        (Rounding),
+      .Overflow        (Overflow),
+      .MaxWidth        (MaxWidth),
+      .MaxHeight       (MaxHeight),
+      .KneeIntBits     (KneeIntBits),
+      .KneeFracBits    (KneeFracBits),
+      .LevelIntBits    (LevelIntBits),
+      .LevelFracBits   (LevelFracBits),
+      .QuadIntBits     (QuadIntBits),
+      .QuadFracBits    (QuadFracBits),
+      .SquareBits      (SquareBits),
+      .Tc1IntBits      (Tc1IntBits),
+      .Tc1FracBits     (Tc1FracBits),
+      .Tc2IntBits      (Tc2IntBits),
+      .Tc2FracBits     (Tc2FracBits),
+      .Tg1IntBits      (Tg1IntBits),
+      .Tg1FracBits     (Tg1FracBits),
+      .Tg2IntBits      (Tg2IntBits),
+      .Tg2FracBits     (Tg2FracBits),
+      .TcOrder         (TcOrder),
+      .TcGain          (TcGain),
+      .ReadingBits     (ReadingBits),
+      .ReadingRangeBits(ReadingRangeBits)
+    ) u_core (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .frame_width_i (act_w),
+      .frame_height_i(act_h),
+      .s_pix_valid_i (item_valid),
+      .s_pix_ready_o (core_pix_ready),
+      .s_pix_data_i  (item_raw),
+      .s_pix_sof_i   (item_sof),
+      .s_pix_eol_i   (item_eol),
+      .s_pix_frame_i (item_frame),
+      .s_coef_valid_i(item_valid),
+      .s_coef_ready_o(core_coef_ready),
+      .s_coef_data_i (item_word),
+      .m_pix_valid_o (core_valid),
+      .m_pix_ready_i (m_axis_video_tready),
+      .m_pix_data_o  (core_data),
+      .m_pix_sof_o   (core_sof),
+      .m_pix_eol_o   (core_eol),
+      .frame_err_o   (core_err)
+    );
+  end
 
   assign m_axis_video_tvalid = core_valid;
   assign m_axis_video_tdata  = VidOutBits'(core_data);
@@ -332,11 +496,11 @@ module irnuc_axis_top
   assign pix_out   = core_valid && m_axis_video_tready;
   assign frame_out = frame_out_q;
 
-  // Not used by the two-point core: AxPROT, the tdata bits above the code, the method
-  // registers and the FFC controls (docs/integration.md).
+  // Not used: AxPROT, the tdata bits above the code, the method registers the method does
+  // not read and the FFC controls (docs/integration.md).
   logic unused_inputs;
-  assign unused_inputs = ^{s_axil_awprot, s_axil_arprot, slots, table_readings, item_frame,
-                           ffc_start, ffc_frames};
+  assign unused_inputs = ^{s_axil_awprot, s_axil_arprot, slots, table_readings, ffc_start,
+                           ffc_frames};
   if (VidInBits > AdcBits) begin : gen_vid_pad
     logic unused_vid;
     assign unused_vid = ^s_axis_video_tdata[VidInBits-1:AdcBits];
@@ -347,7 +511,7 @@ module irnuc_axis_top
   end
 
 `ifdef IRNUC_ASSERT
-  // Every AXI port is checked; so are the two spill registers behind the inputs.
+  // Every AXI port is checked; the input buffers check their output sides.
   irnuc_axis_assert #(.DataBits(VidInBits), .UserBits(1)) u_assert_vid_in (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),

@@ -14,8 +14,15 @@ the programmed frame size; the core gets whole frames of that size (docs/integra
   must mark its frame's last pixel: early, the frame's remaining pixels get the neutral
   word and take none (``coef_early``); late, the words up to the next tlast are dropped
   after the frame (``coef_late``);
-* ``nuc_en = False``: unity gain (:func:`neutral_gain`) and zero offset; ``dpc_en = False``:
-  the bad flag cleared.
+* ``nuc_en = False``: every field of the word but the bad flags takes its neutral value
+  (:func:`neutral_word`: unity gain (:func:`neutral_gain`), zero offset and every other
+  field 0) and the frame word its neutral one (:func:`neutral_frame`: one_point's gain 1.0,
+  else 0); ``dpc_en = False``: the bad flags cleared.
+
+The word is the configured method's coefficient word (``method_dpc_top``'s ``s_coef``:
+the base method's calibration memories concatenated, the first at bit 0) and the frame
+word its per-frame registers (:func:`frame_word`); two_point has the memory image's word
+and no frame word.
 
 :func:`axis_framer` turns the streams into the frames the core corrects
 (:class:`CoreFrame`: raw codes and coefficient words) and the events the register file
@@ -31,8 +38,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from irnuc.nuc_fixed import rtl_spec
 from irnuc.nuc_fixed.config import PipelineConfig
-from irnuc.nuc_fixed.memimage import pack_words, unpack_words
+from irnuc.nuc_fixed.layout import MemoryLayout, unpack_memory
+from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
 from irnuc.nuc_fixed.top import nuc_dpc_top
 
 #: The events counted by the register file (STATUS bits and *_ERRORS counters) and the
@@ -50,16 +59,20 @@ class FrameSettings:
     nuc_en: bool = True
     dpc_en: bool = True
     coef_sync: bool = True
+    #: the method's registers as the frame word (:func:`frame_word`; 0 for two_point)
+    frame_word: int = 0
 
 
 @dataclass
 class CoreFrame:
-    """One frame as the core gets it: raw codes and coefficient words, (H, W)."""
+    """One frame as the core gets it: raw codes and coefficient words, (H, W) (uint64, or
+    Python ints for words wider than 64 bits), and the frame word it starts with."""
 
     raw: np.ndarray
     words: np.ndarray
     settings: FrameSettings
     filler: np.ndarray  # bool (H, W): a filler pixel
+    frame_word: int = 0
 
 
 @dataclass
@@ -78,6 +91,98 @@ def neutral_gain(cfg: PipelineConfig) -> int:
     return (1 << cfg.gain_frac_bits) if cfg.gain_int_bits > 0 else (1 << cfg.gain_bits) - 1
 
 
+def stream_layouts(cfg: PipelineConfig) -> list[tuple[MemoryLayout, int]]:
+    """The memories of the coefficient word and the bit each starts at: the base method's
+    calibration memories in order (``PipelineConfig.memories``). table_interp (a pair of
+    tables chosen per frame) is not a word of the wrapper: ValueError."""
+    if cfg.base_method == "table_interp":
+        raise ValueError("irnuc_axis_top does not wrap table_interp")
+    out, lsb = [], 0
+    for m in cfg.memories.values():
+        if m.source == "calibration":
+            out.append((m, lsb))
+            lsb += m.word_bits
+    return out
+
+
+def coef_word_bits(cfg: PipelineConfig) -> int:
+    """Bits of one ``s_axis_coef`` word (CONFIG.word_bits)."""
+    return sum(m.word_bits for m, _ in stream_layouts(cfg))
+
+
+def neutral_word(cfg: PipelineConfig) -> int:
+    """The word of a filler pixel, and the value of a word's fields but the bad flags with
+    NUC off: gain fields (``gain``, ``gain_lo``, ``gain_hi``) at :func:`neutral_gain`, every
+    other field 0."""
+    w = 0
+    for m, base in stream_layouts(cfg):
+        for f in m.fields:
+            if f.name in ("gain", "gain_lo", "gain_hi"):
+                w |= neutral_gain(cfg) << (base + f.lsb)
+    return w
+
+
+def bad_mask(cfg: PipelineConfig) -> int:
+    """The bits of the word that are bad flags."""
+    return sum(1 << (base + f.lsb) for m, base in stream_layouts(cfg) for f in m.fields
+               if f.name == "bad")
+
+
+def neutral_frame(cfg: PipelineConfig) -> int:
+    """The frame word with NUC off: one_point's gain 1.0 (:func:`neutral_gain`), else 0."""
+    return neutral_gain(cfg) if cfg.base_method == "one_point" else 0
+
+
+def frame_word(cfg: PipelineConfig, registers: dict[str, int]) -> int:
+    """The frame word ``method_dpc_top`` takes at a frame start, from the method's register
+    values by name (``gain``, ``level``, ``reading``, ``t_ref``): one_point the gain,
+    piecewise the level, tc_offset the spec's frame_tc_offset (reading, t_ref); else 0."""
+    base = cfg.base_method
+    if base == "one_point":
+        return int(registers["gain"])
+    if base == "piecewise":
+        return int(registers["level"])
+    if base == "tc_offset":
+        lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
+        return (int(registers["reading"]) << lay["reading"][0]) | (
+            int(registers["t_ref"]) << lay["t_ref"][0])
+    return 0
+
+
+def frame_method_inputs(f: CoreFrame, cfg: PipelineConfig
+                        ) -> tuple[MethodCoefficients, int | None]:
+    """The calibration and FPA reading a frame of a method other than two_point is
+    corrected with: its words split into the method's memories and the frame word into
+    the method's registers."""
+    words = np.asarray(f.words, dtype=object)
+    fields = {}
+    for m, base in stream_layouts(cfg):
+        mem = np.array([[(int(v) >> base) & ((1 << m.word_bits) - 1) for v in row]
+                        for row in words], dtype=np.uint64).reshape(words.shape)
+        fields[m.name] = unpack_memory(mem, m)
+    base = cfg.base_method
+    regs: dict[str, object] = {}
+    reading = None
+    if base in ("one_point", "piecewise"):
+        regs["gain" if base == "one_point" else "level"] = f.frame_word
+    elif base == "tc_offset":
+        lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
+        (rl, rb), (tl, tb) = lay["reading"], lay["t_ref"]
+        reading = (f.frame_word >> rl) & ((1 << rb) - 1)
+        regs["t_ref"] = (f.frame_word >> tl) & ((1 << tb) - 1)
+    return MethodCoefficients(cfg=cfg, fields=fields, registers=regs), reading
+
+
+def core_output(f: CoreFrame, cfg: PipelineConfig) -> np.ndarray:
+    """The corrected pixels (H, W) of a frame the framer handed to the core: the two-point
+    core (:func:`irnuc.nuc_fixed.nuc_dpc_top`), or the method's (``method_top``)."""
+    if cfg.method == "two_point":
+        return nuc_dpc_top(f.raw, f.words, cfg)
+    coeffs, reading = frame_method_inputs(f, cfg)
+    inputs = FrameInputs(reading=None if reading is None else np.array([reading]))
+    return method_top(f.raw[None], coeffs, inputs).y[0]
+
+
 def axis_framer(data: Sequence[int] | np.ndarray, sof: Sequence[int] | np.ndarray,
                 eol: Sequence[int] | np.ndarray, words: Sequence[int] | np.ndarray,
                 word_last: Sequence[int] | np.ndarray, settings: Sequence[FrameSettings],
@@ -91,14 +196,14 @@ def axis_framer(data: Sequence[int] | np.ndarray, sof: Sequence[int] | np.ndarra
     """
     data = np.asarray(data, dtype=np.int64).ravel()
     sof, eol = (np.asarray(a, dtype=bool).ravel() for a in (sof, eol))
-    words = np.asarray(words, dtype=np.uint64).ravel()
+    words = np.asarray(words, dtype=object).ravel()
     wlast = np.asarray(word_last, dtype=bool).ravel()
     if not settings:
         raise ValueError("axis_framer needs the settings of at least one frame")
     counts = dict.fromkeys((*EVENTS, *COUNTS), 0)
     frames: list[CoreFrame] = []
-    gain_n = neutral_gain(cfg)
-    neutral = int(pack_words(np.array([gain_n]), np.array([0]), np.array([False]), cfg)[0])
+    neutral, bad = neutral_word(cfg), bad_mask(cfg)
+    wide = coef_word_bits(cfg) > 64
 
     st = {"j": 0, "fill": False}
     cur: dict = {}
@@ -106,8 +211,9 @@ def axis_framer(data: Sequence[int] | np.ndarray, sof: Sequence[int] | np.ndarra
     def open_frame() -> None:
         s = settings[min(counts["frames_in"], len(settings) - 1)]
         cur.update(s=s, raw=np.zeros((s.height, s.width), np.int64),
-                   words=np.zeros((s.height, s.width), np.uint64),
-                   filler=np.zeros((s.height, s.width), bool), x=0, y=0)
+                   words=np.zeros((s.height, s.width), object if wide else np.uint64),
+                   filler=np.zeros((s.height, s.width), bool), x=0, y=0,
+                   frame=s.frame_word if s.nuc_en else neutral_frame(cfg))
         counts["frames_in"] += 1
 
     def emit(raw: int, filler: bool) -> bool:
@@ -133,14 +239,13 @@ def axis_framer(data: Sequence[int] | np.ndarray, sof: Sequence[int] | np.ndarra
                 while st["j"] < words.size and not wlast[st["j"]]:
                     st["j"] += 1
                 st["j"] = min(st["j"] + 1, words.size)
-        g, o, b = (int(v[0]) for v in unpack_words(np.array([word], np.uint64), cfg))
+        word = int(word)
         if not s.nuc_en:
-            g, o = gain_n, 0
+            word = (word & bad) | (neutral & ~bad)
         if not s.dpc_en:
-            b = 0
+            word &= ~bad
         cur["raw"][y, x] = raw
-        cur["words"][y, x] = int(pack_words(np.array([g]), np.array([o]), np.array([bool(b)]),
-                                            cfg)[0])
+        cur["words"][y, x] = word
         cur["filler"][y, x] = filler
         if filler:
             counts["padded"] += 1
@@ -149,7 +254,7 @@ def axis_framer(data: Sequence[int] | np.ndarray, sof: Sequence[int] | np.ndarra
         else:
             cur["x"] = x + 1
         if last:
-            frames.append(CoreFrame(cur["raw"], cur["words"], s, cur["filler"]))
+            frames.append(CoreFrame(cur["raw"], cur["words"], s, cur["filler"], cur["frame"]))
             cur.clear()
         return last
 
@@ -227,12 +332,12 @@ def axis_top(data: Sequence[int] | np.ndarray, sof: Sequence[int] | np.ndarray,
              word_last: Sequence[int] | np.ndarray, settings: Sequence[FrameSettings],
              cfg: PipelineConfig) -> AxisOutput:
     """``irnuc_axis_top`` on whole streams: :func:`axis_framer`, then the core
-    (:func:`irnuc.nuc_fixed.nuc_dpc_top`) frame by frame."""
+    (:func:`core_output`) frame by frame."""
     fr = axis_framer(data, sof, eol, words, word_last, settings, cfg)
     outs, sofs, eols = [], [], []
     for f in fr.frames:
         h, w = f.raw.shape
-        outs.append(nuc_dpc_top(f.raw, f.words, cfg).astype(np.int64).ravel())
+        outs.append(core_output(f, cfg).astype(np.int64).ravel())
         pos = np.arange(h * w)
         sofs.append((pos == 0).astype(np.int64))
         eols.append((pos % w == w - 1).astype(np.int64))
@@ -259,10 +364,12 @@ def coef_beats(images: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     words, last = [], []
     for im in images:
         n = np.size(im)
-        words.append(np.asarray(im, np.uint64).ravel())
+        words.append(np.asarray(im, object).ravel())
         last.append(np.arange(n) == n - 1)
     return np.concatenate(words), np.concatenate(last)
 
 
 __all__ = ["COUNTS", "EVENTS", "AxisOutput", "CoreFrame", "FrameSettings", "FramerResult",
-           "axis_framer", "axis_top", "coef_beats", "neutral_gain", "video_beats"]
+           "axis_framer", "axis_top", "bad_mask", "coef_beats", "coef_word_bits", "core_output",
+           "frame_method_inputs", "frame_word", "neutral_frame", "neutral_gain", "neutral_word",
+           "stream_layouts", "video_beats"]

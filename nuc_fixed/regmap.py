@@ -252,6 +252,14 @@ def coef_layout_version(cfg: PipelineConfig) -> int:
     return MEMIMAGE_VERSION if cfg.method == "two_point" else METHOD_IMAGE_VERSION
 
 
+def _coef_word_bits(cfg: PipelineConfig) -> int:
+    """Bits of one s_axis_coef word: the method's coefficient word (the memory word of
+    table_interp, which the wrapper does not build)."""
+    from irnuc.nuc_fixed.axis import coef_word_bits
+
+    return cfg.word_bits if cfg.base_method == "table_interp" else coef_word_bits(cfg)
+
+
 def config_params(cfg: PipelineConfig, rmap: RegisterMap | None = None) -> dict[str, int]:
     """The values a reset may name (:data:`PARAMS`) for configuration ``cfg``."""
     rmap = rmap or register_map()
@@ -259,7 +267,7 @@ def config_params(cfg: PipelineConfig, rmap: RegisterMap | None = None) -> dict[
     return {**{k: p[k] for k in ("AdcBits", "OutBits", "Rounding", "Overflow", "MaxWidth",
                                  "MaxHeight", "GainIntBits", "GainFracBits", "OffsetIntBits",
                                  "OffsetFracBits")},
-            "WordBits": cfg.word_bits, "MethodCode": _methods().index(cfg.base_method),
+            "WordBits": _coef_word_bits(cfg), "MethodCode": _methods().index(cfg.base_method),
             "HasBlindDrift": int(cfg.has("blind_drift")), "HasFfc": int(cfg.has("ffc")),
             "FfcFrames": int(cfg.ffc_frames or 0), "MapId": rmap.map_id,
             "MapMajor": rmap.major, "MapMinor": rmap.minor,

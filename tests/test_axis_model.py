@@ -108,3 +108,69 @@ def test_enables_and_the_core() -> None:
 def test_words_running_out_is_an_error() -> None:
     with pytest.raises(ValueError, match="ran out"):
         _run([1, 2, 3, 4, 5, 6], [1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 1], _words(4, ()))
+
+
+# ---- the methods around method_dpc_top -------------------------------------------------------
+
+def test_neutral_words_of_the_methods_by_hand() -> None:
+    """The neutral word, bad mask and neutral frame word of each wrapped method, written
+    out from the memory layouts by hand (docs/integration.md "Methods")."""
+    from irnuc.nuc_fixed.axis import bad_mask, neutral_frame, neutral_word
+
+    one = 1 << 14  # unity gain of U2.14
+    cases = {  # name: (neutral word, bad mask, neutral frame)
+        "typical14": (one, 1 << 32, 0),  # gain[15:0] offset[31:16] bad[32]
+        "onepoint14": (0, 1 << 16, one),  # offset[15:0] bad[16]; the gain is the frame's
+        "piecewise14": (one | one << 16, 1 << 48, 0),  # gain_lo, gain_hi, knee, bad[48]
+        "quadratic14": (one, 1 << 32, 0),  # coeffs | quad[48:33] = 0
+        "tcgain14": (one, 1 << 32, 0),  # coeffs | tc | tg = 0
+    }
+    for name, want in cases.items():
+        cfg = load_pipeline(name)
+        assert (neutral_word(cfg), bad_mask(cfg), neutral_frame(cfg)) == want, name
+
+
+@pytest.mark.parametrize("name", ["onepoint14", "piecewise14", "quadratic14", "tcgain14"])
+def test_method_words_read_back_as_the_calibration(name: str) -> None:
+    """A frame of the method's words (irnuc.cosim.stream.frame_drive: the packing the RTL
+    tests drive) and frame word is read back as the same calibration and reading, and the
+    wrapper's model corrects it as nuc_fixed.method_top does."""
+    from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
+    from irnuc.cosim.stream import frame_drive
+    from irnuc.nuc_fixed.axis import coef_beats, frame_word, video_beats
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+
+    cfg = load_pipeline(name)
+    rng = np.random.default_rng(5)
+    c = random_coefficients(cfg, 3, 5, rng, bad_fraction=0.3)
+    reading = random_reading(cfg, c, rng)
+    raw = random_raw(cfg, 3, 5, rng)
+    drive = frame_drive(c, reading)
+    regs = {**c.registers, **({"reading": reading} if reading is not None else {})}
+    settings = FrameSettings(5, 3, frame_word=frame_word(cfg, regs))
+    assert settings.frame_word == drive.frame_word
+    out = axis_top(*video_beats([raw]), *coef_beats([drive.words]), [settings], cfg)
+    want = method_top(raw[None], c, FrameInputs(
+        reading=None if reading is None else np.array([reading]))).y[0]
+    assert out.data.tolist() == want.ravel().tolist()
+    # NUC off: one_point keeps no gain of its own (the frame's is 1.0), y = x before DPC
+    # on good pixels of a frame without bad flags.
+    off = FrameSettings(5, 3, nuc_en=False, dpc_en=False, frame_word=settings.frame_word)
+    out = axis_top(*video_beats([raw]), *coef_beats([drive.words]), [off], cfg)
+    assert out.data.tolist() == np.clip(raw, 0, (1 << cfg.out_bits) - 1).ravel().tolist()
+
+
+def test_the_configurations_the_wrapper_is_built_around() -> None:
+    """``irnuc synth --top irnuc_axis_top`` takes the named configurations of the wrapped
+    base methods and no other (listed by hand), with the method's parameters."""
+    from irnuc.cosim.sources import top_parameters
+    from irnuc.cosim.synth import tops_for
+    from irnuc.nuc_fixed import pipeline_names
+
+    wrapped = {n for n in pipeline_names(method=None)
+               if "irnuc_axis_top" in tops_for(load_pipeline(n))}
+    assert wrapped == {"typical14", "wide16", "minimal", "onepoint14", "piecewise14",
+                       "quadratic14", "tcoffset14", "tcgain14"}
+    p = top_parameters("irnuc_axis_top", load_pipeline("tcoffset14"))
+    assert (p["Method"], p["ReadingBits"], p["TcOrder"]) == (4, 14, 2)
+    assert "Method" not in top_parameters("irnuc_axis_top", load_pipeline("typical14"))

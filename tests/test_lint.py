@@ -19,7 +19,7 @@ METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_read
 #: The AXI wrapper of the two-point core and its parts, linted with every two-point
 #: configuration (their parameters are widths and the frame limit, not the modes); the
 #: protocol checkers take no configuration (once).
-AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer")
+AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_axis_buffer")
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
 #: configuration of those stages and the mode variants.
@@ -87,8 +87,22 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
     assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report
 
 
+def _axi_method_configs() -> list[str]:
+    """The method configurations irnuc_axis_top is built around (cosim.sources.AXIS_METHODS,
+    no stage, two_point aside)."""
+    from irnuc.cosim.sources import AXIS_METHODS
+
+    out = []
+    for n in pipeline_names(method=None):
+        cfg = load_pipeline(n)
+        if not cfg.stages and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+            out.append(n)
+    return out
+
+
 @pytest.mark.parametrize(("module", "config"),
                          [(m, c) for m in AXI_MODULES for c in pipeline_names()]
+                         + [("irnuc_axis_top", c) for c in _axi_method_configs()]
                          + [(m, "minimal") for m in AXI_CHECKERS])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))

@@ -19,12 +19,14 @@ import pytest
 from irnuc.cosim.sources import HDL_DIR, MODULE_FILES
 from irnuc.verif import mutate
 
-#: Every design module of the two-point top, the methods' top, the per-frame weight and the
-#: stage tops (assertion checkers and packages have nothing to mutate).
+#: Every design module of the two-point top, the methods' top, the per-frame weight, the
+#: stage tops and the AXI wrapper (assertion checkers and packages have nothing to mutate).
 DESIGN = {f.removesuffix(".sv") for top in ("nuc_dpc_top", "method_dpc_top", "interp_weight",
-                                            "method_drift_top", "method_ffc_top")
+                                            "method_drift_top", "method_ffc_top",
+                                            "irnuc_axis_top")
           for f in MODULE_FILES[top]} - {"irnuc_stream_assert", "irnuc_frame_assert",
-                                          "irnuc_method_pkg", "irnuc_stage_pkg"}
+                                          "irnuc_method_pkg", "irnuc_stage_pkg",
+                                          "irnuc_axis_assert", "irnuc_axil_assert"}
 
 
 def test_catalogue_covers_every_design_module() -> None:

@@ -141,6 +141,17 @@ def _ms(id: str, file: str, find: str, replace: str, what: str, stage: dict, **k
     return Mutant(id, file, find, replace, what, **{**stage, **kw})
 
 
+_AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
+#: The wrapper around method_dpc_top, with its method testbench.
+_AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+
+
+def _ma(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
+    """A mutant of the AXI wrapper, run in irnuc_axis_top with tb_axis (``**_AXM``: with
+    tb_axis_method on a method configuration)."""
+    return Mutant(id, file, find, replace, what, **{**_AXIS, **kw})
+
+
 _HALF_UP = (("rounding", "half_up"),)
 _WRAP = (("rounding", "truncate"), ("overflow", "wrap"))
 
@@ -555,6 +566,46 @@ CATALOGUE: tuple[Mutant, ...] = (
        ".s_sof_i       (nuc_user[2]),\n    .s_eol_i       (nuc_user[1]),",
        ".s_sof_i       (nuc_user[1]),\n    .s_eol_i       (nuc_user[2]),",
        "sof and eol swapped on the way to dpc_core"),
+    # ---- irnuc_axis_top: the framer, the input buffers, the register file, the wrapper ----
+    _ma("ax_sof_late_every_beat", "irnuc_axis_framer.sv",
+        "sof_late_o    <= drop_beat && starting && !late_q;",
+        "sof_late_o    <= drop_beat && starting;",
+        "SOF_ERRORS.late counts every dropped beat, not each run of them once"),
+    _ma("ax_dpc_off_keeps_bad", "irnuc_axis_framer.sv", "      word = word & ~BadMask;",
+        "      word = word;", "CTRL.dpc_en = 0 and filler pixels keep the word's bad flag"),
+    _ma("ax_no_drain", "irnuc_axis_framer.sv",
+        "assign start_ok = !size_dirty_i || drained_q;", "assign start_ok = 1'b1;",
+        "a new frame size starts before the previous frame has left the core"),
+    _ma("ax_nuc_off_frame_word", "irnuc_axis_framer.sv",
+        "assign frame = !starting ? '0 : pend_nuc_en_i ? pend_frame_i : NeutralFrame;",
+        "assign frame = !starting ? '0 : pend_frame_i;",
+        "NUC off keeps one_point's gain register (no neutral frame word)",
+        **_AXM, config="onepoint14"),
+    _ma("ax_buffer_read_stuck", "irnuc_axis_buffer.sv", "rd_q <= rd_q ^ pop;",
+        "rd_q <= rd_q;", "an input buffer keeps reading the same entry after a pop"),
+    _ma("ax_buffer_never_full", "irnuc_axis_buffer.sv", "full_q <= any_q;",
+        "full_q <= 1'b0;", "an input buffer takes a third item over an unread one"),
+    _ma("ax_size_not_checked", "irnuc_axil_regs.sv",
+        "assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal_q;",
+        "assign wr_size  = wr && wsel_q[IxFrameSize];",
+        "an illegal FRAME_SIZE write (SLVERR) still changes the register"),
+    _ma("ax_pending_sticks", "irnuc_axil_regs.sv",
+        "pending_q    <= shadow_touch || (pending_q && !start_i);",
+        "pending_q    <= shadow_touch || pending_q;",
+        "STATUS.pending stays 1 after the frame start that took the write"),
+    _ma("ax_irq_not_enabled", "irnuc_axil_regs.sv", "irq_q    <= |(irq_st_q & irq_en_q);",
+        "irq_q    <= |irq_st_q;", "irq_o ignores IRQ_ENABLE"),
+    _ma("ax_status_no_w1c", "irnuc_axil_regs.sv",
+        "err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));",
+        "err_q    <= err_ev | err_q;", "the STATUS error bits cannot be cleared (W1C)"),
+    _ma("ax_frames_out_every_line", "irnuc_axis_top.sv",
+        "frame_out_q <= core_valid && m_axis_video_tready && core_eol && (out_row_q == act_hm1);",
+        "frame_out_q <= core_valid && m_axis_video_tready && core_eol;",
+        "FRAMES_OUT and IRQ_STATUS.frame_done at every line's end"),
+    _ma("ax_reading_from_t_ref", "irnuc_axis_top.sv",
+        "assign fw.reading = slots[2][ReadingBits-1:0];",
+        "assign fw.reading = slots[3][ReadingBits-1:0];",
+        "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
 )
 
 

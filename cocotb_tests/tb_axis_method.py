@@ -1,0 +1,136 @@
+"""cocotb tests of ``irnuc_axis_top`` built around ``method_dpc_top`` (a base method other
+than two_point; run by ``cocotb_tests/test_axis_top.py``).
+
+The drivers, the register model and the framing model are ``tb_axis``'s (:class:`Bench`);
+the coefficient words are the method's (``irnuc.cosim.stream.frame_drive`` of a random
+calibration, ``method_stim``) and the method's registers (GAIN, LEVEL, T_REF, READING) are
+written through AXI4-Lite. The expected pixels come from ``nuc_fixed.method_top`` on the
+calibration and reading each frame was given, through the one in-order scoreboard
+(``MethodScoreboard``), bit for bit. Small frames: each test runs in a few seconds.
+"""
+
+from __future__ import annotations
+
+import cocotb
+
+from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
+from irnuc.cocotb_tests.tb_axis import Bench, _bench
+from irnuc.cosim.stream import coef_stream_bits, frame_drive
+from irnuc.nuc_fixed.axis import FrameSettings, coef_beats, frame_word, video_beats
+from irnuc.nuc_fixed.config import BASE_METHODS
+from irnuc.nuc_fixed.method_top import MethodCoefficients
+
+#: Frame size of these tests (lines, pixels): small, past the DPC's 3 x 3 window.
+H, W = 4, 7
+
+
+async def _calibration(bench: Bench) -> MethodCoefficients:
+    """A random calibration of the frame size; its registers (GAIN, LEVEL, T_REF) written
+    through AXI4-Lite."""
+    cfg = bench.cfg
+    await bench.frame_size(H, W)
+    c = random_coefficients(cfg, H, W, bench.rng, bad_fraction=0.2)
+    for name, value in c.registers.items():
+        await bench.write_method_register(name, int(value))
+    return c
+
+
+def _reading(bench: Bench, c: MethodCoefficients) -> int | None:
+    return random_reading(bench.cfg, c, bench.rng)
+
+
+async def _set_reading(bench: Bench, reading: int | None) -> None:
+    if reading is not None:
+        await bench.write_method_register("reading", reading)
+
+
+@cocotb.test()
+async def method_registers(dut) -> None:
+    """After reset every register reads as the model says (the method's registers
+    present, the others reserved); CONFIG names the method and the width of its
+    coefficient word (irnuc.cosim.stream's layout, a second derivation); the method's
+    registers read back what was written, and only from a frame start on do they reach
+    the core (STATUS.pending)."""
+    bench = await _bench(dut, 20)
+    m, cfg = bench.model, bench.cfg
+    for r in m.map.registers:
+        await bench.check(r.offset)
+    config = await bench.read("CONFIG")
+    got = {f.name: (config & f.mask) >> f.lsb for f in m.map["CONFIG"].fields}
+    assert got["method"] == BASE_METHODS.index(cfg.base_method), got
+    assert got["word_bits"] == coef_stream_bits(cfg), got
+    for name, r in cfg.registers.items():
+        if r.count != 1:
+            continue
+        value = int(bench.rng.integers(0, 1 << r.width))
+        await bench.write_method_register(name, value)
+        await bench.check(f"{name.upper()}_LO")
+        await bench.check(f"{name.upper()}_HI")
+        assert bench.method_registers()[name] == value
+    await bench.check("STATUS")
+
+
+@cocotb.test()
+async def method_frames_between(dut) -> None:
+    """Frames one after the other, each with its own FPA reading written through AXI4-Lite
+    between frames (tc_offset; the other methods their registers), under idle and
+    backpressure, then one frame with NUC and DPC off (the neutral word and frame word):
+    bit for bit against nuc_fixed.method_top."""
+    bench = await _bench(dut, 21)
+    c = await _calibration(bench)
+    patterns = ("none", "random", "bursty", "alternate")
+    results = []
+    for k in range(4):
+        reading = _reading(bench, c)
+        await _set_reading(bench, reading)
+        raw = random_raw(bench.cfg, H, W, bench.rng)
+        words = frame_drive(c, reading).words
+        res = await bench.run(video_beats([raw]), coef_beats([words]), [bench.settings()],
+                              idle=patterns[k], coef_idle=patterns[(k + 1) % 4],
+                              bp=patterns[(k + 2) % 4], label=f"reading {reading}")
+        assert res.frames[0].frame_word == bench.settings().frame_word
+        results.append(res)
+    ctrl = bench.model.map["CTRL"]
+    await bench.write("CTRL", 1 << ctrl.field("coef_sync").lsb)
+    raw = random_raw(bench.cfg, H, W, bench.rng)
+    words = frame_drive(c, _reading(bench, c)).words
+    res = await bench.run(video_beats([raw]), coef_beats([words]), [bench.settings()],
+                          label="nuc and dpc off")
+    results.append(res)
+    await bench.check_counts(results)
+
+
+@cocotb.test()
+async def method_reading_mid_frame(dut) -> None:
+    """The method's registers written in the middle of a frame (READING, T_REF, GAIN or
+    LEVEL) change only the frames that start after the write: three frames back to back,
+    a write in frame 0 and one in frame 1."""
+    bench = await _bench(dut, 22)
+    cfg = bench.cfg
+    c = await _calibration(bench)
+    names = [n for n, r in cfg.registers.items() if r.count == 1]
+    readings = [_reading(bench, c) for _ in range(3)]
+    await _set_reading(bench, readings[0])
+    s0 = bench.settings()
+    raws = [random_raw(cfg, H, W, bench.rng) for _ in range(3)]
+    words = [frame_drive(c, r).words for r in readings]
+    new = [{n: int(bench.rng.integers(0, 1 << cfg.registers[n].width)) for n in names}
+           for _ in range(2)]
+    settings = [s0]
+    regs = dict(bench.method_registers())
+    for v in new:
+        regs |= v
+        settings.append(FrameSettings(W, H, frame_word=frame_word(cfg, regs)))
+
+    def writer(v):
+        async def write() -> None:
+            for n, value in v.items():
+                await bench.write_method_register(n, value)
+        return write
+
+    res = await bench.run(video_beats(raws), coef_beats(words), settings,
+                          actions=[(H * W // 4, writer(new[0])),
+                                   (H * W + H * W // 4, writer(new[1]))],
+                          idle="random", coef_idle="random", bp="random",
+                          label="registers mid frame")
+    assert [f.frame_word for f in res.frames] == [s.frame_word for s in settings]

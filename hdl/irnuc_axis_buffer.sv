@@ -1,0 +1,80 @@
+// The input register of an AXI4-Stream port of irnuc_axis_top: a two-entry buffer with the
+// cycles of irnuc_spill_register (ready_o = "fewer than two items held", a flop; an item
+// taken is at the output the next cycle; one item per clock at valid = ready = 1), built so
+// that the consumer's ready_i reaches only a read pointer and the fill flags, never the
+// enables of the data registers: each entry is written only from the input side (its
+// enable is valid_i and a flop), and the output is the older entry, picked by the read
+// pointer (a multiplexer on the data path). The consumer here is the framer, whose decision
+// to take an item is the wrapper's deepest logic; with a spill register that decision
+// fanned out to the enables of every data bit (the wrapper's critical path).
+module irnuc_axis_buffer #(
+  parameter int unsigned DataBits = 1
+) (
+  input  logic                clk_i,
+  input  logic                rst_ni,
+  // Input side (the AXI4-Stream port).
+  input  logic                valid_i,
+  output logic                ready_o,
+  input  logic [DataBits-1:0] data_i,
+  // Output side.
+  output logic                valid_o,
+  input  logic                ready_i,
+  output logic [DataBits-1:0] data_o
+);
+
+`ifndef SYNTHESIS
+  initial begin : p_param_ranges
+    assert (DataBits >= 1)
+      else $fatal(1, "irnuc_axis_buffer: DataBits = %0d must be at least 1", DataBits);
+  end
+`endif
+
+  logic [1:0][DataBits-1:0] mem_q;
+  logic                     wr_q, rd_q, full_q, any_q;
+  logic                     push, pop;
+
+  assign push = valid_i && !full_q;
+  assign pop  = any_q && ready_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
+    if (!rst_ni) begin
+      wr_q   <= 1'b0;
+      rd_q   <= 1'b0;
+      full_q <= 1'b0;
+      any_q  <= 1'b0;
+    end else begin
+      wr_q <= wr_q ^ push;
+      rd_q <= rd_q ^ pop;
+      if (push && !pop) begin
+        full_q <= any_q;
+        any_q  <= 1'b1;
+      end else if (pop && !push) begin
+        full_q <= 1'b0;
+        any_q  <= full_q;
+      end
+    end
+  end
+
+  // Only the fill flags reset; the entries are qualified by them.
+  always_ff @(posedge clk_i) begin : p_mem
+    if (push) begin
+      mem_q[wr_q] <= data_i;
+    end
+  end
+
+  assign ready_o = !full_q;
+  assign valid_o = any_q;
+  assign data_o  = mem_q[rd_q];
+
+`ifdef IRNUC_ASSERT
+  // The input side is an AXI4-Stream port (irnuc_axis_assert in the top); the output side:
+  irnuc_stream_assert #(.DataBits(DataBits)) u_assert_out (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(valid_o),
+    .ready_i(ready_i),
+    .data_i (data_o)
+  );
+`endif
+
+endmodule
