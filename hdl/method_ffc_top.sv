@@ -232,9 +232,19 @@ module method_ffc_top
     .data_o (acc_in)
   );
 
-  // ---- the frame's mode, the target -----------------------------------------------------
-  logic      en, join_valid, join_take;
-  ffc_mode_t ctrl_mode, mode_q, mode;
+  // ---- the pixel stage: the frame's mode and word decided as the pixel enters ----------------
+  // A pipeline register after the pixel's input register. A frame's first pixel takes the
+  // frame's mode (ffc_ctrl) and word into mode_q / frame_q as it enters, so that every pixel
+  // in this stage finds its frame's in flops: the join below waits on flops only (the valid
+  // flags, the mode, the target), not on the sequencer's decision.
+  logic      en, join_valid, join_take, px_load;
+  logic      px_valid_q, px_sof_q, px_eol_q;
+  logic [AdcBits-1:0] px_data_q;
+  ffc_mode_t ctrl_mode, mode_q;
+  logic [FrameBits-1:0] frame_q;
+
+  assign px_load   = !px_valid_q || join_take;
+  assign pix_ready = px_load;
 
   ffc_ctrl #(
     .FfcFrames(FfcFrames),
@@ -243,11 +253,31 @@ module method_ffc_top
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .shutter_i(pix_shutter),
-    .take_i   (join_take && pix_sof),
+    .take_i   (px_load && pix_valid && pix_sof),
     .mode_o   (ctrl_mode)
   );
 
-  assign mode = pix_sof ? ctrl_mode : mode_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_px_valid
+    if (!rst_ni) begin
+      px_valid_q <= 1'b0;
+      frame_q    <= '0;
+      mode_q     <= '0;
+    end else if (px_load) begin
+      px_valid_q <= pix_valid;
+      if (pix_valid && pix_sof) begin
+        frame_q <= pix_frame;
+        mode_q  <= ctrl_mode;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_px
+    if (px_load) begin
+      px_data_q <= pix_data;
+      px_sof_q  <= pix_sof;
+      px_eol_q  <= pix_eol;
+    end
+  end
 
   // The division starts when a refresh frame's first pixel waits and every pixel of the
   // mean frame has been summed (none in flight between the join and ffc_mean).
@@ -260,17 +290,17 @@ module method_ffc_top
   logic signed [VBits-1:0] mean_v;
   logic                  mean_good;
 
-  assign start = pix_valid && pix_sof && ctrl_mode.refresh && !started_q && flight_q == '0;
+  assign start = px_valid_q && px_sof_q && mode_q.refresh && !started_q && flight_q == '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
       flight_q  <= '0;
       started_q <= 1'b0;
     end else begin
-      flight_q <= flight_q + FlightBits'(join_take && mode.mean) - FlightBits'(mean_valid);
+      flight_q <= flight_q + FlightBits'(join_take && mode_q.mean) - FlightBits'(mean_valid);
       if (start) begin
         started_q <= 1'b1;
-      end else if (join_take && pix_sof) begin
+      end else if (join_take && px_sof_q) begin
         started_q <= 1'b0;
       end
     end
@@ -300,29 +330,18 @@ module method_ffc_top
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
   logic need_acc, need_target, join_ready;
 
-  assign need_acc    = mode.acc_rd;
-  assign need_target = pix_sof && ctrl_mode.refresh;
-  assign join_valid  = pix_valid && coef_valid && foff_valid && (!need_acc || acc_valid)
+  assign need_acc    = mode_q.acc_rd;
+  assign need_target = px_sof_q && mode_q.refresh;
+  assign join_valid  = px_valid_q && coef_valid && foff_valid && (!need_acc || acc_valid)
                        && (!need_target || (started_q && target_valid));
   assign join_take   = join_valid && join_ready;
-  assign pix_ready   = join_take;
   assign coef_ready  = join_take;
   assign foff_ready  = join_take;
   assign acc_ready   = join_take && need_acc;
 
-  logic [FrameBits-1:0] frame_q, frame;
+  logic [FrameBits-1:0] frame;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_frame
-    if (!rst_ni) begin
-      frame_q <= '0;
-      mode_q  <= '0;
-    end else if (join_take && pix_sof) begin
-      frame_q <= pix_frame;
-      mode_q  <= ctrl_mode;
-    end
-  end
-
-  assign frame = pix_sof ? pix_frame : frame_q;
+  assign frame = frame_q;
 
   // ---- the front: the frame's coefficients of the pixel ----------------------------------------
   // The pixel's side band: {x, the accumulator core's input (acc_new, or the read
@@ -338,10 +357,10 @@ module method_ffc_top
   logic [QuadBits-1:0]   f_quad;
   logic                  bad;
 
-  assign acc_new   = mode.acc_first ? AccBits'(pix_data) : acc_in + AccBits'(pix_data);
-  assign join_pass = {pix_data, mode.refresh ? acc_in : acc_new, acc_new, foff_in, mode.mean,
-                      mode.refresh, mode.acc_first || mode.acc_add, mode.hold, pix_sof,
-                      pix_eol, bad};
+  assign acc_new   = mode_q.acc_first ? AccBits'(px_data_q) : acc_in + AccBits'(px_data_q);
+  assign join_pass = {px_data_q, mode_q.refresh ? acc_in : acc_new, acc_new, foff_in,
+                      mode_q.mean, mode_q.refresh, mode_q.acc_first || mode_q.acc_add,
+                      mode_q.hold, px_sof_q, px_eol_q, bad};
 
   if (MethodSel == MethodTcOffset) begin : gen_tc_offset
     // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
@@ -811,7 +830,7 @@ module method_ffc_top
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && mean_valid))
         else $error("method_ffc_top: a mean pixel summed that was never counted in");
-      a_flight_room: assert (!(flight_q == '1 && join_take && mode.mean && !mean_valid))
+      a_flight_room: assert (!(flight_q == '1 && join_take && mode_q.mean && !mean_valid))
         else $error("method_ffc_top: more mean pixels in flight than the count holds");
     end
   end
