@@ -237,10 +237,9 @@ module dpc_core
   // The count n (beside the sum's level 1), then floor(n/2), n != 0 and R[n] (level 2),
   // held through level 3: the adder tree of the 8 values has 3 levels, floor(n/2) is added
   // in a fourth stage.
-  logic [3:0]         cnt_d, cnt_q;
-  logic [RecBits-1:0] nb_recip, rec_q [2];
-  logic [3:0]         half_q [2];
-  logic [1:0]         nz_q;
+  logic [3:0]         cnt_d, cnt_q, half2_q, half3_q;
+  logic [RecBits-1:0] nb_recip, rec2_q, rec3_q;
+  logic               nz2_q, nz3_q;
 
   always_comb begin : p_count
     cnt_d = '0;
@@ -266,14 +265,14 @@ module dpc_core
 
   always_ff @(posedge clk_i) begin : p_count_q
     if (en) begin
-      cnt_q     <= cnt_d;
-      rec_q[0]  <= nb_recip;
+      cnt_q   <= cnt_d;
+      rec2_q  <= nb_recip;
       // floor((2S + n) / (2n)) = floor((S + floor(n/2)) / n)
-      half_q[0] <= cnt_q >> 1;
-      nz_q[0]   <= cnt_q != 4'd0;
-      rec_q[1]  <= rec_q[0];
-      half_q[1] <= half_q[0];
-      nz_q[1]   <= nz_q[0];
+      half2_q <= cnt_q >> 1;
+      nz2_q   <= cnt_q != 4'd0;
+      rec3_q  <= rec2_q;
+      half3_q <= half2_q;
+      nz3_q   <= nz2_q;
     end
   end
 
@@ -313,9 +312,9 @@ module dpc_core
 
   always_ff @(posedge clk_i) begin : p_sum
     if (en) begin
-      sum_m     <= s8_sum + NumBits'(half_q[1]);
-      sum_recip <= rec_q[1];
-      sum_ctr   <= {s8_ctr[CtrBits-2 -: 2], nz_q[1], s8_ctr[OutBits:0]};
+      sum_m     <= s8_sum + NumBits'(half3_q);
+      sum_recip <= rec3_q;
+      sum_ctr   <= {s8_ctr[CtrBits-2 -: 2], nz3_q, s8_ctr[OutBits:0]};
     end
   end
 

@@ -235,10 +235,12 @@ module method_ffc_top
   // ---- the pixel stage: the frame's mode and word decided as the pixel enters ----------------
   // A pipeline register after the pixel's input register. A frame's first pixel takes the
   // frame's mode (ffc_ctrl) and word into mode_q / frame_q as it enters, so that every pixel
-  // in this stage finds its frame's in flops: the join below waits on flops only (the valid
-  // flags, the mode, the target), not on the sequencer's decision.
+  // in this stage finds its frame's in flops, and whether it reads s_acc and waits for the
+  // target is decided as it enters: the join below waits on flops only (the valid flags,
+  // those two, the target), not on the sequencer's decision.
   logic      en, join_valid, join_take, px_load;
   logic      px_valid_q, px_sof_q, px_eol_q;
+  logic      px_acc_q, px_tgt_q;  // the pixel reads s_acc; it waits for the target
   logic [AdcBits-1:0] px_data_q;
   ffc_mode_t ctrl_mode, mode_q;
   logic [FrameBits-1:0] frame_q;
@@ -276,6 +278,8 @@ module method_ffc_top
       px_data_q <= pix_data;
       px_sof_q  <= pix_sof;
       px_eol_q  <= pix_eol;
+      px_acc_q  <= pix_sof ? ctrl_mode.acc_rd : mode_q.acc_rd;
+      px_tgt_q  <= pix_sof && ctrl_mode.refresh;
     end
   end
 
@@ -290,7 +294,7 @@ module method_ffc_top
   logic signed [VBits-1:0] mean_v;
   logic                  mean_good;
 
-  assign start = px_valid_q && px_sof_q && mode_q.refresh && !started_q && flight_q == '0;
+  assign start = px_valid_q && px_tgt_q && !started_q && flight_q == '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
@@ -330,8 +334,8 @@ module method_ffc_top
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
   logic need_acc, need_target, join_ready;
 
-  assign need_acc    = mode_q.acc_rd;
-  assign need_target = px_sof_q && mode_q.refresh;
+  assign need_acc    = px_acc_q;
+  assign need_target = px_tgt_q;
   assign join_valid  = px_valid_q && coef_valid && foff_valid && (!need_acc || acc_valid)
                        && (!need_target || (started_q && target_valid));
   assign join_take   = join_valid && join_ready;
