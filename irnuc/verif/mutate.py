@@ -305,6 +305,8 @@ CATALOGUE: tuple[Mutant, ...] = (
        "a bad pixel without good neighbours is replaced by 0"),
     _m("dpc_recip_8_as_7", "dpc_core.sv", "4'd8:    nb_recip = RecBits'(dpc_recip(OutBits, 8));",
        "4'd8:    nb_recip = RecBits'(dpc_recip(OutBits, 7));", "n = 8 divides by 7"),
+    _m("dpc_recip_early", "dpc_core.sv", "sum_recip <= rec3_q;", "sum_recip <= rec2_q;",
+       "R[n] taken one stage early, beside the next item's sum"),
     # ---- irnuc_dsp_mul, the multipliers' registers (behaviour of the DSP blocks) ----------
     _m("dsp_no_input_reg", "irnuc_dsp_mul.sv", "      p_q <= a_q * b_q;",
        "      p_q <= a_i * b_i;", "the product skips the DSP's input register (one stage "
@@ -537,6 +539,9 @@ CATALOGUE: tuple[Mutant, ...] = (
         "assign acc_new   = mode_q.acc_first ? AccBits'(px_data_q) : acc_in + AccBits'(px_data_q);",
         "assign acc_new   = acc_in + AccBits'(px_data_q);",
         "a run's first frame adds to a stale accumulator", _FFC),
+    _ms("ft_refresh_no_wait", "method_ffc_top.sv",
+        "px_tgt_q  <= pix_sof && ctrl_mode.refresh;", "px_tgt_q  <= 1'b0;",
+        "a refresh frame's first pixel does not wait for the target", _FFC),
     _ms("ft_fork_forgets_sent", "method_ffc_top.sv",
         "sent_q <= sent_q | (dest_valid & dest_ready);", "sent_q <= sent_q;",
         "the output fork sends an item again to a stream that took it", _FFC),
