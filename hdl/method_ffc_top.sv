@@ -233,20 +233,21 @@ module method_ffc_top
   );
 
   // ---- the pixel stage: the frame's mode and word decided as the pixel enters ----------------
-  // A pipeline register after the pixel's input register. A frame's first pixel takes the
-  // frame's mode (ffc_ctrl) and word into mode_q / frame_q as it enters, so that every pixel
-  // in this stage finds its frame's in flops, and whether it reads s_acc and waits for the
-  // target is decided as it enters: the join below waits on flops only (the valid flags,
-  // those two, the target), not on the sequencer's decision.
-  logic      en, join_valid, join_take, px_load;
-  logic      px_valid_q, px_sof_q, px_eol_q;
-  logic      px_acc_q, px_tgt_q;  // the pixel reads s_acc; it waits for the target
-  logic [AdcBits-1:0] px_data_q;
-  ffc_mode_t ctrl_mode, mode_q;
-  logic [FrameBits-1:0] frame_q;
+  // A second spill register after the pixel's input register. As a pixel enters it, it takes
+  // its frame's mode and word (a frame's first pixel from ffc_ctrl and s_pix_frame_i, which
+  // are then kept in mode_q / frame_q for the frame's other pixels) and whether it reads
+  // s_acc and waits for the target. The join below then waits on flops only (the valid
+  // flags, the pixel's mode and its wait, the target), and the pixel's input register moves on this register's
+  // ready (a flop), not on the join.
+  logic      en, join_valid, join_take;
+  ffc_mode_t ctrl_mode, mode_q, mode_e;
+  logic [FrameBits-1:0] frame_q, frame_e;
+  logic      tgt_e, px_enter;
 
-  assign px_load   = !px_valid_q || join_take;
-  assign pix_ready = px_load;
+  assign px_enter = pix_valid && pix_ready;
+  assign mode_e   = pix_sof ? ctrl_mode : mode_q;
+  assign frame_e  = pix_sof ? pix_frame : frame_q;
+  assign tgt_e    = pix_sof && ctrl_mode.refresh;
 
   ffc_ctrl #(
     .FfcFrames(FfcFrames),
@@ -255,33 +256,35 @@ module method_ffc_top
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .shutter_i(pix_shutter),
-    .take_i   (px_load && pix_valid && pix_sof),
+    .take_i   (px_enter && pix_sof),
     .mode_o   (ctrl_mode)
   );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_px_valid
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_frame
     if (!rst_ni) begin
-      px_valid_q <= 1'b0;
-      frame_q    <= '0;
-      mode_q     <= '0;
-    end else if (px_load) begin
-      px_valid_q <= pix_valid;
-      if (pix_valid && pix_sof) begin
-        frame_q <= pix_frame;
-        mode_q  <= ctrl_mode;
-      end
+      frame_q <= '0;
+      mode_q  <= '0;
+    end else if (px_enter && pix_sof) begin
+      frame_q <= pix_frame;
+      mode_q  <= ctrl_mode;
     end
   end
 
-  always_ff @(posedge clk_i) begin : p_px
-    if (px_load) begin
-      px_data_q <= pix_data;
-      px_sof_q  <= pix_sof;
-      px_eol_q  <= pix_eol;
-      px_acc_q  <= pix_sof ? ctrl_mode.acc_rd : mode_q.acc_rd;
-      px_tgt_q  <= pix_sof && ctrl_mode.refresh;
-    end
-  end
+  logic                 px_valid, px_sof, px_eol, px_tgt;
+  logic [AdcBits-1:0]   px_data;
+  ffc_mode_t            px_mode;
+  logic [FrameBits-1:0] px_frame;
+
+  irnuc_spill_register #(.DataBits(FrameBits + $bits(ffc_mode_t) + AdcBits + 3)) u_px (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(pix_valid),
+    .ready_o(pix_ready),
+    .data_i ({frame_e, mode_e, tgt_e, pix_sof, pix_eol, pix_data}),
+    .valid_o(px_valid),
+    .ready_i(join_take),
+    .data_o ({px_frame, px_mode, px_tgt, px_sof, px_eol, px_data})
+  );
 
   // The division starts when a refresh frame's first pixel waits and every pixel of the
   // mean frame has been summed (none in flight between the join and ffc_mean).
@@ -294,17 +297,17 @@ module method_ffc_top
   logic signed [VBits-1:0] mean_v;
   logic                  mean_good;
 
-  assign start = px_valid_q && px_tgt_q && !started_q && flight_q == '0;
+  assign start = px_valid && px_tgt && !started_q && flight_q == '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
       flight_q  <= '0;
       started_q <= 1'b0;
     end else begin
-      flight_q <= flight_q + FlightBits'(join_take && mode_q.mean) - FlightBits'(mean_valid);
+      flight_q <= flight_q + FlightBits'(join_take && px_mode.mean) - FlightBits'(mean_valid);
       if (start) begin
         started_q <= 1'b1;
-      end else if (join_take && px_sof_q) begin
+      end else if (join_take && px_sof) begin
         started_q <= 1'b0;
       end
     end
@@ -334,9 +337,9 @@ module method_ffc_top
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
   logic need_acc, need_target, join_ready;
 
-  assign need_acc    = px_acc_q;
-  assign need_target = px_tgt_q;
-  assign join_valid  = px_valid_q && coef_valid && foff_valid && (!need_acc || acc_valid)
+  assign need_acc    = px_mode.acc_rd;
+  assign need_target = px_tgt;
+  assign join_valid  = px_valid && coef_valid && foff_valid && (!need_acc || acc_valid)
                        && (!need_target || (started_q && target_valid));
   assign join_take   = join_valid && join_ready;
   assign coef_ready  = join_take;
@@ -345,7 +348,7 @@ module method_ffc_top
 
   logic [FrameBits-1:0] frame;
 
-  assign frame = frame_q;
+  assign frame = px_frame;
 
   // ---- the front: the frame's coefficients of the pixel ----------------------------------------
   // The pixel's side band: {x, the accumulator core's input (acc_new, or the read
@@ -361,10 +364,10 @@ module method_ffc_top
   logic [QuadBits-1:0]   f_quad;
   logic                  bad;
 
-  assign acc_new   = mode_q.acc_first ? AccBits'(px_data_q) : acc_in + AccBits'(px_data_q);
-  assign join_pass = {px_data_q, mode_q.refresh ? acc_in : acc_new, acc_new, foff_in,
-                      mode_q.mean, mode_q.refresh, mode_q.acc_first || mode_q.acc_add,
-                      mode_q.hold, px_sof_q, px_eol_q, bad};
+  assign acc_new   = px_mode.acc_first ? AccBits'(px_data) : acc_in + AccBits'(px_data);
+  assign join_pass = {px_data, px_mode.refresh ? acc_in : acc_new, acc_new, foff_in,
+                      px_mode.mean, px_mode.refresh, px_mode.acc_first || px_mode.acc_add,
+                      px_mode.hold, px_sof, px_eol, bad};
 
   if (MethodSel == MethodTcOffset) begin : gen_tc_offset
     // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
@@ -834,7 +837,7 @@ module method_ffc_top
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && mean_valid))
         else $error("method_ffc_top: a mean pixel summed that was never counted in");
-      a_flight_room: assert (!(flight_q == '1 && join_take && mode_q.mean && !mean_valid))
+      a_flight_room: assert (!(flight_q == '1 && join_take && px_mode.mean && !mean_valid))
         else $error("method_ffc_top: more mean pixels in flight than the count holds");
     end
   end
