@@ -14,9 +14,10 @@
 // item", a flop: no path runs from m_ready_i, s_valid_i or the frame size to s_ready_o):
 //   u_in     input register (irnuc_spill_register)
 //   window   the item enters: line buffer word read two items ahead, written one item late
-//   mask     the in-frame good neighbours, floor(n/2) and R[n], registered
-//   u_sum    masked neighbour values and floor(n/2) summed, 4 stages (irnuc_add_tree):
-//            M = S + floor(n/2); n and its reciprocal R[n] travel along
+//   mask     the masked in-frame good neighbours and their good flags, registered
+//   u_sum    the 8 masked values summed, 3 stages (irnuc_add_tree), beside them the count
+//            n (stage 1), floor(n/2) and R[n] (stage 2); then M = S + floor(n/2) (stage 4),
+//            n != 0 and R[n] along
 //   u_mul    M * R[n] as DSP-sized partial products, the DSPs' input and output registers
 //            (irnuc_mul_parts, two stages)
 //   u_prod   their sum, clog2(parts) stages; mean = (M * R[n]) >> K
@@ -189,52 +190,33 @@ module dpc_core
   end
 
   // ---- neighbours: in-frame good ones, their count n and sum S --------------------------
-  logic [8:0][NumBits-1:0] nb_leaves;  // 8 masked neighbours and floor(n/2)
-  logic [3:0]              nb_count;
-  logic [RecBits-1:0]      nb_recip;
+  // The mask stage registers the 8 masked values and the 8 good flags; the count n, floor(n/2)
+  // and R[n] are taken from the registered flags beside the sum's first levels (a popcount
+  // and a table of the count would otherwise sit between the window and one register).
+  logic [7:0][NumBits-1:0] nb_leaves;  // the 8 masked neighbours
+  logic [7:0]              nb_good;
 
   always_comb begin : p_neighbours
-    logic in_frame, good;
+    logic in_frame;
     int unsigned k;
-    nb_count = '0;
     k = 0;
     for (int r = 0; r < 3; r++) begin
       for (int c = 0; c < 3; c++) begin
         if (!(r == 1 && c == 1)) begin
           in_frame = !((r == 0 && win_top) || (r == 2 && win_bottom) ||
                        (c == 0 && win_left) || (c == 2 && win_right));
-          good     = in_frame && !win_q[r][c][OutBits];
-          nb_leaves[k] = good ? NumBits'(win_q[r][c][OutBits-1:0]) : '0;
-          nb_count = nb_count + 4'(good);
+          nb_good[k]   = in_frame && !win_q[r][c][OutBits];
+          nb_leaves[k] = nb_good[k] ? NumBits'(win_q[r][c][OutBits-1:0]) : '0;
           k++;
         end
       end
     end
-    // floor((2S + n) / (2n)) = floor((S + floor(n/2)) / n)
-    nb_leaves[8] = NumBits'(nb_count >> 1);
   end
 
-  // R[n] from irnuc_pkg::dpc_recip (constant calls: a 9-entry table).
-  always_comb begin : p_recip
-    unique case (nb_count)
-      4'd1:    nb_recip = RecBits'(dpc_recip(OutBits, 1));
-      4'd2:    nb_recip = RecBits'(dpc_recip(OutBits, 2));
-      4'd3:    nb_recip = RecBits'(dpc_recip(OutBits, 3));
-      4'd4:    nb_recip = RecBits'(dpc_recip(OutBits, 4));
-      4'd5:    nb_recip = RecBits'(dpc_recip(OutBits, 5));
-      4'd6:    nb_recip = RecBits'(dpc_recip(OutBits, 6));
-      4'd7:    nb_recip = RecBits'(dpc_recip(OutBits, 7));
-      4'd8:    nb_recip = RecBits'(dpc_recip(OutBits, 8));
-      default: nb_recip = '0;  // n = 0: the centre passes through
-    endcase
-  end
-
-  // The masked neighbours, floor(n/2) and R[n] are registered before the sum: the mask,
-  // the count and the table are one stage, the adders the next ones.
   logic                    mask_valid_q;
-  logic [8:0][NumBits-1:0] mask_leaves_q;
-  logic [RecBits-1:0]      mask_recip_q;
-  logic [CtrBits-1:0]      mask_ctr_q;
+  logic [7:0][NumBits-1:0] mask_leaves_q;
+  logic [7:0]              mask_good_q;
+  logic [CtrBits-2:0]      mask_ctr_q;  // {sof, eol, centre bad, centre value}
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_mask_valid
     if (!rst_ni) begin
@@ -247,31 +229,94 @@ module dpc_core
   always_ff @(posedge clk_i) begin : p_mask
     if (en) begin
       mask_leaves_q <= nb_leaves;
-      mask_recip_q  <= nb_recip;
-      mask_ctr_q    <= {win_sof, win_eol, nb_count != 4'd0, win_q[1][1]};
+      mask_good_q   <= nb_good;
+      mask_ctr_q    <= {win_sof, win_eol, win_q[1][1]};
     end
   end
 
-  logic               sum_valid;
-  logic [NumBits-1:0] sum_m;
-  logic [RecBits-1:0] sum_recip;
-  logic [CtrBits-1:0] sum_ctr;
+  // The count n (beside the sum's level 1), then floor(n/2), n != 0 and R[n] (level 2),
+  // held through level 3: the adder tree of the 8 values has 3 levels, floor(n/2) is added
+  // in a fourth stage.
+  logic [3:0]         cnt_d, cnt_q, half2_q, half3_q;
+  logic [RecBits-1:0] nb_recip, rec2_q, rec3_q;
+  logic               nz2_q, nz3_q;
+
+  always_comb begin : p_count
+    cnt_d = '0;
+    for (int k = 0; k < 8; k++) begin
+      cnt_d = cnt_d + 4'(mask_good_q[k]);
+    end
+  end
+
+  // R[n] from irnuc_pkg::dpc_recip (constant calls: a 9-entry table).
+  always_comb begin : p_recip
+    unique case (cnt_q)
+      4'd1:    nb_recip = RecBits'(dpc_recip(OutBits, 1));
+      4'd2:    nb_recip = RecBits'(dpc_recip(OutBits, 2));
+      4'd3:    nb_recip = RecBits'(dpc_recip(OutBits, 3));
+      4'd4:    nb_recip = RecBits'(dpc_recip(OutBits, 4));
+      4'd5:    nb_recip = RecBits'(dpc_recip(OutBits, 5));
+      4'd6:    nb_recip = RecBits'(dpc_recip(OutBits, 6));
+      4'd7:    nb_recip = RecBits'(dpc_recip(OutBits, 7));
+      4'd8:    nb_recip = RecBits'(dpc_recip(OutBits, 8));
+      default: nb_recip = '0;  // n = 0: the centre passes through
+    endcase
+  end
+
+  always_ff @(posedge clk_i) begin : p_count_q
+    if (en) begin
+      cnt_q   <= cnt_d;
+      rec2_q  <= nb_recip;
+      // floor((2S + n) / (2n)) = floor((S + floor(n/2)) / n)
+      half2_q <= cnt_q >> 1;
+      nz2_q   <= cnt_q != 4'd0;
+      rec3_q  <= rec2_q;
+      half3_q <= half2_q;
+      nz3_q   <= nz2_q;
+    end
+  end
+
+  logic               s8_valid;
+  logic [NumBits-1:0] s8_sum;
+  logic [CtrBits-2:0] s8_ctr;
 
   irnuc_add_tree #(
-    .Leaves  (9),
+    .Leaves  (8),
     .Width   (NumBits),
-    .SideBits(RecBits + CtrBits)
+    .SideBits(CtrBits - 1)
   ) u_sum (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .en_i    (en),
     .valid_i (mask_valid_q),
     .leaves_i(mask_leaves_q),
-    .side_i  ({mask_recip_q, mask_ctr_q}),
-    .valid_o (sum_valid),
-    .sum_o   (sum_m),
-    .side_o  ({sum_recip, sum_ctr})
+    .side_i  (mask_ctr_q),
+    .valid_o (s8_valid),
+    .sum_o   (s8_sum),
+    .side_o  (s8_ctr)
   );
+
+  // M = S + floor(n/2), with R[n] and {sof, eol, n != 0, centre bad, centre value}.
+  logic               sum_valid;
+  logic [NumBits-1:0] sum_m;
+  logic [RecBits-1:0] sum_recip;
+  logic [CtrBits-1:0] sum_ctr;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_sum_valid
+    if (!rst_ni) begin
+      sum_valid <= 1'b0;
+    end else if (en) begin
+      sum_valid <= s8_valid;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_sum
+    if (en) begin
+      sum_m     <= s8_sum + NumBits'(half3_q);
+      sum_recip <= rec3_q;
+      sum_ctr   <= {s8_ctr[CtrBits-2 -: 2], nz3_q, s8_ctr[OutBits:0]};
+    end
+  end
 
   // ---- division by n: M * R[n], then >> K ------------------------------------------------
   logic                          mul_valid;

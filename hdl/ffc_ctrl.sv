@@ -9,7 +9,9 @@
 //   shutter with hold      hold, once an open frame has been output since reset
 //
 // mode_o is combinational from shutter_i and the state (the join uses it for the frame's
-// first pixel); the state moves on take_i.
+// first pixel); the state moves on take_i. The count's comparisons are kept as flags of
+// their own, set from the next count, so that mode_o is one LUT of shutter_i and flops (the
+// join's decision and every input register's enable hang on it).
 module ffc_ctrl
   import irnuc_stage_pkg::*;
 #(
@@ -35,16 +37,22 @@ module ffc_ctrl
   logic [CountBits-1:0] count_q;
   logic                 pending_q;  // a mean pass ended: the next frame refreshes
   logic                 open_q;     // an open frame was output since reset
+  // What a shutter frame would do at the present count: count = 0, 0 < count < N,
+  // count = N - 1.
+  logic                 first_q, add_q, last_q;
 
-  logic acc;
-  assign acc = shutter_i && count_q < CountBits'(FfcFrames);
+  logic [CountBits-1:0] count_d;
+  logic                 acc;
+
+  assign acc     = shutter_i && (first_q || add_q);
+  assign count_d = !shutter_i ? '0 : (acc ? count_q + CountBits'(1) : count_q);
 
   always_comb begin : p_mode
     mode_o           = '0;
-    mode_o.acc_first = acc && count_q == '0;
-    mode_o.acc_add   = acc && count_q != '0;
+    mode_o.acc_first = shutter_i && first_q;
+    mode_o.acc_add   = shutter_i && add_q;
     mode_o.acc_rd    = mode_o.acc_add || pending_q;
-    mode_o.mean      = acc && count_q == CountBits'(FfcFrames - 1);
+    mode_o.mean      = shutter_i && last_q;
     mode_o.refresh   = pending_q;
     mode_o.hold      = Hold && shutter_i && open_q;
   end
@@ -54,10 +62,16 @@ module ffc_ctrl
       count_q   <= '0;
       pending_q <= 1'b0;
       open_q    <= 1'b0;
+      first_q   <= 1'b1;
+      add_q     <= 1'b0;
+      last_q    <= (FfcFrames == 1);
     end else if (take_i) begin
-      count_q   <= !shutter_i ? '0 : (acc ? count_q + CountBits'(1) : count_q);
+      count_q   <= count_d;
       pending_q <= mode_o.mean;
       open_q    <= open_q || !shutter_i;
+      first_q   <= count_d == '0;
+      add_q     <= count_d != '0 && count_d < CountBits'(FfcFrames);
+      last_q    <= count_d == CountBits'(FfcFrames - 1);
     end
   end
 

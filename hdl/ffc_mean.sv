@@ -63,10 +63,13 @@ module ffc_mean #(
   logic                 busy_q, valid_q, done_q;
   logic [TBits-1:0]     target_q;
   logic [DenBits:0]     rem_shift;
+  logic [DenBits+1:0]   rem_diff;
   logic                 fits;
 
+  // One subtraction gives both the comparison (its borrow) and the new remainder.
   assign rem_shift = {rem_q, num_q[NumBits-1]};
-  assign fits      = rem_shift >= {1'b0, den_q};
+  assign rem_diff  = {1'b0, rem_shift} - {2'b0, den_q};
+  assign fits      = !rem_diff[DenBits+1];
 
   // busy: the division; done: one cycle more, the clamp into target_q; then valid.
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_ctrl
@@ -96,7 +99,7 @@ module ffc_mean #(
       count_q <= CountBits'(NumBits);
       zero_q  <= sum_q < 0 || n_q == '0;
     end else if (busy_q) begin
-      rem_q   <= fits ? DenBits'(rem_shift - {1'b0, den_q}) : DenBits'(rem_shift);
+      rem_q   <= fits ? rem_diff[DenBits-1:0] : rem_shift[DenBits-1:0];
       num_q   <= {num_q[NumBits-2:0], fits};
       count_q <= count_q - CountBits'(1);
     end
@@ -105,9 +108,17 @@ module ffc_mean #(
   localparam logic [TBits-1:0] TMax = '1;
 
   // num_q holds the quotient when the division is done: clamped into the target register.
+  // Above TMax = 2^TBits - 1 means a bit above the target's set (an OR, no comparator).
+  logic over;
+  if (NumBits > TBits) begin : gen_over
+    assign over = |num_q[NumBits-1:TBits];
+  end else begin : gen_no_over
+    assign over = 1'b0;
+  end
+
   always_ff @(posedge clk_i) begin : p_target
     if (done_q) begin
-      target_q <= zero_q ? '0 : (num_q > NumBits'(TMax)) ? TMax : num_q[TBits-1:0];
+      target_q <= zero_q ? '0 : over ? TMax : num_q[TBits-1:0];
     end
   end
 

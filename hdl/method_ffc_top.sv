@@ -232,9 +232,22 @@ module method_ffc_top
     .data_o (acc_in)
   );
 
-  // ---- the frame's mode, the target -----------------------------------------------------
+  // ---- the pixel stage: the frame's mode and word decided as the pixel enters ----------------
+  // A second spill register after the pixel's input register. As a pixel enters it, it takes
+  // its frame's mode and word (a frame's first pixel from ffc_ctrl and s_pix_frame_i, which
+  // are then kept in mode_q / frame_q for the frame's other pixels) and whether it reads
+  // s_acc and waits for the target. The join below then waits on flops only (the valid
+  // flags, the pixel's mode and its wait, the target), and the pixel's input register moves on this register's
+  // ready (a flop), not on the join.
   logic      en, join_valid, join_take;
-  ffc_mode_t ctrl_mode, mode_q, mode;
+  ffc_mode_t ctrl_mode, mode_q, mode_e;
+  logic [FrameBits-1:0] frame_q, frame_e;
+  logic      tgt_e, px_enter;
+
+  assign px_enter = pix_valid && pix_ready;
+  assign mode_e   = pix_sof ? ctrl_mode : mode_q;
+  assign frame_e  = pix_sof ? pix_frame : frame_q;
+  assign tgt_e    = pix_sof && ctrl_mode.refresh;
 
   ffc_ctrl #(
     .FfcFrames(FfcFrames),
@@ -243,11 +256,35 @@ module method_ffc_top
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .shutter_i(pix_shutter),
-    .take_i   (join_take && pix_sof),
+    .take_i   (px_enter && pix_sof),
     .mode_o   (ctrl_mode)
   );
 
-  assign mode = pix_sof ? ctrl_mode : mode_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_frame
+    if (!rst_ni) begin
+      frame_q <= '0;
+      mode_q  <= '0;
+    end else if (px_enter && pix_sof) begin
+      frame_q <= pix_frame;
+      mode_q  <= ctrl_mode;
+    end
+  end
+
+  logic                 px_valid, px_sof, px_eol, px_tgt;
+  logic [AdcBits-1:0]   px_data;
+  ffc_mode_t            px_mode;
+  logic [FrameBits-1:0] px_frame;
+
+  irnuc_spill_register #(.DataBits(FrameBits + $bits(ffc_mode_t) + AdcBits + 3)) u_px (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(pix_valid),
+    .ready_o(pix_ready),
+    .data_i ({frame_e, mode_e, tgt_e, pix_sof, pix_eol, pix_data}),
+    .valid_o(px_valid),
+    .ready_i(join_take),
+    .data_o ({px_frame, px_mode, px_tgt, px_sof, px_eol, px_data})
+  );
 
   // The division starts when a refresh frame's first pixel waits and every pixel of the
   // mean frame has been summed (none in flight between the join and ffc_mean).
@@ -260,17 +297,17 @@ module method_ffc_top
   logic signed [VBits-1:0] mean_v;
   logic                  mean_good;
 
-  assign start = pix_valid && pix_sof && ctrl_mode.refresh && !started_q && flight_q == '0;
+  assign start = px_valid && px_tgt && !started_q && flight_q == '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
       flight_q  <= '0;
       started_q <= 1'b0;
     end else begin
-      flight_q <= flight_q + FlightBits'(join_take && mode.mean) - FlightBits'(mean_valid);
+      flight_q <= flight_q + FlightBits'(join_take && px_mode.mean) - FlightBits'(mean_valid);
       if (start) begin
         started_q <= 1'b1;
-      end else if (join_take && pix_sof) begin
+      end else if (join_take && px_sof) begin
         started_q <= 1'b0;
       end
     end
@@ -300,29 +337,18 @@ module method_ffc_top
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
   logic need_acc, need_target, join_ready;
 
-  assign need_acc    = mode.acc_rd;
-  assign need_target = pix_sof && ctrl_mode.refresh;
-  assign join_valid  = pix_valid && coef_valid && foff_valid && (!need_acc || acc_valid)
+  assign need_acc    = px_mode.acc_rd;
+  assign need_target = px_tgt;
+  assign join_valid  = px_valid && coef_valid && foff_valid && (!need_acc || acc_valid)
                        && (!need_target || (started_q && target_valid));
   assign join_take   = join_valid && join_ready;
-  assign pix_ready   = join_take;
   assign coef_ready  = join_take;
   assign foff_ready  = join_take;
   assign acc_ready   = join_take && need_acc;
 
-  logic [FrameBits-1:0] frame_q, frame;
+  logic [FrameBits-1:0] frame;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_frame
-    if (!rst_ni) begin
-      frame_q <= '0;
-      mode_q  <= '0;
-    end else if (join_take && pix_sof) begin
-      frame_q <= pix_frame;
-      mode_q  <= ctrl_mode;
-    end
-  end
-
-  assign frame = pix_sof ? pix_frame : frame_q;
+  assign frame = px_frame;
 
   // ---- the front: the frame's coefficients of the pixel ----------------------------------------
   // The pixel's side band: {x, the accumulator core's input (acc_new, or the read
@@ -338,10 +364,10 @@ module method_ffc_top
   logic [QuadBits-1:0]   f_quad;
   logic                  bad;
 
-  assign acc_new   = mode.acc_first ? AccBits'(pix_data) : acc_in + AccBits'(pix_data);
-  assign join_pass = {pix_data, mode.refresh ? acc_in : acc_new, acc_new, foff_in, mode.mean,
-                      mode.refresh, mode.acc_first || mode.acc_add, mode.hold, pix_sof,
-                      pix_eol, bad};
+  assign acc_new   = px_mode.acc_first ? AccBits'(px_data) : acc_in + AccBits'(px_data);
+  assign join_pass = {px_data, px_mode.refresh ? acc_in : acc_new, acc_new, foff_in,
+                      px_mode.mean, px_mode.refresh, px_mode.acc_first || px_mode.acc_add,
+                      px_mode.hold, px_sof, px_eol, bad};
 
   if (MethodSel == MethodTcOffset) begin : gen_tc_offset
     // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
@@ -811,7 +837,7 @@ module method_ffc_top
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && mean_valid))
         else $error("method_ffc_top: a mean pixel summed that was never counted in");
-      a_flight_room: assert (!(flight_q == '1 && join_take && mode.mean && !mean_valid))
+      a_flight_room: assert (!(flight_q == '1 && join_take && px_mode.mean && !mean_valid))
         else $error("method_ffc_top: more mean pixels in flight than the count holds");
     end
   end
