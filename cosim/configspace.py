@@ -73,6 +73,16 @@ def _dpc_parts(c: PipelineConfig) -> int:
     return rtl_spec.mul_parts(c.out_bits + 3, rtl_spec.dpc_recip_shift(c.out_bits) + 1)
 
 
+def _tree_passes(leaves: int) -> bool:
+    """Whether an irnuc_add_tree of ``leaves`` leaves has a level with an odd count (a node
+    that passes its one input on)."""
+    while leaves > 1:
+        if leaves % 2:
+            return True
+        leaves = (leaves + 1) // 2
+    return False
+
+
 @dataclass(frozen=True)
 class Branch:
     """One parameter-dependent branch of one module.
@@ -189,7 +199,11 @@ BRANCHES: tuple[Branch, ...] = (
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_from_level", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node/gen_add", _ALWAYS),
-    _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node/gen_pass", _ALWAYS),
+    # The trees: nuc_core's partial products and offset, dpc_core's 8 neighbours (never a
+    # pass) and its product's partial products.
+    _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node/gen_pass",
+         lambda c: _tree_passes(rtl_spec.mul_parts(c.adc_bits, c.gain_bits) + 1)
+         or _tree_passes(_dpc_parts(c))),
     # ---- dpc_ctrl: upper frame-size check unless the port is all ones at the maximum -----
     _gen("dpc_ctrl", "gen_w_full", lambda c: _full_port(c.max_width)),
     _gen("dpc_ctrl", "gen_w_check", lambda c: not _full_port(c.max_width)),

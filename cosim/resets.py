@@ -67,7 +67,12 @@ ALLOWED: dict[str, dict[str, str]] = {
         "u_nuc.rnd_user_q": "frame markers of the rounded value; rnd_valid_q resets",
         "u_dpc.mask_ctr_q": "DPC mask stage data; mask_valid_q resets",
         "u_dpc.mask_leaves_q": "DPC mask stage data; mask_valid_q resets",
-        "u_dpc.mask_recip_q": "DPC mask stage data; mask_valid_q resets",
+        "u_dpc.mask_good_q": "DPC mask stage data; mask_valid_q resets",
+        **{f"u_dpc.{r}": ("DPC count n, floor(n/2), n != 0 and R[n] beside the neighbour "
+                          "sum's levels, whose valid_q reset")
+           for r in ("cnt_q", "half2_q", "half3_q", "nz2_q", "nz3_q", "rec2_q", "rec3_q")},
+        **{f"u_dpc.{r}": "DPC sum stage data (M, R[n], side band); sum_valid resets"
+           for r in ("sum_m", "sum_recip", "sum_ctr")},
         "u_dpc.win_q": ("3 x 3 window pixels: the window's valid and position flags reset "
                         "and mask every value not of the current frame"),
         "u_dpc.u_lb.gen_inferred.mem_q": _LB,
