@@ -9,6 +9,7 @@ never rebuilt. A file lock makes parallel workers share a build instead of racin
 from __future__ import annotations
 
 import ast
+import importlib.util
 import inspect
 import json
 import os
@@ -90,6 +91,12 @@ def build_digest(top: str, params: Mapping[str, int], options: Sequence[str],
                          "verilator": verilator_version()})
 
 
+def _cocotb_dir() -> str:
+    """Where the cocotb package the builds link against is installed (not imported)."""
+    spec = importlib.util.find_spec("cocotb")
+    return str(Path(spec.origin).parent) if spec and spec.origin else ""
+
+
 def cached_build(name: str, stamp_info: Mapping[str, object], make) -> Path:
     """Run ``make(build_dir)`` once per ``name`` (under a lock); return the folder.
 
@@ -140,8 +147,11 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
     cov = list(COVERAGE_ARGS) if coverage else []
     options = [*BUILD_ARGS, *trace, *cov, *extra_args,
                *(f"-D{k}={v}" for k, v in defines.items())]
+    # The executable links cocotb's libraries by their path (RUNPATH): a build made by
+    # another environment's cocotb would not load once that environment is gone.
     key = build_digest(top, params, [*options, f"waves={waves_suffix() if waves else ''}",
-                                     f"visibility={visibility}"], hdl_dir=hdl_dir)
+                                     f"visibility={visibility}", f"cocotb={_cocotb_dir()}"],
+                       hdl_dir=hdl_dir)
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"

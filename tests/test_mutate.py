@@ -62,13 +62,12 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     (tmp_path / "cache").mkdir()
     (tmp_path / "cache" / "sim_build").symlink_to(builds, target_is_directory=True)
     assert mutate.cached_summary() is None
-    # Killed: the spill register at half rate in the two-point top (no data lost: only the
-    # throughput checks see it). Survived and equivalent: a comment changed in the small
-    # interp_weight suite (one without an argument, one with), whose builds and runs take
-    # seconds where the two-point suite takes tens.
-    picked = mutate.catalogue(["spill_half_rate"])
-    iw = {k: getattr(mutate.catalogue(["iw_select_strict"])[0], k) for k in ("top", "suite",
-                                                                            "config")}
+    # All three in the small interp_weight suite, whose builds and runs take seconds where
+    # the two-point suite takes tens (its mutants share the code path: the suite is a
+    # field of the mutant). Killed: the weight's quotient bits one place too high.
+    # Survived and equivalent: a comment changed (one without an argument, one with).
+    picked = mutate.catalogue(["iw_bit_position"])
+    iw = {k: getattr(picked[0], k) for k in ("top", "suite", "config")}
     first_line = (HDL_DIR / "interp_weight.sv").read_text().splitlines()[0]
     blind = mutate.Mutant("comment_only", "interp_weight.sv", first_line,
                           first_line + " (changed)", "a comment changed", **iw)
@@ -82,16 +81,16 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     assert by_id["comment_only"]["status"] == "survived" and s["survivors"] == ["comment_only"]
     assert not s["complete"]
     s = mutate.summarize([r for r in s["mutants"] if r["id"] != "comment_only"], 2)
-    assert by_id["spill_half_rate"]["status"] == "killed"
-    assert by_id["spill_half_rate"]["killed_by"]
+    assert by_id["iw_bit_position"]["status"] == "killed"
+    assert by_id["iw_bit_position"]["killed_by"]
     assert by_id["comment_argued"]["status"] == "equivalent"
     assert by_id["comment_argued"]["equivalent"] == "a comment: the design is the same"
     assert (s["killed"], s["survived"], s["equivalent"], s["total"]) == (1, 0, 1, 2)
     assert s["score"] == 1.0
     cached = mutate.cached_summary()
     assert cached is not None and cached["rtl_digest"] == mutate.rtl_digest()
-    assert cached["killing_tests"] == {"spill_half_rate":
-                                       by_id["spill_half_rate"]["killed_by"]}
+    assert cached["killing_tests"] == {"iw_bit_position":
+                                       by_id["iw_bit_position"]["killed_by"]}
     # A second run comes from the cache (the baseline's pass too: its run would leave a
     # fresh results file).
     baseline_xml = next((tmp_path / "cache" / "mutate" / "baseline").glob("*.xml"))
@@ -104,7 +103,7 @@ def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
     irnuc = Path(sys.executable).with_name("irnuc")
     env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache")}
     out = tmp_path / "out"
-    proc = subprocess.run([str(irnuc), "mutate", "--only", "spill_half_rate",
+    proc = subprocess.run([str(irnuc), "mutate", "--only", "iw_bit_position",
                            "--no-coverage", "--out", str(out), "-q"],
                           env=env, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr

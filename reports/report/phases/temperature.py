@@ -211,7 +211,8 @@ def _cosim(t: Mapping[str, Any], r: dict[str, Any], fpa_K: tuple[float, float]) 
     except UserError as exc:
         if not cfg.stages:
             raise
-        # The bulk harness of the stage tops is still to come: said, never a pass.
+        # A composition without RTL (piecewise or table_interp with a stage): said, never
+        # a pass.
         return {**head, "pixels_compared": 0, "mismatches": None, "ffc_events": None,
                 "passed": None, "top": None, "seconds": round(time.perf_counter() - t0, 3),
                 "not_run": str(exc)}
