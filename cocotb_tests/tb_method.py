@@ -11,6 +11,7 @@ read back from the DUT and compared with the Python side of the stream layouts
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 
 import cocotb
@@ -184,13 +185,18 @@ async def stream_patterns(dut) -> None:
 async def frame_word_changes(dut) -> None:
     """The frame word (reading, registers, weight) changes at every frame boundary, frames
     back to back, down to 1x1 frames far shorter than the pipeline; every pixel but a
-    frame's first carries a random word that must be ignored."""
+    frame's first carries a random word that must be ignored. Then a word that stays:
+    frames of one calibration and one reading back to back."""
     env = await _setup(dut, 2)
     cfg, golden, rng = env.cfg, env.golden, env.rng
     for shape in ((1, 1), (1, 3), (2, 2), (6, 11)):
         frames = _frames(_plans(cfg, rng, [shape] * 6), golden)
         res, _, taken = await run_frames(dut, frames, golden, rng, backpressure="random")
         _check(res, frames, cfg, golden, taken)
+    plans = _plans(cfg, rng, [(6, 11)] * 3, same_coeffs=True)
+    frames = _frames([dataclasses.replace(p, reading=plans[0].reading) for p in plans], golden)
+    res, _, taken = await run_frames(dut, frames, golden, rng, backpressure="random")
+    _check(res, frames, cfg, golden, taken)
 
 
 @cocotb.test()
@@ -201,9 +207,12 @@ async def frame_size_changes(dut) -> None:
     cfg, golden, rng = env.cfg, env.golden, env.rng
     big = [(8, 12), (8, 16), (10, 16), (12, 9), (12, 9)]
     assert all(h * w >= SIZE_CHANGE_MIN_PIXELS for h, w in big)
-    frames = _frames(_plans(cfg, rng, big), golden)
-    res, _, taken = await run_frames(dut, frames, golden, rng, backpressure="random")
-    _check(res, frames, cfg, golden, taken)
+    # Under backpressure, then at full rate: a stall can delay a frame's first pixel (an
+    # idle gap, not a back-to-back change); at full rate every change is back to back.
+    for bp in ("random", 0.0):
+        frames = _frames(_plans(cfg, rng, big), golden)
+        res, _, taken = await run_frames(dut, frames, golden, rng, backpressure=bp)
+        _check(res, frames, cfg, golden, taken)
     for shape in ((1, 7), (7, 1), (1, 1)):
         await ClockCycles(dut.clk_i, 60)  # the previous frame leaves: a new size is safe
         frames = _frames(_plans(cfg, rng, [shape, shape]), golden)

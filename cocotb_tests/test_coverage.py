@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests import tb_dpc, tb_nuc, tb_top
+from irnuc.cocotb_tests import tb_dpc, tb_method, tb_nuc, tb_top
 from irnuc.cocotb_tests.runs import coverage_json, run_module
+from irnuc.cocotb_tests.test_method_dpc_top import CONFIGS as METHOD_CONFIGS
 from irnuc.cocotb_tests.test_nuc_core import _VARIANTS, _config
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
@@ -37,8 +38,10 @@ def test_functional_coverage_complete(variant: str) -> None:
     for top in tops:
         run_module(top, cfg, TB[top])
         files.append(coverage_json(top, cfg, TB[top]))
-    summary = coverage.summarize(coverage.merge(files))
-    label = coverage.config_label(cfg)
+    _assert_closed(coverage.summarize(coverage.merge(files)), coverage.config_label(cfg))
+
+
+def _assert_closed(summary: dict, label: str) -> None:
     assert label in summary["configurations"], f"no coverage exported for {label}"
     c = summary["configurations"][label]
     assert c["total"] > 0
@@ -46,6 +49,18 @@ def test_functional_coverage_complete(variant: str) -> None:
     for p in c["coverpoints"].values():
         for b, reason in p["removed"].items():
             assert reason and b not in p["bins"], (b, reason)
+
+
+@pytest.mark.cosim
+@pytest.mark.parametrize("config", [n for n in METHOD_CONFIGS if not set("+_") & set(n)])
+def test_method_coverage_complete(config: str) -> None:
+    """Every bin of a base method's coverpoints (the method's own and the stream, frame and
+    reset points) is hit by tb_method on method_dpc_top: the run test_method_dpc_top makes,
+    read again (no simulation of its own)."""
+    cfg = METHOD_CONFIGS[config]
+    run_module("method_dpc_top", cfg, tb_method.__name__)
+    files = [coverage_json("method_dpc_top", cfg, tb_method.__name__)]
+    _assert_closed(coverage.summarize(coverage.merge(files)), coverage.config_label(cfg))
 
 
 def _snap(bins: dict[str, int], removed: dict[str, str] | None = None) -> dict:
