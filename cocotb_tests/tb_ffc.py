@@ -20,6 +20,7 @@ from cocotb.triggers import ClockCycles
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
 from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
+from irnuc.cosim import coverage
 from irnuc.cosim.scoreboard import Scoreboard
 from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
 from irnuc.cosim.stream import coef_stream_bits, frame_word_bits
@@ -104,12 +105,19 @@ def _unsigned(a: np.ndarray, bits: int) -> np.ndarray:
     return np.asarray(a, dtype=np.int64) & ((1 << bits) - 1)
 
 
+def _pattern(p: float | str) -> str:
+    """The coverage name of a pause pattern (0: none)."""
+    return p if isinstance(p, str) else ("none" if p == 0 else "random")
+
+
 async def run_sequence(dut, run: FfcRun, golden: PipelineConfig, rng: np.random.Generator,
-                       idle: float | str = 0.0, backpressure: float | str = 0.0
-                       ) -> dict[str, Sink]:
+                       idle: float | str = 0.0, backpressure: float | str = 0.0,
+                       flip_mid_frame: bool = False) -> dict[str, Sink]:
     """Reset the DUT (the golden model's run starts from the sequencer's reset state and
     zero corrections), drive the sequence and check every output stream and the target;
-    return the sinks."""
+    return the sinks. ``flip_mid_frame``: the shutter flag turns over from the middle of
+    each frame of two pixels or more (the frame keeps its first pixel's flag). On a pass
+    the run's coverage is sampled."""
     await reset(dut, 2)
     pix_bus = StreamBus.from_prefix(dut, "s_pix", extra=("frame_width_i", "frame_height_i"))
     cols: dict[str, list[np.ndarray]] = {k: [] for k in pix_bus.names}
@@ -118,7 +126,8 @@ async def run_sequence(dut, run: FfcRun, golden: PipelineConfig, rng: np.random.
         sof, eol = tb_lib.markers(h, w)
         for k, v in (("data", fr.raw.ravel()), ("sof", sof), ("eol", eol),
                      ("frame", np.full(h * w, fr.drive.frame_word, dtype=object)),
-                     ("shutter", np.full(h * w, int(sh))), ("frame_width", np.full(h * w, w)),
+                     ("shutter", _shutter_column(int(sh), h * w, flip_mid_frame)),
+                     ("frame_width", np.full(h * w, w)),
                      ("frame_height", np.full(h * w, h))):
             cols[k].append(np.asarray(v, dtype=object))
     cbits = len(dut.s_foff_data_i)
@@ -166,7 +175,24 @@ async def run_sequence(dut, run: FfcRun, golden: PipelineConfig, rng: np.random.
         assert int(dut.ffc_target_valid_o.value) == 1, "no target after a mean pass"
         assert int(dut.ffc_target_o.value) == run.targets[-1], \
             f"target {int(dut.ffc_target_o.value)}, the golden model's {run.targets[-1]}"
+    if coverage.enabled() and golden == run.frames[0].coeffs.cfg:
+        cov = coverage.model("method_ffc_top", golden)
+        idle_p, bp_p = _pattern(idle), _pattern(backpressure)
+        cov.sample("stream.idle", idle_p)
+        cov.sample("stream.backpressure", bp_p)
+        cov.sample_run(run, "full_rate" if (idle_p, bp_p) == ("none", "none") else
+                       "idle_backpressure" if "none" not in (idle_p, bp_p) else "other")
+        if flip_mid_frame and any(f.raw.size > 1 for f in run.frames):
+            cov.sample("ffc.shutter_mid_frame", "ignored")
+        coverage.export()
     return sinks
+
+
+def _shutter_column(flag: int, pixels: int, flip: bool) -> np.ndarray:
+    col = np.full(pixels, flag)
+    if flip and pixels > 1:
+        col[pixels // 2:] = 1 - flag
+    return col
 
 
 def _n(cfg: PipelineConfig) -> int:
@@ -192,7 +218,8 @@ async def shutter_sequence_patterns(dut) -> None:
     output (a shutter event and the refresh under backpressure), every pattern pair."""
     env = await _setup(dut, 1)
     n = _n(env.cfg)
-    for idle, bp in (("random", "random"), ("bursty", "alternate"), ("none", "bursty")):
+    for idle, bp in (("random", "random"), ("bursty", "alternate"), ("none", "bursty"),
+                     ("alternate", "none")):
         seq = [0] + [1] * n + [0, 1, 0]
         run = _run_of(env.cfg, env.golden, env.rng, seq, (4, 7))
         await run_sequence(dut, run, env.golden, env.rng, idle=idle, backpressure=bp)
@@ -209,6 +236,18 @@ async def refresh_edges(dut) -> None:
         seq = [1] * (n + 2) + [0] + [1] * n + [0, 0]
         run = _run_of(env.cfg, env.golden, env.rng, seq, shape)
         await run_sequence(dut, run, env.golden, env.rng, backpressure="random")
+
+
+@cocotb.test()
+async def shutter_flag_mid_frame(dut) -> None:
+    """The shutter flag turning over in the middle of every frame (an FFC requested, or
+    the shutter opening, mid-frame): each frame keeps the flag of its first pixel, so the
+    run and its refresh start at the next frame."""
+    env = await _setup(dut, 5)
+    n = _n(env.cfg)
+    run = _run_of(env.cfg, env.golden, env.rng, [0] + [1] * n + [0, 0], (4, 6))
+    await run_sequence(dut, run, env.golden, env.rng, backpressure="random",
+                       flip_mid_frame=True)
 
 
 @cocotb.test()

@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests import tb_dpc, tb_method, tb_nuc, tb_top
+from irnuc.cocotb_tests import tb_dpc, tb_ffc, tb_method, tb_nuc, tb_top
 from irnuc.cocotb_tests.runs import coverage_json, run_module
 from irnuc.cocotb_tests.test_method_dpc_top import CONFIGS as METHOD_CONFIGS
+from irnuc.cocotb_tests.test_method_ffc_top import CONFIGS as FFC_CONFIGS
 from irnuc.cocotb_tests.test_nuc_core import _VARIANTS, _config
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline, pipeline_names
@@ -60,6 +61,17 @@ def test_method_coverage_complete(config: str) -> None:
     cfg = METHOD_CONFIGS[config]
     run_module("method_dpc_top", cfg, tb_method.__name__)
     files = [coverage_json("method_dpc_top", cfg, tb_method.__name__)]
+    _assert_closed(coverage.summarize(coverage.merge(files)), coverage.config_label(cfg))
+
+
+@pytest.mark.cosim
+@pytest.mark.parametrize("config", list(FFC_CONFIGS))
+def test_ffc_coverage_complete(config: str) -> None:
+    """Every bin of the FFC sequence (cosim/stage_coverage.py) and the stream points is hit
+    by tb_ffc on method_ffc_top: the run test_method_ffc_top makes, read again."""
+    cfg = FFC_CONFIGS[config]
+    run_module("method_ffc_top", cfg, tb_ffc.__name__)
+    files = [coverage_json("method_ffc_top", cfg, tb_ffc.__name__)]
     _assert_closed(coverage.summarize(coverage.merge(files)), coverage.config_label(cfg))
 
 

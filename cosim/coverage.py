@@ -618,9 +618,11 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     if key not in _MODELS:
         from irnuc.cosim.axis_coverage import AXIS_TOPS, AxisCoverageModel
         from irnuc.cosim.method_coverage import METHOD_TOPS, MethodCoverageModel
+        from irnuc.cosim.stage_coverage import FFC_TOPS, FfcCoverageModel
 
         cls = (MethodCoverageModel if top in METHOD_TOPS else
-               AxisCoverageModel if top in AXIS_TOPS else CoverageModel)
+               AxisCoverageModel if top in AXIS_TOPS else
+               FfcCoverageModel if top in FFC_TOPS else CoverageModel)
         _MODELS[key] = cls(top, cfg)
     return _MODELS[key]
 
