@@ -75,6 +75,29 @@ def test_ffc_coverage_complete(config: str) -> None:
     _assert_closed(coverage.summarize(coverage.merge(files)), coverage.config_label(cfg))
 
 
+def test_ffc_classes_of_a_sequence_by_hand() -> None:
+    """The FFC bins of a golden run of ffc14 (N = 8, hold): two shutter frames first
+    (passed, a short run), an open frame, a full run of 8 (held; the mean pass on its last
+    frame, the refresh on the open frame after it), a short run of 3 (held)."""
+    import numpy as np
+
+    from irnuc.cosim.stage_coverage import ffc_classes
+
+    cfg = load_pipeline("ffc14")
+    assert cfg.ffc_frames == 8 and cfg.ffc_output == "hold"
+    seq = [1, 1, 0] + [1] * 8 + [0] + [1] * 3 + [0]
+    run = tb_ffc._run_of(cfg, cfg, np.random.default_rng(3), seq, (2, 3))
+    assert [f is not None for f in run.foff_out].index(True) == 11
+    got = ffc_classes(run, cfg)
+    assert got["ffc.frame"] == {"shutter_passed", "accumulate_first", "accumulate_add",
+                                "open", "held", "mean", "refresh"}
+    assert got["ffc.run"] == {"short", "full"}
+    assert got["ffc.refresh_frame"] == {"open"}
+    assert got["ffc.first_frame"] == {"shutter"}
+    assert got["ffc.tiny_frame"] == set()  # 6-pixel frames
+    assert list(run.held) == [False] * 3 + [True] * 8 + [False] + [True] * 3 + [False]
+
+
 def _snap(bins: dict[str, int], removed: dict[str, str] | None = None) -> dict:
     return {"version": 1, "configurations": {"x": {"config_digest": "d", "tops": ["t"],
             "coverpoints": {"p": {"kind": "point", "bins": bins, "removed": removed or {}}}}}}
