@@ -93,6 +93,10 @@ MODULE_FILES |= {
                                            *_TC, *_CORE_SUM, *_CORE_OUT, *_DPC,
                                            "method_ffc_top.sv"))),
 }
+# The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
+MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
+    *MODULE_FILES["method_ffc_top"][:-1], *MODULE_FILES["irnuc_axis_top"][:-1],
+    "method_ffc_top.sv", "irnuc_axis_top.sv")))
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
@@ -254,6 +258,8 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
+    if top == "irnuc_axis_top" and stage_top(cfg) == "method_ffc_top":
+        return {**stage_parameters("method_ffc_top", cfg), "Ffc": 1}
     if top == "irnuc_axis_top" and cfg.method in AXIS_METHODS and cfg.method != "two_point":
         p = {**params, **method_parameters(cfg)}
         return {k: v for k, v in p.items() if k not in ("Tables", "WeightIntBits",

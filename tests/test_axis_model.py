@@ -162,7 +162,8 @@ def test_method_words_read_back_as_the_calibration(name: str) -> None:
 
 def test_the_configurations_the_wrapper_is_built_around() -> None:
     """``irnuc synth --top irnuc_axis_top`` takes the named configurations of the wrapped
-    base methods and no other (listed by hand), with the method's parameters."""
+    base methods and of the ffc compositions and no other (listed by hand), with the
+    method's parameters (the ffc ones: ``Ffc`` = 1 and method_ffc_top's)."""
     from irnuc.cosim.sources import top_parameters
     from irnuc.cosim.synth import tops_for
     from irnuc.nuc_fixed import pipeline_names
@@ -170,7 +171,10 @@ def test_the_configurations_the_wrapper_is_built_around() -> None:
     wrapped = {n for n in pipeline_names(method=None)
                if "irnuc_axis_top" in tops_for(load_pipeline(n))}
     assert wrapped == {"typical14", "wide16", "minimal", "onepoint14", "piecewise14",
-                       "quadratic14", "tcoffset14", "tcgain14"}
+                       "quadratic14", "tcoffset14", "tcgain14", "ffc14", "quadffc14",
+                       "tcffc14"}
+    p = top_parameters("irnuc_axis_top", load_pipeline("quadffc14"))
+    assert (p["Ffc"], p["Method"], p["FfcFrames"], p["FfcHold"]) == (1, 3, 8, 0)
     p = top_parameters("irnuc_axis_top", load_pipeline("tcoffset14"))
     assert (p["Method"], p["ReadingBits"], p["TcOrder"]) == (4, 14, 2)
     assert "Method" not in top_parameters("irnuc_axis_top", load_pipeline("typical14"))

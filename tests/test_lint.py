@@ -89,13 +89,14 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
 
 def _axi_method_configs() -> list[str]:
     """The method configurations irnuc_axis_top is built around (cosim.sources.AXIS_METHODS,
-    no stage, two_point aside)."""
-    from irnuc.cosim.sources import AXIS_METHODS
+    no stage, two_point aside) and those it builds method_ffc_top for (the ffc stage)."""
+    from irnuc.cosim.sources import AXIS_METHODS, stage_top
 
     out = []
     for n in pipeline_names(method=None):
         cfg = load_pipeline(n)
-        if not cfg.stages and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+        if (not cfg.stages and cfg.method in AXIS_METHODS and cfg.method != "two_point") \
+                or stage_top(cfg) == "method_ffc_top":
             out.append(n)
     return out
 
@@ -125,6 +126,7 @@ def _stage_cases() -> list[tuple[str, str, dict[str, object]]]:
                                               "formats": {"ffc": {"rounding": "half_even",
                                                                   "overflow": "wrap"}}}))
     cases.append(("method_ffc_top", "quadffc14", {"ffc_output": "hold", "rounding": "truncate"}))
+    cases.append(("irnuc_axis_top", "ffc14", {"ffc_output": "pass", "ffc_frames": 1}))
     return cases
 
 
