@@ -1,13 +1,14 @@
 """Co-simulation of ``irnuc_axis_top`` with cocotbext-axi against the golden models (the
 register model and the framing model, then the core's), on the named two-point
 configurations (the functional coverage of that one run closes: every bin hit), and built
-around method_dpc_top on a method configuration (``tb_axis_method``)."""
+around method_dpc_top on a method configuration (``tb_axis_method``) and around
+method_ffc_top on an FFC composition (``tb_axis_ffc``: a refresh through the registers)."""
 
 from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests import tb_axis, tb_axis_method
+from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method
 from irnuc.cocotb_tests.runs import case_params, coverage_json, run_case, run_module
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline
@@ -18,6 +19,8 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 CONFIGS = ("minimal", "typical14")
 #: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame.
 METHOD_CONFIGS = ("tcoffset14",)
+#: two_point + ffc (N = 8, held shutter frames): FFC_CTRL, the four FFC streams.
+FFC_CONFIGS = ("ffc14",)
 
 
 @pytest.mark.parametrize(("config", "case"), case_params(tb_axis, CONFIGS))
@@ -28,6 +31,11 @@ def test_irnuc_axis_top(config: str, case: str) -> None:
 @pytest.mark.parametrize(("config", "case"), case_params(tb_axis_method, METHOD_CONFIGS))
 def test_irnuc_axis_top_method(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_method, case)
+
+
+@pytest.mark.parametrize(("config", "case"), case_params(tb_axis_ffc, FFC_CONFIGS))
+def test_irnuc_axis_top_ffc(config: str, case: str) -> None:
+    run_case("irnuc_axis_top", load_pipeline(config), tb_axis_ffc, case)
 
 
 @pytest.mark.parametrize("config", CONFIGS)

@@ -369,7 +369,85 @@ def coef_beats(images: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(words), np.concatenate(last)
 
 
-__all__ = ["COUNTS", "EVENTS", "AxisOutput", "CoreFrame", "FrameSettings", "FramerResult",
-           "axis_framer", "axis_top", "bad_mask", "coef_beats", "coef_word_bits", "core_output",
-           "frame_method_inputs", "frame_word", "neutral_frame", "neutral_gain", "neutral_word",
-           "stream_layouts", "video_beats"]
+# ---- the FFC framing (Ffc = 1: irnuc_axis_top around method_ffc_top) ----------------------
+
+@dataclass(frozen=True)
+class FfcFraming:
+    """Per frame of a sequence (in the order the frames start), what the FFC streams of
+    ``irnuc_axis_top`` carry: ``shutter`` the frame's shutter flag (from FFC_CTRL), then
+    whether the frame takes one word per pixel on ``s_axis_foff`` (every frame),
+    ``s_axis_acc`` (the 2nd..N-th shutter frame of a run and the refresh frame), gives one on
+    ``m_axis_acc`` (the 1st..N-th shutter frame of a run) and ``m_axis_foff`` (the refresh
+    frame: the frame after a run's N-th shutter frame, whatever its own flag), and whether
+    it is output on ``m_axis_video`` (``shown``: not with ``ffc_output = "hold"`` for a
+    shutter frame once an open frame was taken). ``done`` is the frame in which
+    FFC_STATUS.done rises for the last FFC_CTRL.start (None: not within the sequence):
+    the first refresh frame once the start's first shutter frame began, as its last new
+    offset is taken, or, for a run shorter than N (no refresh), the first open frame after
+    it as it starts (the frame the start applies to with FFC_CTRL.frames = 0)."""
+
+    shutter: tuple[bool, ...]
+    foff_in: tuple[bool, ...]
+    acc_in: tuple[bool, ...]
+    acc_out: tuple[bool, ...]
+    foff_out: tuple[bool, ...]
+    shown: tuple[bool, ...]
+    done: int | None
+
+
+def ffc_shutter_flags(n_frames: int, starts: dict[int, int]) -> list[bool]:
+    """The shutter flag of each of ``n_frames`` frames from FFC_CTRL: ``starts`` maps a
+    frame to the FFC_CTRL.frames of a start written before that frame started (after the
+    previous one started); that frame and the next frames, that many in all, are shutter
+    frames (a later start counts again from its frame)."""
+    flags, left = [], 0
+    for i in range(n_frames):
+        if i in starts:
+            left = int(starts[i])
+        flags.append(left > 0)
+        left = max(left - 1, 0)
+    return flags
+
+
+def ffc_framing(cfg: PipelineConfig, shutter: Sequence[bool],
+                start: int | None = None) -> FfcFraming:
+    """The frames carrying words on each FFC stream for a sequence of shutter flags
+    (:class:`FfcFraming`), by the sequencer's rules (docs/datapath.md "ffc"): a run's
+    shutter frames are counted up to N = ``cfg.ffc_frames`` (an open frame restarts the
+    count; a run shorter than N leaves the offsets as they were), the N-th is the mean
+    pass and the next frame the refresh. ``start``: the frame the last FFC_CTRL.start
+    applies to (its ``done``)."""
+    n = int(cfg.ffc_frames or 1)
+    hold = cfg.ffc_output == "hold"
+    count, pending, opened = 0, False, False
+    out: dict[str, list[bool]] = {k: [] for k in ("foff_in", "acc_in", "acc_out",
+                                                  "foff_out", "shown")}
+    done, begun = None, False
+    for i, s in enumerate(bool(v) for v in shutter):
+        first, add = s and count == 0, s and 0 < count < n
+        out["foff_in"].append(True)
+        out["acc_in"].append(add or pending)
+        out["acc_out"].append(first or add)
+        out["foff_out"].append(pending)
+        out["shown"].append(not (hold and s and opened))
+        if start is not None and i >= start and done is None:
+            if i == start and not s:
+                done = i  # FFC_CTRL.frames = 0
+            elif not s and begun and count < n:
+                done = i  # a run shorter than N ended
+            else:
+                begun = begun or s
+                if begun and pending:
+                    done = i
+        mean = s and count == n - 1
+        count = 0 if not s else count + 1 if count < n else count
+        pending, opened = mean, opened or not s
+    return FfcFraming(tuple(bool(v) for v in shutter), *(tuple(out[k]) for k in (
+        "foff_in", "acc_in", "acc_out", "foff_out", "shown")), done)
+
+
+__all__ = ["COUNTS", "EVENTS", "AxisOutput", "CoreFrame", "FfcFraming", "FrameSettings",
+           "FramerResult", "axis_framer", "axis_top", "bad_mask", "coef_beats",
+           "coef_word_bits", "core_output", "ffc_framing", "ffc_shutter_flags",
+           "frame_method_inputs", "frame_word", "neutral_frame", "neutral_gain",
+           "neutral_word", "stream_layouts", "video_beats"]

@@ -178,3 +178,63 @@ def test_the_configurations_the_wrapper_is_built_around() -> None:
     p = top_parameters("irnuc_axis_top", load_pipeline("tcoffset14"))
     assert (p["Method"], p["ReadingBits"], p["TcOrder"]) == (4, 14, 2)
     assert "Method" not in top_parameters("irnuc_axis_top", load_pipeline("typical14"))
+
+
+# ---- the FFC framing (irnuc_axis_top around method_ffc_top) ---------------------------------
+
+def test_ffc_shutter_flags_from_ffc_ctrl_by_hand() -> None:
+    """FFC_CTRL.start before frame 2 with frames 3: frames 2, 3, 4 are shutter frames; a
+    second start before frame 3 counts again from there; frames 0: none."""
+    from irnuc.nuc_fixed.axis import ffc_shutter_flags
+
+    assert ffc_shutter_flags(7, {2: 3}) == [0, 0, 1, 1, 1, 0, 0]
+    assert ffc_shutter_flags(7, {1: 2, 3: 2}) == [0, 1, 1, 1, 1, 0, 0]
+    assert ffc_shutter_flags(3, {0: 0}) == [0, 0, 0]
+    assert ffc_shutter_flags(3, {}) == [0, 0, 0]
+
+
+def test_ffc_framing_by_hand() -> None:
+    """ffc14 (N = 8, hold): two open frames, a full run of 8 shutter frames, the refresh
+    frame (open), an open frame; the streams of each frame written out by hand."""
+    from irnuc.nuc_fixed.axis import ffc_framing
+
+    cfg = load_pipeline("ffc14")
+    assert (cfg.ffc_frames, cfg.ffc_output) == (8, "hold")
+    sh = [0, 0] + [1] * 8 + [0, 0]
+    f = ffc_framing(cfg, sh, start=2)
+    assert f.foff_in == (True,) * 12
+    assert f.acc_out == (False,) * 2 + (True,) * 8 + (False,) * 2
+    assert f.acc_in == (False,) * 3 + (True,) * 7 + (True, False)
+    assert f.foff_out == (False,) * 10 + (True, False)
+    assert f.shown == (True,) * 2 + (False,) * 8 + (True,) * 2
+    assert f.done == 10
+    # a run of 3 (no refresh): done as the next open frame starts; frames = 0: at once
+    assert ffc_framing(cfg, [0, 1, 1, 1, 0, 0], start=1).done == 4
+    assert ffc_framing(cfg, [0, 1, 1, 1, 0, 0], start=1).foff_out == (False,) * 6
+    assert ffc_framing(cfg, [0, 0, 0], start=1).done == 1
+    # shutter frames first (nothing output yet): shown even with hold
+    assert ffc_framing(cfg, [1, 1, 0, 1]).shown == (True, True, True, False)
+
+
+@pytest.mark.parametrize("name", ["ffc14", "quadffc14", "tcffc14"])
+def test_ffc_framing_against_the_golden_run(name: str) -> None:
+    """The frames that carry words on each stream, as ffc_framing says, against those of
+    cosim.stages.ffc_run (the golden model's sequencer nuc_fixed.ffc.FfcState and
+    method_top's held frames) on seeded random shutter sequences with short, full and long
+    runs."""
+    from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
+    from irnuc.cosim.stages import ffc_run
+    from irnuc.nuc_fixed.axis import ffc_framing
+
+    cfg = load_pipeline(name).replace(ffc_frames=2)
+    rng = np.random.default_rng(24)
+    for _ in range(4):
+        sh = [bool(v) for v in rng.random(14) < 0.6]
+        c = random_coefficients(cfg, 2, 3, rng)
+        run = ffc_run(c, [random_raw(cfg, 2, 3, rng) for _ in sh], sh,
+                      readings=[random_reading(cfg, c, rng) for _ in sh])
+        f = ffc_framing(cfg, sh)
+        assert f.acc_in == tuple(a is not None for a in run.acc_in), sh
+        assert f.acc_out == tuple(a is not None for a in run.acc_out), sh
+        assert f.foff_out == tuple(a is not None for a in run.foff_out), sh
+        assert f.shown == tuple(not h for h in run.held), sh

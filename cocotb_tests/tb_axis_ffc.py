@@ -1,0 +1,199 @@
+"""cocotb tests of ``irnuc_axis_top`` built around ``method_ffc_top`` (an FFC composition;
+run by ``cocotb_tests/test_axis_top.py``).
+
+The drivers, the register model and the framing model are ``tb_axis``'s (:class:`Bench`),
+with cocotbext-axi sources on ``s_axis_foff`` and ``s_axis_acc`` and sinks on
+``m_axis_acc`` and ``m_axis_foff``. The host's sequence: frames run, ``FFC_CTRL`` is
+written (start, frames) in the middle of a frame, the shutter frames follow from the next
+frame start. Which frames are shutter frames and which carry words on each FFC stream come
+from the wrapper's golden model (``nuc_fixed.axis.ffc_shutter_flags`` and
+``ffc_framing``); the words themselves (the offsets and accumulators the host feeds, the
+written-back ones expected) and the output pixels from ``cosim.stages.ffc_run`` (one run of
+``nuc_fixed.method_top``), bit for bit, frame by frame (tlast on each frame's last word).
+``FFC_STATUS`` and ``IRQ_STATUS.ffc_done`` against the register model. Small frames.
+"""
+
+from __future__ import annotations
+
+import logging
+
+import cocotb
+import numpy as np
+from cocotb.triggers import ClockCycles, SimTimeoutError, with_timeout
+from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
+
+from irnuc.cocotb_tests import tb_lib
+from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern
+from irnuc.cocotb_tests.tb_axis import Bench, _bench
+from irnuc.cocotb_tests.tb_ffc import _calibration, _raws
+from irnuc.cosim.stages import StageScoreboard, ffc_run
+from irnuc.nuc_fixed.axis import (
+    axis_framer,
+    coef_beats,
+    ffc_framing,
+    ffc_shutter_flags,
+    video_beats,
+)
+
+#: Frame size of these tests (lines, pixels): past the DPC's 3 x 3 window.
+H, W = 4, 6
+
+
+class FfcStreams:
+    """The four FFC streams of the DUT: sources ``foff``, ``acc``; sinks ``acc_out``,
+    ``foff_out`` (one word per beat)."""
+
+    def __init__(self, bench: Bench) -> None:
+        dut = bench.dut
+        clk, rst = dut.clk_i, dut.rst_ni
+        kw = {"reset_active_level": False, "byte_lanes": 1}
+        self.foff = AxiStreamSource(AxiStreamBus.from_prefix(dut, "s_axis_foff"), clk, rst,
+                                    **kw)
+        self.acc = AxiStreamSource(AxiStreamBus.from_prefix(dut, "s_axis_acc"), clk, rst,
+                                   **kw)
+        self.acc_out = AxiStreamSink(AxiStreamBus.from_prefix(dut, "m_axis_acc"), clk, rst,
+                                     **kw)
+        self.foff_out = AxiStreamSink(AxiStreamBus.from_prefix(dut, "m_axis_foff"), clk, rst,
+                                      **kw)
+        for drv in (self.foff, self.acc, self.acc_out, self.foff_out):
+            drv.log.setLevel(logging.WARNING)
+        self.bench = bench
+
+    def patterns(self, idle: str, bp: str) -> None:
+        for drv, name in ((self.foff, idle), (self.acc, idle), (self.acc_out, bp),
+                          (self.foff_out, bp)):
+            if name == "none":
+                drv.clear_pause_generator()
+                drv.pause = False
+            else:
+                drv.set_pause_generator(pause_pattern(name, self.bench.rng))
+
+
+def _unsigned(a: np.ndarray, bits: int) -> list[int]:
+    return [int(v) & ((1 << bits) - 1) for v in np.asarray(a, np.int64).ravel()]
+
+
+async def _frames_of(sink: AxiStreamSink, n: int, limit_cycles: int) -> list[list[int]]:
+    """The next ``n`` frames (words up to each tlast) of a sink."""
+    out = []
+    for _ in range(n):
+        try:
+            fr = await with_timeout(sink.recv(compact=False), limit_cycles * CLK_PERIOD_NS,
+                                    "ns")
+        except SimTimeoutError:
+            raise AssertionError(f"timeout: {len(out)} of {n} write-back frames") from None
+        out.append([int(v) for v in fr.tdata])
+    return out
+
+
+async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: str,
+                           label: str) -> None:
+    """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
+    shutter frames; None: the configured N), the shutter frames from the third on, then
+    two open frames: every stream and the status registers checked."""
+    bench = await _bench(dut, salt)
+    cfg, rng = bench.cfg, bench.rng
+    s = FfcStreams(bench)
+    await bench.frame_size(H, W)
+    for reg in ("FFC_CTRL", "FFC_STATUS"):
+        await bench.check(reg)
+    n = int(cfg.ffc_frames or 1)
+    count = n if frames is None else frames
+    shutter = ffc_shutter_flags(2 + count + 2, {2: count})
+    framing = ffc_framing(cfg, shutter, start=2)
+    c = _calibration(cfg, H, W, rng, "camera")
+    run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], H, W, rng, "camera"), shutter,
+                  golden=bench.env.golden)
+    assert framing.acc_in == tuple(a is not None for a in run.acc_in)
+    assert framing.foff_out == tuple(a is not None for a in run.foff_out)
+    raws = [f.raw for f in run.frames]
+    video = video_beats(raws)
+    coef = coef_beats([f.drive.words for f in run.frames])
+    fr = axis_framer(*video, *coef, [bench.settings()] * len(raws), bench.env.golden)
+    assert [f.raw.tolist() for f in fr.frames] == [r.tolist() for r in raws]
+
+    cbits = cfg.memories["ffc_offset"].word_bits
+    bench.patterns(idle, idle, bp)
+    s.patterns(idle, bp)
+    bench.send(*video, *coef)
+    for k, f in enumerate(run.foff_in):
+        assert framing.foff_in[k]
+        s.foff.send_nowait(AxiStreamFrame(_unsigned(f, cbits)))
+    for a in run.acc_in:
+        if a is not None:
+            s.acc.send_nowait(AxiStreamFrame([int(v) for v in np.ravel(a)]))
+
+    ctrl = bench.model.map["FFC_CTRL"]
+    m = bench.model
+
+    async def write_ffc() -> None:
+        await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
+                          | (count << ctrl.field("frames").lsb))
+        await bench.check("FFC_CTRL")
+        m.set_live("FFC_STATUS", "busy", 1)
+        await bench.check("FFC_STATUS")
+
+    act = cocotb.start_soon(bench._act(H * W + H * W // 2, write_ffc))
+    limit = 40 * (len(video[0]) * 2) + 2000
+    want_acc = [[int(v) for v in np.ravel(a)] for a in run.acc_out if a is not None]
+    want_foff = [_unsigned(a, cbits) for a in run.foff_out if a is not None]
+    acc_task = cocotb.start_soon(_frames_of(s.acc_out, len(want_acc), limit))
+    foff_task = cocotb.start_soon(_frames_of(s.foff_out, len(want_foff), limit))
+    shown = [f for f, v in zip(run.frames, framing.shown, strict=True) if v]
+    got = await bench.receive(sum(f.raw.size for f in shown), limit)
+    await act
+    got_acc, got_foff = await acc_task, await foff_task
+    await ClockCycles(dut.clk_i, 40)
+    assert s.acc_out.empty() and s.foff_out.empty(), "write-back words after the sequence"
+
+    sb = StageScoreboard(bench.env.golden)
+    for f in shown:
+        sb.expect_frame(f)
+    sb.observe_arrays(**got)
+    res = sb.result()
+    tb_lib.record(label=label, compared=res.compared, errors=res.errors,
+                  lines=res.lines[:10])
+    tb_lib.assert_passed(res)
+    for name, g, w in (("m_axis_acc", got_acc, want_acc), ("m_axis_foff", got_foff, want_foff)):
+        assert len(g) == len(w), f"{name}: {len(g)} frames, the golden model's {len(w)}"
+        for k, (a, b) in enumerate(zip(g, w, strict=True)):
+            bad = [i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y]
+            assert len(a) == len(b) and not bad, (
+                f"{name} frame {k}: {len(a)} words (tlast), {len(b)} expected; "
+                f"{len(bad)} differ, first at word {bad[:1]}")
+
+    assert framing.done is not None, "the sequence does not finish the FFC"
+    m.set_live("FFC_STATUS", "busy", 0)
+    m.set_live("FFC_STATUS", "done", 1)
+    await bench.check("FFC_STATUS")
+    irq = await bench.read("IRQ_STATUS")
+    done_bit = m.map["IRQ_STATUS"].field("ffc_done")
+    assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
+    assert await bench.read("FRAMES_IN") == len(raws)
+    assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
+    # a start clears done
+    await bench.write("IRQ_STATUS", done_bit.mask)
+    irq = await bench.read("IRQ_STATUS")
+    assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
+
+
+@cocotb.test()
+async def ffc_refresh_full_rate(dut) -> None:
+    """A refresh through the registers at valid = ready = 1: FFC_CTRL written mid frame
+    (start, N frames), the N shutter frames from the next frame start (accumulated on
+    m_axis_acc, held), the refresh frame's new offsets on m_axis_foff, FFC_STATUS busy
+    then done, IRQ_STATUS.ffc_done."""
+    await refresh_sequence(dut, 40, None, "none", "none", "ffc refresh full rate")
+
+
+@cocotb.test()
+async def ffc_refresh_idle_backpressure(dut) -> None:
+    """The refresh with idle cycles on every input and backpressure on every output."""
+    await refresh_sequence(dut, 41, None, "random", "random", "ffc refresh idle/bp")
+
+
+@cocotb.test()
+async def ffc_short_run(dut) -> None:
+    """FFC_CTRL.frames below N: a run without a refresh (no m_axis_foff words, the offsets
+    stay), done when the next open frame starts; bursty idle, alternate backpressure."""
+    await refresh_sequence(dut, 42, 2, "bursty", "alternate", "ffc short run")
