@@ -112,6 +112,8 @@ def _ms(id: str, file: str, find: str, replace: str, what: str, stage: dict, **k
 _AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
 #: The wrapper around method_dpc_top, with its method testbench.
 _AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+#: The wrapper around method_ffc_top, with its FFC testbench.
+_AXF = {"suite": "irnuc.cocotb_tests.tb_axis_ffc", "config": "ffc14"}
 
 
 def _ma(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
@@ -579,6 +581,20 @@ CATALOGUE: tuple[Mutant, ...] = (
         "assign fw.reading = slots[2][ReadingBits-1:0];",
         "assign fw.reading = slots[3][ReadingBits-1:0];",
         "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
+    _ma("ax_ffc_run_one_short", "irnuc_axis_top.sv",
+        "assign pend_shutter = ffc_now != '0;",
+        "assign pend_shutter = ffc_now > RegFfcCtrlFramesBits'(1);",
+        "FFC_CTRL.frames - 1 shutter frames after a start (a full run has no refresh)",
+        **_AXF),
+    _ma("ax_ffc_tlast_every_line", "irnuc_axis_top.sv",
+        "assign wb_last[k] = wb_eol[k] && row_q[k] == act_hm1;",
+        "assign wb_last[k] = wb_eol[k];",
+        "m_axis_acc / m_axis_foff: tlast on every line's last word", **_AXF),
+    _ma("ax_ffc_done_not_on_refresh", "irnuc_axis_top.sv",
+        "assign ffc_done = busy_q && !ffc_start && (refreshed || short_end || none);",
+        "assign ffc_done = busy_q && !ffc_start && (short_end || none);",
+        "FFC_STATUS.done and IRQ_STATUS.ffc_done not raised by the refresh's write-back",
+        **_AXF),
 )
 
 
