@@ -528,13 +528,14 @@ module irnuc_axis_top
     // FFC_STATUS: busy from FFC_CTRL.start until its run finished: the refresh frame's
     // last new offset taken on m_axis_foff (done, IRQ_STATUS.ffc_done), or, for a run
     // shorter than FfcFrames (no refresh), the next open frame reaching the core, or at
-    // once for FFC_CTRL.frames = 0. begun_q: the run's first shutter frame reached the core.
+    // once for FFC_CTRL.frames = 0. begun_q: the run's first shutter frame reached the core;
+    // ended_q: then an open frame (the run is over; a full run's refresh may still come).
     localparam int unsigned RunBits = $clog2(FfcFrames + 1);
     logic [RunBits-1:0] run_q;
-    logic               busy_q, begun_q, short_end, refreshed, none;
+    logic               busy_q, begun_q, ended_q, open_sof, short_end, refreshed, none;
 
-    assign short_end = item_take && item_sof && !item_shutter && begun_q
-                       && run_q < RunBits'(FfcFrames);
+    assign open_sof  = item_take && item_sof && !item_shutter;
+    assign short_end = open_sof && begun_q && !ended_q && run_q < RunBits'(FfcFrames);
     assign refreshed = begun_q && m_axis_foff_tvalid && m_axis_foff_tready
                        && m_axis_foff_tlast;
     assign none      = start && ffc_armed_q && ffc_frames == '0;
@@ -544,6 +545,7 @@ module irnuc_axis_top
         run_q   <= '0;
         busy_q  <= 1'b0;
         begun_q <= 1'b0;
+        ended_q <= 1'b0;
       end else begin
         if (item_take && item_sof) begin
           run_q <= !item_shutter ? '0
@@ -552,7 +554,11 @@ module irnuc_axis_top
         if (ffc_start) begin
           busy_q  <= 1'b1;
           begun_q <= 1'b0;
+          ended_q <= 1'b0;
         end else begin
+          if (begun_q && open_sof) begin
+            ended_q <= 1'b1;
+          end
           if (ffc_done) begin
             busy_q <= 1'b0;
           end
