@@ -259,7 +259,7 @@ package irnuc_pkg;
   localparam int unsigned RegCoefErrorsLateLsb = 16;
   // COEF_ERRORS.late width
   localparam int unsigned RegCoefErrorsLateBits = 16;
-  // FFC_CTRL: flat-field correction: averages FFC_CTRL.frames frames of the closed shutter into the FFC offsets
+  // FFC_CTRL: flat-field correction: FFC_CTRL.frames shutter frames from the next frame start; N of them (ffc_frames) are averaged into the FFC offsets (docs/integration.md, FFC)
   localparam int unsigned RegFfcCtrlOffset = 128;
   // FFC_CTRL.start
   localparam int unsigned RegFfcCtrlStartLsb = 0;
