@@ -258,6 +258,7 @@ module irnuc_axis_top
   logic                  start, frame_start, beat, drop, pad, in_frame;
   logic                  sof_early, sof_late, eol_early, eol_late, coef_early, coef_late;
   logic                  pix_out, frame_out, core_err;
+  logic                  core_out;  // an item left the core (output, or dropped in a held frame)
   logic                  ffc_start, ffc_busy, ffc_done;
   logic [RegFfcCtrlFramesBits-1:0] ffc_frames;
 
@@ -469,8 +470,6 @@ module irnuc_axis_top
   // frame word on its pixel stream (read with sof).
   logic               core_pix_ready, core_coef_ready, core_valid, core_sof, core_eol;
   logic [OutBits-1:0] core_data;
-
-  logic core_out;  // an item left the core (output, or dropped in a held frame)
 
   if (Ffc != 0) begin : gen_ffc
     // method_ffc_top: its pixel and coefficient inputs are separate spill registers that
