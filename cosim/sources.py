@@ -89,10 +89,9 @@ MODULE_FILES |= {
                                              *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
     "ffc_mean": ("ffc_mean.sv",),
-    "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
     "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "ffc_ctrl.sv", "ffc_mean.sv",
-                                           *_TC, *_CORE_SUM, *_CORE_OUT, "ffc_refresh.sv",
-                                           *_DPC, "method_ffc_top.sv"))),
+                                           *_TC, *_CORE_SUM, *_CORE_OUT, *_DPC,
+                                           "method_ffc_top.sv"))),
 }
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
@@ -299,7 +298,6 @@ _STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
     "core_out": ("OutBits", "Rounding", "Overflow"),
     "ffc_ctrl": ("FfcFrames",),
     "ffc_mean": (),
-    "ffc_refresh": ("OutBits", "FfcIntBits", "FfcFracBits", "FfcRounding", "FfcOverflow"),
 }
 
 

@@ -20,8 +20,9 @@
 //            hold: a shutter frame once an open frame was output; the display keeps the
 //            last open frame).
 // Per pixel: the base method's sum on the raw code (core_sum, F = max(.., Cf)) beside the
-// same sum on the accumulator (core_sum, Xf = n, the refresh and mean passes); then the new
-// correction dc and the mean's v of the accumulator's sum (ffc_refresh), and
+// same sum on the accumulator (core_sum, Xf = n, the refresh and mean passes); then
+//   dc = OVF_C(ROUND_(F' - Cf)((T << (F' - Cf)) - (s_acc << (F' - F_acc))))   (ffc_refresh)
+//   v  = ROUND_(F' - Cf)(s_acc << (F' - F_acc))                             (ffc_mean)
 //   y  = OUT(ROUND_F(s + (c << (F - Cf)))),  c = dc in a refresh frame, else s_foff
 // and the DPC. The mean frame's v over good pixels give the target T (ffc_mean, one
 // division, before the refresh frame's first pixel is taken; ffc_target_o).
@@ -149,8 +150,12 @@ module method_ffc_top
       core_sum_latency(Kind, AdcBits, 1'b0, 0, AdcBits, GainBits, QuadBits, SquareBits, 1, 0),
       core_sum_latency(Kind, AccBits, 1'b0, NShift, AdcBits, GainBits, QuadBits, SquareBits,
                        1, 0));
-  // The mean's v (ffc_refresh: ROUND_(F' - Cf) of the accumulator's sum at F').
-  localparam int unsigned VBits     = ASumBits + FfcFracBits + 1 - AFracBits;
+  // ffc_refresh and the mean's v: F' = max(F_acc, Cf).
+  localparam int unsigned RFrac     = max2(AFracBits, FfcFracBits);
+  localparam int unsigned RShift    = RFrac - FfcFracBits;
+  localparam int unsigned SxBits    = ASumBits + RFrac - AFracBits;
+  localparam int unsigned DiffBits  = max2(TBits + 1 + RShift, SxBits) + 1;
+  localparam int unsigned VBits     = SxBits + 1 - RShift;
   localparam int unsigned NBits     = $clog2(MaxWidth * MaxHeight + 1);
   // s + (c << (F - Cf)).
   localparam int unsigned TotBits   = max2(SumBits, CBits + FracBits - FfcFracBits) + 1;
@@ -166,8 +171,9 @@ module method_ffc_top
                   MaxWidth, MaxHeight);
     assert (FfcHold <= 1 && FfcRounding <= 2 && FfcOverflow <= 1 && FfcIntBits >= 1)
       else $fatal(1, "method_ffc_top: FfcHold, FfcRounding, FfcOverflow or FfcIntBits out of range");
-    assert (TotBits <= 62)
-      else $fatal(1, "method_ffc_top: a sum of %0d bits exceeds 62", TotBits);
+    assert (TotBits <= 62 && DiffBits <= 64)
+      else $fatal(1, "method_ffc_top: sums of %0d and %0d bits exceed the limits", TotBits,
+                  DiffBits);
   end
 `endif
 
@@ -346,12 +352,9 @@ module method_ffc_top
 
   // ---- the front: the frame's coefficients of the pixel ----------------------------------------
   // The pixel's side band: {x, the accumulator core's input (acc_new, or the read
-  // accumulator in the refresh pass), and the side band of the sums: refresh, the
-  // correction read, mean, then Rest = {hold, write, acc_new, sof, eol, bad}}.
-  // acc_new = x (a run's first frame) or acc + x.
-  localparam int unsigned Rest = 5 + AccBits;
-  localparam int unsigned Side = 1 + CBits + Rest;  // the side band's top bit
-  localparam int unsigned Pass = AdcBits + AccBits + Side + 1;
+  // accumulator in the refresh pass), acc_new, the correction read, mean, refresh, write,
+  // hold, sof, eol, bad}. acc_new = x (a run's first frame) or acc + x.
+  localparam int unsigned Pass = AdcBits + 2 * AccBits + CBits + 7;
 
   logic [AccBits-1:0]    acc_new;
   logic [Pass-1:0]       join_pass, f_pass;
@@ -362,9 +365,9 @@ module method_ffc_top
   logic                  bad;
 
   assign acc_new   = px_mode.acc_first ? AccBits'(px_data) : acc_in + AccBits'(px_data);
-  assign join_pass = {px_data, px_mode.refresh ? acc_in : acc_new, px_mode.refresh, foff_in,
-                      px_mode.mean, px_mode.hold, px_mode.acc_first || px_mode.acc_add,
-                      acc_new, px_sof, px_eol, bad};
+  assign join_pass = {px_data, px_mode.refresh ? acc_in : acc_new, acc_new, foff_in,
+                      px_mode.mean, px_mode.refresh, px_mode.acc_first || px_mode.acc_add,
+                      px_mode.hold, px_sof, px_eol, bad};
 
   if (MethodSel == MethodTcOffset) begin : gen_tc_offset
     // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
@@ -461,13 +464,17 @@ module method_ffc_top
   end
 
   // ---- stage 1 ------------------------------------------------------------------------------
+  localparam int unsigned Side = 6 + AccBits + CBits;  // {mean, refresh, write, hold, acc, foff, sof, eol}
+
   logic                  s1_valid_q;
   logic [AdcBits-1:0]    s1_x_q;
-  logic [AccBits-1:0]    s1_acc_q;
-  logic [Side:0]         s1_side_q;
+  logic [AccBits-1:0]    s1_acc_q, s1_acc_new_q;
   logic [GainBits-1:0]   s1_gain_q;
   logic [OffsetBits-1:0] s1_offset_q;
   logic [QuadBits-1:0]   s1_quad_q;
+  logic [CBits-1:0]      s1_foff_q;
+  logic                  s1_mean_q, s1_refresh_q, s1_write_q, s1_hold_q, s1_sof_q, s1_eol_q;
+  logic                  s1_bad_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_s1_valid
     if (!rst_ni) begin
@@ -479,7 +486,8 @@ module method_ffc_top
 
   always_ff @(posedge clk_i) begin : p_s1
     if (en) begin
-      {s1_x_q, s1_acc_q, s1_side_q} <= f_pass;
+      {s1_x_q, s1_acc_q, s1_acc_new_q, s1_foff_q, s1_mean_q, s1_refresh_q, s1_write_q,
+       s1_hold_q, s1_sof_q, s1_eol_q, s1_bad_q} <= f_pass;
       s1_gain_q   <= f_gain;
       s1_offset_q <= f_offset;
       s1_quad_q   <= f_quad;
@@ -489,7 +497,7 @@ module method_ffc_top
   logic               sum_valid, asum_valid;
   logic [SumBits-1:0] sum_s;
   logic [ASumBits-1:0] asum_s;
-  logic [Side:0]      sum_side;  // {refresh, foff, mean, Rest}
+  logic [Side:0]      sum_side;  // {Side, bad}
   logic               asum_side;
 
   core_sum #(
@@ -520,7 +528,8 @@ module method_ffc_top
     .quad_i   (s1_quad_q),
     .knee_i   ('0),
     .level_i  ('0),
-    .side_i   (s1_side_q),
+    .side_i   ({s1_mean_q, s1_refresh_q, s1_write_q, s1_hold_q, s1_acc_new_q, s1_foff_q,
+                s1_sof_q, s1_eol_q, s1_bad_q}),
     .valid_o  (sum_valid),
     .sum_o    (sum_s),
     .side_o   (sum_side)
@@ -563,70 +572,147 @@ module method_ffc_top
   logic unused_asum;
   assign unused_asum = ^{asum_valid, asum_side};
 
-  // ---- ffc_refresh: dc and the mean's v from the accumulator's sum, the pixel's c ----------
-  // Beside it the pixel's sum and the side band {mean, Rest}; the mean's v leaves its
-  // second stage for ffc_mean.
-  localparam int unsigned RSide = SumBits + 1 + Rest;  // {sum, mean, Rest}
+  // ---- stage D: sa aligned and the refresh's difference ---------------------------------------
+  logic [SxBits-1:0]   sx;
+  logic [DiffBits-1:0] diff;
 
-  logic                  v_valid, c_valid, c_refresh;
-  logic [RSide-1:0]      v_side, c_side;
-  logic [CBits-1:0]      c_c, c_dc;
+  assign sx   = SxBits'($signed(asum_s)) << (RFrac - AFracBits);
+  assign diff = (DiffBits'(target) << RShift) - DiffBits'($signed(sx));
 
-  ffc_refresh #(
-    .SumBits    (ASumBits),
-    .SumFracBits(AFracBits),
-    .OutBits    (OutBits),
-    .FfcIntBits (FfcIntBits),
-    .FfcFracBits(FfcFracBits),
-    .FfcRounding(FfcRounding),
-    .FfcOverflow(FfcOverflow),
-    .SideBits   (RSide)
-  ) u_refresh (
-    .clk_i    (clk_i),
-    .rst_ni   (rst_ni),
-    .en_i     (en),
-    .valid_i  (sum_valid),
-    .sum_i    (asum_s),
-    .target_i (target),
-    .refresh_i(sum_side[Side]),
-    .c_i      (sum_side[Rest + 1 +: CBits]),
-    .side_i   ({sum_s, sum_side[Rest:0]}),
-    .v_valid_o(v_valid),
-    .v_o      (mean_v),
-    .v_side_o (v_side),
-    .valid_o  (c_valid),
-    .refresh_o(c_refresh),
-    .dc_o     (c_dc),
-    .c_o      (c_c),
-    .side_o   (c_side)
+  logic                d_valid_q;
+  logic [SxBits-1:0]   d_sx_q;
+  logic [DiffBits-1:0] d_diff_q;
+  logic [SumBits-1:0]  d_sum_q;
+  logic [Side:0]       d_side_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_d_valid
+    if (!rst_ni) begin
+      d_valid_q <= 1'b0;
+    end else if (en) begin
+      d_valid_q <= sum_valid;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_d
+    if (en) begin
+      d_sx_q   <= sx;
+      d_diff_q <= diff;
+      d_sum_q  <= sum_s;
+      d_side_q <= sum_side;
+    end
+  end
+
+  // ---- stage R: ffc_refresh's ROUND, the mean's v --------------------------------------------
+  logic [VBits-1:0]         v_d;
+  logic [DiffBits-RShift:0] dr_d;
+
+  irnuc_round #(
+    .InBits  (SxBits),
+    .FracBits(RShift),
+    .Rounding(FfcRounding)
+  ) u_round_v (
+    .s_i(d_sx_q),
+    .r_o(v_d)
   );
 
-  assign mean_valid = en && v_valid && v_side[Rest];
-  assign mean_good  = !v_side[0];
+  irnuc_round #(
+    .InBits  (DiffBits),
+    .FracBits(RShift),
+    .Rounding(FfcRounding)
+  ) u_round_dc (
+    .s_i(d_diff_q),
+    .r_o(dr_d)
+  );
 
-  logic unused_side;
-  assign unused_side = ^{v_side[RSide-1:Rest+1], v_side[Rest-1:1], c_side[Rest]};
+  logic                     r_valid_q;
+  logic [SumBits-1:0]       r_sum_q;
+  logic [DiffBits-RShift:0] r_dr_q;
+  logic [VBits-1:0]         r_v_q;
+  logic [Side:0]            r_side_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_r_valid
+    if (!rst_ni) begin
+      r_valid_q <= 1'b0;
+    end else if (en) begin
+      r_valid_q <= d_valid_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_r
+    if (en) begin
+      r_sum_q  <= d_sum_q;
+      r_dr_q   <= dr_d;
+      r_v_q    <= v_d;
+      r_side_q <= d_side_q;
+    end
+  end
+
+  assign mean_valid = en && r_valid_q && r_side_q[Side];
+  assign mean_good  = !r_side_q[0];
+  assign mean_v     = $signed(r_v_q);
+
+  // ---- stage C: ffc_refresh's OVF, the correction of the pixel ----------------------------
+  logic [CBits-1:0] dc_d;
+
+  irnuc_clip #(
+    .InBits   (DiffBits + 1 - RShift),
+    .OutBits  (CBits),
+    .OutSigned(1'b1),
+    .Overflow (FfcOverflow)
+  ) u_clip_dc (
+    .v_i(r_dr_q),
+    .y_o(dc_d)
+  );
+
+  logic                  c_valid_q;
+  logic [SumBits-1:0]    c_sum_q;
+  logic [CBits-1:0]      c_c_q, c_dc_q;
+  logic [AccBits-1:0]    c_acc_q;
+  logic                  c_refresh_q, c_write_q, c_hold_q, c_sof_q, c_eol_q, c_bad_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_c_valid
+    if (!rst_ni) begin
+      c_valid_q <= 1'b0;
+    end else if (en) begin
+      c_valid_q <= r_valid_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_c
+    if (en) begin
+      c_sum_q     <= r_sum_q;
+      c_c_q       <= r_side_q[Side-1] ? dc_d : r_side_q[3 +: CBits];
+      c_dc_q      <= dc_d;
+      c_acc_q     <= r_side_q[3 + CBits +: AccBits];
+      c_refresh_q <= r_side_q[Side-1];
+      c_write_q   <= r_side_q[Side-2];
+      c_hold_q    <= r_side_q[Side-3];
+      c_sof_q     <= r_side_q[2];
+      c_eol_q     <= r_side_q[1];
+      c_bad_q     <= r_side_q[0];
+    end
+  end
 
   // ---- stage T: the FFC term added ---------------------------------------------------------
-  localparam int unsigned User = 1 + CBits + Rest;  // {refresh, dc, Rest}
-
   logic                t_valid_q;
   logic [TotBits-1:0]  t_sum_q;
+  localparam int unsigned User = 6 + AccBits + CBits;  // {hold, write, acc, refresh, dc, sof, eol, bad}
   logic [User-1:0]     t_user_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_t_valid
     if (!rst_ni) begin
       t_valid_q <= 1'b0;
     end else if (en) begin
-      t_valid_q <= c_valid;
+      t_valid_q <= c_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_t
     if (en) begin
-      t_sum_q  <= TotBits'($signed(c_side[RSide-1 -: SumBits]))
-                  + (TotBits'($signed(c_c)) << (FracBits - FfcFracBits));
-      t_user_q <= {c_refresh, c_dc, c_side[Rest-1:0]};
+      t_sum_q  <= TotBits'($signed(c_sum_q))
+                  + (TotBits'($signed(c_c_q)) << (FracBits - FfcFracBits));
+      t_user_q <= {c_hold_q, c_write_q, c_acc_q, c_refresh_q, c_dc_q, c_sof_q, c_eol_q,
+                   c_bad_q};
     end
   end
 
@@ -659,7 +745,7 @@ module method_ffc_top
   logic [AccBits-1:0] o_acc;
   logic [CBits-1:0]   o_dc;
 
-  assign {o_refresh, o_dc, o_hold, o_write, o_acc, o_sof, o_eol, o_bad} = out_user;
+  assign {o_hold, o_write, o_acc, o_refresh, o_dc, o_sof, o_eol, o_bad} = out_user;
 
   // A stream fork: the item leaves once every destination it goes to has taken it.
   logic [2:0] need, dest_valid, dest_ready, sent_q;
