@@ -89,9 +89,9 @@ MODULE_FILES |= {
                                              *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
     "ffc_mean": ("ffc_mean.sv",),
-    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "ffc_ctrl.sv", "ffc_mean.sv",
-                                           *_TC, *_CORE_SUM, *_CORE_OUT, *_DPC,
-                                           "method_ffc_top.sv"))),
+    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "irnuc_axis_buffer.sv",
+                                           "ffc_ctrl.sv", "ffc_mean.sv", *_TC, *_CORE_SUM,
+                                           *_CORE_OUT, *_DPC, "method_ffc_top.sv"))),
 }
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
