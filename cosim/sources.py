@@ -78,7 +78,7 @@ MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv
 # ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
 _SPKG = (*_PKG, "irnuc_stage_pkg.sv")
 _CORE_SUM = (*_ARITH, "core_sum.sv")
-_CORE_OUT = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
+_CORE_OUT = (*_ASSERT, "irnuc_axis_buffer.sv", "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
 _BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
 MODULE_FILES |= {
     "core_sum": (*_SPKG, *_CORE_SUM),
