@@ -293,18 +293,28 @@ module method_ffc_top
 
   logic                  mean_valid, target_valid, div_busy, started_q, start;
   logic [FlightBits-1:0] flight_q;
+  // flight_q == 0 as a flop of its own (start drives ffc_mean's wide enables), set from
+  // flight_q's compares and the count's steps, not from the next count (the join's take
+  // would then pass the adder and a compare).
+  logic                  flight_zero_q, flight_one, flight_in, flight_out;
   logic [TBits-1:0]      target;
   logic signed [VBits-1:0] mean_v;
   logic                  mean_good;
 
-  assign start = px_valid && px_tgt && !started_q && flight_q == '0;
+  assign start      = px_valid && px_tgt && !started_q && flight_zero_q;
+  assign flight_in  = join_take && px_mode.mean;
+  assign flight_out = mean_valid;
+  assign flight_one = flight_q == FlightBits'(1);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
-      flight_q  <= '0;
-      started_q <= 1'b0;
+      flight_q      <= '0;
+      flight_zero_q <= 1'b1;
+      started_q     <= 1'b0;
     end else begin
-      flight_q <= flight_q + FlightBits'(join_take && px_mode.mean) - FlightBits'(mean_valid);
+      flight_q      <= flight_q + FlightBits'(flight_in) - FlightBits'(flight_out);
+      flight_zero_q <= (flight_zero_q && flight_in == flight_out)
+                       || (flight_one && flight_out && !flight_in);
       if (start) begin
         started_q <= 1'b1;
       end else if (join_take && px_sof) begin
@@ -871,6 +881,8 @@ module method_ffc_top
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && mean_valid))
         else $error("method_ffc_top: a mean pixel summed that was never counted in");
+      a_flight_zero: assert (flight_zero_q == (flight_q == '0))
+        else $error("method_ffc_top: the in-flight count's zero flag disagrees with it");
       a_flight_room: assert (!(flight_q == '1 && join_take && px_mode.mean && !mean_valid))
         else $error("method_ffc_top: more mean pixels in flight than the count holds");
     end
