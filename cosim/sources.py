@@ -78,7 +78,7 @@ MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv
 # ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
 _SPKG = (*_PKG, "irnuc_stage_pkg.sv")
 _CORE_SUM = (*_ARITH, "core_sum.sv")
-_CORE_OUT = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
+_CORE_OUT = (*_ASSERT, "irnuc_axis_buffer.sv", "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
 _BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
 MODULE_FILES |= {
     "core_sum": (*_SPKG, *_CORE_SUM),
@@ -89,9 +89,9 @@ MODULE_FILES |= {
                                              *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
     "ffc_mean": ("ffc_mean.sv",),
-    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "ffc_ctrl.sv", "ffc_mean.sv",
-                                           *_TC, *_CORE_SUM, *_CORE_OUT, *_DPC,
-                                           "method_ffc_top.sv"))),
+    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "irnuc_axis_buffer.sv",
+                                           "ffc_ctrl.sv", "ffc_mean.sv", *_TC, *_CORE_SUM,
+                                           *_CORE_OUT, *_DPC, "method_ffc_top.sv"))),
 }
 # The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((

@@ -2,9 +2,12 @@
 // (saturate or wrap to B bits) into the output register (docs/datapath.md "Cores, per
 // pixel", the last step of every core; nuc_fixed.cores.round_out).
 //
-// The output register (irnuc_spill_register) is the enclosing pipeline's enable: en_o is
-// its ready_o, a flop, and the rounding register moves with it. UserBits of side band
-// travel with each item. Latency 2 (the rounding register and the output register).
+// The output register (irnuc_axis_buffer: the cycles of irnuc_spill_register) is the
+// enclosing pipeline's enable: en_o is its ready_o, a flop, and the rounding register moves
+// with it. Its entries are written from the pipeline side only, so m_ready_i (in the stage
+// tops a fork over several outputs) reaches its read pointer and flags, not the enables of
+// the word's bits. UserBits of side band travel with each item. Latency 2 (the rounding
+// register and the output register).
 module core_out #(
   parameter int unsigned SumBits  = 40,
   parameter int unsigned FracBits = 14,
@@ -78,7 +81,7 @@ module core_out #(
     .y_o(out_d)
   );
 
-  irnuc_spill_register #(.DataBits(UserBits + OutBits)) u_out (
+  irnuc_axis_buffer #(.DataBits(UserBits + OutBits)) u_out (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(rnd_valid_q),

@@ -29,6 +29,8 @@ module ffc_mean #(
 );
 
   localparam int unsigned CountBits = $clog2(NumBits + 1);
+  // A quotient of NumBits bits can exceed TBits bits (then TBits < NumBits fits the count).
+  localparam bit          CanOver   = NumBits > TBits;
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
@@ -61,6 +63,7 @@ module ffc_mean #(
   logic [CountBits-1:0] count_q;
   logic                 zero_q;  // sum < 0 or n = 0: T = 0
   logic                 busy_q, valid_q, done_q;
+  logic                 over_q;  // a quotient bit at or above TBits is set
   logic [TBits-1:0]     target_q;
   logic [DenBits:0]     rem_shift;
   logic [DenBits+1:0]   rem_diff;
@@ -98,27 +101,24 @@ module ffc_mean #(
       rem_q   <= '0;
       count_q <= CountBits'(NumBits);
       zero_q  <= sum_q < 0 || n_q == '0;
+      over_q  <= 1'b0;
     end else if (busy_q) begin
       rem_q   <= fits ? rem_diff[DenBits-1:0] : rem_shift[DenBits-1:0];
       num_q   <= {num_q[NumBits-2:0], fits};
       count_q <= count_q - CountBits'(1);
+      // This quotient bit ends at bit count_q - 1 of num_q.
+      over_q  <= over_q || (CanOver && fits && count_q > CountBits'(TBits));
     end
   end
 
   localparam logic [TBits-1:0] TMax = '1;
 
   // num_q holds the quotient when the division is done: clamped into the target register.
-  // Above TMax = 2^TBits - 1 means a bit above the target's set (an OR, no comparator).
-  logic over;
-  if (NumBits > TBits) begin : gen_over
-    assign over = |num_q[NumBits-1:TBits];
-  end else begin : gen_no_over
-    assign over = 1'b0;
-  end
-
+  // Above TMax = 2^TBits - 1 means a quotient bit at or above TBits set: over_q, gathered
+  // as the bits are made (no wide OR of num_q's top bits before the clamp).
   always_ff @(posedge clk_i) begin : p_target
     if (done_q) begin
-      target_q <= zero_q ? '0 : over ? TMax : num_q[TBits-1:0];
+      target_q <= zero_q ? '0 : over_q ? TMax : num_q[TBits-1:0];
     end
   end
 

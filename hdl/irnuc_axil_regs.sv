@@ -237,7 +237,8 @@ module irnuc_axil_regs
   logic [31:0]         w_data_q;
   logic [3:0]          w_strb_q;
   axi_resp_e           b_resp_q;
-  logic                size_legal_q;  // the decoded write's frame size is legal
+  logic                w_legal_q, h_legal_q;  // the decoded write's width / height is legal
+  logic                size_legal;            // both (the write cycle)
   logic                decode_now, wr;
   logic [NumRegs-1:0]  w_hit, wsel_q;
   logic [31:0]         wmask, wdata;  // the decoded write: byte lanes and their data
@@ -267,7 +268,7 @@ module irnuc_axil_regs
         b_valid_q <= 1'b1;
         // OKAY for a writable or reserved register, SLVERR for a read-only or unmapped
         // one and for an illegal frame size (from the decode cycle's registers).
-        b_resp_q  <= (|(wsel_q & ~ReadOnly) && !(wsel_q[IxFrameSize] && !size_legal_q))
+        b_resp_q  <= (|(wsel_q & ~ReadOnly) && !(wsel_q[IxFrameSize] && !size_legal))
                      ? AxiOkay : AxiSlvErr;
       end else if (s_axil_bready_i) begin
         b_valid_q <= 1'b0;
@@ -306,7 +307,7 @@ module irnuc_axil_regs
   logic [31:0]           ctrl_view, size_view, ctrl_new, size_new;
   logic [RegFrameSizeWidthBits-1:0]  new_w;  // the fields as written: compared at their
   logic [RegFrameSizeHeightBits-1:0] new_h;  // own width (short carry chains)
-  logic                  size_legal, wr_ctrl, wr_size, shadow_touch;
+  logic                  w_legal, h_legal, wr_ctrl, wr_size, shadow_touch;
 
   assign ctrl_view  = (32'(nuc_en_q) << RegCtrlNucEnLsb) | (32'(dpc_en_q) << RegCtrlDpcEnLsb)
                       | (32'(coef_sync_q) << RegCtrlCoefSyncLsb);
@@ -316,17 +317,19 @@ module irnuc_axil_regs
   assign size_new   = (size_view & ~byte_mask(w_strb_q)) | (w_data_q & byte_mask(w_strb_q));
   assign new_w      = RegFrameSizeWidthBits'(size_new >> RegFrameSizeWidthLsb);
   assign new_h      = RegFrameSizeHeightBits'(size_new >> RegFrameSizeHeightLsb);
-  assign size_legal = (new_w != '0) && (new_w <= RegFrameSizeWidthBits'(MaxWidth))
-                      && (new_h != '0) && (new_h <= RegFrameSizeHeightBits'(MaxHeight));
+  assign w_legal    = (new_w != '0) && (new_w <= RegFrameSizeWidthBits'(MaxWidth));
+  assign h_legal    = (new_h != '0) && (new_h <= RegFrameSizeHeightBits'(MaxHeight));
 
-  // The decode cycle: the register hit, the byte lanes, the new frame size and whether it
-  // is legal (the response is made from these in the next cycle).
+  // The decode cycle: the register hit, the byte lanes, the new frame size and whether its
+  // width and its height are legal (two flops: the AND of the two compares is made in the
+  // write cycle; the response is made from these in the next cycle).
   always_ff @(posedge clk_i) begin : p_decode
     if (decode_now) begin
       wsel_q       <= w_hit;
       wmask        <= byte_mask(w_strb_q);
       wdata        <= w_data_q & byte_mask(w_strb_q);
-      size_legal_q <= size_legal;
+      w_legal_q    <= w_legal;
+      h_legal_q    <= h_legal;
       new_w_q      <= WidthBits'(new_w);
       new_wm1_q    <= WidthBits'(new_w - 1'b1);
       new_h_q      <= HeightBits'(new_h);
@@ -336,7 +339,8 @@ module irnuc_axil_regs
 
   assign ctrl_new = (ctrl_view & ~wmask) | (wdata & CtrlMask);
   assign wr_ctrl  = wr && wsel_q[IxCtrl];
-  assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal_q;
+  assign size_legal = w_legal_q && h_legal_q;
+  assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_settings
     if (!rst_ni) begin
@@ -502,11 +506,17 @@ module irnuc_axil_regs
       traffic_q <= '0;
       errors_q  <= '0;
     end else begin
+      // The event enables the count (+1 from flops), not a carry-in: a stream handshake
+      // (pix_out_i is the video output's) then reaches one enable, not a 32-bit carry chain.
       for (int unsigned k = 0; k < NumTraffic; k++) begin
-        traffic_q[k] <= traffic_q[k] + 32'(traffic_ev[k]);
+        if (traffic_ev[k]) begin
+          traffic_q[k] <= traffic_q[k] + 32'd1;
+        end
       end
       for (int unsigned k = 0; k < NumErrors; k++) begin
-        errors_q[k] <= errors_q[k] + 16'(err_ev[k]);
+        if (err_ev[k]) begin
+          errors_q[k] <= errors_q[k] + 16'd1;
+        end
       end
     end
   end

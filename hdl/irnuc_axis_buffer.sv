@@ -1,12 +1,14 @@
-// The input register of an AXI4-Stream port of irnuc_axis_top: a two-entry buffer with the
+// The input register of an AXI4-Stream port of irnuc_axis_top (and of the streams
+// method_ffc_top joins: s_coef, s_foff, s_acc and its pixel stage): a two-entry buffer with the
 // cycles of irnuc_spill_register (ready_o = "fewer than two items held", a flop; an item
 // taken is at the output the next cycle; one item per clock at valid = ready = 1), built so
 // that the consumer's ready_i reaches only a read pointer and the fill flags, never the
 // enables of the data registers: each entry is written only from the input side (its
 // enable is valid_i and a flop), and the output is the older entry, picked by the read
-// pointer (a multiplexer on the data path). The consumer here is the framer, whose decision
-// to take an item is the wrapper's deepest logic; with a spill register that decision
-// fanned out to the enables of every data bit (the wrapper's critical path).
+// pointer (a multiplexer on the data path). The consumer is the framer, or method_ffc_top's
+// join, whose decision to take an item is the deepest logic; with a spill register that
+// decision fanned out to the enables of every data bit (the critical path). The input side
+// is checked by the user (irnuc_axis_assert, method_ffc_top's stream checkers).
 module irnuc_axis_buffer #(
   parameter int unsigned DataBits = 1
 ) (

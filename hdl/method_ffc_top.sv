@@ -199,7 +199,7 @@ module method_ffc_top
     .data_o ({pix_shutter, pix_frame, pix_sof, pix_eol, pix_data})
   );
 
-  irnuc_spill_register #(.DataBits(CoefBits)) u_coef_in (
+  irnuc_axis_buffer #(.DataBits(CoefBits)) u_coef_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_coef_valid_i),
@@ -210,7 +210,7 @@ module method_ffc_top
     .data_o (coef)
   );
 
-  irnuc_spill_register #(.DataBits(CBits)) u_foff_in (
+  irnuc_axis_buffer #(.DataBits(CBits)) u_foff_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_foff_valid_i),
@@ -221,7 +221,7 @@ module method_ffc_top
     .data_o (foff_in)
   );
 
-  irnuc_spill_register #(.DataBits(AccBits)) u_acc_in (
+  irnuc_axis_buffer #(.DataBits(AccBits)) u_acc_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_acc_valid_i),
@@ -275,7 +275,7 @@ module method_ffc_top
   ffc_mode_t            px_mode;
   logic [FrameBits-1:0] px_frame;
 
-  irnuc_spill_register #(.DataBits(FrameBits + $bits(ffc_mode_t) + AdcBits + 3)) u_px (
+  irnuc_axis_buffer #(.DataBits(FrameBits + $bits(ffc_mode_t) + AdcBits + 3)) u_px (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(pix_valid),
@@ -293,18 +293,28 @@ module method_ffc_top
 
   logic                  mean_valid, target_valid, div_busy, started_q, start;
   logic [FlightBits-1:0] flight_q;
+  // flight_q == 0 as a flop of its own (start drives ffc_mean's wide enables), set from
+  // flight_q's compares and the count's steps, not from the next count (the join's take
+  // would then pass the adder and a compare).
+  logic                  flight_zero_q, flight_one, flight_in, flight_out;
   logic [TBits-1:0]      target;
   logic signed [VBits-1:0] mean_v;
   logic                  mean_good;
 
-  assign start = px_valid && px_tgt && !started_q && flight_q == '0;
+  assign start      = px_valid && px_tgt && !started_q && flight_zero_q;
+  assign flight_in  = join_take && px_mode.mean;
+  assign flight_out = mean_valid;
+  assign flight_one = flight_q == FlightBits'(1);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
-      flight_q  <= '0;
-      started_q <= 1'b0;
+      flight_q      <= '0;
+      flight_zero_q <= 1'b1;
+      started_q     <= 1'b0;
     end else begin
-      flight_q <= flight_q + FlightBits'(join_take && px_mode.mean) - FlightBits'(mean_valid);
+      flight_q      <= flight_q + FlightBits'(flight_in) - FlightBits'(flight_out);
+      flight_zero_q <= (flight_zero_q && flight_in == flight_out)
+                       || (flight_one && flight_out && !flight_in);
       if (start) begin
         started_q <= 1'b1;
       end else if (join_take && px_sof) begin
@@ -351,12 +361,12 @@ module method_ffc_top
   assign frame = px_frame;
 
   // ---- the front: the frame's coefficients of the pixel ----------------------------------------
-  // The pixel's side band: {x, the accumulator core's input (acc_new, or the read
-  // accumulator in the refresh pass), acc_new, the correction read, mean, refresh, write,
-  // hold, sof, eol, bad}. acc_new = x (a run's first frame) or acc + x.
-  localparam int unsigned Pass = AdcBits + 2 * AccBits + CBits + 7;
+  // The pixel's side band: {x, the accumulator read, the correction read, acc_first, mean,
+  // refresh, write, hold, sof, eol, bad}. The new accumulator (x or acc + x) is summed
+  // behind the front (tc_poly's output register for tc_offset), not on the input
+  // registers' read multiplexers.
+  localparam int unsigned Pass = AdcBits + AccBits + CBits + 8;
 
-  logic [AccBits-1:0]    acc_new;
   logic [Pass-1:0]       join_pass, f_pass;
   logic                  f_valid;
   logic [GainBits-1:0]   f_gain;
@@ -364,10 +374,9 @@ module method_ffc_top
   logic [QuadBits-1:0]   f_quad;
   logic                  bad;
 
-  assign acc_new   = px_mode.acc_first ? AccBits'(px_data) : acc_in + AccBits'(px_data);
-  assign join_pass = {px_data, px_mode.refresh ? acc_in : acc_new, acc_new, foff_in,
-                      px_mode.mean, px_mode.refresh, px_mode.acc_first || px_mode.acc_add,
-                      px_mode.hold, px_sof, px_eol, bad};
+  assign join_pass = {px_data, acc_in, foff_in, px_mode.acc_first, px_mode.mean,
+                      px_mode.refresh, px_mode.acc_first || px_mode.acc_add, px_mode.hold,
+                      px_sof, px_eol, bad};
 
   if (MethodSel == MethodTcOffset) begin : gen_tc_offset
     // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
@@ -463,8 +472,17 @@ module method_ffc_top
     end
   end
 
-  // ---- stage 1 ------------------------------------------------------------------------------
+  // ---- stage 1: the new accumulator, acc_new = x (a run's first frame) or acc + x ----------
   localparam int unsigned Side = 6 + AccBits + CBits;  // {mean, refresh, write, hold, acc, foff, sof, eol}
+
+  logic [AdcBits-1:0] f_x;
+  logic [AccBits-1:0] f_acc, acc_new;
+  logic [CBits-1:0]   f_foff;
+  logic [6:0]         f_flags;  // {mean, refresh, write, hold, sof, eol, bad}
+  logic               f_acc_first;
+
+  assign {f_x, f_acc, f_foff, f_acc_first, f_flags} = f_pass;
+  assign acc_new = f_acc_first ? AccBits'(f_x) : f_acc + AccBits'(f_x);
 
   logic                  s1_valid_q;
   logic [AdcBits-1:0]    s1_x_q;
@@ -486,8 +504,12 @@ module method_ffc_top
 
   always_ff @(posedge clk_i) begin : p_s1
     if (en) begin
-      {s1_x_q, s1_acc_q, s1_acc_new_q, s1_foff_q, s1_mean_q, s1_refresh_q, s1_write_q,
-       s1_hold_q, s1_sof_q, s1_eol_q, s1_bad_q} <= f_pass;
+      s1_x_q       <= f_x;
+      // The accumulator core sums the read accumulator in the refresh pass, else acc_new.
+      s1_acc_q     <= f_flags[5] ? f_acc : acc_new;
+      s1_acc_new_q <= acc_new;
+      s1_foff_q    <= f_foff;
+      {s1_mean_q, s1_refresh_q, s1_write_q, s1_hold_q, s1_sof_q, s1_eol_q, s1_bad_q} <= f_flags;
       s1_gain_q   <= f_gain;
       s1_offset_q <= f_offset;
       s1_quad_q   <= f_quad;
@@ -812,8 +834,30 @@ module method_ffc_top
 
 `ifdef IRNUC_ASSERT
   // Protocol assertions of every stream port: in the input and output registers
-  // (irnuc_spill_register) and u_dpc.u_out, whose ports these are. Here: the frame size at
-  // a frame start, and no mean pixel lost by the in-flight count.
+  // (irnuc_spill_register) and u_dpc.u_out, whose ports these are, but s_coef, s_foff and
+  // s_acc (their irnuc_axis_buffer checks its output side only): here. Also the frame size
+  // at a frame start, and no mean pixel lost by the in-flight count.
+  irnuc_stream_assert #(.DataBits(CoefBits)) u_assert_coef (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_coef_valid_i),
+    .ready_i(s_coef_ready_o),
+    .data_i (s_coef_data_i)
+  );
+  irnuc_stream_assert #(.DataBits(CBits)) u_assert_foff (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_foff_valid_i),
+    .ready_i(s_foff_ready_o),
+    .data_i (s_foff_data_i)
+  );
+  irnuc_stream_assert #(.DataBits(AccBits)) u_assert_acc (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_acc_valid_i),
+    .ready_i(s_acc_ready_o),
+    .data_i (s_acc_data_i)
+  );
   irnuc_frame_assert #(
     .MaxWidth (MaxWidth),
     .MaxHeight(MaxHeight)
@@ -837,6 +881,8 @@ module method_ffc_top
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && mean_valid))
         else $error("method_ffc_top: a mean pixel summed that was never counted in");
+      a_flight_zero: assert (flight_zero_q == (flight_q == '0))
+        else $error("method_ffc_top: the in-flight count's zero flag disagrees with it");
       a_flight_room: assert (!(flight_q == '1 && join_take && px_mode.mean && !mean_valid))
         else $error("method_ffc_top: more mean pixels in flight than the count holds");
     end

@@ -304,3 +304,34 @@ def test_a_sweep_without_a_valid_point_fails_the_report() -> None:
     s = make_summary(rep, [], None, None)
     assert s["status"] == "fail"
     assert any("no valid point" in r for r in s["status_reasons"])
+
+
+def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch) -> None:
+    """Wrapped in irnuc_axis_top, the recommendation's cost-model error is taken against the
+    bare core at the same widths (what the model predicts), and the wrapper's share is
+    stated on its own."""
+    from irnuc.cosim import synth
+
+    def figs(lut, ff, dsp, fmax):
+        return {"xc7": {"lut": lut, "ff": ff, "dsp": dsp, "bram36": 1, "bram18": 0},
+                "ecp5": {"lut4": lut + 10, "ff": ff + 20, "mult18": dsp, "dp16kd": 2},
+                "fmax_mhz": fmax, "device": "LFE5U-85F", "speed": 6, "target_mhz": 150.0}
+
+    tops = []
+
+    def fake(cfg, *, top=None, **kw):
+        tops.append(top)
+        return figs(2000, 3000, 8, 140.0) if top == "irnuc_axis_top" else figs(900, 1700, 8, 160.0)
+
+    monkeypatch.setattr(synth, "synth_config", fake)
+    pred = {"source": "model", "xc7.lut": 950.0, "xc7.ff": 1650.0, "xc7.dsp": 8.0,
+            "xc7.bram36": 1.0, "ecp5.lut4": 960.0, "ecp5.ff": 1720.0, "ecp5.mult18": 8.0,
+            "ecp5.dp16kd": 2.0, "fmax_mhz": 150.0}
+    r = {"config": "tcgain14", "frac_bits": 12, "hw": pred}
+    tp._synth_recommended({}, r)
+    sy = r["synth"]
+    assert tops == ["irnuc_axis_top", "method_dpc_top"]
+    assert sy["top"] == "irnuc_axis_top" and sy["core"]["top"] == "method_dpc_top"
+    assert sy["prediction_error"]["xc7.lut"] == 50.0 and sy["prediction_error"]["xc7.ff"] == -50.0
+    assert sy["prediction_error"]["fmax_mhz"] == -10.0
+    assert sy["wrapper_overhead"]["xc7.lut"] == 1100.0 and sy["wrapper_overhead"]["fmax_mhz"] == -20.0

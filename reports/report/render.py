@@ -289,9 +289,16 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
                      ["ECP5", f"{e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, {e['dp16kd']} DP16KD"],
                      ["Fmax (nextpnr-ecp5)", f"{sy['fmax_mhz']:.1f} MHz on {sy['device']} speed "
                       f"{sy['speed']} (aiming at {sy['target_mhz']:g} MHz)"]]
+            if sy.get("wrapper_overhead"):
+                c = sy["core"]
+                cost.append(["the bare core", f"{c['top']}: {c['xc7']['lut']} LUT, "
+                             f"{c['xc7']['ff']} FF (xc7), {c['fmax_mhz']:.1f} MHz; the wrapper "
+                             "adds " + ", ".join(f"{k} {fmt(v)}"
+                                                 for k, v in sy["wrapper_overhead"].items())])
             if sy.get("prediction_error"):
                 pe = sy["prediction_error"]
-                cost.append(["cost model at this point", "predicted − synthesized: "
+                cost.append(["cost model at this point", "predicted − synthesized "
+                             f"({sy.get('core', {}).get('top', sy['top'])}): "
                              + ", ".join(f"{k} {fmt(v)}" for k, v in pe.items())])
     return {"head": head, "rows": rows, "bits_head": ["configuration", *[f"f = {b}" for b in bits]],
             "bits": bit_rows, "noise3d": n3, "cam": cam, "cost": cost}
