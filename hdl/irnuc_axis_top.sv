@@ -13,7 +13,7 @@
 //                 out (method_ffc_top's s_foff, s_acc, m_acc, m_foff): one word per pixel
 //                 in raster order in the frames that carry them, the word in the low bits
 //                 of tdata, tlast on each frame's last word (out; ignored in); with Ffc = 0
-//                 the inputs are never ready and the outputs never valid
+//                 the inputs are never ready and the outputs never valid (8-bit tdata)
 //   s_axil        the register file (docs/registers.md), irq_o its interrupt
 // One clock, one asynchronous active-low reset (release it synchronously: a reset
 // synchronizer or the system's reset block). AXI port names follow the AXI specification
@@ -102,8 +102,10 @@ module irnuc_axis_top
   // The FFC words (memories ffc_offset and ffc_acc) and their AXI4-Stream widths.
   localparam int unsigned FoffWordBits  = FfcIntBits + FfcFracBits,
   localparam int unsigned AccWordBits   = AdcBits + $clog2(FfcFrames),
-  localparam int unsigned FoffBits      = 8 * ((FoffWordBits + 7) / 8),
-  localparam int unsigned AccBits       = 8 * ((AccWordBits + 7) / 8),
+  // Without the stage the ports stay, one byte wide (a top-level port is a pin in an
+  // FPGA flow: the widest method words already use most of a package's pins).
+  localparam int unsigned FoffBits      = (Ffc != 0) ? 8 * ((FoffWordBits + 7) / 8) : 8,
+  localparam int unsigned AccBits       = (Ffc != 0) ? 8 * ((AccWordBits + 7) / 8) : 8,
   // The framer's frame word: the method's, and the shutter flag above it (Ffc).
   localparam int unsigned ItemFrameBits = FrameBits + ((Ffc != 0) ? 1 : 0)
 ) (
