@@ -166,9 +166,15 @@ module dpc_ctrl
   assign pix_ready_o  = en_i && accept;
   assign take_pix     = pix_valid_i && pix_ready_o;
   assign take_phantom = en_i && phantom_req;
-  assign take         = take_pix || take_phantom;
-  assign last_phantom = take_phantom && ph_wrapped_q;
-  assign sample       = idle && take_pix;
+  // take = take_pix || take_phantom, written in one level: in Tail either the pixel or a
+  // phantom enters, in Flush a phantom, in Idle and Frame the waiting pixel. It enables the
+  // window, the line buffer and every counter, so its depth is the core's clock period.
+  assign take         = en_i && (pix_valid_i || tail || flush);
+  // ph_wrapped_q is set only in Flush or by the phantom that enters it, and cleared by the
+  // last phantom, so it implies Flush, where every item is a phantom (a_wrapped_in_flush).
+  assign last_phantom = take && ph_wrapped_q;
+  // In Idle no phantom is made: every item taken is a pixel.
+  assign sample       = idle && take;
 
   // In Idle the registered frame size applies (it is sampled with the first pixel).
   assign cur_col_last = idle ? fw_is1_q : col_last_q;
@@ -291,36 +297,49 @@ module dpc_ctrl
   // dpc_core), so the address has a counter of its own, ahead_q, two columns ahead of col_q
   // and a register, like its "last column" flag. In Idle the next frame's size is that of
   // the size inputs; at the frame start the counter jumps to column 3 mod W.
-  logic [WidthBits-1:0] ahead_q;
-  logic                 ahead_last_q;
-  logic [AddrBits-1:0]  rd_col;
+  logic [WidthBits-1:0] ahead_q, ahead_d;
+  logic                 ahead_last_q, ahead_last_d;
+  logic [AddrBits-1:0]  rd_col_q;
+  logic                 fw_short_d;
+
+  always_comb begin : p_read_address_next
+    ahead_d      = ahead_q;
+    ahead_last_d = ahead_last_q;
+    if (sample) begin
+      ahead_d      = fw_is1_q ? WidthBits'(0) : fw_is2_q ? WidthBits'(1) :
+                     fw_is3_q ? WidthBits'(0) : WidthBits'(3);
+      ahead_last_d = fw_is1_q || fw_is2_q || fw_is4_q;
+    end else if (take) begin
+      if (ahead_last_q) begin
+        ahead_d      = '0;
+        ahead_last_d = geo_w_is1_q;
+      end else begin
+        ahead_d      = ahead_q + WidthBits'(1);
+        ahead_last_d = (ahead_q == geo_wm2_q);
+      end
+    end
+  end
+
+  // The read address is a register of its own, loaded with the next cycle's address, so
+  // the memory's address pins (LUT RAM: its read multiplexer) come straight from a flop.
+  // In Idle: column 2 of the new frame (0 when W <= 2; the width of the size inputs, which
+  // fw_is1_q/fw_is2_q hold in the next cycle). The reads of the last two phantoms of a
+  // flush, for the next frame's items 0 and 1 (row 0: the rows above are masked), use the
+  // old size; their data are never used.
+  assign fw_short_d = (frame_width_i == WidthBits'(1)) || (frame_width_i == WidthBits'(2));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_address
     if (!rst_ni) begin
       ahead_q      <= '0;
       ahead_last_q <= 1'b0;
+      rd_col_q     <= '0;
     end else begin
-      if (sample) begin
-        ahead_q      <= fw_is1_q ? WidthBits'(0) : fw_is2_q ? WidthBits'(1) :
-                        fw_is3_q ? WidthBits'(0) : WidthBits'(3);
-        ahead_last_q <= fw_is1_q || fw_is2_q || fw_is4_q;
-      end else if (take) begin
-        if (ahead_last_q) begin
-          ahead_q      <= '0;
-          ahead_last_q <= geo_w_is1_q;
-        end else begin
-          ahead_q      <= ahead_q + WidthBits'(1);
-          ahead_last_q <= (ahead_q == geo_wm2_q);
-        end
-      end
+      ahead_q      <= ahead_d;
+      ahead_last_q <= ahead_last_d;
+      rd_col_q     <= (state_d == DpcIdle) ? (fw_short_d ? AddrBits'(0) : AddrBits'(2))
+                                           : AddrBits'(ahead_d);
     end
   end
-
-  // In Idle: column 2 of the new frame (0 when W <= 2). The reads of the last two phantoms
-  // of a flush, for the next frame's items 0 and 1 (row 0: the rows above are masked), use
-  // the old size; their data are never used.
-  assign rd_col = idle ? ((fw_is1_q || fw_is2_q) ? AddrBits'(0) : AddrBits'(2))
-                       : AddrBits'(ahead_q);
 
   // ---- output position (one step per emitting item) ---------------------------------------
   logic win_valid_q, win_top_q, win_bottom_q, win_left_q, win_right_q, win_sof_q, win_eol_q;
@@ -396,7 +415,7 @@ module dpc_ctrl
   // ---- outputs ---------------------------------------------------------------------------
   assign take_o        = take;
   assign phantom_o     = phantom_req;
-  assign lb_rd_addr_o  = rd_col;
+  assign lb_rd_addr_o  = rd_col_q;
   assign lb_wr_addr_o  = prev_col_q;
   assign lb_w1_o       = geo_w_is1_q;
   assign lb_w2_o       = geo_w_is2_q;
@@ -409,5 +428,23 @@ module dpc_ctrl
   assign win_sof_o     = win_sof_q;
   assign win_eol_o     = win_eol_q;
   assign frame_err_o   = err_q;
+
+`ifdef IRNUC_ASSERT
+  // a_wrapped_in_flush: the invariant last_phantom relies on.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_wrapped_in_flush: assert (!ph_wrapped_q || flush)
+        else $error("dpc_ctrl: the phantom row wrapped outside Flush");
+    end
+  end
+`endif
 
 endmodule
