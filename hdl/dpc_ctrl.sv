@@ -19,7 +19,9 @@
 // Every decision comes from registers: the frame size inputs are registered (and compared
 // with the latched size one cycle ahead), every "counter at its last value" flag is
 // computed one step ahead, so en_i, the waiting pixel's valid and this state decide an
-// item in two levels of logic.
+// item in two levels of logic, and whether one enters at all (take_o, the enable of the
+// window, the line buffer and the counters) in one. The line buffer's read address is a
+// register loaded with the next cycle's address.
 module dpc_ctrl
   import irnuc_pkg::*;
 #(

@@ -254,6 +254,15 @@ CATALOGUE: tuple[Mutant, ...] = (
                   "reach only window row 0 while the centre is row -1 (no output) or row 0 "
                   "(masked by the top border) and are written back only into row -1 "
                   "slots; no output code, flag or marker depends on it"),
+    _m("ctrl_read_col_late", "dpc_ctrl.sv", ": AddrBits'(ahead_d);", ": AddrBits'(ahead_q);",
+       "line-buffer read address register loaded with this cycle's look-ahead column, not the "
+       "next one (the address one item late)",
+       equivalent_when=(("max_width", 3, _LB_UNUSED),)),
+    _m("ctrl_take_no_tail", "dpc_ctrl.sv",
+       "assign take         = en_i && (pix_valid_i || tail || flush);",
+       "assign take         = en_i && (pix_valid_i || flush);",
+       "in Tail with no pixel waiting no phantom is taken: the frame's last outputs wait for "
+       "the next frame"),
     _m("ctrl_flush_short", "dpc_ctrl.sv",
        "if (take_phantom && cur_col_last) ph_wrapped_q <= 1'b1;",
        "if (take_phantom) ph_wrapped_q <= 1'b1;", "the flush ends after two phantoms"),
