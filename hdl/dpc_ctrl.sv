@@ -330,6 +330,14 @@ module dpc_ctrl
   // old size; their data are never used.
   assign fw_short_d = (frame_width_i == WidthBits'(1)) || (frame_width_i == WidthBits'(2));
 
+  // The next state is Idle when Idle takes no pixel or the last phantom enters (in Flush
+  // last_phantom = take && ph_wrapped_q): written from take and flops, not from state_d.
+  logic                idle_d;
+  logic [AddrBits-1:0] idle_col;
+
+  assign idle_d   = idle ? !take : last_phantom;
+  assign idle_col = fw_short_d ? AddrBits'(0) : AddrBits'(2);
+
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_address
     if (!rst_ni) begin
       ahead_q      <= '0;
@@ -338,8 +346,7 @@ module dpc_ctrl
     end else begin
       ahead_q      <= ahead_d;
       ahead_last_q <= ahead_last_d;
-      rd_col_q     <= (state_d == DpcIdle) ? (fw_short_d ? AddrBits'(0) : AddrBits'(2))
-                                           : AddrBits'(ahead_d);
+      rd_col_q     <= idle_d ? idle_col : AddrBits'(ahead_d);
     end
   end
 
