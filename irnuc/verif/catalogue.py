@@ -247,7 +247,7 @@ CATALOGUE: tuple[Mutant, ...] = (
        "fw_is3_q ? WidthBits'(0) : WidthBits'(2);",
        "line-buffer look-ahead starts one column late",
        equivalent_when=(("max_width", 3, _LB_UNUSED),)),
-    _m("ctrl_idle_read_col", "dpc_ctrl.sv", ": AddrBits'(2))", ": AddrBits'(1))",
+    _m("ctrl_idle_read_col", "dpc_ctrl.sv", ": AddrBits'(2);", ": AddrBits'(1);",
        "line-buffer read address in Idle off by one",
        equivalent="the mutated branch is taken for W >= 3, where the word read in Idle is "
                   "that of item 2 of the new frame, in row 0: it holds rows -2 and -1, which "
