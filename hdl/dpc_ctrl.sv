@@ -439,10 +439,17 @@ module dpc_ctrl
   assign frame_err_o   = err_q;
 
 `ifdef IRNUC_ASSERT
-  // a_wrapped_in_flush: the invariant last_phantom and idle_d rely on (ph_wrapped_q and
-  // state_q reset together, so it holds from the reset on).
+  // a_wrapped_in_flush: the invariant last_phantom relies on.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
   always_ff @(posedge clk_i) begin : p_check
-    if (rst_ni) begin
+    if (armed_q) begin
       a_wrapped_in_flush: assert (!ph_wrapped_q || flush)
         else $error("dpc_ctrl: the phantom row wrapped outside Flush");
     end
