@@ -439,7 +439,7 @@ module dpc_ctrl
   assign frame_err_o   = err_q;
 
 `ifdef IRNUC_ASSERT
-  // a_wrapped_in_flush: the invariant last_phantom relies on.
+  // a_wrapped_in_flush: the invariant last_phantom and idle_d rely on.
   logic armed_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
     if (!rst_ni) begin
