@@ -100,7 +100,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                            ffc_bp: str | None = None) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
-    two open frames: every stream and the status registers checked. ``idle`` / ``bp``:
+    three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
     the pause patterns of the video and coefficient inputs / the video output;
     ``ffc_idle`` / ``ffc_bp`` those of the FFC sources / sinks (default the same)."""
     ffc_idle = idle if ffc_idle is None else ffc_idle
@@ -114,7 +114,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     n = int(cfg.ffc_frames or 1)
     count = n if frames is None else frames
     start_frame = 2
-    shutter = ffc_shutter_flags(start_frame + count + 2, {start_frame: count})
+    shutter = ffc_shutter_flags(start_frame + count + 3, {start_frame: count})
     framing = ffc_framing(cfg, shutter, start=start_frame)
     c = _calibration(cfg, H, W, rng, "camera")
     for name, value in c.registers.items():  # tc_offset: T_REF
@@ -200,8 +200,9 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                 f"{len(bad)} differ, first at word {bad[:1]}")
     full_rate = (idle, bp, ffc_idle, ffc_bp) == ("none",) * 4
     if full_rate:
-        # The last two frames are open frames, shown, back to back at the input: their
-        # 2 H W pixels leave in 2 H W cycles.
+        # The last two frames are open frames, shown, back to back at the input, after the
+        # refresh frame (which may wait for the target's serial division on frames this
+        # small): their 2 H W pixels leave in 2 H W cycles.
         span = bench.out_cycles[-1] - bench.out_cycles[-2 * H * W] + 1
         assert span == 2 * H * W, f"the last two frames' {2 * H * W} pixels took {span} cycles"
         _sample("stream.back_to_back", "frames")

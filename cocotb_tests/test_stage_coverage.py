@@ -96,14 +96,14 @@ def test_ffc_axis_classes_by_hand() -> None:
       mid frame.
     """
     cfg = load_pipeline("ffc14")
-    full = ffc_framing(cfg, ffc_shutter_flags(12, {2: 8}), start=2)
-    assert full.shutter == (False,) * 2 + (True,) * 8 + (False,) * 2
+    full = ffc_framing(cfg, ffc_shutter_flags(13, {2: 8}), start=2)
+    assert full.shutter == (False,) * 2 + (True,) * 8 + (False,) * 3
     assert full.foff_out.index(True) == 10
     assert ffc_axis_classes(full, 8, 8, 2, 36, 24, "none", "none") == {
         "axis.ffc.start": {"mid_frame"}, "axis.ffc.frames": {"n"},
         "axis.ffc.acc_stream": {"full_rate"}, "axis.ffc.foff_stream": {"full_rate"},
         "axis.ffc.shutter": {"full_rate"}, "axis.ffc.refresh": {"next_frame_start"}}
-    short = ffc_framing(cfg, ffc_shutter_flags(6, {2: 2}), start=2)
+    short = ffc_framing(cfg, ffc_shutter_flags(7, {2: 2}), start=2)
     assert not any(short.foff_out)
     assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "random", "random") == {
         "axis.ffc.start": {"mid_frame"}, "axis.ffc.frames": {"short"},
