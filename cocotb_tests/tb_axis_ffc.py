@@ -131,6 +131,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     assert [f.raw.tolist() for f in fr.frames] == [r.tolist() for r in raws]
 
     cbits = cfg.memories["ffc_offset"].word_bits
+    done_bit = bench.model.map["IRQ_STATUS"].field("ffc_done")
+    await bench.write("IRQ_ENABLE", 1 << bench.model.map["IRQ_ENABLE"].field("ffc_done").lsb)
     bench.patterns(idle, idle, bp)
     s.patterns(ffc_idle, ffc_bp)
     if readings[0] is not None:
@@ -155,6 +157,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         m.set_live("FFC_STATUS", "busy", 1)
         await bench.check("FFC_STATUS")
         _sample("axis.ffc.status", "busy")
+        assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
 
     def write_reading(k: int):
         """READING of frame k + 1, written while frame k streams (it must land before
@@ -213,8 +216,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     await bench.check("FFC_STATUS")
     _sample("axis.ffc.status", "done")
     irq = await bench.read("IRQ_STATUS")
-    done_bit = m.map["IRQ_STATUS"].field("ffc_done")
     assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
+    assert int(dut.irq_o.value) == 1, "irq_o is 0 with IRQ_STATUS.ffc_done and its enable"
     _sample("axis.ffc.irq", "ffc_done")
     assert await bench.read("FRAMES_IN") == len(raws)
     assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
@@ -222,6 +225,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     await bench.write("IRQ_STATUS", done_bit.mask)
     irq = await bench.read("IRQ_STATUS")
     assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
+    assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
     _sample("axis.ffc.irq", "cleared")
     if coverage.enabled():
         pattern_in = idle if idle == ffc_idle else "mixed"

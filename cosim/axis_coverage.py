@@ -18,7 +18,8 @@ and checked, or by a register read that matched the model:
                           came between the frame's first and last video beat)
 ``axis.ffc.frames``       FFC_CTRL.frames = N (a refresh) and below N (a short run, no refresh)
 ``axis.ffc.status``       FFC_STATUS read busy (after the start) and done (after the run)
-``axis.ffc.irq``          IRQ_STATUS.ffc_done read set, and read clear after its W1C
+``axis.ffc.irq``          IRQ_STATUS.ffc_done read set with irq_o high (IRQ_ENABLE.ffc_done),
+                          and both clear after its W1C
 ``axis.ffc.acc_stream``   words on m_axis_acc at full rate, and with idle cycles on every input
                           and backpressure on every output
 ``axis.ffc.foff_stream``  the same for the refreshed offsets on m_axis_foff
