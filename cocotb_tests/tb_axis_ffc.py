@@ -78,6 +78,24 @@ class FfcStreams:
         _sample("stream.backpressure", bp)
 
 
+async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
+    """Fill ``out`` with the cycles (Bench's count) in which an AXI4-Stream port was idle
+    (``<port> idle``: tvalid 0) or stalled (``<port> stall``: tvalid 1, tready 0): triage
+    of a throughput check."""
+    from cocotb.triggers import RisingEdge
+
+    dut = bench.dut
+    edge = RisingEdge(dut.clk_i)
+    while True:
+        await edge
+        for port in ("s_axis_video", "s_axis_coef", "s_axis_foff", "s_axis_acc",
+                     "m_axis_video"):
+            v = int(getattr(dut, f"{port}_tvalid").value)
+            r = int(getattr(dut, f"{port}_tready").value)
+            if not v or not r:
+                out.setdefault(f"{port} {'stall' if v else 'idle'}", []).append(bench.cycle)
+
+
 def _unsigned(a: np.ndarray, bits: int) -> list[int]:
     return [int(v) & ((1 << bits) - 1) for v in np.asarray(a, np.int64).ravel()]
 
@@ -169,6 +187,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                 f"({bench.beats_in} beats taken)")
         return write
 
+    stalls: dict[str, list[int]] = {}
+    stall_task = cocotb.start_soon(_stall_log(bench, stalls))
     acts = [cocotb.start_soon(bench._act(H * W + H * W // 2, write_ffc))]
     if readings[0] is not None:
         acts += [cocotb.start_soon(bench._act(k * H * W + H * W // 4, write_reading(k)))
@@ -183,6 +203,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     for act in acts:
         await act
     got_acc, got_foff = await acc_task, await foff_task
+    stall_task.cancel()
     await ClockCycles(dut.clk_i, 40)
     assert s.acc_out.empty() and s.foff_out.empty(), "write-back words after the sequence"
 
@@ -201,14 +222,18 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
             assert len(a) == len(b) and not bad, (
                 f"{name} frame {k}: {len(a)} words (tlast), {len(b)} expected; "
                 f"{len(bad)} differ, first at word {bad[:1]}")
-    full_rate = (idle, bp, ffc_idle, ffc_bp) == ("none",) * 4
-    if full_rate:
+    if (idle, bp, ffc_idle, ffc_bp) == ("none",) * 4:
         # The last two frames are open frames, shown, back to back at the input, after the
         # refresh frame (which may wait for the target's serial division on frames this
-        # small): their 2 H W pixels leave in 2 H W cycles.
-        span = bench.out_cycles[-1] - bench.out_cycles[-2 * H * W] + 1
-        assert span == 2 * H * W, f"the last two frames' {2 * H * W} pixels took {span} cycles"
-        _sample("stream.back_to_back", "frames")
+        # small): recorded for test_axis_top's throughput check (2 H W pixels should leave
+        # in 2 H W cycles), with the ports' idle and stalled cycles for triage.
+        first, last = bench.out_cycles[-2 * H * W], bench.out_cycles[-1]
+        tb_lib.record(throughput="last_two_frames", pixels=2 * H * W,
+                      cycles=last - first + 1,
+                      stalls={k: [c for c in v if first <= c <= last]
+                              for k, v in stalls.items()})
+        if last - first + 1 == 2 * H * W:
+            _sample("stream.back_to_back", "frames")
 
     assert framing.done is not None, "the sequence does not finish the FFC"
     m.set_live("FFC_STATUS", "busy", 0)
