@@ -214,9 +214,13 @@ def _wait_for_child(token: str, roots: list[str], words: tuple[str, ...], limit:
     for up to ``limit`` seconds (None: none appeared, or the report ended first)."""
     deadline = time.monotonic() + limit
     while time.monotonic() < deadline and proc.poll() is None:
-        hit = next((p for p in _ours(token, roots) if any(w in p for w in words)), None)
-        if hit is not None:
-            return hit
+        for found in _ours(token, roots):
+            try:  # the whole command line (_ours shortens it)
+                cmd = Path(f"/proc/{found.split(':', 1)[0]}/cmdline").read_bytes()
+            except OSError:
+                continue
+            if any(w.encode() in cmd for w in words):
+                return found
         time.sleep(0.1)
     return None
 
