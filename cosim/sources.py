@@ -90,9 +90,14 @@ MODULE_FILES |= {
                                              *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
     "ffc_mean": ("ffc_mean.sv",),
+    "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
+    "ffc_sums": (*_SPKG, *_CORE_SUM, "ffc_sums.sv"),
+    "frame_coefficients": (*_PKG, *_TC, "frame_coefficients.sv"),
     "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "irnuc_axis_buffer.sv",
-                                           "ffc_ctrl.sv", "ffc_mean.sv", *_TC, *_CORE_SUM,
-                                           *_CORE_OUT, *_DPC, "method_ffc_top.sv"))),
+                                           "ffc_ctrl.sv", "ffc_mean.sv", *_TC,
+                                           "frame_coefficients.sv", *_CORE_SUM, "ffc_sums.sv",
+                                           *_CORE_OUT, "ffc_refresh.sv", *_DPC,
+                                           "method_ffc_top.sv"))),
 }
 # The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
@@ -305,6 +310,13 @@ _STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
     "core_out": ("OutBits", "Rounding", "Overflow"),
     "ffc_ctrl": ("FfcFrames",),
     "ffc_mean": (),
+    "ffc_refresh": ("OutBits", "FfcIntBits", "FfcFracBits", "FfcRounding", "FfcOverflow"),
+    "ffc_sums": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits",
+                 "FfcFracBits"),
+    "frame_coefficients": ("Method", *_COEF, "QuadIntBits", "QuadFracBits", "Tc1IntBits",
+                           "Tc1FracBits", "Tc2IntBits", "Tc2FracBits", "Tg1IntBits",
+                           "Tg1FracBits", "Tg2IntBits", "Tg2FracBits", "TcOrder", "TcGain",
+                           "ReadingBits", "ReadingRangeBits", "Rounding"),
 }
 
 

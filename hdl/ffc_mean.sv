@@ -2,28 +2,36 @@
 //   T = CLAMP(RDIV_half_up(sum over good pixels of v, n_good), 0, 2^TBits - 1)
 // with v = ROUND_(F' - Cf)(s_acc << (F' - F)) per pixel (formed by the enclosing top).
 //
-// The mean frame's pixels are summed as they pass (valid_i, good_i); start_i (the frame
-// has passed) starts one restoring division, one quotient bit a cycle (NumBits cycles, then the clamp into a register):
+// The mean frame's pixels are summed as they pass (valid_i, good_i). When a refresh frame's
+// first pixel waits (request_i) and none of the mean frame's pixels is in flight any more
+// (counted in by enter_i as they enter the enclosing pipeline, out by valid_i), one
+// restoring division starts, one quotient bit a cycle (NumBits cycles, then the clamp into
+// a register):
 // q = floor((2 sum + n) / 2n) is the half-up quotient of sum / n for sum >= 0; a negative
 // sum gives T = 0 (its rounded quotient is at most 0), as does n_good = 0 (the golden
 // model refuses it). The target is then held on target_o (target_valid_o) until the next
-// start; the sums restart with the division.
+// start; the sums restart with the division. ready_o: the waiting frame's division has
+// started and its target is valid (until a frame's first pixel is taken, frame_taken_i).
 module ffc_mean #(
-  parameter int unsigned VBits   = 20,  // v, signed
-  parameter int unsigned NBits   = 21,  // n_good, unsigned (clog2 of the largest frame + 1)
-  parameter int unsigned TBits   = 18,  // the target, unsigned (B + Cf)
+  parameter int unsigned VBits     = 20,  // v, signed
+  parameter int unsigned NBits     = 21,  // n_good, unsigned (clog2 of the largest frame + 1)
+  parameter int unsigned TBits     = 18,  // the target, unsigned (B + Cf)
+  parameter int unsigned MaxFlight = 63,  // the most mean pixels between enter_i and valid_i
   // Derived, do not override.
-  localparam int unsigned SumBits = VBits + NBits,  // signed
-  localparam int unsigned NumBits = SumBits + 1,
-  localparam int unsigned DenBits = NBits + 1
+  localparam int unsigned SumBits    = VBits + NBits,  // signed
+  localparam int unsigned NumBits    = SumBits + 1,
+  localparam int unsigned DenBits    = NBits + 1,
+  localparam int unsigned FlightBits = $clog2(MaxFlight + 1)
 ) (
   input  logic                    clk_i,
   input  logic                    rst_ni,
-  input  logic                    valid_i,
+  input  logic                    enter_i,        // a mean pixel enters the pipeline
+  input  logic                    valid_i,        // a mean pixel's v
   input  logic                    good_i,
   input  logic signed [VBits-1:0] v_i,
-  input  logic                    start_i,
-  output logic                    busy_o,
+  input  logic                    request_i,      // a refresh frame's first pixel waits
+  input  logic                    frame_taken_i,  // a frame's first pixel is taken
+  output logic                    ready_o,        // the waiting frame's target is valid
   output logic                    target_valid_o,
   output logic [TBits-1:0]        target_o
 );
@@ -34,11 +42,39 @@ module ffc_mean #(
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (VBits >= 2 && NBits >= 1 && TBits >= 1 && NumBits <= 96)
-      else $fatal(1, "ffc_mean: VBits = %0d, NBits = %0d, TBits = %0d out of range", VBits,
-                  NBits, TBits);
+    assert (VBits >= 2 && NBits >= 1 && TBits >= 1 && NumBits <= 96 && MaxFlight >= 1)
+      else $fatal(1, "ffc_mean: VBits = %0d, NBits = %0d, TBits = %0d, MaxFlight = %0d out of range",
+                  VBits, NBits, TBits, MaxFlight);
   end
 `endif
+
+  // ---- the start: no mean pixel in flight, once per waiting frame -------------------------
+  logic                  start, started_q;
+  logic [FlightBits-1:0] flight_q;
+  // flight_q == 0 as a flop of its own (start drives the division's wide enables), set from
+  // flight_q's compares and the count's steps, not from the next count (the enclosing join's
+  // take would then pass the adder and a compare).
+  logic                  flight_zero_q, flight_one;
+
+  assign start      = request_i && !started_q && flight_zero_q;
+  assign flight_one = flight_q == FlightBits'(1);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
+    if (!rst_ni) begin
+      flight_q      <= '0;
+      flight_zero_q <= 1'b1;
+      started_q     <= 1'b0;
+    end else begin
+      flight_q      <= flight_q + FlightBits'(enter_i) - FlightBits'(valid_i);
+      flight_zero_q <= (flight_zero_q && enter_i == valid_i)
+                       || (flight_one && valid_i && !enter_i);
+      if (start) begin
+        started_q <= 1'b1;
+      end else if (frame_taken_i) begin
+        started_q <= 1'b0;
+      end
+    end
+  end
 
   logic signed [SumBits-1:0] sum_q;
   logic        [NBits-1:0]   n_q;
@@ -47,7 +83,7 @@ module ffc_mean #(
     if (!rst_ni) begin
       sum_q <= '0;
       n_q   <= '0;
-    end else if (start_i) begin
+    end else if (start) begin
       sum_q <= '0;
       n_q   <= '0;
     end else if (valid_i && good_i) begin
@@ -80,7 +116,7 @@ module ffc_mean #(
       busy_q  <= 1'b0;
       done_q  <= 1'b0;
       valid_q <= 1'b0;
-    end else if (start_i) begin
+    end else if (start) begin
       busy_q  <= 1'b1;
       done_q  <= 1'b0;
       valid_q <= 1'b0;
@@ -94,7 +130,7 @@ module ffc_mean #(
   end
 
   always_ff @(posedge clk_i) begin : p_div
-    if (start_i) begin
+    if (start) begin
       // 2 sum + n (sum >= 0 here, or zero_q makes it moot) and 2n.
       num_q   <= (NumBits'(sum_q) << 1) + NumBits'(n_q);
       den_q   <= {n_q, 1'b0};
@@ -124,6 +160,28 @@ module ffc_mean #(
 
   assign target_o       = target_q;
   assign target_valid_o = valid_q;
-  assign busy_o         = busy_q || done_q;
+  assign ready_o        = started_q && valid_q;
+
+`ifdef IRNUC_ASSERT
+  // The in-flight count neither underflows nor overflows, and its zero flag agrees with it.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_flight_range: assert (!(flight_q == '0 && valid_i))
+        else $error("ffc_mean: a mean pixel summed that was never counted in");
+      a_flight_zero: assert (flight_zero_q == (flight_q == '0))
+        else $error("ffc_mean: the in-flight count's zero flag disagrees with it");
+      a_flight_room: assert (!(flight_q == '1 && enter_i && !valid_i))
+        else $error("ffc_mean: more mean pixels in flight than the count holds");
+    end
+  end
+`endif
 
 endmodule

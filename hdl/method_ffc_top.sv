@@ -154,7 +154,6 @@ module method_ffc_top
   localparam int unsigned RFrac     = max2(AFracBits, FfcFracBits);
   localparam int unsigned RShift    = RFrac - FfcFracBits;
   localparam int unsigned SxBits    = ASumBits + RFrac - AFracBits;
-  localparam int unsigned DiffBits  = max2(TBits + 1 + RShift, SxBits) + 1;
   localparam int unsigned VBits     = SxBits + 1 - RShift;
   localparam int unsigned NBits     = $clog2(MaxWidth * MaxHeight + 1);
   // s + (c << (F - Cf)).
@@ -171,9 +170,8 @@ module method_ffc_top
                   MaxWidth, MaxHeight);
     assert (FfcHold <= 1 && FfcRounding <= 2 && FfcOverflow <= 1 && FfcIntBits >= 1)
       else $fatal(1, "method_ffc_top: FfcHold, FfcRounding, FfcOverflow or FfcIntBits out of range");
-    assert (TotBits <= 62 && DiffBits <= 64)
-      else $fatal(1, "method_ffc_top: sums of %0d and %0d bits exceed the limits", TotBits,
-                  DiffBits);
+    assert (TotBits <= 62)
+      else $fatal(1, "method_ffc_top: the sum of %0d bits exceeds the limit", TotBits);
   end
 `endif
 
@@ -286,61 +284,33 @@ module method_ffc_top
     .data_o ({px_frame, px_mode, px_tgt, px_sof, px_eol, px_data})
   );
 
-  // The division starts when a refresh frame's first pixel waits and every pixel of the
-  // mean frame has been summed (none in flight between the join and ffc_mean).
-  // At most Latency + 4 pixels sit between the join and ffc_mean, and tc_poly's (below 32).
-  localparam int unsigned FlightBits = $clog2(Latency + 40);
-
-  logic                  mean_valid, target_valid, div_busy, started_q, start;
-  logic [FlightBits-1:0] flight_q;
-  // flight_q == 0 as a flop of its own (start drives ffc_mean's wide enables), set from
-  // flight_q's compares and the count's steps, not from the next count (the join's take
-  // would then pass the adder and a compare).
-  logic                  flight_zero_q, flight_one, flight_in, flight_out;
-  logic [TBits-1:0]      target;
+  // ---- ffc_mean: the target; the division starts when a refresh frame's first pixel waits
+  // and every pixel of the mean frame has been summed (none in flight between the join and
+  // ffc_mean). At most Latency + 4 pixels sit between the join and ffc_mean, and tc_poly's
+  // (below 32).
+  logic                    mean_valid, mean_good, target_valid, target_ready;
+  logic [TBits-1:0]        target;
   logic signed [VBits-1:0] mean_v;
-  logic                  mean_good;
-
-  assign start      = px_valid && px_tgt && !started_q && flight_zero_q;
-  assign flight_in  = join_take && px_mode.mean;
-  assign flight_out = mean_valid;
-  assign flight_one = flight_q == FlightBits'(1);
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
-    if (!rst_ni) begin
-      flight_q      <= '0;
-      flight_zero_q <= 1'b1;
-      started_q     <= 1'b0;
-    end else begin
-      flight_q      <= flight_q + FlightBits'(flight_in) - FlightBits'(flight_out);
-      flight_zero_q <= (flight_zero_q && flight_in == flight_out)
-                       || (flight_one && flight_out && !flight_in);
-      if (start) begin
-        started_q <= 1'b1;
-      end else if (join_take && px_sof) begin
-        started_q <= 1'b0;
-      end
-    end
-  end
 
   ffc_mean #(
-    .VBits(VBits),
-    .NBits(NBits),
-    .TBits(TBits)
+    .VBits    (VBits),
+    .NBits    (NBits),
+    .TBits    (TBits),
+    .MaxFlight(Latency + 39)
   ) u_mean (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
+    .enter_i       (join_take && px_mode.mean),
     .valid_i       (mean_valid),
     .good_i        (mean_good),
     .v_i           (mean_v),
-    .start_i       (start),
-    .busy_o        (div_busy),
+    .request_i     (px_valid && px_tgt),
+    .frame_taken_i (join_take && px_sof),
+    .ready_o       (target_ready),
     .target_valid_o(target_valid),
     .target_o      (target)
   );
 
-  logic unused_div_busy;
-  assign unused_div_busy = div_busy;
   assign ffc_target_valid_o = target_valid;
   assign ffc_target_o       = target;
 
@@ -350,184 +320,84 @@ module method_ffc_top
   assign need_acc    = px_mode.acc_rd;
   assign need_target = px_tgt;
   assign join_valid  = px_valid && coef_valid && foff_valid && (!need_acc || acc_valid)
-                       && (!need_target || (started_q && target_valid));
+                       && (!need_target || target_ready);
   assign join_take   = join_valid && join_ready;
   assign coef_ready  = join_take;
   assign foff_ready  = join_take;
   assign acc_ready   = join_take && need_acc;
 
-  logic [FrameBits-1:0] frame;
-
-  assign frame = px_frame;
-
-  // ---- the front: the frame's coefficients of the pixel ----------------------------------------
+  // ---- the front: the frame's coefficients of the pixel (tc_poly for tc_offset) ------------
   // The pixel's side band: {x, the accumulator read, the correction read, acc_first, mean,
-  // refresh, write, hold, sof, eol, bad}. The new accumulator (x or acc + x) is summed
-  // behind the front (tc_poly's output register for tc_offset), not on the input
-  // registers' read multiplexers.
-  localparam int unsigned Pass = AdcBits + AccBits + CBits + 8;
+  // refresh, write, hold, sof, eol} and the pixel's bad flag from its word.
+  localparam int unsigned Pass = AdcBits + AccBits + CBits + 7;
 
-  logic [Pass-1:0]       join_pass, f_pass;
+  logic [Pass-1:0]       join_pass;
+  logic [Pass:0]         f_pass;
   logic                  f_valid;
   logic [GainBits-1:0]   f_gain;
   logic [OffsetBits-1:0] f_offset;
   logic [QuadBits-1:0]   f_quad;
-  logic                  bad;
 
   assign join_pass = {px_data, acc_in, foff_in, px_mode.acc_first, px_mode.mean,
                       px_mode.refresh, px_mode.acc_first || px_mode.acc_add, px_mode.hold,
-                      px_sof, px_eol, bad};
+                      px_sof, px_eol};
 
-  if (MethodSel == MethodTcOffset) begin : gen_tc_offset
-    // coeffs: gain, offset (c0), bad | tc: tc1[, tc2] | tg: tg1[, tg2]; frame: reading,
-    // t_ref. tc_poly gives the frame's gain and offset of the pixel (a stream stage).
-    localparam int unsigned TwoPointBits = coef_word_bits(GainBits, OffsetBits);
-    coef_word#(GainBits, OffsetBits)::word_t     coeffs;
-    frame_tc_offset#(ReadingBits)::word_t        fw;
-    logic [((TcGain != 0) ? TgWordBits : 1)-1:0] tg;
-    assign coeffs = coef[TwoPointBits-1:0];
-    assign fw     = frame;
-    assign bad    = coeffs.bad;
-    assign f_quad = '0;
-    if (TcGain != 0) begin : gen_tg
-      assign tg = coef[TwoPointBits + TcWordBits +: TgWordBits];
-    end else begin : gen_no_tg
-      assign tg = 1'b0;
-    end
+  frame_coefficients #(
+    .Method          (Method),
+    .GainIntBits     (GainIntBits),
+    .GainFracBits    (GainFracBits),
+    .OffsetIntBits   (OffsetIntBits),
+    .OffsetFracBits  (OffsetFracBits),
+    .QuadIntBits     (QuadIntBits),
+    .QuadFracBits    (QuadFracBits),
+    .Tc1IntBits      (Tc1IntBits),
+    .Tc1FracBits     (Tc1FracBits),
+    .Tc2IntBits      (Tc2IntBits),
+    .Tc2FracBits     (Tc2FracBits),
+    .Tg1IntBits      (Tg1IntBits),
+    .Tg1FracBits     (Tg1FracBits),
+    .Tg2IntBits      (Tg2IntBits),
+    .Tg2FracBits     (Tg2FracBits),
+    .TcOrder         (TcOrder),
+    .TcGain          (TcGain),
+    .ReadingBits     (ReadingBits),
+    .ReadingRangeBits(ReadingRangeBits),
+    .Rounding        (Rounding),
+    .UserBits        (Pass)
+  ) u_front (
+    .clk_i     (clk_i),
+    .rst_ni    (rst_ni),
+    .s_valid_i (join_valid),
+    .s_ready_o (join_ready),
+    .s_coef_i  (coef),
+    .s_frame_i (px_frame),
+    .s_user_i  (join_pass),
+    .m_valid_o (f_valid),
+    .m_ready_i (en),
+    .m_gain_o  (f_gain),
+    .m_offset_o(f_offset),
+    .m_quad_o  (f_quad),
+    .m_user_o  (f_pass)
+  );
 
-    tc_poly #(
-      .GainIntBits     (GainIntBits),
-      .GainFracBits    (GainFracBits),
-      .OffsetIntBits   (OffsetIntBits),
-      .OffsetFracBits  (OffsetFracBits),
-      .Tc1IntBits      (Tc1IntBits),
-      .Tc1FracBits     (Tc1FracBits),
-      .Tc2IntBits      (Tc2IntBits),
-      .Tc2FracBits     (Tc2FracBits),
-      .Tg1IntBits      (Tg1IntBits),
-      .Tg1FracBits     (Tg1FracBits),
-      .Tg2IntBits      (Tg2IntBits),
-      .Tg2FracBits     (Tg2FracBits),
-      .TcOrder         (TcOrder),
-      .TcGain          (TcGain != 0),
-      .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits),
-      .Rounding        (Rounding),
-      .UserBits        (Pass)
-    ) u_coef (
-      .clk_i      (clk_i),
-      .rst_ni     (rst_ni),
-      .s_valid_i  (join_valid),
-      .s_ready_o  (join_ready),
-      .s_reading_i(fw.reading),
-      .s_t_ref_i  (fw.t_ref),
-      .s_gain_i   (coeffs.gain),
-      .s_offset_i (coeffs.offset),
-      .s_tc_i     (coef[TwoPointBits +: TcWordBits]),
-      .s_tg_i     (tg),
-      .s_user_i   (join_pass),
-      .m_valid_o  (f_valid),
-      .m_ready_i  (en),
-      .m_gain_o   (f_gain),
-      .m_offset_o (f_offset),
-      .m_user_o   (f_pass)
-    );
-  end else begin : gen_direct
-    // The pixel's words go straight to stage 1.
-    assign f_valid    = join_valid;
-    assign join_ready = en;
-    assign f_pass     = join_pass;
-    if (MethodSel == MethodOnePoint) begin : gen_one_point
-      // coeffs: offset, bad; the gain is the frame's register.
-      coef_one_point#(OffsetBits)::word_t w;
-      assign w        = coef;
-      assign f_gain   = frame[GainBits-1:0];
-      assign f_offset = w.offset;
-      assign bad      = w.bad;
-      assign f_quad   = '0;
-    end else if (MethodSel == MethodQuadratic) begin : gen_quadratic
-      // coeffs: gain, offset, bad | quad: quad.
-      typedef struct packed {
-        quad_word#(QuadBits)::word_t             quad;
-        coef_word#(GainBits, OffsetBits)::word_t coeffs;
-      } stream_t;
-      stream_t w;
-      assign w        = coef;
-      assign f_gain   = w.coeffs.gain;
-      assign f_offset = w.coeffs.offset;
-      assign bad      = w.coeffs.bad;
-      assign f_quad   = w.quad.quad;
-      logic unused_frame;
-      assign unused_frame = ^frame;
-    end else begin : gen_two_point
-      // coeffs: gain, offset, bad.
-      coef_word#(GainBits, OffsetBits)::word_t w;
-      assign w        = coef;
-      assign f_gain   = w.gain;
-      assign f_offset = w.offset;
-      assign bad      = w.bad;
-      assign f_quad   = '0;
-      logic unused_frame;
-      assign unused_frame = ^frame;
-    end
-  end
+  // ---- stage 1 and the two sums: the pixel's (s) and the accumulator's (sa) ----------------
+  // Beside the sums: {mean, refresh, write, hold, the correction read, sof, eol, bad}.
+  localparam int unsigned Side = 7 + CBits;
 
-  // ---- stage 1: the new accumulator, acc_new = x (a run's first frame) or acc + x ----------
-  localparam int unsigned Side = 6 + AccBits + CBits;  // {mean, refresh, write, hold, acc, foff, sof, eol}
-
-  logic [AdcBits-1:0] f_x;
-  logic [AccBits-1:0] f_acc, acc_new;
-  logic [CBits-1:0]   f_foff;
-  logic [6:0]         f_flags;  // {mean, refresh, write, hold, sof, eol, bad}
-  logic               f_acc_first;
-
-  assign {f_x, f_acc, f_foff, f_acc_first, f_flags} = f_pass;
-  assign acc_new = f_acc_first ? AccBits'(f_x) : f_acc + AccBits'(f_x);
-
-  logic                  s1_valid_q;
-  logic [AdcBits-1:0]    s1_x_q;
-  logic [AccBits-1:0]    s1_acc_q, s1_acc_new_q;
-  logic [GainBits-1:0]   s1_gain_q;
-  logic [OffsetBits-1:0] s1_offset_q;
-  logic [QuadBits-1:0]   s1_quad_q;
-  logic [CBits-1:0]      s1_foff_q;
-  logic                  s1_mean_q, s1_refresh_q, s1_write_q, s1_hold_q, s1_sof_q, s1_eol_q;
-  logic                  s1_bad_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_s1_valid
-    if (!rst_ni) begin
-      s1_valid_q <= 1'b0;
-    end else if (en) begin
-      s1_valid_q <= f_valid;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_s1
-    if (en) begin
-      s1_x_q       <= f_x;
-      // The accumulator core sums the read accumulator in the refresh pass, else acc_new.
-      s1_acc_q     <= f_flags[5] ? f_acc : acc_new;
-      s1_acc_new_q <= acc_new;
-      s1_foff_q    <= f_foff;
-      {s1_mean_q, s1_refresh_q, s1_write_q, s1_hold_q, s1_sof_q, s1_eol_q, s1_bad_q} <= f_flags;
-      s1_gain_q   <= f_gain;
-      s1_offset_q <= f_offset;
-      s1_quad_q   <= f_quad;
-    end
-  end
-  // ---- the two sums --------------------------------------------------------------------------
-  logic               sum_valid, asum_valid;
-  logic [SumBits-1:0] sum_s;
+  logic [AdcBits-1:0]  f_x;
+  logic [AccBits-1:0]  f_acc, sum_acc_new;
+  logic [Side-1:0]     f_side, sum_side;
+  logic                f_acc_first, sum_valid;
+  logic [SumBits-1:0]  sum_s;
   logic [ASumBits-1:0] asum_s;
-  logic [Side:0]      sum_side;  // {Side, bad}
-  logic               asum_side;
 
-  core_sum #(
+  assign {f_x, f_acc, f_side[3 +: CBits], f_acc_first, f_side[Side-1 -: 4], f_side[2:0]}
+         = f_pass;
+
+  ffc_sums #(
     .Kind          (32'(Kind)),
-    .XBits         (AdcBits),
-    .XSigned       (1'b0),
-    .XFracBits     (0),
     .AdcBits       (AdcBits),
+    .NShift        (NShift),
     .GainIntBits   (GainIntBits),
     .GainFracBits  (GainFracBits),
     .OffsetIntBits (OffsetIntBits),
@@ -535,185 +405,75 @@ module method_ffc_top
     .QuadIntBits   (QuadIntBits),
     .QuadFracBits  (QuadFracBits),
     .SquareBits    (SquareBits),
-    .MinFracBits   (FfcFracBits),
+    .FfcFracBits   (FfcFracBits),
     .Latency       (Latency),
-    .SideBits      (Side + 1)
-  ) u_core (
+    .SideBits      (Side)
+  ) u_sums (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .en_i     (en),
-    .valid_i  (s1_valid_q),
-    .x_i      (s1_x_q),
-    .gain_i   (s1_gain_q),
-    .gain_hi_i('0),
-    .offset_i (s1_offset_q),
-    .quad_i   (s1_quad_q),
-    .knee_i   ('0),
-    .level_i  ('0),
-    .side_i   ({s1_mean_q, s1_refresh_q, s1_write_q, s1_hold_q, s1_acc_new_q, s1_foff_q,
-                s1_sof_q, s1_eol_q, s1_bad_q}),
+    .valid_i  (f_valid),
+    .x_i      (f_x),
+    .acc_i    (f_acc),
+    .first_i  (f_acc_first),
+    .refresh_i(f_side[Side-2]),
+    .gain_i   (f_gain),
+    .offset_i (f_offset),
+    .quad_i   (f_quad),
+    .side_i   (f_side),
     .valid_o  (sum_valid),
     .sum_o    (sum_s),
+    .asum_o   (asum_s),
+    .acc_new_o(sum_acc_new),
     .side_o   (sum_side)
   );
 
-  core_sum #(
-    .Kind          (32'(Kind)),
-    .XBits         (AccBits),
-    .XSigned       (1'b0),
-    .XFracBits     (NShift),
-    .AdcBits       (AdcBits),
-    .GainIntBits   (GainIntBits),
-    .GainFracBits  (GainFracBits),
-    .OffsetIntBits (OffsetIntBits),
-    .OffsetFracBits(OffsetFracBits),
-    .QuadIntBits   (QuadIntBits),
-    .QuadFracBits  (QuadFracBits),
-    .SquareBits    (SquareBits),
-    .MinFracBits   (0),
-    .Latency       (Latency),
-    .SideBits      (1)
-  ) u_acc_core (
+  // ---- ffc_refresh: dc and the mean's v on sa; the pixel's correction c --------------------
+  // Beside: {s, mean, write, hold, acc_new, sof, eol, bad}.
+  localparam int unsigned RSide = SumBits + AccBits + 6;
+
+  logic                 v_valid, c_valid, c_refresh;
+  logic [RSide-1:0]     v_side, c_side;
+  logic [CBits-1:0]     c_c, c_dc;
+  logic [SumBits-1:0]   c_sum;
+  logic [AccBits-1:0]   c_acc;
+  logic                 c_write, c_hold, c_sof, c_eol, c_bad, c_mean;
+
+  ffc_refresh #(
+    .SumBits    (ASumBits),
+    .SumFracBits(AFracBits),
+    .OutBits    (OutBits),
+    .FfcIntBits (FfcIntBits),
+    .FfcFracBits(FfcFracBits),
+    .FfcRounding(FfcRounding),
+    .FfcOverflow(FfcOverflow),
+    .SideBits   (RSide)
+  ) u_refresh (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .en_i     (en),
-    .valid_i  (s1_valid_q),
-    .x_i      (s1_acc_q),
-    .gain_i   (s1_gain_q),
-    .gain_hi_i('0),
-    .offset_i (s1_offset_q),
-    .quad_i   (s1_quad_q),
-    .knee_i   ('0),
-    .level_i  ('0),
-    .side_i   (1'b0),
-    .valid_o  (asum_valid),
-    .sum_o    (asum_s),
-    .side_o   (asum_side)
+    .valid_i  (sum_valid),
+    .sum_i    (asum_s),
+    .target_i (target),
+    .refresh_i(sum_side[Side-2]),
+    .c_i      (sum_side[3 +: CBits]),
+    .side_i   ({sum_s, sum_side[Side-1], sum_side[Side-3 -: 2], sum_acc_new, sum_side[2:0]}),
+    .v_valid_o(v_valid),
+    .v_o      (mean_v),
+    .v_side_o (v_side),
+    .valid_o  (c_valid),
+    .refresh_o(c_refresh),
+    .dc_o     (c_dc),
+    .c_o      (c_c),
+    .side_o   (c_side)
   );
 
-  logic unused_asum;
-  assign unused_asum = ^{asum_valid, asum_side};
+  assign mean_valid = en && v_valid && v_side[AccBits + 5];
+  assign mean_good  = !v_side[0];
+  assign {c_sum, c_mean, c_write, c_hold, c_acc, c_sof, c_eol, c_bad} = c_side;
 
-  // ---- stage D: sa aligned and the refresh's difference ---------------------------------------
-  logic [SxBits-1:0]   sx;
-  logic [DiffBits-1:0] diff;
-
-  assign sx   = SxBits'($signed(asum_s)) << (RFrac - AFracBits);
-  assign diff = (DiffBits'(target) << RShift) - DiffBits'($signed(sx));
-
-  logic                d_valid_q;
-  logic [SxBits-1:0]   d_sx_q;
-  logic [DiffBits-1:0] d_diff_q;
-  logic [SumBits-1:0]  d_sum_q;
-  logic [Side:0]       d_side_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_d_valid
-    if (!rst_ni) begin
-      d_valid_q <= 1'b0;
-    end else if (en) begin
-      d_valid_q <= sum_valid;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_d
-    if (en) begin
-      d_sx_q   <= sx;
-      d_diff_q <= diff;
-      d_sum_q  <= sum_s;
-      d_side_q <= sum_side;
-    end
-  end
-
-  // ---- stage R: ffc_refresh's ROUND, the mean's v --------------------------------------------
-  logic [VBits-1:0]         v_d;
-  logic [DiffBits-RShift:0] dr_d;
-
-  irnuc_round #(
-    .InBits  (SxBits),
-    .FracBits(RShift),
-    .Rounding(FfcRounding)
-  ) u_round_v (
-    .s_i(d_sx_q),
-    .r_o(v_d)
-  );
-
-  irnuc_round #(
-    .InBits  (DiffBits),
-    .FracBits(RShift),
-    .Rounding(FfcRounding)
-  ) u_round_dc (
-    .s_i(d_diff_q),
-    .r_o(dr_d)
-  );
-
-  logic                     r_valid_q;
-  logic [SumBits-1:0]       r_sum_q;
-  logic [DiffBits-RShift:0] r_dr_q;
-  logic [VBits-1:0]         r_v_q;
-  logic [Side:0]            r_side_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_r_valid
-    if (!rst_ni) begin
-      r_valid_q <= 1'b0;
-    end else if (en) begin
-      r_valid_q <= d_valid_q;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_r
-    if (en) begin
-      r_sum_q  <= d_sum_q;
-      r_dr_q   <= dr_d;
-      r_v_q    <= v_d;
-      r_side_q <= d_side_q;
-    end
-  end
-
-  assign mean_valid = en && r_valid_q && r_side_q[Side];
-  assign mean_good  = !r_side_q[0];
-  assign mean_v     = $signed(r_v_q);
-
-  // ---- stage C: ffc_refresh's OVF, the correction of the pixel ----------------------------
-  logic [CBits-1:0] dc_d;
-
-  irnuc_clip #(
-    .InBits   (DiffBits + 1 - RShift),
-    .OutBits  (CBits),
-    .OutSigned(1'b1),
-    .Overflow (FfcOverflow)
-  ) u_clip_dc (
-    .v_i(r_dr_q),
-    .y_o(dc_d)
-  );
-
-  logic                  c_valid_q;
-  logic [SumBits-1:0]    c_sum_q;
-  logic [CBits-1:0]      c_c_q, c_dc_q;
-  logic [AccBits-1:0]    c_acc_q;
-  logic                  c_refresh_q, c_write_q, c_hold_q, c_sof_q, c_eol_q, c_bad_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_c_valid
-    if (!rst_ni) begin
-      c_valid_q <= 1'b0;
-    end else if (en) begin
-      c_valid_q <= r_valid_q;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_c
-    if (en) begin
-      c_sum_q     <= r_sum_q;
-      c_c_q       <= r_side_q[Side-1] ? dc_d : r_side_q[3 +: CBits];
-      c_dc_q      <= dc_d;
-      c_acc_q     <= r_side_q[3 + CBits +: AccBits];
-      c_refresh_q <= r_side_q[Side-1];
-      c_write_q   <= r_side_q[Side-2];
-      c_hold_q    <= r_side_q[Side-3];
-      c_sof_q     <= r_side_q[2];
-      c_eol_q     <= r_side_q[1];
-      c_bad_q     <= r_side_q[0];
-    end
-  end
+  logic unused_side;
+  assign unused_side = ^{v_side[RSide-1:AccBits + 6], v_side[AccBits + 4:1], c_mean};
 
   // ---- stage T: the FFC term added ---------------------------------------------------------
   logic                t_valid_q;
@@ -725,16 +485,15 @@ module method_ffc_top
     if (!rst_ni) begin
       t_valid_q <= 1'b0;
     end else if (en) begin
-      t_valid_q <= c_valid_q;
+      t_valid_q <= c_valid;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_t
     if (en) begin
-      t_sum_q  <= TotBits'($signed(c_sum_q))
-                  + (TotBits'($signed(c_c_q)) << (FracBits - FfcFracBits));
-      t_user_q <= {c_hold_q, c_write_q, c_acc_q, c_refresh_q, c_dc_q, c_sof_q, c_eol_q,
-                   c_bad_q};
+      t_sum_q  <= TotBits'($signed(c_sum))
+                  + (TotBits'($signed(c_c)) << (FracBits - FfcFracBits));
+      t_user_q <= {c_hold, c_write, c_acc, c_refresh, c_dc, c_sof, c_eol, c_bad};
     end
   end
 
@@ -868,25 +627,6 @@ module method_ffc_top
     .width_i (frame_width_i),
     .height_i(frame_height_i)
   );
-
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
-  always_ff @(posedge clk_i) begin : p_check
-    if (armed_q) begin
-      a_flight_range: assert (!(flight_q == '0 && mean_valid))
-        else $error("method_ffc_top: a mean pixel summed that was never counted in");
-      a_flight_zero: assert (flight_zero_q == (flight_q == '0))
-        else $error("method_ffc_top: the in-flight count's zero flag disagrees with it");
-      a_flight_room: assert (!(flight_q == '1 && join_take && px_mode.mean && !mean_valid))
-        else $error("method_ffc_top: more mean pixels in flight than the count holds");
-    end
-  end
 `endif
 
 endmodule

@@ -26,7 +26,8 @@ AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
 STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_drift",),
                  "drift_sub": ("blind_drift",), "core_sum": ("blind_drift", "ffc"),
                  "core_out": ("blind_drift", "ffc"), "method_ffc_top": ("ffc",),
-                 "ffc_ctrl": ("ffc",), "ffc_mean": ("ffc",)}
+                 "ffc_ctrl": ("ffc",), "ffc_mean": ("ffc",), "ffc_refresh": ("ffc",),
+                 "ffc_sums": ("ffc",), "frame_coefficients": ("ffc",)}
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
               "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
