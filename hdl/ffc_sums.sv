@@ -3,10 +3,13 @@
 // to at least the FFC's Cf, MinFracBits) beside the same sum on the accumulator (core_sum,
 // A + n bits, Xf = n), both on the frame's gain, offset and quadratic term of the pixel.
 //
-// The new accumulator
-//   acc_new = x (first_i: a run's first shutter frame) or acc + x
-// is formed into stage 1, and the accumulator core sums the accumulator read (refresh_i:
-// the refresh and mean passes) or acc_new. acc_new travels beside the pixel's sum (acc_new_o, for m_acc).
+// Stage 1 registers the pixel's words and the accumulator core's two addends, masked as the
+// pass needs them: (first_i && !refresh_i ? 0 : acc) and (refresh_i ? 0 : x), so that the
+// core sums the accumulator read (refresh_i: the refresh and mean passes), x (first_i: a
+// run's first shutter frame) or acc + x with one adder behind stage 1 and no multiplexer
+// between it and the core's multipliers. The new accumulator
+//   acc_new = x (first_i) or acc + x
+// is formed behind stage 1 too and travels beside the pixel's sum (acc_new_o, for m_acc).
 // Every register moves with en_i (the enclosing pipeline's enable); only the valid flags
 // reset. Latency: 1 + Latency (both cores padded to Latency, irnuc_stage_pkg).
 module ffc_sums
@@ -69,14 +72,10 @@ module ffc_sums
   end
 `endif
 
-  // ---- stage 1: acc_new, the accumulator the core sums, the pixel's words -------------------
-  logic [AccBits-1:0] acc_new;
-
-  assign acc_new = first_i ? AccBits'(x_i) : acc_i + AccBits'(x_i);
-
-  logic                  s1_valid_q;
-  logic [AdcBits-1:0]    s1_x_q;
-  logic [AccBits-1:0]    s1_acc_q, s1_acc_new_q;
+  // ---- stage 1: the pixel's words and the accumulator core's addends ------------------------
+  logic                  s1_valid_q, s1_first_q;
+  logic [AdcBits-1:0]    s1_x_q, s1_xa_q;
+  logic [AccBits-1:0]    s1_acc_q, s1_acca_q;
   logic [GainBits-1:0]   s1_gain_q;
   logic [OffsetBits-1:0] s1_offset_q;
   logic [QuadBits-1:0]   s1_quad_q;
@@ -90,17 +89,26 @@ module ffc_sums
     end
   end
 
+  // The masks sit on the input side of stage 1 (one LUT with the enclosing top's read
+  // multiplexer), so the adder behind it drives the core's multipliers directly.
   always_ff @(posedge clk_i) begin : p_s1
     if (en_i) begin
-      s1_x_q       <= x_i;
-      s1_acc_q     <= refresh_i ? acc_i : acc_new;
-      s1_acc_new_q <= acc_new;
-      s1_gain_q    <= gain_i;
-      s1_offset_q  <= offset_i;
-      s1_quad_q    <= quad_i;
-      s1_side_q    <= side_i;
+      s1_x_q      <= x_i;
+      s1_acc_q    <= acc_i;
+      s1_first_q  <= first_i;
+      s1_xa_q     <= refresh_i ? '0 : x_i;
+      s1_acca_q   <= (first_i && !refresh_i) ? '0 : acc_i;
+      s1_gain_q   <= gain_i;
+      s1_offset_q <= offset_i;
+      s1_quad_q   <= quad_i;
+      s1_side_q   <= side_i;
     end
   end
+
+  logic [AccBits-1:0] acc_new, acc_x;
+
+  assign acc_new = s1_first_q ? AccBits'(s1_x_q) : s1_acc_q + AccBits'(s1_x_q);
+  assign acc_x   = s1_acca_q + AccBits'(s1_xa_q);
 
   // ---- the two sums --------------------------------------------------------------------------
   logic                asum_valid, asum_side;
@@ -133,7 +141,7 @@ module ffc_sums
     .quad_i   (s1_quad_q),
     .knee_i   ('0),
     .level_i  ('0),
-    .side_i   ({s1_side_q, s1_acc_new_q}),
+    .side_i   ({s1_side_q, acc_new}),
     .valid_o  (valid_o),
     .sum_o    (sum_o),
     .side_o   ({side_o, acc_new_o})
@@ -160,7 +168,7 @@ module ffc_sums
     .rst_ni   (rst_ni),
     .en_i     (en_i),
     .valid_i  (s1_valid_q),
-    .x_i      (s1_acc_q),
+    .x_i      (acc_x),
     .gain_i   (s1_gain_q),
     .gain_hi_i('0),
     .offset_i (s1_offset_q),
