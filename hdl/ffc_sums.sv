@@ -3,10 +3,16 @@
 // to at least the FFC's Cf, MinFracBits) beside the same sum on the accumulator (core_sum,
 // A + n bits, Xf = n), both on the frame's gain, offset and quadratic term of the pixel.
 //
-// The new accumulator
-//   acc_new = x (first_i: a run's first shutter frame) or acc + x
-// is formed into stage 1, and the accumulator core sums the accumulator read (refresh_i:
-// the refresh and mean passes) or acc_new. acc_new travels beside the pixel's sum (acc_new_o, for m_acc).
+// The new accumulator acc_new = x (first_i: a run's first shutter frame) or acc + x travels
+// beside the pixel's sum (acc_new_o, for m_acc); the accumulator core sums the accumulator
+// read (refresh_i: the refresh and mean passes) or acc_new. Where (AddBehind):
+//   1  stage 1 registers the core's two addends masked as the pass needs them,
+//      (first_i && !refresh_i ? 0 : acc) and (refresh_i ? 0 : x), and one adder behind it
+//      drives the core's multipliers; acc_new is formed behind stage 1 too. For inputs
+//      straight from the enclosing top's input buffers, whose read pointers fan out over
+//      the whole word: the masks share a LUT with the read multiplexer.
+//   0  acc_new and the core's x are formed into stage 1 (inputs from flops of few loads,
+//      e.g. tc_poly's output register).
 // Every register moves with en_i (the enclosing pipeline's enable); only the valid flags
 // reset. Latency: 1 + Latency (both cores padded to Latency, irnuc_stage_pkg).
 module ffc_sums
@@ -25,6 +31,7 @@ module ffc_sums
   parameter int unsigned FfcFracBits    = 4,   // Cf: the pixel's sum has F >= Cf
   parameter int unsigned Latency        = 0,   // of each core (the larger of both; 0: own)
   parameter int unsigned SideBits       = 1,
+  parameter bit          AddBehind      = 1'b1,  // the accumulator's adder behind stage 1
   // Derived, do not override.
   localparam core_kind_e  KindSel       = core_kind_e'(Kind),
   localparam int unsigned AccBits       = AdcBits + NShift,
@@ -69,18 +76,14 @@ module ffc_sums
   end
 `endif
 
-  // ---- stage 1: acc_new, the accumulator the core sums, the pixel's words -------------------
-  logic [AccBits-1:0] acc_new;
-
-  assign acc_new = first_i ? AccBits'(x_i) : acc_i + AccBits'(x_i);
-
+  // ---- stage 1: the pixel's words, and the accumulator the core sums -----------------------
   logic                  s1_valid_q;
   logic [AdcBits-1:0]    s1_x_q;
-  logic [AccBits-1:0]    s1_acc_q, s1_acc_new_q;
   logic [GainBits-1:0]   s1_gain_q;
   logic [OffsetBits-1:0] s1_offset_q;
   logic [QuadBits-1:0]   s1_quad_q;
   logic [SideBits-1:0]   s1_side_q;
+  logic [AccBits-1:0]    acc_new, acc_x;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_s1_valid
     if (!rst_ni) begin
@@ -92,14 +95,44 @@ module ffc_sums
 
   always_ff @(posedge clk_i) begin : p_s1
     if (en_i) begin
-      s1_x_q       <= x_i;
-      s1_acc_q     <= refresh_i ? acc_i : acc_new;
-      s1_acc_new_q <= acc_new;
-      s1_gain_q    <= gain_i;
-      s1_offset_q  <= offset_i;
-      s1_quad_q    <= quad_i;
-      s1_side_q    <= side_i;
+      s1_x_q      <= x_i;
+      s1_gain_q   <= gain_i;
+      s1_offset_q <= offset_i;
+      s1_quad_q   <= quad_i;
+      s1_side_q   <= side_i;
     end
+  end
+
+  if (AddBehind) begin : gen_behind
+    logic               s1_first_q;
+    logic [AdcBits-1:0] s1_xa_q;
+    logic [AccBits-1:0] s1_acc_q, s1_acca_q;
+
+    always_ff @(posedge clk_i) begin : p_s1_add
+      if (en_i) begin
+        s1_acc_q   <= acc_i;
+        s1_first_q <= first_i;
+        s1_xa_q    <= refresh_i ? '0 : x_i;
+        s1_acca_q  <= (first_i && !refresh_i) ? '0 : acc_i;
+      end
+    end
+
+    assign acc_new = s1_first_q ? AccBits'(s1_x_q) : s1_acc_q + AccBits'(s1_x_q);
+    assign acc_x   = s1_acca_q + AccBits'(s1_xa_q);
+  end else begin : gen_ahead
+    logic [AccBits-1:0] acc_new_d, s1_acc_new_q, s1_acc_x_q;
+
+    assign acc_new_d = first_i ? AccBits'(x_i) : acc_i + AccBits'(x_i);
+
+    always_ff @(posedge clk_i) begin : p_s1_add
+      if (en_i) begin
+        s1_acc_x_q   <= refresh_i ? acc_i : acc_new_d;
+        s1_acc_new_q <= acc_new_d;
+      end
+    end
+
+    assign acc_new = s1_acc_new_q;
+    assign acc_x   = s1_acc_x_q;
   end
 
   // ---- the two sums --------------------------------------------------------------------------
@@ -133,7 +166,7 @@ module ffc_sums
     .quad_i   (s1_quad_q),
     .knee_i   ('0),
     .level_i  ('0),
-    .side_i   ({s1_side_q, s1_acc_new_q}),
+    .side_i   ({s1_side_q, acc_new}),
     .valid_o  (valid_o),
     .sum_o    (sum_o),
     .side_o   ({side_o, acc_new_o})
@@ -160,7 +193,7 @@ module ffc_sums
     .rst_ni   (rst_ni),
     .en_i     (en_i),
     .valid_i  (s1_valid_q),
-    .x_i      (s1_acc_q),
+    .x_i      (acc_x),
     .gain_i   (s1_gain_q),
     .gain_hi_i('0),
     .offset_i (s1_offset_q),

@@ -407,7 +407,8 @@ module method_ffc_top
     .SquareBits    (SquareBits),
     .FfcFracBits   (FfcFracBits),
     .Latency       (Latency),
-    .SideBits      (Side)
+    .SideBits      (Side),
+    .AddBehind     (MethodSel != MethodTcOffset)
   ) u_sums (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
