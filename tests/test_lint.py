@@ -18,7 +18,8 @@ METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_read
                   "table_interp", "interp_weight")
 #: The AXI wrapper of the two-point core and its parts, linted with every two-point
 #: configuration (their parameters are widths and the frame limit, not the modes); the
-#: protocol checkers take no configuration (once).
+#: protocol checkers take no configuration (once). Its core (irnuc_axis_core) is linted with
+#: every method it wraps, its FFC side (irnuc_axis_ffc) with the ffc stage's cases.
 AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_axis_buffer")
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
@@ -103,7 +104,9 @@ def _axi_method_configs() -> list[str]:
 
 @pytest.mark.parametrize(("module", "config"),
                          [(m, c) for m in AXI_MODULES for c in pipeline_names()]
-                         + [("irnuc_axis_top", c) for c in _axi_method_configs()]
+                         + [(m, c) for m in ("irnuc_axis_top", "irnuc_axis_core")
+                            for c in _axi_method_configs()]
+                         + [("irnuc_axis_core", "minimal")]
                          + [(m, "minimal") for m in AXI_CHECKERS])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
@@ -127,6 +130,8 @@ def _stage_cases() -> list[tuple[str, str, dict[str, object]]]:
                                                                   "overflow": "wrap"}}}))
     cases.append(("method_ffc_top", "quadffc14", {"ffc_output": "hold", "rounding": "truncate"}))
     cases.append(("irnuc_axis_top", "ffc14", {"ffc_output": "pass", "ffc_frames": 1}))
+    cases.append(("irnuc_axis_ffc", "ffc14", {}))
+    cases.append(("irnuc_axis_ffc", "ffc14", {"ffc_output": "pass", "ffc_frames": 1}))
     return cases
 
 
