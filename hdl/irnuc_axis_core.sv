@@ -80,6 +80,7 @@ module irnuc_axis_core
   input  logic                            rst_ni,
   // The frame size the framer's frames are taken with.
   input  logic [WidthBits-1:0]            act_w_i,
+  input  logic [WidthBits-1:0]            act_wm1_i,
   input  logic [HeightBits-1:0]           act_h_i,
   input  logic [HeightBits-1:0]           act_hm1_i,
   // The method's pending frame word in, the framer's (with the shutter flag: Ffc) out.
@@ -166,6 +167,7 @@ module irnuc_axis_core
       .clk_i             (clk_i),
       .rst_ni            (rst_ni),
       .act_w_i           (act_w_i),
+      .act_wm1_i         (act_wm1_i),
       .act_h_i           (act_h_i),
       .act_hm1_i         (act_hm1_i),
       .pend_frame_i      (pend_frame_i),
@@ -315,7 +317,7 @@ module irnuc_axis_core
     assign unused_ffc = ^{s_axis_foff_tdata, s_axis_foff_tvalid, s_axis_foff_tlast,
                           s_axis_acc_tdata, s_axis_acc_tvalid, s_axis_acc_tlast,
                           m_axis_acc_tready, m_axis_foff_tready, start_i, ffc_start_i,
-                          ffc_frames_i, act_hm1_i};
+                          ffc_frames_i, act_wm1_i, act_hm1_i};
   end
 
 `ifdef IRNUC_ASSERT

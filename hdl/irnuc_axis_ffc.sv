@@ -65,6 +65,7 @@ module irnuc_axis_ffc
   input  logic                            rst_ni,
   // The frame size the framer's frames are taken with.
   input  logic [WidthBits-1:0]            act_w_i,
+  input  logic [WidthBits-1:0]            act_wm1_i,  // width - 1 and height - 1 (flops)
   input  logic [HeightBits-1:0]           act_h_i,
   input  logic [HeightBits-1:0]           act_hm1_i,
   // The method's pending frame word in, with the pending shutter flag above it out.
@@ -342,7 +343,7 @@ module irnuc_axis_ffc
 
   assign wb_beat = {mfoff_valid && mfoff_ready, macc_valid && macc_ready};
   for (genvar k = 0; k < 2; k++) begin : gen_wb_last
-    assign wb_eol[k]  = col_q[k] == act_w_i - WidthBits'(1);
+    assign wb_eol[k]  = col_q[k] == act_wm1_i;  // no subtraction on the path (Fmax)
     assign wb_last[k] = wb_eol[k] && row_q[k] == act_hm1_i;
     always_ff @(posedge clk_i or negedge rst_ni) begin : p_count
       if (!rst_ni) begin

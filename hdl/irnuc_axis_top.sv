@@ -253,7 +253,7 @@ module irnuc_axis_top
   );
 
   // ---- register file -----------------------------------------------------------------------
-  logic [WidthBits-1:0]  pend_w, pend_wm1, act_w;
+  logic [WidthBits-1:0]  pend_w, pend_wm1, act_w, act_wm1;
   logic [HeightBits-1:0] pend_h, pend_hm1, act_h, act_hm1;
   logic                  pend_w_is1, pend_h_is1, size_dirty, pend_nuc, pend_dpc, pend_sync;
   logic [7:0][63:0]      slots;
@@ -408,6 +408,7 @@ module irnuc_axis_top
     .pend_coef_sync_i (pend_sync),
     .pend_frame_i     (pend_item_frame),
     .act_width_o      (act_w),
+    .act_width_m1_o   (act_wm1),
     .act_height_o     (act_h),
     .act_height_m1_o  (act_hm1),
     .m_valid_o        (item_valid),
@@ -478,6 +479,7 @@ module irnuc_axis_top
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
     .act_w_i           (act_w),
+    .act_wm1_i         (act_wm1),
     .act_h_i           (act_h),
     .act_hm1_i         (act_hm1),
     .pend_frame_i      (pend_frame),
