@@ -100,9 +100,15 @@ MODULE_FILES |= {
                                            "method_ffc_top.sv"))),
 }
 # The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
+# Its core and FFC side (irnuc_axis_core, irnuc_axis_ffc) are modules of their own.
+MODULE_FILES["irnuc_axis_ffc"] = tuple(dict.fromkeys((
+    *MODULE_FILES["method_ffc_top"], "irnuc_axis_ffc.sv")))
+MODULE_FILES["irnuc_axis_core"] = tuple(dict.fromkeys((
+    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"],
+    *MODULE_FILES["irnuc_axis_ffc"], "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["method_ffc_top"][:-1], *MODULE_FILES["irnuc_axis_top"][:-1],
-    "method_ffc_top.sv", "irnuc_axis_top.sv")))
+    *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
+    "irnuc_axis_top.sv")))
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
@@ -264,9 +270,12 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
-    if top == "irnuc_axis_top" and stage_top(cfg) == "method_ffc_top":
+    if top == "irnuc_axis_ffc":
+        return stage_parameters("method_ffc_top", cfg)
+    axis = top in ("irnuc_axis_top", "irnuc_axis_core")  # the same parameters
+    if axis and stage_top(cfg) == "method_ffc_top":
         return {**stage_parameters("method_ffc_top", cfg), "Ffc": 1}
-    if top == "irnuc_axis_top" and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+    if axis and cfg.method in AXIS_METHODS and cfg.method != "two_point":
         p = {**params, **method_parameters(cfg)}
         return {k: v for k, v in p.items() if k not in ("Tables", "WeightIntBits",
                                                         "WeightFracBits", "WeightRounding")}

@@ -138,6 +138,9 @@ module irnuc_axil_regs
                   MaxWidth, MaxHeight, MaxWidthMin, MaxWidthMax);
     assert (WidthBits <= RegFrameSizeWidthBits && HeightBits <= RegFrameSizeHeightBits)
       else $fatal(1, "irnuc_axil_regs: the frame size does not fit FRAME_SIZE");
+    assert (RegFrameSizeWidthLsb % 8 == 0 && RegFrameSizeWidthBits == 16
+            && RegFrameSizeHeightLsb % 8 == 0 && RegFrameSizeHeightBits == 16)
+      else $fatal(1, "irnuc_axil_regs: FRAME_SIZE's fields are not two byte lanes each");
     for (int k = 0; k < NumSlots; k++) begin
       assert (SlotBits[k] <= 64)
         else $fatal(1, "irnuc_axil_regs: method register %0d of %0d bits > 64", k,
@@ -299,10 +302,13 @@ module irnuc_axil_regs
   localparam logic [31:0] HeightField = ((32'd1 << RegFrameSizeHeightBits) - 32'd1)
                                         << RegFrameSizeHeightLsb;
   localparam logic [31:0] SizeMask    = WidthField | HeightField;
+  // The byte lanes of the two fields (each two lanes, checked below).
+  localparam int unsigned WLane       = RegFrameSizeWidthLsb / 8;
+  localparam int unsigned HLane       = RegFrameSizeHeightLsb / 8;
 
   logic                  nuc_en_q, dpc_en_q, coef_sync_q;
-  logic [WidthBits-1:0]  width_q, width_m1_q, new_w_q, new_wm1_q;
-  logic [HeightBits-1:0] height_q, height_m1_q, new_h_q, new_hm1_q;
+  logic [WidthBits-1:0]  width_q, width_m1_q, new_w_q;
+  logic [HeightBits-1:0] height_q, height_m1_q, new_h_q;
   logic                  width_is1_q, height_is1_q, size_dirty_q, pending_q;
   logic [31:0]           ctrl_view, size_view, ctrl_new, size_new;
   logic [RegFrameSizeWidthBits-1:0]  new_w;  // the fields as written: compared at their
@@ -317,8 +323,25 @@ module irnuc_axil_regs
   assign size_new   = (size_view & ~byte_mask(w_strb_q)) | (w_data_q & byte_mask(w_strb_q));
   assign new_w      = RegFrameSizeWidthBits'(size_new >> RegFrameSizeWidthLsb);
   assign new_h      = RegFrameSizeHeightBits'(size_new >> RegFrameSizeHeightLsb);
-  assign w_legal    = (new_w != '0) && (new_w <= RegFrameSizeWidthBits'(MaxWidth));
-  assign h_legal    = (new_h != '0) && (new_h <= RegFrameSizeHeightBits'(MaxHeight));
+  // Legality: each field is two byte lanes, so the compares are made for the four lane
+  // choices in parallel, from flops, and the strobes pick one after them (the strobes'
+  // fanout no longer precedes the carry chains).
+  logic [3:0] w_legal_c, h_legal_c;
+  for (genvar c = 0; c < 4; c++) begin : gen_legal
+    logic [31:0]                       lanes, size_c;
+    logic [RegFrameSizeWidthBits-1:0]  w_c;
+    logic [RegFrameSizeHeightBits-1:0] h_c;
+    assign lanes = byte_mask(4'((c << WLane) | (c << HLane)));
+    assign size_c = (size_view & ~lanes) | (w_data_q & lanes);
+    assign w_c = RegFrameSizeWidthBits'(size_c >> RegFrameSizeWidthLsb);
+    assign h_c = RegFrameSizeHeightBits'(size_c >> RegFrameSizeHeightLsb);
+    assign w_legal_c[c] = (w_c != '0) && (w_c <= RegFrameSizeWidthBits'(MaxWidth));
+    assign h_legal_c[c] = (h_c != '0) && (h_c <= RegFrameSizeHeightBits'(MaxHeight));
+  end
+  assign w_legal    = w_legal_c[w_strb_q[WLane +: 2]];
+  assign h_legal    = h_legal_c[w_strb_q[HLane +: 2]];
+  logic unused_new;  // the fields' bits above the frame size (a legal size has none)
+  assign unused_new = ^{new_w, new_h};
 
   // The decode cycle: the register hit, the byte lanes, the new frame size and whether its
   // width and its height are legal (two flops: the AND of the two compares is made in the
@@ -331,9 +354,7 @@ module irnuc_axil_regs
       w_legal_q    <= w_legal;
       h_legal_q    <= h_legal;
       new_w_q      <= WidthBits'(new_w);
-      new_wm1_q    <= WidthBits'(new_w - 1'b1);
       new_h_q      <= HeightBits'(new_h);
-      new_hm1_q    <= HeightBits'(new_h - 1'b1);
     end
   end
 
@@ -361,11 +382,11 @@ module irnuc_axil_regs
       end
       if (wr_size) begin
         width_q      <= new_w_q;
-        width_m1_q   <= new_wm1_q;
-        width_is1_q  <= (new_wm1_q == '0);
+        width_m1_q   <= new_w_q - WidthBits'(1);  // from the flop: no strobe merge before
+        width_is1_q  <= (new_w_q == WidthBits'(1));
         height_q     <= new_h_q;
-        height_m1_q  <= new_hm1_q;
-        height_is1_q <= (new_hm1_q == '0);
+        height_m1_q  <= new_h_q - HeightBits'(1);
+        height_is1_q <= (new_h_q == HeightBits'(1));
       end
     end
   end

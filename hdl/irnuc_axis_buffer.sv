@@ -32,7 +32,7 @@ module irnuc_axis_buffer #(
 `endif
 
   logic [1:0][DataBits-1:0] mem_q;
-  logic                     wr_q, rd_q, full_q, any_q;
+  logic                     wr_q, rd_q, rd_n_q, full_q, any_q;
   logic                     push, pop;
 
   assign push = valid_i && !full_q;
@@ -42,11 +42,13 @@ module irnuc_axis_buffer #(
     if (!rst_ni) begin
       wr_q   <= 1'b0;
       rd_q   <= 1'b0;
+      rd_n_q <= 1'b1;
       full_q <= 1'b0;
       any_q  <= 1'b0;
     end else begin
       wr_q <= wr_q ^ push;
       rd_q <= rd_q ^ pop;
+      rd_n_q <= !(rd_q ^ pop);
       if (push && !pop) begin
         full_q <= any_q;
         any_q  <= 1'b1;
@@ -66,7 +68,17 @@ module irnuc_axis_buffer #(
 
   assign ready_o = !full_q;
   assign valid_o = any_q;
-  assign data_o  = mem_q[rd_q];
+  // The read pointer selects every data bit: its complement copy (a distinct flop, which
+  // synthesis does not merge with it) selects the upper half, so each drives half the
+  // fanout (the wide coefficient words: docs/rtl.md).
+  localparam int unsigned Lo = (DataBits + 1) / 2;
+  assign data_o[Lo-1:0] = mem_q[rd_q][Lo-1:0];
+  if (DataBits > Lo) begin : gen_hi
+    assign data_o[DataBits-1:Lo] = rd_n_q ? mem_q[0][DataBits-1:Lo] : mem_q[1][DataBits-1:Lo];
+  end else begin : gen_no_hi
+    logic unused_rd_n;
+    assign unused_rd_n = rd_n_q;
+  end
 
 `ifdef IRNUC_ASSERT
   // The input side is an AXI4-Stream port (irnuc_axis_assert in the top); the output side:
@@ -77,6 +89,21 @@ module irnuc_axis_buffer #(
     .ready_i(ready_i),
     .data_i (data_o)
   );
+  // The read pointer's copy is its complement.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_rd_copy: assert (rd_n_q == !rd_q)
+        else $error("irnuc_axis_buffer: the read pointer's copy is not its complement");
+    end
+  end
 `endif
 
 endmodule

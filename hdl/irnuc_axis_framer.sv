@@ -90,6 +90,7 @@ module irnuc_axis_framer
   input  logic [FrameBits-1:0]  pend_frame_i,
   // The frame being corrected: its size (to the core) and its last line's index.
   output logic [WidthBits-1:0]  act_width_o,
+  output logic [WidthBits-1:0]  act_width_m1_o,
   output logic [HeightBits-1:0] act_height_o,
   output logic [HeightBits-1:0] act_height_m1_o,
   // Items to the core: the pixel, its word, its markers and the frame word.
@@ -332,6 +333,7 @@ module irnuc_axis_framer
   end
 
   assign act_width_o     = act_w_q;
+  assign act_width_m1_o  = act_wm1_q;
   assign act_height_o    = act_h_q;
   assign act_height_m1_o = act_hm1_q;
 
@@ -360,14 +362,17 @@ module irnuc_axis_framer
   end
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
-  // The word enters the output register as it comes (0 for a filler) with two flags, and
+  // The word enters the output register as it comes with two flags, and
   // NUC off / DPC off / filler are applied behind it: the wide word's path from the input
   // buffer passes one multiplexer, not the masks too (docs/rtl.md).
   logic [WordBits-1:0]  word_in, out_word, word;
   logic                 nuc_off, dpc_off, out_nuc_off, out_dpc_off;
   logic [FrameBits-1:0] frame;
 
-  assign word_in = (cst_q == CoefFill) ? '0 : coef_data_i;
+  // A filler's word (CoefFill) needs no zeroing: both its flags are set, so the masks
+  // behind the register give the neutral word whatever it holds (the fill decode no
+  // longer fans out to every word bit).
+  assign word_in = coef_data_i;
   assign nuc_off = (cst_q == CoefFill) || !eff_nuc;
   assign dpc_off = (cst_q == CoefFill) || !eff_dpc;
 

@@ -22,14 +22,15 @@
 //
 //   s_axis_video -> u_vid_in --\
 //                               u_framer (frames, markers, join, enables) -> u_core -> m_axis_video
-//   s_axis_coef  -> u_coef_in --/        ^ pending settings, events v
+//   s_axis_coef  -> u_coef_in --/        ^ pending settings, events v   (irnuc_axis_core)
 //   s_axil <-> u_regs (register file, counters, interrupt)
 //
-// The core is method_ffc_top with Ffc = 1 (one_point, two_point, quadratic or tc_offset with
-// the shutter offset refresh; the shutter flag of each frame from FFC_CTRL), else
-// nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point,
-// piecewise, quadratic and tc_offset; its two input streams move in lockstep here (one item
-// of the framer is a pixel and its word). A method's per-frame word comes from its registers
+// u_core (irnuc_axis_core) holds the core: method_ffc_top with Ffc = 1 (one_point,
+// two_point, quadratic or tc_offset with the shutter offset refresh) inside irnuc_axis_ffc
+// (the shutter flag of each frame from FFC_CTRL, the fork, the FFC streams), else
+// nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point, piecewise,
+// quadratic and tc_offset, whose two input streams move in lockstep (one item of the framer
+// is a pixel and its word). A method's per-frame word comes from its registers
 // (GAIN, LEVEL, READING and T_REF), taken at a frame start like every shadowed register.
 // Every output port is a flop.
 module irnuc_axis_top
@@ -252,7 +253,7 @@ module irnuc_axis_top
   );
 
   // ---- register file -----------------------------------------------------------------------
-  logic [WidthBits-1:0]  pend_w, pend_wm1, act_w;
+  logic [WidthBits-1:0]  pend_w, pend_wm1, act_w, act_wm1;
   logic [HeightBits-1:0] pend_h, pend_hm1, act_h, act_hm1;
   logic                  pend_w_is1, pend_h_is1, size_dirty, pend_nuc, pend_dpc, pend_sync;
   logic [7:0][63:0]      slots;
@@ -359,46 +360,10 @@ module irnuc_axis_top
     assign pend_frame = '0;
   end
 
-  // ---- the shutter flag of each frame (Ffc) ---------------------------------------------------
-  // FFC_CTRL.start arms the run: the frames that start after it, FFC_CTRL.frames of them
-  // (the value at that frame start), are shutter frames. The flag is a pending setting like
-  // the frame word: the framer takes it above the frame word when a frame starts (start),
-  // and this count moves on at the same time. NUC off (CTRL.nuc_en 0) sends the neutral frame
-  // word, flag 0: such a frame counts here but is an open frame to the core.
-  logic                            pend_shutter;
-  logic                            ffc_armed_q;
-  logic [RegFfcCtrlFramesBits-1:0] ffc_left_q, ffc_now;
-  logic [ItemFrameBits-1:0]        pend_item_frame;
+  // The framer's frame word: the method's, the shutter flag above it with Ffc (FFC_CTRL,
+  // irnuc_axis_ffc); NUC off sends the neutral frame word, flag 0.
+  logic [ItemFrameBits-1:0] pend_item_frame;
   localparam logic [ItemFrameBits-1:0] NeutralItemFrame = ItemFrameBits'(NeutralFrame);
-
-  if (Ffc != 0) begin : gen_shutter
-    assign ffc_now      = ffc_armed_q ? ffc_frames : ffc_left_q;
-    assign pend_shutter = ffc_now != '0;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin : p_shutter
-      if (!rst_ni) begin
-        ffc_armed_q <= 1'b0;
-        ffc_left_q  <= '0;
-      end else begin
-        if (start) begin
-          ffc_left_q <= ffc_now - RegFfcCtrlFramesBits'(pend_shutter);
-        end
-        if (ffc_start) begin
-          ffc_armed_q <= 1'b1;
-        end else if (start) begin
-          ffc_armed_q <= 1'b0;
-        end
-      end
-    end
-
-    assign pend_item_frame = {pend_shutter, pend_frame};
-  end else begin : gen_no_shutter
-    assign ffc_now            = '0;
-    assign pend_shutter       = 1'b0;
-    assign ffc_armed_q        = 1'b0;
-    assign ffc_left_q         = '0;
-    assign pend_item_frame    = pend_frame;
-  end
 
   // ---- framer ---------------------------------------------------------------------------------
   logic                     item_valid, item_ready, item_sof, item_eol;
@@ -443,6 +408,7 @@ module irnuc_axis_top
     .pend_coef_sync_i (pend_sync),
     .pend_frame_i     (pend_item_frame),
     .act_width_o      (act_w),
+    .act_width_m1_o   (act_wm1),
     .act_height_o     (act_h),
     .act_height_m1_o  (act_hm1),
     .m_valid_o        (item_valid),
@@ -467,378 +433,93 @@ module irnuc_axis_top
     .in_frame_o       (in_frame)
   );
 
-  // ---- the core: its pixel and coefficient inputs move together ----------------------------
-  // two_point: the bare core nuc_dpc_top; the other base methods: method_dpc_top, with the
-  // frame word on its pixel stream (read with sof).
-  logic               core_pix_ready, core_coef_ready, core_valid, core_sof, core_eol;
+  // ---- the core (irnuc_axis_core: the core of the method, the FFC side with Ffc) ------------
+  logic               core_valid, core_sof, core_eol;
   logic [OutBits-1:0] core_data;
 
-  if (Ffc != 0) begin : gen_ffc
-    // method_ffc_top: its pixel and coefficient inputs are separate spill registers that
-    // drain at different times, so the item is forked: each side is offered the item
-    // until it took it, and the item is taken when both have.
-    logic pix_took_q, coef_took_q, fork_pix_valid, fork_coef_valid, pix_take, coef_take;
-    logic foff_valid, foff_ready, acc_valid, acc_ready;
-    logic [FoffWordBits-1:0] foff_data;
-    logic [AccWordBits-1:0]  acc_data;
-    logic                    macc_valid, macc_ready, mfoff_valid, mfoff_ready;
-    logic [AccWordBits-1:0]  macc_data;
-    logic [FoffWordBits-1:0] mfoff_data;
-    logic                    item_shutter, item_take, target_valid;
-    logic [OutBits+FfcFracBits-1:0] target;
-
-    assign fork_pix_valid  = item_valid && !pix_took_q;
-    assign fork_coef_valid = item_valid && !coef_took_q;
-    assign pix_take   = fork_pix_valid && core_pix_ready;
-    assign coef_take  = fork_coef_valid && core_coef_ready;
-    assign item_ready = (pix_took_q || core_pix_ready) && (coef_took_q || core_coef_ready);
-    assign item_take  = item_valid && item_ready;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin : p_fork
-      if (!rst_ni) begin
-        pix_took_q  <= 1'b0;
-        coef_took_q <= 1'b0;
-      end else if (item_take) begin
-        pix_took_q  <= 1'b0;
-        coef_took_q <= 1'b0;
-      end else begin
-        pix_took_q  <= pix_took_q || pix_take;
-        coef_took_q <= coef_took_q || coef_take;
-      end
-    end
-
-    // A held frame (ffc_output hold: a shutter frame once an open frame went to the core)
-    // is never output: its items leave the core's count as they enter it (the framer's
-    // drain before a new frame size); the same rule as ffc_ctrl's, on the flag the core
-    // reads at sof.
-    logic held_q, held_e, open_q;
-    assign item_shutter = item_frame[ItemFrameBits-1];
-    assign held_e       = item_sof ? (FfcHold != 0) && item_shutter && open_q : held_q;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin : p_held
-      if (!rst_ni) begin
-        held_q <= 1'b0;
-        open_q <= 1'b0;
-      end else if (item_take && item_sof) begin
-        held_q <= held_e;
-        open_q <= open_q || !item_shutter;
-      end
-    end
-    assign core_out = pix_out || (item_take && held_e);
-
-    // FFC_STATUS: busy from FFC_CTRL.start until its run finished: the refresh frame's
-    // last new offset taken on m_axis_foff (done, IRQ_STATUS.ffc_done), or, for a run
-    // shorter than FfcFrames (no refresh), the next open frame reaching the core, or at
-    // once for FFC_CTRL.frames = 0. begun_q: the run's first shutter frame reached the core;
-    // ended_q: then an open frame (the run is over; a full run's refresh may still come).
-    localparam int unsigned RunBits = $clog2(FfcFrames + 1);
-    logic [RunBits-1:0] run_q;
-    logic               busy_q, begun_q, ended_q, open_sof, short_end, refreshed, none;
-
-    assign open_sof  = item_take && item_sof && !item_shutter;
-    assign short_end = open_sof && begun_q && !ended_q && run_q < RunBits'(FfcFrames);
-    assign refreshed = begun_q && m_axis_foff_tvalid && m_axis_foff_tready
-                       && m_axis_foff_tlast;
-    assign none      = start && ffc_armed_q && ffc_frames == '0;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin : p_run
-      if (!rst_ni) begin
-        run_q   <= '0;
-        busy_q  <= 1'b0;
-        begun_q <= 1'b0;
-        ended_q <= 1'b0;
-      end else begin
-        if (item_take && item_sof) begin
-          run_q <= !item_shutter ? '0
-                 : (run_q == RunBits'(FfcFrames)) ? run_q : run_q + RunBits'(1);
-        end
-        if (ffc_start) begin
-          busy_q  <= 1'b1;
-          begun_q <= 1'b0;
-          ended_q <= 1'b0;
-        end else begin
-          if (begun_q && open_sof) begin
-            ended_q <= 1'b1;
-          end
-          if (ffc_done) begin
-            busy_q <= 1'b0;
-          end
-          if (busy_q && !ffc_armed_q && item_take && item_sof && item_shutter) begin
-            begun_q <= 1'b1;
-          end
-        end
-      end
-    end
-    assign ffc_busy = busy_q;
-    assign ffc_done = busy_q && !ffc_start && (refreshed || short_end || none);
-
-    irnuc_axis_buffer #(.DataBits(FoffWordBits)) u_foff_in (
-      .clk_i  (clk_i),
-      .rst_ni (rst_ni),
-      .valid_i(s_axis_foff_tvalid),
-      .ready_o(s_axis_foff_tready),
-      .data_i (s_axis_foff_tdata[FoffWordBits-1:0]),
-      .valid_o(foff_valid),
-      .ready_i(foff_ready),
-      .data_o (foff_data)
-    );
-
-    irnuc_axis_buffer #(.DataBits(AccWordBits)) u_acc_in (
-      .clk_i  (clk_i),
-      .rst_ni (rst_ni),
-      .valid_i(s_axis_acc_tvalid),
-      .ready_o(s_axis_acc_tready),
-      .data_i (s_axis_acc_tdata[AccWordBits-1:0]),
-      .valid_o(acc_valid),
-      .ready_i(acc_ready),
-      .data_o (acc_data)
-    );
-
-    method_ffc_top #(
-      .Method          (Method),
-      .AdcBits         (AdcBits),
-      .GainIntBits     (GainIntBits),
-      .GainFracBits    (GainFracBits),
-      .OffsetIntBits   (OffsetIntBits),
-      .OffsetFracBits  (OffsetFracBits),
-      .OutBits         (OutBits),
-      .Rounding        (Rounding),
-      .Overflow        (Overflow),
-      .MaxWidth        (MaxWidth),
-      .MaxHeight       (MaxHeight),
-      .QuadIntBits     (QuadIntBits),
-      .QuadFracBits    (QuadFracBits),
-      .SquareBits      (SquareBits),
-      .Tc1IntBits      (Tc1IntBits),
-      .Tc1FracBits     (Tc1FracBits),
-      .Tc2IntBits      (Tc2IntBits),
-      .Tc2FracBits     (Tc2FracBits),
-      .Tg1IntBits      (Tg1IntBits),
-      .Tg1FracBits     (Tg1FracBits),
-      .Tg2IntBits      (Tg2IntBits),
-      .Tg2FracBits     (Tg2FracBits),
-      .TcOrder         (TcOrder),
-      .TcGain          (TcGain),
-      .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits),
-      .FfcFrames       (FfcFrames),
-      .FfcHold         (FfcHold),
-      .FfcIntBits      (FfcIntBits),
-      .FfcFracBits     (FfcFracBits),
-      .FfcRounding     (FfcRounding),
-      .FfcOverflow     (FfcOverflow)
-    ) u_core (
-      .clk_i             (clk_i),
-      .rst_ni            (rst_ni),
-      .frame_width_i     (act_w),
-      .frame_height_i    (act_h),
-      .s_pix_valid_i     (fork_pix_valid),
-      .s_pix_ready_o     (core_pix_ready),
-      .s_pix_data_i      (item_raw),
-      .s_pix_sof_i       (item_sof),
-      .s_pix_eol_i       (item_eol),
-      .s_pix_frame_i     (item_frame[FrameBits-1:0]),
-      .s_pix_shutter_i   (item_shutter),
-      .s_coef_valid_i    (fork_coef_valid),
-      .s_coef_ready_o    (core_coef_ready),
-      .s_coef_data_i     (item_word),
-      .s_foff_valid_i    (foff_valid),
-      .s_foff_ready_o    (foff_ready),
-      .s_foff_data_i     (foff_data),
-      .s_acc_valid_i     (acc_valid),
-      .s_acc_ready_o     (acc_ready),
-      .s_acc_data_i      (acc_data),
-      .m_acc_valid_o     (macc_valid),
-      .m_acc_ready_i     (macc_ready),
-      .m_acc_data_o      (macc_data),
-      .m_foff_valid_o    (mfoff_valid),
-      .m_foff_ready_i    (mfoff_ready),
-      .m_foff_data_o     (mfoff_data),
-      .m_pix_valid_o     (core_valid),
-      .m_pix_ready_i     (m_axis_video_tready),
-      .m_pix_data_o      (core_data),
-      .m_pix_sof_o       (core_sof),
-      .m_pix_eol_o       (core_eol),
-      .ffc_target_valid_o(target_valid),
-      .ffc_target_o      (target),
-      .frame_err_o       (core_err)
-    );
-
-    // The write-back streams: tlast on each frame's last word, counted against the frame
-    // size the frames are taken with, behind an output buffer (every output a flop).
-    logic macc_last, mfoff_last;
-
-    logic [1:0][WidthBits-1:0]  col_q;
-    logic [1:0][HeightBits-1:0] row_q;
-    logic [1:0]                 wb_beat, wb_eol, wb_last;
-
-    assign wb_beat = {mfoff_valid && mfoff_ready, macc_valid && macc_ready};
-    for (genvar k = 0; k < 2; k++) begin : gen_wb_last
-      assign wb_eol[k]  = col_q[k] == act_w - WidthBits'(1);
-      assign wb_last[k] = wb_eol[k] && row_q[k] == act_hm1;
-      always_ff @(posedge clk_i or negedge rst_ni) begin : p_count
-        if (!rst_ni) begin
-          col_q[k] <= '0;
-          row_q[k] <= '0;
-        end else if (wb_beat[k]) begin
-          col_q[k] <= wb_eol[k] ? '0 : col_q[k] + WidthBits'(1);
-          if (wb_eol[k]) begin
-            row_q[k] <= wb_last[k] ? '0 : row_q[k] + HeightBits'(1);
-          end
-        end
-      end
-    end
-    assign macc_last  = wb_last[0];
-    assign mfoff_last = wb_last[1];
-
-    logic [AccWordBits-1:0]  macc_out;
-    logic [FoffWordBits-1:0] mfoff_out;
-
-    irnuc_axis_buffer #(.DataBits(AccWordBits + 1)) u_acc_out (
-      .clk_i  (clk_i),
-      .rst_ni (rst_ni),
-      .valid_i(macc_valid),
-      .ready_o(macc_ready),
-      .data_i ({macc_last, macc_data}),
-      .valid_o(m_axis_acc_tvalid),
-      .ready_i(m_axis_acc_tready),
-      .data_o ({m_axis_acc_tlast, macc_out})
-    );
-    irnuc_axis_buffer #(.DataBits(FoffWordBits + 1)) u_foff_out (
-      .clk_i  (clk_i),
-      .rst_ni (rst_ni),
-      .valid_i(mfoff_valid),
-      .ready_o(mfoff_ready),
-      .data_i ({mfoff_last, mfoff_data}),
-      .valid_o(m_axis_foff_tvalid),
-      .ready_i(m_axis_foff_tready),
-      .data_o ({m_axis_foff_tlast, mfoff_out})
-    );
-    assign m_axis_acc_tdata  = AccBits'(macc_out);
-    assign m_axis_foff_tdata = FoffBits'(mfoff_out);
-
-    // Not used: the input tlast (the core counts the words of a frame by its size), the
-    // target the core computed.
-    logic unused_ffc;
-    assign unused_ffc = ^{s_axis_foff_tlast, s_axis_acc_tlast, target_valid, target};
-    if (FoffBits > FoffWordBits) begin : gen_foff_pad
-      logic unused_foff;
-      assign unused_foff = ^s_axis_foff_tdata[FoffBits-1:FoffWordBits];
-    end
-    if (AccBits > AccWordBits) begin : gen_acc_pad
-      logic unused_acc;
-      assign unused_acc = ^s_axis_acc_tdata[AccBits-1:AccWordBits];
-    end
-  end else begin : gen_no_ffc
-    assign item_ready         = core_pix_ready && core_coef_ready;
-    assign core_out           = pix_out;
-    assign ffc_busy           = 1'b0;
-    assign ffc_done           = 1'b0;
-    assign s_axis_foff_tready = 1'b0;
-    assign s_axis_acc_tready  = 1'b0;
-    assign m_axis_acc_tvalid  = 1'b0;
-    assign m_axis_acc_tdata   = '0;
-    assign m_axis_acc_tlast   = 1'b0;
-    assign m_axis_foff_tvalid = 1'b0;
-    assign m_axis_foff_tdata  = '0;
-    assign m_axis_foff_tlast  = 1'b0;
-    logic unused_ffc;
-    assign unused_ffc = ^{s_axis_foff_tdata, s_axis_foff_tvalid, s_axis_foff_tlast,
-                          s_axis_acc_tdata, s_axis_acc_tvalid, s_axis_acc_tlast,
-                          m_axis_acc_tready, m_axis_foff_tready, ffc_now, ffc_armed_q,
-                          ffc_left_q, pend_shutter};
-  end
-
-  if (Ffc != 0) begin : gen_core_ffc
-    // method_ffc_top (gen_ffc above).
-  end else if (MethodSel == MethodTwoPoint) begin : gen_two_point
-    nuc_dpc_top #(
-      .AdcBits       (AdcBits),
-      .GainIntBits   (GainIntBits),
-      .GainFracBits  (GainFracBits),
-      .OffsetIntBits (OffsetIntBits),
-      .OffsetFracBits(OffsetFracBits),
-      .OutBits       (OutBits),
-      .Rounding      (Rounding),
-      .Overflow      (Overflow),
-      .MaxWidth      (MaxWidth),
-      .MaxHeight     (MaxHeight)
-    ) u_core (
-      .clk_i         (clk_i),
-      .rst_ni        (rst_ni),
-      .frame_width_i (act_w),
-      .frame_height_i(act_h),
-      .s_pix_valid_i (item_valid),
-      .s_pix_ready_o (core_pix_ready),
-      .s_pix_data_i  (item_raw),
-      .s_pix_sof_i   (item_sof),
-      .s_pix_eol_i   (item_eol),
-      .s_coef_valid_i(item_valid),
-      .s_coef_ready_o(core_coef_ready),
-      .s_coef_data_i (item_word),
-      .m_pix_valid_o (core_valid),
-      .m_pix_ready_i (m_axis_video_tready),
-      .m_pix_data_o  (core_data),
-      .m_pix_sof_o   (core_sof),
-      .m_pix_eol_o   (core_eol),
-      .frame_err_o   (core_err)
-    );
-    logic unused_frame;
-    assign unused_frame = ^item_frame;
-  end else begin : gen_method
-    method_dpc_top #(
-      .Method          (Method),
-      .AdcBits         (AdcBits),
-      .GainIntBits     (GainIntBits),
-      .GainFracBits    (GainFracBits),
-      .OffsetIntBits   (OffsetIntBits),
-      .OffsetFracBits  (OffsetFracBits),
-      .OutBits         (OutBits),
-      .Rounding        (Rounding),
-      .Overflow        (Overflow),
-      .MaxWidth        (MaxWidth),
-      .MaxHeight       (MaxHeight),
-      .KneeIntBits     (KneeIntBits),
-      .KneeFracBits    (KneeFracBits),
-      .LevelIntBits    (LevelIntBits),
-      .LevelFracBits   (LevelFracBits),
-      .QuadIntBits     (QuadIntBits),
-      .QuadFracBits    (QuadFracBits),
-      .SquareBits      (SquareBits),
-      .Tc1IntBits      (Tc1IntBits),
-      .Tc1FracBits     (Tc1FracBits),
-      .Tc2IntBits      (Tc2IntBits),
-      .Tc2FracBits     (Tc2FracBits),
-      .Tg1IntBits      (Tg1IntBits),
-      .Tg1FracBits     (Tg1FracBits),
-      .Tg2IntBits      (Tg2IntBits),
-      .Tg2FracBits     (Tg2FracBits),
-      .TcOrder         (TcOrder),
-      .TcGain          (TcGain),
-      .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits)
-    ) u_core (
-      .clk_i         (clk_i),
-      .rst_ni        (rst_ni),
-      .frame_width_i (act_w),
-      .frame_height_i(act_h),
-      .s_pix_valid_i (item_valid),
-      .s_pix_ready_o (core_pix_ready),
-      .s_pix_data_i  (item_raw),
-      .s_pix_sof_i   (item_sof),
-      .s_pix_eol_i   (item_eol),
-      .s_pix_frame_i (item_frame),
-      .s_coef_valid_i(item_valid),
-      .s_coef_ready_o(core_coef_ready),
-      .s_coef_data_i (item_word),
-      .m_pix_valid_o (core_valid),
-      .m_pix_ready_i (m_axis_video_tready),
-      .m_pix_data_o  (core_data),
-      .m_pix_sof_o   (core_sof),
-      .m_pix_eol_o   (core_eol),
-      .frame_err_o   (core_err)
-    );
-  end
+  irnuc_axis_core #(
+    .Method          (Method),
+    .AdcBits         (AdcBits),
+    .GainIntBits     (GainIntBits),
+    .GainFracBits    (GainFracBits),
+    .OffsetIntBits   (OffsetIntBits),
+    .OffsetFracBits  (OffsetFracBits),
+    .OutBits         (OutBits),
+    .Rounding        (Rounding),
+    .Overflow        (Overflow),
+    .MaxWidth        (MaxWidth),
+    .MaxHeight       (MaxHeight),
+    .KneeIntBits     (KneeIntBits),
+    .KneeFracBits    (KneeFracBits),
+    .LevelIntBits    (LevelIntBits),
+    .LevelFracBits   (LevelFracBits),
+    .QuadIntBits     (QuadIntBits),
+    .QuadFracBits    (QuadFracBits),
+    .SquareBits      (SquareBits),
+    .Tc1IntBits      (Tc1IntBits),
+    .Tc1FracBits     (Tc1FracBits),
+    .Tc2IntBits      (Tc2IntBits),
+    .Tc2FracBits     (Tc2FracBits),
+    .Tg1IntBits      (Tg1IntBits),
+    .Tg1FracBits     (Tg1FracBits),
+    .Tg2IntBits      (Tg2IntBits),
+    .Tg2FracBits     (Tg2FracBits),
+    .TcOrder         (TcOrder),
+    .TcGain          (TcGain),
+    .ReadingBits     (ReadingBits),
+    .ReadingRangeBits(ReadingRangeBits),
+    .Ffc             (Ffc),
+    .FfcFrames       (FfcFrames),
+    .FfcHold         (FfcHold),
+    .FfcIntBits      (FfcIntBits),
+    .FfcFracBits     (FfcFracBits),
+    .FfcRounding     (FfcRounding),
+    .FfcOverflow     (FfcOverflow)
+  ) u_core (
+    .clk_i             (clk_i),
+    .rst_ni            (rst_ni),
+    .act_w_i           (act_w),
+    .act_wm1_i         (act_wm1),
+    .act_h_i           (act_h),
+    .act_hm1_i         (act_hm1),
+    .pend_frame_i      (pend_frame),
+    .pend_item_frame_o (pend_item_frame),
+    .start_i           (start),
+    .ffc_start_i       (ffc_start),
+    .ffc_frames_i      (ffc_frames),
+    .ffc_busy_o        (ffc_busy),
+    .ffc_done_o        (ffc_done),
+    .item_valid_i      (item_valid),
+    .item_ready_o      (item_ready),
+    .item_raw_i        (item_raw),
+    .item_word_i       (item_word),
+    .item_sof_i        (item_sof),
+    .item_eol_i        (item_eol),
+    .item_frame_i      (item_frame),
+    .m_valid_o         (core_valid),
+    .m_ready_i         (m_axis_video_tready),
+    .m_data_o          (core_data),
+    .m_sof_o           (core_sof),
+    .m_eol_o           (core_eol),
+    .core_out_o        (core_out),
+    .frame_err_o       (core_err),
+    .s_axis_foff_tdata (s_axis_foff_tdata),
+    .s_axis_foff_tvalid(s_axis_foff_tvalid),
+    .s_axis_foff_tready(s_axis_foff_tready),
+    .s_axis_foff_tlast (s_axis_foff_tlast),
+    .s_axis_acc_tdata  (s_axis_acc_tdata),
+    .s_axis_acc_tvalid (s_axis_acc_tvalid),
+    .s_axis_acc_tready (s_axis_acc_tready),
+    .s_axis_acc_tlast  (s_axis_acc_tlast),
+    .m_axis_acc_tdata  (m_axis_acc_tdata),
+    .m_axis_acc_tvalid (m_axis_acc_tvalid),
+    .m_axis_acc_tready (m_axis_acc_tready),
+    .m_axis_acc_tlast  (m_axis_acc_tlast),
+    .m_axis_foff_tdata (m_axis_foff_tdata),
+    .m_axis_foff_tvalid(m_axis_foff_tvalid),
+    .m_axis_foff_tready(m_axis_foff_tready),
+    .m_axis_foff_tlast (m_axis_foff_tlast)
+  );
 
   assign m_axis_video_tvalid = core_valid;
   assign m_axis_video_tdata  = VidOutBits'(core_data);
@@ -865,10 +546,9 @@ module irnuc_axis_top
   assign frame_out = frame_out_q;
 
   // Not used: AxPROT, the tdata bits above the code, the method registers the method does
-  // not read and the FFC controls (docs/integration.md).
+  // not read (docs/integration.md).
   logic unused_inputs;
-  assign unused_inputs = ^{s_axil_awprot, s_axil_arprot, slots, table_readings, ffc_start,
-                           ffc_frames};
+  assign unused_inputs = ^{s_axil_awprot, s_axil_arprot, slots, table_readings};
   if (VidInBits > AdcBits) begin : gen_vid_pad
     logic unused_vid;
     assign unused_vid = ^s_axis_video_tdata[VidInBits-1:AdcBits];
@@ -907,43 +587,6 @@ module irnuc_axis_top
     .tlast_i (m_axis_video_tlast),
     .tuser_i (m_axis_video_tuser)
   );
-  // The FFC streams (tied off with Ffc = 0: checked all the same).
-  irnuc_axis_assert #(.DataBits(FoffBits), .UserBits(1)) u_assert_foff_in (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .tvalid_i(s_axis_foff_tvalid),
-    .tready_i(s_axis_foff_tready),
-    .tdata_i (s_axis_foff_tdata),
-    .tlast_i (s_axis_foff_tlast),
-    .tuser_i (1'b0)
-  );
-  irnuc_axis_assert #(.DataBits(AccBits), .UserBits(1)) u_assert_acc_in (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .tvalid_i(s_axis_acc_tvalid),
-    .tready_i(s_axis_acc_tready),
-    .tdata_i (s_axis_acc_tdata),
-    .tlast_i (s_axis_acc_tlast),
-    .tuser_i (1'b0)
-  );
-  irnuc_axis_assert #(.DataBits(AccBits), .UserBits(1)) u_assert_acc_out (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .tvalid_i(m_axis_acc_tvalid),
-    .tready_i(m_axis_acc_tready),
-    .tdata_i (m_axis_acc_tdata),
-    .tlast_i (m_axis_acc_tlast),
-    .tuser_i (1'b0)
-  );
-  irnuc_axis_assert #(.DataBits(FoffBits), .UserBits(1)) u_assert_foff_out (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .tvalid_i(m_axis_foff_tvalid),
-    .tready_i(m_axis_foff_tready),
-    .tdata_i (m_axis_foff_tdata),
-    .tlast_i (m_axis_foff_tlast),
-    .tuser_i (1'b0)
-  );
   irnuc_axil_assert #(.AddrBits(AddrBits)) u_assert_axil (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
@@ -967,22 +610,6 @@ module irnuc_axis_top
     .rvalid_i (s_axil_rvalid),
     .rready_i (s_axil_rready)
   );
-
-  // The core's two inputs hold the same items, so their readies agree.
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
-  always_ff @(posedge clk_i) begin : p_check
-    if (armed_q) begin
-      a_lockstep: assert (Ffc != 0 || core_pix_ready == core_coef_ready)
-        else $error("irnuc_axis_top: the core's pixel and coefficient readies differ");
-    end
-  end
 `endif
 
 endmodule

@@ -18,16 +18,19 @@ METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_read
                   "table_interp", "interp_weight")
 #: The AXI wrapper of the two-point core and its parts, linted with every two-point
 #: configuration (their parameters are widths and the frame limit, not the modes); the
-#: protocol checkers take no configuration (once).
+#: protocol checkers take no configuration (once). Its core (AXI_CORE) is linted with every
+#: method it wraps, its FFC side (irnuc_axis_ffc) with the ffc stage (STAGE_MODULES).
 AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_axis_buffer")
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert")
+AXI_CORE = ("irnuc_axis_core",)
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
 #: configuration of those stages and the mode variants.
 STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_drift",),
                  "drift_sub": ("blind_drift",), "core_sum": ("blind_drift", "ffc"),
                  "core_out": ("blind_drift", "ffc"), "method_ffc_top": ("ffc",),
                  "ffc_ctrl": ("ffc",), "ffc_mean": ("ffc",), "ffc_refresh": ("ffc",),
-                 "ffc_sums": ("ffc",), "frame_coefficients": ("ffc",)}
+                 "ffc_sums": ("ffc",), "frame_coefficients": ("ffc",),
+                 "irnuc_axis_ffc": ("ffc",)}
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
               "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
@@ -104,7 +107,9 @@ def _axi_method_configs() -> list[str]:
 
 @pytest.mark.parametrize(("module", "config"),
                          [(m, c) for m in AXI_MODULES for c in pipeline_names()]
-                         + [("irnuc_axis_top", c) for c in _axi_method_configs()]
+                         + [(m, c) for m in ("irnuc_axis_top", *AXI_CORE)
+                            for c in _axi_method_configs()]
+                         + [(m, "minimal") for m in AXI_CORE]
                          + [(m, "minimal") for m in AXI_CHECKERS])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
@@ -128,6 +133,7 @@ def _stage_cases() -> list[tuple[str, str, dict[str, object]]]:
                                                                   "overflow": "wrap"}}}))
     cases.append(("method_ffc_top", "quadffc14", {"ffc_output": "hold", "rounding": "truncate"}))
     cases.append(("irnuc_axis_top", "ffc14", {"ffc_output": "pass", "ffc_frames": 1}))
+    cases.append(("irnuc_axis_ffc", "ffc14", {"ffc_output": "pass", "ffc_frames": 1}))
     return cases
 
 
@@ -150,7 +156,8 @@ def test_one_module_per_file() -> None:
         assert units[0].split()[1].rstrip("#(;") == path.stem
         if units[0].startswith("package "):
             continue
-        linted = (*MODULES, *METHOD_MODULES, *AXI_MODULES, *AXI_CHECKERS, *STAGE_MODULES)
+        linted = (*MODULES, *METHOD_MODULES, *AXI_MODULES, *AXI_CHECKERS, *AXI_CORE,
+                  *STAGE_MODULES)
         assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 

@@ -1,0 +1,379 @@
+// The core of irnuc_axis_top and the FFC side around it (docs/integration.md): the framer's
+// items go to irnuc_axis_ffc (method_ffc_top and its streams) with Ffc = 1, else to
+// nuc_dpc_top for two_point (Method = 1) or method_dpc_top for one_point, piecewise,
+// quadratic and tc_offset, whose two inputs move in lockstep (one item is a pixel and its
+// word; the frame word rides on the pixel stream, read with sof). Without the ffc stage
+// the FFC streams are tied off: inputs never ready, outputs never valid.
+module irnuc_axis_core
+  import irnuc_pkg::*;
+  import irnuc_method_pkg::*;
+#(
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e (not table_interp)
+  parameter int unsigned AdcBits        = 14,
+  parameter int unsigned GainIntBits    = 2,
+  parameter int unsigned GainFracBits   = 14,
+  parameter int unsigned OffsetIntBits  = 12,
+  parameter int unsigned OffsetFracBits = 4,
+  parameter int unsigned OutBits        = 14,
+  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth       = 1024,
+  parameter int unsigned MaxHeight      = 1024,
+  // Formats and parameters of the base methods (method_dpc_top's; a method reads only its
+  // own; docs/datapath.md "Formats").
+  parameter int unsigned KneeIntBits    = 14,
+  parameter int unsigned KneeFracBits   = 2,
+  parameter int unsigned LevelIntBits   = 14,
+  parameter int unsigned LevelFracBits  = 4,
+  parameter int unsigned QuadIntBits    = 10,
+  parameter int unsigned QuadFracBits   = 6,
+  parameter int unsigned SquareBits     = 18,
+  parameter int unsigned Tc1IntBits     = 13,
+  parameter int unsigned Tc1FracBits    = 3,
+  parameter int unsigned Tc2IntBits     = 12,
+  parameter int unsigned Tc2FracBits    = 4,
+  parameter int unsigned Tg1IntBits     = 2,
+  parameter int unsigned Tg1FracBits    = 14,
+  parameter int unsigned Tg2IntBits     = 2,
+  parameter int unsigned Tg2FracBits    = 14,
+  parameter int unsigned TcOrder        = 2,
+  parameter int unsigned TcGain         = 0,
+  parameter int unsigned ReadingBits    = 14,
+  parameter int unsigned ReadingRangeBits = 11,
+  // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
+  parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
+  parameter int unsigned FfcFrames      = 8,
+  parameter int unsigned FfcHold        = 1,
+  parameter int unsigned FfcIntBits     = 12,
+  parameter int unsigned FfcFracBits    = 4,
+  parameter int unsigned FfcRounding    = 1,
+  parameter int unsigned FfcOverflow    = 0,
+  // Derived, do not override.
+  localparam method_e     MethodSel     = method_e'(Method),
+  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned LevelBits     = LevelIntBits + LevelFracBits,
+  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
+                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  // The coefficient word of the method (s_axis_coef) and the frame word of its registers.
+  localparam int unsigned WordBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits,
+                                                           KneeIntBits + KneeFracBits,
+                                                           QuadIntBits + QuadFracBits,
+                                                           TcWordBits, TgWordBits),
+  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, LevelBits,
+                                                          ReadingBits, 1),
+  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
+  // The FFC words (memories ffc_offset and ffc_acc) and their AXI4-Stream widths.
+  localparam int unsigned FoffWordBits  = FfcIntBits + FfcFracBits,
+  localparam int unsigned AccWordBits   = AdcBits + $clog2(FfcFrames),
+  // Without the stage the ports stay, one byte wide (a top-level port is a pin in an
+  // FPGA flow: the widest method words already use most of a package's pins).
+  localparam int unsigned FoffBits      = (Ffc != 0) ? 8 * ((FoffWordBits + 7) / 8) : 8,
+  localparam int unsigned AccBits       = (Ffc != 0) ? 8 * ((AccWordBits + 7) / 8) : 8,
+  // The framer's frame word: the method's, and the shutter flag above it (Ffc).
+  localparam int unsigned ItemFrameBits = FrameBits + ((Ffc != 0) ? 1 : 0)
+) (
+  input  logic                            clk_i,
+  input  logic                            rst_ni,
+  // The frame size the framer's frames are taken with.
+  input  logic [WidthBits-1:0]            act_w_i,
+  input  logic [WidthBits-1:0]            act_wm1_i,
+  input  logic [HeightBits-1:0]           act_h_i,
+  input  logic [HeightBits-1:0]           act_hm1_i,
+  // The method's pending frame word in, the framer's (with the shutter flag: Ffc) out.
+  input  logic [FrameBits-1:0]            pend_frame_i,
+  output logic [ItemFrameBits-1:0]        pend_item_frame_o,
+  // Register file: a frame start, FFC_CTRL, FFC_STATUS.
+  input  logic                            start_i,
+  input  logic                            ffc_start_i,
+  input  logic [RegFfcCtrlFramesBits-1:0] ffc_frames_i,
+  output logic                            ffc_busy_o,
+  output logic                            ffc_done_o,
+  // The framer's items (a pixel and its word).
+  input  logic                            item_valid_i,
+  output logic                            item_ready_o,
+  input  logic [AdcBits-1:0]              item_raw_i,
+  input  logic [WordBits-1:0]             item_word_i,
+  input  logic                            item_sof_i,
+  input  logic                            item_eol_i,
+  input  logic [ItemFrameBits-1:0]        item_frame_i,
+  // Corrected pixels (the core's output register).
+  output logic                            m_valid_o,
+  input  logic                            m_ready_i,
+  output logic [OutBits-1:0]              m_data_o,
+  output logic                            m_sof_o,
+  output logic                            m_eol_o,
+  output logic                            core_out_o,  // an item left the core (output, or dropped in a held frame)
+  output logic                            frame_err_o,
+  // The FFC streams (irnuc_axis_top's ports).
+  input  logic [FoffBits-1:0]             s_axis_foff_tdata,
+  input  logic                            s_axis_foff_tvalid,
+  output logic                            s_axis_foff_tready,
+  input  logic                            s_axis_foff_tlast,
+  input  logic [AccBits-1:0]              s_axis_acc_tdata,
+  input  logic                            s_axis_acc_tvalid,
+  output logic                            s_axis_acc_tready,
+  input  logic                            s_axis_acc_tlast,
+  output logic [AccBits-1:0]              m_axis_acc_tdata,
+  output logic                            m_axis_acc_tvalid,
+  input  logic                            m_axis_acc_tready,
+  output logic                            m_axis_acc_tlast,
+  output logic [FoffBits-1:0]             m_axis_foff_tdata,
+  output logic                            m_axis_foff_tvalid,
+  input  logic                            m_axis_foff_tready,
+  output logic                            m_axis_foff_tlast
+);
+
+  logic core_pix_ready, core_coef_ready;
+
+  if (Ffc != 0) begin : gen_ffc
+    irnuc_axis_ffc #(
+      .Method          (Method),
+      .AdcBits         (AdcBits),
+      .GainIntBits     (GainIntBits),
+      .GainFracBits    (GainFracBits),
+      .OffsetIntBits   (OffsetIntBits),
+      .OffsetFracBits  (OffsetFracBits),
+      .OutBits         (OutBits),
+      .Rounding        (Rounding),
+      .Overflow        (Overflow),
+      .MaxWidth        (MaxWidth),
+      .MaxHeight       (MaxHeight),
+      .QuadIntBits     (QuadIntBits),
+      .QuadFracBits    (QuadFracBits),
+      .SquareBits      (SquareBits),
+      .Tc1IntBits      (Tc1IntBits),
+      .Tc1FracBits     (Tc1FracBits),
+      .Tc2IntBits      (Tc2IntBits),
+      .Tc2FracBits     (Tc2FracBits),
+      .Tg1IntBits      (Tg1IntBits),
+      .Tg1FracBits     (Tg1FracBits),
+      .Tg2IntBits      (Tg2IntBits),
+      .Tg2FracBits     (Tg2FracBits),
+      .TcOrder         (TcOrder),
+      .TcGain          (TcGain),
+      .ReadingBits     (ReadingBits),
+      .ReadingRangeBits(ReadingRangeBits),
+      .FfcFrames       (FfcFrames),
+      .FfcHold         (FfcHold),
+      .FfcIntBits      (FfcIntBits),
+      .FfcFracBits     (FfcFracBits),
+      .FfcRounding     (FfcRounding),
+      .FfcOverflow     (FfcOverflow)
+    ) u_ffc (
+      .clk_i             (clk_i),
+      .rst_ni            (rst_ni),
+      .act_w_i           (act_w_i),
+      .act_wm1_i         (act_wm1_i),
+      .act_h_i           (act_h_i),
+      .act_hm1_i         (act_hm1_i),
+      .pend_frame_i      (pend_frame_i),
+      .pend_item_frame_o (pend_item_frame_o),
+      .start_i           (start_i),
+      .ffc_start_i       (ffc_start_i),
+      .ffc_frames_i      (ffc_frames_i),
+      .ffc_busy_o        (ffc_busy_o),
+      .ffc_done_o        (ffc_done_o),
+      .item_valid_i      (item_valid_i),
+      .item_ready_o      (item_ready_o),
+      .item_raw_i        (item_raw_i),
+      .item_word_i       (item_word_i),
+      .item_sof_i        (item_sof_i),
+      .item_eol_i        (item_eol_i),
+      .item_frame_i      (item_frame_i),
+      .m_valid_o         (m_valid_o),
+      .m_ready_i         (m_ready_i),
+      .m_data_o          (m_data_o),
+      .m_sof_o           (m_sof_o),
+      .m_eol_o           (m_eol_o),
+      .core_out_o        (core_out_o),
+      .frame_err_o       (frame_err_o),
+      .s_axis_foff_tdata (s_axis_foff_tdata),
+      .s_axis_foff_tvalid(s_axis_foff_tvalid),
+      .s_axis_foff_tready(s_axis_foff_tready),
+      .s_axis_foff_tlast (s_axis_foff_tlast),
+      .s_axis_acc_tdata  (s_axis_acc_tdata),
+      .s_axis_acc_tvalid (s_axis_acc_tvalid),
+      .s_axis_acc_tready (s_axis_acc_tready),
+      .s_axis_acc_tlast  (s_axis_acc_tlast),
+      .m_axis_acc_tdata  (m_axis_acc_tdata),
+      .m_axis_acc_tvalid (m_axis_acc_tvalid),
+      .m_axis_acc_tready (m_axis_acc_tready),
+      .m_axis_acc_tlast  (m_axis_acc_tlast),
+      .m_axis_foff_tdata (m_axis_foff_tdata),
+      .m_axis_foff_tvalid(m_axis_foff_tvalid),
+      .m_axis_foff_tready(m_axis_foff_tready),
+      .m_axis_foff_tlast (m_axis_foff_tlast)
+    );
+    // Its two inputs are forked in u_ffc (not in lockstep).
+    assign core_pix_ready  = 1'b1;
+    assign core_coef_ready = 1'b1;
+  end else if (MethodSel == MethodTwoPoint) begin : gen_two_point
+    nuc_dpc_top #(
+      .AdcBits       (AdcBits),
+      .GainIntBits   (GainIntBits),
+      .GainFracBits  (GainFracBits),
+      .OffsetIntBits (OffsetIntBits),
+      .OffsetFracBits(OffsetFracBits),
+      .OutBits       (OutBits),
+      .Rounding      (Rounding),
+      .Overflow      (Overflow),
+      .MaxWidth      (MaxWidth),
+      .MaxHeight     (MaxHeight)
+    ) u_core (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .frame_width_i (act_w_i),
+      .frame_height_i(act_h_i),
+      .s_pix_valid_i (item_valid_i),
+      .s_pix_ready_o (core_pix_ready),
+      .s_pix_data_i  (item_raw_i),
+      .s_pix_sof_i   (item_sof_i),
+      .s_pix_eol_i   (item_eol_i),
+      .s_coef_valid_i(item_valid_i),
+      .s_coef_ready_o(core_coef_ready),
+      .s_coef_data_i (item_word_i),
+      .m_pix_valid_o (m_valid_o),
+      .m_pix_ready_i (m_ready_i),
+      .m_pix_data_o  (m_data_o),
+      .m_pix_sof_o   (m_sof_o),
+      .m_pix_eol_o   (m_eol_o),
+      .frame_err_o   (frame_err_o)
+    );
+    logic unused_frame;
+    assign unused_frame = ^item_frame_i;
+  end else begin : gen_method
+    method_dpc_top #(
+      .Method          (Method),
+      .AdcBits         (AdcBits),
+      .GainIntBits     (GainIntBits),
+      .GainFracBits    (GainFracBits),
+      .OffsetIntBits   (OffsetIntBits),
+      .OffsetFracBits  (OffsetFracBits),
+      .OutBits         (OutBits),
+      .Rounding        (Rounding),
+      .Overflow        (Overflow),
+      .MaxWidth        (MaxWidth),
+      .MaxHeight       (MaxHeight),
+      .KneeIntBits     (KneeIntBits),
+      .KneeFracBits    (KneeFracBits),
+      .LevelIntBits    (LevelIntBits),
+      .LevelFracBits   (LevelFracBits),
+      .QuadIntBits     (QuadIntBits),
+      .QuadFracBits    (QuadFracBits),
+      .SquareBits      (SquareBits),
+      .Tc1IntBits      (Tc1IntBits),
+      .Tc1FracBits     (Tc1FracBits),
+      .Tc2IntBits      (Tc2IntBits),
+      .Tc2FracBits     (Tc2FracBits),
+      .Tg1IntBits      (Tg1IntBits),
+      .Tg1FracBits     (Tg1FracBits),
+      .Tg2IntBits      (Tg2IntBits),
+      .Tg2FracBits     (Tg2FracBits),
+      .TcOrder         (TcOrder),
+      .TcGain          (TcGain),
+      .ReadingBits     (ReadingBits),
+      .ReadingRangeBits(ReadingRangeBits)
+    ) u_core (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .frame_width_i (act_w_i),
+      .frame_height_i(act_h_i),
+      .s_pix_valid_i (item_valid_i),
+      .s_pix_ready_o (core_pix_ready),
+      .s_pix_data_i  (item_raw_i),
+      .s_pix_sof_i   (item_sof_i),
+      .s_pix_eol_i   (item_eol_i),
+      .s_pix_frame_i (item_frame_i),
+      .s_coef_valid_i(item_valid_i),
+      .s_coef_ready_o(core_coef_ready),
+      .s_coef_data_i (item_word_i),
+      .m_pix_valid_o (m_valid_o),
+      .m_pix_ready_i (m_ready_i),
+      .m_pix_data_o  (m_data_o),
+      .m_pix_sof_o   (m_sof_o),
+      .m_pix_eol_o   (m_eol_o),
+      .frame_err_o   (frame_err_o)
+    );
+  end
+  if (Ffc == 0) begin : gen_no_ffc
+    assign pend_item_frame_o  = pend_frame_i;
+    assign item_ready_o       = core_pix_ready && core_coef_ready;
+    assign core_out_o         = m_valid_o && m_ready_i;
+    assign ffc_busy_o         = 1'b0;
+    assign ffc_done_o         = 1'b0;
+    assign s_axis_foff_tready = 1'b0;
+    assign s_axis_acc_tready  = 1'b0;
+    assign m_axis_acc_tvalid  = 1'b0;
+    assign m_axis_acc_tdata   = '0;
+    assign m_axis_acc_tlast   = 1'b0;
+    assign m_axis_foff_tvalid = 1'b0;
+    assign m_axis_foff_tdata  = '0;
+    assign m_axis_foff_tlast  = 1'b0;
+    logic unused_ffc;
+    assign unused_ffc = ^{s_axis_foff_tdata, s_axis_foff_tvalid, s_axis_foff_tlast,
+                          s_axis_acc_tdata, s_axis_acc_tvalid, s_axis_acc_tlast,
+                          m_axis_acc_tready, m_axis_foff_tready, start_i, ffc_start_i,
+                          ffc_frames_i, act_wm1_i, act_hm1_i};
+  end
+
+`ifdef IRNUC_ASSERT
+  // The FFC streams (tied off with Ffc = 0: checked all the same).
+  irnuc_axis_assert #(.DataBits(FoffBits), .UserBits(1)) u_assert_foff_in (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(s_axis_foff_tvalid),
+    .tready_i(s_axis_foff_tready),
+    .tdata_i (s_axis_foff_tdata),
+    .tlast_i (s_axis_foff_tlast),
+    .tuser_i (1'b0)
+  );
+  irnuc_axis_assert #(.DataBits(AccBits), .UserBits(1)) u_assert_acc_in (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(s_axis_acc_tvalid),
+    .tready_i(s_axis_acc_tready),
+    .tdata_i (s_axis_acc_tdata),
+    .tlast_i (s_axis_acc_tlast),
+    .tuser_i (1'b0)
+  );
+  irnuc_axis_assert #(.DataBits(AccBits), .UserBits(1)) u_assert_acc_out (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(m_axis_acc_tvalid),
+    .tready_i(m_axis_acc_tready),
+    .tdata_i (m_axis_acc_tdata),
+    .tlast_i (m_axis_acc_tlast),
+    .tuser_i (1'b0)
+  );
+  irnuc_axis_assert #(.DataBits(FoffBits), .UserBits(1)) u_assert_foff_out (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .tvalid_i(m_axis_foff_tvalid),
+    .tready_i(m_axis_foff_tready),
+    .tdata_i (m_axis_foff_tdata),
+    .tlast_i (m_axis_foff_tlast),
+    .tuser_i (1'b0)
+  );
+
+  // The core's two inputs hold the same items, so their readies agree.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_lockstep: assert (core_pix_ready == core_coef_ready)
+        else $error("irnuc_axis_core: the core's pixel and coefficient readies differ");
+    end
+  end
+`endif
+
+endmodule

@@ -1,0 +1,403 @@
+// The FFC side of irnuc_axis_top (Ffc = 1; docs/integration.md "FFC"): the shutter flag of
+// each frame from FFC_CTRL, the fork of the framer's items into method_ffc_top's separate
+// pixel and coefficient inputs, the held frames' count, FFC_STATUS busy/done, the input
+// buffers of s_axis_foff and s_axis_acc, method_ffc_top itself, and the write-back streams
+// m_axis_acc and m_axis_foff with their tlast (counted against the frame size) behind
+// output buffers. Instantiated by irnuc_axis_core; the AXI4-Stream ports are the top's.
+module irnuc_axis_ffc
+  import irnuc_pkg::*;
+  import irnuc_method_pkg::*;
+#(
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e: 0, 1, 3 or 4
+  parameter int unsigned AdcBits        = 14,
+  parameter int unsigned GainIntBits    = 2,
+  parameter int unsigned GainFracBits   = 14,
+  parameter int unsigned OffsetIntBits  = 12,
+  parameter int unsigned OffsetFracBits = 4,
+  parameter int unsigned OutBits        = 14,
+  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth       = 1024,
+  parameter int unsigned MaxHeight      = 1024,
+  parameter int unsigned QuadIntBits    = 10,
+  parameter int unsigned QuadFracBits   = 6,
+  parameter int unsigned SquareBits     = 18,
+  parameter int unsigned Tc1IntBits     = 13,
+  parameter int unsigned Tc1FracBits    = 3,
+  parameter int unsigned Tc2IntBits     = 12,
+  parameter int unsigned Tc2FracBits    = 4,
+  parameter int unsigned Tg1IntBits     = 2,
+  parameter int unsigned Tg1FracBits    = 14,
+  parameter int unsigned Tg2IntBits     = 2,
+  parameter int unsigned Tg2FracBits    = 14,
+  parameter int unsigned TcOrder        = 2,
+  parameter int unsigned TcGain         = 0,
+  parameter int unsigned ReadingBits    = 14,
+  parameter int unsigned ReadingRangeBits = 11,
+  parameter int unsigned FfcFrames      = 8,
+  parameter int unsigned FfcHold        = 1,
+  parameter int unsigned FfcIntBits     = 12,
+  parameter int unsigned FfcFracBits    = 4,
+  parameter int unsigned FfcRounding    = 1,
+  parameter int unsigned FfcOverflow    = 0,
+  // Derived, do not override (as irnuc_axis_top's; no knee or level: not piecewise).
+  localparam method_e     MethodSel     = method_e'(Method),
+  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
+                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned WordBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits, 1,
+                                                           QuadIntBits + QuadFracBits,
+                                                           TcWordBits, TgWordBits),
+  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, 1, ReadingBits,
+                                                          1),
+  localparam int unsigned ItemFrameBits = FrameBits + 1,
+  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
+  localparam int unsigned FoffWordBits  = FfcIntBits + FfcFracBits,
+  localparam int unsigned AccWordBits   = AdcBits + $clog2(FfcFrames),
+  localparam int unsigned FoffBits      = 8 * ((FoffWordBits + 7) / 8),
+  localparam int unsigned AccBits       = 8 * ((AccWordBits + 7) / 8)
+) (
+  input  logic                            clk_i,
+  input  logic                            rst_ni,
+  // The frame size the framer's frames are taken with.
+  input  logic [WidthBits-1:0]            act_w_i,
+  input  logic [WidthBits-1:0]            act_wm1_i,  // width - 1 and height - 1 (flops)
+  input  logic [HeightBits-1:0]           act_h_i,
+  input  logic [HeightBits-1:0]           act_hm1_i,
+  // The method's pending frame word in, with the pending shutter flag above it out.
+  input  logic [FrameBits-1:0]            pend_frame_i,
+  output logic [ItemFrameBits-1:0]        pend_item_frame_o,
+  // Register file: a frame start (the framer took the pending settings), FFC_CTRL, FFC_STATUS.
+  input  logic                            start_i,
+  input  logic                            ffc_start_i,
+  input  logic [RegFfcCtrlFramesBits-1:0] ffc_frames_i,
+  output logic                            ffc_busy_o,
+  output logic                            ffc_done_o,
+  // The framer's items (a pixel and its word).
+  input  logic                            item_valid_i,
+  output logic                            item_ready_o,
+  input  logic [AdcBits-1:0]              item_raw_i,
+  input  logic [WordBits-1:0]             item_word_i,
+  input  logic                            item_sof_i,
+  input  logic                            item_eol_i,
+  input  logic [ItemFrameBits-1:0]        item_frame_i,
+  // Corrected pixels (method_ffc_top's output register).
+  output logic                            m_valid_o,
+  input  logic                            m_ready_i,
+  output logic [OutBits-1:0]              m_data_o,
+  output logic                            m_sof_o,
+  output logic                            m_eol_o,
+  output logic                            core_out_o,  // an item left the core
+  output logic                            frame_err_o,
+  // The FFC streams (irnuc_axis_top's ports).
+  input  logic [FoffBits-1:0]             s_axis_foff_tdata,
+  input  logic                            s_axis_foff_tvalid,
+  output logic                            s_axis_foff_tready,
+  input  logic                            s_axis_foff_tlast,
+  input  logic [AccBits-1:0]              s_axis_acc_tdata,
+  input  logic                            s_axis_acc_tvalid,
+  output logic                            s_axis_acc_tready,
+  input  logic                            s_axis_acc_tlast,
+  output logic [AccBits-1:0]              m_axis_acc_tdata,
+  output logic                            m_axis_acc_tvalid,
+  input  logic                            m_axis_acc_tready,
+  output logic                            m_axis_acc_tlast,
+  output logic [FoffBits-1:0]             m_axis_foff_tdata,
+  output logic                            m_axis_foff_tvalid,
+  input  logic                            m_axis_foff_tready,
+  output logic                            m_axis_foff_tlast
+);
+
+  // ---- the shutter flag of each frame --------------------------------------------------------
+  // FFC_CTRL.start arms the run: the frames that start after it, FFC_CTRL.frames of them
+  // (the value at that frame start), are shutter frames. The flag is a pending setting like
+  // the frame word: the framer takes it above the frame word when a frame starts (start_i),
+  // and this count moves on at the same time. NUC off (CTRL.nuc_en 0) sends the neutral frame
+  // word, flag 0: such a frame counts here but is an open frame to the core.
+  logic                            pend_shutter, ffc_armed_q;
+  logic [RegFfcCtrlFramesBits-1:0] ffc_left_q, ffc_now;
+  logic                            pix_out, core_pix_ready, core_coef_ready;
+
+  assign ffc_now      = ffc_armed_q ? ffc_frames_i : ffc_left_q;
+  assign pend_shutter = ffc_now != '0;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_shutter
+    if (!rst_ni) begin
+      ffc_armed_q <= 1'b0;
+      ffc_left_q  <= '0;
+    end else begin
+      if (start_i) begin
+        ffc_left_q <= ffc_now - RegFfcCtrlFramesBits'(pend_shutter);
+      end
+      if (ffc_start_i) begin
+        ffc_armed_q <= 1'b1;
+      end else if (start_i) begin
+        ffc_armed_q <= 1'b0;
+      end
+    end
+  end
+
+  assign pend_item_frame_o = {pend_shutter, pend_frame_i};
+  // ---- the fork ------------------------------------------------------------------------------
+  // method_ffc_top: its pixel and coefficient inputs are separate spill registers that
+  // drain at different times, so the item is forked: each side is offered the item
+  // until it took it, and the item is taken when both have.
+  logic pix_took_q, coef_took_q, fork_pix_valid, fork_coef_valid, pix_take, coef_take;
+  logic foff_valid, foff_ready, acc_valid, acc_ready;
+  logic [FoffWordBits-1:0] foff_data;
+  logic [AccWordBits-1:0]  acc_data;
+  logic                    macc_valid, macc_ready, mfoff_valid, mfoff_ready;
+  logic [AccWordBits-1:0]  macc_data;
+  logic [FoffWordBits-1:0] mfoff_data;
+  logic                    item_shutter, item_take, target_valid;
+  logic [OutBits+FfcFracBits-1:0] target;
+
+  assign fork_pix_valid  = item_valid_i && !pix_took_q;
+  assign fork_coef_valid = item_valid_i && !coef_took_q;
+  assign pix_take   = fork_pix_valid && core_pix_ready;
+  assign coef_take  = fork_coef_valid && core_coef_ready;
+  assign item_ready_o = (pix_took_q || core_pix_ready) && (coef_took_q || core_coef_ready);
+  assign item_take  = item_valid_i && item_ready_o;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_fork
+    if (!rst_ni) begin
+      pix_took_q  <= 1'b0;
+      coef_took_q <= 1'b0;
+    end else if (item_take) begin
+      pix_took_q  <= 1'b0;
+      coef_took_q <= 1'b0;
+    end else begin
+      pix_took_q  <= pix_took_q || pix_take;
+      coef_took_q <= coef_took_q || coef_take;
+    end
+  end
+
+  // A held frame (ffc_output hold: a shutter frame once an open frame went to the core)
+  // is never output: its items leave the core's count as they enter it (the framer's
+  // drain before a new frame size); the same rule as ffc_ctrl's, on the flag the core
+  // reads at sof.
+  logic held_q, held_e, open_q;
+  assign item_shutter = item_frame_i[ItemFrameBits-1];
+  assign held_e       = item_sof_i ? (FfcHold != 0) && item_shutter && open_q : held_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_held
+    if (!rst_ni) begin
+      held_q <= 1'b0;
+      open_q <= 1'b0;
+    end else if (item_take && item_sof_i) begin
+      held_q <= held_e;
+      open_q <= open_q || !item_shutter;
+    end
+  end
+  assign core_out_o = pix_out || (item_take && held_e);
+
+  // FFC_STATUS: busy from FFC_CTRL.start until its run finished: the refresh frame's
+  // last new offset taken on m_axis_foff (done, IRQ_STATUS.ffc_done), or, for a run
+  // shorter than FfcFrames (no refresh), the next open frame reaching the core, or at
+  // once for FFC_CTRL.frames = 0. begun_q: the run's first shutter frame reached the core;
+  // ended_q: then an open frame (the run is over; a full run's refresh may still come).
+  localparam int unsigned RunBits = $clog2(FfcFrames + 1);
+  logic [RunBits-1:0] run_q;
+  logic               busy_q, begun_q, ended_q, open_sof, short_end, refreshed, none;
+
+  assign open_sof  = item_take && item_sof_i && !item_shutter;
+  assign short_end = open_sof && begun_q && !ended_q && run_q < RunBits'(FfcFrames);
+  assign refreshed = begun_q && m_axis_foff_tvalid && m_axis_foff_tready
+                     && m_axis_foff_tlast;
+  assign none      = start_i && ffc_armed_q && ffc_frames_i == '0;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_run
+    if (!rst_ni) begin
+      run_q   <= '0;
+      busy_q  <= 1'b0;
+      begun_q <= 1'b0;
+      ended_q <= 1'b0;
+    end else begin
+      if (item_take && item_sof_i) begin
+        run_q <= !item_shutter ? '0
+               : (run_q == RunBits'(FfcFrames)) ? run_q : run_q + RunBits'(1);
+      end
+      if (ffc_start_i) begin
+        busy_q  <= 1'b1;
+        begun_q <= 1'b0;
+        ended_q <= 1'b0;
+      end else begin
+        if (begun_q && open_sof) begin
+          ended_q <= 1'b1;
+        end
+        if (ffc_done_o) begin
+          busy_q <= 1'b0;
+        end
+        if (busy_q && !ffc_armed_q && item_take && item_sof_i && item_shutter) begin
+          begun_q <= 1'b1;
+        end
+      end
+    end
+  end
+  assign ffc_busy_o = busy_q;
+  assign ffc_done_o = busy_q && !ffc_start_i && (refreshed || short_end || none);
+
+  irnuc_axis_buffer #(.DataBits(FoffWordBits)) u_foff_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_axis_foff_tvalid),
+    .ready_o(s_axis_foff_tready),
+    .data_i (s_axis_foff_tdata[FoffWordBits-1:0]),
+    .valid_o(foff_valid),
+    .ready_i(foff_ready),
+    .data_o (foff_data)
+  );
+
+  irnuc_axis_buffer #(.DataBits(AccWordBits)) u_acc_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_axis_acc_tvalid),
+    .ready_o(s_axis_acc_tready),
+    .data_i (s_axis_acc_tdata[AccWordBits-1:0]),
+    .valid_o(acc_valid),
+    .ready_i(acc_ready),
+    .data_o (acc_data)
+  );
+
+  method_ffc_top #(
+    .Method          (Method),
+    .AdcBits         (AdcBits),
+    .GainIntBits     (GainIntBits),
+    .GainFracBits    (GainFracBits),
+    .OffsetIntBits   (OffsetIntBits),
+    .OffsetFracBits  (OffsetFracBits),
+    .OutBits         (OutBits),
+    .Rounding        (Rounding),
+    .Overflow        (Overflow),
+    .MaxWidth        (MaxWidth),
+    .MaxHeight       (MaxHeight),
+    .QuadIntBits     (QuadIntBits),
+    .QuadFracBits    (QuadFracBits),
+    .SquareBits      (SquareBits),
+    .Tc1IntBits      (Tc1IntBits),
+    .Tc1FracBits     (Tc1FracBits),
+    .Tc2IntBits      (Tc2IntBits),
+    .Tc2FracBits     (Tc2FracBits),
+    .Tg1IntBits      (Tg1IntBits),
+    .Tg1FracBits     (Tg1FracBits),
+    .Tg2IntBits      (Tg2IntBits),
+    .Tg2FracBits     (Tg2FracBits),
+    .TcOrder         (TcOrder),
+    .TcGain          (TcGain),
+    .ReadingBits     (ReadingBits),
+    .ReadingRangeBits(ReadingRangeBits),
+    .FfcFrames       (FfcFrames),
+    .FfcHold         (FfcHold),
+    .FfcIntBits      (FfcIntBits),
+    .FfcFracBits     (FfcFracBits),
+    .FfcRounding     (FfcRounding),
+    .FfcOverflow     (FfcOverflow)
+  ) u_core (
+    .clk_i             (clk_i),
+    .rst_ni            (rst_ni),
+    .frame_width_i     (act_w_i),
+    .frame_height_i    (act_h_i),
+    .s_pix_valid_i     (fork_pix_valid),
+    .s_pix_ready_o     (core_pix_ready),
+    .s_pix_data_i      (item_raw_i),
+    .s_pix_sof_i       (item_sof_i),
+    .s_pix_eol_i       (item_eol_i),
+    .s_pix_frame_i     (item_frame_i[FrameBits-1:0]),
+    .s_pix_shutter_i   (item_shutter),
+    .s_coef_valid_i    (fork_coef_valid),
+    .s_coef_ready_o    (core_coef_ready),
+    .s_coef_data_i     (item_word_i),
+    .s_foff_valid_i    (foff_valid),
+    .s_foff_ready_o    (foff_ready),
+    .s_foff_data_i     (foff_data),
+    .s_acc_valid_i     (acc_valid),
+    .s_acc_ready_o     (acc_ready),
+    .s_acc_data_i      (acc_data),
+    .m_acc_valid_o     (macc_valid),
+    .m_acc_ready_i     (macc_ready),
+    .m_acc_data_o      (macc_data),
+    .m_foff_valid_o    (mfoff_valid),
+    .m_foff_ready_i    (mfoff_ready),
+    .m_foff_data_o     (mfoff_data),
+    .m_pix_valid_o     (m_valid_o),
+    .m_pix_ready_i     (m_ready_i),
+    .m_pix_data_o      (m_data_o),
+    .m_pix_sof_o       (m_sof_o),
+    .m_pix_eol_o       (m_eol_o),
+    .ffc_target_valid_o(target_valid),
+    .ffc_target_o      (target),
+    .frame_err_o       (frame_err_o)
+  );
+
+  // The write-back streams: tlast on each frame's last word, counted against the frame
+  // size the frames are taken with, behind an output buffer (every output a flop).
+  logic macc_last, mfoff_last;
+
+  logic [1:0][WidthBits-1:0]  col_q;
+  logic [1:0][HeightBits-1:0] row_q;
+  logic [1:0]                 wb_beat, wb_eol, wb_last;
+
+  assign wb_beat = {mfoff_valid && mfoff_ready, macc_valid && macc_ready};
+  for (genvar k = 0; k < 2; k++) begin : gen_wb_last
+    assign wb_eol[k]  = col_q[k] == act_wm1_i;  // no subtraction on the path (Fmax)
+    assign wb_last[k] = wb_eol[k] && row_q[k] == act_hm1_i;
+    always_ff @(posedge clk_i or negedge rst_ni) begin : p_count
+      if (!rst_ni) begin
+        col_q[k] <= '0;
+        row_q[k] <= '0;
+      end else if (wb_beat[k]) begin
+        col_q[k] <= wb_eol[k] ? '0 : col_q[k] + WidthBits'(1);
+        if (wb_eol[k]) begin
+          row_q[k] <= wb_last[k] ? '0 : row_q[k] + HeightBits'(1);
+        end
+      end
+    end
+  end
+  assign macc_last  = wb_last[0];
+  assign mfoff_last = wb_last[1];
+
+  logic [AccWordBits-1:0]  macc_out;
+  logic [FoffWordBits-1:0] mfoff_out;
+
+  irnuc_axis_buffer #(.DataBits(AccWordBits + 1)) u_acc_out (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(macc_valid),
+    .ready_o(macc_ready),
+    .data_i ({macc_last, macc_data}),
+    .valid_o(m_axis_acc_tvalid),
+    .ready_i(m_axis_acc_tready),
+    .data_o ({m_axis_acc_tlast, macc_out})
+  );
+  irnuc_axis_buffer #(.DataBits(FoffWordBits + 1)) u_foff_out (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(mfoff_valid),
+    .ready_o(mfoff_ready),
+    .data_i ({mfoff_last, mfoff_data}),
+    .valid_o(m_axis_foff_tvalid),
+    .ready_i(m_axis_foff_tready),
+    .data_o ({m_axis_foff_tlast, mfoff_out})
+  );
+  assign m_axis_acc_tdata  = AccBits'(macc_out);
+  assign m_axis_foff_tdata = FoffBits'(mfoff_out);
+
+  // Not used: the input tlast (the core counts the words of a frame by its size), the
+  // target the core computed.
+  logic unused_ffc;
+  assign unused_ffc = ^{s_axis_foff_tlast, s_axis_acc_tlast, target_valid, target};
+  if (FoffBits > FoffWordBits) begin : gen_foff_pad
+    logic unused_foff;
+    assign unused_foff = ^s_axis_foff_tdata[FoffBits-1:FoffWordBits];
+  end
+  if (AccBits > AccWordBits) begin : gen_acc_pad
+    logic unused_acc;
+    assign unused_acc = ^s_axis_acc_tdata[AccBits-1:AccWordBits];
+  end
+  assign pix_out = m_valid_o && m_ready_i;
+
+endmodule
