@@ -9,7 +9,13 @@ from __future__ import annotations
 import pytest
 
 from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method
-from irnuc.cocotb_tests.runs import case_params, coverage_json, run_case, run_module
+from irnuc.cocotb_tests.runs import (
+    case_params,
+    coverage_json,
+    module_metrics,
+    run_case,
+    run_module,
+)
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline
 
@@ -36,6 +42,23 @@ def test_irnuc_axis_top_method(config: str, case: str) -> None:
 @pytest.mark.parametrize(("config", "case"), case_params(tb_axis_ffc, FFC_CONFIGS))
 def test_irnuc_axis_top_ffc(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_ffc, case)
+
+
+@pytest.mark.parametrize("config", FFC_CONFIGS)
+def test_irnuc_axis_top_ffc_full_rate(config: str) -> None:
+    """At valid = ready = 1 on every port the last two (open, back-to-back) frames of
+    ffc_refresh_full_rate leave one pixel per clock: 2 H W pixels in 2 H W cycles (the
+    run test_irnuc_axis_top_ffc makes, its recorded cycles; the wrapper's fork into
+    method_ffc_top's pixel and coefficient inputs lost one cycle in four before)."""
+    lines = [m for m in module_metrics("irnuc_axis_top", load_pipeline(config),
+                                       tb_axis_ffc.__name__)
+             if m.get("throughput") == "last_two_frames"]
+    assert lines, "ffc_refresh_full_rate recorded no throughput"
+    m = lines[-1]
+    assert m["pixels"] == 2 * tb_axis_ffc.H * tb_axis_ffc.W
+    assert m["cycles"] == m["pixels"], (
+        f"{m['pixels']} pixels took {m['cycles']} cycles; idle/stalled cycles by port "
+        f"{m['stalls']}")
 
 
 @pytest.mark.parametrize("config", CONFIGS)
