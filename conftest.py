@@ -6,7 +6,7 @@ id (pytest-xdist's own ``xdist_group`` marks do not reach its scheduler under py
 so :func:`pytest_xdist_make_scheduler` gives it the groups):
 
 * a co-simulation test whose parameters name a pipeline configuration (``minimal``,
-  ``typical14+half_even+wrap``, ...) joins the group of that configuration,
+  ``typical14+half_even+wrap``, ``tcoffset14``, ``ffc14``, ...) joins the group of that configuration,
   ``cosim-<configuration>``: the simulations and builds its tests share (one run of a
   testbench module per configuration, the coverage closure over them, a bulk build) stay
   in one worker;
@@ -32,7 +32,9 @@ import pytest
 def _configurations() -> frozenset[str]:
     from irnuc.nuc_fixed import pipeline_names
 
-    return frozenset(pipeline_names())
+    # Every named configuration, the methods' and stages' too (method=None): the tests of
+    # `tcoffset14` share one run of tb_method as those of `minimal` share one of tb_top.
+    return frozenset(pipeline_names(method=None))
 
 
 def group_of(nodeid: str) -> str:

@@ -1,16 +1,20 @@
-"""cocotb tests of ``irnuc_axis_top`` built around ``method_ffc_top`` (an FFC composition;
-run by ``cocotb_tests/test_axis_top.py``).
+"""cocotb tests of ``irnuc_axis_top`` built around ``method_ffc_top`` (an FFC composition:
+ffc14, quadffc14, tcffc14; run by ``cocotb_tests/test_axis_top.py``).
 
 The drivers, the register model and the framing model are ``tb_axis``'s (:class:`Bench`),
 with cocotbext-axi sources on ``s_axis_foff`` and ``s_axis_acc`` and sinks on
 ``m_axis_acc`` and ``m_axis_foff``. The host's sequence: frames run, ``FFC_CTRL`` is
 written (start, frames) in the middle of a frame, the shutter frames follow from the next
-frame start. Which frames are shutter frames and which carry words on each FFC stream come
-from the wrapper's golden model (``nuc_fixed.axis.ffc_shutter_flags`` and
-``ffc_framing``); the words themselves (the offsets and accumulators the host feeds, the
-written-back ones expected) and the output pixels from ``cosim.stages.ffc_run`` (one run of
-``nuc_fixed.method_top``), bit for bit, frame by frame (tlast on each frame's last word).
-``FFC_STATUS`` and ``IRQ_STATUS.ffc_done`` against the register model. Small frames.
+frame start. With tc_offset the calibration's T_REF is written first and each frame's FPA
+reading (READING) during the frame before it (the core latches it at the frame start).
+Which frames are shutter frames and which carry words on each FFC stream come from the
+wrapper's golden model (``nuc_fixed.axis.ffc_shutter_flags`` and ``ffc_framing``); the
+words themselves (the offsets and accumulators the host feeds, the written-back ones
+expected) and the output pixels from ``cosim.stages.ffc_run`` (one run of
+``nuc_fixed.method_top`` with those readings), bit for bit, frame by frame (tlast on each
+frame's last word). ``FFC_STATUS`` and ``IRQ_STATUS.ffc_done`` against the register model.
+The FFC coverpoints (``cosim.axis_coverage``) are sampled from each sequence that passed.
+Small frames.
 """
 
 from __future__ import annotations
@@ -19,13 +23,16 @@ import logging
 
 import cocotb
 import numpy as np
-from cocotb.triggers import ClockCycles, RisingEdge, SimTimeoutError, with_timeout
+from cocotb.triggers import ClockCycles, SimTimeoutError, with_timeout
 from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
 
 from irnuc.cocotb_tests import tb_lib
+from irnuc.cocotb_tests.method_stim import random_reading
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern
-from irnuc.cocotb_tests.tb_axis import Bench, _bench
+from irnuc.cocotb_tests.tb_axis import TOP, Bench, _bench, _sample
 from irnuc.cocotb_tests.tb_ffc import _calibration, _raws
+from irnuc.cosim import coverage
+from irnuc.cosim.axis_coverage import ffc_axis_classes
 from irnuc.cosim.stages import StageScoreboard, ffc_run
 from irnuc.nuc_fixed.axis import (
     axis_framer,
@@ -67,12 +74,16 @@ class FfcStreams:
                 drv.pause = False
             else:
                 drv.set_pause_generator(pause_pattern(name, self.bench.rng))
+        _sample("stream.idle", idle)
+        _sample("stream.backpressure", bp)
 
 
 async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
     """Fill ``out`` with the cycles (Bench's count) in which an AXI4-Stream port was idle
     (``<port> idle``: tvalid 0) or stalled (``<port> stall``: tvalid 1, tready 0): triage
     of a throughput check."""
+    from cocotb.triggers import RisingEdge
+
     dut = bench.dut
     edge = RisingEdge(dut.clk_i)
     while True:
@@ -103,10 +114,15 @@ async def _frames_of(sink: AxiStreamSink, n: int, limit_cycles: int) -> list[lis
 
 
 async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: str,
-                           label: str) -> None:
+                           label: str, ffc_idle: str | None = None,
+                           ffc_bp: str | None = None) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
-    two open frames: every stream and the status registers checked."""
+    three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
+    the pause patterns of the video and coefficient inputs / the video output;
+    ``ffc_idle`` / ``ffc_bp`` those of the FFC sources / sinks (default the same)."""
+    ffc_idle = idle if ffc_idle is None else ffc_idle
+    ffc_bp = bp if ffc_bp is None else ffc_bp
     bench = await _bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
@@ -115,11 +131,15 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         await bench.check(reg)
     n = int(cfg.ffc_frames or 1)
     count = n if frames is None else frames
-    shutter = ffc_shutter_flags(2 + count + 2, {2: count})
-    framing = ffc_framing(cfg, shutter, start=2)
+    start_frame = 2
+    shutter = ffc_shutter_flags(start_frame + count + 3, {start_frame: count})
+    framing = ffc_framing(cfg, shutter, start=start_frame)
     c = _calibration(cfg, H, W, rng, "camera")
+    for name, value in c.registers.items():  # tc_offset: T_REF
+        await bench.write_method_register(name, int(value))
+    readings = [random_reading(cfg, c, rng) for _ in shutter]
     run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], H, W, rng, "camera"), shutter,
-                  golden=bench.env.golden)
+                  readings=readings, golden=bench.env.golden)
     assert framing.acc_in == tuple(a is not None for a in run.acc_in)
     assert framing.foff_out == tuple(a is not None for a in run.foff_out)
     raws = [f.raw for f in run.frames]
@@ -129,8 +149,12 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     assert [f.raw.tolist() for f in fr.frames] == [r.tolist() for r in raws]
 
     cbits = cfg.memories["ffc_offset"].word_bits
+    done_bit = bench.model.map["IRQ_STATUS"].field("ffc_done")
+    await bench.write("IRQ_ENABLE", 1 << bench.model.map["IRQ_ENABLE"].field("ffc_done").lsb)
     bench.patterns(idle, idle, bp)
-    s.patterns(idle, bp)
+    s.patterns(ffc_idle, ffc_bp)
+    if readings[0] is not None:
+        await bench.write_method_register("reading", readings[0])
     bench.send(*video, *coef)
     for k, f in enumerate(run.foff_in):
         assert framing.foff_in[k]
@@ -141,17 +165,34 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
 
     ctrl = bench.model.map["FFC_CTRL"]
     m = bench.model
+    seen: dict[str, int] = {}
 
     async def write_ffc() -> None:
         await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
                           | (count << ctrl.field("frames").lsb))
+        seen["write_beat"] = bench.beats_in
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
         await bench.check("FFC_STATUS")
+        _sample("axis.ffc.status", "busy")
+        assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
+
+    def write_reading(k: int):
+        """READING of frame k + 1, written while frame k streams (it must land before
+        frame k + 1 starts: the core takes it at that frame start)."""
+        async def write() -> None:
+            await bench.write_method_register("reading", int(readings[k + 1]))
+            assert bench.beats_in < (k + 1) * H * W, (
+                f"READING of frame {k + 1} written after that frame started "
+                f"({bench.beats_in} beats taken)")
+        return write
 
     stalls: dict[str, list[int]] = {}
     stall_task = cocotb.start_soon(_stall_log(bench, stalls))
-    act = cocotb.start_soon(bench._act(H * W + H * W // 2, write_ffc))
+    acts = [cocotb.start_soon(bench._act(H * W + H * W // 2, write_ffc))]
+    if readings[0] is not None:
+        acts += [cocotb.start_soon(bench._act(k * H * W + H * W // 4, write_reading(k)))
+                 for k in range(len(raws) - 1)]
     limit = 40 * (len(video[0]) * 2) + 2000
     want_acc = [[int(v) for v in np.ravel(a)] for a in run.acc_out if a is not None]
     want_foff = [_unsigned(a, cbits) for a in run.foff_out if a is not None]
@@ -159,22 +200,10 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     foff_task = cocotb.start_soon(_frames_of(s.foff_out, len(want_foff), limit))
     shown = [f for f, v in zip(run.frames, framing.shown, strict=True) if v]
     got = await bench.receive(sum(f.raw.size for f in shown), limit)
-    await act
+    for act in acts:
+        await act
     got_acc, got_foff = await acc_task, await foff_task
     stall_task.cancel()
-    if (idle, bp) == ("none", "none"):
-        # The last two frames are open frames, shown, back to back at the input, after the
-        # refresh frame (which may wait for the target's serial division on frames this
-        # small): their 2 H W pixels leave in 2 H W cycles (one per clock through the
-        # wrapper's fork). Recorded first (test_axis_top's throughput check, with the
-        # ports' idle and stalled cycles for triage), then checked.
-        first, last = bench.out_cycles[-2 * H * W], bench.out_cycles[-1]
-        window = {k: [c for c in v if first <= c <= last] for k, v in stalls.items()}
-        tb_lib.record(throughput="last_two_frames", pixels=2 * H * W,
-                      cycles=last - first + 1, stalls=window)
-        assert last - first + 1 == 2 * H * W, (
-            f"the last two frames' {2 * H * W} pixels took {last - first + 1} cycles; "
-            f"idle/stalled cycles by port {window}")
     await ClockCycles(dut.clk_i, 40)
     assert s.acc_out.empty() and s.foff_out.empty(), "write-back words after the sequence"
 
@@ -193,20 +222,45 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
             assert len(a) == len(b) and not bad, (
                 f"{name} frame {k}: {len(a)} words (tlast), {len(b)} expected; "
                 f"{len(bad)} differ, first at word {bad[:1]}")
+    if (idle, bp, ffc_idle, ffc_bp) == ("none",) * 4:
+        # The last two frames are open frames, shown, back to back at the input, after the
+        # refresh frame (which may wait for the target's serial division on frames this
+        # small): their 2 H W pixels leave in 2 H W cycles (one per clock through the
+        # wrapper's fork). Recorded (test_axis_top's throughput check, with the ports' idle
+        # and stalled cycles for triage), then checked.
+        first, last = bench.out_cycles[-2 * H * W], bench.out_cycles[-1]
+        window = {k: [c for c in v if first <= c <= last] for k, v in stalls.items()}
+        tb_lib.record(throughput="last_two_frames", pixels=2 * H * W,
+                      cycles=last - first + 1, stalls=window)
+        assert last - first + 1 == 2 * H * W, (
+            f"the last two frames' {2 * H * W} pixels took {last - first + 1} cycles; "
+            f"idle/stalled cycles by port {window}")
+        _sample("stream.back_to_back", "frames")
 
     assert framing.done is not None, "the sequence does not finish the FFC"
     m.set_live("FFC_STATUS", "busy", 0)
     m.set_live("FFC_STATUS", "done", 1)
     await bench.check("FFC_STATUS")
+    _sample("axis.ffc.status", "done")
     irq = await bench.read("IRQ_STATUS")
-    done_bit = m.map["IRQ_STATUS"].field("ffc_done")
     assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
+    assert int(dut.irq_o.value) == 1, "irq_o is 0 with IRQ_STATUS.ffc_done and its enable"
+    _sample("axis.ffc.irq", "ffc_done")
     assert await bench.read("FRAMES_IN") == len(raws)
     assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
     # a start clears done
     await bench.write("IRQ_STATUS", done_bit.mask)
     irq = await bench.read("IRQ_STATUS")
     assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
+    assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+    _sample("axis.ffc.irq", "cleared")
+    if coverage.enabled():
+        pattern_in = idle if idle == ffc_idle else "mixed"
+        pattern_out = bp if bp == ffc_bp else "mixed"
+        cov = coverage.model(TOP, cfg)
+        cov.sample_classes(ffc_axis_classes(framing, n, count, start_frame, seen["write_beat"],
+                                            H * W, pattern_in, pattern_out))
+        coverage.export()
 
 
 @cocotb.test()
@@ -227,5 +281,7 @@ async def ffc_refresh_idle_backpressure(dut) -> None:
 @cocotb.test()
 async def ffc_short_run(dut) -> None:
     """FFC_CTRL.frames below N: a run without a refresh (no m_axis_foff words, the offsets
-    stay), done when the next open frame starts; bursty idle, alternate backpressure."""
-    await refresh_sequence(dut, 42, 2, "bursty", "alternate", "ffc short run")
+    stay), done when the next open frame starts; bursty idle and alternate backpressure on
+    the video streams, alternate idle and bursty backpressure on the FFC streams."""
+    await refresh_sequence(dut, 42, 2, "bursty", "alternate", "ffc short run",
+                           ffc_idle="alternate", ffc_bp="bursty")

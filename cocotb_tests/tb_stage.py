@@ -8,7 +8,9 @@ last item of a frame flagged) with pause patterns -> DUT -> sink with backpressu
 :class:`irnuc.cosim.stages.StageScoreboard` against ``nuc_fixed.method_top``. The
 calibration registers ``blind_ref`` and ``drift_gain`` are ports, set before each run of
 frames (the DUT samples them with each frame's last blind item). Widths are read back
-from the DUT and compared with the Python side of the layouts.
+from the DUT and compared with the Python side of the layouts. The drift coverpoints
+(``cosim.stage_coverage``: :class:`DriftCoverageModel`) are sampled from every run of
+frames that passed against the configuration itself.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw
 from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
 from irnuc.cocotb_tests.tb_method import _sources
+from irnuc.cosim import coverage
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS
 from irnuc.cosim.scoreboard import ScoreResult
 from irnuc.cosim.stages import DriftFrame, StageScoreboard, blind_items, drift_frames
@@ -121,7 +124,27 @@ async def run_frames(dut, frames: list[DriftFrame], golden: PipelineConfig,
     sb = StageScoreboard(golden)
     for fr in frames:
         sb.expect_frame(fr)
-    return tb_lib.score(sb, sink), sink
+    res = tb_lib.score(sb, sink)
+    if res.passed and golden == frames[0].coeffs.cfg:
+        for name, pattern in (("stream.idle", idle_pix), ("stream.idle", idle_coef),
+                              ("stream.idle", idle_blind),
+                              ("stream.backpressure", backpressure)):
+            _sample(name, _pattern(pattern))
+        if coverage.enabled():
+            coverage.model("method_drift_top", golden).sample_frames_run(frames)
+            coverage.export()
+    return res, sink
+
+
+def _pattern(p: float | str) -> str:
+    """The coverage name of a pause pattern (a probability: 0 none, else random)."""
+    return p if isinstance(p, str) else ("none" if p == 0 else "random")
+
+
+def _sample(name: str, value: str) -> None:
+    if coverage.enabled():
+        coverage.model("method_drift_top", tb_lib.config_from_env()).sample(name, value)
+        coverage.export()
 
 
 @cocotb.test()
@@ -135,6 +158,7 @@ async def random_frames_full_rate(dut) -> None:
     res, sink = await run_frames(dut, frames, env.golden, env.rng)
     tb_lib.assert_passed(res)
     assert sink.last_cycle - sink.first_cycle == len(sink.got) - 1, "bubbles at full rate"
+    _sample("stream.back_to_back", "frames")
 
 
 @cocotb.test()
@@ -206,6 +230,7 @@ async def reset_mid_frame(dut) -> None:
     res, _ = await run_frames(dut, frames, golden, rng, idle_pix="random",
                               idle_blind="random", backpressure="random")
     tb_lib.assert_passed(res)
+    _sample("reset.mid_frame", "reset")
 
 
 @cocotb.test()

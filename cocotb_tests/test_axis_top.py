@@ -16,6 +16,7 @@ from irnuc.cocotb_tests.runs import (
     run_case,
     run_module,
 )
+from irnuc.cocotb_tests.test_coverage import _assert_closed
 from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline
 
@@ -25,8 +26,9 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 CONFIGS = ("minimal", "typical14")
 #: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame.
 METHOD_CONFIGS = ("tcoffset14",)
-#: two_point + ffc (N = 8, held shutter frames): FFC_CTRL, the four FFC streams.
-FFC_CONFIGS = ("ffc14",)
+#: base method + ffc (N = 8): FFC_CTRL, the four FFC streams; two_point and tc_offset hold
+#: the shutter frames, quadratic passes them; tc_offset takes READING per frame.
+FFC_CONFIGS = ("ffc14", "quadffc14", "tcffc14")
 
 
 @pytest.mark.parametrize(("config", "case"), case_params(tb_axis, CONFIGS))
@@ -55,21 +57,34 @@ def test_irnuc_axis_top_ffc_full_rate(config: str) -> None:
              if m.get("throughput") == "last_two_frames"]
     assert lines, "ffc_refresh_full_rate recorded no throughput"
     m = lines[-1]
-    assert m["pixels"] == 2 * tb_axis_ffc.H * tb_axis_ffc.W
     assert m["cycles"] == m["pixels"], (
         f"{m['pixels']} pixels took {m['cycles']} cycles; idle/stalled cycles by port "
         f"{m['stalls']}")
+
+
+def _assert_axis_closed(config: str, tb, prefix: str) -> None:
+    """Every bin of irnuc_axis_top's coverpoints on ``config`` is hit by the one run of
+    ``tb`` (read again: no second simulation), and points named ``prefix...`` are among
+    them."""
+    cfg = load_pipeline(config)
+    run_module("irnuc_axis_top", cfg, tb.__name__)
+    summary = coverage.summarize(coverage.merge(
+        [coverage_json("irnuc_axis_top", cfg, tb.__name__)]))
+    label = coverage.config_label(cfg)
+    points = summary["configurations"].get(label, {}).get("coverpoints", {})
+    assert any(p.startswith(prefix) for p in points), f"no {prefix} point exported"
+    _assert_closed(summary, label)
 
 
 @pytest.mark.parametrize("config", CONFIGS)
 def test_irnuc_axis_top_coverage(config: str) -> None:
     """Every bin of irnuc_axis_top's coverpoints (cosim.axis_coverage and the stream
     points) is hit by the one run of tb_axis (no second simulation)."""
-    cfg = load_pipeline(config)
-    run_module("irnuc_axis_top", cfg, tb_axis.__name__)
-    summary = coverage.summarize(coverage.merge(
-        [coverage_json("irnuc_axis_top", cfg, tb_axis.__name__)]))
-    c = summary["configurations"][coverage.config_label(cfg)]
-    assert any(p.startswith("axis.") for p in c["coverpoints"]), "no AXI coverpoint exported"
-    assert c["total"] > 0
-    assert c["hit"] == c["total"], f"{config}: {c['hit']}/{c['total']}; uncovered {c['uncovered']}"
+    _assert_axis_closed(config, tb_axis, "axis.")
+
+
+@pytest.mark.parametrize("config", FFC_CONFIGS)
+def test_irnuc_axis_top_ffc_coverage(config: str) -> None:
+    """Every bin of the FFC sequence through the registers (cosim.axis_coverage's
+    axis.ffc points) and of the stream points is hit by the one run of tb_axis_ffc."""
+    _assert_axis_closed(config, tb_axis_ffc, "axis.ffc.")

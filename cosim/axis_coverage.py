@@ -6,15 +6,41 @@ each AXI4-Stream port, frame-size changes, registers written mid-frame, the four
 combinations, each framing error cause, the coefficient tlast ignored (``coef_sync`` 0),
 each interrupt cause and a reset in the middle of a frame. Every bin is reachable on every
 two-point configuration (none removed).
+
+On a configuration with the ``ffc`` stage (the core is ``method_ffc_top``; sampled by
+``cocotb_tests/tb_axis_ffc.py``) the model holds the stream points and the FFC sequence as
+the host runs it through the registers (:data:`FFC_AXIS_POINTS`), each bin decided by
+:func:`ffc_axis_classes` from the wrapper's golden framing of a sequence that was driven
+and checked, or by a register read that matched the model:
+
+========================= =========================================================================
+``axis.ffc.start``        FFC_CTRL.start written while a frame streams (the write's response
+                          came between the frame's first and last video beat)
+``axis.ffc.frames``       FFC_CTRL.frames = N (a refresh) and below N (a short run, no refresh)
+``axis.ffc.status``       FFC_STATUS read busy (after the start) and done (after the run)
+``axis.ffc.irq``          IRQ_STATUS.ffc_done read set with irq_o high (IRQ_ENABLE.ffc_done),
+                          and both clear after its W1C
+``axis.ffc.acc_stream``   words on m_axis_acc at full rate, and with idle cycles on every input
+                          and backpressure on every output
+``axis.ffc.foff_stream``  the same for the refreshed offsets on m_axis_foff
+``axis.ffc.shutter``      shutter frames at full rate, and under backpressure (a shutter event
+                          under backpressure)
+``axis.ffc.refresh``      a start written mid-frame whose shutter frames begin at the next frame
+                          start and end in a refresh (``next_frame_start``)
+========================= =========================================================================
+
+The general AXI points above are the same register file, framer and stream ports on an
+FFC configuration; they are closed on the two-point configurations (``tb_axis``).
 """
 
 from __future__ import annotations
 
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS, CoverageModel
-from irnuc.nuc_fixed.axis import EVENTS
+from irnuc.nuc_fixed.axis import EVENTS, FfcFraming
 from irnuc.nuc_fixed.config import PipelineConfig
 
-__all__ = ["AXIS_POINTS", "AXIS_TOPS", "REGISTER_ACCESS", "AxisCoverageModel"]
+__all__ = ["AXIS_POINTS", "AXIS_TOPS", "FFC_AXIS_POINTS", "REGISTER_ACCESS",
+           "AxisCoverageModel", "ffc_axis_classes"]
 
 #: The tops whose coverage model is :class:`AxisCoverageModel`.
 AXIS_TOPS = ("irnuc_axis_top",)
@@ -41,13 +67,67 @@ AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.reset": ("mid_frame",),
 }
 
+#: Coverpoint -> bins of the FFC sequence through the registers (a configuration with ffc).
+FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
+    "axis.ffc.start": ("mid_frame",),
+    "axis.ffc.frames": ("n", "short"),
+    "axis.ffc.status": ("busy", "done"),
+    "axis.ffc.irq": ("ffc_done", "cleared"),
+    "axis.ffc.acc_stream": ("full_rate", "idle_backpressure"),
+    "axis.ffc.foff_stream": ("full_rate", "idle_backpressure"),
+    "axis.ffc.shutter": ("full_rate", "backpressure"),
+    "axis.ffc.refresh": ("next_frame_start",),
+}
+
+
+def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
+                     write_beat: int, frame_pixels: int, idle: str, bp: str
+                     ) -> dict[str, set[str]]:
+    """The bins of :data:`FFC_AXIS_POINTS` (but status and irq, read on the DUT) one
+    sequence hits: ``framing`` is the wrapper's golden framing of its shutter flags
+    (:func:`irnuc.nuc_fixed.axis.ffc_framing`), ``count`` FFC_CTRL.frames of a start that
+    the framing applies from frame ``start_frame`` on, ``n`` the configured N;
+    ``write_beat`` the video beats taken (frames of ``frame_pixels`` beats, back to back)
+    when the start's write response came; ``idle`` / ``bp`` the pause patterns of every
+    input / output (``none``: full rate)."""
+    out: dict[str, set[str]] = {k: set() for k in FFC_AXIS_POINTS
+                                if k not in ("axis.ffc.status", "axis.ffc.irq")}
+    frame_of_write, into = divmod(int(write_beat), int(frame_pixels))
+    mid = into > 0 and frame_of_write + 1 == start_frame
+    if mid:
+        out["axis.ffc.start"].add("mid_frame")
+    refresh = any(framing.foff_out)
+    if 0 < count <= n:
+        out["axis.ffc.frames"].add("n" if count == n else "short")
+    way = ("full_rate" if idle == bp == "none" else
+           "idle_backpressure" if "none" not in (idle, bp) else None)
+    if way is not None:
+        if any(framing.acc_out):
+            out["axis.ffc.acc_stream"].add(way)
+        if refresh:
+            out["axis.ffc.foff_stream"].add(way)
+    if any(framing.shutter):
+        if idle == bp == "none":
+            out["axis.ffc.shutter"].add("full_rate")
+        elif bp != "none":
+            out["axis.ffc.shutter"].add("backpressure")
+    first = framing.shutter.index(True) if any(framing.shutter) else None
+    if mid and refresh and first == start_frame:
+        out["axis.ffc.refresh"].add("next_frame_start")
+    return out
+
 
 class AxisCoverageModel(CoverageModel):
-    """The coverpoints of ``irnuc_axis_top`` on one configuration (:data:`AXIS_POINTS`
-    and the base model's stream points)."""
+    """The coverpoints of ``irnuc_axis_top`` on one configuration (:data:`AXIS_POINTS`, or
+    :data:`FFC_AXIS_POINTS` with the ffc stage, and the base model's stream points)."""
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         super().__init__(top, cfg, prefix)
         point = self.add_point
-        for name, bins in AXIS_POINTS.items():
+        for name, bins in (FFC_AXIS_POINTS if cfg.has("ffc") else AXIS_POINTS).items():
             point(name, bins)
+
+    def sample_classes(self, classes: dict[str, set[str]]) -> None:
+        for name, labels in classes.items():
+            for b in sorted(labels):
+                self.sample(name, b)

@@ -618,11 +618,17 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     if key not in _MODELS:
         from irnuc.cosim.axis_coverage import AXIS_TOPS, AxisCoverageModel
         from irnuc.cosim.method_coverage import METHOD_TOPS, MethodCoverageModel
-        from irnuc.cosim.stage_coverage import FFC_TOPS, FfcCoverageModel
+        from irnuc.cosim.stage_coverage import (
+            DRIFT_TOPS,
+            FFC_TOPS,
+            DriftCoverageModel,
+            FfcCoverageModel,
+        )
 
         cls = (MethodCoverageModel if top in METHOD_TOPS else
                AxisCoverageModel if top in AXIS_TOPS else
-               FfcCoverageModel if top in FFC_TOPS else CoverageModel)
+               FfcCoverageModel if top in FFC_TOPS else
+               DriftCoverageModel if top in DRIFT_TOPS else CoverageModel)
         _MODELS[key] = cls(top, cfg)
     return _MODELS[key]
 

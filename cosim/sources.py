@@ -27,8 +27,10 @@ _ARITH = (*_MUL, "irnuc_add_tree.sv", "irnuc_round.sv", "irnuc_clip.sv")
 _NUC = (*_SPILL, *_MUL, "irnuc_add_tree.sv", "nuc_core.sv")
 _DPC = (*_SPILL, *_FRAME, *_MUL, "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
         "dpc_ctrl.sv", "dpc_core.sv")
-_PWL = (*_SPILL, *_ARITH, "pwl_core.sv")
-_QUAD = (*_SPILL, *_ARITH, "quad_core.sv")
+# The end of a core (round, OUT, output register), shared by the cores that sum parts.
+_CORE_OUT = (*_ASSERT, "irnuc_axis_buffer.sv", "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
+_PWL = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "pwl_core.sv")))
+_QUAD = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "quad_core.sv")))
 _TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
 _TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
@@ -78,7 +80,6 @@ MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv
 # ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
 _SPKG = (*_PKG, "irnuc_stage_pkg.sv")
 _CORE_SUM = (*_ARITH, "core_sum.sv")
-_CORE_OUT = (*_ASSERT, "irnuc_axis_buffer.sv", "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
 _BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
 MODULE_FILES |= {
     "core_sum": (*_SPKG, *_CORE_SUM),

@@ -1,5 +1,8 @@
-"""Functional coverage of the FFC stage top ``method_ffc_top`` (sampled by
-``cocotb_tests/tb_ffc.py``).
+"""Functional coverage of the stage tops: ``method_ffc_top`` (sampled by
+``cocotb_tests/tb_ffc.py``) and ``method_drift_top`` (sampled by ``cocotb_tests/tb_stage.py``).
+
+FFC
+---
 
 The base model's stream points (idle and backpressure patterns, back-to-back frames) and
 the FFC sequence's own, every bin decided from the golden run (:class:`~irnuc.cosim.stages
@@ -22,17 +25,45 @@ the FFC sequence's own, every bin decided from the golden run (:class:`~irnuc.co
 ========================== =====================================================================
 
 Unreachable bins are removed with the reason (``removed``), as in the base model.
+
+Blind drift
+-----------
+The base model's stream points and the drift stage's own (:data:`DRIFT_POINTS`), every bin
+decided by :func:`drift_classes` from the golden model's values (``nuc_fixed.drift
+.blind_drift``, ``cores.drift_sub`` and the base core on x') of frames that were driven
+and checked:
+
+===================== ==========================================================================
+``drift.items``       the frame's blind sum came as one item (a register) or several
+``drift.gain``        the drift gain m negative, 0, positive
+``drift.bd``          the blind sum below or above ``blind_ref`` (the reference's change)
+``drift.delta``       delta = OVF_D(ROUND((sum - blind_ref) * m)) saturated low, negative, 0,
+                      positive, saturated high (both ends of the drift format)
+``drift.x``           x' = (x << Df) - delta below 0, in the raw range, above (2^A - 1) << Df
+``drift.range``       the core's r on x' below 0, in range, above 2^B - 1 (OUT saturates)
+``drift.update``      at a frame boundary delta changed, changed with a frame of 4 pixels or
+                      fewer (shorter than the drift multiply), stayed
+``drift.size``        at a frame boundary the frame size stayed or changed (back to back)
+``reset.mid_frame``   a reset in the middle of a frame
+===================== ==========================================================================
 """
 
 from __future__ import annotations
 
+import itertools
+from collections.abc import Sequence
+
 import numpy as np
 
-from irnuc.cosim.coverage import CoverageModel
-from irnuc.cosim.stages import FfcRun
+from irnuc.cosim.coverage import RANGE_BINS, CoverageModel
+from irnuc.cosim.stages import DriftFrame, FfcRun
 from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.cores import code_range, drift_sub
+from irnuc.nuc_fixed.fixed import round_shift
+from irnuc.nuc_fixed.method_top import MethodCoefficients, base_core, frame_coefficients
 
-__all__ = ["FFC_POINTS", "FFC_TOPS", "FfcCoverageModel", "ffc_classes"]
+__all__ = ["DRIFT_POINTS", "DRIFT_TOPS", "FFC_POINTS", "FFC_TOPS", "DriftCoverageModel",
+           "FfcCoverageModel", "drift_classes", "ffc_classes"]
 
 #: The tops whose coverage model is :class:`FfcCoverageModel`.
 FFC_TOPS = ("method_ffc_top",)
@@ -124,3 +155,84 @@ class FfcCoverageModel(CoverageModel):
             self.sample("ffc.refresh_stream", stream)
         if len(run.frames) > 1 and stream == "full_rate":
             self.sample("stream.back_to_back", "frames")
+
+
+# ---- blind_drift (method_drift_top) ----------------------------------------------------------
+
+#: The tops whose coverage model is :class:`DriftCoverageModel`.
+DRIFT_TOPS = ("method_drift_top",)
+
+#: Coverpoint -> bins of the drift stage.
+DRIFT_POINTS: dict[str, tuple[str, ...]] = {
+    "drift.items": ("one", "several"),
+    "drift.gain": ("negative", "zero", "positive"),
+    "drift.bd": ("negative", "positive"),
+    "drift.delta": ("sat_low", "negative", "zero", "positive", "sat_high"),
+    "drift.x": ("negative", "in_range", "above_max"),
+    "drift.range": RANGE_BINS,
+    "drift.update": ("changed", "changed_tiny", "same"),
+    "drift.size": ("same", "changed"),
+    "reset.mid_frame": ("reset",),
+}
+
+
+def _sign(v: int, labels: tuple[str, str, str]) -> str:
+    return labels[(v > 0) - (v < 0) + 1]
+
+
+def drift_classes(frames: Sequence[DriftFrame], golden: PipelineConfig | None = None
+                  ) -> dict[str, set[str]]:
+    """The bins of :data:`DRIFT_POINTS` (but the reset) one run of frames hits: each
+    frame's values and each boundary between two frames of the run (streamed back to back,
+    no reset between). ``golden``: the configuration checked against (default the
+    frames')."""
+    out: dict[str, set[str]] = {k: set() for k in DRIFT_POINTS if k != "reset.mid_frame"}
+    for f in frames:
+        cfg = golden or f.coeffs.cfg
+        regs = f.coeffs.registers
+        ref, m = int(regs["blind_ref"]), int(regs["drift_gain"])
+        out["drift.items"].add("one" if np.size(f.blind) == 1 else "several")
+        out["drift.gain"].add(_sign(m, ("negative", "zero", "positive")))
+        bd = int(np.sum(f.blind_codes)) - ref
+        if bd:
+            out["drift.bd"].add("negative" if bd < 0 else "positive")
+        df, mf = cfg.format("drift"), cfg.format("drift_gain")
+        r = int(np.asarray(round_shift(np.array([bd * m], np.int64),
+                                       mf.frac_bits - df.frac_bits, df.rounding))[0])
+        lo, hi = code_range(cfg, "drift")
+        out["drift.delta"].add("sat_low" if r < lo else "sat_high" if r > hi else
+                               _sign(r, ("negative", "zero", "positive")))
+        xd = np.asarray(drift_sub(f.raw, f.delta, cfg), np.int64)
+        top = ((1 << cfg.adc_bits) - 1) << df.frac_bits
+        for name, hit in (("negative", xd < 0), ("in_range", (xd >= 0) & (xd <= top)),
+                          ("above_max", xd > top)):
+            if hit.any():
+                out["drift.x"].add(name)
+        c = MethodCoefficients(cfg, f.coeffs.fields, f.coeffs.registers)
+        res = base_core(c, frame_coefficients(c, None), xd, xfrac=df.frac_bits, signed_x=True)
+        rr = np.asarray(res.r)
+        for name, hit in zip(RANGE_BINS, (rr < 0, (rr >= 0) & (rr < 1 << cfg.out_bits),
+                                          rr >= 1 << cfg.out_bits), strict=True):
+            if hit.any():
+                out["drift.range"].add(name)
+    for a, b in itertools.pairwise(frames):
+        out["drift.size"].add("same" if a.raw.shape == b.raw.shape else "changed")
+        out["drift.update"].add("same" if a.delta == b.delta else
+                                "changed_tiny" if b.raw.size <= TINY_PIXELS else "changed")
+    return out
+
+
+class DriftCoverageModel(CoverageModel):
+    """The coverpoints of ``method_drift_top`` on one configuration (:data:`DRIFT_POINTS`
+    and the base model's stream points)."""
+
+    def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
+        super().__init__(top, cfg, prefix)
+        for name, bins in DRIFT_POINTS.items():
+            self.add_point(name, bins)
+
+    def sample_frames_run(self, frames: Sequence[DriftFrame]) -> None:
+        """The bins of one run of frames that was driven and checked."""
+        for name, labels in drift_classes(frames, self.cfg).items():
+            for b in sorted(labels):
+                self.sample(name, b)

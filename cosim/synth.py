@@ -420,7 +420,7 @@ def tool_versions() -> dict[str, str]:
 FLOW_VERSION = 2  # 2: ECP5 DSPs instantiated with their registers (IRNUC_ECP5)
 #: Where irnuc synth places and routes: the ECP5 part and the clock it aims at.
 ECP5_DEVICE, ECP5_PACKAGE, TARGET_MHZ = "85k", "CABGA381", 150.0
-#: The xc7 and ECP5 figures every result carries (docs/rtl.md).
+#: The xc7 and ECP5 figures every result carries (docs/synthesis.md).
 XC7_KEYS = ("lut", "ff", "dsp", "bram18", "bram36", "lutram")
 ECP5_KEYS = ("lut4", "ff", "mult18", "dp16kd", "lutram", "ccu2c")
 

@@ -10,8 +10,8 @@
 //   diff    d = xa - ka and the segment's gain (xa <= ka picks g_lo), registered
 //   u_mul   d * g as DSP partial products, input and output registered (irnuc_mul_parts)
 //   u_sum   the aligned parts and the aligned level, clog2(parts + 1) stages
-//   round   r = ROUND_F(s) (irnuc_round), registered
-//   u_out   OUT(r) (irnuc_clip) into the output register (irnuc_spill_register)
+//   u_out   core_out: r = ROUND_F(s) (irnuc_round), registered, then OUT(r) (irnuc_clip)
+//           into the output register (irnuc_axis_buffer)
 // Latency 6 + clog2(parts + 1) cycles (piecewise14: 7); one pixel per clock. The level
 // comes with every pixel (method_dpc_top holds the frame's value); UserBits of side band
 // pass unchanged.
@@ -61,7 +61,6 @@ module pwl_core
   localparam int unsigned PShift   = FracBits - GainFracBits - DBits;
   localparam int unsigned LShift   = FracBits - LevelFracBits;
   localparam int unsigned SumBits  = max2(ProdBits + PShift, LevelBits + 1 + LShift) + 1;
-  localparam int unsigned RndBits  = SumBits + 1 - FracBits;
   localparam int unsigned Parts    = smul_parts(DiffBits, 1'b1, GainBits, 1'b0);
   localparam int unsigned InBits   = UserBits + LevelBits + KneeBits + 2 * GainBits + AdcBits;
 
@@ -195,59 +194,28 @@ module pwl_core
     .side_o  (sum_user)
   );
 
-  // ---- round, OUT and the output register --------------------------------------------------
-  logic [RndBits-1:0] rnd_d, rnd_q;
-  logic               rnd_valid_q;
-  logic [UserBits-1:0] rnd_user_q;
-
-  irnuc_round #(
-    .InBits  (SumBits),
+  // ---- round, OUT and the output register (core_out; en is its output register's ready) --
+  core_out #(
+    .SumBits (SumBits),
     .FracBits(FracBits),
-    .Rounding(Rounding)
-  ) u_round (
-    .s_i(sum_s),
-    .r_o(rnd_d)
-  );
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_round_valid
-    if (!rst_ni) begin
-      rnd_valid_q <= 1'b0;
-    end else if (en) begin
-      rnd_valid_q <= sum_valid;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_round
-    if (en) begin
-      rnd_q      <= rnd_d;
-      rnd_user_q <= sum_user;
-    end
-  end
-
-  logic [OutBits-1:0] out_d;
-
-  irnuc_clip #(
-    .InBits   (RndBits),
-    .OutBits  (OutBits),
-    .OutSigned(1'b0),
-    .Overflow (Overflow)
-  ) u_clip (
-    .v_i(rnd_q),
-    .y_o(out_d)
-  );
-
-  irnuc_spill_register #(.DataBits(UserBits + OutBits)) u_out (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(rnd_valid_q),
-    .ready_o(en),
-    .data_i ({rnd_user_q, out_d}),
-    .valid_o(m_valid_o),
-    .ready_i(m_ready_i),
-    .data_o ({m_user_o, m_pix_data_o})
+    .OutBits (OutBits),
+    .Rounding(Rounding),
+    .Overflow(Overflow),
+    .UserBits(UserBits)
+  ) u_out (
+    .clk_i    (clk_i),
+    .rst_ni   (rst_ni),
+    .en_o     (en),
+    .valid_i  (sum_valid),
+    .sum_i    (sum_s),
+    .user_i   (sum_user),
+    .m_valid_o(m_valid_o),
+    .m_ready_i(m_ready_i),
+    .m_data_o (m_pix_data_o),
+    .m_user_o (m_user_o)
   );
 
   // Protocol assertions of s_* and m_* (irnuc_stream_assert, `ifdef IRNUC_ASSERT): in u_in
-  // and u_out, whose ports these are.
+  // and core_out's output register, whose ports these are.
 
 endmodule

@@ -13,8 +13,8 @@
 //            (clog2(square parts) stages, none for A <= 17)
 //   u_qp     q*xq and, beside it, u_gp x*g, DSP partial products (two stages each)
 //   u_sum    the aligned parts and the aligned offset, clog2(parts + 1) stages
-//   round    s = the sum without its K low bits, r = ROUND_F(s) (irnuc_round), registered
-//   u_out    OUT(r) (irnuc_clip) into the output register (irnuc_spill_register)
+//   u_out    core_out: r = ROUND_F(s) of the sum without its K low bits (irnuc_round),
+//            registered, then OUT(r) (irnuc_clip) into the output register (irnuc_axis_buffer)
 // Latency 7 + clog2(square parts) + clog2(parts + 1) (quadratic14: 9); one pixel per clock.
 module quad_core
   import irnuc_method_pkg::*;
@@ -68,7 +68,6 @@ module quad_core
   localparam int unsigned SumBits  = max3(PBits + FracBits - GainFracBits + 1,
                                           OffsetBits + FracBits - OffsetFracBits, QsBits) + 2;
   localparam int unsigned ExtBits  = SumBits + ExtFrac;
-  localparam int unsigned RndBits  = SumBits + 1 - FracBits;
   localparam int unsigned SqParts  = smul_parts(AdcBits, 1'b0, AdcBits, 1'b0);
   localparam int unsigned GpParts  = smul_parts(AdcBits, 1'b0, GainBits, 1'b0);
   localparam int unsigned QpParts  = smul_parts(QuadBits, 1'b1, XqBits, 1'b0);
@@ -272,59 +271,28 @@ module quad_core
     assign unused_ext = ^sum_ext[ExtFrac-1:0];
   end
 
-  // ---- round, OUT and the output register --------------------------------------------------
-  logic [RndBits-1:0]  rnd_d, rnd_q;
-  logic                rnd_valid_q;
-  logic [UserBits-1:0] rnd_user_q;
-
-  irnuc_round #(
-    .InBits  (SumBits),
+  // ---- round, OUT and the output register (core_out; en is its output register's ready) --
+  core_out #(
+    .SumBits (SumBits),
     .FracBits(FracBits),
-    .Rounding(Rounding)
-  ) u_round (
-    .s_i(sum_s),
-    .r_o(rnd_d)
-  );
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_round_valid
-    if (!rst_ni) begin
-      rnd_valid_q <= 1'b0;
-    end else if (en) begin
-      rnd_valid_q <= sum_valid;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin : p_round
-    if (en) begin
-      rnd_q      <= rnd_d;
-      rnd_user_q <= sum_user;
-    end
-  end
-
-  logic [OutBits-1:0] out_d;
-
-  irnuc_clip #(
-    .InBits   (RndBits),
-    .OutBits  (OutBits),
-    .OutSigned(1'b0),
-    .Overflow (Overflow)
-  ) u_clip (
-    .v_i(rnd_q),
-    .y_o(out_d)
-  );
-
-  irnuc_spill_register #(.DataBits(UserBits + OutBits)) u_out (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(rnd_valid_q),
-    .ready_o(en),
-    .data_i ({rnd_user_q, out_d}),
-    .valid_o(m_valid_o),
-    .ready_i(m_ready_i),
-    .data_o ({m_user_o, m_pix_data_o})
+    .OutBits (OutBits),
+    .Rounding(Rounding),
+    .Overflow(Overflow),
+    .UserBits(UserBits)
+  ) u_out (
+    .clk_i    (clk_i),
+    .rst_ni   (rst_ni),
+    .en_o     (en),
+    .valid_i  (sum_valid),
+    .sum_i    (sum_s),
+    .user_i   (sum_user),
+    .m_valid_o(m_valid_o),
+    .m_ready_i(m_ready_i),
+    .m_data_o (m_pix_data_o),
+    .m_user_o (m_user_o)
   );
 
   // Protocol assertions of s_* and m_* (irnuc_stream_assert, `ifdef IRNUC_ASSERT): in u_in
-  // and u_out, whose ports these are.
+  // and core_out's output register, whose ports these are.
 
 endmodule

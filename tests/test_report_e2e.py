@@ -10,6 +10,7 @@ import json
 import os
 import random
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -195,8 +196,6 @@ def _whole(out: Path) -> str | None:
 def _share_warm_cache(private: Path) -> None:
     """Point the kill test's cache at this session's for the slow parts (syntheses,
     Verilator builds): what the cold trial left there is dropped."""
-    import shutil
-
     from irnuc.common.cache import cache_dir
 
     for part in ("synth", "sim_build"):
@@ -204,7 +203,29 @@ def _share_warm_cache(private: Path) -> None:
         (private / part).symlink_to(cache_dir(part), target_is_directory=True)
 
 
-def test_sigkill_leaves_old_or_new_report_and_no_child(tmp_path) -> None:
+#: What the cold trial waits for before its kill: a synthesis child of the report (Yosys in
+#: pyosys, nextpnr), so that the kill lands while the report has children to leave behind.
+SYNTH_CHILDREN = ("pyosys", "nextpnr")
+
+
+def _wait_for_child(token: str, roots: list[str], words: tuple[str, ...], limit: float,
+                    proc: subprocess.Popen) -> str | None:
+    """The first process of the report whose command line holds one of ``words``, waited
+    for up to ``limit`` seconds (None: none appeared, or the report ended first)."""
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline and proc.poll() is None:
+        for found in _ours(token, roots):
+            try:  # the whole command line (_ours shortens it)
+                cmd = Path(f"/proc/{found.split(':', 1)[0]}/cmdline").read_bytes()
+            except OSError:
+                continue
+            if any(w.encode() in cmd for w in words):
+                return found
+        time.sleep(0.1)
+    return None
+
+
+def test_sigkill_leaves_old_or_new_report_and_no_child(tiny_run, tmp_path) -> None:
     cfg = tmp_path / "kill.toml"
     cfg.write_text(KILL_CONFIG)
     out = tmp_path / "out"
@@ -214,41 +235,39 @@ def test_sigkill_leaves_old_or_new_report_and_no_child(tmp_path) -> None:
            "--out", str(out)]
     rng = random.Random(20261122)
     seen: set[str] = set()
-    # Trial 0: cold (its own empty cache: syntheses and the Verilator build running);
-    # then the cache of this test session (warmed by the tiny report above), so that trial
-    # 1 runs to the end quickly and later trials are killed anywhere in a warm run.
-    # Delays from the test's seed: the cold run is killed in its syntheses or its build, the
-    # warm ones anywhere from the sweep's workers to the co-simulation.
-    plan = [("kill", rng.uniform(3.0, 10.0)), ("finish", None)] + [
-        ("kill", rng.uniform(0.5, 8.0)) for _ in range(2)]
+    # Trial 0: cold (its own empty cache), killed a moment after its first synthesis child
+    # appeared (Yosys or nextpnr running). Then the old folder is a whole report (the
+    # tiny report's, copied), the cache that of this test session (warmed by the tiny
+    # report), and the warm runs are killed anywhere from the sweep's workers to the
+    # co-simulation, at delays from the test's seed.
+    plan = [("cold", rng.uniform(0.2, 1.5))] + [("kill", rng.uniform(0.5, 8.0)) for _ in range(2)]
     for trial, (what, delay) in enumerate(plan):
         if trial == 1:
             _share_warm_cache(tmp_path / "cache")
+            shutil.copytree(tiny_run[1], out, symlinks=True)
+            seen.add(_whole(out))
         before = _whole(out)
         t0 = time.monotonic()
         proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                 start_new_session=True)
-        if what == "kill":
-            try:
-                proc.wait(timeout=delay)
-            except subprocess.TimeoutExpired:
-                proc.send_signal(signal.SIGKILL)
-                proc.wait()
-        else:
-            assert proc.wait(timeout=600) == 0
+        if what == "cold":
+            child = _wait_for_child(token, [str(tmp_path)], SYNTH_CHILDREN, 120.0, proc)
+            assert child is not None, "the cold report ended or ran 120 s without a synthesis child"
+        try:
+            proc.wait(timeout=delay)
+        except subprocess.TimeoutExpired:
+            proc.send_signal(signal.SIGKILL)
+            proc.wait()
         after = _whole(out)
-        if what == "finish":
-            assert after is not None and after != before
-            seen.add(after)
-        else:
-            # Old, or new and whole (_whole checks that summary.json and index.html are of
-            # one run): a kill can land after the swap, before the process exits.
-            assert after == before or after is not None, \
-                f"after a kill at {time.monotonic() - t0:.1f} s the folder is gone"
+        # Old, or new and whole (_whole checks that summary.json and index.html are of
+        # one run): a kill can land after the swap, before the process exits.
+        assert after == before or after is not None, \
+            f"after a kill at {time.monotonic() - t0:.1f} s the folder is gone"
         deadline = time.monotonic() + 15.0
         while (left := _ours(token, [str(tmp_path)])) and time.monotonic() < deadline:
             time.sleep(0.25)
         assert not left, f"survived the killed report: {left}"
-    # The next run removes what killed runs left beside the folder.
+    # The next run ends with a new whole folder and removes what killed runs left beside it.
     assert subprocess.run(cmd, env=env, capture_output=True, timeout=600).returncode == 0
-    assert _whole(out) not in seen and not list(tmp_path.glob(".out.tmp-*"))
+    final = _whole(out)
+    assert final is not None and final not in seen and not list(tmp_path.glob(".out.tmp-*"))

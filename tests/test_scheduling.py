@@ -27,6 +27,12 @@ def test_groups_of_node_ids() -> None:
                     "[nuc_core-typical14-clean_stall]") == "cosim-typical14"
     assert group_of("cocotb_tests/test_nuc_core.py::test_nuc_core"
                     "[typical14+half_even+wrap-corner_codes]") == "cosim-typical14+half_even+wrap"
+    # the methods' and stages' configurations too: one run of their testbench per worker
+    assert group_of("cocotb_tests/test_method_dpc_top.py::test_method_dpc_top"
+                    "[tcoffset14-stream_patterns]") == "cosim-tcoffset14"
+    assert group_of("cocotb_tests/test_coverage.py::test_ffc_coverage_complete[ffc14]") \
+        == group_of("cocotb_tests/test_method_ffc_top.py::test_method_ffc_top[ffc14-refresh_edges]") \
+        == "cosim-ffc14"
     # no configuration: alone; tests/: by file
     alone = "cocotb_tests/test_protocol.py::test_assertion_fires[dpc_core-violation_valid_dropped]"
     assert group_of(alone) == alone

@@ -13,12 +13,22 @@ import pytest
 
 from irnuc import cosim
 from irnuc.cocotb_tests import tb_top
+from irnuc.cosim import coverage
 from irnuc.nuc_fixed import load_pipeline
 from irnuc.verif import SuiteCase, run_suite
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 TB_TOP = tb_top.__name__
+
+#: The configuration the tiny report (tests/test_report_e2e.py) recommends and co-simulates
+#: with coverage: U0.9 gain, S4.0 offset on the minimal pipeline's 8-bit input and 6-bit
+#: output, 16 x 12 frames. The coverage test below runs on it so that the two share one
+#: coverage build (builds are cached by name, parameters and options); any configuration
+#: would check the same.
+TINY_RECOMMENDED = load_pipeline("minimal").replace(
+    name="recommended", gain_int_bits=0, gain_frac_bits=9, offset_int_bits=4, offset_frac_bits=0,
+    max_width=16, max_height=12)
 
 
 def _simulators(under: Path) -> list[int]:
@@ -68,22 +78,22 @@ def test_timeout_stops_only_that_test_and_its_simulator(tmp_path) -> None:
 
 
 def test_run_suite_collects_coverage(tmp_path) -> None:
-    # One test in the coverage build (the report's end-to-end test runs two more).
-    case = SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB_TOP,
-                     tests=("frame_error_causes",))
+    # One test in the coverage build (the report's end-to-end test runs two more there).
+    case = SuiteCase("nuc_dpc_top", TINY_RECOMMENDED, TB_TOP, tests=("frame_error_causes",))
     res = run_suite([case], tmp_path, coverage=True)
     assert res.passed, [(o.test, o.message) for o in res.outcomes]
-    f = res.coverage["functional"]["configurations"]["minimal"]
+    label = coverage.config_label(TINY_RECOMMENDED)
+    f = res.coverage["functional"]["configurations"][label]
     pts = f["coverpoints"]
     assert pts["frame.error"]["hit"] == pts["frame.error"]["total"]
     assert pts["nuc.round.half_even"]["hit"] > 0
     assert 0 < f["hit"] < f["total"]  # one test does not reach every bin
-    code = res.coverage["code"]["minimal"]
+    code = res.coverage["code"][label]
     assert {"nuc_core", "dpc_core", "dpc_ctrl", "nuc_dpc_top"} <= set(code)
     assert 0 < code["dpc_ctrl"]["line"]["percent"] <= 100
     assert 0 < code["nuc_core"]["toggle"]["percent"] <= 100
     on_disk = json.loads((tmp_path / "coverage.json").read_text())
-    assert on_disk["functional"]["configurations"]["minimal"]["hit"] == f["hit"]
+    assert on_disk["functional"]["configurations"][label]["hit"] == f["hit"]
     # Without coverage=True there is none (a short test, in the plain build).
     plain = SuiteCase("nuc_dpc_top", load_pipeline("minimal"), TB_TOP, tests=("corner_codes",))
     res = run_suite([plain], tmp_path / "plain")

@@ -13,11 +13,13 @@ def add_synth_arguments(p: argparse.ArgumentParser) -> None:
                    help="NUC + DPC configuration: a name in nuc_fixed/pipelines.toml or a "
                         "pipeline TOML file; repeat it to synthesize several (in parallel)")
     p.add_argument("--top", default=None, metavar="MODULE",
-                   help="the module to synthesize: nuc_dpc_top, method_dpc_top or "
-                        "irnuc_axis_top (the AXI4-Stream/AXI4-Lite wrapper of the core of "
-                        "two_point, one_point, piecewise, quadratic and tc_offset); "
-                        "default: the pipeline's bare core (nuc_dpc_top for "
-                        "two_point, method_dpc_top for the other base methods)")
+                   help="the module to synthesize: nuc_dpc_top, method_dpc_top, "
+                        "method_drift_top, method_ffc_top or irnuc_axis_top (the "
+                        "AXI4-Stream/AXI4-Lite wrapper of the core of two_point, one_point, "
+                        "piecewise, quadratic and tc_offset, and of the ffc compositions); "
+                        "default: the pipeline's bare core (nuc_dpc_top for two_point, "
+                        "method_dpc_top for the other base methods, the stage's top for a "
+                        "method with a stage)")
     p.add_argument("--max-width", type=int, default=None,
                    help="line-buffer length to synthesize (default: the pipeline's max_width)")
     p.add_argument("--max-height", type=int, default=None,
