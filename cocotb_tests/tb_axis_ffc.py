@@ -225,15 +225,17 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     if (idle, bp, ffc_idle, ffc_bp) == ("none",) * 4:
         # The last two frames are open frames, shown, back to back at the input, after the
         # refresh frame (which may wait for the target's serial division on frames this
-        # small): recorded for test_axis_top's throughput check (2 H W pixels should leave
-        # in 2 H W cycles), with the ports' idle and stalled cycles for triage.
+        # small): their 2 H W pixels leave in 2 H W cycles (one per clock through the
+        # wrapper's fork). Recorded (test_axis_top's throughput check, with the ports' idle
+        # and stalled cycles for triage), then checked.
         first, last = bench.out_cycles[-2 * H * W], bench.out_cycles[-1]
+        window = {k: [c for c in v if first <= c <= last] for k, v in stalls.items()}
         tb_lib.record(throughput="last_two_frames", pixels=2 * H * W,
-                      cycles=last - first + 1,
-                      stalls={k: [c for c in v if first <= c <= last]
-                              for k, v in stalls.items()})
-        if last - first + 1 == 2 * H * W:
-            _sample("stream.back_to_back", "frames")
+                      cycles=last - first + 1, stalls=window)
+        assert last - first + 1 == 2 * H * W, (
+            f"the last two frames' {2 * H * W} pixels took {last - first + 1} cycles; "
+            f"idle/stalled cycles by port {window}")
+        _sample("stream.back_to_back", "frames")
 
     assert framing.done is not None, "the sequence does not finish the FFC"
     m.set_live("FFC_STATUS", "busy", 0)

@@ -67,12 +67,6 @@ AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.reset": ("mid_frame",),
 }
 
-#: Why ``stream.back_to_back`` is removed on an FFC configuration (an RTL finding, checked
-#: by ``test_irnuc_axis_top_ffc_full_rate``, a strict xfail until the RTL is fixed).
-FFC_BACK_TO_BACK = ("irnuc_axis_top around method_ffc_top loses about one cycle in four at "
-                    "full rate (s_axis_foff_tready drops every fourth cycle): no frames back "
-                    "to back at one pixel per clock")
-
 #: Coverpoint -> bins of the FFC sequence through the registers (a configuration with ffc).
 FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.start": ("mid_frame",),
@@ -128,18 +122,10 @@ class AxisCoverageModel(CoverageModel):
     :data:`FFC_AXIS_POINTS` with the ffc stage, and the base model's stream points)."""
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
-        # Points of the base model this wrapper cannot reach, with the reason.
-        self._skip = {"stream.back_to_back": FFC_BACK_TO_BACK} if cfg.has("ffc") else {}
         super().__init__(top, cfg, prefix)
         point = self.add_point
         for name, bins in (FFC_AXIS_POINTS if cfg.has("ffc") else AXIS_POINTS).items():
             point(name, bins)
-
-    def add_point(self, name: str, bins) -> None:
-        if name in self._skip:
-            self.removed[name] = {str(b): self._skip[name] for b in bins}
-            return
-        super().add_point(name, bins)
 
     def sample_classes(self, classes: dict[str, set[str]]) -> None:
         for name, labels in classes.items():

@@ -145,8 +145,15 @@ module irnuc_axis_ffc
   // ---- the fork ------------------------------------------------------------------------------
   // method_ffc_top: its pixel and coefficient inputs are separate spill registers that
   // drain at different times, so the item is forked: each side is offered the item
-  // until it took it, and the item is taken when both have.
+  // until it took it, and the item is taken when both have. The pixel reaches the core's
+  // join through two two-entry buffers (its input register and its mode stage), the word
+  // through one (u_coef_in): alone, the word would wait a cycle at the join, fill its
+  // buffer (ready 0) and make the fork skip a cycle in four. u_coef_fork gives the word
+  // a second buffer of the same cycles: both sides fill and drain in lockstep, one item
+  // per clock.
   logic pix_took_q, coef_took_q, fork_pix_valid, fork_coef_valid, pix_take, coef_take;
+  logic                coef_fork_valid, coef_fork_ready;
+  logic [WordBits-1:0] coef_fork_word;
   logic foff_valid, foff_ready, acc_valid, acc_ready;
   logic [FoffWordBits-1:0] foff_data;
   logic [AccWordBits-1:0]  acc_data;
@@ -241,6 +248,17 @@ module irnuc_axis_ffc
   assign ffc_busy_o = busy_q;
   assign ffc_done_o = busy_q && !ffc_start_i && (refreshed || short_end || none);
 
+  irnuc_axis_buffer #(.DataBits(WordBits)) u_coef_fork (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(fork_coef_valid),
+    .ready_o(core_coef_ready),
+    .data_i (item_word_i),
+    .valid_o(coef_fork_valid),
+    .ready_i(coef_fork_ready),
+    .data_o (coef_fork_word)
+  );
+
   irnuc_axis_buffer #(.DataBits(FoffWordBits)) u_foff_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
@@ -308,9 +326,9 @@ module irnuc_axis_ffc
     .s_pix_eol_i       (item_eol_i),
     .s_pix_frame_i     (item_frame_i[FrameBits-1:0]),
     .s_pix_shutter_i   (item_shutter),
-    .s_coef_valid_i    (fork_coef_valid),
-    .s_coef_ready_o    (core_coef_ready),
-    .s_coef_data_i     (item_word_i),
+    .s_coef_valid_i    (coef_fork_valid),
+    .s_coef_ready_o    (coef_fork_ready),
+    .s_coef_data_i     (coef_fork_word),
     .s_foff_valid_i    (foff_valid),
     .s_foff_ready_o    (foff_ready),
     .s_foff_data_i     (foff_data),

@@ -639,6 +639,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "assign ffc_done_o = busy_q && !ffc_start_i && (short_end || none);",
         "FFC_STATUS.done and IRQ_STATUS.ffc_done not raised by the refresh's write-back",
         **_AXF),
+    # The fork's coefficient buffer bypassed (the wrapper before session 31's fix): the same
+    # words, but the word waits at the core's join and the fork skips a cycle in four.
+    _ma("ax_ffc_coef_fork_bypass", "irnuc_axis_ffc.sv",
+        ".s_coef_valid_i    (coef_fork_valid),", ".s_coef_valid_i    (fork_coef_valid),",
+        "the fork's coefficient side straight into method_ffc_top (no u_coef_fork): "
+        "frames at full rate lose one cycle in four",
+        also=((".s_coef_ready_o    (coef_fork_ready),", ".s_coef_ready_o    (core_coef_ready),"),
+              (".s_coef_data_i     (coef_fork_word),", ".s_coef_data_i     (item_word_i),"),
+              (".ready_o(core_coef_ready),", ".ready_o(),")),
+        **_AXF),
 )
 
 
