@@ -377,6 +377,11 @@ class PipelineConfig:
         return tuple(need)
 
     @property
+    def max_frame_pixels(self) -> int:
+        """Pixels of the largest frame the hardware takes (``max_width * max_height``)."""
+        return self.max_width * self.max_height
+
+    @property
     def base_method(self) -> str:
         """The base method (``two_point`` of ``two_point+ffc``)."""
         return self.method.split("+")[0]

@@ -148,3 +148,18 @@ def test_equivalence_on_some_configurations_only() -> None:
     # A mutant equivalent everywhere stays so on every configuration.
     m = by_id["ctrl_idle_read_col"]
     assert m.equivalence(narrow) == m.equivalence() == m.equivalent
+    # The frame-size mutants on one-pixel-wide, -high and 1 x 1 frames (the sample's
+    # ci20-179 is 1 x 263, ci20-072 1 x 1): equivalent exactly where the size they test
+    # cannot change; on the 3 x 15 configuration every one counts.
+    sample = {c.name: c for c in configspace.ci_sample()}
+    wide1, pixel1 = sample["ci20-179"], sample["ci20-072"]
+    assert (wide1.max_width, pixel1.max_width, pixel1.max_height) == (1, 1, 1)
+    assert wide1.max_height > 1
+    on_wide1 = {"ctrl_same_no_width", "ctrl_col_next_last", "ctrl_flush_short"}
+    on_high1 = {"ctrl_same_no_height", "ctrl_row_last_width", "ctrl_top_is_bottom"}
+    for mid in on_wide1 | on_high1 | {"ctrl_tail_no_flush"}:
+        m = by_id[mid]
+        assert m.equivalence() is None and m.equivalence(narrow) is None, mid
+        assert (m.equivalence(wide1) is not None) == (mid in on_wide1), mid
+        assert m.equivalence(pixel1) is not None, mid
+    assert pixel1.max_frame_pixels == 1 and wide1.max_frame_pixels == wide1.max_height

@@ -83,6 +83,26 @@ _LB_UNUSED = ("every legal frame is then at most 3 wide, and for a latched width
               "the outputs are unspecified")
 
 
+#: Why a mutant of the frame-size bookkeeping is equivalent on one-pixel-wide (or -high, or
+#: 1 x 1) frames; the sizes other than the one legal value are illegal.
+_AFTER_ILLEGAL = ("a frame of another size is illegal there, flagged by frame_err_o, after "
+                  "which the outputs are unspecified")
+_ONE_WIDE_SAME = ("every legal frame is then 1 wide: the widths compared are equal, so "
+                  "leaving them out changes nothing; " + _AFTER_ILLEGAL)
+_ONE_HIGH_SAME = ("every legal frame is then 1 high: the heights compared are equal, so "
+                  "leaving them out changes nothing; " + _AFTER_ILLEGAL)
+_ONE_WIDE_LAST = ("every legal frame is then 1 wide: every column is the row's last "
+                  "(cur_col_last is 1 in Idle from fw_is1_q and after every take from "
+                  "col_last_q <= fw_is1_q / geo_w_is1_q), so the branch of a column that is "
+                  "not the last, and the test of the last column, never decide anything; "
+                  + _AFTER_ILLEGAL)
+_ONE_HIGH_LAST = ("every legal frame is then 1 high: the output row is always the first and "
+                  "the last (or_last_q is loaded from fh_is1_q / geo_h_is1_q, both 1, and the "
+                  "branch of a row that is not the last is never taken); " + _AFTER_ILLEGAL)
+_ONE_PIXEL = ("every legal frame is then 1 x 1: a new frame is always of the same size, so "
+              "no frame has to wait for a flush; " + _AFTER_ILLEGAL)
+
+
 def _m(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
     return Mutant(id, file, find, replace, what, **kw)
 
@@ -223,11 +243,13 @@ CATALOGUE: tuple[Mutant, ...] = (
     _m("ctrl_same_no_height", "dpc_ctrl.sv",
        ": (frame_width_i == geo_w_q) && (frame_height_i == geo_h_q);",
        ": (frame_width_i == geo_w_q);",
-       "a new frame counts as the same size when only its height changed"),
+       "a new frame counts as the same size when only its height changed",
+       equivalent_when=(("max_height", 1, _ONE_HIGH_SAME),)),
     _m("ctrl_same_no_width", "dpc_ctrl.sv",
        ": (frame_width_i == geo_w_q) && (frame_height_i == geo_h_q);",
        ": (frame_height_i == geo_h_q);",
-       "a new frame counts as the same size when only its width changed"),
+       "a new frame counts as the same size when only its width changed",
+       equivalent_when=(("max_width", 1, _ONE_WIDE_SAME),)),
     _m("ctrl_sof_unchecked", "dpc_ctrl.sv",
        "assign marker_bad = (pix_sof_i != exp_sof) || (pix_eol_i != cur_col_last);",
        "assign marker_bad = (pix_eol_i != cur_col_last);", "sof marker not checked"),
@@ -242,7 +264,8 @@ CATALOGUE: tuple[Mutant, ...] = (
     _m("ctrl_err_reset", "dpc_ctrl.sv", "      err_q <= 1'b0;\n    end else if",
        "      err_q <= 1'b1;\n    end else if", "frame_err_o set by reset"),
     _m("ctrl_col_next_last", "dpc_ctrl.sv", "(col_q == geo_wm2_q);",
-       "(col_q + WidthBits'(1) == geo_wm2_q);", "end of row one column early"),
+       "(col_q + WidthBits'(1) == geo_wm2_q);", "end of row one column early",
+       equivalent_when=(("max_width", 1, _ONE_WIDE_LAST),)),
     _m("ctrl_ahead_start", "dpc_ctrl.sv", "fw_is3_q ? WidthBits'(0) : WidthBits'(3);",
        "fw_is3_q ? WidthBits'(0) : WidthBits'(2);",
        "line-buffer look-ahead starts one column late",
@@ -265,15 +288,19 @@ CATALOGUE: tuple[Mutant, ...] = (
        "the next frame"),
     _m("ctrl_flush_short", "dpc_ctrl.sv",
        "if (take_phantom && cur_col_last) ph_wrapped_q <= 1'b1;",
-       "if (take_phantom) ph_wrapped_q <= 1'b1;", "the flush ends after two phantoms"),
+       "if (take_phantom) ph_wrapped_q <= 1'b1;", "the flush ends after two phantoms",
+       equivalent_when=(("max_width", 1, _ONE_WIDE_LAST),)),
     _m("ctrl_tail_no_flush", "dpc_ctrl.sv",
        "assign accept       = !flush && !(tail && !same_q);", "assign accept       = !flush;",
-       "a frame of another size is taken without flushing the previous one"),
+       "a frame of another size is taken without flushing the previous one",
+       equivalent_when=(("max_frame_pixels", 1, _ONE_PIXEL),)),
     _m("ctrl_row_last_width", "dpc_ctrl.sv", "or_last_q  <= (or_q == geo_hm2_q);",
        "or_last_q  <= (or_q == HeightBits'(geo_wm2_q));",
-       "last output row found with the width"),
+       "last output row found with the width",
+       equivalent_when=(("max_height", 1, _ONE_HIGH_LAST),)),
     _m("ctrl_top_is_bottom", "dpc_ctrl.sv", "win_top_q    <= or_first_q;",
-       "win_top_q    <= or_last_q;", "top border flag from the last row"),
+       "win_top_q    <= or_last_q;", "top border flag from the last row",
+       equivalent_when=(("max_height", 1, _ONE_HIGH_LAST),)),
     _m("ctrl_write_current_col", "dpc_ctrl.sv", "assign lb_wr_addr_o  = prev_col_q;",
        "assign lb_wr_addr_o  = AddrBits'(col_q);",
        "line buffer written at the current column, not the previous item's",
