@@ -229,8 +229,9 @@ module irnuc_axis_top
   logic [WordBits-1:0] coef_data;
 
   // Each input behind irnuc_axis_buffer: the framer's take decisions move only its
-  // pointers and flags, not the enables of its data registers (docs/rtl.md).
-  irnuc_axis_buffer #(.DataBits(AdcBits + 2)) u_vid_in (
+  // pointers and flags, not the enables of its data registers (docs/rtl.md); the markers
+  // the framer decides on (tuser, tlast) come from the buffers' head registers.
+  irnuc_axis_buffer #(.DataBits(AdcBits + 2), .HeadBits(2)) u_vid_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_video_tvalid),
@@ -241,7 +242,7 @@ module irnuc_axis_top
     .data_o ({vid_sof, vid_eol, vid_data})
   );
 
-  irnuc_axis_buffer #(.DataBits(WordBits + 1)) u_coef_in (
+  irnuc_axis_buffer #(.DataBits(WordBits + 1), .HeadBits(1)) u_coef_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_coef_tvalid),
