@@ -89,6 +89,7 @@ module irnuc_axil_regs
   output logic                             width_is1_o,
   output logic                             height_is1_o,
   output logic                             size_dirty_o,
+  output logic                             size_write_o,  // size_dirty_o is set next cycle
   output logic                             nuc_en_o,
   output logic                             dpc_en_o,
   output logic                             coef_sync_o,
@@ -478,11 +479,12 @@ module irnuc_axil_regs
       size_dirty_q <= 1'b0;
     end else begin
       pending_q    <= shadow_touch || (pending_q && !start_i);
-      size_dirty_q <= (wr_size && |(wmask & SizeMask)) || (size_dirty_q && !start_i);
+      size_dirty_q <= size_write_o || (size_dirty_q && !start_i);
     end
   end
 
   assign size_dirty_o = size_dirty_q;
+  assign size_write_o = wr_size && |(wmask & SizeMask);
 
   // ---- STATUS, IRQ ---------------------------------------------------------------------------
   logic [NumErrors-1:0] err_q, err_ev;

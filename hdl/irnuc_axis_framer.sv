@@ -87,6 +87,7 @@ module irnuc_axis_framer
   input  logic                  pend_width_is1_i,
   input  logic                  pend_height_is1_i,
   input  logic                  size_dirty_i,
+  input  logic                  size_write_i,  // FRAME_SIZE changes now (size_dirty_i next)
   input  logic                  pend_nuc_en_i,
   input  logic                  pend_dpc_en_i,
   input  logic                  pend_coef_sync_i,
@@ -155,6 +156,8 @@ module irnuc_axis_framer
   logic                  fire_q, empty_q, drained_q;
   // The states one-hot (copies of vst_q, cst_q for the item decision).
   logic                  s_wait_q, s_frame_q, s_pad_q, s_drop_q;
+  // Waiting and free to start a frame (s_wait_q && start_ok, registered).
+  logic                  wait_ok_q, wait_ok_d;
   logic                  c_normal_q, c_fill_q, c_skip_q;
 
   // ---- what happens this cycle ----------------------------------------------------------
@@ -165,9 +168,10 @@ module irnuc_axis_framer
 
   // A new frame size waits for the drain (drained_q is at least a cycle after the write,
   // so the position registers are preloaded from the new size).
+  // start_ok (registered as wait_ok_q below).
   assign start_ok = !size_dirty_i || drained_q;
   assign starting = s_wait_q;
-  assign pix_item = vid_valid_i && (vid_sof_i ? starting && start_ok : s_frame_q);
+  assign pix_item = vid_valid_i && (vid_sof_i ? wait_ok_q : s_frame_q);
   assign pad_item = s_pad_q;
   assign item     = pix_item || pad_item;
   assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
@@ -267,7 +271,7 @@ module irnuc_axis_framer
 
     // Coefficients (with coef_sync): tlast early, fill the frame; missing, skip to one.
     cst_n = cst_q;
-    if (c_skip_q && take_coef && coef_last_i) begin
+    if (c_skip_q && coef_valid_i && coef_last_i) begin  // take_coef without fire
       cst_n = CoefNormal;
     end
     cst_f = cst_q;
@@ -295,6 +299,7 @@ module irnuc_axis_framer
       vst_q       <= AxisWait;
       cst_q       <= CoefNormal;
       s_wait_q    <= 1'b1;
+      wait_ok_q   <= 1'b1;
       s_frame_q   <= 1'b0;
       s_pad_q     <= 1'b0;
       s_drop_q    <= 1'b0;
@@ -312,6 +317,7 @@ module irnuc_axis_framer
       vst_q       <= vst_d;
       cst_q       <= cst_d;
       s_wait_q    <= (vst_d == AxisWait);
+      wait_ok_q   <= wait_ok_d;
       s_frame_q   <= (vst_d == AxisFrame);
       s_pad_q     <= (vst_d == AxisPad);
       s_drop_q    <= (vst_d == AxisDrop);
@@ -361,6 +367,7 @@ module irnuc_axis_framer
   // less those that left the core: the items in flight are flight_q + fire_q, and `fire`
   // reaches no carry chain.
   logic [FlightBits-1:0] flight_d;
+  logic                  drained_d, dirty_d;
 
   always_comb begin : p_flight
     flight_d = flight_q;
@@ -382,9 +389,15 @@ module irnuc_axis_framer
       fire_q    <= fire;
       // An item leaves only when one is in flight.
       empty_q   <= (flight_q == '0) && !fire_q && !fire;
-      drained_q <= empty_q && size_dirty_i && starting && !fire;
+      drained_q <= drained_d;
     end
   end
+
+  // start_ok of the next cycle: size_dirty_i's next value (the register file's: a write of
+  // the frame size sets it, the frame start clears it) and drained_q's.
+  assign drained_d = empty_q && size_dirty_i && starting && !fire;
+  assign dirty_d   = size_write_i || (size_dirty_i && !(fire && starting));
+  assign wait_ok_d = (vst_d == AxisWait) && (!dirty_d || drained_d);
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
   // The word enters the output register as it comes with two flags, and
@@ -474,6 +487,8 @@ module irnuc_axis_framer
     if (armed_q) begin
       a_flight_range: assert (!(core_out_i && flight_q == '0 && !fire_q))
         else $error("irnuc_axis_framer: an item left the core that was never sent");
+      a_wait_ok: assert (wait_ok_q == (starting && start_ok))
+        else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
       a_vid_onehot: assert ({s_wait_q, s_frame_q, s_pad_q, s_drop_q}
                             == {vst_q == AxisWait, vst_q == AxisFrame, vst_q == AxisPad,
                                 vst_q == AxisDrop})

@@ -256,7 +256,8 @@ module irnuc_axis_top
   // ---- register file -----------------------------------------------------------------------
   logic [WidthBits-1:0]  pend_w, pend_wm1, act_w, act_wm1;
   logic [HeightBits-1:0] pend_h, pend_hm1, act_h, act_hm1;
-  logic                  pend_w_is1, pend_h_is1, size_dirty, pend_nuc, pend_dpc, pend_sync;
+  logic                  pend_w_is1, pend_h_is1, size_dirty, size_write, pend_nuc, pend_dpc;
+  logic                  pend_sync;
   logic [7:0][63:0]      slots;
   logic [RegTableReadingCount-1:0][31:0] table_readings;
   logic                  start, frame_start, beat, drop, pad, in_frame;
@@ -316,6 +317,7 @@ module irnuc_axis_top
     .width_is1_o     (pend_w_is1),
     .height_is1_o    (pend_h_is1),
     .size_dirty_o    (size_dirty),
+    .size_write_o    (size_write),
     .nuc_en_o        (pend_nuc),
     .dpc_en_o        (pend_dpc),
     .coef_sync_o     (pend_sync),
@@ -404,6 +406,7 @@ module irnuc_axis_top
     .pend_width_is1_i (pend_w_is1),
     .pend_height_is1_i(pend_h_is1),
     .size_dirty_i     (size_dirty),
+    .size_write_i     (size_write),
     .pend_nuc_en_i    (pend_nuc),
     .pend_dpc_en_i    (pend_dpc),
     .pend_coef_sync_i (pend_sync),
