@@ -161,7 +161,7 @@ module irnuc_axis_framer
   logic                  c_normal_q, c_fill_q, c_skip_q;
 
   // ---- what happens this cycle ----------------------------------------------------------
-  logic start_ok, starting, pix_item, pad_item, item, word_ok, fire;
+  logic start_ok, starting, pix_item, pad_item, item, word_ok, go, fire, start_fire;
   logic take_beat, drop_beat, take_coef, last;
   logic eff_nuc, eff_dpc, eff_sync;
   logic out_ready;
@@ -175,7 +175,11 @@ module irnuc_axis_framer
   assign pad_item = s_pad_q;
   assign item     = pix_item || pad_item;
   assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
-  assign fire     = item && word_ok && out_ready;
+  assign go       = word_ok && out_ready;  // the word and the output allow an item
+  assign fire     = go && item;
+  // A frame's first item (fire && starting) straight from flops: waiting, only a start of
+  // frame is an item (the states are one-hot: a_start_fire).
+  assign start_fire = go && vid_valid_i && vid_sof_i && wait_ok_q;
   assign last     = xl_q && yl_q;
 
   // The start item takes the pending settings; the others the active ones.
@@ -191,7 +195,7 @@ module irnuc_axis_framer
 
   assign vid_ready_o  = take_beat;
   assign coef_ready_o = take_coef;
-  assign start_o      = fire && starting;
+  assign start_o      = start_fire;
 
   // ---- next state ---------------------------------------------------------------------------
   // Each register's next value with and without an item sent, from registers only; `fire`
@@ -345,7 +349,7 @@ module irnuc_axis_framer
       act_nuc_q   <= 1'b1;
       act_dpc_q   <= 1'b1;
       act_sync_q  <= 1'b1;
-    end else if (fire && starting) begin
+    end else if (start_fire) begin
       act_w_q     <= pend_width_i;
       act_wm1_q   <= pend_width_m1_i;
       act_w_is1_q <= pend_width_is1_i;
@@ -396,7 +400,7 @@ module irnuc_axis_framer
   // start_ok of the next cycle: size_dirty_i's next value (the register file's: a write of
   // the frame size sets it, the frame start clears it) and drained_q's.
   assign drained_d = empty_q && size_dirty_i && starting && !fire;
-  assign dirty_d   = size_write_i || (size_dirty_i && !(fire && starting));
+  assign dirty_d   = size_write_i || (size_dirty_i && !start_fire);
   assign wait_ok_d = (vst_d == AxisWait) && (!dirty_d || drained_d);
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
@@ -458,7 +462,7 @@ module irnuc_axis_framer
       coef_late_o   <= 1'b0;
       in_frame_o    <= 1'b0;
     end else begin
-      frame_start_o <= fire && starting;
+      frame_start_o <= start_fire;
       beat_o        <= take_beat;
       drop_o        <= drop_beat;
       pad_o         <= fire && pad_item;
@@ -489,6 +493,8 @@ module irnuc_axis_framer
         else $error("irnuc_axis_framer: an item left the core that was never sent");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
+      a_start_fire: assert (start_fire == (fire && starting))
+        else $error("irnuc_axis_framer: start_fire is not a frame's first item");
       a_vid_onehot: assert ({s_wait_q, s_frame_q, s_pad_q, s_drop_q}
                             == {vst_q == AxisWait, vst_q == AxisFrame, vst_q == AxisPad,
                                 vst_q == AxisDrop})
