@@ -431,25 +431,21 @@ module irnuc_axis_framer
   // The frame word goes with a frame's first item (the core reads it at sof).
   assign frame = !starting ? '0 : pend_nuc_en_i ? pend_frame_i : NeutralFrame;
 
-  // A filler's raw code 0 is made behind the register too (out_pad): the pixel's path from
-  // the input buffer passes the output register's multiplexer only.
-  logic [AdcBits-1:0] out_raw;
-  logic               out_pad;
+  logic [AdcBits-1:0] raw;
+  assign raw = pad_item ? '0 : vid_data_i;
 
-  irnuc_spill_register #(.DataBits(FrameBits + 5 + AdcBits + WordBits)) u_out (
+  irnuc_spill_register #(.DataBits(FrameBits + 4 + AdcBits + WordBits)) u_out (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(fire),
     .ready_o(out_ready),
-    .data_i ({frame, starting, xl_q, pad_item, nuc_off, dpc_off, vid_data_i, word_in}),
+    .data_i ({frame, starting, xl_q, nuc_off, dpc_off, raw, word_in}),
     .valid_o(m_valid_o),
     .ready_i(m_ready_i),
-    .data_o ({m_frame_o, m_sof_o, m_eol_o, out_pad, out_nuc_off, out_dpc_off, out_raw,
-              out_word})
+    .data_o ({m_frame_o, m_sof_o, m_eol_o, out_nuc_off, out_dpc_off, m_raw_o, out_word})
   );
 
   assign m_word_o = word;
-  assign m_raw_o  = out_pad ? '0 : out_raw;
 
   // ---- events ---------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_events
