@@ -705,16 +705,26 @@ module irnuc_axil_regs
 
 `ifdef IRNUC_ASSERT
   // The ports are checked in the top (irnuc_axil_assert); here the ready flops: each is the
-  // complement of the state it stands for, in reset too (their reset values agree).
+  // complement of the state it stands for.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
   always_ff @(posedge clk_i) begin : p_check
-    a_aw_ready: assert (aw_ready_q == !aw_held_q)
-      else $error("irnuc_axil_regs: awready is not 'no write address held'");
-    a_w_ready: assert (w_ready_q == !w_held_q)
-      else $error("irnuc_axil_regs: wready is not 'no write data held'");
-    a_ar_busy: assert (ar_busy_q == (ar_held_q || rdec_q || r_valid_q))
-      else $error("irnuc_axil_regs: the read channel's busy flag lost its read");
-    a_ar_ready: assert (ar_ready_q == !ar_busy_q)
-      else $error("irnuc_axil_regs: arready is not 'no read in progress'");
+    if (armed_q) begin
+      a_aw_ready: assert (aw_ready_q == !aw_held_q)
+        else $error("irnuc_axil_regs: awready is not 'no write address held'");
+      a_w_ready: assert (w_ready_q == !w_held_q)
+        else $error("irnuc_axil_regs: wready is not 'no write data held'");
+      a_ar_busy: assert (ar_busy_q == (ar_held_q || rdec_q || r_valid_q))
+        else $error("irnuc_axil_regs: the read channel's busy flag lost its read");
+      a_ar_ready: assert (ar_ready_q == !ar_busy_q)
+        else $error("irnuc_axil_regs: arready is not 'no read in progress'");
+    end
   end
 `endif
 
