@@ -6,9 +6,11 @@
 // waiting, the address is decoded into one-hot register selects (a cycle), the write is done
 // and its response raised (the next cycle) and held until bready. A read address is taken
 // when no read is in progress, decoded (a cycle), its register read through an AND-OR of the
-// selects (a cycle) and the data held until rready. Every output is a flop or a NOR of flops
-// (arready); no path from an input to an output. One write and one read at a time; reads
-// have no side effects.
+// selects (a cycle) and the data held until rready. Every output is a flop: awready, wready and
+// arready are flops of their own, the complements of the holding flags the logic reads (the
+// ready's net goes to its pad only, and no input passes an enable: each holding register
+// follows its input while it is empty). No path from an input to an output. One write and one
+// read at a time; reads have no side effects.
 //
 // Responses: OKAY, or SLVERR for an offset outside the map, a write to a register without
 // a writable field and a frame size of 0 or above MaxWidth x MaxHeight (the register keeps
@@ -87,6 +89,7 @@ module irnuc_axil_regs
   output logic                             width_is1_o,
   output logic                             height_is1_o,
   output logic                             size_dirty_o,
+  output logic                             size_write_o,  // size_dirty_o is set next cycle
   output logic                             nuc_en_o,
   output logic                             dpc_en_o,
   output logic                             coef_sync_o,
@@ -236,6 +239,8 @@ module irnuc_axil_regs
 
   // ---- write channel: hold address and data, decode (a cycle), write (a cycle) --------------
   logic                aw_held_q, w_held_q, dec_q, b_valid_q;
+  logic                aw_held_d, w_held_d;
+  logic                aw_ready_q, w_ready_q;  // the ports: !aw_held_q, !w_held_q as flops
   logic [AddrBits-1:0] aw_addr_q;
   logic [31:0]         w_data_q;
   logic [3:0]          w_strb_q;
@@ -249,25 +254,27 @@ module irnuc_axil_regs
   assign decode_now = aw_held_q && w_held_q && !dec_q && !b_valid_q;
   assign wr         = dec_q;
   assign w_hit      = decode(aw_addr_q[AddrBits-1:2]);
+  // A holding register fills on its valid while empty and empties with the write cycle (it
+  // is full then: no transfer in the same cycle).
+  assign aw_held_d  = !dec_q && (aw_held_q || s_axil_awvalid_i);
+  assign w_held_d   = !dec_q && (w_held_q || s_axil_wvalid_i);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_write_channel
     if (!rst_ni) begin
-      aw_held_q <= 1'b0;
-      w_held_q  <= 1'b0;
-      dec_q     <= 1'b0;
-      b_valid_q <= 1'b0;
-      b_resp_q  <= AxiOkay;
+      aw_held_q  <= 1'b0;
+      w_held_q   <= 1'b0;
+      aw_ready_q <= 1'b1;
+      w_ready_q  <= 1'b1;
+      dec_q      <= 1'b0;
+      b_valid_q  <= 1'b0;
+      b_resp_q   <= AxiOkay;
     end else begin
-      if (s_axil_awvalid_i && !aw_held_q) begin
-        aw_held_q <= 1'b1;
-      end
-      if (s_axil_wvalid_i && !w_held_q) begin
-        w_held_q <= 1'b1;
-      end
-      dec_q <= decode_now;
+      aw_held_q  <= aw_held_d;
+      w_held_q   <= w_held_d;
+      aw_ready_q <= !aw_held_d;
+      w_ready_q  <= !w_held_d;
+      dec_q      <= decode_now;
       if (dec_q) begin
-        aw_held_q <= 1'b0;
-        w_held_q  <= 1'b0;
         b_valid_q <= 1'b1;
         // OKAY for a writable or reserved register, SLVERR for a read-only or unmapped
         // one and for an illegal frame size (from the decode cycle's registers).
@@ -279,18 +286,20 @@ module irnuc_axil_regs
     end
   end
 
+  // An empty holding register follows its input (the enable is a flop, not the handshake):
+  // it keeps what it had in the cycle it filled.
   always_ff @(posedge clk_i) begin : p_write_payload
-    if (s_axil_awvalid_i && !aw_held_q) begin
+    if (!aw_held_q) begin
       aw_addr_q <= s_axil_awaddr_i;
     end
-    if (s_axil_wvalid_i && !w_held_q) begin
+    if (!w_held_q) begin
       w_data_q <= s_axil_wdata_i;
       w_strb_q <= s_axil_wstrb_i;
     end
   end
 
-  assign s_axil_awready_o = !aw_held_q;
-  assign s_axil_wready_o  = !w_held_q;
+  assign s_axil_awready_o = aw_ready_q;
+  assign s_axil_wready_o  = w_ready_q;
   assign s_axil_bvalid_o  = b_valid_q;
   assign s_axil_bresp_o   = b_resp_q;
 
@@ -470,11 +479,12 @@ module irnuc_axil_regs
       size_dirty_q <= 1'b0;
     end else begin
       pending_q    <= shadow_touch || (pending_q && !start_i);
-      size_dirty_q <= (wr_size && |(wmask & SizeMask)) || (size_dirty_q && !start_i);
+      size_dirty_q <= size_write_o || (size_dirty_q && !start_i);
     end
   end
 
   assign size_dirty_o = size_dirty_q;
+  assign size_write_o = wr_size && |(wmask & SizeMask);
 
   // ---- STATUS, IRQ ---------------------------------------------------------------------------
   logic [NumErrors-1:0] err_q, err_ev;
@@ -577,38 +587,42 @@ module irnuc_axil_regs
 
   // ---- read channel: hold the address, decode (a cycle), read (a cycle) -------------------------
   logic                     ar_held_q, rdec_q, r_valid_q;
+  logic                     ar_busy_d, ar_busy_q, ar_ready_q;  // busy: held, decoded or answered
+  logic                     r_valid_d;
   logic [AddrBits-1:0]      ar_addr_q;
   logic [NumRegs-1:0]       rsel_q;
   logic [31:0]              r_data_q, rd_data;
   axi_resp_e                r_resp_q;
   logic [NumRegs-1:0][31:0] rvals;
 
+  // A read address is taken when none is held, decoded or answered (busy); arready is a flop
+  // of its own, the complement of ar_busy_q, which the logic reads.
+  assign r_valid_d = rdec_q || (r_valid_q && !s_axil_rready_i);
+  assign ar_busy_d = (s_axil_arvalid_i && !ar_busy_q) || ar_held_q || r_valid_d;
+
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_channel
     if (!rst_ni) begin
-      ar_held_q <= 1'b0;
-      rdec_q    <= 1'b0;
-      r_valid_q <= 1'b0;
-      r_resp_q  <= AxiOkay;
+      ar_held_q  <= 1'b0;
+      ar_busy_q  <= 1'b0;
+      ar_ready_q <= 1'b1;
+      rdec_q     <= 1'b0;
+      r_valid_q  <= 1'b0;
+      r_resp_q   <= AxiOkay;
     end else begin
-      if (s_axil_arvalid_i && s_axil_arready_o) begin
-        ar_held_q <= 1'b1;
-      end
-      if (ar_held_q) begin
-        ar_held_q <= 1'b0;
-        rdec_q    <= 1'b1;
-      end
+      ar_held_q  <= s_axil_arvalid_i && !ar_busy_q;
+      ar_busy_q  <= ar_busy_d;
+      ar_ready_q <= !ar_busy_d;
+      rdec_q     <= ar_held_q;
+      r_valid_q  <= r_valid_d;
       if (rdec_q) begin
-        rdec_q    <= 1'b0;
-        r_valid_q <= 1'b1;
-        r_resp_q  <= (|rsel_q) ? AxiOkay : AxiSlvErr;
-      end else if (s_axil_rready_i) begin
-        r_valid_q <= 1'b0;
+        r_resp_q <= (|rsel_q) ? AxiOkay : AxiSlvErr;
       end
     end
   end
 
+  // The address register follows the input while no read is in progress (see the write).
   always_ff @(posedge clk_i) begin : p_read_payload
-    if (s_axil_arvalid_i && s_axil_arready_o) begin
+    if (!ar_busy_q) begin
       ar_addr_q <= s_axil_araddr_i;
     end
     if (ar_held_q) begin
@@ -619,7 +633,7 @@ module irnuc_axil_regs
     end
   end
 
-  assign s_axil_arready_o = !ar_held_q && !rdec_q && !r_valid_q;
+  assign s_axil_arready_o = ar_ready_q;
   assign s_axil_rvalid_o  = r_valid_q;
   assign s_axil_rdata_o   = r_data_q;
   assign s_axil_rresp_o   = r_resp_q;
@@ -688,5 +702,30 @@ module irnuc_axil_regs
   // Address bits 1:0 select a byte of the word (not used: whole words are read).
   logic unused_addr;
   assign unused_addr = ^{aw_addr_q[1:0], ar_addr_q[1:0]};
+
+`ifdef IRNUC_ASSERT
+  // The ports are checked in the top (irnuc_axil_assert); here the ready flops: each is the
+  // complement of the state it stands for.
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_aw_ready: assert (aw_ready_q == !aw_held_q)
+        else $error("irnuc_axil_regs: awready is not 'no write address held'");
+      a_w_ready: assert (w_ready_q == !w_held_q)
+        else $error("irnuc_axil_regs: wready is not 'no write data held'");
+      a_ar_busy: assert (ar_busy_q == (ar_held_q || rdec_q || r_valid_q))
+        else $error("irnuc_axil_regs: the read channel's busy flag lost its read");
+      a_ar_ready: assert (ar_ready_q == !ar_busy_q)
+        else $error("irnuc_axil_regs: arready is not 'no read in progress'");
+    end
+  end
+`endif
 
 endmodule

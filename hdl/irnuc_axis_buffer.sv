@@ -9,8 +9,15 @@
 // join, whose decision to take an item is the deepest logic; with a spill register that
 // decision fanned out to the enables of every data bit (the critical path). The input side
 // is checked by the user (irnuc_axis_assert, method_ffc_top's stream checkers).
+//
+// HeadBits > 0: the top HeadBits bits of the data (the markers the consumer decides on, e.g.
+// the video's tuser/tlast) come from a register of their own that holds the older entry's
+// bits, loaded in the cycle that entry becomes the older one: the consumer's decision
+// starts at flops, not behind the read pointer's multiplexer (its ready_i reaches the
+// enables of these few bits only).
 module irnuc_axis_buffer #(
-  parameter int unsigned DataBits = 1
+  parameter int unsigned DataBits = 1,
+  parameter int unsigned HeadBits = 0  // top bits from a head register, < DataBits
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -28,6 +35,9 @@ module irnuc_axis_buffer #(
   initial begin : p_param_ranges
     assert (DataBits >= 1)
       else $fatal(1, "irnuc_axis_buffer: DataBits = %0d must be at least 1", DataBits);
+    assert (HeadBits < DataBits)
+      else $fatal(1, "irnuc_axis_buffer: HeadBits = %0d must be below DataBits = %0d",
+                  HeadBits, DataBits);
   end
 `endif
 
@@ -68,16 +78,40 @@ module irnuc_axis_buffer #(
 
   assign ready_o = !full_q;
   assign valid_o = any_q;
-  // The read pointer selects every data bit: its complement copy (a distinct flop, which
-  // synthesis does not merge with it) selects the upper half, so each drives half the
-  // fanout (the wide coefficient words: docs/rtl.md).
-  localparam int unsigned Lo = (DataBits + 1) / 2;
+  // The read pointer selects every data bit below the head bits: its complement copy (a
+  // distinct flop, which synthesis does not merge with it) selects the upper half, so each
+  // drives half the fanout (the wide coefficient words: docs/rtl.md).
+  localparam int unsigned MuxBits = DataBits - HeadBits;
+  localparam int unsigned Lo      = (MuxBits + 1) / 2;
   assign data_o[Lo-1:0] = mem_q[rd_q][Lo-1:0];
-  if (DataBits > Lo) begin : gen_hi
-    assign data_o[DataBits-1:Lo] = rd_n_q ? mem_q[0][DataBits-1:Lo] : mem_q[1][DataBits-1:Lo];
+  if (MuxBits > Lo) begin : gen_hi
+    assign data_o[MuxBits-1:Lo] = rd_n_q ? mem_q[0][MuxBits-1:Lo] : mem_q[1][MuxBits-1:Lo];
   end else begin : gen_no_hi
     logic unused_rd_n;
     assign unused_rd_n = rd_n_q;
+  end
+
+  // The head bits: the older entry's, registered. The register loads when the older entry
+  // leaves or none is held: then the entry that becomes the older one is the other entry
+  // (two held) or the input (pushed now; with no push, the bits are not valid).
+  if (HeadBits > 0) begin : gen_head
+    logic [HeadBits-1:0] head_q, head_next;
+    assign head_next = full_q ? mem_q[!rd_q][DataBits-1:MuxBits] : data_i[DataBits-1:MuxBits];
+    always_ff @(posedge clk_i) begin : p_head
+      if (!any_q || ready_i) begin
+        head_q <= head_next;
+      end
+    end
+    assign data_o[DataBits-1:MuxBits] = head_q;
+`ifdef IRNUC_ASSERT
+    // (any_q resets to 0: no check in reset.)
+    always_ff @(posedge clk_i) begin : p_check_head
+      if (any_q) begin
+        a_head: assert (head_q == mem_q[rd_q][DataBits-1:MuxBits])
+          else $error("irnuc_axis_buffer: the head bits are not the older entry's");
+      end
+    end
+`endif
   end
 
 `ifdef IRNUC_ASSERT

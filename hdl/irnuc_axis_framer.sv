@@ -33,7 +33,10 @@
 //
 // Every decision comes from registers (the input registers of the top, this module's
 // state, counters and flags); the output is a spill register, so every output is a flop
-// but the word, which is masked behind it (NUC off, DPC off, filler).
+// but the word, which is masked behind it (NUC off, DPC off, filler). The decision to send
+// an item (fire) is the deepest logic, and fans out widely: it starts at flops one level
+// from it (the states one-hot, beside their encoded copies; the input buffers' markers from
+// their head registers), and the count of items in flight follows it a cycle late.
 module irnuc_axis_framer
   import irnuc_pkg::*;
 #(
@@ -84,6 +87,7 @@ module irnuc_axis_framer
   input  logic                  pend_width_is1_i,
   input  logic                  pend_height_is1_i,
   input  logic                  size_dirty_i,
+  input  logic                  size_write_i,  // FRAME_SIZE changes now (size_dirty_i next)
   input  logic                  pend_nuc_en_i,
   input  logic                  pend_dpc_en_i,
   input  logic                  pend_coef_sync_i,
@@ -149,24 +153,33 @@ module irnuc_axis_framer
   logic                  act_w_is1_q, act_nuc_q, act_dpc_q, act_sync_q;
   // Items in flight to the core's output, and the drain before a new frame size.
   logic [FlightBits-1:0] flight_q;
-  logic                  empty_q, drained_q;
+  logic                  fire_q, empty_q, drained_q;
+  // The states one-hot (copies of vst_q, cst_q for the item decision).
+  logic                  s_wait_q, s_frame_q, s_pad_q, s_drop_q;
+  // Waiting and free to start a frame (s_wait_q && start_ok, registered).
+  logic                  wait_ok_q, wait_ok_d;
+  logic                  c_normal_q, c_fill_q, c_skip_q;
 
   // ---- what happens this cycle ----------------------------------------------------------
-  logic start_ok, starting, pix_item, pad_item, item, word_ok, fire;
+  logic start_ok, starting, pix_item, pad_item, item, word_ok, go, fire, start_fire;
   logic take_beat, drop_beat, take_coef, last;
   logic eff_nuc, eff_dpc, eff_sync;
   logic out_ready;
 
   // A new frame size waits for the drain (drained_q is at least a cycle after the write,
   // so the position registers are preloaded from the new size).
+  // start_ok (registered as wait_ok_q below).
   assign start_ok = !size_dirty_i || drained_q;
-  assign starting = (vst_q == AxisWait);
-  assign pix_item = (vid_valid_i && !vid_sof_i && (vst_q == AxisFrame))
-                    || (vid_valid_i && vid_sof_i && starting && start_ok);
-  assign pad_item = (vst_q == AxisPad);
+  assign starting = s_wait_q;
+  assign pix_item = vid_valid_i && (vid_sof_i ? wait_ok_q : s_frame_q);
+  assign pad_item = s_pad_q;
   assign item     = pix_item || pad_item;
-  assign word_ok  = (cst_q == CoefNormal && coef_valid_i) || (cst_q == CoefFill);
-  assign fire     = item && word_ok && out_ready;
+  assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
+  assign go       = word_ok && out_ready;  // the word and the output allow an item
+  assign fire     = go && item;
+  // A frame's first item (fire && starting) straight from flops: waiting, only a start of
+  // frame is an item (the states are one-hot: a_start_fire).
+  assign start_fire = go && vid_valid_i && vid_sof_i && wait_ok_q;
   assign last     = xl_q && yl_q;
 
   // The start item takes the pending settings; the others the active ones.
@@ -176,13 +189,13 @@ module irnuc_axis_framer
 
   // Beats dropped: without start of frame while waiting; in AxisDrop, except a start of
   // frame (it opens the next frame, or closes this one early).
-  assign drop_beat = vid_valid_i && !vid_sof_i && (starting || vst_q == AxisDrop);
+  assign drop_beat = vid_valid_i && !vid_sof_i && (starting || s_drop_q);
   assign take_beat = (fire && pix_item) || drop_beat;
-  assign take_coef = (fire && cst_q == CoefNormal) || (cst_q == CoefSkip && coef_valid_i);
+  assign take_coef = (fire && c_normal_q) || (c_skip_q && coef_valid_i);
 
   assign vid_ready_o  = take_beat;
   assign coef_ready_o = take_coef;
-  assign start_o      = fire && starting;
+  assign start_o      = start_fire;
 
   // ---- next state ---------------------------------------------------------------------------
   // Each register's next value with and without an item sent, from registers only; `fire`
@@ -244,7 +257,7 @@ module irnuc_axis_framer
     vst_f       = AxisFrame;
     pad_frame_f = pad_frame_q;
     done_f      = done_q;
-    if (vst_q == AxisPad) begin
+    if (s_pad_q) begin
       if (last) begin
         vst_f = AxisWait;
       end else if (!(xl_q && !pad_frame_q)) begin
@@ -262,15 +275,15 @@ module irnuc_axis_framer
 
     // Coefficients (with coef_sync): tlast early, fill the frame; missing, skip to one.
     cst_n = cst_q;
-    if (cst_q == CoefSkip && take_coef && coef_last_i) begin
+    if (c_skip_q && coef_valid_i && coef_last_i) begin  // take_coef without fire
       cst_n = CoefNormal;
     end
     cst_f = cst_q;
-    if (cst_q == CoefFill) begin
+    if (c_fill_q) begin
       cst_f = last ? CoefNormal : CoefFill;
-    end else if (cst_q == CoefNormal && eff_sync && coef_last_i && !last) begin
+    end else if (c_normal_q && eff_sync && coef_last_i && !last) begin
       cst_f = CoefFill;
-    end else if (cst_q == CoefNormal && eff_sync && !coef_last_i && last) begin
+    end else if (c_normal_q && eff_sync && !coef_last_i && last) begin
       cst_f = CoefSkip;
     end
 
@@ -289,6 +302,14 @@ module irnuc_axis_framer
     if (!rst_ni) begin
       vst_q       <= AxisWait;
       cst_q       <= CoefNormal;
+      s_wait_q    <= 1'b1;
+      wait_ok_q   <= 1'b1;
+      s_frame_q   <= 1'b0;
+      s_pad_q     <= 1'b0;
+      s_drop_q    <= 1'b0;
+      c_normal_q  <= 1'b1;
+      c_fill_q    <= 1'b0;
+      c_skip_q    <= 1'b0;
       xr_q        <= '0;
       yr_q        <= '0;
       xl_q        <= 1'b1;
@@ -299,6 +320,14 @@ module irnuc_axis_framer
     end else begin
       vst_q       <= vst_d;
       cst_q       <= cst_d;
+      s_wait_q    <= (vst_d == AxisWait);
+      wait_ok_q   <= wait_ok_d;
+      s_frame_q   <= (vst_d == AxisFrame);
+      s_pad_q     <= (vst_d == AxisPad);
+      s_drop_q    <= (vst_d == AxisDrop);
+      c_normal_q  <= (cst_d == CoefNormal);
+      c_fill_q    <= (cst_d == CoefFill);
+      c_skip_q    <= (cst_d == CoefSkip);
       xr_q        <= xr_d;
       yr_q        <= yr_d;
       xl_q        <= xl_d;
@@ -320,7 +349,7 @@ module irnuc_axis_framer
       act_nuc_q   <= 1'b1;
       act_dpc_q   <= 1'b1;
       act_sync_q  <= 1'b1;
-    end else if (fire && starting) begin
+    end else if (start_fire) begin
       act_w_q     <= pend_width_i;
       act_wm1_q   <= pend_width_m1_i;
       act_w_is1_q <= pend_width_is1_i;
@@ -338,13 +367,17 @@ module irnuc_axis_framer
   assign act_height_m1_o = act_hm1_q;
 
   // ---- items in flight: the drain before a new frame size --------------------------------
+  // flight_q counts the items sent up to the cycle before last (fire_q: the last cycle's)
+  // less those that left the core: the items in flight are flight_q + fire_q, and `fire`
+  // reaches no carry chain.
   logic [FlightBits-1:0] flight_d;
+  logic                  drained_d, dirty_d;
 
   always_comb begin : p_flight
     flight_d = flight_q;
-    if (fire && !core_out_i) begin
+    if (fire_q && !core_out_i) begin
       flight_d = flight_q + FlightBits'(1);
-    end else if (!fire && core_out_i) begin
+    end else if (!fire_q && core_out_i) begin
       flight_d = flight_q - FlightBits'(1);
     end
   end
@@ -352,14 +385,23 @@ module irnuc_axis_framer
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_drain
     if (!rst_ni) begin
       flight_q  <= '0;
+      fire_q    <= 1'b0;
       empty_q   <= 1'b1;
       drained_q <= 1'b0;
     end else begin
       flight_q  <= flight_d;
-      empty_q   <= (flight_q == '0) && !fire;  // an item leaves only when one is in flight
-      drained_q <= empty_q && size_dirty_i && starting && !fire;
+      fire_q    <= fire;
+      // An item leaves only when one is in flight.
+      empty_q   <= (flight_q == '0) && !fire_q && !fire;
+      drained_q <= drained_d;
     end
   end
+
+  // start_ok of the next cycle: size_dirty_i's next value (the register file's: a write of
+  // the frame size sets it, the frame start clears it) and drained_q's.
+  assign drained_d = empty_q && size_dirty_i && starting && !fire;
+  assign dirty_d   = size_write_i || (size_dirty_i && !start_fire);
+  assign wait_ok_d = (vst_d == AxisWait) && (!dirty_d || drained_d);
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
   // The word enters the output register as it comes with two flags, and
@@ -373,8 +415,8 @@ module irnuc_axis_framer
   // behind the register give the neutral word whatever it holds (the fill decode no
   // longer fans out to every word bit).
   assign word_in = coef_data_i;
-  assign nuc_off = (cst_q == CoefFill) || !eff_nuc;
-  assign dpc_off = (cst_q == CoefFill) || !eff_dpc;
+  assign nuc_off = c_fill_q || !eff_nuc;
+  assign dpc_off = c_fill_q || !eff_dpc;
 
   always_comb begin : p_word
     word = out_word;
@@ -420,17 +462,16 @@ module irnuc_axis_framer
       coef_late_o   <= 1'b0;
       in_frame_o    <= 1'b0;
     end else begin
-      frame_start_o <= fire && starting;
+      frame_start_o <= start_fire;
       beat_o        <= take_beat;
       drop_o        <= drop_beat;
       pad_o         <= fire && pad_item;
-      sof_early_o   <= vid_valid_i && vid_sof_i && ((vst_q == AxisFrame)
-                                                    || (vst_q == AxisDrop && !done_q));
+      sof_early_o   <= vid_valid_i && vid_sof_i && (s_frame_q || (s_drop_q && !done_q));
       sof_late_o    <= drop_beat && starting && !late_q;
       eol_early_o   <= fire && pix_item && vid_eol_i && !xl_q;
       eol_late_o    <= fire && pix_item && !vid_eol_i && xl_q;
-      coef_early_o  <= fire && cst_q == CoefNormal && eff_sync && coef_last_i && !last;
-      coef_late_o   <= fire && cst_q == CoefNormal && eff_sync && !coef_last_i && last;
+      coef_early_o  <= fire && c_normal_q && eff_sync && coef_last_i && !last;
+      coef_late_o   <= fire && c_normal_q && eff_sync && !coef_last_i && last;
       in_frame_o    <= (vst_d != AxisWait);
     end
   end
@@ -448,8 +489,19 @@ module irnuc_axis_framer
   end
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
-      a_flight_range: assert (!(core_out_i && flight_q == '0))
+      a_flight_range: assert (!(core_out_i && flight_q == '0 && !fire_q))
         else $error("irnuc_axis_framer: an item left the core that was never sent");
+      a_wait_ok: assert (wait_ok_q == (starting && start_ok))
+        else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
+      a_start_fire: assert (start_fire == (fire && starting))
+        else $error("irnuc_axis_framer: start_fire is not a frame's first item");
+      a_vid_onehot: assert ({s_wait_q, s_frame_q, s_pad_q, s_drop_q}
+                            == {vst_q == AxisWait, vst_q == AxisFrame, vst_q == AxisPad,
+                                vst_q == AxisDrop})
+        else $error("irnuc_axis_framer: the one-hot video state is not vst_q");
+      a_coef_onehot: assert ({c_normal_q, c_fill_q, c_skip_q}
+                             == {cst_q == CoefNormal, cst_q == CoefFill, cst_q == CoefSkip})
+        else $error("irnuc_axis_framer: the one-hot coefficient state is not cst_q");
     end
   end
 `endif

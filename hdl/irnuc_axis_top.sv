@@ -229,8 +229,9 @@ module irnuc_axis_top
   logic [WordBits-1:0] coef_data;
 
   // Each input behind irnuc_axis_buffer: the framer's take decisions move only its
-  // pointers and flags, not the enables of its data registers (docs/rtl.md).
-  irnuc_axis_buffer #(.DataBits(AdcBits + 2)) u_vid_in (
+  // pointers and flags, not the enables of its data registers (docs/rtl.md); the markers
+  // the framer decides on (tuser, tlast) come from the buffers' head registers.
+  irnuc_axis_buffer #(.DataBits(AdcBits + 2), .HeadBits(2)) u_vid_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_video_tvalid),
@@ -241,7 +242,7 @@ module irnuc_axis_top
     .data_o ({vid_sof, vid_eol, vid_data})
   );
 
-  irnuc_axis_buffer #(.DataBits(WordBits + 1)) u_coef_in (
+  irnuc_axis_buffer #(.DataBits(WordBits + 1), .HeadBits(1)) u_coef_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_axis_coef_tvalid),
@@ -255,7 +256,8 @@ module irnuc_axis_top
   // ---- register file -----------------------------------------------------------------------
   logic [WidthBits-1:0]  pend_w, pend_wm1, act_w, act_wm1;
   logic [HeightBits-1:0] pend_h, pend_hm1, act_h, act_hm1;
-  logic                  pend_w_is1, pend_h_is1, size_dirty, pend_nuc, pend_dpc, pend_sync;
+  logic                  pend_w_is1, pend_h_is1, size_dirty, size_write, pend_nuc, pend_dpc;
+  logic                  pend_sync;
   logic [7:0][63:0]      slots;
   logic [RegTableReadingCount-1:0][31:0] table_readings;
   logic                  start, frame_start, beat, drop, pad, in_frame;
@@ -315,6 +317,7 @@ module irnuc_axis_top
     .width_is1_o     (pend_w_is1),
     .height_is1_o    (pend_h_is1),
     .size_dirty_o    (size_dirty),
+    .size_write_o    (size_write),
     .nuc_en_o        (pend_nuc),
     .dpc_en_o        (pend_dpc),
     .coef_sync_o     (pend_sync),
@@ -403,6 +406,7 @@ module irnuc_axis_top
     .pend_width_is1_i (pend_w_is1),
     .pend_height_is1_i(pend_h_is1),
     .size_dirty_i     (size_dirty),
+    .size_write_i     (size_write),
     .pend_nuc_en_i    (pend_nuc),
     .pend_dpc_en_i    (pend_dpc),
     .pend_coef_sync_i (pend_sync),
