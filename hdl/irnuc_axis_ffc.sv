@@ -234,13 +234,13 @@ module irnuc_axis_ffc
   localparam int unsigned RunBits = $clog2(FfcFrames + 1);
   logic [RunBits-1:0] run_q;
   logic               busy_q, begun_q, ended_q, open_sof, short_end, refreshed, none;
-  logic               done_e, done_q;
+  logic               done_e, done_q, none_q;
 
   assign open_sof  = item_take && in_sof && !item_shutter;
   assign short_end = open_sof && begun_q && !ended_q && run_q < RunBits'(FfcFrames);
   assign refreshed = begun_q && m_axis_foff_tvalid && m_axis_foff_tready
                      && m_axis_foff_tlast;
-  assign none      = start_i && ffc_armed_q && ffc_frames_i == '0;
+  assign none      = none_q;  // FFC_CTRL.frames = 0: the frame start of the cycle before
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_run
     if (!rst_ni) begin
@@ -278,8 +278,10 @@ module irnuc_axis_ffc
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_done
     if (!rst_ni) begin
       done_q <= 1'b0;
+      none_q <= 1'b0;
     end else begin
       done_q <= done_e;
+      none_q <= start_i && ffc_armed_q && ffc_frames_i == '0;
     end
   end
   assign ffc_busy_o = busy_q;
@@ -318,6 +320,22 @@ module irnuc_axis_ffc
     .data_o (acc_data)
   );
 
+  // The core's frame size: copies of the framer's (flops beside the core, a cycle behind:
+  // the framer takes a new size with a frame's first item once the core is drained, and
+  // that item reaches the core through two registers, u_out and u_item_in).
+  logic [WidthBits-1:0]  core_w_q;
+  logic [HeightBits-1:0] core_h_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_core_size
+    if (!rst_ni) begin
+      core_w_q <= WidthBits'(MaxWidth);
+      core_h_q <= HeightBits'(MaxHeight);
+    end else begin
+      core_w_q <= act_w_i;
+      core_h_q <= act_h_i;
+    end
+  end
+
   method_ffc_top #(
     .Method          (Method),
     .AdcBits         (AdcBits),
@@ -354,8 +372,8 @@ module irnuc_axis_ffc
   ) u_core (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
-    .frame_width_i     (act_w_i),
-    .frame_height_i    (act_h_i),
+    .frame_width_i     (core_w_q),
+    .frame_height_i    (core_h_q),
     .s_pix_valid_i     (fork_pix_valid),
     .s_pix_ready_o     (core_pix_ready),
     .s_pix_data_i      (in_raw),
@@ -486,6 +504,8 @@ module irnuc_axis_ffc
     if (armed_q) begin
       a_wb_size: assert (wb_beat == '0 || (wb_wm1_q == act_wm1_i && wb_hm1_q == act_hm1_i))
         else $error("irnuc_axis_ffc: a write-back word counted in the cycle after a new frame size");
+      a_core_size: assert (!pix_take || (core_w_q == act_w_i && core_h_q == act_h_i))
+        else $error("irnuc_axis_ffc: a pixel entered the core in the cycle after a new frame size");
       a_done_once: assert (!(done_q && done_e))
         else $error("irnuc_axis_ffc: an FFC run ended in two consecutive cycles");
     end
