@@ -211,7 +211,7 @@ module irnuc_axis_ffc
   // is never output: its items leave the core's count as they enter it (the framer's
   // drain before a new frame size); the same rule as ffc_ctrl's, on the flag the core
   // reads at sof.
-  logic held_q, held_e, open_q;
+  logic held_q, held_e, open_q, core_out_q;
   assign item_shutter = in_frame[ItemFrameBits-1];
   assign held_e       = in_sof ? (FfcHold != 0) && item_shutter && open_q : held_q;
 
@@ -224,7 +224,16 @@ module irnuc_axis_ffc
       open_q <= open_q || !item_shutter;
     end
   end
-  assign core_out_o = pix_out || (item_take && held_e);
+  // The framer counts an item out a cycle late (a flop: the fork's take and the output's
+  // ready do not reach the framer's in-flight adder); its drain waits a cycle longer.
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_core_out
+    if (!rst_ni) begin
+      core_out_q <= 1'b0;
+    end else begin
+      core_out_q <= pix_out || (item_take && held_e);
+    end
+  end
+  assign core_out_o = core_out_q;
 
   // FFC_STATUS: busy from FFC_CTRL.start until its run finished: the refresh frame's
   // last new offset taken on m_axis_foff (done, IRQ_STATUS.ffc_done), or, for a run

@@ -656,10 +656,10 @@ CATALOGUE: tuple[Mutant, ...] = (
         **_AXF),
     # The registers of session 32 (Fmax): the item's input buffer, done a cycle late, the
     # write-back counters' size copies.
-    _ma("ax_ffc_held_sof_unbuffered", "irnuc_axis_ffc.sv",
-        "assign held_e       = in_sof ?", "assign held_e       = item_sof_i ?",
-        "the held-frame decision reads the framer's sof, not the sof of the item at the fork "
-        "(behind u_item_in)", **_AXF),
+    _ma("ax_ffc_pix_unbuffered", "irnuc_axis_ffc.sv",
+        ".s_pix_data_i      (in_raw),", ".s_pix_data_i      (item_raw_i),",
+        "the core's pixel taken from the framer's item, not from u_item_in's (the pixel an item "
+        "ahead of its word)", **_AXF),
     _ma("ax_ffc_busy_clears_early", "irnuc_axis_ffc.sv",
         "        if (ffc_done_o) begin\n          busy_q <= 1'b0;",
         "        if (done_e) begin\n          busy_q <= 1'b0;",
