@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+from collections.abc import Sequence
 
 import cocotb
 import numpy as np
@@ -107,12 +108,19 @@ async def run_frames(dut, frames: list[MethodFrame], golden: PipelineConfig,
 
 def _check(res: ScoreResult, frames: list[MethodFrame], cfg: PipelineConfig,
            golden: PipelineConfig, taken: list[int] | None = None,
-           patterns: tuple[str, str, str] | None = None) -> None:
+           patterns: tuple[str, str, str] | None = None,
+           bins: Sequence[tuple[str, str]] = ()) -> None:
     """The scoreboard's verdict (AssertionError with the first mismatch lines); on a pass
-    the frames' coverage is sampled."""
+    the frames' coverage is sampled (against the configuration's own golden model), and
+    ``bins`` (coverpoint, bin) the test reached."""
     tb_lib.assert_passed(res)
     cov = _model(cfg)
-    if cov is None or golden != cfg:
+    if cov is None:
+        return
+    for point, name in bins:
+        cov.sample(point, name)
+    if golden != cfg:
+        coverage.export()
         return
     for fr in frames:
         cov.sample_frame(fr.coeffs, fr.raw, fr.reading)
@@ -217,11 +225,7 @@ async def frame_size_changes(dut) -> None:
         await ClockCycles(dut.clk_i, 60)  # the previous frame leaves: a new size is safe
         frames = _frames(_plans(cfg, rng, [shape, shape]), golden)
         res, _, taken = await run_frames(dut, frames, golden, rng)
-        _check(res, frames, cfg, golden, taken)
-        cov = _model(cfg)
-        if cov is not None:
-            cov.sample("frame.transition", "after_idle")
-            coverage.export()
+        _check(res, frames, cfg, golden, taken, bins=[("frame.transition", "after_idle")])
 
 
 @cocotb.test()
@@ -253,11 +257,7 @@ async def reset_mid_frame(dut) -> None:
     frames = _frames(_plans(cfg, rng, [(6, 10)]), golden)
     res, _, taken = await run_frames(dut, frames, golden, rng, idle_pix="random",
                                      backpressure="random")
-    _check(res, frames, cfg, golden, taken)
-    cov = _model(cfg)
-    if cov is not None:
-        cov.sample("reset.mid_frame", "reset")
-        coverage.export()
+    _check(res, frames, cfg, golden, taken, bins=[("reset.mid_frame", "reset")])
 
 
 @cocotb.test()

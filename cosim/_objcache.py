@@ -11,7 +11,7 @@ make links them instead of compiling them again. The design's own objects (the m
 cocotb's ``verilator.cpp``, which includes the model's header) are always compiled.
 
 Run by the cocotb runner between Verilator and make (``cosim._cocotb_adapter``):
-``python -m irnuc.cosim._objcache seed|store BUILD_DIR``.
+``python -P <this file> seed|store BUILD_DIR`` (a script: no import of irnuc.cosim).
 """
 
 from __future__ import annotations
@@ -108,7 +108,7 @@ def store(build_dir: Path) -> bool:
 
 def main(argv: list[str]) -> int:
     if len(argv) != 2 or argv[0] not in ("seed", "store"):
-        print("usage: python -m irnuc.cosim._objcache seed|store BUILD_DIR", file=sys.stderr)
+        print("usage: python -P _objcache.py seed|store BUILD_DIR", file=sys.stderr)
         return 2
     build_dir = Path(argv[1])
     if argv[0] == "seed":

@@ -75,13 +75,15 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
             f'#include "V{top}.h"\nusing BulkTop = V{top};\n' + BULK_TOPS[top])
         cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
-               "-CFLAGS", f"-I{build_dir}",
                *[f"-G{k}={v}" for k, v in params.items()],
                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
         from irnuc.cosim import _objcache
 
-        # Verilator, the shared runtime objects, make (as the cocotb builds do).
+        # Verilator, the shared runtime objects, make (as the cocotb builds do). The harness
+        # finds bulk_top.h through the makefile's own ``-I.`` (make runs in build_dir): a
+        # ``-I<build_dir>`` flag would make every build's runtime-object key differ, so each
+        # bulk build would compile Verilator's runtime again.
         proc = run_child(cmd, env=verilator_env(), log=log)
         if proc.returncode == 0:
             _objcache.seed(build_dir)

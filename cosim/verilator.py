@@ -13,10 +13,12 @@ import importlib.util
 import os
 import subprocess
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from irnuc.common.errors import ToolError
-from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
-from irnuc.nuc_fixed.config import PipelineConfig
+
+if TYPE_CHECKING:
+    from irnuc.nuc_fixed.config import PipelineConfig
 
 
 class RtlError(ToolError):
@@ -67,6 +69,10 @@ def lint(top: str, cfg: PipelineConfig) -> subprocess.CompletedProcess[str]:
 
     Returns the completed process (``returncode`` 0 and no ``%Warning`` when clean).
     """
+    # Imported here: the rest of this module (finding the wheel, its environment) serves
+    # the cocotb child of every build and simulation, which must not import the golden model.
+    from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
+
     cmd = [
         str(verilator_executable()), "--lint-only", "-Wall", ASSERT_DEFINE, "--top-module", top,
         *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],

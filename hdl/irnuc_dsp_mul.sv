@@ -3,7 +3,7 @@
 // valid flags qualify the data.
 //
 // Both registers are the DSP block's own, so the multiplier array is between two registers
-// of the block and no fabric path goes through it (docs/rtl.md, "Multipliers"):
+// of the block and no fabric path goes through it (docs/synthesis.md, the methods' timing):
 //   * ECP5 (`define IRNUC_ECP5, set by irnuc synth's ECP5 flow): MULT18X18D instantiated
 //     with REG_INPUTA/REG_INPUTB and REG_OUTPUT on CLK0, clock enable CE0; Yosys does not
 //     map fabric registers into it, so it is instantiated. nextpnr then times it as a

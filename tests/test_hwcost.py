@@ -84,6 +84,30 @@ def test_recommendation_is_the_cheapest_meeting_the_tolerance() -> None:
     assert not H.recommend(pts, 0.1, "err_max_lsb")["found"]
 
 
+def test_recommendation_is_synthesized_when_the_model_picks_another() -> None:
+    """Three candidates at the same memory; only 0 synthesized. The model costs 2 lowest,
+    its synthesis shows it dear, then 1 is chosen on its prediction and synthesized too: the
+    choice ends on a synthesized point, with one synthesis per round."""
+    pts = [_pt(0, 1, 14, 12, 1, 0.9), _pt(1, 1, 13, 12, 2, 0.95), _pt(2, 1, 12, 12, 3, 0.97)]
+    real = {0: 700.0, 1: 650.0, 2: 900.0}
+    predicted = {0: 700.0, 1: 600.0, 2: 500.0}
+    synthesized: list[int] = [0]
+
+    def costs() -> dict[int, float]:
+        return {i: real[i] if i in synthesized else predicted[i] for i in real}
+
+    rec = H.recommend_synthesized(pts, 1.0, "err_max_lsb", costs, synthesized, synthesized.append)
+    assert rec["index"] == 1 and synthesized == [0, 2, 1]
+    # Already synthesized: nothing more is.
+    done = [0, 1, 2]
+    assert H.recommend_synthesized(pts, 1.0, "err_max_lsb", costs, done, done.append)["index"] == 1
+    assert done == [0, 1, 2]
+    # Nothing meets the tolerance: nothing is synthesized.
+    none: list[int] = []
+    assert not H.recommend_synthesized(pts, 0.1, "err_max_lsb", costs, none, none.append)["found"]
+    assert none == []
+
+
 def test_grid_edges_name_the_axis_and_the_way_to_widen() -> None:
     axes = {"gain_frac_bits": list(range(4, 15)), "offset_frac_bits": [0, 1, 2, 3, 4],
             "gain_int_bits": ["auto"]}

@@ -76,6 +76,7 @@ SCHEMA: dict[str, Any] = table({
     }, (*_FRAMES_REQUIRED, "gain_frac_bits", "offset_frac_bits", "max_error")),
     "synth": table({
         "fit_points": number(3, 16, integer=True),
+        "candidates": number(0, 16, integer=True),
         "workers": number(0, 16, integer=True),
         "speed": {"enum": [6, 7, 8]},
         "freq_mhz": number(1.0, 1000.0, unit="MHz"),

@@ -10,13 +10,14 @@
   points; its error is stated by leave-one-out over the fit points and against every
   synthesized point that was not used to fit it.
 * :func:`recommend`: the cheapest point meeting the error tolerance (memory first, then
-  the datapath) and :func:`grid_edges`: on which edge of the swept grid it lies.
+  the datapath), :func:`recommend_synthesized`: the same with the chosen point always
+  synthesized, and :func:`grid_edges`: on which edge of the swept grid it lies.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Container, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -204,6 +205,25 @@ def recommend(points: Sequence[Mapping[str, Any]], max_error: float, metric: str
     dp = datapath or {}
     best = min(least["points"], key=lambda i: (dp.get(i, 0.0), err[i], i))
     return {"found": True, "index": best, "candidates": list(least["points"])}
+
+
+def recommend_synthesized(points: Sequence[Mapping[str, Any]], max_error: float, metric: str,
+                          costs: Callable[[], Mapping[int, float]],
+                          synthesized: Container[int],
+                          synthesize: Callable[[int], None]) -> dict[str, Any]:
+    """:func:`recommend` on datapath costs that are synthesized where it matters.
+
+    ``costs()`` gives every point's datapath cost (synthesized, else the cost model's);
+    when the chosen point is not in ``synthesized``, ``synthesize(index)`` adds it and the
+    choice is made again on the new costs (a predicted cost can be too low). Ends with a
+    synthesized recommendation: each round synthesizes one more of the finitely many
+    candidates.
+    """
+    while True:
+        rec = recommend(points, max_error, metric, costs())
+        if not rec["found"] or rec["index"] in synthesized:
+            return rec
+        synthesize(rec["index"])
 
 
 def grid_edges(point: Mapping[str, Any], axes: Mapping[str, Sequence[Any]]) -> list[dict[str, str]]:

@@ -149,6 +149,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
         datapath_cost,
         fit_indices,
         recommend,
+        recommend_synthesized,
         synth_figures,
         widths,
     )
@@ -163,29 +164,44 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
     with rep.phase("synth"):
         fit = fit_indices(pts, int(sy.get("fit_points", 4)))
-        cand = recommend(pts, max_error, metric)["candidates"][:3]  # in order of error
-        todo = sorted(set(fit) | set(cand))
+        n_cand = int(sy.get("candidates", 3))
+        cand = recommend(pts, max_error, metric)["candidates"][:n_cand]  # in order of error
         typed = rep.studies["sweep"].sweep_points
-        cfgs = [recommended_config(typed[i], rows, cols) for i in todo]
-        results = synth_configs(cfgs, workers=int(sy.get("workers", 2)), scheduler=scheduler,
-                                progress=progress("synth", show_progress),
-                                speed=int(sy.get("speed", 6)), freq_mhz=float(sy.get("freq_mhz", 150.0)),
-                                seed=int(sy.get("seed", 1)))
-        synthesized = {i: r for i, r in zip(todo, results, strict=True)}
+        synth_kw = {"workers": int(sy.get("workers", 2)), "scheduler": scheduler,
+                    "speed": int(sy.get("speed", 6)), "freq_mhz": float(sy.get("freq_mhz", 150.0)),
+                    "seed": int(sy.get("seed", 1))}
+
+        def synthesize(indices: list[int], label: str) -> dict[int, dict[str, Any]]:
+            cfgs = [recommended_config(typed[i], rows, cols) for i in indices]
+            return dict(zip(indices, synth_configs(cfgs, progress=progress(label, show_progress),
+                                                   **synth_kw), strict=True))
+
+        synthesized = synthesize(sorted(set(fit) | set(cand)), "synth")
+        model = CostModel.fit([widths(pts[i]) for i in fit],
+                              [synth_figures(synthesized[i]) for i in fit])
+
+        def cost_points() -> dict[int, float]:
+            figs = {i: synth_figures(r) for i, r in synthesized.items()}
+            for p in pts:
+                i = p["index"]
+                hw = ({"source": "synthesized", **figs[i]} if i in figs
+                      else {"source": "model", **model.predict(widths(p))})
+                p["hw"] = hw
+                p["datapath_cost"] = round(datapath_cost(hw, dsp_w), 3)
+            return {p["index"]: p["datapath_cost"] for p in pts}
+
+        def synthesize_one(i: int) -> None:
+            synthesized.update(synthesize([i], "synth (recommendation)"))
+
+        # The recommendation is synthesized even when the model picks a candidate beyond
+        # the first ``candidates``.
+        rec = recommend_synthesized(pts, max_error, metric, cost_points, synthesized,
+                                    synthesize_one)
+        todo = sorted(synthesized)
         figs = {i: synth_figures(r) for i, r in synthesized.items()}
-        model = CostModel.fit([widths(pts[i]) for i in fit], [figs[i] for i in fit])
-        for p in pts:
-            i = p["index"]
-            if i in figs:
-                hw = {"source": "synthesized", **figs[i]}
-            else:
-                hw = {"source": "model", **model.predict(widths(p))}
-            p["hw"] = hw
-            p["datapath_cost"] = round(datapath_cost(hw, dsp_w), 3)
         held = [i for i in todo if i not in fit]
         heldout = model.errors([widths(pts[i]) for i in held], [figs[i] for i in held]) if held else {}
         every = model.errors([widths(pts[i]) for i in todo], [figs[i] for i in todo])
-        rec = recommend(pts, max_error, metric, {p["index"]: p["datapath_cost"] for p in pts})
         cost = [p["datapath_cost"] for p in pts]
         err = [p[metric] if p[metric] is not None else float("inf") for p in pts]
         front_mem = pareto_front([p["bits_per_pixel"] for p in pts], err).tolist()
@@ -199,9 +215,9 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
              "used_for_fit": i in fit, "fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"], "ecp5": r["ecp5"],
              "predicted": model.predict(widths(pts[i])), "cached": bool(r.get("cached")),
              "seconds": r.get("seconds"), "config_digest": r.get("config_digest")}
-            for i, r in synthesized.items()],
+            for i, r in sorted(synthesized.items())],
         "model": model.to_dict(), "model_error_heldout": heldout, "model_error_all": every,
-        "tools": next(iter(results)).get("tools") if results else None,
+        "tools": next(iter(synthesized.values())).get("tools") if synthesized else None,
     }
     if rec["found"]:
         p = pts[rec["index"]]
