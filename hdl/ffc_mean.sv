@@ -51,21 +51,24 @@ module ffc_mean #(
   // ---- the start: no mean pixel in flight, once per waiting frame -------------------------
   logic                  start, started_q;
   logic [FlightBits-1:0] flight_q;
-  // flight_q == 0 as a flop of its own (start drives the division's wide enables), set from
-  // flight_q's compares and the count's steps, not from the next count (the enclosing join's
-  // take would then pass the adder and a compare).
-  logic                  flight_zero_q, flight_one;
+  // The count adds enter_i a cycle late (enter_q: the enclosing join's take reaches one
+  // flop, not the count's adder), so the pixels in flight are flight_q + enter_q. "None in
+  // flight" is a flop of its own (start drives the division's wide enables), set from that
+  // count's compares and this cycle's steps, not from the next count.
+  logic                  flight_zero_q, flight_one, enter_q;
 
   assign start      = request_i && !started_q && flight_zero_q;
-  assign flight_one = flight_q == FlightBits'(1);
+  assign flight_one = enter_q ? flight_q == '0 : flight_q == FlightBits'(1);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
+      enter_q       <= 1'b0;
       flight_q      <= '0;
       flight_zero_q <= 1'b1;
       started_q     <= 1'b0;
     end else begin
-      flight_q      <= flight_q + FlightBits'(enter_i) - FlightBits'(valid_i);
+      enter_q       <= enter_i;
+      flight_q      <= flight_q + FlightBits'(enter_q) - FlightBits'(valid_i);
       flight_zero_q <= (flight_zero_q && enter_i == valid_i)
                        || (flight_one && valid_i && !enter_i);
       if (start) begin
@@ -174,11 +177,11 @@ module ffc_mean #(
   end
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
-      a_flight_range: assert (!(flight_q == '0 && valid_i))
+      a_flight_range: assert (!(flight_q == '0 && !enter_q && valid_i))
         else $error("ffc_mean: a mean pixel summed that was never counted in");
-      a_flight_zero: assert (flight_zero_q == (flight_q == '0))
+      a_flight_zero: assert (flight_zero_q == (flight_q == '0 && !enter_q))
         else $error("ffc_mean: the in-flight count's zero flag disagrees with it");
-      a_flight_room: assert (!(flight_q == '1 && enter_i && !valid_i))
+      a_flight_room: assert (!(flight_q == '1 && enter_q && !valid_i))
         else $error("ffc_mean: more mean pixels in flight than the count holds");
     end
   end

@@ -1,5 +1,6 @@
 // The FFC side of irnuc_axis_top (Ffc = 1; docs/integration.md "FFC"): the shutter flag of
-// each frame from FFC_CTRL, the fork of the framer's items into method_ffc_top's separate
+// each frame from FFC_CTRL, the input register of the framer's items (a registered stream
+// boundary), the fork of the items into method_ffc_top's separate
 // pixel and coefficient inputs, the held frames' count, FFC_STATUS busy/done, the input
 // buffers of s_axis_foff and s_axis_acc, method_ffc_top itself, and the write-back streams
 // m_axis_acc and m_axis_foff with their tlast (counted against the frame size) behind
@@ -142,10 +143,33 @@ module irnuc_axis_ffc
   end
 
   assign pend_item_frame_o = {pend_shutter, pend_frame_i};
+
+  // ---- the input register --------------------------------------------------------------------
+  // The framer's items enter through a buffer of their own (a registered stream boundary):
+  // item_ready_o is its fill flag, so the fork's decision below (the core's readies, the
+  // sides already served) never reaches the framer's output register, whose every data bit
+  // it enabled (the critical path across the chip), and the items reach the fork from flops
+  // placed beside it. One cycle more of latency; one item per clock.
+  localparam int unsigned ItemBits = ItemFrameBits + 2 + WordBits + AdcBits;
+  logic                     in_valid, in_ready, in_sof, in_eol;
+  logic [AdcBits-1:0]       in_raw;
+  logic [WordBits-1:0]      in_word;
+  logic [ItemFrameBits-1:0] in_frame;
+
+  irnuc_axis_buffer #(.DataBits(ItemBits)) u_item_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(item_valid_i),
+    .ready_o(item_ready_o),
+    .data_i ({item_frame_i, item_sof_i, item_eol_i, item_word_i, item_raw_i}),
+    .valid_o(in_valid),
+    .ready_i(in_ready),
+    .data_o ({in_frame, in_sof, in_eol, in_word, in_raw})
+  );
   // ---- the fork ------------------------------------------------------------------------------
   // method_ffc_top: its pixel and coefficient inputs are separate spill registers that
-  // drain at different times, so the item is forked: each side is offered the item
-  // until it took it, and the item is taken when both have. The pixel reaches the core's
+  // drain at different times, so the item (from u_item_in) is forked: each side is offered
+  // the item until it took it, and the item is taken when both have. The pixel reaches the core's
   // join through two two-entry buffers (its input register and its mode stage), the word
   // through one (u_coef_in): alone, the word would wait a cycle at the join, fill its
   // buffer (ready 0) and make the fork skip a cycle in four. u_coef_fork gives the word
@@ -163,12 +187,12 @@ module irnuc_axis_ffc
   logic                    item_shutter, item_take, target_valid;
   logic [OutBits+FfcFracBits-1:0] target;
 
-  assign fork_pix_valid  = item_valid_i && !pix_took_q;
-  assign fork_coef_valid = item_valid_i && !coef_took_q;
+  assign fork_pix_valid  = in_valid && !pix_took_q;
+  assign fork_coef_valid = in_valid && !coef_took_q;
   assign pix_take   = fork_pix_valid && core_pix_ready;
   assign coef_take  = fork_coef_valid && core_coef_ready;
-  assign item_ready_o = (pix_took_q || core_pix_ready) && (coef_took_q || core_coef_ready);
-  assign item_take  = item_valid_i && item_ready_o;
+  assign in_ready   = (pix_took_q || core_pix_ready) && (coef_took_q || core_coef_ready);
+  assign item_take  = in_valid && in_ready;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_fork
     if (!rst_ni) begin
@@ -187,20 +211,29 @@ module irnuc_axis_ffc
   // is never output: its items leave the core's count as they enter it (the framer's
   // drain before a new frame size); the same rule as ffc_ctrl's, on the flag the core
   // reads at sof.
-  logic held_q, held_e, open_q;
-  assign item_shutter = item_frame_i[ItemFrameBits-1];
-  assign held_e       = item_sof_i ? (FfcHold != 0) && item_shutter && open_q : held_q;
+  logic held_q, held_e, open_q, core_out_q;
+  assign item_shutter = in_frame[ItemFrameBits-1];
+  assign held_e       = in_sof ? (FfcHold != 0) && item_shutter && open_q : held_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_held
     if (!rst_ni) begin
       held_q <= 1'b0;
       open_q <= 1'b0;
-    end else if (item_take && item_sof_i) begin
+    end else if (item_take && in_sof) begin
       held_q <= held_e;
       open_q <= open_q || !item_shutter;
     end
   end
-  assign core_out_o = pix_out || (item_take && held_e);
+  // The framer counts an item out a cycle late (a flop: the fork's take and the output's
+  // ready do not reach the framer's in-flight adder); its drain waits a cycle longer.
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_core_out
+    if (!rst_ni) begin
+      core_out_q <= 1'b0;
+    end else begin
+      core_out_q <= pix_out || (item_take && held_e);
+    end
+  end
+  assign core_out_o = core_out_q;
 
   // FFC_STATUS: busy from FFC_CTRL.start until its run finished: the refresh frame's
   // last new offset taken on m_axis_foff (done, IRQ_STATUS.ffc_done), or, for a run
@@ -210,12 +243,13 @@ module irnuc_axis_ffc
   localparam int unsigned RunBits = $clog2(FfcFrames + 1);
   logic [RunBits-1:0] run_q;
   logic               busy_q, begun_q, ended_q, open_sof, short_end, refreshed, none;
+  logic               done_e, done_q, none_q;
 
-  assign open_sof  = item_take && item_sof_i && !item_shutter;
+  assign open_sof  = item_take && in_sof && !item_shutter;
   assign short_end = open_sof && begun_q && !ended_q && run_q < RunBits'(FfcFrames);
   assign refreshed = begun_q && m_axis_foff_tvalid && m_axis_foff_tready
                      && m_axis_foff_tlast;
-  assign none      = start_i && ffc_armed_q && ffc_frames_i == '0;
+  assign none      = none_q;  // FFC_CTRL.frames = 0: the frame start of the cycle before
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_run
     if (!rst_ni) begin
@@ -224,7 +258,7 @@ module irnuc_axis_ffc
       begun_q <= 1'b0;
       ended_q <= 1'b0;
     end else begin
-      if (item_take && item_sof_i) begin
+      if (item_take && in_sof) begin
         run_q <= !item_shutter ? '0
                : (run_q == RunBits'(FfcFrames)) ? run_q : run_q + RunBits'(1);
       end
@@ -239,21 +273,35 @@ module irnuc_axis_ffc
         if (ffc_done_o) begin
           busy_q <= 1'b0;
         end
-        if (busy_q && !ffc_armed_q && item_take && item_sof_i && item_shutter) begin
+        if (busy_q && !ffc_armed_q && item_take && in_sof && item_shutter) begin
           begun_q <= 1'b1;
         end
       end
     end
   end
+  // done is registered (done_q: the event of the cycle before), so that the fork's take and
+  // the write-back handshake reach the register file's flops from a flop; busy clears with
+  // it. A start in the cycle of done_q begins a new run instead (as a start in the event's
+  // cycle does).
+  assign done_e = busy_q && !ffc_start_i && (refreshed || short_end || none);
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_done
+    if (!rst_ni) begin
+      done_q <= 1'b0;
+      none_q <= 1'b0;
+    end else begin
+      done_q <= done_e;
+      none_q <= start_i && ffc_armed_q && ffc_frames_i == '0;
+    end
+  end
   assign ffc_busy_o = busy_q;
-  assign ffc_done_o = busy_q && !ffc_start_i && (refreshed || short_end || none);
+  assign ffc_done_o = done_q && busy_q && !ffc_start_i;
 
   irnuc_axis_buffer #(.DataBits(WordBits)) u_coef_fork (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(fork_coef_valid),
     .ready_o(core_coef_ready),
-    .data_i (item_word_i),
+    .data_i (in_word),
     .valid_o(coef_fork_valid),
     .ready_i(coef_fork_ready),
     .data_o (coef_fork_word)
@@ -280,6 +328,22 @@ module irnuc_axis_ffc
     .ready_i(acc_ready),
     .data_o (acc_data)
   );
+
+  // The core's frame size: copies of the framer's (flops beside the core, a cycle behind:
+  // the framer takes a new size with a frame's first item once the core is drained, and
+  // that item reaches the core through two registers, u_out and u_item_in).
+  logic [WidthBits-1:0]  core_w_q;
+  logic [HeightBits-1:0] core_h_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_core_size
+    if (!rst_ni) begin
+      core_w_q <= WidthBits'(MaxWidth);
+      core_h_q <= HeightBits'(MaxHeight);
+    end else begin
+      core_w_q <= act_w_i;
+      core_h_q <= act_h_i;
+    end
+  end
 
   method_ffc_top #(
     .Method          (Method),
@@ -317,14 +381,14 @@ module irnuc_axis_ffc
   ) u_core (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
-    .frame_width_i     (act_w_i),
-    .frame_height_i    (act_h_i),
+    .frame_width_i     (core_w_q),
+    .frame_height_i    (core_h_q),
     .s_pix_valid_i     (fork_pix_valid),
     .s_pix_ready_o     (core_pix_ready),
-    .s_pix_data_i      (item_raw_i),
-    .s_pix_sof_i       (item_sof_i),
-    .s_pix_eol_i       (item_eol_i),
-    .s_pix_frame_i     (item_frame_i[FrameBits-1:0]),
+    .s_pix_data_i      (in_raw),
+    .s_pix_sof_i       (in_sof),
+    .s_pix_eol_i       (in_eol),
+    .s_pix_frame_i     (in_frame[FrameBits-1:0]),
     .s_pix_shutter_i   (item_shutter),
     .s_coef_valid_i    (coef_fork_valid),
     .s_coef_ready_o    (coef_fork_ready),
@@ -355,14 +419,29 @@ module irnuc_axis_ffc
   // size the frames are taken with, behind an output buffer (every output a flop).
   logic macc_last, mfoff_last;
 
+  // They compare against copies of width - 1 and height - 1 (flops beside the counters,
+  // a cycle behind the framer's: a new size is taken with a frame's first item, which
+  // reaches the write-back streams many cycles later, after the old frames' words).
   logic [1:0][WidthBits-1:0]  col_q;
   logic [1:0][HeightBits-1:0] row_q;
   logic [1:0]                 wb_beat, wb_eol, wb_last;
+  logic [WidthBits-1:0]       wb_wm1_q;
+  logic [HeightBits-1:0]      wb_hm1_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_wb_size
+    if (!rst_ni) begin
+      wb_wm1_q <= WidthBits'(MaxWidth - 1);
+      wb_hm1_q <= HeightBits'(MaxHeight - 1);
+    end else begin
+      wb_wm1_q <= act_wm1_i;
+      wb_hm1_q <= act_hm1_i;
+    end
+  end
 
   assign wb_beat = {mfoff_valid && mfoff_ready, macc_valid && macc_ready};
   for (genvar k = 0; k < 2; k++) begin : gen_wb_last
-    assign wb_eol[k]  = col_q[k] == act_wm1_i;  // no subtraction on the path (Fmax)
-    assign wb_last[k] = wb_eol[k] && row_q[k] == act_hm1_i;
+    assign wb_eol[k]  = col_q[k] == wb_wm1_q;  // no subtraction on the path (Fmax)
+    assign wb_last[k] = wb_eol[k] && row_q[k] == wb_hm1_q;
     always_ff @(posedge clk_i or negedge rst_ni) begin : p_count
       if (!rst_ni) begin
         col_q[k] <= '0;
@@ -417,5 +496,29 @@ module irnuc_axis_ffc
     assign unused_acc = ^s_axis_acc_tdata[AccBits-1:AccWordBits];
   end
   assign pix_out = m_valid_o && m_ready_i;
+
+`ifdef IRNUC_ASSERT
+  // What the registers above rely on: the write-back counters' size copies are current
+  // whenever a word is counted, and an FFC run ends at most once in two cycles (done_q
+  // holds one event).
+  logic armed_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
+    if (!rst_ni) begin
+      armed_q <= 1'b0;
+    end else begin
+      armed_q <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin : p_check
+    if (armed_q) begin
+      a_wb_size: assert (wb_beat == '0 || (wb_wm1_q == act_wm1_i && wb_hm1_q == act_hm1_i))
+        else $error("irnuc_axis_ffc: a write-back word counted in the cycle after a new frame size");
+      a_core_size: assert (!pix_take || (core_w_q == act_w_i && core_h_q == act_h_i))
+        else $error("irnuc_axis_ffc: a pixel entered the core in the cycle after a new frame size");
+      a_done_once: assert (!(done_q && done_e))
+        else $error("irnuc_axis_ffc: an FFC run ended in two consecutive cycles");
+    end
+  end
+`endif
 
 endmodule

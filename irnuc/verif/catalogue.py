@@ -559,6 +559,11 @@ CATALOGUE: tuple[Mutant, ...] = (
         "                       || (flight_one && valid_i && !enter_i);",
         "                       || 1'b0;",
         "the in-flight count's zero flag misses the last mean pixel's arrival", _FFC),
+    _ms("fm_enter_not_counted", "ffc_mean.sv",
+        "flight_q      <= flight_q + FlightBits'(enter_q) - FlightBits'(valid_i);",
+        "flight_q      <= flight_q - FlightBits'(valid_i);",
+        "the in-flight count misses the delayed entries (enter_q): the division never starts",
+        _FFC),
     _ms("fr_refresh_uses_old", "ffc_refresh.sv", "c_c_q       <= r_refresh_q ? dc_d : r_c_q;",
         "c_c_q       <= r_c_q;", "the refresh frame corrected with the old words", _FFC),
     _ms("fr_dc_truncated", "ffc_refresh.sv", ".Rounding(FfcRounding)\n  ) u_round_dc (",
@@ -683,12 +688,12 @@ CATALOGUE: tuple[Mutant, ...] = (
         "FFC_CTRL.frames - 1 shutter frames after a start (a full run has no refresh)",
         **_AXF),
     _ma("ax_ffc_tlast_every_line", "irnuc_axis_ffc.sv",
-        "assign wb_last[k] = wb_eol[k] && row_q[k] == act_hm1_i;",
+        "assign wb_last[k] = wb_eol[k] && row_q[k] == wb_hm1_q;",
         "assign wb_last[k] = wb_eol[k];",
         "m_axis_acc / m_axis_foff: tlast on every line's last word", **_AXF),
     _ma("ax_ffc_done_not_on_refresh", "irnuc_axis_ffc.sv",
-        "assign ffc_done_o = busy_q && !ffc_start_i && (refreshed || short_end || none);",
-        "assign ffc_done_o = busy_q && !ffc_start_i && (short_end || none);",
+        "assign done_e = busy_q && !ffc_start_i && (refreshed || short_end || none);",
+        "assign done_e = busy_q && !ffc_start_i && (short_end || none);",
         "FFC_STATUS.done and IRQ_STATUS.ffc_done not raised by the refresh's write-back",
         **_AXF),
     # The fork's coefficient buffer bypassed (the wrapper before session 31's fix): the same
@@ -698,8 +703,23 @@ CATALOGUE: tuple[Mutant, ...] = (
         "the fork's coefficient side straight into method_ffc_top (no u_coef_fork): "
         "frames at full rate lose one cycle in four",
         also=((".s_coef_ready_o    (coef_fork_ready),", ".s_coef_ready_o    (core_coef_ready),"),
-              (".s_coef_data_i     (coef_fork_word),", ".s_coef_data_i     (item_word_i),"),
+              (".s_coef_data_i     (coef_fork_word),", ".s_coef_data_i     (in_word),"),
               (".ready_o(core_coef_ready),", ".ready_o(),")),
+        **_AXF),
+    # The registers of session 32 (Fmax): the item's input buffer, done a cycle late, the
+    # write-back counters' size copies.
+    _ma("ax_ffc_pix_unbuffered", "irnuc_axis_ffc.sv",
+        ".s_pix_data_i      (in_raw),", ".s_pix_data_i      (item_raw_i),",
+        "the core's pixel taken from the framer's item, not from u_item_in's (the pixel an item "
+        "ahead of its word)", **_AXF),
+    _ma("ax_ffc_busy_clears_early", "irnuc_axis_ffc.sv",
+        "        if (ffc_done_o) begin\n          busy_q <= 1'b0;",
+        "        if (done_e) begin\n          busy_q <= 1'b0;",
+        "FFC_STATUS.busy clears with the run's end event, a cycle before done_q: done is "
+        "never raised", **_AXF),
+    _ma("ax_ffc_wb_size_stuck", "irnuc_axis_ffc.sv",
+        "      wb_wm1_q <= act_wm1_i;", "      wb_wm1_q <= wb_wm1_q;",
+        "the write-back counters keep the reset width (MaxWidth - 1): tlast at the wrong word",
         **_AXF),
 )
 
