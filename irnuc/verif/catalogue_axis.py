@@ -1,0 +1,147 @@
+"""The mutants of the AXI wrapper (``irnuc_axis_top``: the framer, the input buffers, the
+register file, the core select, the FFC side), part of :data:`irnuc.verif.catalogue.CATALOGUE`."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from irnuc.verif.mutant import Mutant
+
+_AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
+#: The wrapper around method_dpc_top, with its method testbench.
+_AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+#: The wrapper around method_ffc_top, with its FFC testbench.
+_AXF = {"suite": "irnuc.cocotb_tests.tb_axis_ffc", "config": "ffc14"}
+
+
+def _ma(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
+    """A mutant of the AXI wrapper, run in irnuc_axis_top with tb_axis (``**_AXM``: with
+    tb_axis_method on a method configuration)."""
+    return Mutant(id, file, find, replace, what, **{**_AXIS, **kw})
+
+
+#: The wrapper's mutants, in the catalogue's order.
+AXIS_MUTANTS: tuple[Mutant, ...] = (
+    # ---- irnuc_axis_top: the framer, the input buffers, the register file, the wrapper ----
+    _ma("ax_sof_late_every_beat", "irnuc_axis_framer.sv",
+        "sof_late_o    <= drop_beat && starting && !late_q;",
+        "sof_late_o    <= drop_beat && starting;",
+        "SOF_ERRORS.late counts every dropped beat, not each run of them once"),
+    _ma("ax_dpc_off_keeps_bad", "irnuc_axis_framer.sv", "      word = word & ~BadMask;",
+        "      word = word;", "CTRL.dpc_en = 0 and filler pixels keep the word's bad flag"),
+    _ma("ax_no_drain", "irnuc_axis_framer.sv",
+        "assign wait_ok_d = (vst_d == AxisWait) && (!dirty_d || drained_d);",
+        "assign wait_ok_d = (vst_d == AxisWait);",
+        "a new frame size starts before the previous frame has left the core"),
+    _ma("ax_start_ignores_drain", "irnuc_axis_framer.sv",
+        "assign start_fire = go && vid_valid_i && vid_sof_i && wait_ok_q;",
+        "assign start_fire = go && vid_valid_i && vid_sof_i && starting;",
+        "the active settings and the register file take a frame start the drain still holds"),
+    _ma("ax_flight_never_counts", "irnuc_axis_framer.sv", "fire_q    <= fire;",
+        "fire_q    <= 1'b0;",
+        "the in-flight count never counts an item sent (fire_q): no drain before a new size"),
+    _ma("ax_pad_state_late", "irnuc_axis_framer.sv",
+        "s_pad_q     <= (vst_d == AxisPad);", "s_pad_q     <= (vst_q == AxisPad);",
+        "the one-hot filler state a cycle behind the state (fillers sent a cycle late)"),
+    _ma("ax_nuc_off_frame_word", "irnuc_axis_framer.sv",
+        "assign frame = !starting ? '0 : pend_nuc_en_i ? pend_frame_i : NeutralFrame;",
+        "assign frame = !starting ? '0 : pend_frame_i;",
+        "NUC off keeps one_point's gain register (no neutral frame word)",
+        **_AXM, config="onepoint14"),
+    _ma("ax_buffer_read_stuck", "irnuc_axis_buffer.sv", "rd_q <= rd_q ^ pop;",
+        "rd_q <= rd_q;", "an input buffer keeps reading the same entry after a pop"),
+    _ma("ax_buffer_never_full", "irnuc_axis_buffer.sv", "full_q <= any_q;",
+        "full_q <= 1'b0;", "an input buffer takes a third item over an unread one"),
+    _ma("ax_buffer_head_from_input", "irnuc_axis_buffer.sv",
+        "assign head_next = full_q ? mem_q[!rd_q][DataBits-1:MuxBits] : data_i[DataBits-1:MuxBits];",
+        "assign head_next = data_i[DataBits-1:MuxBits];",
+        "an input buffer's markers (head register) after a pop with two held: the input's, not "
+        "the other entry's"),
+    _ma("ax_buffer_head_stale", "irnuc_axis_buffer.sv", "if (!any_q || ready_i) begin",
+        "if (!any_q) begin",
+        "an input buffer's markers (head register) kept after a pop: the older entry's"),
+    _ma("ax_arready_late", "irnuc_axil_regs.sv", "ar_ready_q <= !ar_busy_d;",
+        "ar_ready_q <= !ar_busy_q;",
+        "arready a cycle behind the read channel (a read address offered while busy is lost)"),
+    _ma("ax_wready_late", "irnuc_axil_regs.sv", "w_ready_q  <= !w_held_d;",
+        "w_ready_q  <= !w_held_q;",
+        "wready a cycle behind the write data register (write data taken while one is held)"),
+    _ma("ax_size_not_checked", "irnuc_axil_regs.sv",
+        "assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal;",
+        "assign wr_size  = wr && wsel_q[IxFrameSize];",
+        "an illegal FRAME_SIZE write (SLVERR) still changes the register"),
+    _ma("ax_size_legal_all_lanes", "irnuc_axil_regs.sv",
+        "assign w_legal    = w_legal_c[w_strb_q[WLane +: 2]];",
+        "assign w_legal    = w_legal_c[2'b11];",
+        "a FRAME_SIZE write's width checked as if both its byte lanes were written"),
+    _ma("ax_traffic_counts_idle", "irnuc_axil_regs.sv", "        if (traffic_ev[k]) begin",
+        "        if (1'b1) begin", "the traffic counters count every cycle, not the events"),
+    _ma("ax_pending_sticks", "irnuc_axil_regs.sv",
+        "pending_q    <= shadow_touch || (pending_q && !start_i);",
+        "pending_q    <= shadow_touch || pending_q;",
+        "STATUS.pending stays 1 after the frame start that took the write"),
+    _ma("ax_irq_not_enabled", "irnuc_axil_regs.sv", "irq_q    <= |(irq_st_q & irq_en_q);",
+        "irq_q    <= |irq_st_q;", "irq_o ignores IRQ_ENABLE"),
+    _ma("ax_status_no_w1c", "irnuc_axil_regs.sv",
+        "err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));",
+        "err_q    <= err_ev | err_q;", "the STATUS error bits cannot be cleared (W1C)"),
+    _ma("ax_frames_out_every_line", "irnuc_axis_top.sv",
+        "frame_out_q <= core_valid && m_axis_video_tready && core_eol && (out_row_q == act_hm1);",
+        "frame_out_q <= core_valid && m_axis_video_tready && core_eol;",
+        "FRAMES_OUT and IRQ_STATUS.frame_done at every line's end"),
+    _ma("ax_reading_from_t_ref", "irnuc_axis_top.sv",
+        "assign fw.reading = slots[2][ReadingBits-1:0];",
+        "assign fw.reading = slots[3][ReadingBits-1:0];",
+        "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
+    # ---- irnuc_axis_core: the core of the method -------------------------------------------
+    _ma("ax_core_eol_from_sof", "irnuc_axis_core.sv",
+        ".s_pix_eol_i   (item_eol_i),\n      .s_coef_valid_i(item_valid_i),",
+        ".s_pix_eol_i   (item_sof_i),\n      .s_coef_valid_i(item_valid_i),",
+        "two_point: the core's end of line taken from the start of frame"),
+    _ma("ax_core_frame_word_dropped", "irnuc_axis_core.sv",
+        ".s_pix_frame_i (item_frame_i),", ".s_pix_frame_i ('0),",
+        "method_dpc_top gets a zero frame word (one_point: gain 0)", **_AXM,
+        config="onepoint14"),
+    # ---- irnuc_axis_ffc: the FFC side of the wrapper ---------------------------------------
+    _ma("ax_ffc_run_one_short", "irnuc_axis_ffc.sv",
+        "assign pend_shutter = ffc_now != '0;",
+        "assign pend_shutter = ffc_now > RegFfcCtrlFramesBits'(1);",
+        "FFC_CTRL.frames - 1 shutter frames after a start (a full run has no refresh)",
+        **_AXF),
+    _ma("ax_ffc_tlast_every_line", "irnuc_axis_ffc.sv",
+        "assign wb_last[k] = wb_eol[k] && row_q[k] == wb_hm1_q;",
+        "assign wb_last[k] = wb_eol[k];",
+        "m_axis_acc / m_axis_foff: tlast on every line's last word", **_AXF),
+    _ma("ax_ffc_done_not_on_refresh", "irnuc_axis_ffc.sv",
+        "assign done_e = busy_q && !ffc_start_i && (refreshed || short_end || none);",
+        "assign done_e = busy_q && !ffc_start_i && (short_end || none);",
+        "FFC_STATUS.done and IRQ_STATUS.ffc_done not raised by the refresh's write-back",
+        **_AXF),
+    # The fork's coefficient buffer bypassed (the wrapper before session 31's fix): the same
+    # words, but the word waits at the core's join and the fork skips a cycle in four.
+    _ma("ax_ffc_coef_fork_bypass", "irnuc_axis_ffc.sv",
+        ".s_coef_valid_i    (coef_fork_valid),", ".s_coef_valid_i    (fork_coef_valid),",
+        "the fork's coefficient side straight into method_ffc_top (no u_coef_fork): "
+        "frames at full rate lose one cycle in four",
+        also=((".s_coef_ready_o    (coef_fork_ready),", ".s_coef_ready_o    (core_coef_ready),"),
+              (".s_coef_data_i     (coef_fork_word),", ".s_coef_data_i     (in_word),"),
+              (".ready_o(core_coef_ready),", ".ready_o(),")),
+        **_AXF),
+    # The registers of session 32 (Fmax): the item's input buffer, done a cycle late, the
+    # write-back counters' size copies.
+    _ma("ax_ffc_pix_unbuffered", "irnuc_axis_ffc.sv",
+        ".s_pix_data_i      (in_raw),", ".s_pix_data_i      (item_raw_i),",
+        "the core's pixel taken from the framer's item, not from u_item_in's (the pixel an item "
+        "ahead of its word)", **_AXF),
+    _ma("ax_ffc_busy_clears_early", "irnuc_axis_ffc.sv",
+        "        if (ffc_done_o) begin\n          busy_q <= 1'b0;",
+        "        if (done_e) begin\n          busy_q <= 1'b0;",
+        "FFC_STATUS.busy clears with the run's end event, a cycle before done_q: done is "
+        "never raised", **_AXF),
+    _ma("ax_ffc_wb_size_stuck", "irnuc_axis_ffc.sv",
+        "      wb_wm1_q <= act_wm1_i;", "      wb_wm1_q <= wb_wm1_q;",
+        "the write-back counters keep the reset width (MaxWidth - 1): tlast at the wrong word",
+        **_AXF),
+)
+
+__all__ = ["AXIS_MUTANTS"]
