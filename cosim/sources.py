@@ -62,14 +62,16 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
 }
 # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
 _AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
-MODULE_FILES["irnuc_axil_regs"] = (*_PKG, "irnuc_axil_regs.sv")
+_REGS = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
+MODULE_FILES["irnuc_axil_regs"] = (*_PKG, *_REGS)
 MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
 MODULE_FILES["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
 MODULE_FILES["irnuc_axis_assert"] = ("irnuc_axis_assert.sv",)
 MODULE_FILES["irnuc_axil_assert"] = (*_PKG, "irnuc_axil_assert.sv")
+MODULE_FILES["irnuc_axil_regs_check"] = (*_PKG, "irnuc_axil_regs_check.sv")
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
-    "irnuc_axil_regs.sv", "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv",
+    *_REGS, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv",
     "irnuc_axis_top.sv")))
 #: The base methods irnuc_axis_top is built around (its parameter Method; table_interp
 #: needs the weight and the pair of tables chosen per frame: not wrapped yet).
@@ -215,6 +217,7 @@ _BLOCK_PARAMETERS = {
     "irnuc_axis_assert": lambda p: {"DataBits": 8 * ((p["AdcBits"] + 7) // 8), "UserBits": 1},
     "irnuc_axis_buffer": lambda p: {"DataBits": p["AdcBits"] + 2},
     "irnuc_axil_assert": lambda p: {},
+    "irnuc_axil_regs_check": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
                               "Rounding": p["Rounding"]},
     "irnuc_clip": lambda p: {"InBits": p["OutBits"] + 4, "OutBits": p["OutBits"],

@@ -133,28 +133,6 @@ module irnuc_axil_regs
   };
   localparam int unsigned NumErrors = 6;
 
-`ifndef SYNTHESIS
-  initial begin : p_param_ranges
-    assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax &&
-            MaxHeight >= MaxHeightMin && MaxHeight <= MaxHeightMax)
-      else $fatal(1, "irnuc_axil_regs: MaxWidth = %0d, MaxHeight = %0d outside %0d..%0d",
-                  MaxWidth, MaxHeight, MaxWidthMin, MaxWidthMax);
-    assert (WidthBits <= RegFrameSizeWidthBits && HeightBits <= RegFrameSizeHeightBits)
-      else $fatal(1, "irnuc_axil_regs: the frame size does not fit FRAME_SIZE");
-    assert (RegFrameSizeWidthLsb % 8 == 0 && RegFrameSizeWidthBits == 16
-            && RegFrameSizeHeightLsb % 8 == 0 && RegFrameSizeHeightBits == 16)
-      else $fatal(1, "irnuc_axil_regs: FRAME_SIZE's fields are not two byte lanes each");
-    for (int k = 0; k < NumSlots; k++) begin
-      assert (SlotBits[k] <= 64)
-        else $fatal(1, "irnuc_axil_regs: method register %0d of %0d bits > 64", k,
-                    SlotBits[k]);
-    end
-    assert (TableReadings <= NumTable && TableReadingBits >= 1 && TableReadingBits <= 32)
-      else $fatal(1, "irnuc_axil_regs: %0d table readings of %0d bits", TableReadings,
-                  TableReadingBits);
-  end
-`endif
-
   // ---- the map: one index per register word -----------------------------------------------
   localparam int unsigned IxId         = 0;
   localparam int unsigned IxVersion    = 1;
@@ -703,29 +681,17 @@ module irnuc_axil_regs
   logic unused_addr;
   assign unused_addr = ^{aw_addr_q[1:0], ar_addr_q[1:0]};
 
-`ifdef IRNUC_ASSERT
-  // The ports are checked in the top (irnuc_axil_assert); here the ready flops: each is the
-  // complement of the state it stands for.
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
-  always_ff @(posedge clk_i) begin : p_check
-    if (armed_q) begin
-      a_aw_ready: assert (aw_ready_q == !aw_held_q)
-        else $error("irnuc_axil_regs: awready is not 'no write address held'");
-      a_w_ready: assert (w_ready_q == !w_held_q)
-        else $error("irnuc_axil_regs: wready is not 'no write data held'");
-      a_ar_busy: assert (ar_busy_q == (ar_held_q || rdec_q || r_valid_q))
-        else $error("irnuc_axil_regs: the read channel's busy flag lost its read");
-      a_ar_ready: assert (ar_ready_q == !ar_busy_q)
-        else $error("irnuc_axil_regs: arready is not 'no read in progress'");
-    end
-  end
+`ifndef SYNTHESIS
+  // The parameters' ranges and (IRNUC_ASSERT) the ready flops: irnuc_axil_regs_check.
+  irnuc_axil_regs_check #(
+    .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .WidthBits(WidthBits), .HeightBits(HeightBits),
+    .NumSlots(NumSlots), .SlotBits(SlotBits), .TableReadings(TableReadings),
+    .TableReadingBits(TableReadingBits)
+  ) u_check (
+    .clk_i, .rst_ni, .aw_ready_i(aw_ready_q), .aw_held_i(aw_held_q), .w_ready_i(w_ready_q),
+    .w_held_i(w_held_q), .ar_ready_i(ar_ready_q), .ar_busy_i(ar_busy_q),
+    .ar_held_i(ar_held_q), .rdec_i(rdec_q), .r_valid_i(r_valid_q)
+  );
 `endif
 
 endmodule
