@@ -19,8 +19,10 @@ HDL_DIR = Path(irnuc.hdl.__file__).resolve().parent
 SIM_HDL_DIR = Path(__file__).resolve().parent / "hdl"
 
 _PKG = ("irnuc_pkg.sv", "irnuc_method_pkg.sv")
-_ASSERT = ("irnuc_stream_assert.sv",)
-_FRAME = ("irnuc_frame_assert.sv",)
+#: The arming flop of every simulation check (irnuc_assert_armed), then the stream checker.
+_ARMED = ("irnuc_assert_armed.sv",)
+_ASSERT = (*_ARMED, "irnuc_stream_assert.sv")
+_FRAME = (*_ARMED, "irnuc_frame_assert.sv")
 _SPILL = (*_ASSERT, "irnuc_spill_register.sv")
 _MUL = ("irnuc_dsp_mul.sv", "irnuc_mul_parts.sv")
 _ARITH = (*_MUL, "irnuc_add_tree.sv", "irnuc_round.sv", "irnuc_clip.sv")
@@ -46,7 +48,7 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
     "table_interp": (*_PKG, *_TABLE),
     "method_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_PWL, *_QUAD, *_TC, *_TABLE,
                                            *_DPC, "method_dpc_top.sv"))),
-    "dpc_ctrl": (*_PKG, "dpc_ctrl.sv"),
+    "dpc_ctrl": (*_PKG, *_ARMED, "dpc_ctrl.sv"),
     "irnuc_spill_register": _SPILL,
     "irnuc_stream_assert": _ASSERT,
     "irnuc_frame_assert": (*_PKG, *_FRAME),
@@ -63,12 +65,12 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
 # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
 _AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
 _REGS = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
-MODULE_FILES["irnuc_axil_regs"] = (*_PKG, *_REGS)
+MODULE_FILES["irnuc_axil_regs"] = (*_PKG, *_ARMED, *_REGS)
 MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
 MODULE_FILES["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
-MODULE_FILES["irnuc_axis_assert"] = ("irnuc_axis_assert.sv",)
-MODULE_FILES["irnuc_axil_assert"] = (*_PKG, "irnuc_axil_assert.sv")
-MODULE_FILES["irnuc_axil_regs_check"] = (*_PKG, "irnuc_axil_regs_check.sv")
+MODULE_FILES["irnuc_axis_assert"] = (*_ARMED, "irnuc_axis_assert.sv")
+MODULE_FILES["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
+MODULE_FILES["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
     *_REGS, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv",
@@ -91,7 +93,7 @@ MODULE_FILES |= {
     "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_CORE_SUM,
                                              *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
-    "ffc_mean": ("ffc_mean.sv",),
+    "ffc_mean": (*_ARMED, "ffc_mean.sv"),
     "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
     "ffc_sums": (*_SPKG, *_CORE_SUM, "ffc_sums.sv"),
     "frame_coefficients": (*_PKG, *_TC, "frame_coefficients.sv"),
@@ -111,6 +113,9 @@ MODULE_FILES["irnuc_axis_core"] = tuple(dict.fromkeys((
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
     "irnuc_axis_top.sv")))
+MODULE_FILES["irnuc_assert_armed"] = _ARMED
+# A file needed twice (the arming flop through two checkers) is compiled once.
+MODULE_FILES = {k: tuple(dict.fromkeys(v)) for k, v in MODULE_FILES.items()}
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
@@ -217,6 +222,7 @@ _BLOCK_PARAMETERS = {
     "irnuc_axis_assert": lambda p: {"DataBits": 8 * ((p["AdcBits"] + 7) // 8), "UserBits": 1},
     "irnuc_axis_buffer": lambda p: {"DataBits": p["AdcBits"] + 2},
     "irnuc_axil_assert": lambda p: {},
+    "irnuc_assert_armed": lambda p: {},
     "irnuc_axil_regs_check": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
                               "Rounding": p["Rounding"]},

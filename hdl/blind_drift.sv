@@ -225,14 +225,8 @@ module blind_drift #(
 `ifdef IRNUC_ASSERT
   // a_blind_sum_range: a frame's blind items sum to less than 2^SB (the golden model's
   // K <= blind_max codes of A bits).
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q && take) begin
       a_blind_sum_range: assert (!bsum_next[SumBits])

@@ -440,14 +440,8 @@ module dpc_ctrl
 
 `ifdef IRNUC_ASSERT
   // a_wrapped_in_flush: the invariant last_phantom and idle_d rely on.
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_wrapped_in_flush: assert (!ph_wrapped_q || flush)

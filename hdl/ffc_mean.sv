@@ -167,14 +167,8 @@ module ffc_mean #(
 
 `ifdef IRNUC_ASSERT
   // The in-flight count neither underflows nor overflows, and its zero flag agrees with it.
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && !enter_q && valid_i))

@@ -40,15 +40,8 @@ module irnuc_axil_assert
 );
 
 `ifndef SYNTHESIS
-  logic armed_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
 
   // Payloads, stalls of the previous edge and their payloads.
   logic [AddrBits+2:0] aw, aw_q, ar, ar_q;

@@ -31,13 +31,7 @@ module irnuc_axis_assert #(
 
   assign payload = {tdata_i, tlast_i, tuser_i};
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
 
   always_ff @(posedge clk_i) begin : p_sample
     stall_q   <= tvalid_i && !tready_i;

@@ -360,14 +360,8 @@ module irnuc_axis_core
   );
 
   // The core's two inputs hold the same items, so their readies agree.
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_lockstep: assert (core_pix_ready == core_coef_ready)

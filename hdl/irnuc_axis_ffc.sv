@@ -501,14 +501,8 @@ module irnuc_axis_ffc
   // What the registers above rely on: the write-back counters' size copies are current
   // whenever a word is counted, and an FFC run ends at most once in two cycles (done_q
   // holds one event).
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_wb_size: assert (wb_beat == '0 || (wb_wm1_q == act_wm1_i && wb_hm1_q == act_hm1_i))

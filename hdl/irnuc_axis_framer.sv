@@ -479,14 +479,8 @@ module irnuc_axis_framer
 `ifdef IRNUC_ASSERT
   // Protocol assertions of the input and output streams: in the spill registers of the top
   // (vid, coef) and u_out. The count of items in flight never wraps:
-  logic armed_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_flight_range: assert (!(core_out_i && flight_q == '0 && !fire_q))

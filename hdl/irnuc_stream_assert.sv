@@ -29,15 +29,8 @@ module irnuc_stream_assert #(
   end
 
   // Off in reset, on from the first edge after it (rst_ni stays a pure asynchronous reset).
-  logic armed_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-    if (!rst_ni) begin
-      armed_q <= 1'b0;
-    end else begin
-      armed_q <= 1'b1;
-    end
-  end
+  logic armed_q;  // from the second edge after reset
+  irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
 
   // The sampled values of the previous edge: a stall (valid && !ready) and its data.
   logic                stall_q;

@@ -411,14 +411,8 @@ module method_dpc_top
       // table_interp's contracts (docs/datapath.md), at the join:
       //   a_weight_range  the frame's weight is at most 2^Wf;
       //   a_table_bad     the pixel's two tables agree on its bad flag.
-      logic armed_q;
-      always_ff @(posedge clk_i or negedge rst_ni) begin : p_armed
-        if (!rst_ni) begin
-          armed_q <= 1'b0;
-        end else begin
-          armed_q <= 1'b1;
-        end
-      end
+      logic armed_q;  // from the second edge after reset
+      irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
       always_ff @(posedge clk_i) begin : p_check
         if (armed_q && join_take) begin
           a_weight_range: assert (64'(frame) <= (64'd1 << WeightFracBits))

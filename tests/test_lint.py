@@ -21,7 +21,8 @@ METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_read
 #: protocol checkers take no configuration (once). Its core (AXI_CORE) is linted with every
 #: method it wraps, its FFC side (irnuc_axis_ffc) with the ffc stage (STAGE_MODULES).
 AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_axis_buffer")
-AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert", "irnuc_axil_regs_check")
+AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert", "irnuc_axil_regs_check",
+                "irnuc_assert_armed")
 AXI_CORE = ("irnuc_axis_core",)
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
 #: configuration of those stages and the mode variants.
