@@ -18,6 +18,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -94,12 +95,46 @@ def run_child(cmd: Sequence[str], *, timeout: float | None = None,
     return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
 
 
-def _kill_group(proc: subprocess.Popen) -> None:
+def _kill_group(proc: subprocess.Popen, settle: float = 10.0) -> None:
+    """SIGKILL the child's group and return once none of its processes is left running.
+
+    ``proc.wait()`` only reaps the direct child; a grandchild (the simulator) sent the same
+    signal may still be tearing down its memory on a loaded machine, so a caller that looks
+    right after would see it alive. Wait (at most ``settle`` seconds) until every member of
+    the group is gone or a zombie.
+    """
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except ProcessLookupError:
         pass
     proc.wait()
+    deadline = time.monotonic() + settle
+    while _group_alive(proc.pid) and time.monotonic() < deadline:
+        time.sleep(0.02)
+
+
+def _group_alive(pgid: int) -> bool:
+    """Whether a process of group ``pgid`` is still running (not a zombie); Linux /proc,
+    else what ``killpg(pgid, 0)`` says."""
+    if not os.path.isdir("/proc/self"):
+        try:
+            os.killpg(pgid, 0)
+        except (ProcessLookupError, PermissionError):
+            return False
+        return True
+    for d in os.listdir("/proc"):
+        if not d.isdigit():
+            continue
+        try:
+            with open(f"/proc/{d}/stat", "rb") as f:
+                stat = f.read()
+        except OSError:
+            continue
+        # Fields after the command (which may hold spaces or parentheses): state ppid pgrp.
+        fields = stat[stat.rfind(b")") + 2:].split()
+        if len(fields) > 2 and int(fields[2]) == pgid and fields[0] != b"Z":
+            return True
+    return False
 
 
 def die_with_parent() -> None:
@@ -117,8 +152,6 @@ def die_with_parent() -> None:
     signal.signal(signal.SIGTERM, kill_group)
 
     def watch() -> None:
-        import time
-
         while True:
             if os.getppid() != parent:
                 kill_group()
