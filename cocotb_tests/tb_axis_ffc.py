@@ -115,12 +115,16 @@ async def _frames_of(sink: AxiStreamSink, n: int, limit_cycles: int) -> list[lis
 
 async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: str,
                            label: str, ffc_idle: str | None = None,
-                           ffc_bp: str | None = None) -> None:
+                           ffc_bp: str | None = None, resize_after_run: bool = False) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
     the pause patterns of the video and coefficient inputs / the video output;
-    ``ffc_idle`` / ``ffc_bp`` those of the FFC sources / sinks (default the same)."""
+    ``ffc_idle`` / ``ffc_bp`` those of the FFC sources / sinks (default the same).
+    ``resize_after_run``: FRAME_SIZE written (the same size) in the middle of the first
+    frame after the shutter frames, so the framer drains before the next one: its count of
+    items in flight must have counted the held frames' items out as they entered the core
+    (else the drain never ends)."""
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
     bench = await _bench(dut, salt)
@@ -190,6 +194,14 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     stalls: dict[str, list[int]] = {}
     stall_task = cocotb.start_soon(_stall_log(bench, stalls))
     acts = [cocotb.start_soon(bench._act(H * W + H * W // 2, write_ffc))]
+    if resize_after_run:
+        async def resize() -> None:
+            await bench.frame_size(H, W)
+            assert bench.beats_in < (start_frame + count + 1) * H * W, (
+                "FRAME_SIZE written after the frame it should drain behind")
+
+        acts.append(cocotb.start_soon(bench._act((start_frame + count) * H * W + H * W // 2,
+                                                 resize)))
     if readings[0] is not None:
         acts += [cocotb.start_soon(bench._act(k * H * W + H * W // 4, write_reading(k)))
                  for k in range(len(raws) - 1)]
@@ -282,6 +294,7 @@ async def ffc_refresh_idle_backpressure(dut) -> None:
 async def ffc_short_run(dut) -> None:
     """FFC_CTRL.frames below N: a run without a refresh (no m_axis_foff words, the offsets
     stay), done when the next open frame starts; bursty idle and alternate backpressure on
-    the video streams, alternate idle and bursty backpressure on the FFC streams."""
+    the video streams, alternate idle and bursty backpressure on the FFC streams; a
+    FRAME_SIZE write after the (held) shutter frames drains the framer."""
     await refresh_sequence(dut, 42, 2, "bursty", "alternate", "ffc short run",
-                           ffc_idle="alternate", ffc_bp="bursty")
+                           ffc_idle="alternate", ffc_bp="bursty", resize_after_run=True)

@@ -106,7 +106,7 @@ module irnuc_axis_core
   output logic [OutBits-1:0]              m_data_o,
   output logic                            m_sof_o,
   output logic                            m_eol_o,
-  output logic                            core_out_o,  // an item left the core (output, or dropped in a held frame)
+  output logic [1:0]                      core_out_o,  // items that left the core (output, and one of a held frame)
   output logic                            frame_err_o,
   // The FFC streams (irnuc_axis_top's ports).
   input  logic [FoffBits-1:0]             s_axis_foff_tdata,
@@ -302,7 +302,7 @@ module irnuc_axis_core
   if (Ffc == 0) begin : gen_no_ffc
     assign pend_item_frame_o  = pend_frame_i;
     assign item_ready_o       = core_pix_ready && core_coef_ready;
-    assign core_out_o         = m_valid_o && m_ready_i;
+    assign core_out_o         = {1'b0, m_valid_o && m_ready_i};
     assign ffc_busy_o         = 1'b0;
     assign ffc_done_o         = 1'b0;
     assign s_axis_foff_tready = 1'b0;

@@ -92,7 +92,7 @@ module irnuc_axis_ffc
   output logic [OutBits-1:0]              m_data_o,
   output logic                            m_sof_o,
   output logic                            m_eol_o,
-  output logic                            core_out_o,  // an item left the core
+  output logic [1:0]                      core_out_o,  // items that left the core (0..2)
   output logic                            frame_err_o,
   // The FFC streams (irnuc_axis_top's ports).
   input  logic [FoffBits-1:0]             s_axis_foff_tdata,
@@ -211,7 +211,8 @@ module irnuc_axis_ffc
   // is never output: its items leave the core's count as they enter it (the framer's
   // drain before a new frame size); the same rule as ffc_ctrl's, on the flag the core
   // reads at sof.
-  logic held_q, held_e, open_q, core_out_q;
+  logic       held_q, held_e, open_q;
+  logic [1:0] core_out_q;
   assign item_shutter = in_frame[ItemFrameBits-1];
   assign held_e       = in_sof ? (FfcHold != 0) && item_shutter && open_q : held_q;
 
@@ -228,9 +229,10 @@ module irnuc_axis_ffc
   // ready do not reach the framer's in-flight adder); its drain waits a cycle longer.
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_core_out
     if (!rst_ni) begin
-      core_out_q <= 1'b0;
+      core_out_q <= '0;
     end else begin
-      core_out_q <= pix_out || (item_take && held_e);
+      // Both in one cycle (the last open frame leaving as a held one enters): two.
+      core_out_q <= {1'b0, pix_out} + {1'b0, item_take && held_e};
     end
   end
   assign core_out_o = core_out_q;

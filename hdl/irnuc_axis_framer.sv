@@ -105,8 +105,9 @@ module irnuc_axis_framer
   output logic                  m_sof_o,
   output logic                  m_eol_o,
   output logic [FrameBits-1:0]  m_frame_o,
-  // An item left the core (m_axis_video transfer).
-  input  logic                  core_out_i,
+  // Items that left the core this cycle, 0 to 2: an m_axis_video transfer, and (FFC
+  // compositions) an item of a held frame, which leaves the count as it enters the core.
+  input  logic [1:0]            core_out_i,
   // A frame starts now (its first item is sent): the pending settings are taken.
   output logic                  start_o,
   // Events, one cycle each (registered), for the register file.
@@ -373,13 +374,13 @@ module irnuc_axis_framer
   logic [FlightBits-1:0] flight_d;
   logic                  drained_d, dirty_d;
 
+  // One adder: flight_q plus the step fire_q - core_out_i (1, 0, -1 or -2; two bits, sign
+  // extended), both from flops.
+  logic [1:0] flight_step;
+  assign flight_step = {1'b0, fire_q} - core_out_i;
+
   always_comb begin : p_flight
-    flight_d = flight_q;
-    if (fire_q && !core_out_i) begin
-      flight_d = flight_q + FlightBits'(1);
-    end else if (!fire_q && core_out_i) begin
-      flight_d = flight_q - FlightBits'(1);
-    end
+    flight_d = flight_q + {{(FlightBits - 2){flight_step[1]}}, flight_step};
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_drain
@@ -483,7 +484,7 @@ module irnuc_axis_framer
   irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
-      a_flight_range: assert (!(core_out_i && flight_q == '0 && !fire_q))
+      a_flight_range: assert (32'(core_out_i) <= 32'(flight_q) + 32'(fire_q))
         else $error("irnuc_axis_framer: an item left the core that was never sent");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");

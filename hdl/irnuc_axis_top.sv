@@ -263,7 +263,7 @@ module irnuc_axis_top
   logic                  start, frame_start, beat, drop, pad, in_frame;
   logic                  sof_early, sof_late, eol_early, eol_late, coef_early, coef_late;
   logic                  pix_out, frame_out, core_err;
-  logic                  core_out;  // an item left the core (output, or dropped in a held frame)
+  logic [1:0]            core_out;  // items that left the core (output, and one of a held frame)
   logic                  ffc_start, ffc_busy, ffc_done;
   logic [RegFfcCtrlFramesBits-1:0] ffc_frames;
 

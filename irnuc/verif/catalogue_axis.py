@@ -133,6 +133,21 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         ".s_pix_data_i      (in_raw),", ".s_pix_data_i      (item_raw_i),",
         "the core's pixel taken from the framer's item, not from u_item_in's (the pixel an item "
         "ahead of its word)", **_AXF),
+    # Killed by ffc_short_run's FRAME_SIZE write after the held frames (the count of items
+    # in flight only shows at a drain).
+    _ma("ax_ffc_held_sof_unbuffered", "irnuc_axis_ffc.sv",
+        "assign held_e       = in_sof ?", "assign held_e       = item_sof_i ?",
+        "the held-frame decision reads the framer's sof, not the sof of the item at the fork "
+        "(behind u_item_in): held items are never counted out of the core",
+        **_AXF),
+    # The count out of the core before session 33's fix: one item a cycle, so the last open
+    # frame leaving as a held one enters lost counts, and a drain after the held frames
+    # never ended.
+    _ma("ax_ffc_core_out_one", "irnuc_axis_ffc.sv",
+        "core_out_q <= {1'b0, pix_out} + {1'b0, item_take && held_e};",
+        "core_out_q <= {1'b0, pix_out || (item_take && held_e)};",
+        "an output and a held item's entry in one cycle count one item out of the core, "
+        "not two: the drain before a new frame size never ends", **_AXF),
     _ma("ax_ffc_busy_clears_early", "irnuc_axis_ffc.sv",
         "        if (ffc_done_o) begin\n          busy_q <= 1'b0;",
         "        if (done_e) begin\n          busy_q <= 1'b0;",
