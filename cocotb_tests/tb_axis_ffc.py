@@ -197,6 +197,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     if resize_after_run:
         async def resize() -> None:
             await bench.frame_size(H, W)
+            seen["resize_beat"] = bench.beats_in
             assert bench.beats_in < (start_frame + count + 1) * H * W, (
                 "FRAME_SIZE written after the frame it should drain behind")
 
@@ -271,7 +272,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         pattern_out = bp if bp == ffc_bp else "mixed"
         cov = coverage.model(TOP, cfg)
         cov.sample_classes(ffc_axis_classes(framing, n, count, start_frame, seen["write_beat"],
-                                            H * W, pattern_in, pattern_out))
+                                            H * W, pattern_in, pattern_out,
+                                            resize_beat=seen.get("resize_beat")))
         coverage.export()
 
 

@@ -102,13 +102,22 @@ def test_ffc_axis_classes_by_hand() -> None:
     assert ffc_axis_classes(full, 8, 8, 2, 36, 24, "none", "none") == {
         "axis.ffc.start": {"mid_frame"}, "axis.ffc.frames": {"n"},
         "axis.ffc.acc_stream": {"full_rate"}, "axis.ffc.foff_stream": {"full_rate"},
-        "axis.ffc.shutter": {"full_rate"}, "axis.ffc.refresh": {"next_frame_start"}}
+        "axis.ffc.shutter": {"full_rate"}, "axis.ffc.refresh": {"next_frame_start"},
+        "axis.ffc.drain": set()}
     short = ffc_framing(cfg, ffc_shutter_flags(7, {2: 2}), start=2)
     assert not any(short.foff_out)
     assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "random", "random") == {
         "axis.ffc.start": {"mid_frame"}, "axis.ffc.frames": {"short"},
         "axis.ffc.acc_stream": {"idle_backpressure"}, "axis.ffc.foff_stream": set(),
-        "axis.ffc.shutter": {"backpressure"}, "axis.ffc.refresh": set()}
+        "axis.ffc.shutter": {"backpressure"}, "axis.ffc.refresh": set(),
+        "axis.ffc.drain": set()}
+    # FRAME_SIZE written in frame 4 (beat 108), after the held frames 2 and 3: the drain;
+    # written in frame 1 (beat 30), before any: none.
+    assert short.shown[2:4] == (False, False) and all(short.shown[:2])
+    assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "random", "random",
+                            resize_beat=108)["axis.ffc.drain"] == {"after_held"}
+    assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "random", "random",
+                            resize_beat=30)["axis.ffc.drain"] == set()
     for beat in (50, 48):
         late = ffc_axis_classes(full, 8, 8, 2, beat, 24, "none", "none")
         assert late["axis.ffc.start"] == set() and late["axis.ffc.refresh"] == set()

@@ -27,6 +27,9 @@ and checked, or by a register read that matched the model:
                           under backpressure)
 ``axis.ffc.refresh``      a start written mid-frame whose shutter frames begin at the next frame
                           start and end in a refresh (``next_frame_start``)
+``axis.ffc.drain``        FRAME_SIZE written after held frames went in: the next frame waits for
+                          the framer's drain, whose count of items out of the core includes the
+                          held ones (``after_held``)
 ========================= =========================================================================
 
 The general AXI points above are the same register file, framer and stream ports on an
@@ -77,19 +80,21 @@ FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.foff_stream": ("full_rate", "idle_backpressure"),
     "axis.ffc.shutter": ("full_rate", "backpressure"),
     "axis.ffc.refresh": ("next_frame_start",),
+    "axis.ffc.drain": ("after_held",),
 }
 
 
 def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
-                     write_beat: int, frame_pixels: int, idle: str, bp: str
-                     ) -> dict[str, set[str]]:
+                     write_beat: int, frame_pixels: int, idle: str, bp: str,
+                     resize_beat: int | None = None) -> dict[str, set[str]]:
     """The bins of :data:`FFC_AXIS_POINTS` (but status and irq, read on the DUT) one
     sequence hits: ``framing`` is the wrapper's golden framing of its shutter flags
     (:func:`irnuc.nuc_fixed.axis.ffc_framing`), ``count`` FFC_CTRL.frames of a start that
     the framing applies from frame ``start_frame`` on, ``n`` the configured N;
     ``write_beat`` the video beats taken (frames of ``frame_pixels`` beats, back to back)
     when the start's write response came; ``idle`` / ``bp`` the pause patterns of every
-    input / output (``none``: full rate)."""
+    input / output (``none``: full rate); ``resize_beat`` the video beats taken when a
+    FRAME_SIZE write's response came (None: no such write)."""
     out: dict[str, set[str]] = {k: set() for k in FFC_AXIS_POINTS
                                 if k not in ("axis.ffc.status", "axis.ffc.irq")}
     frame_of_write, into = divmod(int(write_beat), int(frame_pixels))
@@ -114,6 +119,10 @@ def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
     first = framing.shutter.index(True) if any(framing.shutter) else None
     if mid and refresh and first == start_frame:
         out["axis.ffc.refresh"].add("next_frame_start")
+    if resize_beat is not None:
+        frame_of_resize = int(resize_beat) // int(frame_pixels)
+        if not all(framing.shown[:frame_of_resize]):
+            out["axis.ffc.drain"].add("after_held")
     return out
 
 
@@ -124,7 +133,13 @@ class AxisCoverageModel(CoverageModel):
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         super().__init__(top, cfg, prefix)
         point = self.add_point
-        for name, bins in (FFC_AXIS_POINTS if cfg.has("ffc") else AXIS_POINTS).items():
+        points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else AXIS_POINTS)
+        if cfg.has("ffc") and cfg.ffc_output != "hold":
+            del points["axis.ffc.drain"]
+            self.removed["axis.ffc.drain"] = {
+                "after_held": f"ffc_output = {cfg.ffc_output!r}: shutter frames are passed, "
+                              "never held"}
+        for name, bins in points.items():
             point(name, bins)
 
     def sample_classes(self, classes: dict[str, set[str]]) -> None:
