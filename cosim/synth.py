@@ -20,7 +20,7 @@ Functions
 ``synth_ecp5(sources, top, params, workdir)``
     ``synth_ecp5``; the netlist JSON for nextpnr and cell counts (LUT4, CCU2C, FF,
     MULT18X18D, DP16KD, LUT RAM, ...).
-``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed)``
+``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed, timing_weight)``
     nextpnr-ecp5; Fmax from its ``--report`` JSON, utilisation, the critical path.
 ``comb_paths(sources, top, params, workdir)``
     input ports with a combinational path to an output port (flatten, proc, memories
@@ -79,6 +79,13 @@ __all__ = [
 
 #: nextpnr-ecp5's default speed grade, the slowest of the LFE5U parts (6, 7, 8).
 ECP5_SPEED_DEFAULT = 6
+
+#: The heap placer's timing weight (nextpnr's ``--placer-heap-timingweight``; its default is
+#: 10). The wrapper's paths are routing-bound (5-6 ns of a 6.7 ns period is routing): on the
+#: four irnuc_axis_top configurations below 150 MHz at nextpnr's default, weights 10 / 20 /
+#: 30 / 50 gave a mean Fmax over seeds 1 and 2 of 145.5 / 150.8 / 152.1 / 152.5 MHz
+#: (docs/synthesis.md, "Placer settings").
+PLACER_TIMING_WEIGHT = 30
 
 #: Yosys internal flip-flop, latch and memory cells: a fan-in cone stops at them.
 FLIP_FLOP_CELLS: tuple[str, ...] = (
@@ -307,7 +314,7 @@ def _critical_path(log_text: str) -> list[str]:
 def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *,
                      device: str = "85k", package: str = "CABGA381",
                      speed: int = ECP5_SPEED_DEFAULT, freq_mhz: float = 100.0,
-                     seed: int = 1) -> dict:
+                     seed: int = 1, timing_weight: int = PLACER_TIMING_WEIGHT) -> dict:
     """Place and route an ECP5 netlist with nextpnr-ecp5 and read its timing report.
 
     Parameters
@@ -328,6 +335,9 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         (``--timing-allow-fail``).
     seed : int
         Placer seed (results vary by a few percent between seeds).
+    timing_weight : int
+        The heap placer's timing weight (``--placer-heap-timingweight``; see
+        :data:`PLACER_TIMING_WEIGHT`).
 
     Returns
     -------
@@ -335,7 +345,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         ``fmax_mhz`` (the lowest achieved frequency over the design's clocks),
         ``clocks`` ({name: {achieved, constraint}} from the report), ``utilization``
         ({cell type: {used, available}}), ``critical_path`` (lines of nextpnr's report),
-        ``device``, ``package``, ``speed``, ``freq_mhz``, ``seed``, ``seconds``, ``log``.
+        ``device``, ``package``, ``speed``, ``freq_mhz``, ``seed``, ``timing_weight``,
+        ``seconds``, ``log``.
     """
     wd = Path(workdir).resolve()
     wd.mkdir(parents=True, exist_ok=True)
@@ -348,7 +359,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
     log = wd / "nextpnr.log"
     args = [f"--{device}", "--package", package, "--speed", str(int(speed)),
             "--json", net.name, "--freq", f"{float(freq_mhz):g}", "--report", report.name,
-            "--timing-allow-fail", "--seed", str(int(seed))]
+            "--timing-allow-fail", "--seed", str(int(seed)),
+            "--placer-heap-timingweight", str(int(timing_weight))]
     t0 = time.perf_counter()
     proc = run_child([*_nextpnr_cmd(), *args], cwd=wd, log=log)
     seconds = time.perf_counter() - t0
@@ -366,7 +378,7 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         "utilization": rep.get("utilization", {}),
         "critical_path": _critical_path(log.read_text(errors="replace")),
         "device": device, "package": package, "speed": int(speed),
-        "freq_mhz": float(freq_mhz), "seed": int(seed),
+        "freq_mhz": float(freq_mhz), "seed": int(seed), "timing_weight": int(timing_weight),
         "seconds": round(seconds, 2), "log": str(log),
     }
 
@@ -417,7 +429,8 @@ def tool_versions() -> dict[str, str]:
 # ---- irnuc synth: one configuration, cached; many, on the executor ------------------------
 
 #: Version of the flow below (part of the cache key: bump it when the flow changes).
-FLOW_VERSION = 2  # 2: ECP5 DSPs instantiated with their registers (IRNUC_ECP5)
+# 2: ECP5 DSPs instantiated with their registers (IRNUC_ECP5); 3: PLACER_TIMING_WEIGHT.
+FLOW_VERSION = 3
 #: Where irnuc synth places and routes: the ECP5 part and the clock it aims at.
 ECP5_DEVICE, ECP5_PACKAGE, TARGET_MHZ = "85k", "CABGA381", 150.0
 #: The xc7 and ECP5 figures every result carries (docs/synthesis.md).
@@ -568,6 +581,7 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
             "tools": tool_versions(),
             "top": top, "device": f"LFE5U-{ECP5_DEVICE.upper()}F", "package": ECP5_PACKAGE,
             "speed": int(speed), "target_mhz": float(freq_mhz), "seed": int(seed),
+            "placer_timing_weight": pnr["timing_weight"],
             **asked, "source_digest": key,
             "seconds": {"xc7": xc7["seconds"], "ecp5": ecp5["seconds"],
                         "place_route": pnr["seconds"]},
