@@ -421,38 +421,60 @@ module irnuc_axis_ffc
   // size the frames are taken with, behind an output buffer (every output a flop).
   logic macc_last, mfoff_last;
 
-  // They compare against copies of width - 1 and height - 1 (flops beside the counters,
-  // a cycle behind the framer's: a new size is taken with a frame's first item, which
-  // reaches the write-back streams many cycles later, after the old frames' words).
+  // They count against copies of the frame size (flops beside the counters, a cycle behind
+  // the framer's: a new size is taken with a frame's first item, which reaches the
+  // write-back streams many cycles later, after the old frames' words). The end of a line
+  // and the last line are flags of their own (eol_q, row_last_q: the counters' next state and
+  // tlast hang on flops, no compare on the path): stepped with a word from width - 2 and
+  // height - 2 (the next position's compare made a word early), refreshed from the position
+  // while no word passes (a new size: current two cycles after it).
   logic [1:0][WidthBits-1:0]  col_q;
   logic [1:0][HeightBits-1:0] row_q;
-  logic [1:0]                 wb_beat, wb_eol, wb_last;
-  logic [WidthBits-1:0]       wb_wm1_q;
-  logic [HeightBits-1:0]      wb_hm1_q;
+  logic [1:0]                 wb_beat, wb_last, eol_q, row_last_q;
+  logic [WidthBits-1:0]       wb_wm1_q, wb_wm2_q;
+  logic [HeightBits-1:0]      wb_hm1_q, wb_hm2_q;
+  logic                       wb_w1_q, wb_h1_q;  // width 1, height 1
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_wb_size
     if (!rst_ni) begin
       wb_wm1_q <= WidthBits'(MaxWidth - 1);
       wb_hm1_q <= HeightBits'(MaxHeight - 1);
+      wb_wm2_q <= WidthBits'(MaxWidth - 2);
+      wb_hm2_q <= HeightBits'(MaxHeight - 2);
+      wb_w1_q  <= MaxWidth == 1;
+      wb_h1_q  <= MaxHeight == 1;
     end else begin
       wb_wm1_q <= act_wm1_i;
       wb_hm1_q <= act_hm1_i;
+      // Width 1: all ones, a column the count never reaches (the line ends at every word).
+      wb_wm2_q <= act_wm1_i - WidthBits'(1);
+      wb_hm2_q <= act_hm1_i - HeightBits'(1);
+      wb_w1_q  <= act_wm1_i == '0;
+      wb_h1_q  <= act_hm1_i == '0;
     end
   end
 
   assign wb_beat = {mfoff_valid && mfoff_ready, macc_valid && macc_ready};
   for (genvar k = 0; k < 2; k++) begin : gen_wb_last
-    assign wb_eol[k]  = col_q[k] == wb_wm1_q;  // no subtraction on the path (Fmax)
-    assign wb_last[k] = wb_eol[k] && row_q[k] == wb_hm1_q;
+    assign wb_last[k] = eol_q[k] && row_last_q[k];
     always_ff @(posedge clk_i or negedge rst_ni) begin : p_count
       if (!rst_ni) begin
-        col_q[k] <= '0;
-        row_q[k] <= '0;
+        col_q[k]      <= '0;
+        row_q[k]      <= '0;
+        eol_q[k]      <= MaxWidth == 1;
+        row_last_q[k] <= MaxHeight == 1;
       end else if (wb_beat[k]) begin
-        col_q[k] <= wb_eol[k] ? '0 : col_q[k] + WidthBits'(1);
-        if (wb_eol[k]) begin
-          row_q[k] <= wb_last[k] ? '0 : row_q[k] + HeightBits'(1);
+        col_q[k] <= eol_q[k] ? '0 : col_q[k] + WidthBits'(1);
+        eol_q[k] <= eol_q[k] ? wb_w1_q : col_q[k] == wb_wm2_q;
+        if (eol_q[k]) begin
+          row_q[k]      <= wb_last[k] ? '0 : row_q[k] + HeightBits'(1);
+          row_last_q[k] <= row_last_q[k] ? wb_h1_q : row_q[k] == wb_hm2_q;
+        end else begin
+          row_last_q[k] <= row_q[k] == wb_hm1_q;
         end
+      end else begin
+        eol_q[k]      <= col_q[k] == wb_wm1_q;
+        row_last_q[k] <= row_q[k] == wb_hm1_q;
       end
     end
   end
@@ -509,6 +531,12 @@ module irnuc_axis_ffc
     if (armed_q) begin
       a_wb_size: assert (wb_beat == '0 || (wb_wm1_q == act_wm1_i && wb_hm1_q == act_hm1_i))
         else $error("irnuc_axis_ffc: a write-back word counted in the cycle after a new frame size");
+      for (int k = 0; k < 2; k++) begin
+        a_wb_flags: assert (!wb_beat[k] || (eol_q[k] == (col_q[k] == act_wm1_i)
+                                            && row_last_q[k] == (row_q[k] == act_hm1_i)))
+          else $error("irnuc_axis_ffc: write-back stream %0d's end-of-line / last-line flag disagrees with its position",
+                      k);
+      end
       a_core_size: assert (!pix_take || (core_w_q == act_w_i && core_h_q == act_h_i))
         else $error("irnuc_axis_ffc: a pixel entered the core in the cycle after a new frame size");
       a_done_once: assert (!(done_q && done_e))
