@@ -242,15 +242,34 @@ module irnuc_axis_ffc
   // shorter than FfcFrames (no refresh), the next open frame reaching the core, or at
   // once for FFC_CTRL.frames = 0. begun_q: the run's first shutter frame reached the core;
   // ended_q: then an open frame (the run is over; a full run's refresh may still come).
+  // The run reads its events a cycle late, from flops: a frame's first item taken by the
+  // fork (sof_q, with its shutter flag) and the refresh's last word (refresh_q), so the
+  // fork's take and the write-back handshake each reach one flop, not the run's state and
+  // done. begin_ok_q: a shutter frame reaching the core then begins the run (busy, the
+  // start taken by a frame, no new FFC_CTRL.start in that cycle: the start wins).
   localparam int unsigned RunBits = $clog2(FfcFrames + 1);
   logic [RunBits-1:0] run_q;
   logic               busy_q, begun_q, ended_q, open_sof, short_end, refreshed, none;
   logic               done_e, done_q, none_q;
+  logic               sof_q, sof_shutter_q, begin_ok_q, refresh_q;
 
-  assign open_sof  = item_take && in_sof && !item_shutter;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_events
+    if (!rst_ni) begin
+      sof_q         <= 1'b0;
+      sof_shutter_q <= 1'b0;
+      begin_ok_q    <= 1'b0;
+      refresh_q     <= 1'b0;
+    end else begin
+      sof_q         <= item_take && in_sof;
+      sof_shutter_q <= item_shutter;
+      begin_ok_q    <= busy_q && !ffc_armed_q && !ffc_start_i;
+      refresh_q     <= m_axis_foff_tvalid && m_axis_foff_tready && m_axis_foff_tlast;
+    end
+  end
+
+  assign open_sof  = sof_q && !sof_shutter_q;
   assign short_end = open_sof && begun_q && !ended_q && run_q < RunBits'(FfcFrames);
-  assign refreshed = begun_q && m_axis_foff_tvalid && m_axis_foff_tready
-                     && m_axis_foff_tlast;
+  assign refreshed = begun_q && refresh_q;
   assign none      = none_q;  // FFC_CTRL.frames = 0: the frame start of the cycle before
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_run
@@ -260,8 +279,8 @@ module irnuc_axis_ffc
       begun_q <= 1'b0;
       ended_q <= 1'b0;
     end else begin
-      if (item_take && in_sof) begin
-        run_q <= !item_shutter ? '0
+      if (sof_q) begin
+        run_q <= !sof_shutter_q ? '0
                : (run_q == RunBits'(FfcFrames)) ? run_q : run_q + RunBits'(1);
       end
       if (ffc_start_i) begin
@@ -275,16 +294,15 @@ module irnuc_axis_ffc
         if (ffc_done_o) begin
           busy_q <= 1'b0;
         end
-        if (busy_q && !ffc_armed_q && item_take && in_sof && item_shutter) begin
+        if (begin_ok_q && sof_q && sof_shutter_q) begin
           begun_q <= 1'b1;
         end
       end
     end
   end
-  // done is registered (done_q: the event of the cycle before), so that the fork's take and
-  // the write-back handshake reach the register file's flops from a flop; busy clears with
-  // it. A start in the cycle of done_q begins a new run instead (as a start in the event's
-  // cycle does).
+  // done is registered (done_q: the event of the cycle before), so that the run's state
+  // reaches the register file's flops from a flop; busy clears with it. A start in the
+  // cycle of done_q begins a new run instead (as a start in the event's cycle does).
   assign done_e = busy_q && !ffc_start_i && (refreshed || short_end || none);
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_done
     if (!rst_ni) begin
