@@ -11,7 +11,8 @@
 // sum gives T = 0 (its rounded quotient is at most 0), as does n_good = 0 (the golden
 // model refuses it). The target is then held on target_o (target_valid_o) until the next
 // start; the sums restart with the division. ready_o: the waiting frame's division has
-// started and its target is valid (until a frame's first pixel is taken, frame_taken_i).
+// started and its target is valid (until the cycle after a frame's first pixel is taken,
+// frame_taken_i).
 module ffc_mean #(
   parameter int unsigned VBits     = 20,  // v, signed
   parameter int unsigned NBits     = 21,  // n_good, unsigned (clog2 of the largest frame + 1)
@@ -52,28 +53,32 @@ module ffc_mean #(
   logic                  start, started_q;
   logic [FlightBits-1:0] flight_q;
   // The count adds enter_i a cycle late (enter_q: the enclosing join's take reaches one
-  // flop, not the count's adder), so the pixels in flight are flight_q + enter_q. "None in
-  // flight" is a flop of its own (start drives the division's wide enables), set from that
-  // count's compares and this cycle's steps, not from the next count.
-  logic                  flight_zero_q, flight_one, enter_q;
+  // flop, not the count's adder), so the pixels in flight are flight_q + enter_q. "None
+  // counted" (flight_q = 0) is a flop of its own, stepped from enter_q and valid_i, and start
+  // also asks !enter_q: the join's take reaches no other flop here (start drives the
+  // division's wide enables). A frame's first pixel taken clears started_q a cycle late
+  // (taken_q: ready_o holds a cycle longer, when no other refresh frame can wait).
+  logic                  flight_zero_q, flight_one, enter_q, taken_q;
 
-  assign start      = request_i && !started_q && flight_zero_q;
-  assign flight_one = enter_q ? flight_q == '0 : flight_q == FlightBits'(1);
+  assign start      = request_i && !started_q && flight_zero_q && !enter_q;
+  assign flight_one = flight_q == FlightBits'(1);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_flight
     if (!rst_ni) begin
       enter_q       <= 1'b0;
+      taken_q       <= 1'b0;
       flight_q      <= '0;
       flight_zero_q <= 1'b1;
       started_q     <= 1'b0;
     end else begin
       enter_q       <= enter_i;
+      taken_q       <= frame_taken_i;
       flight_q      <= flight_q + FlightBits'(enter_q) - FlightBits'(valid_i);
-      flight_zero_q <= (flight_zero_q && enter_i == valid_i)
-                       || (flight_one && valid_i && !enter_i);
+      flight_zero_q <= (flight_zero_q && enter_q == valid_i)
+                       || (flight_one && valid_i && !enter_q);
       if (start) begin
         started_q <= 1'b1;
-      end else if (frame_taken_i) begin
+      end else if (taken_q) begin
         started_q <= 1'b0;
       end
     end
@@ -173,7 +178,7 @@ module ffc_mean #(
     if (armed_q) begin
       a_flight_range: assert (!(flight_q == '0 && !enter_q && valid_i))
         else $error("ffc_mean: a mean pixel summed that was never counted in");
-      a_flight_zero: assert (flight_zero_q == (flight_q == '0 && !enter_q))
+      a_flight_zero: assert (flight_zero_q == (flight_q == '0))
         else $error("ffc_mean: the in-flight count's zero flag disagrees with it");
       a_flight_room: assert (!(flight_q == '1 && enter_q && !valid_i))
         else $error("ffc_mean: more mean pixels in flight than the count holds");

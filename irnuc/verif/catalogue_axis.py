@@ -157,6 +157,26 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "      wb_wm1_q <= act_wm1_i;", "      wb_wm1_q <= wb_wm1_q;",
         "the write-back counters keep the reset width (MaxWidth - 1): tlast at the wrong word",
         **_AXF),
+    # The registers of session 33 (Fmax): the write-back counters' end-of-line / last-line
+    # flags, the run's events from flops.
+    _ma("ax_ffc_wb_eol_step_late", "irnuc_axis_ffc.sv",
+        "eol_q[k] <= eol_q[k] ? wb_w1_q : col_q[k] == wb_wm2_q;",
+        "eol_q[k] <= eol_q[k] ? wb_w1_q : col_q[k] == wb_wm1_q;",
+        "the end-of-line flag stepped from width - 1, not width - 2: lines a word too long",
+        **_AXF),
+    _ma("ax_ffc_wb_flags_stale", "irnuc_axis_ffc.sv",
+        "        eol_q[k]      <= col_q[k] == wb_wm1_q;\n        row_last_q[k] <= row_q[k] == wb_hm1_q;",
+        "        eol_q[k]      <= eol_q[k];\n        row_last_q[k] <= row_last_q[k];",
+        "the write-back flags not refreshed while no word passes: a frame 1 wide or 1 tall, "
+        "or the first after one, ends its lines at the old size", **_AXF),
+    _ma("ax_ffc_run_sof_every_cycle", "irnuc_axis_ffc.sv",
+        "sof_q         <= item_take && in_sof;", "sof_q         <= in_valid && in_sof;",
+        "FFC_STATUS's run counts a frame start in every cycle its first item waits at the fork",
+        **_AXF),
+    _ma("ax_ffc_refresh_any_word", "irnuc_axis_ffc.sv",
+        "refresh_q     <= m_axis_foff_tvalid && m_axis_foff_tready && m_axis_foff_tlast;",
+        "refresh_q     <= m_axis_foff_tvalid && m_axis_foff_tready;",
+        "FFC_STATUS.done with the refresh's first new offset, not its last", **_AXF),
 )
 
 __all__ = ["AXIS_MUTANTS"]
