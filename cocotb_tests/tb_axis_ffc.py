@@ -115,7 +115,8 @@ async def _frames_of(sink: AxiStreamSink, n: int, limit_cycles: int) -> list[lis
 
 async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: str,
                            label: str, ffc_idle: str | None = None,
-                           ffc_bp: str | None = None, resize_after_run: bool = False) -> None:
+                           ffc_bp: str | None = None, resize_after_run: bool = False,
+                           size: tuple[int, int] = (H, W)) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
@@ -124,13 +125,14 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     ``resize_after_run``: FRAME_SIZE written (the same size) in the middle of the first
     frame after the shutter frames, so the framer drains before the next one: its count of
     items in flight must have counted the held frames' items out as they entered the core
-    (else the drain never ends)."""
+    (else the drain never ends). ``size``: the frames' (lines, pixels)."""
+    fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
     bench = await _bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
-    await bench.frame_size(H, W)
+    await bench.frame_size(fh, fw)
     for reg in ("FFC_CTRL", "FFC_STATUS"):
         await bench.check(reg)
     n = int(cfg.ffc_frames or 1)
@@ -138,11 +140,11 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     start_frame = 2
     shutter = ffc_shutter_flags(start_frame + count + 3, {start_frame: count})
     framing = ffc_framing(cfg, shutter, start=start_frame)
-    c = _calibration(cfg, H, W, rng, "camera")
+    c = _calibration(cfg, fh, fw, rng, "camera")
     for name, value in c.registers.items():  # tc_offset: T_REF
         await bench.write_method_register(name, int(value))
     readings = [random_reading(cfg, c, rng) for _ in shutter]
-    run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], H, W, rng, "camera"), shutter,
+    run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"), shutter,
                   readings=readings, golden=bench.env.golden)
     assert framing.acc_in == tuple(a is not None for a in run.acc_in)
     assert framing.foff_out == tuple(a is not None for a in run.foff_out)
@@ -186,25 +188,25 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         frame k + 1 starts: the core takes it at that frame start)."""
         async def write() -> None:
             await bench.write_method_register("reading", int(readings[k + 1]))
-            assert bench.beats_in < (k + 1) * H * W, (
+            assert bench.beats_in < (k + 1) * fh * fw, (
                 f"READING of frame {k + 1} written after that frame started "
                 f"({bench.beats_in} beats taken)")
         return write
 
     stalls: dict[str, list[int]] = {}
     stall_task = cocotb.start_soon(_stall_log(bench, stalls))
-    acts = [cocotb.start_soon(bench._act(H * W + H * W // 2, write_ffc))]
+    acts = [cocotb.start_soon(bench._act(fh * fw + fh * fw // 2, write_ffc))]
     if resize_after_run:
         async def resize() -> None:
-            await bench.frame_size(H, W)
+            await bench.frame_size(fh, fw)
             seen["resize_beat"] = bench.beats_in
-            assert bench.beats_in < (start_frame + count + 1) * H * W, (
+            assert bench.beats_in < (start_frame + count + 1) * fh * fw, (
                 "FRAME_SIZE written after the frame it should drain behind")
 
-        acts.append(cocotb.start_soon(bench._act((start_frame + count) * H * W + H * W // 2,
+        acts.append(cocotb.start_soon(bench._act((start_frame + count) * fh * fw + fh * fw // 2,
                                                  resize)))
     if readings[0] is not None:
-        acts += [cocotb.start_soon(bench._act(k * H * W + H * W // 4, write_reading(k)))
+        acts += [cocotb.start_soon(bench._act(k * fh * fw + fh * fw // 4, write_reading(k)))
                  for k in range(len(raws) - 1)]
     limit = 40 * (len(video[0]) * 2) + 2000
     want_acc = [[int(v) for v in np.ravel(a)] for a in run.acc_out if a is not None]
@@ -241,12 +243,12 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         # small): their 2 H W pixels leave in 2 H W cycles (one per clock through the
         # wrapper's fork). Recorded (test_axis_top's throughput check, with the ports' idle
         # and stalled cycles for triage), then checked.
-        first, last = bench.out_cycles[-2 * H * W], bench.out_cycles[-1]
+        first, last = bench.out_cycles[-2 * fh * fw], bench.out_cycles[-1]
         window = {k: [c for c in v if first <= c <= last] for k, v in stalls.items()}
-        tb_lib.record(throughput="last_two_frames", pixels=2 * H * W,
+        tb_lib.record(throughput="last_two_frames", pixels=2 * fh * fw,
                       cycles=last - first + 1, stalls=window)
-        assert last - first + 1 == 2 * H * W, (
-            f"the last two frames' {2 * H * W} pixels took {last - first + 1} cycles; "
+        assert last - first + 1 == 2 * fh * fw, (
+            f"the last two frames' {2 * fh * fw} pixels took {last - first + 1} cycles; "
             f"idle/stalled cycles by port {window}")
         _sample("stream.back_to_back", "frames")
 
@@ -272,7 +274,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         pattern_out = bp if bp == ffc_bp else "mixed"
         cov = coverage.model(TOP, cfg)
         cov.sample_classes(ffc_axis_classes(framing, n, count, start_frame, seen["write_beat"],
-                                            H * W, pattern_in, pattern_out,
+                                            fh * fw, pattern_in, pattern_out,
                                             resize_beat=seen.get("resize_beat")))
         coverage.export()
 
@@ -300,3 +302,10 @@ async def ffc_short_run(dut) -> None:
     FRAME_SIZE write after the (held) shutter frames drains the framer."""
     await refresh_sequence(dut, 42, 2, "bursty", "alternate", "ffc short run",
                            ffc_idle="alternate", ffc_bp="bursty", resize_after_run=True)
+
+
+@cocotb.test()
+async def ffc_one_line(dut) -> None:
+    """The refresh on frames of one line: the write-back streams' last-line flag holds
+    from the frame's first word (tlast on every line's last word, the line is the frame)."""
+    await refresh_sequence(dut, 43, None, "random", "random", "ffc one line", size=(1, 16))

@@ -540,11 +540,26 @@ module irnuc_axis_ffc
   assign pix_out = m_valid_o && m_ready_i;
 
 `ifdef IRNUC_ASSERT
-  // What the registers above rely on: the write-back counters' size copies are current
-  // whenever a word is counted, and an FFC run ends at most once in two cycles (done_q
-  // holds one event).
+  // What the registers above rely on: the write-back counters' size copies and their
+  // end-of-line / last-line flags are current whenever a word is counted, the run reads
+  // the fork's frame starts a cycle late, and an FFC run ends at most once in two cycles
+  // (done_q holds one event).
   logic armed_q;  // from the second edge after reset
   irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
+  // The run's count a cycle behind a reference counted on the fork's take itself.
+  logic [RunBits-1:0] ref_run_q, ref_run_past_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_ref_run
+    if (!rst_ni) begin
+      ref_run_q      <= '0;
+      ref_run_past_q <= '0;
+    end else begin
+      ref_run_past_q <= ref_run_q;
+      if (item_take && in_sof) begin
+        ref_run_q <= !item_shutter ? '0
+                   : (ref_run_q == RunBits'(FfcFrames)) ? ref_run_q : ref_run_q + RunBits'(1);
+      end
+    end
+  end
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_wb_size: assert (wb_beat == '0 || (wb_wm1_q == act_wm1_i && wb_hm1_q == act_hm1_i))
@@ -557,6 +572,8 @@ module irnuc_axis_ffc
       end
       a_core_size: assert (!pix_take || (core_w_q == act_w_i && core_h_q == act_h_i))
         else $error("irnuc_axis_ffc: a pixel entered the core in the cycle after a new frame size");
+      a_run_late: assert (run_q == ref_run_past_q)
+        else $error("irnuc_axis_ffc: the FFC run's frame count is not the fork's frame starts a cycle late");
       a_done_once: assert (!(done_q && done_e))
         else $error("irnuc_axis_ffc: an FFC run ended in two consecutive cycles");
     end
