@@ -2,9 +2,10 @@
 // each frame from FFC_CTRL, the input register of the framer's items (a registered stream
 // boundary), the fork of the items into method_ffc_top's separate
 // pixel and coefficient inputs, the held frames' count, FFC_STATUS busy/done, the input
-// buffers of s_axis_foff and s_axis_acc, method_ffc_top itself, and the write-back streams
-// m_axis_acc and m_axis_foff with their tlast (counted against the frame size) behind
-// output buffers. Instantiated by irnuc_axis_core; the AXI4-Stream ports are the top's.
+// buffers of s_axis_foff and s_axis_acc, method_ffc_top itself, the output buffer of its
+// corrected pixels, and the write-back streams m_axis_acc and m_axis_foff with their tlast
+// (counted against the frame size) behind output buffers. Instantiated by irnuc_axis_core;
+// the AXI4-Stream ports are the top's.
 module irnuc_axis_ffc
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
@@ -86,7 +87,7 @@ module irnuc_axis_ffc
   input  logic                            item_sof_i,
   input  logic                            item_eol_i,
   input  logic [ItemFrameBits-1:0]        item_frame_i,
-  // Corrected pixels (method_ffc_top's output register).
+  // Corrected pixels (behind the output buffer u_pix_out).
   output logic                            m_valid_o,
   input  logic                            m_ready_i,
   output logic [OutBits-1:0]              m_data_o,
@@ -349,6 +350,10 @@ module irnuc_axis_ffc
     .data_o (acc_data)
   );
 
+  // The core's pixels out, into the output buffer u_pix_out (below).
+  logic               pix_valid, pix_ready, pix_sof, pix_eol;
+  logic [OutBits-1:0] pix_data;
+
   // The core's frame size: copies of the framer's (flops beside the core, a cycle behind:
   // the framer takes a new size with a frame's first item once the core is drained, and
   // that item reaches the core through two registers, u_out and u_item_in).
@@ -425,14 +430,30 @@ module irnuc_axis_ffc
     .m_foff_valid_o    (mfoff_valid),
     .m_foff_ready_i    (mfoff_ready),
     .m_foff_data_o     (mfoff_data),
-    .m_pix_valid_o     (m_valid_o),
-    .m_pix_ready_i     (m_ready_i),
-    .m_pix_data_o      (m_data_o),
-    .m_pix_sof_o       (m_sof_o),
-    .m_pix_eol_o       (m_eol_o),
+    .m_pix_valid_o     (pix_valid),
+    .m_pix_ready_i     (pix_ready),
+    .m_pix_data_o      (pix_data),
+    .m_pix_sof_o       (pix_sof),
+    .m_pix_eol_o       (pix_eol),
     .ffc_target_valid_o(target_valid),
     .ffc_target_o      (target),
     .frame_err_o       (frame_err_o)
+  );
+
+  // The corrected pixels leave through an output buffer of their own (a registered stream
+  // boundary): the DPC's output register inside the core then sees a fill flag as its ready,
+  // not m_axis_video_tready, and is placed beside the DPC rather than at the port (tcffc14:
+  // its valid drives the DPC's enables). One cycle more of latency; one pixel per clock.
+  // The framer counts a pixel out of the core as it leaves this buffer (pix_out).
+  irnuc_axis_buffer #(.DataBits(OutBits + 2)) u_pix_out (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(pix_valid),
+    .ready_o(pix_ready),
+    .data_i ({pix_sof, pix_eol, pix_data}),
+    .valid_o(m_valid_o),
+    .ready_i(m_ready_i),
+    .data_o ({m_sof_o, m_eol_o, m_data_o})
   );
 
   // The write-back streams: tlast on each frame's last word, counted against the frame
