@@ -177,6 +177,9 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "refresh_q     <= m_axis_foff_tvalid && m_axis_foff_tready && m_axis_foff_tlast;",
         "refresh_q     <= m_axis_foff_tvalid && m_axis_foff_tready;",
         "FFC_STATUS.done with the refresh's first new offset, not its last", **_AXF),
+    _ma("ax_ffc_pix_out_markers_swapped", "irnuc_axis_ffc.sv",
+        ".data_i ({pix_sof, pix_eol, pix_data}),", ".data_i ({pix_eol, pix_sof, pix_data}),",
+        "the pixel output buffer swaps the corrected pixels' sof and eol", **_AXF),
 )
 
 __all__ = ["AXIS_MUTANTS"]
