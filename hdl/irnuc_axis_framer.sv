@@ -372,7 +372,7 @@ module irnuc_axis_framer
   // less those that left the core: the items in flight are flight_q + fire_q, and `fire`
   // reaches no carry chain.
   logic [FlightBits-1:0] flight_d;
-  logic                  drained_d, dirty_d;
+  logic                  drained_d;
 
   // One adder: flight_q plus the step fire_q - core_out_i (1, 0, -1 or -2; two bits, sign
   // extended), both from flops.
@@ -398,11 +398,15 @@ module irnuc_axis_framer
     end
   end
 
-  // start_ok of the next cycle: size_dirty_i's next value (the register file's: a write of
-  // the frame size sets it, the frame start clears it) and drained_q's.
-  assign drained_d = empty_q && size_dirty_i && starting && !fire;
-  assign dirty_d   = size_write_i || (size_dirty_i && !start_fire);
-  assign wait_ok_d = (vst_d == AxisWait) && (!dirty_d || drained_d);
+  // start_ok of the next cycle (a_wait_ok), where the next state waits: no frame-size write
+  // now (it sets size_dirty_i next; the position registers are loaded from the old size at
+  // this edge) and the size clean, or, waiting, the core empty (drained_d) or a frame's
+  // first item sent (the frame start clears size_dirty_i: a one-pixel frame waits again).
+  // Neither start_fire nor drained_d enters it: `fire` passes the next state's multiplexer
+  // only.
+  assign drained_d = empty_q && size_dirty_i && starting && !fire && !size_write_i;
+  assign wait_ok_d = (vst_d == AxisWait) && !size_write_i
+                     && (!size_dirty_i || (starting && (fire || empty_q)));
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
   // The word enters the output register as it comes with two flags, and
