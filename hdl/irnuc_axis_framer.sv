@@ -165,7 +165,8 @@ module irnuc_axis_framer
   logic start_ok, starting, pix_item, pad_item, item, word_ok, go, fire, start_fire;
   logic take_beat, drop_beat, take_coef, last;
   logic eff_nuc, eff_dpc, eff_sync;
-  logic out_ready;
+  logic out_ready;   // u_out's ready (its skid register empty): drives its data registers
+  logic out_free_q;  // a copy of it for the item decision, a flop of its own (a_out_free)
 
   // A new frame size waits for the drain (drained_q is at least a cycle after the write,
   // so the position registers are preloaded from the new size).
@@ -176,7 +177,7 @@ module irnuc_axis_framer
   assign pad_item = s_pad_q;
   assign item     = pix_item || pad_item;
   assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
-  assign go       = word_ok && out_ready;  // the word and the output allow an item
+  assign go       = word_ok && out_free_q;  // the word and the output allow an item
   assign fire     = go && item;
   // A frame's first item (fire && starting) straight from flops: waiting, only a start of
   // frame is an item (the states are one-hot: a_start_fire).
@@ -452,6 +453,19 @@ module irnuc_axis_framer
 
   assign m_word_o = word;
 
+  // u_out's ready for the decision: the skid register's valid flag drives the enables and
+  // multiplexers of every data bit of u_out (a net of a few hundred loads); this copy, the
+  // complement of that flag (distinct flops: synthesis keeps both), drives the decision only.
+  // u_out's main register takes an item when it is empty or its item leaves (the skid
+  // register empties then); else an item sent fills the skid register.
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_out_free
+    if (!rst_ni) begin
+      out_free_q <= 1'b1;
+    end else begin
+      out_free_q <= !m_valid_o || m_ready_i || (out_free_q && !fire);
+    end
+  end
+
   // ---- events ---------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_events
     if (!rst_ni) begin
@@ -490,6 +504,8 @@ module irnuc_axis_framer
     if (armed_q) begin
       a_flight_range: assert (32'(core_out_i) <= 32'(flight_q) + 32'(fire_q))
         else $error("irnuc_axis_framer: an item left the core that was never sent");
+      a_out_free: assert (out_free_q == out_ready)
+        else $error("irnuc_axis_framer: out_free_q is not u_out's ready");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
       a_start_fire: assert (start_fire == (fire && starting))

@@ -43,6 +43,11 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
     _ma("ax_pad_state_late", "irnuc_axis_framer.sv",
         "s_pad_q     <= (vst_d == AxisPad);", "s_pad_q     <= (vst_q == AxisPad);",
         "the one-hot filler state a cycle behind the state (fillers sent a cycle late)"),
+    _ma("ax_out_free_ignores_fire", "irnuc_axis_framer.sv",
+        "out_free_q <= !m_valid_o || m_ready_i || (out_free_q && !fire);",
+        "out_free_q <= !m_valid_o || m_ready_i || out_free_q;",
+        "the decision's copy of the output register's ready misses an item that fills its "
+        "skid register (a third item sent over two held)"),
     _ma("ax_nuc_off_frame_word", "irnuc_axis_framer.sv",
         "assign frame = !starting ? '0 : pend_nuc_en_i ? pend_frame_i : NeutralFrame;",
         "assign frame = !starting ? '0 : pend_frame_i;",
