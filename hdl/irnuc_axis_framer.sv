@@ -151,7 +151,15 @@ module irnuc_axis_framer
   // The active frame's settings.
   logic [WidthBits-1:0]  act_w_q, act_wm1_q;
   logic [HeightBits-1:0] act_h_q, act_hm1_q;
-  logic                  act_w_is1_q, act_nuc_q, act_dpc_q, act_sync_q;
+  logic                  act_nuc_q, act_dpc_q, act_sync_q;
+  // The size the position registers load at a line's end and at a frame's end: the pending
+  // size while waiting (the last such cycle is the start, which takes it into act_*), held
+  // in a frame (a_line_size). At a frame's end it stands for the pending size: unchanged
+  // unless size_dirty_i, and then no frame starts before a cycle of waiting reloads the
+  // position from the pending size (wait_ok_d).
+  logic [WidthBits-1:0]  lw_m1_q;
+  logic [HeightBits-1:0] lh_m1_q;
+  logic                  lw_is1_q, lh_is1_q;
   // Items in flight to the core's output, and the drain before a new frame size.
   logic [FlightBits-1:0] flight_q;
   logic                  fire_q, empty_q, drained_q;
@@ -218,14 +226,11 @@ module irnuc_axis_framer
     end else begin
       {xr_n, xl_n, yr_n, yl_n} = {xr_q, xl_q, yr_q, yl_q};
     end
-    if (last) begin
-      {xr_f, xl_f, yr_f, yl_f} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
-                                  pend_height_is1_i};
-    end else if (xl_q) begin
-      xr_f = starting ? pend_width_m1_i : act_wm1_q;
-      xl_f = starting ? pend_width_is1_i : act_w_is1_q;
-      yr_f = yr_q - HeightBits'(1);
-      yl_f = (yr_q == HeightBits'(1));
+    if (xl_q) begin
+      xr_f = lw_m1_q;
+      xl_f = lw_is1_q;
+      yr_f = yl_q ? lh_m1_q : yr_q - HeightBits'(1);
+      yl_f = yl_q ? lh_is1_q : (yr_q == HeightBits'(1));
     end else begin
       xr_f = xr_q - WidthBits'(1);
       xl_f = (xr_q == WidthBits'(1));
@@ -345,7 +350,6 @@ module irnuc_axis_framer
     if (!rst_ni) begin
       act_w_q     <= WidthBits'(MaxWidth);
       act_wm1_q   <= WidthBits'(MaxWidth - 1);
-      act_w_is1_q <= (MaxWidth == 1);
       act_h_q     <= HeightBits'(MaxHeight);
       act_hm1_q   <= HeightBits'(MaxHeight - 1);
       act_nuc_q   <= 1'b1;
@@ -354,12 +358,27 @@ module irnuc_axis_framer
     end else if (start_fire) begin
       act_w_q     <= pend_width_i;
       act_wm1_q   <= pend_width_m1_i;
-      act_w_is1_q <= pend_width_is1_i;
       act_h_q     <= pend_height_i;
       act_hm1_q   <= pend_height_m1_i;
       act_nuc_q   <= pend_nuc_en_i;
       act_dpc_q   <= pend_dpc_en_i;
       act_sync_q  <= pend_coef_sync_i;
+    end
+  end
+
+  // The line and frame size of the position registers (loaded while waiting: the enable is
+  // a flop, not the start decision).
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_line_size
+    if (!rst_ni) begin
+      lw_m1_q  <= WidthBits'(MaxWidth - 1);
+      lw_is1_q <= (MaxWidth == 1);
+      lh_m1_q  <= HeightBits'(MaxHeight - 1);
+      lh_is1_q <= (MaxHeight == 1);
+    end else if (s_wait_q) begin
+      lw_m1_q  <= pend_width_m1_i;
+      lw_is1_q <= pend_width_is1_i;
+      lh_m1_q  <= pend_height_m1_i;
+      lh_is1_q <= pend_height_is1_i;
     end
   end
 
@@ -504,6 +523,11 @@ module irnuc_axis_framer
     if (armed_q) begin
       a_flight_range: assert (32'(core_out_i) <= 32'(flight_q) + 32'(fire_q))
         else $error("irnuc_axis_framer: an item left the core that was never sent");
+      a_line_size: assert (starting ? (!wait_ok_q || {lw_m1_q, lw_is1_q, lh_m1_q, lh_is1_q}
+                                          == {pend_width_m1_i, pend_width_is1_i,
+                                              pend_height_m1_i, pend_height_is1_i})
+                           : ({lw_m1_q, lh_m1_q} == {act_wm1_q, act_hm1_q}))
+        else $error("irnuc_axis_framer: the position registers' line size is not the frame's");
       a_out_free: assert (out_free_q == out_ready)
         else $error("irnuc_axis_framer: out_free_q is not u_out's ready");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok))

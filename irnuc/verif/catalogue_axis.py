@@ -48,6 +48,11 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "out_free_q <= !m_valid_o || m_ready_i || out_free_q;",
         "the decision's copy of the output register's ready misses an item that fills its "
         "skid register (a third item sent over two held)"),
+    _ma("ax_line_size_follows_pending", "irnuc_axis_framer.sv",
+        "    end else if (s_wait_q) begin\n      lw_m1_q  <= pend_width_m1_i;",
+        "    end else begin\n      lw_m1_q  <= pend_width_m1_i;",
+        "the position registers' line size follows FRAME_SIZE inside a frame (a write "
+        "changes the lines of the frame being sent)"),
     _ma("ax_nuc_off_frame_word", "irnuc_axis_framer.sv",
         "assign frame = !starting ? '0 : pend_nuc_en_i ? pend_frame_i : NeutralFrame;",
         "assign frame = !starting ? '0 : pend_frame_i;",
