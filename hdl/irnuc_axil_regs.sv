@@ -224,6 +224,7 @@ module irnuc_axil_regs
   logic [3:0]          w_strb_q;
   axi_resp_e           b_resp_q;
   logic                w_legal_q, h_legal_q;  // the decoded write's width / height is legal
+  logic                size_hit_q;  // the decoded write hits FRAME_SIZE's size bits
   logic                size_legal;            // both (the write cycle)
   logic                decode_now, wr;
   logic [NumRegs-1:0]  w_hit, wsel_q;
@@ -342,6 +343,7 @@ module irnuc_axil_regs
       h_legal_q    <= h_legal;
       new_w_q      <= WidthBits'(new_w);
       new_h_q      <= HeightBits'(new_h);
+      size_hit_q   <= w_hit[IxFrameSize] && |(byte_mask(w_strb_q) & SizeMask);
     end
   end
 
@@ -462,7 +464,9 @@ module irnuc_axil_regs
   end
 
   assign size_dirty_o = size_dirty_q;
-  assign size_write_o = wr_size && |(wmask & SizeMask);
+  // From flops in one LUT (the framer's start decision reads it): the register and its byte
+  // lanes decoded a cycle early (size_hit_q), the legality flags, the write cycle.
+  assign size_write_o = wr && size_hit_q && size_legal;
 
   // ---- STATUS, IRQ ---------------------------------------------------------------------------
   logic [NumErrors-1:0] err_q, err_ev;
@@ -690,7 +694,8 @@ module irnuc_axil_regs
   ) u_check (
     .clk_i, .rst_ni, .aw_ready_i(aw_ready_q), .aw_held_i(aw_held_q), .w_ready_i(w_ready_q),
     .w_held_i(w_held_q), .ar_ready_i(ar_ready_q), .ar_busy_i(ar_busy_q),
-    .ar_held_i(ar_held_q), .rdec_i(rdec_q), .r_valid_i(r_valid_q)
+    .ar_held_i(ar_held_q), .rdec_i(rdec_q), .r_valid_i(r_valid_q), .wr_i(wr),
+    .size_hit_i(size_hit_q), .size_hit_ref_i(wsel_q[IxFrameSize] && |(wmask & SizeMask))
   );
 `endif
 

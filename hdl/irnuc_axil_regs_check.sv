@@ -23,7 +23,10 @@ module irnuc_axil_regs_check
   input logic ar_busy_i,
   input logic ar_held_i,
   input logic rdec_i,
-  input logic r_valid_i
+  input logic r_valid_i,
+  input logic wr_i,          // the write cycle
+  input logic size_hit_i,    // size_hit_q, decoded a cycle early
+  input logic size_hit_ref_i // the write's hit of FRAME_SIZE's size bits, from wsel_q, wmask
 );
 
   initial begin : p_param_ranges
@@ -59,12 +62,15 @@ module irnuc_axil_regs_check
         else $error("irnuc_axil_regs: the read channel's busy flag lost its read");
       a_ar_ready: assert (ar_ready_i == !ar_busy_i)
         else $error("irnuc_axil_regs: arready is not 'no read in progress'");
+      a_size_hit: assert (!wr_i || size_hit_i == size_hit_ref_i)
+        else $error("irnuc_axil_regs: size_hit_q is not the write's hit of FRAME_SIZE's size");
     end
   end
 `else
   logic unused_ports;
   assign unused_ports = ^{clk_i, rst_ni, aw_ready_i, aw_held_i, w_ready_i, w_held_i,
-                          ar_ready_i, ar_busy_i, ar_held_i, rdec_i, r_valid_i};
+                          ar_ready_i, ar_busy_i, ar_held_i, rdec_i, r_valid_i, wr_i,
+                          size_hit_i, size_hit_ref_i};
 `endif
 
 endmodule

@@ -151,7 +151,15 @@ module irnuc_axis_framer
   // The active frame's settings.
   logic [WidthBits-1:0]  act_w_q, act_wm1_q;
   logic [HeightBits-1:0] act_h_q, act_hm1_q;
-  logic                  act_w_is1_q, act_nuc_q, act_dpc_q, act_sync_q;
+  logic                  act_nuc_q, act_dpc_q, act_sync_q;
+  // The size the position registers load at a line's end and at a frame's end: the pending
+  // size while waiting (the last such cycle is the start, which takes it into act_*), held
+  // in a frame (a_line_size). At a frame's end it stands for the pending size: unchanged
+  // unless size_dirty_i, and then no frame starts before a cycle of waiting reloads the
+  // position from the pending size (wait_ok_d).
+  logic [WidthBits-1:0]  lw_m1_q;
+  logic [HeightBits-1:0] lh_m1_q;
+  logic                  lw_is1_q, lh_is1_q;
   // Items in flight to the core's output, and the drain before a new frame size.
   logic [FlightBits-1:0] flight_q;
   logic                  fire_q, empty_q, drained_q;
@@ -165,7 +173,8 @@ module irnuc_axis_framer
   logic start_ok, starting, pix_item, pad_item, item, word_ok, go, fire, start_fire;
   logic take_beat, drop_beat, take_coef, last;
   logic eff_nuc, eff_dpc, eff_sync;
-  logic out_ready;
+  logic out_ready;   // u_out's ready (its skid register empty): drives its data registers
+  logic out_free_q;  // a copy of it for the item decision, a flop of its own (a_out_free)
 
   // A new frame size waits for the drain (drained_q is at least a cycle after the write,
   // so the position registers are preloaded from the new size).
@@ -176,7 +185,7 @@ module irnuc_axis_framer
   assign pad_item = s_pad_q;
   assign item     = pix_item || pad_item;
   assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
-  assign go       = word_ok && out_ready;  // the word and the output allow an item
+  assign go       = word_ok && out_free_q;  // the word and the output allow an item
   assign fire     = go && item;
   // A frame's first item (fire && starting) straight from flops: waiting, only a start of
   // frame is an item (the states are one-hot: a_start_fire).
@@ -217,14 +226,11 @@ module irnuc_axis_framer
     end else begin
       {xr_n, xl_n, yr_n, yl_n} = {xr_q, xl_q, yr_q, yl_q};
     end
-    if (last) begin
-      {xr_f, xl_f, yr_f, yl_f} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
-                                  pend_height_is1_i};
-    end else if (xl_q) begin
-      xr_f = starting ? pend_width_m1_i : act_wm1_q;
-      xl_f = starting ? pend_width_is1_i : act_w_is1_q;
-      yr_f = yr_q - HeightBits'(1);
-      yl_f = (yr_q == HeightBits'(1));
+    if (xl_q) begin
+      xr_f = lw_m1_q;
+      xl_f = lw_is1_q;
+      yr_f = yl_q ? lh_m1_q : yr_q - HeightBits'(1);
+      yl_f = yl_q ? lh_is1_q : (yr_q == HeightBits'(1));
     end else begin
       xr_f = xr_q - WidthBits'(1);
       xl_f = (xr_q == WidthBits'(1));
@@ -344,7 +350,6 @@ module irnuc_axis_framer
     if (!rst_ni) begin
       act_w_q     <= WidthBits'(MaxWidth);
       act_wm1_q   <= WidthBits'(MaxWidth - 1);
-      act_w_is1_q <= (MaxWidth == 1);
       act_h_q     <= HeightBits'(MaxHeight);
       act_hm1_q   <= HeightBits'(MaxHeight - 1);
       act_nuc_q   <= 1'b1;
@@ -353,12 +358,27 @@ module irnuc_axis_framer
     end else if (start_fire) begin
       act_w_q     <= pend_width_i;
       act_wm1_q   <= pend_width_m1_i;
-      act_w_is1_q <= pend_width_is1_i;
       act_h_q     <= pend_height_i;
       act_hm1_q   <= pend_height_m1_i;
       act_nuc_q   <= pend_nuc_en_i;
       act_dpc_q   <= pend_dpc_en_i;
       act_sync_q  <= pend_coef_sync_i;
+    end
+  end
+
+  // The line and frame size of the position registers (loaded while waiting: the enable is
+  // a flop, not the start decision).
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_line_size
+    if (!rst_ni) begin
+      lw_m1_q  <= WidthBits'(MaxWidth - 1);
+      lw_is1_q <= (MaxWidth == 1);
+      lh_m1_q  <= HeightBits'(MaxHeight - 1);
+      lh_is1_q <= (MaxHeight == 1);
+    end else if (s_wait_q) begin
+      lw_m1_q  <= pend_width_m1_i;
+      lw_is1_q <= pend_width_is1_i;
+      lh_m1_q  <= pend_height_m1_i;
+      lh_is1_q <= pend_height_is1_i;
     end
   end
 
@@ -372,7 +392,7 @@ module irnuc_axis_framer
   // less those that left the core: the items in flight are flight_q + fire_q, and `fire`
   // reaches no carry chain.
   logic [FlightBits-1:0] flight_d;
-  logic                  drained_d, dirty_d;
+  logic                  drained_d;
 
   // One adder: flight_q plus the step fire_q - core_out_i (1, 0, -1 or -2; two bits, sign
   // extended), both from flops.
@@ -398,11 +418,15 @@ module irnuc_axis_framer
     end
   end
 
-  // start_ok of the next cycle: size_dirty_i's next value (the register file's: a write of
-  // the frame size sets it, the frame start clears it) and drained_q's.
-  assign drained_d = empty_q && size_dirty_i && starting && !fire;
-  assign dirty_d   = size_write_i || (size_dirty_i && !start_fire);
-  assign wait_ok_d = (vst_d == AxisWait) && (!dirty_d || drained_d);
+  // start_ok of the next cycle (a_wait_ok), where the next state waits: no frame-size write
+  // now (it sets size_dirty_i next; the position registers are loaded from the old size at
+  // this edge) and the size clean, or, waiting, the core empty (drained_d) or a frame's
+  // first item sent (the frame start clears size_dirty_i: a one-pixel frame waits again).
+  // Neither start_fire nor drained_d enters it: `fire` passes the next state's multiplexer
+  // only.
+  assign drained_d = empty_q && size_dirty_i && starting && !fire && !size_write_i;
+  assign wait_ok_d = (vst_d == AxisWait) && !size_write_i
+                     && (!size_dirty_i || (starting && (fire || empty_q)));
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
   // The word enters the output register as it comes with two flags, and
@@ -448,6 +472,19 @@ module irnuc_axis_framer
 
   assign m_word_o = word;
 
+  // u_out's ready for the decision: the skid register's valid flag drives the enables and
+  // multiplexers of every data bit of u_out (a net of a few hundred loads); this copy, the
+  // complement of that flag (distinct flops: synthesis keeps both), drives the decision only.
+  // u_out's main register takes an item when it is empty or its item leaves (the skid
+  // register empties then); else an item sent fills the skid register.
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_out_free
+    if (!rst_ni) begin
+      out_free_q <= 1'b1;
+    end else begin
+      out_free_q <= !m_valid_o || m_ready_i || (out_free_q && !fire);
+    end
+  end
+
   // ---- events ---------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_events
     if (!rst_ni) begin
@@ -486,6 +523,13 @@ module irnuc_axis_framer
     if (armed_q) begin
       a_flight_range: assert (32'(core_out_i) <= 32'(flight_q) + 32'(fire_q))
         else $error("irnuc_axis_framer: an item left the core that was never sent");
+      a_line_size: assert (starting ? (!wait_ok_q || {lw_m1_q, lw_is1_q, lh_m1_q, lh_is1_q}
+                                          == {pend_width_m1_i, pend_width_is1_i,
+                                              pend_height_m1_i, pend_height_is1_i})
+                           : ({lw_m1_q, lh_m1_q} == {act_wm1_q, act_hm1_q}))
+        else $error("irnuc_axis_framer: the position registers' line size is not the frame's");
+      a_out_free: assert (out_free_q == out_ready)
+        else $error("irnuc_axis_framer: out_free_q is not u_out's ready");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
       a_start_fire: assert (start_fire == (fire && starting))
