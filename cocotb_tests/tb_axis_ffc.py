@@ -19,6 +19,7 @@ Small frames.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 
 import cocotb
@@ -33,7 +34,8 @@ from irnuc.cocotb_tests.tb_axis import TOP, Bench, _bench, _sample
 from irnuc.cocotb_tests.tb_ffc import _calibration, _raws
 from irnuc.cosim import coverage
 from irnuc.cosim.axis_coverage import ffc_axis_classes
-from irnuc.cosim.stages import StageScoreboard, ffc_run
+from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
+from irnuc.nuc_fixed import MethodCoefficients
 from irnuc.nuc_fixed.axis import (
     axis_framer,
     coef_beats,
@@ -96,6 +98,26 @@ async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
                 out.setdefault(f"{port} {'stall' if v else 'idle'}", []).append(bench.cycle)
 
 
+def _tiled(c: MethodCoefficients, h: int, w: int) -> MethodCoefficients:
+    """The calibration ``c`` on an (h, w) frame: its fields tiled from pixel (0, 0) (the
+    same registers, so T_REF holds across a frame-size change)."""
+    def tile(v: np.ndarray) -> np.ndarray:
+        reps = (-(-h // v.shape[0]), -(-w // v.shape[1]))
+        return np.tile(v, reps)[:h, :w].copy()
+
+    return MethodCoefficients(c.cfg, {m: {k: tile(v) for k, v in f.items()}
+                                      for m, f in c.fields.items()}, c.registers)
+
+
+def _joined(a: FfcRun, b: FfcRun) -> FfcRun:
+    """Run ``b`` after run ``a`` (``b`` starts with the FFC sequencer at rest: open frames
+    after a run without a refresh)."""
+    return FfcRun(frames=a.frames + b.frames, shutter=np.concatenate([a.shutter, b.shutter]),
+                  held=np.concatenate([a.held, b.held]), foff_in=a.foff_in + b.foff_in,
+                  acc_in=a.acc_in + b.acc_in, acc_out=a.acc_out + b.acc_out,
+                  foff_out=a.foff_out + b.foff_out, targets=a.targets + b.targets)
+
+
 def _unsigned(a: np.ndarray, bits: int) -> list[int]:
     return [int(v) & ((1 << bits) - 1) for v in np.asarray(a, np.int64).ravel()]
 
@@ -116,7 +138,8 @@ async def _frames_of(sink: AxiStreamSink, n: int, limit_cycles: int) -> list[lis
 async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: str,
                            label: str, ffc_idle: str | None = None,
                            ffc_bp: str | None = None, resize_after_run: bool = False,
-                           size: tuple[int, int] = (H, W)) -> None:
+                           size: tuple[int, int] = (H, W),
+                           resize_in_run: tuple[int, int] | None = None) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
@@ -125,7 +148,11 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     ``resize_after_run``: FRAME_SIZE written (the same size) in the middle of the first
     frame after the shutter frames, so the framer drains before the next one: its count of
     items in flight must have counted the held frames' items out as they entered the core
-    (else the drain never ends). ``size``: the frames' (lines, pixels)."""
+    (else the drain never ends). ``size``: the frames' (lines, pixels). ``resize_in_run``:
+    FRAME_SIZE written to this other size in the middle of the run's last frame that writes
+    back (its last shutter frame, or with N shutter frames its refresh frame); the open
+    frames after it have that size, and the run's write-back frames must still end (tlast)
+    at the old size: the drain before the new size waits for their words."""
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
@@ -144,14 +171,29 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     for name, value in c.registers.items():  # tc_offset: T_REF
         await bench.write_method_register(name, int(value))
     readings = [random_reading(cfg, c, rng) for _ in shutter]
-    run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"), shutter,
-                  readings=readings, golden=bench.env.golden)
+    # The first frame after the run (after its refresh frame with N shutter frames).
+    after = start_frame + count + int(count == n)
+    sizes = [(fh, fw)] * after + [resize_in_run or (fh, fw)] * (len(shutter) - after)
+    golden = bench.env.golden
+    if resize_in_run is None:
+        run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
+                      shutter, readings=readings, golden=golden)
+    else:
+        run = _joined(*(ffc_run(cc, _raws(cfg, [int(v) for v in sh], *shape, rng, "camera"),
+                                sh, readings=rd, golden=golden)
+                        for cc, sh, shape, rd in (
+                            (c, shutter[:after], (fh, fw), readings[:after]),
+                            (_tiled(c, *resize_in_run), shutter[after:], resize_in_run,
+                             readings[after:]))))
     assert framing.acc_in == tuple(a is not None for a in run.acc_in)
     assert framing.foff_out == tuple(a is not None for a in run.foff_out)
     raws = [f.raw for f in run.frames]
+    starts = np.concatenate([[0], np.cumsum([h * w for h, w in sizes])])  # each frame's first beat
     video = video_beats(raws)
     coef = coef_beats([f.drive.words for f in run.frames])
-    fr = axis_framer(*video, *coef, [bench.settings()] * len(raws), bench.env.golden)
+    fr = axis_framer(*video, *coef,
+                     [dataclasses.replace(bench.settings(), height=h, width=w) for h, w in sizes],
+                     golden)
     assert [f.raw.tolist() for f in fr.frames] == [r.tolist() for r in raws]
 
     cbits = cfg.memories["ffc_offset"].word_bits
@@ -188,7 +230,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         frame k + 1 starts: the core takes it at that frame start)."""
         async def write() -> None:
             await bench.write_method_register("reading", int(readings[k + 1]))
-            assert bench.beats_in < (k + 1) * fh * fw, (
+            assert bench.beats_in < starts[k + 1], (
                 f"READING of frame {k + 1} written after that frame started "
                 f"({bench.beats_in} beats taken)")
         return write
@@ -205,8 +247,18 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
 
         acts.append(cocotb.start_soon(bench._act((start_frame + count) * fh * fw + fh * fw // 2,
                                                  resize)))
+    if resize_in_run is not None:
+        async def resize_now() -> None:
+            await bench.frame_size(*resize_in_run)
+            seen["resize_beat"] = bench.beats_in
+            assert starts[after - 1] <= bench.beats_in < starts[after], (
+                "FRAME_SIZE not written during the run's last frame")
+
+        acts.append(cocotb.start_soon(bench._act(starts[after - 1] + fh * fw // 4,
+                                                 resize_now)))
     if readings[0] is not None:
-        acts += [cocotb.start_soon(bench._act(k * fh * fw + fh * fw // 4, write_reading(k)))
+        acts += [cocotb.start_soon(bench._act(starts[k] + (starts[k + 1] - starts[k]) // 4,
+                                              write_reading(k)))
                  for k in range(len(raws) - 1)]
     limit = 40 * (len(video[0]) * 2) + 2000
     want_acc = [[int(v) for v in np.ravel(a)] for a in run.acc_out if a is not None]
@@ -275,7 +327,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         cov = coverage.model(TOP, cfg)
         cov.sample_classes(ffc_axis_classes(framing, n, count, start_frame, seen["write_beat"],
                                             fh * fw, pattern_in, pattern_out,
-                                            resize_beat=seen.get("resize_beat")))
+                                            resize_beat=seen.get("resize_beat"),
+                                            resized=resize_in_run is not None))
         coverage.export()
 
 
@@ -302,6 +355,25 @@ async def ffc_short_run(dut) -> None:
     FRAME_SIZE write after the (held) shutter frames drains the framer."""
     await refresh_sequence(dut, 42, 2, "bursty", "alternate", "ffc short run",
                            ffc_idle="alternate", ffc_bp="bursty", resize_after_run=True)
+
+
+@cocotb.test()
+async def ffc_resize_in_run(dut) -> None:
+    """FRAME_SIZE written to a new width during a short run's last (held) shutter frame,
+    with bursty backpressure on the write-back stream: the frames after the run have the new
+    size, and the run's m_axis_acc frames still end at the old one (the drain waits for
+    their last words, not only for the core's pixels)."""
+    await refresh_sequence(dut, 44, 2, "none", "none", "ffc resize in run",
+                           ffc_idle="none", ffc_bp="bursty", resize_in_run=(H, W + 2))
+
+
+@cocotb.test()
+async def ffc_resize_in_refresh(dut) -> None:
+    """FRAME_SIZE written to a new height during the refresh frame of a full run, with
+    bursty backpressure on the write-back streams: the refresh's m_axis_foff frame ends at the
+    old size (the drain waits for its last new offset, not only for the frame's pixels)."""
+    await refresh_sequence(dut, 45, None, "none", "none", "ffc resize in refresh",
+                           ffc_idle="none", ffc_bp="bursty", resize_in_run=(H + 1, W))
 
 
 @cocotb.test()

@@ -118,6 +118,16 @@ def test_ffc_axis_classes_by_hand() -> None:
                             resize_beat=108)["axis.ffc.drain"] == {"after_held"}
     assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "random", "random",
                             resize_beat=30)["axis.ffc.drain"] == set()
+    # Another size written in frame 3 (beat 80), the run's last held frame: both bins; in
+    # frame 4 (beat 108), an open frame after the run: the drain after held frames only.
+    assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "none", "none", resize_beat=80,
+                            resized=True)["axis.ffc.drain"] == {"after_held", "new_size_in_run"}
+    assert ffc_axis_classes(short, 8, 2, 2, 36, 24, "none", "none", resize_beat=108,
+                            resized=True)["axis.ffc.drain"] == {"after_held"}
+    # In frame 10 (beat 250), the full run's refresh frame (after the held frames 2..9).
+    assert ffc_axis_classes(full, 8, 8, 2, 36, 24, "none", "none", resize_beat=250,
+                            resized=True)["axis.ffc.drain"] == {"after_held",
+                                                                "new_size_in_refresh"}
     for beat in (50, 48):
         late = ffc_axis_classes(full, 8, 8, 2, beat, 24, "none", "none")
         assert late["axis.ffc.start"] == set() and late["axis.ffc.refresh"] == set()

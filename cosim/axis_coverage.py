@@ -29,7 +29,10 @@ and checked, or by a register read that matched the model:
                           start and end in a refresh (``next_frame_start``)
 ``axis.ffc.drain``        FRAME_SIZE written after held frames went in: the next frame waits for
                           the framer's drain, whose count of items out of the core includes the
-                          held ones (``after_held``)
+                          held ones (``after_held``); a new size written during a run's
+                          shutter frame that writes m_axis_acc, or its refresh frame: the drain
+                          also waits for the run's write-back words (``new_size_in_run``,
+                          ``new_size_in_refresh``)
 ========================= =========================================================================
 
 The general AXI points above are the same register file, framer and stream ports on an
@@ -80,13 +83,14 @@ FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.foff_stream": ("full_rate", "idle_backpressure"),
     "axis.ffc.shutter": ("full_rate", "backpressure"),
     "axis.ffc.refresh": ("next_frame_start",),
-    "axis.ffc.drain": ("after_held",),
+    "axis.ffc.drain": ("after_held", "new_size_in_run", "new_size_in_refresh"),
 }
 
 
 def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
                      write_beat: int, frame_pixels: int, idle: str, bp: str,
-                     resize_beat: int | None = None) -> dict[str, set[str]]:
+                     resize_beat: int | None = None, resized: bool = False
+                     ) -> dict[str, set[str]]:
     """The bins of :data:`FFC_AXIS_POINTS` (but status and irq, read on the DUT) one
     sequence hits: ``framing`` is the wrapper's golden framing of its shutter flags
     (:func:`irnuc.nuc_fixed.axis.ffc_framing`), ``count`` FFC_CTRL.frames of a start that
@@ -94,7 +98,8 @@ def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
     ``write_beat`` the video beats taken (frames of ``frame_pixels`` beats, back to back)
     when the start's write response came; ``idle`` / ``bp`` the pause patterns of every
     input / output (``none``: full rate); ``resize_beat`` the video beats taken when a
-    FRAME_SIZE write's response came (None: no such write)."""
+    FRAME_SIZE write's response came (None: no such write), ``resized`` whether it wrote
+    another size."""
     out: dict[str, set[str]] = {k: set() for k in FFC_AXIS_POINTS
                                 if k not in ("axis.ffc.status", "axis.ffc.irq")}
     frame_of_write, into = divmod(int(write_beat), int(frame_pixels))
@@ -123,6 +128,10 @@ def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
         frame_of_resize = int(resize_beat) // int(frame_pixels)
         if not all(framing.shown[:frame_of_resize]):
             out["axis.ffc.drain"].add("after_held")
+        if resized and framing.acc_out[frame_of_resize]:
+            out["axis.ffc.drain"].add("new_size_in_run")
+        if resized and framing.foff_out[frame_of_resize]:
+            out["axis.ffc.drain"].add("new_size_in_refresh")
     return out
 
 
@@ -135,7 +144,8 @@ class AxisCoverageModel(CoverageModel):
         point = self.add_point
         points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else AXIS_POINTS)
         if cfg.has("ffc") and cfg.ffc_output != "hold":
-            del points["axis.ffc.drain"]
+            points["axis.ffc.drain"] = tuple(b for b in points["axis.ffc.drain"]
+                                             if b != "after_held")
             self.removed["axis.ffc.drain"] = {
                 "after_held": f"ffc_output = {cfg.ffc_output!r}: shutter frames are passed, "
                               "never held"}

@@ -107,6 +107,7 @@ module irnuc_axis_core
   output logic                            m_sof_o,
   output logic                            m_eol_o,
   output logic [1:0]                      core_out_o,  // items that left the core (output, and one of a held frame)
+  output logic                            wb_busy_o,   // FFC write-back words owed (a flop)
   output logic                            frame_err_o,
   // The FFC streams (irnuc_axis_top's ports).
   input  logic [FoffBits-1:0]             s_axis_foff_tdata,
@@ -190,6 +191,7 @@ module irnuc_axis_core
       .m_sof_o           (m_sof_o),
       .m_eol_o           (m_eol_o),
       .core_out_o        (core_out_o),
+      .wb_busy_o         (wb_busy_o),
       .frame_err_o       (frame_err_o),
       .s_axis_foff_tdata (s_axis_foff_tdata),
       .s_axis_foff_tvalid(s_axis_foff_tvalid),
@@ -303,6 +305,7 @@ module irnuc_axis_core
     assign pend_item_frame_o  = pend_frame_i;
     assign item_ready_o       = core_pix_ready && core_coef_ready;
     assign core_out_o         = {1'b0, m_valid_o && m_ready_i};
+    assign wb_busy_o          = 1'b0;
     assign ffc_busy_o         = 1'b0;
     assign ffc_done_o         = 1'b0;
     assign s_axis_foff_tready = 1'b0;

@@ -9,6 +9,7 @@
 module irnuc_axis_ffc
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
+  import irnuc_stage_pkg::*;
 #(
   parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e: 0, 1, 3 or 4
   parameter int unsigned AdcBits        = 14,
@@ -94,6 +95,7 @@ module irnuc_axis_ffc
   output logic                            m_sof_o,
   output logic                            m_eol_o,
   output logic [1:0]                      core_out_o,  // items that left the core (0..2)
+  output logic                            wb_busy_o,   // write-back words owed (a flop)
   output logic                            frame_err_o,
   // The FFC streams (irnuc_axis_top's ports).
   input  logic [FoffBits-1:0]             s_axis_foff_tdata,
@@ -237,6 +239,61 @@ module irnuc_axis_ffc
     end
   end
   assign core_out_o = core_out_q;
+
+  // ---- write-back words owed: the framer's drain waits for them -------------------------------
+  // The write-back streams' tlast counts against the frame size the framer holds, and the
+  // framer's count of items in flight lets a held item go as it enters the core, a shown
+  // one as its pixel leaves: an m_axis_acc or m_axis_foff word can still be inside (or
+  // behind backpressure) then. So a new frame size also waits until every item that owes
+  // a write-back word has delivered it. Which frames owe words is the core's sequencer's
+  // decision, made again here by a copy of it on the same frame starts and shutter flags
+  // (acc_first / acc_add: m_acc; refresh: m_foff; never both). Counted a cycle late from
+  // flops like the framer's flight count: the item's take and the ports' handshakes each
+  // reach one flop; the busy flag is set from the next count, so it is up before the
+  // framer's own count could let the held item go.
+  localparam int unsigned OweBits = $clog2(MaxWidth + 256 + 1) + 1;
+  ffc_mode_t          owe_mode;
+  logic               owe_frame_q, owe_e, owe_in_q, wb_busy_q;
+  logic [1:0]         owe_out_q, owe_step;
+  logic [OweBits-1:0] owe_q, owe_d;
+
+  ffc_ctrl #(
+    .FfcFrames(FfcFrames),
+    .Hold     (FfcHold != 0)
+  ) u_owe_ctrl (
+    .clk_i    (clk_i),
+    .rst_ni   (rst_ni),
+    .shutter_i(item_shutter),
+    .take_i   (item_take && in_sof),
+    .mode_o   (owe_mode)
+  );
+
+  assign owe_e    = in_sof ? owe_mode.acc_first || owe_mode.acc_add || owe_mode.refresh
+                           : owe_frame_q;
+  assign owe_step = {1'b0, owe_in_q} - owe_out_q;
+  assign owe_d    = owe_q + {{(OweBits - 2){owe_step[1]}}, owe_step};
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_owe
+    if (!rst_ni) begin
+      owe_frame_q <= 1'b0;
+      owe_in_q    <= 1'b0;
+      owe_out_q   <= '0;
+      owe_q       <= '0;
+      wb_busy_q   <= 1'b0;
+    end else begin
+      if (item_take && in_sof) begin
+        owe_frame_q <= owe_e;
+      end
+      owe_in_q  <= item_take && owe_e;
+      owe_out_q <= {1'b0, m_axis_acc_tvalid && m_axis_acc_tready}
+                   + {1'b0, m_axis_foff_tvalid && m_axis_foff_tready};
+      owe_q     <= owe_d;
+      wb_busy_q <= owe_d != '0;
+    end
+  end
+  assign wb_busy_o = wb_busy_q;
+  logic unused_owe;  // the read, mean and hold flags do not owe words
+  assign unused_owe = ^{owe_mode.acc_rd, owe_mode.mean, owe_mode.hold};
 
   // FFC_STATUS: busy from FFC_CTRL.start until its run finished: the refresh frame's
   // last new offset taken on m_axis_foff (done, IRQ_STATUS.ffc_done), or, for a run
@@ -595,6 +652,10 @@ module irnuc_axis_ffc
         else $error("irnuc_axis_ffc: a pixel entered the core in the cycle after a new frame size");
       a_run_late: assert (run_q == ref_run_past_q)
         else $error("irnuc_axis_ffc: the FFC run's frame count is not the fork's frame starts a cycle late");
+      a_owe_range: assert (32'(owe_out_q) <= 32'(owe_q) + 32'(owe_in_q))
+        else $error("irnuc_axis_ffc: a write-back word left that no item owed");
+      a_owe_busy: assert (!(m_axis_acc_tvalid || m_axis_foff_tvalid) || wb_busy_q)
+        else $error("irnuc_axis_ffc: a write-back word waits while the framer sees none owed");
       a_done_once: assert (!(done_q && done_e))
         else $error("irnuc_axis_ffc: an FFC run ended in two consecutive cycles");
     end

@@ -108,6 +108,9 @@ module irnuc_axis_framer
   // Items that left the core this cycle, 0 to 2: an m_axis_video transfer, and (FFC
   // compositions) an item of a held frame, which leaves the count as it enters the core.
   input  logic [1:0]            core_out_i,
+  // FFC compositions: write-back words still owed (a flop; 0 without FFC). A new frame
+  // size waits for them too: the write-back streams' tlast counts against the size.
+  input  logic                  wb_busy_i,
   // A frame starts now (its first item is sent): the pending settings are taken.
   output logic                  start_o,
   // Events, one cycle each (registered), for the register file.
@@ -413,7 +416,7 @@ module irnuc_axis_framer
       flight_q  <= flight_d;
       fire_q    <= fire;
       // An item leaves only when one is in flight.
-      empty_q   <= (flight_q == '0) && !fire_q && !fire;
+      empty_q   <= (flight_q == '0) && !fire_q && !fire && !wb_busy_i;
       drained_q <= drained_d;
     end
   end

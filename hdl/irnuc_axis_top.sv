@@ -264,6 +264,7 @@ module irnuc_axis_top
   logic                  sof_early, sof_late, eol_early, eol_late, coef_early, coef_late;
   logic                  pix_out, frame_out, core_err;
   logic [1:0]            core_out;  // items that left the core (output, and one of a held frame)
+  logic                  wb_busy;   // FFC write-back words owed: the drain waits for them
   logic                  ffc_start, ffc_busy, ffc_done;
   logic [RegFfcCtrlFramesBits-1:0] ffc_frames;
 
@@ -423,6 +424,7 @@ module irnuc_axis_top
     .m_eol_o          (item_eol),
     .m_frame_o        (item_frame),
     .core_out_i       (core_out),
+    .wb_busy_i        (wb_busy),
     .start_o          (start),
     .frame_start_o    (frame_start),
     .beat_o           (beat),
@@ -506,6 +508,7 @@ module irnuc_axis_top
     .m_sof_o           (core_sof),
     .m_eol_o           (core_eol),
     .core_out_o        (core_out),
+    .wb_busy_o         (wb_busy),
     .frame_err_o       (core_err),
     .s_axis_foff_tdata (s_axis_foff_tdata),
     .s_axis_foff_tvalid(s_axis_foff_tvalid),

@@ -195,6 +195,21 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
     _ma("ax_ffc_pix_out_markers_swapped", "irnuc_axis_ffc.sv",
         ".data_i ({pix_sof, pix_eol, pix_data}),", ".data_i ({pix_eol, pix_sof, pix_data}),",
         "the pixel output buffer swaps the corrected pixels' sof and eol", **_AXF),
+    # Killed by ffc_resize_in_run / ffc_resize_in_refresh (a new frame size written while a
+    # run's write-back words are still in the core or held by backpressure).
+    _ma("ax_ffc_drain_ignores_writeback", "irnuc_axis_framer.sv",
+        "empty_q   <= (flight_q == '0) && !fire_q && !fire && !wb_busy_i;",
+        "empty_q   <= (flight_q == '0) && !fire_q && !fire;",
+        "a new frame size is taken before the FFC write-back words are out (their tlast "
+        "counted against the new size)", **_AXF),
+    _ma("ax_ffc_owe_no_add", "irnuc_axis_ffc.sv",
+        "owe_mode.acc_first || owe_mode.acc_add || owe_mode.refresh",
+        "owe_mode.acc_first || owe_mode.refresh",
+        "a run's later shutter frames owe no m_axis_acc words to the drain", **_AXF),
+    _ma("ax_ffc_owe_no_refresh", "irnuc_axis_ffc.sv",
+        "owe_mode.acc_first || owe_mode.acc_add || owe_mode.refresh",
+        "owe_mode.acc_first || owe_mode.acc_add",
+        "the refresh frame owes no m_axis_foff words to the drain", **_AXF),
 )
 
 __all__ = ["AXIS_MUTANTS"]
