@@ -58,8 +58,12 @@ def key(build_dir: Path) -> str:
     the design-specific class lists and targets), the Verilator headers' folder and the
     compiler."""
     mk_file, classes_file = _makefiles(build_dir)
+    # The model's name (VM_PREFIX: Vtop for cocotb's builds, V<top> for the bulk harness's)
+    # appears in its own lines, in comments and in the classes file's include; none of them
+    # reaches the runtime objects, so builds of every top share them.
     mk = [ln for ln in mk_file.read_text().splitlines()
-          if not re.match(r"(default:|\S+: \$\(VK_USER_OBJS\)|VM_(MOD)?PREFIX)", ln)]
+          if not re.match(r"(#|include \S+_classes\.mk$|default:|\S+: \$\(VK_USER_OBJS\)"
+                          r"|VM_(MOD)?PREFIX)", ln)]
     classes = [ln for ln in classes_file.read_text().splitlines()
                if ln.startswith("VM_") and "+=" not in ln]
     return digest({"mk": mk, "classes": classes, "globals": _global_objects(build_dir),

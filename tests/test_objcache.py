@@ -13,11 +13,14 @@ import pytest
 
 from irnuc.cosim import _objcache
 
-MK = """default: {top}
-VM_PREFIX = Vtop
+MK = """# Verilated -*- Makefile -*-
+#    make -f {prefix}.mk
+default: {top}
+VM_PREFIX = {prefix}
+VM_MODPREFIX = {prefix}
 VM_USER_CFLAGS = \\
   -std=c++20 \\
-include Vtop_classes.mk
+include {prefix}_classes.mk
 {top}: $(VK_USER_OBJS) $(VK_GLOBAL_OBJS) $(VM_PREFIX)__ALL.a
 """
 CLASSES = """VM_COVERAGE = {cov}
@@ -35,10 +38,11 @@ VM_GLOBAL_SLOW += \\
 """
 
 
-def _build(path: Path, top: str, cov: int = 0, objects: bool = True) -> Path:
+def _build(path: Path, top: str, cov: int = 0, objects: bool = True,
+           prefix: str = "Vtop") -> Path:
     path.mkdir(parents=True)
-    (path / "Vtop.mk").write_text(MK.format(top=top))
-    (path / "Vtop_classes.mk").write_text(CLASSES.format(top=top, cov=cov))
+    (path / f"{prefix}.mk").write_text(MK.format(top=top, prefix=prefix))
+    (path / f"{prefix}_classes.mk").write_text(CLASSES.format(top=top, cov=cov))
     if objects:
         for name in ("verilated", "verilated_vpi", "verilator"):
             (path / f"{name}.o").write_bytes(f"object {name} of {top}".encode())
@@ -65,6 +69,16 @@ def test_store_then_seed_and_keys(tmp_path, monkeypatch) -> None:
     cov = _build(tmp_path / "c", "nuc_core", cov=1, objects=False)
     assert _objcache.key(cov) != _objcache.key(first)
     assert _objcache.seed(cov) == 0
+
+
+def test_the_model_prefix_is_not_in_the_key(tmp_path) -> None:
+    """The bulk harness names each model after its top (Vnuc_dpc_top, Vmethod_dpc_top, ...):
+    its name in the makefiles (comments, VM_PREFIX, the classes file's include) does not
+    split the key, so the bulk builds of every top share one set of runtime objects."""
+    a = _build(tmp_path / "a", "bulk", prefix="Vnuc_dpc_top", objects=False)
+    b = _build(tmp_path / "b", "bulk", prefix="Vmethod_ffc_top", objects=False)
+    c = _build(tmp_path / "c", "bulk", prefix="Vmethod_ffc_top", cov=1, objects=False)
+    assert _objcache.key(a) == _objcache.key(b) != _objcache.key(c)
 
 
 def test_nothing_is_stored_from_an_incomplete_build(tmp_path, monkeypatch) -> None:

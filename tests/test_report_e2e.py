@@ -48,6 +48,15 @@ def test_recommendation_is_synthesized_and_cosimulated(tiny_run) -> None:
     assert r["cosim"]["failed"] == 0 and r["cosim"]["mismatches"] == 0 and r["cosim"]["pixels"] > 0
     assert r["synth"]["fmax_mhz"] > 0 and r["synth"]["xc7"]["lut"] > 0
     assert r["pipeline"]["gain_frac_bits"] == r["gain_frac_bits"]
+    # The suite's time: test_suite's coverage test shares this recommendation's coverage build.
+    from tests.test_suite import TINY_RECOMMENDED
+
+    widths = ("gain_int_bits", "gain_frac_bits", "offset_int_bits", "offset_frac_bits",
+              "max_width", "max_height")
+    assert {k: r["pipeline"][k] for k in widths} == {
+        k: getattr(TINY_RECOMMENDED, k) for k in widths}, (
+        "the tiny report recommends another configuration: update tests/test_suite.py "
+        "TINY_RECOMMENDED so that its coverage test shares the report's build")
     # Every point carries its memory and datapath cost; a few were synthesized.
     assert all(p["hw"] and p["datapath_cost"] is not None for p in sw["points"])
     sources = {p["hw"]["source"] for p in sw["points"]}
