@@ -249,8 +249,9 @@ module irnuc_axis_ffc
   // decision, made again here by a copy of it on the same frame starts and shutter flags
   // (acc_first / acc_add: m_acc; refresh: m_foff; never both). Counted a cycle late from
   // flops like the framer's flight count: the item's take and the ports' handshakes each
-  // reach one flop; the busy flag is set from the next count, so it is up before the
-  // framer's own count could let the held item go.
+  // reach one flop. The busy flag is the count or an item counting in (flops only: no adder
+  // before it), so it is up the cycle after the take, before the framer's own count could
+  // let the held item go (that takes two), and it clears a cycle after the count.
   localparam int unsigned OweBits = $clog2(MaxWidth + 256 + 1) + 1;
   ffc_mode_t          owe_mode;
   logic               owe_frame_q, owe_e, owe_in_q, wb_busy_q;
@@ -288,7 +289,7 @@ module irnuc_axis_ffc
       owe_out_q <= {1'b0, m_axis_acc_tvalid && m_axis_acc_tready}
                    + {1'b0, m_axis_foff_tvalid && m_axis_foff_tready};
       owe_q     <= owe_d;
-      wb_busy_q <= owe_d != '0;
+      wb_busy_q <= owe_q != '0 || owe_in_q;
     end
   end
   assign wb_busy_o = wb_busy_q;

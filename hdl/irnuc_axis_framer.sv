@@ -171,6 +171,8 @@ module irnuc_axis_framer
   // Waiting and free to start a frame (s_wait_q && start_ok, registered).
   logic                  wait_ok_q, wait_ok_d;
   logic                  c_normal_q, c_fill_q, c_skip_q;
+  // The one-hot flags' next values, each decoded before `fire`'s multiplexer.
+  logic                  s_wait_d, s_frame_d, s_pad_d, s_drop_d, c_normal_d, c_fill_d, c_skip_d;
 
   // ---- what happens this cycle ----------------------------------------------------------
   logic start_ok, starting, pix_item, pad_item, item, word_ok, go, fire, start_fire;
@@ -305,6 +307,13 @@ module irnuc_axis_framer
     cst_d       = fire ? cst_f : cst_n;
     pad_frame_d = fire ? pad_frame_f : pad_frame_n;
     done_d      = fire ? done_f : done_q;
+    s_wait_d    = fire ? (vst_f == AxisWait) : (vst_n == AxisWait);
+    s_frame_d   = fire ? (vst_f == AxisFrame) : (vst_n == AxisFrame);
+    s_pad_d     = fire ? (vst_f == AxisPad) : (vst_n == AxisPad);
+    s_drop_d    = fire ? (vst_f == AxisDrop) : (vst_n == AxisDrop);
+    c_normal_d  = fire ? (cst_f == CoefNormal) : (cst_n == CoefNormal);
+    c_fill_d    = fire ? (cst_f == CoefFill) : (cst_n == CoefFill);
+    c_skip_d    = fire ? (cst_f == CoefSkip) : (cst_n == CoefSkip);
     late_d      = starting ? (late_q || drop_beat) && !fire : 1'b0;
   end
 
@@ -330,14 +339,14 @@ module irnuc_axis_framer
     end else begin
       vst_q       <= vst_d;
       cst_q       <= cst_d;
-      s_wait_q    <= (vst_d == AxisWait);
+      s_wait_q    <= s_wait_d;
       wait_ok_q   <= wait_ok_d;
-      s_frame_q   <= (vst_d == AxisFrame);
-      s_pad_q     <= (vst_d == AxisPad);
-      s_drop_q    <= (vst_d == AxisDrop);
-      c_normal_q  <= (cst_d == CoefNormal);
-      c_fill_q    <= (cst_d == CoefFill);
-      c_skip_q    <= (cst_d == CoefSkip);
+      s_frame_q   <= s_frame_d;
+      s_pad_q     <= s_pad_d;
+      s_drop_q    <= s_drop_d;
+      c_normal_q  <= c_normal_d;
+      c_fill_q    <= c_fill_d;
+      c_skip_q    <= c_skip_d;
       xr_q        <= xr_d;
       yr_q        <= yr_d;
       xl_q        <= xl_d;
@@ -428,7 +437,7 @@ module irnuc_axis_framer
   // Neither start_fire nor drained_d enters it: `fire` passes the next state's multiplexer
   // only.
   assign drained_d = empty_q && size_dirty_i && starting && !fire && !size_write_i;
-  assign wait_ok_d = (vst_d == AxisWait) && !size_write_i
+  assign wait_ok_d = s_wait_d && !size_write_i
                      && (!size_dirty_i || (starting && (fire || empty_q)));
 
   // ---- the item: pixel or filler, and its word -------------------------------------------

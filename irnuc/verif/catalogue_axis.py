@@ -41,7 +41,7 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "fire_q    <= 1'b0;",
         "the in-flight count never counts an item sent (fire_q): no drain before a new size"),
     _ma("ax_pad_state_late", "irnuc_axis_framer.sv",
-        "s_pad_q     <= (vst_d == AxisPad);", "s_pad_q     <= (vst_q == AxisPad);",
+        "s_pad_q     <= s_pad_d;", "s_pad_q     <= (vst_q == AxisPad);",
         "the one-hot filler state a cycle behind the state (fillers sent a cycle late)"),
     _ma("ax_out_free_ignores_fire", "irnuc_axis_framer.sv",
         "out_free_q <= !m_valid_o || m_ready_i || (out_free_q && !fire);",
