@@ -20,7 +20,7 @@ Functions
 ``synth_ecp5(sources, top, params, workdir)``
     ``synth_ecp5``; the netlist JSON for nextpnr and cell counts (LUT4, CCU2C, FF,
     MULT18X18D, DP16KD, LUT RAM, ...).
-``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed, timing_weight)``
+``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed, timing_weight, timing_ripup)``
     nextpnr-ecp5; Fmax from its ``--report`` JSON, utilisation, the critical path.
 ``comb_paths(sources, top, params, workdir)``
     input ports with a combinational path to an output port (flatten, proc, memories
@@ -86,6 +86,12 @@ ECP5_SPEED_DEFAULT = 6
 #: 30 / 50 gave a mean Fmax over seeds 1 and 2 of 145.5 / 150.8 / 152.1 / 152.5 MHz
 #: (docs/synthesis.md, "Placer settings").
 PLACER_TIMING_WEIGHT = 30
+#: The router's timing-driven rip-up (nextpnr's ``--tmg-ripup``): when the routed design
+#: misses the target clock, the router rips up and reroutes the critical nets. It changes
+#: nothing on a design that meets the target (the same netlists gave the same Fmax on the
+#: 18 of 20 irnuc_axis_top runs at 150 MHz or more) and lifted the two below it, 143.9 ->
+#: 153.0 and 149.2 -> 150.6 MHz (docs/synthesis.md, "Router settings").
+ROUTER_TIMING_RIPUP = True
 
 #: Yosys internal flip-flop, latch and memory cells: a fan-in cone stops at them.
 FLIP_FLOP_CELLS: tuple[str, ...] = (
@@ -314,7 +320,8 @@ def _critical_path(log_text: str) -> list[str]:
 def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *,
                      device: str = "85k", package: str = "CABGA381",
                      speed: int = ECP5_SPEED_DEFAULT, freq_mhz: float = 100.0,
-                     seed: int = 1, timing_weight: int = PLACER_TIMING_WEIGHT) -> dict:
+                     seed: int = 1, timing_weight: int = PLACER_TIMING_WEIGHT,
+                     timing_ripup: bool = ROUTER_TIMING_RIPUP) -> dict:
     """Place and route an ECP5 netlist with nextpnr-ecp5 and read its timing report.
 
     Parameters
@@ -338,6 +345,9 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
     timing_weight : int
         The heap placer's timing weight (``--placer-heap-timingweight``; see
         :data:`PLACER_TIMING_WEIGHT`).
+    timing_ripup : bool
+        The router's timing-driven rip-up (``--tmg-ripup``; see
+        :data:`ROUTER_TIMING_RIPUP`).
 
     Returns
     -------
@@ -346,7 +356,7 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         ``clocks`` ({name: {achieved, constraint}} from the report), ``utilization``
         ({cell type: {used, available}}), ``critical_path`` (lines of nextpnr's report),
         ``device``, ``package``, ``speed``, ``freq_mhz``, ``seed``, ``timing_weight``,
-        ``seconds``, ``log``.
+        ``timing_ripup``, ``seconds``, ``log``.
     """
     wd = Path(workdir).resolve()
     wd.mkdir(parents=True, exist_ok=True)
@@ -360,7 +370,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
     args = [f"--{device}", "--package", package, "--speed", str(int(speed)),
             "--json", net.name, "--freq", f"{float(freq_mhz):g}", "--report", report.name,
             "--timing-allow-fail", "--seed", str(int(seed)),
-            "--placer-heap-timingweight", str(int(timing_weight))]
+            "--placer-heap-timingweight", str(int(timing_weight)),
+            *(["--tmg-ripup"] if timing_ripup else [])]
     t0 = time.perf_counter()
     proc = run_child([*_nextpnr_cmd(), *args], cwd=wd, log=log)
     seconds = time.perf_counter() - t0
@@ -379,7 +390,7 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         "critical_path": _critical_path(log.read_text(errors="replace")),
         "device": device, "package": package, "speed": int(speed),
         "freq_mhz": float(freq_mhz), "seed": int(seed), "timing_weight": int(timing_weight),
-        "seconds": round(seconds, 2), "log": str(log),
+        "timing_ripup": bool(timing_ripup), "seconds": round(seconds, 2), "log": str(log),
     }
 
 
@@ -429,8 +440,9 @@ def tool_versions() -> dict[str, str]:
 # ---- irnuc synth: one configuration, cached; many, on the executor ------------------------
 
 #: Version of the flow below (part of the cache key: bump it when the flow changes).
-# 2: ECP5 DSPs instantiated with their registers (IRNUC_ECP5); 3: PLACER_TIMING_WEIGHT.
-FLOW_VERSION = 3
+# 2: ECP5 DSPs instantiated with their registers (IRNUC_ECP5); 3: PLACER_TIMING_WEIGHT;
+# 4: ROUTER_TIMING_RIPUP.
+FLOW_VERSION = 4
 #: Where irnuc synth places and routes: the ECP5 part and the clock it aims at.
 ECP5_DEVICE, ECP5_PACKAGE, TARGET_MHZ = "85k", "CABGA381", 150.0
 #: The xc7 and ECP5 figures every result carries (docs/synthesis.md).
@@ -582,6 +594,7 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
             "top": top, "device": f"LFE5U-{ECP5_DEVICE.upper()}F", "package": ECP5_PACKAGE,
             "speed": int(speed), "target_mhz": float(freq_mhz), "seed": int(seed),
             "placer_timing_weight": pnr["timing_weight"],
+            "router_timing_ripup": pnr["timing_ripup"],
             **asked, "source_digest": key,
             "seconds": {"xc7": xc7["seconds"], "ecp5": ecp5["seconds"],
                         "place_route": pnr["seconds"]},
