@@ -1,26 +1,24 @@
 // AXI4-Lite register file of irnuc_axis_top: the map of nuc_fixed/registers.toml (offsets,
 // fields and resets are the irnuc_pkg constants generated from it; docs/registers.md).
 //
-// Slave: the write address and the write data are each taken into a holding register
-// (awready / wready = that register is empty); when both are held and no response is
-// waiting, the address is decoded into one-hot register selects (a cycle), the write is done
-// and its response raised (the next cycle) and held until bready. A read address is taken
-// when no read is in progress, decoded (a cycle), its register read through an AND-OR of the
-// selects (a cycle) and the data held until rready. Every output is a flop: awready, wready and
-// arready are flops of their own, the complements of the holding flags the logic reads (the
-// ready's net goes to its pad only, and no input passes an enable: each holding register
-// follows its input while it is empty). No path from an input to an output. One write and one
-// read at a time; reads have no side effects.
+// Slave: the write address and data are each taken into a holding register (awready /
+// wready = it is empty); when both are held and no response waits, the address is decoded
+// into one-hot register selects (a cycle), the write done and its response raised (the next
+// cycle) and held until bready. A read address is taken when no read is in progress, decoded
+// (a cycle), read through an AND-OR of the selects (a cycle) and held until rready. Every
+// output is a flop: the readies are flops of their own, the complements of the holding
+// flags the logic reads (each holding register follows its input while empty: no input
+// passes an enable). No input-to-output path. One write and one read at a time; reads have
+// no side effects.
 //
 // Responses: OKAY, or SLVERR for an offset outside the map, a write to a register without
 // a writable field and a frame size of 0 or above MaxWidth x MaxHeight (the register keeps
 // its value). A register of a method or stage that is not built in (method register slot
 // of width 0, FFC registers without HasFfc) reads 0 and ignores writes, answered OKAY.
 //
-// Shadowed registers (CTRL, FRAME_SIZE, the method registers) are what the framer reads
-// at a frame start (start_i): a write changes the pending value, STATUS.pending is 1 until
-// the next start, and a new frame size also raises size_dirty_o (the framer drains the
-// core before it uses it).
+// Shadowed registers (CTRL, FRAME_SIZE, the method registers): the framer takes them at a
+// frame start (start_i); a write changes the pending value, STATUS.pending is 1 until then,
+// and a new frame size raises size_dirty_o (the framer drains the core before using it).
 module irnuc_axil_regs
   import irnuc_pkg::*;
 #(

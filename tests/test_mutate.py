@@ -1,7 +1,7 @@
 """``irnuc mutate`` and ``irnuc.verif.mutate``: the catalogue, a small campaign (killed,
 equivalent), the cache and ``cached_summary``, the command line.
 
-The full campaign is not run here (see docs/verification.md for its figures): one catalogue
+The full campaign is not run here (see docs/mutation.md for its figures): one catalogue
 mutant on the ``minimal`` pipeline and two hand-made ones in the small ``interp_weight``
 suite, in a cache of their own.
 """
