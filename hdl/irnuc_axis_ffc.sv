@@ -252,7 +252,7 @@ module irnuc_axis_ffc
   // reach one flop. The busy flag is the count or an item counting in (flops only: no adder
   // before it), so it is up the cycle after the take, before the framer's own count could
   // let the held item go (that takes two), and it clears a cycle after the count.
-  localparam int unsigned OweBits = $clog2(MaxWidth + 256 + 1) + 1;
+  localparam int unsigned OweBits = axis_flight_bits(MaxWidth);
   ffc_mode_t          owe_mode;
   logic               owe_frame_q, owe_e, owe_in_q, wb_busy_q;
   logic [1:0]         owe_out_q, owe_step;

@@ -62,9 +62,8 @@ module irnuc_axis_framer
   // Derived, do not override.
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
-  // Items between this module's output and the core's output: fewer than the core's
-  // window (MaxWidth + 1) plus its registers; 256 is ample.
-  localparam int unsigned FlightBits    = $clog2(MaxWidth + 256 + 1)
+  // Items between this module's output and the core's output.
+  localparam int unsigned FlightBits    = axis_flight_bits(MaxWidth)
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,

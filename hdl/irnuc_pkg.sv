@@ -628,4 +628,11 @@ package irnuc_pkg;
     CoefSkip   = 2'd2   // no tlast on the frame's last word: words are dropped up to a tlast
   } axis_coef_state_e;
 
+  // Bits of a count of items between the framer's output and the core's output (the
+  // framer's items in flight, the FFC side's write-back words owed): fewer than the core's
+  // window (max_width + 1) plus its registers; 256 is ample.
+  function automatic int unsigned axis_flight_bits(input int unsigned max_width);
+    return $clog2(max_width + 256 + 1);
+  endfunction
+
 endpackage
