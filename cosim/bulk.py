@@ -43,6 +43,11 @@ BULK_EXE = "nuc_dpc_bulk"
 BULK_TOPS = {"nuc_dpc_top": "", "method_dpc_top": "#define BULK_FRAME_WORD 1\n",
              "method_drift_top": "#define BULK_FRAME_WORD 1\n#define BULK_BLIND 1\n",
              "method_ffc_top": "#define BULK_FRAME_WORD 1\n#define BULK_FFC 1\n"}
+#: Verilator's optimisation levels set on make's command line: -O2 for every object. Its
+#: rules put them before the user flags for the model and the runtime (FAST_ARGS' -O2 then
+#: wins) but after them for the harness (which was compiled at -Os), and the precompiled
+#: header of ``cosim._objcache`` serves only files compiled alike.
+_MAKE_OPT = ("OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O2")
 #: Output word of the harness: bit 31 sof, bit 30 eol, low bits the corrected code.
 _SOF_BIT, _EOL_BIT = 31, 30
 
@@ -66,7 +71,7 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
-    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe"], [BULK_HARNESS])
+    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT], [BULK_HARNESS])
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
@@ -87,8 +92,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
         proc = run_child(cmd, env=verilator_env(), log=log)
         if proc.returncode == 0:
             _objcache.seed(build_dir)
-            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk"],
-                             env=verilator_env(), log=build_dir / "make.log")
+            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk",
+                              *_MAKE_OPT], env=verilator_env(), log=build_dir / "make.log")
         if proc.returncode == 0:
             _objcache.store(build_dir)
         if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
