@@ -20,7 +20,7 @@ Functions
 ``synth_ecp5(sources, top, params, workdir)``
     ``synth_ecp5``; the netlist JSON for nextpnr and cell counts (LUT4, CCU2C, FF,
     MULT18X18D, DP16KD, LUT RAM, ...).
-``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed, timing_weight, timing_ripup)``
+``place_route_ecp5(json_path, workdir, device, package, speed, freq_mhz, seed, ...)``
     nextpnr-ecp5; Fmax from its ``--report`` JSON, utilisation, the critical path.
 ``comb_paths(sources, top, params, workdir)``
     input ports with a combinational path to an output port (flatten, proc, memories
@@ -321,7 +321,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
                      device: str = "85k", package: str = "CABGA381",
                      speed: int = ECP5_SPEED_DEFAULT, freq_mhz: float = 100.0,
                      seed: int = 1, timing_weight: int = PLACER_TIMING_WEIGHT,
-                     timing_ripup: bool = ROUTER_TIMING_RIPUP) -> dict:
+                     timing_ripup: bool = ROUTER_TIMING_RIPUP,
+                     out_of_context: bool = False) -> dict:
     """Place and route an ECP5 netlist with nextpnr-ecp5 and read its timing report.
 
     Parameters
@@ -348,6 +349,12 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
     timing_ripup : bool
         The router's timing-driven rip-up (``--tmg-ripup``; see
         :data:`ROUTER_TIMING_RIPUP`).
+    out_of_context : bool
+        Place and route the design as a block inside a larger one (nextpnr's
+        ``--out-of-context``): no I/O buffers, the ports not bound to package pins, no
+        global clock network. An IP core's ports meet on-chip logic, not pins; a wide
+        wrapper on pins fills most of the package's I/O ring and pulls its logic there
+        (docs/synthesis.md).
 
     Returns
     -------
@@ -356,7 +363,7 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         ``clocks`` ({name: {achieved, constraint}} from the report), ``utilization``
         ({cell type: {used, available}}), ``critical_path`` (lines of nextpnr's report),
         ``device``, ``package``, ``speed``, ``freq_mhz``, ``seed``, ``timing_weight``,
-        ``timing_ripup``, ``seconds``, ``log``.
+        ``timing_ripup``, ``out_of_context``, ``seconds``, ``log``.
     """
     wd = Path(workdir).resolve()
     wd.mkdir(parents=True, exist_ok=True)
@@ -371,7 +378,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
             "--json", net.name, "--freq", f"{float(freq_mhz):g}", "--report", report.name,
             "--timing-allow-fail", "--seed", str(int(seed)),
             "--placer-heap-timingweight", str(int(timing_weight)),
-            *(["--tmg-ripup"] if timing_ripup else [])]
+            *(["--tmg-ripup"] if timing_ripup else []),
+            *(["--out-of-context"] if out_of_context else [])]
     t0 = time.perf_counter()
     proc = run_child([*_nextpnr_cmd(), *args], cwd=wd, log=log)
     seconds = time.perf_counter() - t0
@@ -390,7 +398,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         "critical_path": _critical_path(log.read_text(errors="replace")),
         "device": device, "package": package, "speed": int(speed),
         "freq_mhz": float(freq_mhz), "seed": int(seed), "timing_weight": int(timing_weight),
-        "timing_ripup": bool(timing_ripup), "seconds": round(seconds, 2), "log": str(log),
+        "timing_ripup": bool(timing_ripup), "out_of_context": bool(out_of_context),
+        "seconds": round(seconds, 2), "log": str(log),
     }
 
 
@@ -518,7 +527,8 @@ def memory_traffic(cfg) -> dict:
 
 
 def _synth_design(cfg, top: str | None, max_width: int | None, max_height: int | None,
-                  speed: int, freq_mhz: float, seed: int) -> tuple:
+                  speed: int, freq_mhz: float, seed: int,
+                  out_of_context: bool = False) -> tuple:
     """What :func:`synth_config` synthesizes: (configuration with the frame limits applied,
     top, parameters, sources, cache key over sources, parameters, flow and tool versions)."""
     from irnuc.common.digest import files_digest
@@ -533,20 +543,25 @@ def _synth_design(cfg, top: str | None, max_width: int | None, max_height: int |
     settings = {"top": top, "params": params, "device": ECP5_DEVICE, "package": ECP5_PACKAGE,
                 "speed": int(speed), "freq_mhz": float(freq_mhz), "seed": int(seed),
                 "flow": FLOW_VERSION, "packages": _package_versions()}
+    if out_of_context:  # only when on: the results on pins keep the keys they had
+        settings["out_of_context"] = True
     return cfg, top, params, sources, files_digest(sources, settings)
 
 
 def synth_key(cfg, *, top: str | None = None, max_width: int | None = None,
               max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
-              freq_mhz: float = TARGET_MHZ, seed: int = 1) -> str:
+              freq_mhz: float = TARGET_MHZ, seed: int = 1,
+              out_of_context: bool = False) -> str:
     """The cache key (``source_digest``) :func:`synth_config` files its result under, for
     the same arguments, without synthesizing."""
-    return _synth_design(cfg, top, max_width, max_height, speed, freq_mhz, seed)[-1]
+    return _synth_design(cfg, top, max_width, max_height, speed, freq_mhz, seed,
+                         out_of_context)[-1]
 
 
 def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
                  max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
-                 freq_mhz: float = TARGET_MHZ, seed: int = 1, use_cache: bool = True) -> dict:
+                 freq_mhz: float = TARGET_MHZ, seed: int = 1, out_of_context: bool = False,
+                 use_cache: bool = True) -> dict:
     """Area and Fmax of ``top`` for a pipeline configuration: the API of ``irnuc synth``.
 
     ``top`` defaults to :func:`default_top` (``method_dpc_top`` for every base method but
@@ -557,6 +572,7 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
     ``config_digest`` (of the configuration as synthesized, ``max_width``/``max_height``
     applied), ``source_digest`` (the cache key: sources, parameters, flow and tool
     versions), ``seconds`` per step, ``critical_path`` and ``cached``.
+    ``out_of_context``: place and route without pins (see :func:`place_route_ecp5`).
 
     Results are cached in the irnuc cache (``synth/<source digest>``); a second call with
     the same sources and parameters returns at once.
@@ -565,7 +581,7 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
     from irnuc.common.io import file_lock, write_text_atomic
 
     cfg, top, params, sources, key = _synth_design(cfg, top, max_width, max_height, speed,
-                                                   freq_mhz, seed)
+                                                   freq_mhz, seed, out_of_context)
     root = cache_dir("synth")
     result_file = root / key / "synth.json"
     # The key is the design (sources, parameters, flow), not the configuration's name: a
@@ -582,7 +598,8 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
         xc7 = synth_xc7(sources, top, params, work / "xc7")
         net, ecp5 = synth_ecp5(sources, top, params, work / "ecp5")
         pnr = place_route_ecp5(net, work / "pnr", device=ECP5_DEVICE, package=ECP5_PACKAGE,
-                               speed=speed, freq_mhz=freq_mhz, seed=seed)
+                               speed=speed, freq_mhz=freq_mhz, seed=seed,
+                               out_of_context=out_of_context)
         result = {
             "fmax_mhz": pnr["fmax_mhz"],
             "xc7": {k: xc7[k] for k in XC7_KEYS},
@@ -595,6 +612,7 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
             "speed": int(speed), "target_mhz": float(freq_mhz), "seed": int(seed),
             "placer_timing_weight": pnr["timing_weight"],
             "router_timing_ripup": pnr["timing_ripup"],
+            "out_of_context": pnr["out_of_context"],
             **asked, "source_digest": key,
             "seconds": {"xc7": xc7["seconds"], "ecp5": ecp5["seconds"],
                         "place_route": pnr["seconds"]},

@@ -58,8 +58,19 @@ def test_irnuc_synth_minimal_and_its_cache(tmp_path, monkeypatch, capsys) -> Non
     assert synth.synth_key(cfg) == r["source_digest"]
     others = {synth.synth_key(cfg, max_width=48), synth.synth_key(cfg, max_height=48),
               synth.synth_key(cfg, top="nuc_core"), synth.synth_key(cfg, speed=8),
-              synth.synth_key(cfg, seed=2)}
-    assert len(others) == 5 and r["source_digest"] not in others
+              synth.synth_key(cfg, seed=2), synth.synth_key(cfg, out_of_context=True)}
+    assert len(others) == 6 and r["source_digest"] not in others
+    assert synth.synth_key(cfg, out_of_context=False) == r["source_digest"]
+    assert r["out_of_context"] is False
+    # The same netlist out of context: no I/O buffer placed (nextpnr's own count), where on
+    # pins every port has one.
+    from irnuc.common.cache import cache_dir
+
+    net = cache_dir("synth") / r["source_digest"] / "work" / "ecp5" / f"{r['top']}.json"
+    ooc = synth.place_route_ecp5(net, tmp_path / "ooc", freq_mhz=150.0, out_of_context=True)
+    assert ooc["utilization"].get("TRELLIS_IO", {}).get("used", 0) == 0
+    assert r["ecp5_utilization"]["TRELLIS_IO"]["used"] > 20
+    assert ooc["out_of_context"] is True and ooc["fmax_mhz"] > 0
 
 
 def test_typical14_line_buffer_is_block_ram(tmp_path) -> None:

@@ -30,6 +30,9 @@ def add_synth_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--freq", type=float, default=150.0, metavar="MHZ",
                    help="clock nextpnr aims at (default: %(default)s MHz)")
     p.add_argument("--seed", type=int, default=1, help="placer seed (default: %(default)s)")
+    p.add_argument("--out-of-context", action="store_true",
+                   help="place and route as a block inside a larger design: ports not on "
+                        "package pins, no I/O buffers (nextpnr --out-of-context)")
     add_executor(p, "synthesize", workers_help="worker processes for several "
                  "configurations; 0 = in-process", cache="this result")
     add_out(p, "out/synth")
@@ -81,7 +84,7 @@ def run_synth(args: argparse.Namespace) -> int:
                             scheduler=args.scheduler, progress=progress("synth"),
                             top=args.top, max_width=args.max_width, max_height=args.max_height,
                             speed=args.speed, freq_mhz=args.freq, seed=args.seed,
-                            use_cache=not args.no_cache)
+                            out_of_context=args.out_of_context, use_cache=not args.no_cache)
     with output_folder(out, kind="synth") as tmp:
         if len(results) == 1:
             write_text_atomic(tmp / "synth.json", json.dumps(results[0], indent=1) + "\n")
@@ -96,7 +99,8 @@ def run_synth(args: argparse.Namespace) -> int:
     for r in results:
         x, e = r["xc7"], r["ecp5"]
         say(f"{r['config']['name']} {r['top']} ({r['config']['max_width']} x {r['config']['max_height']}): "
-            f"Fmax {r['fmax_mhz']:.1f} MHz (ECP5-85k speed {r['speed']}); xc7 {x['lut']} LUT, "
+            f"Fmax {r['fmax_mhz']:.1f} MHz (ECP5-85k speed {r['speed']}"
+            f"{', out of context' if r.get('out_of_context') else ''}); xc7 {x['lut']} LUT, "
             f"{x['ff']} FF, {x['dsp']} DSP48, {x['bram18']} RAMB18, {x['bram36']} RAMB36, "
             f"{x['lutram']} LUTRAM; ECP5 {e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, "
             f"{e['dp16kd']} DP16KD" + (" (cached)" if r["cached"] else ""))

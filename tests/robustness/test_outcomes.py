@@ -37,12 +37,14 @@ def test_outcome_synth_cache_carries_the_asked_name(tmp_path: Path, monkeypatch:
         **counts["ecp5"], "cells": {}, "seconds": 0.0}))
     monkeypatch.setattr(synth, "place_route_ecp5", lambda *a, **k: {
         "fmax_mhz": 123.0, "utilization": {}, "critical_path": [], "seconds": 0.0,
-        "timing_weight": k.get("timing_weight", 7), "timing_ripup": False})
+        "timing_weight": k.get("timing_weight", 7), "timing_ripup": False,
+        "out_of_context": k.get("out_of_context")})
     monkeypatch.setattr(synth, "tool_versions", lambda: {})
     first = synth.synth_config(load_pipeline("typical14"))
     assert first["cached"] is False and first["config"]["name"] == "typical14"
     assert first["placer_timing_weight"] == 7  # what place-and-route reports, recorded as is
     assert first["router_timing_ripup"] is False
+    assert first["out_of_context"] is False  # asked for on pins, by default
     alias = tmp_path / "alias.toml"
     alias.write_text(load_pipeline("typical14").to_toml().replace("[typical14]", "[alias]"))
     work = tmp_path / "work"
