@@ -2,8 +2,8 @@
 
 ``irnuc synth`` places a top with its ports bound to package pins (LFE5U-85F CABGA381): a
 wide AXI wrapper then fills most of the I/O ring (the FFC compositions of
-``irnuc_axis_top``: 290-354 of the 365 I/O) and its logic is pulled towards every side of the die.
-Inside an SoC those ports meet on-chip logic. ``--out-of-context`` (nextpnr's option of the
+``irnuc_axis_top``: 290-354 of the 365 I/O), which could pull its logic towards every side
+of the die. Inside an SoC those ports meet on-chip logic. ``--out-of-context`` (nextpnr's option of the
 same name) places the design as such a block: no I/O buffers, no pins.
 
 For each configuration of ``--configs`` the top ``--top`` is synthesized for ECP5 once

@@ -273,15 +273,21 @@ module method_ffc_top
   ffc_mode_t            px_mode;
   logic [FrameBits-1:0] px_frame;
 
-  irnuc_axis_buffer #(.DataBits(FrameBits + $bits(ffc_mode_t) + AdcBits + 3)) u_px (
+  // The mode and the wait on top, from the buffer's head register: the join decides on
+  // them (need_acc, need_target), so they come from flops, not through the read pointer's
+  // multiplexer (tcffc14's join was 4-5 LUTs deep from the buffers' flags).
+  irnuc_axis_buffer #(
+    .DataBits(FrameBits + $bits(ffc_mode_t) + AdcBits + 3),
+    .HeadBits($bits(ffc_mode_t) + 1)
+  ) u_px (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(pix_valid),
     .ready_o(pix_ready),
-    .data_i ({frame_e, mode_e, tgt_e, pix_sof, pix_eol, pix_data}),
+    .data_i ({mode_e, tgt_e, frame_e, pix_sof, pix_eol, pix_data}),
     .valid_o(px_valid),
     .ready_i(join_take),
-    .data_o ({px_frame, px_mode, px_tgt, px_sof, px_eol, px_data})
+    .data_o ({px_mode, px_tgt, px_frame, px_sof, px_eol, px_data})
   );
 
   // ---- ffc_mean: the target; the division starts when a refresh frame's first pixel waits
