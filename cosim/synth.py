@@ -353,8 +353,8 @@ def place_route_ecp5(json_path: str | os.PathLike, workdir: str | os.PathLike, *
         Place and route the design as a block inside a larger one (nextpnr's
         ``--out-of-context``): no I/O buffers, the ports not bound to package pins, no
         global clock network. An IP core's ports meet on-chip logic, not pins; a wide
-        wrapper on pins fills most of the package's I/O ring and pulls its logic there
-        (docs/synthesis.md).
+        wrapper on pins fills most of the package's I/O ring (docs/synthesis.md compares
+        the two).
 
     Returns
     -------
