@@ -23,11 +23,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import statistics
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from bench_placer import GOAL_MHZ, _ints
+from bench_placer import GOAL_MHZ, _ints, fmax_summary
 
 from irnuc.common.cache import cache_dir
 from irnuc.cosim import synth
@@ -79,12 +78,8 @@ def main() -> None:
     summary = {}
     for key in SETTINGS:
         values = [runs[n][key][str(s)] for n in configs for s in seeds]
-        summary[key] = {"mean_mhz": round(statistics.fmean(values), 2),
-                        "min_mhz": min(values),
-                        "runs_at_goal": sum(v >= GOAL_MHZ for v in values),
-                        "runs": len(values),
-                        "io_buffers_used": sorted(io_used[key]),
-                        "place_route_s_mean": round(statistics.fmean(seconds[key]), 1)}
+        summary[key] = {**fmax_summary(values, seconds[key]),
+                        "io_buffers_used": sorted(io_used[key])}
     b, o = summary["pins"], summary["out_of_context"]
     print(json.dumps({
         "benchmark": "out_of_context", "top": args.top, "configs": configs, "seeds": seeds,

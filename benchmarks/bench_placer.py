@@ -43,6 +43,13 @@ def _ints(text: str, flag: str) -> list[int]:
     return out
 
 
+def fmax_summary(values: list[float], seconds: list[float]) -> dict:
+    """One setting's runs: mean and lowest Fmax, runs at :data:`GOAL_MHZ`, mean seconds."""
+    return {"mean_mhz": round(statistics.fmean(values), 2), "min_mhz": min(values),
+            "runs_at_goal": sum(v >= GOAL_MHZ for v in values), "runs": len(values),
+            "place_route_s_mean": round(statistics.fmean(seconds), 1)}
+
+
 def _label(weight: int, ripup: bool) -> str:
     return f"w{weight}" + ("+ripup" if ripup else "")
 
@@ -88,11 +95,7 @@ def main() -> None:
     for st in settings:
         key = _label(*st)
         values = [runs[n][key][str(s)] for n in configs for s in seeds]
-        summary[key] = {"mean_mhz": round(statistics.fmean(values), 2),
-                        "min_mhz": min(values),
-                        "runs_at_goal": sum(v >= GOAL_MHZ for v in values),
-                        "runs": len(values),
-                        "place_route_s_mean": round(statistics.fmean(seconds[key]), 1)}
+        summary[key] = fmax_summary(values, seconds[key])
     b, a, f = (summary[_label(*st)] for st in (base, alone, flow))
     print(json.dumps({
         "benchmark": "place_route_settings", "top": args.top, "configs": configs,
