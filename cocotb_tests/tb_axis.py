@@ -35,8 +35,10 @@ from cocotbext.axi import (  # noqa: E402
 from irnuc.cocotb_tests import tb_lib  # noqa: E402
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern, reset  # noqa: E402
 from irnuc.cosim import coverage  # noqa: E402
+from irnuc.cosim.axis_coverage import drift_delta_class  # noqa: E402
 from irnuc.cosim.methods import MethodScoreboard, golden_frames  # noqa: E402
 from irnuc.cosim.scoreboard import TopScoreboard  # noqa: E402
+from irnuc.cosim.stages import StageScoreboard, drift_frame_from_sum  # noqa: E402
 from irnuc.nuc_fixed import regmap  # noqa: E402
 from irnuc.nuc_fixed.axis import (  # noqa: E402
     EVENTS,
@@ -49,6 +51,7 @@ from irnuc.nuc_fixed.axis import (  # noqa: E402
     video_beats,
 )
 from irnuc.nuc_fixed.config import BASE_METHODS  # noqa: E402
+from irnuc.nuc_fixed.cores import code_range  # noqa: E402
 
 TOP = "irnuc_axis_top"
 
@@ -274,9 +277,22 @@ class Bench:
             for f in fr.frames:
                 top.expect_frames(f.raw, f.words)
             return top
+        if self.cfg.has("blind_drift"):
+            # The stage scoreboard: its triage line shows the frame's drift code.
+            sb = StageScoreboard(golden)
+            lo, hi = code_range(self.cfg, "drift")
+            for f in fr.frames:
+                coeffs, inputs = frame_method_inputs(f, self.cfg)
+                df = drift_frame_from_sum(coeffs, f.raw, inputs, golden=golden)
+                sb.expect_frame(df)
+                _sample("axis.drift.delta", drift_delta_class(df.delta, lo, hi))
+                if not f.settings.nuc_en:
+                    _sample("axis.drift.nuc_off", "neutral")
+            return sb
         sb = MethodScoreboard(golden)
         for f in fr.frames:
-            coeffs, reading = frame_method_inputs(f, self.cfg)
+            coeffs, inputs = frame_method_inputs(f, self.cfg)
+            reading = None if inputs.reading is None else int(inputs.reading[0])
             for mf in golden_frames(coeffs, [f.raw], [reading], golden=golden):
                 sb.expect_frame(mf)
         return sb

@@ -14,7 +14,7 @@ from __future__ import annotations
 import cocotb
 
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
-from irnuc.cocotb_tests.tb_axis import Bench, _bench
+from irnuc.cocotb_tests.tb_axis import Bench, _bench, _export, _sample
 from irnuc.cosim.stream import coef_stream_bits, frame_drive
 from irnuc.nuc_fixed.axis import FrameSettings, coef_beats, frame_word, video_beats
 from irnuc.nuc_fixed.config import BASE_METHODS
@@ -39,9 +39,28 @@ def _reading(bench: Bench, c: MethodCoefficients) -> int | None:
     return random_reading(bench.cfg, c, bench.rng)
 
 
-async def _set_reading(bench: Bench, reading: int | None) -> None:
+def _blind_sum(bench: Bench, c: MethodCoefficients) -> int:
+    """A frame's blind sum (BLIND_SUM, blind_drift): near the calibration's BLIND_REF
+    (a small drift code, either sign), equal to it (no drift), or anywhere in the
+    register's range (the drift code saturates)."""
+    top = (1 << bench.cfg.blind_sum_bits) - 1
+    ref = int(c.registers["blind_ref"])
+    kind = int(bench.rng.integers(0, 3))
+    if kind == 0:
+        return int(bench.rng.integers(0, top + 1))
+    step = int(bench.rng.integers(-4096, 4097)) if kind == 1 else 0
+    return min(max(ref + step, 0), top)
+
+
+async def _set_reading(bench: Bench, reading: int | None,
+                       c: MethodCoefficients | None = None) -> None:
+    """The per-frame registers: READING (tc_offset), and with blind_drift a new BLIND_SUM
+    (of ``c``'s calibration) for the next frame."""
     if reading is not None:
         await bench.write_method_register("reading", reading)
+    if c is not None and bench.cfg.has("blind_drift"):
+        await bench.write_method_register("blind_sum", _blind_sum(bench, c))
+        _sample("axis.drift.blind_sum", "between_frames")
 
 
 @cocotb.test()
@@ -68,6 +87,7 @@ async def method_registers(dut) -> None:
         await bench.check(f"{name.upper()}_HI")
         assert bench.method_registers()[name] == value
     await bench.check("STATUS")
+    _export()
 
 
 @cocotb.test()
@@ -82,7 +102,7 @@ async def method_frames_between(dut) -> None:
     results = []
     for k in range(4):
         reading = _reading(bench, c)
-        await _set_reading(bench, reading)
+        await _set_reading(bench, reading, c)
         raw = random_raw(bench.cfg, H, W, bench.rng)
         words = frame_drive(c, reading).words
         res = await bench.run(video_beats([raw]), coef_beats([words]), [bench.settings()],
@@ -98,6 +118,7 @@ async def method_frames_between(dut) -> None:
                           label="nuc and dpc off")
     results.append(res)
     await bench.check_counts(results)
+    _export()
 
 
 @cocotb.test()
@@ -110,7 +131,7 @@ async def method_reading_mid_frame(dut) -> None:
     c = await _calibration(bench)
     names = [n for n, r in cfg.registers.items() if r.count == 1]
     readings = [_reading(bench, c) for _ in range(3)]
-    await _set_reading(bench, readings[0])
+    await _set_reading(bench, readings[0], c)
     s0 = bench.settings()
     raws = [random_raw(cfg, H, W, bench.rng) for _ in range(3)]
     words = [frame_drive(c, r).words for r in readings]
@@ -126,6 +147,8 @@ async def method_reading_mid_frame(dut) -> None:
         async def write() -> None:
             for n, value in v.items():
                 await bench.write_method_register(n, value)
+            if "blind_sum" in v:
+                _sample("axis.drift.blind_sum", "mid_frame")
         return write
 
     res = await bench.run(video_beats(raws), coef_beats(words), settings,
@@ -134,3 +157,5 @@ async def method_reading_mid_frame(dut) -> None:
                           idle="random", coef_idle="random", bp="random",
                           label="registers mid frame")
     assert [f.frame_word for f in res.frames] == [s.frame_word for s in settings]
+    _sample("stream.back_to_back", "frames")  # three frames in one stream
+    _export()

@@ -24,8 +24,9 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 #: minimal (short words, frequent saturation) and typical14 (the camera's widths).
 CONFIGS = ("minimal", "typical14")
-#: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame.
-METHOD_CONFIGS = ("tcoffset14",)
+#: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame;
+#: two_point + blind_drift: the blind sum (BLIND_SUM) likewise, method_drift_top the core.
+METHOD_CONFIGS = ("tcoffset14", "drift14")
 #: base method + ffc (N = 8): FFC_CTRL, the four FFC streams; two_point and tc_offset hold
 #: the shutter frames, quadratic passes them; tc_offset takes READING per frame.
 FFC_CONFIGS = ("ffc14", "quadffc14", "tcffc14")
@@ -88,3 +89,11 @@ def test_irnuc_axis_top_ffc_coverage(config: str) -> None:
     """Every bin of the FFC sequence through the registers (cosim.axis_coverage's
     axis.ffc points) and of the stream points is hit by the one run of tb_axis_ffc."""
     _assert_axis_closed(config, tb_axis_ffc, "axis.ffc.")
+
+
+def test_irnuc_axis_top_drift_coverage() -> None:
+    """Every bin of blind_drift through the registers (cosim.axis_coverage's axis.drift
+    points: each sign of the drift code and its saturation, BLIND_SUM written between
+    frames and mid frame, NUC off) and of the stream points is hit by the one run of
+    tb_axis_method on drift14."""
+    _assert_axis_closed("drift14", tb_axis_method, "axis.drift.")

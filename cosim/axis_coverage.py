@@ -35,8 +35,22 @@ and checked, or by a register read that matched the model:
                           ``new_size_in_refresh``)
 ========================= =========================================================================
 
+On a configuration with the ``blind_drift`` stage (the core is ``method_drift_top``;
+sampled by ``cocotb_tests/tb_axis_method.py``) the model holds the stream points and
+:data:`DRIFT_AXIS_POINTS`, each bin decided from a frame that was driven and checked:
+
+========================= =========================================================================
+``axis.drift.delta``      the frame's drift code (the golden model's, from the BLIND_SUM,
+                          BLIND_REF and DRIFT_GAIN the frame started with): below 0, 0, above
+                          0, and at a limit of the drift format (saturated)
+``axis.drift.blind_sum``  BLIND_SUM written between frames and in the middle of a frame (the
+                          frame after the write takes it)
+``axis.drift.nuc_off``    a frame with CTRL.nuc_en 0 (the neutral frame word: drift code 0)
+========================= =========================================================================
+
 The general AXI points above are the same register file, framer and stream ports on an
-FFC configuration; they are closed on the two-point configurations (``tb_axis``).
+FFC or blind_drift configuration; they are closed on the two-point configurations
+(``tb_axis``).
 """
 
 from __future__ import annotations
@@ -45,8 +59,8 @@ from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS, CoverageM
 from irnuc.nuc_fixed.axis import EVENTS, FfcFraming
 from irnuc.nuc_fixed.config import PipelineConfig
 
-__all__ = ["AXIS_POINTS", "AXIS_TOPS", "FFC_AXIS_POINTS", "REGISTER_ACCESS",
-           "AxisCoverageModel", "ffc_axis_classes"]
+__all__ = ["AXIS_POINTS", "AXIS_TOPS", "DRIFT_AXIS_POINTS", "FFC_AXIS_POINTS",
+           "REGISTER_ACCESS", "AxisCoverageModel", "drift_delta_class", "ffc_axis_classes"]
 
 #: The tops whose coverage model is :class:`AxisCoverageModel`.
 AXIS_TOPS = ("irnuc_axis_top",)
@@ -85,6 +99,21 @@ FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.refresh": ("next_frame_start",),
     "axis.ffc.drain": ("after_held", "new_size_in_run", "new_size_in_refresh"),
 }
+
+
+#: Coverpoint -> bins of blind_drift through the registers (a configuration with it).
+DRIFT_AXIS_POINTS: dict[str, tuple[str, ...]] = {
+    "axis.drift.delta": ("negative", "zero", "positive", "saturated"),
+    "axis.drift.blind_sum": ("between_frames", "mid_frame"),
+    "axis.drift.nuc_off": ("neutral",),
+}
+
+
+def drift_delta_class(delta: int, lo: int, hi: int) -> str:
+    """The ``axis.drift.delta`` bin of a frame's drift code in a format of codes lo..hi."""
+    if delta in (lo, hi):
+        return "saturated"
+    return "negative" if delta < 0 else "positive" if delta > 0 else "zero"
 
 
 def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
@@ -137,12 +166,14 @@ def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
 
 class AxisCoverageModel(CoverageModel):
     """The coverpoints of ``irnuc_axis_top`` on one configuration (:data:`AXIS_POINTS`, or
-    :data:`FFC_AXIS_POINTS` with the ffc stage, and the base model's stream points)."""
+    :data:`FFC_AXIS_POINTS` with the ffc stage, :data:`DRIFT_AXIS_POINTS` with
+    blind_drift, and the base model's stream points)."""
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         super().__init__(top, cfg, prefix)
         point = self.add_point
-        points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else AXIS_POINTS)
+        points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else
+                      DRIFT_AXIS_POINTS if cfg.has("blind_drift") else AXIS_POINTS)
         if cfg.has("ffc") and cfg.ffc_output != "hold":
             points["axis.ffc.drain"] = tuple(b for b in points["axis.ffc.drain"]
                                              if b != "after_held")

@@ -109,7 +109,8 @@ MODULE_FILES["irnuc_axis_ffc"] = tuple(dict.fromkeys((
     *MODULE_FILES["method_ffc_top"], "irnuc_axis_ffc.sv")))
 MODULE_FILES["irnuc_axis_core"] = tuple(dict.fromkeys((
     *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"],
-    *MODULE_FILES["irnuc_axis_ffc"], "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
+    *MODULE_FILES["irnuc_axis_ffc"], *MODULE_FILES["method_drift_top"],
+    "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
     "irnuc_axis_top.sv")))
@@ -284,6 +285,8 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     axis = top in ("irnuc_axis_top", "irnuc_axis_core")  # the same parameters
     if axis and stage_top(cfg) == "method_ffc_top":
         return {**stage_parameters("method_ffc_top", cfg), "Ffc": 1}
+    if axis and stage_top(cfg) == "method_drift_top":
+        return {**stage_parameters("method_drift_top", cfg), "Drift": 1}
     if axis and cfg.method in AXIS_METHODS and cfg.method != "two_point":
         p = {**params, **method_parameters(cfg)}
         return {k: v for k, v in p.items() if k not in ("Tables", "WeightIntBits",

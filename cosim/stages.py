@@ -35,7 +35,7 @@ from irnuc.nuc_fixed.ffc import FfcState
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, frame_coefficients, method_top
 
 __all__ = ["DriftFrame", "FfcRun", "StageScoreboard", "blind_codes_for", "blind_items",
-           "drift_frames", "ffc_run"]
+           "drift_frame_from_sum", "drift_frames", "ffc_run"]
 
 
 @dataclass(frozen=True)
@@ -92,6 +92,21 @@ def drift_frames(coeffs: MethodCoefficients, raws: list[np.ndarray], blinds: lis
                               blind=np.asarray(items, dtype=np.int64), blind_codes=codes,
                               delta=int(res.delta[0])))  # type: ignore[index]
     return out
+
+
+def drift_frame_from_sum(coeffs: MethodCoefficients, raw: np.ndarray, inputs: FrameInputs,
+                         golden: PipelineConfig | None = None) -> DriftFrame:
+    """A frame whose blind sum comes as a register holds it (``inputs.blind_sums``,
+    irnuc_axis_top's BLIND_SUM), corrected by the golden model (``golden``: another
+    configuration to check against on purpose)."""
+    g = coeffs if golden is None else MethodCoefficients(golden, coeffs.fields,
+                                                         coeffs.registers)
+    raw = np.asarray(raw)
+    res = method_top(raw[None], g, inputs)
+    return DriftFrame(raw=raw, coeffs=coeffs, reading=None, drive=frame_drive(coeffs),
+                      expected=res.y[0].astype(np.int64),
+                      blind=np.asarray(inputs.blind_sums, dtype=np.int64),
+                      delta=int(res.delta[0]))  # type: ignore[index]
 
 
 class StageScoreboard(MethodScoreboard):

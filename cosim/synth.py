@@ -487,9 +487,7 @@ def tops_for(cfg) -> tuple[str, ...]:
 
     if cfg.stages:
         top = stage_top(cfg)
-        if top == "method_ffc_top":
-            return (top, "irnuc_axis_top")
-        return (top,) if top else ()
+        return (top, "irnuc_axis_top") if top else ()
     if cfg.method == "two_point":
         return ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
     if cfg.method in AXIS_METHODS:

@@ -1,5 +1,6 @@
 // The core of irnuc_axis_top and the FFC side around it (docs/integration.md): the framer's
-// items go to irnuc_axis_ffc (method_ffc_top and its streams) with Ffc = 1, else to
+// items go to irnuc_axis_ffc (method_ffc_top and its streams) with Ffc = 1, to
+// method_drift_top with Drift = 1 (each frame's blind sum from the frame word), else to
 // nuc_dpc_top for two_point (Method = 1) or method_dpc_top for one_point, piecewise,
 // quadratic and tc_offset, whose two inputs move in lockstep (one item is a pixel and its
 // word; the frame word rides on the pixel stream, read with sof). Without the ffc stage
@@ -48,6 +49,15 @@ module irnuc_axis_core
   parameter int unsigned FfcFracBits    = 4,
   parameter int unsigned FfcRounding    = 1,
   parameter int unsigned FfcOverflow    = 0,
+  // The blind_drift stage (method_drift_top's parameters; docs/datapath.md "blind_drift").
+  parameter int unsigned Drift          = 0,  // 1: the core is method_drift_top
+  parameter int unsigned BlindMax       = 8192,
+  parameter int unsigned DriftIntBits   = 14,
+  parameter int unsigned DriftFracBits  = 2,
+  parameter int unsigned DriftRounding  = 1,
+  parameter int unsigned DriftOverflow  = 0,
+  parameter int unsigned DriftGainIntBits  = 1,
+  parameter int unsigned DriftGainFracBits = 24,
   // Derived, do not override.
   localparam method_e     MethodSel     = method_e'(Method),
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
@@ -62,8 +72,14 @@ module irnuc_axis_core
                                                            KneeIntBits + KneeFracBits,
                                                            QuadIntBits + QuadFracBits,
                                                            TcWordBits, TgWordBits),
-  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, LevelBits,
+  localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
                                                           ReadingBits, 1),
+  localparam int unsigned BlindBits     = AdcBits + $clog2(BlindMax + 1),
+  localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
+  localparam int unsigned FrameBits     = (Drift != 0)
+                                          ? frame_blind_drift_bits(BaseFrameBits, BlindBits,
+                                                                   DriftGainBits)
+                                          : BaseFrameBits,
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // The FFC words (memories ffc_offset and ffc_acc) and their AXI4-Stream widths.
@@ -129,6 +145,7 @@ module irnuc_axis_core
 );
 
   logic core_pix_ready, core_coef_ready;
+  logic core_pass;  // the item may go to the core (Drift: a frame start waits for its blind item)
 
   if (Ffc != 0) begin : gen_ffc
     irnuc_axis_ffc #(
@@ -213,6 +230,90 @@ module irnuc_axis_core
     // Its two inputs are forked in u_ffc (not in lockstep).
     assign core_pix_ready  = 1'b1;
     assign core_coef_ready = 1'b1;
+    logic unused_pass;
+    assign unused_pass = core_pass;
+  end else if (Drift != 0) begin : gen_drift
+    // method_drift_top: each frame's blind sum (the frame word's BLIND_SUM) goes to its
+    // s_blind as one item, flagged last, before the frame's first pixel: the framer's sof
+    // item waits until the item is taken (blind_sent_q), and method_drift_top's join waits
+    // for the frame's drift code (blind_drift: MW + 5 cycles, a bubble at each frame
+    // start). blind_drift samples BLIND_REF and DRIFT_GAIN from the frame word when it
+    // takes the item, a cycle after the handshake; one item at a time (blind_busy_q, until
+    // the frame's first pixel leaves the core), so the framer's frame word is still that
+    // frame's then even when frames are a pixel long.
+    frame_blind_drift#(BaseFrameBits, BlindBits, DriftGainBits)::word_t fw;
+    logic blind_sent_q, blind_busy_q, blind_valid, blind_ready, pass, core_valid;
+
+    assign fw          = item_frame_i;
+    assign blind_valid = item_valid_i && item_sof_i && !blind_sent_q && !blind_busy_q;
+    assign pass        = !item_sof_i || blind_sent_q;
+    assign core_valid  = item_valid_i && pass;
+    assign core_pass   = pass;
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin : p_blind
+      if (!rst_ni) begin
+        blind_sent_q <= 1'b0;
+        blind_busy_q <= 1'b0;
+      end else begin
+        if (blind_valid && blind_ready) begin
+          blind_sent_q <= 1'b1;
+        end else if (core_valid && item_ready_o && item_sof_i) begin
+          blind_sent_q <= 1'b0;
+        end
+        if (blind_valid && blind_ready) begin
+          blind_busy_q <= 1'b1;
+        end else if (m_valid_o && m_ready_i && m_sof_o) begin
+          blind_busy_q <= 1'b0;
+        end
+      end
+    end
+
+    method_drift_top #(
+      .Method           (Method),
+      .AdcBits          (AdcBits),
+      .GainIntBits      (GainIntBits),
+      .GainFracBits     (GainFracBits),
+      .OffsetIntBits    (OffsetIntBits),
+      .OffsetFracBits   (OffsetFracBits),
+      .OutBits          (OutBits),
+      .Rounding         (Rounding),
+      .Overflow         (Overflow),
+      .MaxWidth         (MaxWidth),
+      .MaxHeight        (MaxHeight),
+      .BlindMax         (BlindMax),
+      .DriftIntBits     (DriftIntBits),
+      .DriftFracBits    (DriftFracBits),
+      .DriftRounding    (DriftRounding),
+      .DriftOverflow    (DriftOverflow),
+      .DriftGainIntBits (DriftGainIntBits),
+      .DriftGainFracBits(DriftGainFracBits)
+    ) u_core (
+      .clk_i          (clk_i),
+      .rst_ni         (rst_ni),
+      .frame_width_i  (act_w_i),
+      .frame_height_i (act_h_i),
+      .s_pix_valid_i  (core_valid),
+      .s_pix_ready_o  (core_pix_ready),
+      .s_pix_data_i   (item_raw_i),
+      .s_pix_sof_i    (item_sof_i),
+      .s_pix_eol_i    (item_eol_i),
+      .s_pix_frame_i  (fw.base),
+      .s_coef_valid_i (core_valid),
+      .s_coef_ready_o (core_coef_ready),
+      .s_coef_data_i  (item_word_i),
+      .s_blind_valid_i(blind_valid),
+      .s_blind_ready_o(blind_ready),
+      .s_blind_data_i (fw.blind_sum),
+      .s_blind_last_i (1'b1),
+      .blind_ref_i    (fw.blind_ref),
+      .drift_gain_i   (fw.drift_gain),
+      .m_pix_valid_o  (m_valid_o),
+      .m_pix_ready_i  (m_ready_i),
+      .m_pix_data_o   (m_data_o),
+      .m_pix_sof_o    (m_sof_o),
+      .m_pix_eol_o    (m_eol_o),
+      .frame_err_o    (frame_err_o)
+    );
   end else if (MethodSel == MethodTwoPoint) begin : gen_two_point
     nuc_dpc_top #(
       .AdcBits       (AdcBits),
@@ -301,9 +402,13 @@ module irnuc_axis_core
       .frame_err_o   (frame_err_o)
     );
   end
+  if (Drift == 0) begin : gen_no_drift
+    assign core_pass = 1'b1;
+  end
   if (Ffc == 0) begin : gen_no_ffc
     assign pend_item_frame_o  = pend_frame_i;
-    assign item_ready_o       = core_pix_ready && core_coef_ready;
+    // (Drift: a frame's first item waits for its blind item, gen_drift.)
+    assign item_ready_o       = core_pix_ready && core_coef_ready && core_pass;
     assign core_out_o         = {1'b0, m_valid_o && m_ready_i};
     assign wb_busy_o          = 1'b0;
     assign ffc_busy_o         = 1'b0;

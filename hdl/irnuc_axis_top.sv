@@ -27,11 +27,13 @@
 //
 // u_core (irnuc_axis_core) holds the core: method_ffc_top with Ffc = 1 (one_point,
 // two_point, quadratic or tc_offset with the shutter offset refresh) inside irnuc_axis_ffc
-// (the shutter flag of each frame from FFC_CTRL, the fork, the FFC streams), else
+// (the shutter flag of each frame from FFC_CTRL, the fork, the FFC streams),
+// method_drift_top with Drift = 1 (one_point or two_point after the blind drift), else
 // nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point, piecewise,
 // quadratic and tc_offset, whose two input streams move in lockstep (one item of the framer
 // is a pixel and its word). A method's per-frame word comes from its registers
-// (GAIN, LEVEL, READING and T_REF), taken at a frame start like every shadowed register.
+// (GAIN, LEVEL, READING and T_REF; BLIND_SUM, BLIND_REF and DRIFT_GAIN with Drift), taken
+// at a frame start like every shadowed register.
 // Every output port is a flop.
 module irnuc_axis_top
   import irnuc_pkg::*;
@@ -77,6 +79,15 @@ module irnuc_axis_top
   parameter int unsigned FfcFracBits    = 4,
   parameter int unsigned FfcRounding    = 1,
   parameter int unsigned FfcOverflow    = 0,
+  // The blind_drift stage (method_drift_top's parameters; docs/datapath.md "blind_drift").
+  parameter int unsigned Drift          = 0,  // 1: the core is method_drift_top
+  parameter int unsigned BlindMax       = 8192,
+  parameter int unsigned DriftIntBits   = 14,
+  parameter int unsigned DriftFracBits  = 2,
+  parameter int unsigned DriftRounding  = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned DriftOverflow  = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned DriftGainIntBits  = 1,
+  parameter int unsigned DriftGainFracBits = 24,
   // Derived, do not override.
   localparam method_e     MethodSel     = method_e'(Method),
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
@@ -91,8 +102,16 @@ module irnuc_axis_top
                                                            KneeIntBits + KneeFracBits,
                                                            QuadIntBits + QuadFracBits,
                                                            TcWordBits, TgWordBits),
-  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, LevelBits,
+  localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
                                                           ReadingBits, 1),
+  // blind_drift: the blind sum and its registers (BLIND_SUM, BLIND_REF, DRIFT_GAIN) ride
+  // on the frame word above the base method's (irnuc_pkg::frame_blind_drift).
+  localparam int unsigned BlindBits     = AdcBits + $clog2(BlindMax + 1),
+  localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
+  localparam int unsigned FrameBits     = (Drift != 0)
+                                          ? frame_blind_drift_bits(BaseFrameBits, BlindBits,
+                                                                   DriftGainBits)
+                                          : BaseFrameBits,
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // AXI4-Stream data are whole bytes.
@@ -213,6 +232,9 @@ module irnuc_axis_top
                   Method, 32'(MethodTcOffset));
     assert (Ffc == 0 || MethodSel != MethodPiecewise)
       else $fatal(1, "irnuc_axis_top: Ffc = 1 composes one_point, two_point, quadratic or tc_offset, not piecewise");
+    assert (Drift == 0 || (Ffc == 0 && (MethodSel == MethodOnePoint
+                                        || MethodSel == MethodTwoPoint)))
+      else $fatal(1, "irnuc_axis_top: Drift = 1 composes one_point or two_point, without Ffc");
     assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
       else $fatal(1, "irnuc_axis_top: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
                   MaxWidthMax);
@@ -282,12 +304,16 @@ module irnuc_axis_top
     .MethodCode    (Method),
     // The memory image version of irnuc calibrate: 1 two_point, 2 the other methods
     // (nuc_fixed.memimage; VERSION is checked against it by tb_axis).
-    .CoefLayoutVersion((MethodSel == MethodTwoPoint && Ffc == 0) ? 1 : 2),
+    .CoefLayoutVersion((MethodSel == MethodTwoPoint && Ffc == 0 && Drift == 0) ? 1 : 2),
     .CoefWordBits  (WordBits),
     .GainRegBits   ((MethodSel == MethodOnePoint) ? GainBits : 0),
     .LevelRegBits  ((MethodSel == MethodPiecewise) ? LevelBits : 0),
     .ReadingRegBits((MethodSel == MethodTcOffset) ? ReadingBits : 0),
     .TRefRegBits   ((MethodSel == MethodTcOffset) ? ReadingBits : 0),
+    .BlindSumRegBits ((Drift != 0) ? BlindBits : 0),
+    .BlindRefRegBits ((Drift != 0) ? BlindBits : 0),
+    .DriftGainRegBits((Drift != 0) ? DriftGainBits : 0),
+    .HasBlindDrift (Drift),
     .HasFfc        (Ffc),
     .FfcFrames     (FfcFrames),
     .FfcTargetRegBits((Ffc != 0) ? OutBits + FfcFracBits : 0)
@@ -348,20 +374,33 @@ module irnuc_axis_top
 
   // ---- the frame word: the method's registers (slots of irnuc_axil_regs) --------------------
   // one_point GAIN, piecewise LEVEL, tc_offset {T_REF, READING} (frame_tc_offset); none for
-  // two_point and quadratic. The framer takes it at a frame start.
-  logic [FrameBits-1:0] pend_frame;
+  // two_point and quadratic; with Drift {DRIFT_GAIN, BLIND_REF, BLIND_SUM} above it
+  // (frame_blind_drift). The framer takes it at a frame start.
+  logic [BaseFrameBits-1:0] base_frame;
+  logic [FrameBits-1:0]     pend_frame;
 
   if (MethodSel == MethodOnePoint) begin : gen_frame_gain
-    assign pend_frame = slots[0][FrameBits-1:0];
+    assign base_frame = slots[0][BaseFrameBits-1:0];
   end else if (MethodSel == MethodPiecewise) begin : gen_frame_level
-    assign pend_frame = slots[1][FrameBits-1:0];
+    assign base_frame = slots[1][BaseFrameBits-1:0];
   end else if (MethodSel == MethodTcOffset) begin : gen_frame_tc
     frame_tc_offset#(ReadingBits)::word_t fw;
     assign fw.reading = slots[2][ReadingBits-1:0];
     assign fw.t_ref   = slots[3][ReadingBits-1:0];
-    assign pend_frame = fw;
+    assign base_frame = fw;
   end else begin : gen_frame_none
-    assign pend_frame = '0;
+    assign base_frame = '0;
+  end
+
+  if (Drift != 0) begin : gen_frame_drift
+    frame_blind_drift#(BaseFrameBits, BlindBits, DriftGainBits)::word_t fw;
+    assign fw.base       = base_frame;
+    assign fw.blind_sum  = slots[4][BlindBits-1:0];
+    assign fw.blind_ref  = slots[5][BlindBits-1:0];
+    assign fw.drift_gain = slots[6][DriftGainBits-1:0];
+    assign pend_frame    = fw;
+  end else begin : gen_frame_base
+    assign pend_frame = base_frame;
   end
 
   // The framer's frame word: the method's, the shutter flag above it with Ffc (FFC_CTRL,
@@ -480,7 +519,15 @@ module irnuc_axis_top
     .FfcIntBits      (FfcIntBits),
     .FfcFracBits     (FfcFracBits),
     .FfcRounding     (FfcRounding),
-    .FfcOverflow     (FfcOverflow)
+    .FfcOverflow     (FfcOverflow),
+    .Drift           (Drift),
+    .BlindMax        (BlindMax),
+    .DriftIntBits    (DriftIntBits),
+    .DriftFracBits   (DriftFracBits),
+    .DriftRounding   (DriftRounding),
+    .DriftOverflow   (DriftOverflow),
+    .DriftGainIntBits (DriftGainIntBits),
+    .DriftGainFracBits(DriftGainFracBits)
   ) u_core (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),

@@ -556,6 +556,44 @@ package irnuc_pkg;
     } word_t;
   endclass
   /* verilator lint_on DECLFILENAME */
+  // ---- frame_blind_drift, version 1: blind_drift's frame word in irnuc_axis_top (the framer's, taken at a frame start from the shadowed registers)
+  // (fields from bit 0 up: base [BaseBits], blind_sum [SumBits], blind_ref [SumBits], drift_gain [DriftGainBits])
+  function automatic int unsigned frame_blind_drift_bits(
+    input int unsigned base_bits,
+    input int unsigned sum_bits,
+    input int unsigned drift_gain_bits);
+    return base_bits + sum_bits + sum_bits + drift_gain_bits;
+  endfunction
+  function automatic int unsigned frame_blind_drift_base_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned frame_blind_drift_blind_sum_lsb(input int unsigned base_bits);
+    return base_bits;
+  endfunction
+  function automatic int unsigned frame_blind_drift_blind_ref_lsb(
+    input int unsigned base_bits,
+    input int unsigned sum_bits);
+    return base_bits + sum_bits;
+  endfunction
+  function automatic int unsigned frame_blind_drift_drift_gain_lsb(
+    input int unsigned base_bits,
+    input int unsigned sum_bits);
+    return base_bits + sum_bits + sum_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class frame_blind_drift #(
+    parameter int unsigned BaseBits = 1,
+    parameter int unsigned SumBits = 1,
+    parameter int unsigned DriftGainBits = 1
+  );
+    typedef struct packed {
+      logic [DriftGainBits-1:0] drift_gain;  // drift per code of blind sum change, two's complement
+      logic [SumBits-1:0] blind_ref;  // the blind pixel sum at calibration, unsigned
+      logic [SumBits-1:0] blind_sum;  // the frame's blind pixel sum, unsigned
+      logic [BaseBits-1:0] base;  // the base method's frame word (one_point's gain; two_point: one unused bit)
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
   /* verilator lint_on UNUSEDPARAM */
   // irnuc-spec: end
 

@@ -133,27 +133,43 @@ def neutral_frame(cfg: PipelineConfig) -> int:
     return neutral_gain(cfg) if cfg.base_method == "one_point" else 0
 
 
+def _blind_layout(cfg: PipelineConfig) -> dict[str, tuple[int, int]]:
+    """The spec's frame_blind_drift layout: the base method's frame word (one_point's gain;
+    two_point one unused bit), then BLIND_SUM, BLIND_REF and DRIFT_GAIN."""
+    base = cfg.registers["gain"].width if cfg.base_method == "one_point" else 1
+    return rtl_spec.FRAME_BLIND_DRIFT.layout(BaseBits=base, SumBits=cfg.blind_sum_bits,
+                                             DriftGainBits=cfg.registers["drift_gain"].width)
+
+
 def frame_word(cfg: PipelineConfig, registers: dict[str, int]) -> int:
-    """The frame word ``method_dpc_top`` takes at a frame start, from the method's register
-    values by name (``gain``, ``level``, ``reading``, ``t_ref``): one_point the gain,
-    piecewise the level, tc_offset the spec's frame_tc_offset (reading, t_ref); else 0."""
+    """The frame word the framer takes at a frame start, from the method's register values
+    by name (``gain``, ``level``, ``reading``, ``t_ref``, ``blind_sum``, ``blind_ref``,
+    ``drift_gain``; a signed register as its two's complement bits): one_point the gain,
+    piecewise the level, tc_offset the spec's frame_tc_offset (reading, t_ref); else 0.
+    With blind_drift the spec's frame_blind_drift: that word, then the blind sum, the blind
+    reference and the drift gain."""
     base = cfg.base_method
+    word = 0
     if base == "one_point":
-        return int(registers["gain"])
-    if base == "piecewise":
-        return int(registers["level"])
-    if base == "tc_offset":
+        word = int(registers["gain"])
+    elif base == "piecewise":
+        word = int(registers["level"])
+    elif base == "tc_offset":
         lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
-        return (int(registers["reading"]) << lay["reading"][0]) | (
+        word = (int(registers["reading"]) << lay["reading"][0]) | (
             int(registers["t_ref"]) << lay["t_ref"][0])
-    return 0
+    if cfg.has("blind_drift"):
+        for name, (lsb, bits) in _blind_layout(cfg).items():
+            if name != "base":
+                word |= (int(registers[name]) & ((1 << bits) - 1)) << lsb
+    return word
 
 
 def frame_method_inputs(f: CoreFrame, cfg: PipelineConfig
-                        ) -> tuple[MethodCoefficients, int | None]:
-    """The calibration and FPA reading a frame of a method other than two_point is
+                        ) -> tuple[MethodCoefficients, FrameInputs]:
+    """The calibration and per-frame inputs a frame of a method other than two_point is
     corrected with: its words split into the method's memories and the frame word into
-    the method's registers."""
+    the method's registers, the FPA reading and the blind sum."""
     words = np.asarray(f.words, dtype=object)
     fields = {}
     for m, base in stream_layouts(cfg):
@@ -170,7 +186,20 @@ def frame_method_inputs(f: CoreFrame, cfg: PipelineConfig
         (rl, rb), (tl, tb) = lay["reading"], lay["t_ref"]
         reading = (f.frame_word >> rl) & ((1 << rb) - 1)
         regs["t_ref"] = (f.frame_word >> tl) & ((1 << tb) - 1)
-    return MethodCoefficients(cfg=cfg, fields=fields, registers=regs), reading
+    sums = None
+    if cfg.has("blind_drift"):
+        got = {n: (f.frame_word >> lsb) & ((1 << b) - 1)
+               for n, (lsb, b) in _blind_layout(cfg).items()}
+        if base == "one_point":
+            regs["gain"] = got["base"]
+        g = got["drift_gain"]
+        gb = cfg.registers["drift_gain"].width
+        regs["blind_ref"] = got["blind_ref"]
+        regs["drift_gain"] = g - (1 << gb) if g >> (gb - 1) else g  # two's complement
+        sums = np.array([got["blind_sum"]])
+    inputs = FrameInputs(reading=None if reading is None else np.array([reading]),
+                         blind_sums=sums)
+    return MethodCoefficients(cfg=cfg, fields=fields, registers=regs), inputs
 
 
 def core_output(f: CoreFrame, cfg: PipelineConfig) -> np.ndarray:
@@ -178,8 +207,7 @@ def core_output(f: CoreFrame, cfg: PipelineConfig) -> np.ndarray:
     core (:func:`irnuc.nuc_fixed.nuc_dpc_top`), or the method's (``method_top``)."""
     if cfg.method == "two_point":
         return nuc_dpc_top(f.raw, f.words, cfg)
-    coeffs, reading = frame_method_inputs(f, cfg)
-    inputs = FrameInputs(reading=None if reading is None else np.array([reading]))
+    coeffs, inputs = frame_method_inputs(f, cfg)
     return method_top(f.raw[None], coeffs, inputs).y[0]
 
 

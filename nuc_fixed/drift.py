@@ -61,7 +61,24 @@ def blind_drift(blind_codes: object, blind_ref: int, drift_gain: int,
         rounding and overflow.
     """
     cfg = as_config(cfg)
-    bsum = blind_sums(blind_codes, cfg)
+    return drift_from_sums(blind_sums(blind_codes, cfg), blind_ref, drift_gain, cfg)
+
+
+def drift_from_sums(bsum: object, blind_ref: int, drift_gain: int,
+                    cfg: PipelineConfig | str) -> DriftResult:
+    """:func:`blind_drift` from each frame's blind sum, as a register holds it
+    (``irnuc_axis_top``'s BLIND_SUM, U SB.0: any SB-bit value, not only sums of
+    ``blind_max`` codes; the RTL's bd has SB + 1 bits either way).
+
+    Parameters
+    ----------
+    bsum : integer array_like, (N,)
+        The blind sum of each frame, in [0, 2^SB - 1].
+    blind_ref, drift_gain : int
+        As in :func:`blind_drift`.
+    """
+    cfg = as_config(cfg)
+    bsum = int_array("blind_sum", bsum, 0, (1 << cfg.blind_sum_bits) - 1).reshape(-1)
     ref = int(int_array("blind_ref", blind_ref, 0, (1 << cfg.blind_sum_bits) - 1))
     lo, hi = code_range(cfg, "drift_gain")
     m = int(int_array("drift_gain", drift_gain, lo, hi))

@@ -28,7 +28,7 @@ import numpy as np
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.cores import CoreResult, drift_sub, lin_core, pwl_core, quad_core
 from irnuc.nuc_fixed.dpc import dpc_core
-from irnuc.nuc_fixed.drift import blind_drift
+from irnuc.nuc_fixed.drift import blind_drift, drift_from_sums
 from irnuc.nuc_fixed.ffc import FfcState, ffc_mean_target, ffc_refresh
 from irnuc.nuc_fixed.layout import pack_memory, unpack_memory
 from irnuc.nuc_fixed.nuc import out_dtype
@@ -125,6 +125,9 @@ class FrameInputs:
     reading: np.ndarray | None = None
     blind_codes: np.ndarray | None = None
     shutter: np.ndarray | None = None
+    #: (N,) each frame's blind sum as a register holds it (BLIND_SUM of irnuc_axis_top),
+    #: instead of ``blind_codes``
+    blind_sums: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -243,7 +246,11 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     reading = (_per_frame("fpa_reading", inputs.reading, n, cfg)
                if "fpa_reading" in needs(cfg) else None)
     delta = None
-    if cfg.has("blind_drift"):
+    if cfg.has("blind_drift") and inputs.blind_sums is not None:
+        delta = drift_from_sums(_per_frame("blind_sums", inputs.blind_sums, n, cfg),
+                                int(coeffs.registers["blind_ref"]),
+                                int(coeffs.registers["drift_gain"]), cfg).delta
+    elif cfg.has("blind_drift"):
         b = _per_frame("blind_codes", inputs.blind_codes, n, cfg)
         delta = blind_drift(b, int(coeffs.registers["blind_ref"]),
                             int(coeffs.registers["drift_gain"]), cfg).delta

@@ -245,8 +245,18 @@ FRAME_TC_OFFSET = WordLayout("frame_tc_offset", 2, (
     Field("t_ref", "ReadingBits", "the reading the polynomials are centred at, unsigned"),
 ), "tc_offset's frame word (method_dpc_top's s_pix_frame_i, read with the frame's first "
    "pixel)")
+FRAME_BLIND_DRIFT = WordLayout("frame_blind_drift", 1, (
+    Field("base", "BaseBits", "the base method's frame word (one_point's gain; two_point: "
+          "one unused bit)"),
+    Field("blind_sum", "SumBits", "the frame's blind pixel sum, unsigned"),
+    Field("blind_ref", "SumBits", "the blind pixel sum at calibration, unsigned"),
+    Field("drift_gain", "DriftGainBits", "drift per code of blind sum change, two's "
+          "complement"),
+), "blind_drift's frame word in irnuc_axis_top (the framer's, taken at a frame start from "
+   "the shadowed registers)")
 LAYOUTS: tuple[WordLayout, ...] = (COEF_WORD, COEF_ONE_POINT, COEF_PIECEWISE, QUAD_WORD,
-                                   TC_WORD_1, TC_WORD_2, TG_WORD_1, TG_WORD_2, FRAME_TC_OFFSET)
+                                   TC_WORD_1, TC_WORD_2, TG_WORD_1, TG_WORD_2, FRAME_TC_OFFSET,
+                                   FRAME_BLIND_DRIFT)
 
 
 def memory_layout(cfg_method: str, memory: str, tc_order: int = 2) -> WordLayout:
@@ -540,7 +550,7 @@ def probe_values() -> dict[str, int]:
 
 __all__ = [
     "COEF_ONE_POINT", "COEF_PIECEWISE", "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS",
-    "DPC_SUM_LEAVES", "ENUMS", "FRAME_DIM_MAX", "FRAME_TC_OFFSET", "LAYOUTS", "METHOD",
+    "DPC_SUM_LEAVES", "ENUMS", "FRAME_BLIND_DRIFT", "FRAME_DIM_MAX", "FRAME_TC_OFFSET", "LAYOUTS", "METHOD",
     "MUL_CHUNK_BITS", "MUL_STAGES", "OVERFLOW", "OVERFLOW_MODES", "PIPELINE_RANGES",
     "QUAD_WORD", "RANGES", "REGISTER_CONSTANTS", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX",
     "TC_WORD_1", "TC_WORD_2", "TG_WORD_1", "TG_WORD_2", "Constant", "Enum", "EnumLiteral",

@@ -162,8 +162,9 @@ def test_method_words_read_back_as_the_calibration(name: str) -> None:
 
 def test_the_configurations_the_wrapper_is_built_around() -> None:
     """``irnuc synth --top irnuc_axis_top`` takes the named configurations of the wrapped
-    base methods and of the ffc compositions and no other (listed by hand), with the
-    method's parameters (the ffc ones: ``Ffc`` = 1 and method_ffc_top's)."""
+    base methods and of the ffc and blind_drift compositions and no other (listed by hand),
+    with the method's parameters (``Ffc`` = 1 and method_ffc_top's; ``Drift`` = 1 and
+    method_drift_top's)."""
     from irnuc.cosim.sources import top_parameters
     from irnuc.cosim.synth import tops_for
     from irnuc.nuc_fixed import pipeline_names
@@ -172,7 +173,10 @@ def test_the_configurations_the_wrapper_is_built_around() -> None:
                if "irnuc_axis_top" in tops_for(load_pipeline(n))}
     assert wrapped == {"typical14", "wide16", "minimal", "onepoint14", "piecewise14",
                        "quadratic14", "tcoffset14", "tcgain14", "ffc14", "quadffc14",
-                       "tcffc14"}
+                       "tcffc14", "drift14"}
+    p = top_parameters("irnuc_axis_top", load_pipeline("drift14"))
+    assert (p["Drift"], p["Method"], p["BlindMax"], p["DriftGainFracBits"]) == (1, 1, 8192, 24)
+    assert "Ffc" not in p
     p = top_parameters("irnuc_axis_top", load_pipeline("quadffc14"))
     assert (p["Ffc"], p["Method"], p["FfcFrames"], p["FfcHold"]) == (1, 3, 8, 0)
     p = top_parameters("irnuc_axis_top", load_pipeline("tcoffset14"))
@@ -238,3 +242,64 @@ def test_ffc_framing_against_the_golden_run(name: str) -> None:
         assert f.acc_out == tuple(a is not None for a in run.acc_out), sh
         assert f.foff_out == tuple(a is not None for a in run.foff_out), sh
         assert f.shown == tuple(not h for h in run.held), sh
+
+
+def test_drift_frame_word_by_hand() -> None:
+    """drift14 (two_point, blind sum 14 + 14 = 28 bits, drift gain S1.24): the frame word
+    is {drift_gain[24:0], blind_ref[27:0], blind_sum[27:0], one unused bit}, the drift gain
+    as its two's complement bits (docs/integration.md); read back as the same registers."""
+    from irnuc.nuc_fixed.axis import CoreFrame, frame_method_inputs, frame_word
+
+    cfg = load_pipeline("drift14")
+    regs = {"blind_sum": 5, "blind_ref": 3, "drift_gain": -1}
+    want = (5 << 1) | (3 << 29) | (((1 << 25) - 1) << 57)
+    assert frame_word(cfg, regs) == want
+    f = CoreFrame(raw=np.zeros((1, 1), np.int64), words=np.zeros((1, 1), np.uint64),
+                  settings=FrameSettings(1, 1), filler=np.zeros((1, 1), bool),
+                  frame_word=want)
+    coeffs, inputs = frame_method_inputs(f, cfg)
+    assert (coeffs.registers["blind_ref"], coeffs.registers["drift_gain"]) == (3, -1)
+    assert inputs.blind_sums.tolist() == [5]
+
+
+def test_drift_through_the_wrapper_model_matches_blind_codes() -> None:
+    """drift14 through the wrapper's model (BLIND_SUM on the frame word) corrects as
+    nuc_fixed.method_top does given blind codes of that sum (the other path, through
+    blind_sums of the codes); NUC off gives the raw code (drift code 0, unity word)."""
+    from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw
+    from irnuc.cosim.stages import blind_codes_for
+    from irnuc.cosim.stream import frame_drive
+    from irnuc.nuc_fixed.axis import coef_beats, frame_word, video_beats
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+
+    cfg = load_pipeline("drift14")
+    rng = np.random.default_rng(7)
+    c = random_coefficients(cfg, 3, 5, rng, bad_fraction=0.3)
+    c.registers["drift_gain"] = -(1 << 22)  # -0.25 ADC codes per code of blind sum
+    raw = random_raw(cfg, 3, 5, rng)
+    words = frame_drive(c).words
+    for bsum in (int(c.registers["blind_ref"]) + 37, 4 * 16383, 0):
+        if bsum > 8192 * 16383:
+            continue
+        settings = FrameSettings(5, 3, frame_word=frame_word(cfg, {**c.registers,
+                                                                   "blind_sum": bsum}))
+        out = axis_top(*video_beats([raw]), *coef_beats([words]), [settings], cfg)
+        codes = blind_codes_for(bsum, cfg)
+        res = method_top(raw[None], c, FrameInputs(blind_codes=codes[None]))
+        assert out.data.tolist() == res.y[0].ravel().tolist(), bsum
+    off = FrameSettings(5, 3, nuc_en=False, dpc_en=False, frame_word=0)
+    out = axis_top(*video_beats([raw]), *coef_beats([words]), [off], cfg)
+    assert out.data.tolist() == raw.ravel().tolist()
+
+
+def test_drift_from_sums_by_hand() -> None:
+    """drift_from_sums on drift14 (Mf = 24, Df = 2, half_up, S14.2 saturating): bd = 100,
+    m = 2^22 (0.25): 100 * 2^22 >> 22 = 100 codes of 1/4, i.e. 25 ADC codes; bd = -3,
+    m = 2^23 + 1: -3 (2^23 + 1) / 2^22 = -6.0000007 -> -6; a sum far above the reference
+    with m = 2^24 - 1 saturates at 2^15 - 1."""
+    from irnuc.nuc_fixed.drift import drift_from_sums
+
+    cfg = load_pipeline("drift14")
+    assert drift_from_sums([1100], 1000, 1 << 22, cfg).delta.tolist() == [100]
+    assert drift_from_sums([997], 1000, (1 << 23) + 1, cfg).delta.tolist() == [-6]
+    assert drift_from_sums([(1 << 28) - 1], 0, (1 << 24) - 1, cfg).delta.tolist() == [32767]

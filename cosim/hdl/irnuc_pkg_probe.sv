@@ -286,6 +286,21 @@ module irnuc_pkg_probe
   input  logic [ReadingBits-1:0] frame_tc_offset_t_ref_i,
   output logic [ReadingBits-1:0] frame_tc_offset_t_ref_o,
   output logic [7:0] frame_tc_offset_t_ref_lsb_o,
+  input  logic [frame_blind_drift_bits(BaseBits, SumBits, DriftGainBits)-1:0] frame_blind_drift_word_i,
+  output logic [frame_blind_drift_bits(BaseBits, SumBits, DriftGainBits)-1:0] frame_blind_drift_word_o,
+  output logic [7:0] frame_blind_drift_bits_o,
+  input  logic [BaseBits-1:0] frame_blind_drift_base_i,
+  output logic [BaseBits-1:0] frame_blind_drift_base_o,
+  output logic [7:0] frame_blind_drift_base_lsb_o,
+  input  logic [SumBits-1:0] frame_blind_drift_blind_sum_i,
+  output logic [SumBits-1:0] frame_blind_drift_blind_sum_o,
+  output logic [7:0] frame_blind_drift_blind_sum_lsb_o,
+  input  logic [SumBits-1:0] frame_blind_drift_blind_ref_i,
+  output logic [SumBits-1:0] frame_blind_drift_blind_ref_o,
+  output logic [7:0] frame_blind_drift_blind_ref_lsb_o,
+  input  logic [DriftGainBits-1:0] frame_blind_drift_drift_gain_i,
+  output logic [DriftGainBits-1:0] frame_blind_drift_drift_gain_o,
+  output logic [7:0] frame_blind_drift_drift_gain_lsb_o,
   output logic [64:1][7:0] mul_chunks_o,
   output logic [24:1][7:0] dpc_recip_shift_o,
   input  logic [3:0] recip_n_i,
@@ -611,6 +626,26 @@ module irnuc_pkg_probe
     frame_tc_offset_packed = '0;
     frame_tc_offset_packed.reading = frame_tc_offset_reading_i;
     frame_tc_offset_packed.t_ref = frame_tc_offset_t_ref_i;
+  end
+  typedef frame_blind_drift#(BaseBits, SumBits, DriftGainBits)::word_t frame_blind_drift_t;
+  frame_blind_drift_t frame_blind_drift_packed, frame_blind_drift_unpacked;
+  assign frame_blind_drift_word_o = frame_blind_drift_packed;
+  assign frame_blind_drift_unpacked = frame_blind_drift_t'(frame_blind_drift_word_i);
+  assign frame_blind_drift_bits_o = 8'($bits(frame_blind_drift_t));
+  assign frame_blind_drift_base_o = frame_blind_drift_unpacked.base;
+  assign frame_blind_drift_base_lsb_o = 8'(frame_blind_drift_base_lsb());
+  assign frame_blind_drift_blind_sum_o = frame_blind_drift_unpacked.blind_sum;
+  assign frame_blind_drift_blind_sum_lsb_o = 8'(frame_blind_drift_blind_sum_lsb(BaseBits));
+  assign frame_blind_drift_blind_ref_o = frame_blind_drift_unpacked.blind_ref;
+  assign frame_blind_drift_blind_ref_lsb_o = 8'(frame_blind_drift_blind_ref_lsb(BaseBits, SumBits));
+  assign frame_blind_drift_drift_gain_o = frame_blind_drift_unpacked.drift_gain;
+  assign frame_blind_drift_drift_gain_lsb_o = 8'(frame_blind_drift_drift_gain_lsb(BaseBits, SumBits));
+  always_comb begin : p_pack_frame_blind_drift
+    frame_blind_drift_packed = '0;
+    frame_blind_drift_packed.base = frame_blind_drift_base_i;
+    frame_blind_drift_packed.blind_sum = frame_blind_drift_blind_sum_i;
+    frame_blind_drift_packed.blind_ref = frame_blind_drift_blind_ref_i;
+    frame_blind_drift_packed.drift_gain = frame_blind_drift_drift_gain_i;
   end
   for (genvar b = 1; b <= 64; b++) begin : gen_mul_chunks
     assign mul_chunks_o[b] = 8'(mul_chunks(b));

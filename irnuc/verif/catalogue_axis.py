@@ -117,6 +117,24 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         ".s_pix_frame_i (item_frame_i),", ".s_pix_frame_i ('0),",
         "method_dpc_top gets a zero frame word (one_point: gain 0)", **_AXM,
         config="onepoint14"),
+    # ---- irnuc_axis_top / irnuc_axis_core around method_drift_top (blind_drift) -----------
+    _ma("ax_drift_ref_from_sum", "irnuc_axis_top.sv",
+        "assign fw.blind_ref  = slots[5][BlindBits-1:0];",
+        "assign fw.blind_ref  = slots[4][BlindBits-1:0];",
+        "blind_drift: the frame word's BLIND_REF taken from BLIND_SUM (no drift ever)", **_AXM,
+        config="drift14"),
+    _ma("ax_drift_sof_no_wait", "irnuc_axis_core.sv",
+        "assign pass        = !item_sof_i || blind_sent_q;", "assign pass        = 1'b1;",
+        "blind_drift: a frame's first pixel goes to the core before its blind item (the "
+        "frame takes the previous frame's drift, or the join hangs)", **_AXM,
+        config="drift14"),
+    _ma("ax_drift_sent_sticks", "irnuc_axis_core.sv",
+        "        end else if (core_valid && item_ready_o && item_sof_i) begin\n"
+        "          blind_sent_q <= 1'b0;",
+        "        end else if (1'b0) begin\n"
+        "          blind_sent_q <= 1'b0;",
+        "blind_drift: the blind item is sent once after reset, never again (the second "
+        "frame waits for a drift code forever)", **_AXM, config="drift14"),
     # ---- irnuc_axis_ffc: the FFC side of the wrapper ---------------------------------------
     _ma("ax_ffc_run_one_short", "irnuc_axis_ffc.sv",
         "assign pend_shutter = ffc_now != '0;",
