@@ -24,12 +24,12 @@ from irnuc.nuc_fixed.method_top import MethodCoefficients
 H, W = 4, 7
 
 
-async def _calibration(bench: Bench) -> MethodCoefficients:
+async def _calibration(bench: Bench, h: int = H, w: int = W) -> MethodCoefficients:
     """A random calibration of the frame size; its registers (GAIN, LEVEL, T_REF) written
     through AXI4-Lite."""
     cfg = bench.cfg
-    await bench.frame_size(H, W)
-    c = random_coefficients(cfg, H, W, bench.rng, bad_fraction=0.2)
+    await bench.frame_size(h, w)
+    c = random_coefficients(cfg, h, w, bench.rng, bad_fraction=0.2)
     for name, value in c.registers.items():
         await bench.write_method_register(name, int(value))
     return c
@@ -158,4 +158,27 @@ async def method_reading_mid_frame(dut) -> None:
                           label="registers mid frame")
     assert [f.frame_word for f in res.frames] == [s.frame_word for s in settings]
     _sample("stream.back_to_back", "frames")  # three frames in one stream
+    _export()
+
+
+@cocotb.test()
+async def method_tiny_frames(dut) -> None:
+    """Frames of one pixel back to back at full rate, then under idle and backpressure
+    (blind_drift: a blind item and a drift code per frame, each frame waiting for its
+    own): bit for bit."""
+    bench = await _bench(dut, 23)
+    cfg = bench.cfg
+    c = await _calibration(bench, 1, 1)
+    reading = _reading(bench, c)
+    await _set_reading(bench, reading, c)
+    results = []
+    for idle, bp in (("none", "none"), ("random", "bursty")):
+        raws = [random_raw(cfg, 1, 1, bench.rng) for _ in range(6)]
+        words = [frame_drive(c, reading).words] * len(raws)
+        res = await bench.run(video_beats(raws), coef_beats(words),
+                              [bench.settings()] * len(raws), idle=idle, coef_idle=idle,
+                              bp=bp, label=f"one-pixel frames, {idle} / {bp}")
+        assert len(res.frames) == len(raws)
+        results.append(res)
+    await bench.check_counts(results)
     _export()
