@@ -437,7 +437,8 @@ def replace_block(text: str, block: str) -> str:
 PROBE_PARAMETERS: dict[str, int] = {"KneeBits": 16, "QuadBits": 16, "Tc1Bits": 16, "Tc2Bits": 16,
                                     "Tg1Bits": 16, "Tg2Bits": 16, "ReadingBits": 14,
                                     "GainIntBits": 2, "GainFracBits": 14, "OffsetIntBits": 12,
-                                    "OffsetFracBits": 4, "OutBits": 14}
+                                    "OffsetFracBits": 4, "OutBits": 14, "BaseBits": 16,
+                                    "SumBits": 28, "DriftGainBits": 25}
 #: Derived probe parameters that name layout widths.
 _PROBE_DERIVED: dict[str, str] = {"GainBits": "GainIntBits + GainFracBits",
                                   "OffsetBits": "OffsetIntBits + OffsetFracBits"}

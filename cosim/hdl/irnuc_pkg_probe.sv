@@ -18,6 +18,9 @@ module irnuc_pkg_probe
   parameter int unsigned OffsetIntBits = 12,
   parameter int unsigned OffsetFracBits = 4,
   parameter int unsigned OutBits = 14,
+  parameter int unsigned BaseBits = 16,
+  parameter int unsigned SumBits = 28,
+  parameter int unsigned DriftGainBits = 25,
   // Derived, do not override.
   localparam int unsigned GainBits = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits = OffsetIntBits + OffsetFracBits,
