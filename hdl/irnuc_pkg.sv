@@ -311,6 +311,20 @@ package irnuc_pkg;
   localparam int unsigned RegTableReadingStride = 4;
   // TABLE_READING_k entries
   localparam int unsigned RegTableReadingCount = 16;
+  // TABLE_SEL: table_interp: the table pair and weight interp_weight computed from the pending READING and TABLE_READING_k (the next frame's; point the coefficient DMA at the pair image of tables j and j + 1)
+  localparam int unsigned RegTableSelOffset = 448;
+  // TABLE_SEL.weight
+  localparam int unsigned RegTableSelWeightLsb = 0;
+  // TABLE_SEL.weight width
+  localparam int unsigned RegTableSelWeightBits = 24;
+  // TABLE_SEL.j
+  localparam int unsigned RegTableSelJLsb = 24;
+  // TABLE_SEL.j width
+  localparam int unsigned RegTableSelJBits = 4;
+  // TABLE_SEL.valid
+  localparam int unsigned RegTableSelValidLsb = 28;
+  // TABLE_SEL.error
+  localparam int unsigned RegTableSelErrorLsb = 29;
   // ---- legal parameter ranges (asserted by every module taking them)
   localparam int unsigned AdcBitsMin = 1;
   localparam int unsigned AdcBitsMax = 24;  // bits
@@ -611,6 +625,19 @@ package irnuc_pkg;
     AxiSlvErr = 2'b10,
     AxiDecErr = 2'b11
   } axi_resp_e;
+
+  // The register file's byte lanes of a write strobe, and the bits of a value of `bits` bits
+  // that lie in 32-bit word `word` (0: 31..0, 1: 63..32) of its register slot.
+  function automatic logic [31:0] axil_byte_mask(input logic [3:0] strb);
+    return {{8{strb[3]}}, {8{strb[2]}}, {8{strb[1]}}, {8{strb[0]}}};
+  endfunction
+
+  function automatic logic [31:0] axil_value_mask(input int unsigned bits,
+                                                  input int unsigned word);
+    int unsigned n;
+    n = (bits > 32 * word) ? bits - 32 * word : 0;
+    return (n >= 32) ? 32'hffff_ffff : (32'd1 << n) - 32'd1;
+  endfunction
 
   // ---- AXI4-Stream framing (irnuc_axis_framer) ----------------------------------------
   // The video input: where the framer stands with respect to the programmed frame.
