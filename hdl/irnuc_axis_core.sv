@@ -8,7 +8,7 @@ module irnuc_axis_core
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e (not table_interp)
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
@@ -40,6 +40,10 @@ module irnuc_axis_core
   parameter int unsigned TcGain         = 0,
   parameter int unsigned ReadingBits    = 14,
   parameter int unsigned ReadingRangeBits = 11,
+  // table_interp's weight format (method_dpc_top's).
+  parameter int unsigned WeightIntBits  = 1,
+  parameter int unsigned WeightFracBits = 15,
+  parameter int unsigned WeightRounding = 1,  // irnuc_pkg::rounding_e
   // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
   parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
   parameter int unsigned FfcFrames      = 8,
@@ -63,7 +67,8 @@ module irnuc_axis_core
                                                            QuadIntBits + QuadFracBits,
                                                            TcWordBits, TgWordBits),
   localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, LevelBits,
-                                                          ReadingBits, 1),
+                                                          ReadingBits,
+                                                          WeightIntBits + WeightFracBits),
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // The FFC words (memories ffc_offset and ffc_acc) and their AXI4-Stream widths.
@@ -278,7 +283,10 @@ module irnuc_axis_core
       .TcOrder         (TcOrder),
       .TcGain          (TcGain),
       .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits)
+      .ReadingRangeBits(ReadingRangeBits),
+      .WeightIntBits   (WeightIntBits),
+      .WeightFracBits  (WeightFracBits),
+      .WeightRounding  (WeightRounding)
     ) u_core (
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),

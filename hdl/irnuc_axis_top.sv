@@ -37,7 +37,7 @@ module irnuc_axis_top
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e (not table_interp)
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
@@ -69,6 +69,11 @@ module irnuc_axis_top
   parameter int unsigned TcGain         = 0,
   parameter int unsigned ReadingBits    = 14,
   parameter int unsigned ReadingRangeBits = 11,
+  // table_interp: the tables and the weight format (method_dpc_top's, interp_weight's).
+  parameter int unsigned Tables         = 3,
+  parameter int unsigned WeightIntBits  = 1,
+  parameter int unsigned WeightFracBits = 15,
+  parameter int unsigned WeightRounding = 1,  // irnuc_pkg::rounding_e
   // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
   parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
   parameter int unsigned FfcFrames      = 8,
@@ -92,7 +97,8 @@ module irnuc_axis_top
                                                            QuadIntBits + QuadFracBits,
                                                            TcWordBits, TgWordBits),
   localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, LevelBits,
-                                                          ReadingBits, 1),
+                                                          ReadingBits,
+                                                          WeightIntBits + WeightFracBits),
   localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // AXI4-Stream data are whole bytes.
@@ -183,6 +189,10 @@ module irnuc_axis_top
     w = '0;
     unique case (MethodSel)
       MethodOnePoint: ;  // offset 0 (the gain is the frame word's)
+      MethodTableInterp: begin  // tables j and j + 1, each a two-point word
+        w |= WordBits'(Unity) << coef_word_gain_lsb();
+        w |= WordBits'(Unity) << (coef_word_bits(GainBits, OffsetBits) + coef_word_gain_lsb());
+      end
       MethodPiecewise: begin
         w |= WordBits'(Unity) << coef_piecewise_gain_lo_lsb();
         w |= WordBits'(Unity) << coef_piecewise_gain_hi_lsb(GainBits);
@@ -197,6 +207,9 @@ module irnuc_axis_top
       MethodOnePoint:  return WordBits'(1) << coef_one_point_bad_lsb(OffsetBits);
       MethodPiecewise: return WordBits'(1) << coef_piecewise_bad_lsb(GainBits,
                                                                      KneeIntBits + KneeFracBits);
+      MethodTableInterp: return (WordBits'(1) << coef_word_bad_lsb(GainBits, OffsetBits))
+                                | (WordBits'(1) << (coef_word_bits(GainBits, OffsetBits)
+                                                    + coef_word_bad_lsb(GainBits, OffsetBits)));
       default:         return WordBits'(1) << coef_word_bad_lsb(GainBits, OffsetBits);
     endcase
   endfunction
@@ -208,10 +221,10 @@ module irnuc_axis_top
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (Method <= 32'(MethodTcOffset))
-      else $fatal(1, "irnuc_axis_top: Method = %0d outside 0..%0d (no table_interp)",
-                  Method, 32'(MethodTcOffset));
-    assert (Ffc == 0 || MethodSel != MethodPiecewise)
+    assert (Method <= 32'(MethodTableInterp))
+      else $fatal(1, "irnuc_axis_top: Method = %0d outside 0..%0d", Method,
+                  32'(MethodTableInterp));
+    assert (Ffc == 0 || (MethodSel != MethodPiecewise && MethodSel != MethodTableInterp))
       else $fatal(1, "irnuc_axis_top: Ffc = 1 composes one_point, two_point, quadratic or tc_offset, not piecewise");
     assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
       else $fatal(1, "irnuc_axis_top: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
@@ -260,6 +273,8 @@ module irnuc_axis_top
   logic                  pend_sync;
   logic [7:0][63:0]      slots;
   logic [RegTableReadingCount-1:0][31:0] table_readings;
+  logic                  table_write, frame_hold;  // table_interp: irnuc_axis_table
+  logic [31:0]           table_sel;
   logic                  start, frame_start, beat, drop, pad, in_frame;
   logic                  sof_early, sof_late, eol_early, eol_late, coef_early, coef_late;
   logic                  pix_out, frame_out, core_err;
@@ -286,11 +301,14 @@ module irnuc_axis_top
     .CoefWordBits  (WordBits),
     .GainRegBits   ((MethodSel == MethodOnePoint) ? GainBits : 0),
     .LevelRegBits  ((MethodSel == MethodPiecewise) ? LevelBits : 0),
-    .ReadingRegBits((MethodSel == MethodTcOffset) ? ReadingBits : 0),
+    .ReadingRegBits((MethodSel == MethodTcOffset || MethodSel == MethodTableInterp)
+                    ? ReadingBits : 0),
     .TRefRegBits   ((MethodSel == MethodTcOffset) ? ReadingBits : 0),
     .HasFfc        (Ffc),
     .FfcFrames     (FfcFrames),
-    .FfcTargetRegBits((Ffc != 0) ? OutBits + FfcFracBits : 0)
+    .FfcTargetRegBits((Ffc != 0) ? OutBits + FfcFracBits : 0),
+    .TableReadings ((MethodSel == MethodTableInterp) ? Tables : 0),
+    .TableReadingBits(ReadingBits)
   ) u_regs (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -324,6 +342,8 @@ module irnuc_axis_top
     .coef_sync_o     (pend_sync),
     .slot_o          (slots),
     .table_o         (table_readings),
+    .table_write_o   (table_write),
+    .table_sel_i     (table_sel),
     .start_i         (start),
     .frame_start_i   (frame_start),
     .beat_i          (beat),
@@ -347,8 +367,10 @@ module irnuc_axis_top
   );
 
   // ---- the frame word: the method's registers (slots of irnuc_axil_regs) --------------------
-  // one_point GAIN, piecewise LEVEL, tc_offset {T_REF, READING} (frame_tc_offset); none for
-  // two_point and quadratic. The framer takes it at a frame start.
+  // one_point GAIN, piecewise LEVEL, tc_offset {T_REF, READING} (frame_tc_offset),
+  // table_interp the weight of READING between TABLE_READING_j and _j+1 (irnuc_axis_table,
+  // which holds the frame start while it computes it); none for two_point and quadratic.
+  // The framer takes it at a frame start.
   logic [FrameBits-1:0] pend_frame;
 
   if (MethodSel == MethodOnePoint) begin : gen_frame_gain
@@ -360,8 +382,33 @@ module irnuc_axis_top
     assign fw.reading = slots[2][ReadingBits-1:0];
     assign fw.t_ref   = slots[3][ReadingBits-1:0];
     assign pend_frame = fw;
+  end else if (MethodSel == MethodTableInterp) begin : gen_frame_table
+    logic [WeightFracBits:0] weight;
+    irnuc_axis_table #(
+      .ReadingBits   (ReadingBits),
+      .Tables        (Tables),
+      .WeightFracBits(WeightFracBits),
+      .WeightRounding(WeightRounding)
+    ) u_table (
+      .clk_i           (clk_i),
+      .rst_ni          (rst_ni),
+      .write_i         (table_write),
+      .reading_i       (slots[2][ReadingBits-1:0]),
+      .table_readings_i(table_readings),
+      .hold_o          (frame_hold),
+      .start_i         (start),
+      .weight_o        (weight),
+      .table_sel_o     (table_sel)
+    );
+    assign pend_frame = FrameBits'(weight);
   end else begin : gen_frame_none
     assign pend_frame = '0;
+  end
+  if (MethodSel != MethodTableInterp) begin : gen_no_table
+    assign frame_hold = 1'b0;
+    assign table_sel  = '0;
+    logic unused_table_write;
+    assign unused_table_write = table_write;
   end
 
   // The framer's frame word: the method's, the shutter flag above it with Ffc (FFC_CTRL,
@@ -412,6 +459,7 @@ module irnuc_axis_top
     .pend_dpc_en_i    (pend_dpc),
     .pend_coef_sync_i (pend_sync),
     .pend_frame_i     (pend_item_frame),
+    .hold_i           (frame_hold),
     .act_width_o      (act_w),
     .act_width_m1_o   (act_wm1),
     .act_height_o     (act_h),
@@ -474,6 +522,9 @@ module irnuc_axis_top
     .TcGain          (TcGain),
     .ReadingBits     (ReadingBits),
     .ReadingRangeBits(ReadingRangeBits),
+    .WeightIntBits   (WeightIntBits),
+    .WeightFracBits  (WeightFracBits),
+    .WeightRounding  (WeightRounding),
     .Ffc             (Ffc),
     .FfcFrames       (FfcFrames),
     .FfcHold         (FfcHold),
