@@ -111,6 +111,7 @@ def _axi_method_configs() -> list[str]:
                          + [(m, c) for m in ("irnuc_axis_top", *AXI_CORE)
                             for c in _axi_method_configs()]
                          + [(m, "minimal") for m in AXI_CORE]
+                         + [("irnuc_axis_table", "table14")]
                          + [(m, "minimal") for m in AXI_CHECKERS])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
