@@ -15,7 +15,7 @@ import numpy as np
 from cocotb.triggers import RisingEdge
 
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, reading_marks
-from irnuc.cocotb_tests.tb_axis import Bench, _bench
+from irnuc.cocotb_tests.tb_axis import Bench, _bench, _export, _sample
 from irnuc.nuc_fixed.axis import FrameSettings, coef_beats, table_pair_words, video_beats
 from irnuc.nuc_fixed.tempcomp import interp_weight
 
@@ -33,13 +33,23 @@ def _sel(bench: Bench, j: int, w: int, error: bool = False) -> int:
 
 async def _settled(bench: Bench, want: int, tries: int = 12) -> int:
     """Read TABLE_SEL until it is valid: every read is 0 (being computed) or ``want``;
-    returns how many reads saw it being computed."""
+    returns how many reads saw it being computed (coverage: what was read and matched)."""
     busy = 0
+    one = 1 << bench.cfg.format("weight").frac_bits
     for _ in range(tries):
         got = await bench.read("TABLE_SEL")
         if got == want:
+            w, j = want & 0xFF_FFFF, want >> 24 & 0xF
+            if want >> 29 & 1:
+                _sample("axis.table.sel", "error")
+            else:
+                _sample("axis.table.sel", "valid")
+                _sample("axis.table.j", str(j))
+                _sample("axis.table.weight", "zero" if w == 0 else "one" if w == one
+                        else "between")
             return busy
         assert got == 0, f"TABLE_SEL reads 0x{got:08x}; 0 or 0x{want:08x} expected"
+        _sample("axis.table.sel", "computing")
         busy += 1
     raise AssertionError(f"TABLE_SEL not valid after {tries} reads (want 0x{want:08x})")
 
@@ -79,6 +89,7 @@ async def table_sel_readback(dut) -> None:
     assert js == set(range(int(cfg.tables) - 1)), js
     assert {0, 1 << cfg.format("weight").frac_bits} <= ws, ws
     assert busy > 0, "no read saw TABLE_SEL being computed"
+    _export()
 
 
 class _Regs:
@@ -99,7 +110,9 @@ async def table_sel_error(dut) -> None:
     c = random_coefficients(cfg, H, W, bench.rng, bad_fraction=0.2)
     results = []
     good = _readings(bench)
-    for rs in ((good[0], good[0], *good[2:]), tuple(reversed(good))):
+    patterns = (("random", "bursty"), ("alternate", "random"))
+    for (idle, bp), rs in zip(patterns, ((good[0], good[0], *good[2:]), tuple(reversed(good))),
+                              strict=True):
         await bench.write_method_register("table_readings", rs)
         await bench.write_method_register("reading", good[1])
         await _settled(bench, _sel(bench, 0, 0, error=True))
@@ -108,7 +121,8 @@ async def table_sel_error(dut) -> None:
         raw = random_raw(cfg, H, W, bench.rng)
         results.append(await bench.run(video_beats([raw]),
                                        coef_beats([table_pair_words(c, 0)]), [s],
-                                       idle="random", label=f"error readings {rs}"))
+                                       idle=idle, coef_idle=bp, bp=bp,
+                                       label=f"error readings {rs}"))
     await bench.write_method_register("table_readings", good)
     t = (good[0] + good[1]) // 2
     await bench.write_method_register("reading", t)
@@ -116,8 +130,10 @@ async def table_sel_error(dut) -> None:
     await _settled(bench, _sel(bench, iw.j, iw.w))
     raw = random_raw(cfg, H, W, bench.rng)
     results.append(await bench.run(video_beats([raw]), coef_beats([table_pair_words(c, iw.j)]),
-                                   [bench.settings()], label="increasing again"))
+                                   [bench.settings()], idle="bursty", coef_idle="alternate",
+                                   bp="alternate", label="increasing again"))
     await bench.check_counts(results)
+    _export()
 
 
 @cocotb.test()
@@ -158,6 +174,7 @@ async def frame_start_waits(dut) -> None:
     # s_axis_video's two-entry buffer takes two beats whatever the framer does; the third
     # enters once the framer took the first (the frame started).
     assert taken[2] - written >= wf + 5, (written, taken[:3])
+    _sample("axis.table.held", "between_frames")
     # In the frame before: frame 1 takes the new reading, after a gap.
     await bench.write_method_register("reading", t0)
     await _settled(bench, _sel(bench, iw0.j, iw0.w))
@@ -178,3 +195,6 @@ async def frame_start_waits(dut) -> None:
     gaps = np.diff(taken[H * W - 2:H * W + 4])
     assert gaps.max() > 1, f"no gap in the beats around the frame start: {gaps}"
     assert (np.diff(taken[:H * W - 2]) == 1).all(), "gaps inside the first frame"
+    _sample("axis.table.held", "in_frame_before")
+    _sample("stream.back_to_back", "frames")
+    _export()

@@ -91,6 +91,14 @@ def test_irnuc_axis_top_coverage(config: str) -> None:
     _assert_axis_closed(config, tb_axis, "axis.")
 
 
+@pytest.mark.parametrize("config", TABLE_CONFIGS)
+def test_irnuc_axis_top_table_coverage(config: str) -> None:
+    """Every bin of table_interp's selection (cosim.axis_coverage's axis.table points: each
+    j, the weight's classes, TABLE_SEL computing / valid / error, both held frame starts)
+    and of the stream points is hit by the one run of tb_axis_table."""
+    _assert_axis_closed(config, tb_axis_table, "axis.table.")
+
+
 @pytest.mark.parametrize("config", FFC_CONFIGS)
 def test_irnuc_axis_top_ffc_coverage(config: str) -> None:
     """Every bin of the FFC sequence through the registers (cosim.axis_coverage's

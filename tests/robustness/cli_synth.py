@@ -59,8 +59,8 @@ case("synth-pipeline-name-hidden", Y, "--pipeline {t}/named.toml",
      setup=_pipeline_named('".x"'))
 case("synth-top-unknown", Y, "--pipeline minimal --top nuc_dpc_topp",
      ("--top", "nuc_dpc_topp", "irnuc_axis_top"), "a top module irnuc synth does not build")
-case("synth-top-axis-other-method", Y, "--pipeline table14 --top irnuc_axis_top",
-     ("--top irnuc_axis_top", "table_interp", "method_dpc_top"),
+case("synth-top-axis-other-method", Y, "--pipeline drift14 --top irnuc_axis_top",
+     ("--top irnuc_axis_top", "blind_drift", "method_drift_top"),
      "the AXI wrapper with a method it does not wrap")
 case("synth-top-stage-on-methods-top", Y, "--pipeline drift14 --top method_dpc_top",
      ("--top method_dpc_top", "two_point+blind_drift", "method_drift_top"),
