@@ -188,9 +188,18 @@ def table_pair_words(coeffs: MethodCoefficients, j: int) -> np.ndarray:
 
 def table_pair_bin(coeffs: MethodCoefficients, j: int) -> bytes:
     """:func:`table_pair_words` as the DMA's image: one word per pixel in raster order,
-    each in ceil(2 T / 8) bytes, little-endian (T the bits of a table's word)."""
-    nb = (2 * coeffs.cfg.memories["table0"].word_bits + 7) // 8
-    return b"".join(int(v).to_bytes(nb, "little") for v in table_pair_words(coeffs, j).ravel())
+    each in ceil(2 T / 8) bytes, little-endian (T < 64 the bits of a table's word); what
+    ``irnuc calibrate`` writes as ``table_pair{j}.bin``."""
+    table_pair_words(coeffs, j)  # checks j
+    bits = coeffs.cfg.memories["table0"].word_bits
+    words = coeffs.words()
+    lo = np.asarray(words[f"table{j}"], np.uint64).ravel()
+    hi = np.asarray(words[f"table{j + 1}"], np.uint64).ravel()
+    # The 2T-bit word as two little-endian uint64 limbs (vectorised: frames of 10^6 pixels).
+    limbs = np.empty((lo.size, 2), "<u8")
+    limbs[:, 0] = lo | (hi << np.uint64(bits))
+    limbs[:, 1] = hi >> np.uint64(64 - bits)
+    return limbs.view(np.uint8).reshape(-1, 16)[:, :(2 * bits + 7) // 8].tobytes()
 
 
 def frame_word(cfg: PipelineConfig, registers: dict[str, object]) -> int:
