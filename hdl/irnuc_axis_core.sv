@@ -1,7 +1,7 @@
 // The core of irnuc_axis_top and the FFC side around it (docs/integration.md): the framer's
 // items go to irnuc_axis_ffc (method_ffc_top and its streams) with Ffc = 1, else to
 // nuc_dpc_top for two_point (Method = 1) or method_dpc_top for one_point, piecewise,
-// quadratic and tc_offset, whose two inputs move in lockstep (one item is a pixel and its
+// quadratic, tc_offset and table_interp, whose two inputs move in lockstep (one item is a pixel and its
 // word; the frame word rides on the pixel stream, read with sof). Without the ffc stage
 // the FFC streams are tied off: inputs never ready, outputs never valid.
 module irnuc_axis_core

@@ -29,9 +29,10 @@
 // two_point, quadratic or tc_offset with the shutter offset refresh) inside irnuc_axis_ffc
 // (the shutter flag of each frame from FFC_CTRL, the fork, the FFC streams), else
 // nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point, piecewise,
-// quadratic and tc_offset, whose two input streams move in lockstep (one item of the framer
-// is a pixel and its word). A method's per-frame word comes from its registers
-// (GAIN, LEVEL, READING and T_REF), taken at a frame start like every shadowed register.
+// quadratic, tc_offset and table_interp, whose two input streams move in lockstep (one item
+// of the framer is a pixel and its word). A method's per-frame word comes from its registers
+// (GAIN, LEVEL, READING and T_REF; table_interp's weight from READING and TABLE_READING_k,
+// irnuc_axis_table, TABLE_SEL), taken at a frame start like every shadowed register.
 // Every output port is a flop.
 module irnuc_axis_top
   import irnuc_pkg::*;
