@@ -146,21 +146,36 @@ class Bench:
         name = self.model.map.at(off).name if self.model.map.at(off) else f"0x{off:03x}"
         assert got == want, f"{name} reads 0x{got:08x}, the model says 0x{want:08x}"
 
-    def method_registers(self) -> dict[str, int]:
+    def _array(self, name: str) -> list[str]:
+        """The registers of a method register array (table_readings: TABLE_READING_k),
+        entry k at k, the configured entries only."""
+        regs = sorted((r for r in self.model.map.registers
+                       if r.config_register == name and r.index is not None),
+                      key=lambda r: r.index)
+        return [r.name for r in regs[:self.cfg.registers[name].count]]
+
+    def method_registers(self) -> dict[str, object]:
         """The pending values of the method's registers (GAIN, LEVEL, READING, T_REF, ...) by
-        their configuration name, as the model holds them."""
-        out = {}
+        their configuration name, as the model holds them (an array as a tuple)."""
+        out: dict[str, object] = {}
         for name, r in self.cfg.registers.items():
             if r.count == 1:
                 lo = self.model.get(f"{name.upper()}_LO")
                 out[name] = lo | (self.model.get(f"{name.upper()}_HI") << 32)
+            else:
+                out[name] = tuple(self.model.get(n) for n in self._array(name))
         return out
 
-    async def write_method_register(self, name: str, value: int) -> None:
-        """Write a method register (configuration name) through its LO (and HI) words."""
-        await self.write(f"{name.upper()}_LO", int(value) & 0xFFFF_FFFF)
+    async def write_method_register(self, name: str, value: object) -> None:
+        """Write a method register (configuration name) through its LO (and HI) words, or
+        an array's values (a sequence) entry by entry."""
+        if self.cfg.registers[name].count != 1:
+            for reg, v in zip(self._array(name), value, strict=True):  # type: ignore[call-overload]
+                await self.write(reg, int(v))
+            return
+        await self.write(f"{name.upper()}_LO", int(value) & 0xFFFF_FFFF)  # type: ignore[call-overload]
         if self.cfg.registers[name].width > 32:
-            await self.write(f"{name.upper()}_HI", int(value) >> 32)
+            await self.write(f"{name.upper()}_HI", int(value) >> 32)  # type: ignore[call-overload]
 
     def settings(self) -> FrameSettings:
         """What a frame starting now takes (the pending CTRL, FRAME_SIZE and method

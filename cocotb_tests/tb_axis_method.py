@@ -31,7 +31,7 @@ async def _calibration(bench: Bench, h: int = H, w: int = W) -> MethodCoefficien
     await bench.frame_size(h, w)
     c = random_coefficients(cfg, h, w, bench.rng, bad_fraction=0.2)
     for name, value in c.registers.items():
-        await bench.write_method_register(name, int(value))
+        await bench.write_method_register(name, value)
     return c
 
 
@@ -134,9 +134,11 @@ async def method_reading_mid_frame(dut) -> None:
     await _set_reading(bench, readings[0], c)
     s0 = bench.settings()
     raws = [random_raw(cfg, H, W, bench.rng) for _ in range(3)]
-    words = [frame_drive(c, r).words for r in readings]
     new = [{n: int(bench.rng.integers(0, 1 << cfg.registers[n].width)) for n in names}
            for _ in range(2)]
+    # Each frame's words for the reading it takes (table_interp: its pair of tables).
+    readings[1:] = [v.get("reading", r) for v, r in zip(new, readings[1:], strict=True)]
+    words = [frame_drive(c, r).words for r in readings]
     settings = [s0]
     regs = dict(bench.method_registers())
     for v in new:

@@ -113,7 +113,7 @@ async def result_holds_until_next_start(dut) -> None:
     k = int(cfg.tables or 2)
     rs = [10 * (i + 1) for i in range(k)]
     j, w, _, cycles = await _compute(dut, 15, rs, bits)
-    assert cycles == cfg.format("weight").frac_bits + 5, f"done after {cycles} cycles"
+    assert cycles == cfg.format("weight").frac_bits + 6, f"done after {cycles} cycles"
     for _ in range(5):
         await RisingEdge(dut.clk_i)
         assert (int(dut.j_o.value), int(dut.weight_o.value), int(dut.done_o.value)) == (j, w, 1)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method
+from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method, tb_axis_table
 from irnuc.cocotb_tests.runs import (
     case_params,
     coverage_json,
@@ -25,8 +25,11 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 #: minimal (short words, frequent saturation) and typical14 (the camera's widths).
 CONFIGS = ("minimal", "typical14")
 #: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame;
-#: two_point + blind_drift: the blind sum (BLIND_SUM) likewise, method_drift_top the core.
-METHOD_CONFIGS = ("tcoffset14", "drift14")
+#: two_point + blind_drift: the blind sum (BLIND_SUM) likewise, method_drift_top the core;
+#: table_interp: the same, each frame's weight computed from READING and TABLE_READING_k.
+METHOD_CONFIGS = ("tcoffset14", "drift14", "table14")
+#: table_interp: TABLE_SEL and the frame start held while the weight is computed.
+TABLE_CONFIGS = ("table14",)
 #: base method + ffc (N = 8): FFC_CTRL, the four FFC streams; two_point and tc_offset hold
 #: the shutter frames, quadratic passes them; tc_offset takes READING per frame.
 FFC_CONFIGS = ("ffc14", "quadffc14", "tcffc14")
@@ -40,6 +43,11 @@ def test_irnuc_axis_top(config: str, case: str) -> None:
 @pytest.mark.parametrize(("config", "case"), case_params(tb_axis_method, METHOD_CONFIGS))
 def test_irnuc_axis_top_method(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_method, case)
+
+
+@pytest.mark.parametrize(("config", "case"), case_params(tb_axis_table, TABLE_CONFIGS))
+def test_irnuc_axis_top_table(config: str, case: str) -> None:
+    run_case("irnuc_axis_top", load_pipeline(config), tb_axis_table, case)
 
 
 @pytest.mark.parametrize(("config", "case"), case_params(tb_axis_ffc, FFC_CONFIGS))
@@ -82,6 +90,14 @@ def test_irnuc_axis_top_coverage(config: str) -> None:
     """Every bin of irnuc_axis_top's coverpoints (cosim.axis_coverage and the stream
     points) is hit by the one run of tb_axis (no second simulation)."""
     _assert_axis_closed(config, tb_axis, "axis.")
+
+
+@pytest.mark.parametrize("config", TABLE_CONFIGS)
+def test_irnuc_axis_top_table_coverage(config: str) -> None:
+    """Every bin of table_interp's selection (cosim.axis_coverage's axis.table points: each
+    j, the weight's classes, TABLE_SEL computing / valid / error, both held frame starts)
+    and of the stream points is hit by the one run of tb_axis_table."""
+    _assert_axis_closed(config, tb_axis_table, "axis.table.")
 
 
 @pytest.mark.parametrize("config", FFC_CONFIGS)

@@ -48,9 +48,21 @@ sampled by ``cocotb_tests/tb_axis_method.py``) the model holds the stream points
 ``axis.drift.nuc_off``    a frame with CTRL.nuc_en 0 (the neutral frame word: drift code 0)
 ========================= =========================================================================
 
+On a table_interp configuration (sampled by ``cocotb_tests/tb_axis_table.py``) the model
+holds the stream points and table_interp's selection (:data:`TABLE_AXIS_POINTS`):
+
+========================= =========================================================================
+``axis.table.j``          TABLE_SEL.j read back (and matched) at every value 0 .. K - 2
+``axis.table.weight``     the weight read back 0, strictly between, and 2^Wf (1.0)
+``axis.table.sel``        TABLE_SEL read while computed (valid 0), valid, and with the error
+``axis.table.held``       a frame start held by the computation: READING written just before
+                          the frame (``between_frames``) and in the second half of the frame
+                          before (``in_frame_before``), a gap seen in the video beats taken
+========================= =========================================================================
+
 The general AXI points above are the same register file, framer and stream ports on an
-FFC or blind_drift configuration; they are closed on the two-point configurations
-(``tb_axis``).
+FFC, blind_drift or table_interp configuration; they are closed on the two-point
+configurations (``tb_axis``).
 """
 
 from __future__ import annotations
@@ -60,7 +72,8 @@ from irnuc.nuc_fixed.axis import EVENTS, FfcFraming
 from irnuc.nuc_fixed.config import PipelineConfig
 
 __all__ = ["AXIS_POINTS", "AXIS_TOPS", "DRIFT_AXIS_POINTS", "FFC_AXIS_POINTS",
-           "REGISTER_ACCESS", "AxisCoverageModel", "drift_delta_class", "ffc_axis_classes"]
+           "REGISTER_ACCESS", "TABLE_AXIS_POINTS", "AxisCoverageModel", "drift_delta_class",
+           "ffc_axis_classes"]
 
 #: The tops whose coverage model is :class:`AxisCoverageModel`.
 AXIS_TOPS = ("irnuc_axis_top",)
@@ -116,6 +129,15 @@ def drift_delta_class(delta: int, lo: int, hi: int) -> str:
     return "negative" if delta < 0 else "positive" if delta > 0 else "zero"
 
 
+#: Coverpoint -> bins of table_interp's selection (a table_interp configuration; the bins
+#: of ``axis.table.j`` are the configuration's, 0 .. K - 2).
+TABLE_AXIS_POINTS: dict[str, tuple[str, ...]] = {
+    "axis.table.weight": ("zero", "between", "one"),
+    "axis.table.sel": ("computing", "valid", "error"),
+    "axis.table.held": ("between_frames", "in_frame_before"),
+}
+
+
 def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
                      write_beat: int, frame_pixels: int, idle: str, bp: str,
                      resize_beat: int | None = None, resized: bool = False
@@ -167,13 +189,17 @@ def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
 class AxisCoverageModel(CoverageModel):
     """The coverpoints of ``irnuc_axis_top`` on one configuration (:data:`AXIS_POINTS`, or
     :data:`FFC_AXIS_POINTS` with the ffc stage, :data:`DRIFT_AXIS_POINTS` with
-    blind_drift, and the base model's stream points)."""
+    blind_drift, :data:`TABLE_AXIS_POINTS` with table_interp, and the base model's stream
+    points)."""
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         super().__init__(top, cfg, prefix)
         point = self.add_point
         points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else
                       DRIFT_AXIS_POINTS if cfg.has("blind_drift") else AXIS_POINTS)
+        if cfg.base_method == "table_interp" and not cfg.stages:
+            points = {"axis.table.j": tuple(str(j) for j in range(int(cfg.tables) - 1)),
+                      **TABLE_AXIS_POINTS}
         if cfg.has("ffc") and cfg.ffc_output != "hold":
             points["axis.ffc.drain"] = tuple(b for b in points["axis.ffc.drain"]
                                              if b != "after_held")

@@ -73,11 +73,13 @@ MODULE_FILES["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
 MODULE_FILES["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
 MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
-    *_REGS, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv",
-    "irnuc_axis_top.sv")))
-#: The base methods irnuc_axis_top is built around (its parameter Method; table_interp
-#: needs the weight and the pair of tables chosen per frame: not wrapped yet).
-AXIS_METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset")
+    *_REGS, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv", "interp_weight.sv",
+    "irnuc_axis_table.sv", "irnuc_axis_top.sv")))
+# table_interp's weight and table pair per frame from the registers (irnuc_axis_top).
+MODULE_FILES["irnuc_axis_table"] = (*_PKG, *_ARMED, "interp_weight.sv", "irnuc_axis_table.sv")
+#: The base methods irnuc_axis_top is built around (its parameter Method).
+AXIS_METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset",
+                "table_interp")
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
@@ -145,6 +147,7 @@ _MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
     "tc_reading": ("ReadingBits", "ReadingRangeBits"),
     "table_interp": (*_COEF, "WeightFracBits", "WeightRounding"),
     "interp_weight": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
+    "irnuc_axis_table": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
 }
 
 #: The module each base method's datapath is checked in on its own (method_dpc_top holds
@@ -259,7 +262,7 @@ def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
 
 #: Modules whose parameters include the method's (method_parameters).
 _METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
-                   "table_interp", "interp_weight")
+                   "table_interp", "interp_weight", "irnuc_axis_table")
 
 def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     """HDL files needed to elaborate module ``top``.
@@ -289,8 +292,8 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
         return {**stage_parameters("method_drift_top", cfg), "Drift": 1}
     if axis and cfg.method in AXIS_METHODS and cfg.method != "two_point":
         p = {**params, **method_parameters(cfg)}
-        return {k: v for k, v in p.items() if k not in ("Tables", "WeightIntBits",
-                                                        "WeightFracBits", "WeightRounding")}
+        # Tables: irnuc_axis_table's, in the top (the core takes the weight only).
+        return {k: v for k, v in p.items() if k != "Tables" or top == "irnuc_axis_top"}
     if top in STAGE_TOPS.values():
         return stage_parameters(top, cfg)
     if top in _STAGE_BLOCKS:

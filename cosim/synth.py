@@ -479,15 +479,19 @@ SYNTH_TOPS = ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top", "method_drift_t
 
 
 def tops_for(cfg) -> tuple[str, ...]:
-    """The tops that implement a configuration's method: its stage's top when it has a
-    stage; for two_point the bare core, the methods' top and the AXI wrapper; for the
-    other base methods ``method_dpc_top``, and the AXI wrapper around it where it wraps
-    the method (:data:`irnuc.cosim.sources.AXIS_METHODS`)."""
-    from irnuc.cosim.sources import AXIS_METHODS, stage_top
+    """The tops that implement a configuration's method: its stage's top and the AXI
+    wrapper around it when it has a stage the top composes with its base method
+    (:data:`irnuc.cosim.sources.STAGE_BASES`; none otherwise); for two_point the bare
+    core, the methods' top and the AXI wrapper; for the other base methods
+    ``method_dpc_top``, and the AXI wrapper around it where it wraps the method
+    (:data:`irnuc.cosim.sources.AXIS_METHODS`)."""
+    from irnuc.cosim.sources import AXIS_METHODS, STAGE_BASES, stage_top
 
     if cfg.stages:
         top = stage_top(cfg)
-        return (top, "irnuc_axis_top") if top else ()
+        if top is None or cfg.base_method not in STAGE_BASES[top]:
+            return ()
+        return (top, "irnuc_axis_top")
     if cfg.method == "two_point":
         return ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
     if cfg.method in AXIS_METHODS:

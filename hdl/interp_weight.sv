@@ -6,7 +6,9 @@
 // r_i are the table readings (registers, strictly increasing). The division is sequential
 // (one quotient bit a cycle, restoring), for the blanking between frames: a start pulse
 // takes the reading and the table readings (hold them until done), done_o rises
-// Wf + 5 cycles later and holds j_o and weight_o until the next start. error_o (with done)
+// Wf + 6 cycles later and holds j_o and weight_o until the next start. For Fmax in
+// irnuc_axis_top (docs/rtl.md): the rounding's decision is registered before its increment,
+// the division step's fits selects last, the order check has a flop of its own. error_o (with done)
 // says the table readings do not increase strictly; j_o and weight_o are then meaningless.
 // The DMA reads tables j and j + 1; method_dpc_top takes the weight with the frame.
 module interp_weight #(
@@ -52,13 +54,15 @@ module interp_weight #(
     IwSpan   = 3'd2,  // span and t - r_j
     IwClamp  = 3'd3,  // the clamped numerator: the quotient's top bit and the remainder
     IwDivide = 3'd4,  // one quotient bit a cycle
-    IwRound  = 3'd5   // the rounding from the remainder
+    IwRound  = 3'd5,  // the rounding decision from the remainder
+    IwInc    = 3'd6   // the rounding increment
   } iw_state_e;
 
   iw_state_e              state_q;
   logic [ReadingBits-1:0] t_q;
   logic [IndexBits-1:0]   j_q;
-  logic                   err_q, done_q;
+  logic                   err_q, done_q, inc_q;
+  logic                   order_q;  // order_bad, registered every cycle (err_q takes it)
   logic [ReadingBits-1:0] span_q;
   logic [ReadingBits:0]   above_q;  // t - r_j, signed
   logic [ReadingBits:0]   rem_q;    // remainder, below span (one bit more after a shift)
@@ -93,10 +97,14 @@ module interp_weight #(
   assign above = {1'b0, t_q} - {1'b0, r_lo};
 
   // ---- restoring division step: rem <= 2 rem (- span) ---------------------------------------
+  // fits is the difference's sign (one carry chain gives both), and it selects last, right
+  // before the registers: the other selects are made beside the chain (p_divide).
   logic [ReadingBits+1:0] twice;
+  logic [ReadingBits+2:0] diff;  // 2 rem - span, signed
   logic                   fits;
   assign twice = {rem_q, 1'b0};
-  assign fits  = twice >= {2'b00, span_q};
+  assign diff  = {1'b0, twice} - {3'b000, span_q};
+  assign fits  = !diff[ReadingBits+2];
 
   // ---- rounding from the remainder: compare 2 rem with span --------------------------------
   logic [ReadingBits+1:0] twice_rem;
@@ -112,11 +120,48 @@ module interp_weight #(
     endcase
   end
 
+  // ---- remainder and quotient: their next values with and without `fits` ----------------
+  // Outside IwDivide both are the same (fits then selects nothing).
+  logic [ReadingBits:0] rem_fit, rem_keep;
+  logic [WBits-1:0]     quot_fit, quot_keep;
+
+  always_comb begin : p_divide
+    rem_keep  = rem_q;
+    quot_keep = quot_q;
+    unique case (state_q)
+      IwClamp: begin
+        // num = CLAMP(t - r_j, 0, span); the quotient's top bit (weight 2^Wf) is
+        // num >= span, i.e. num = span, after which the remainder is 0.
+        if (above_q[ReadingBits]) begin
+          rem_keep  = '0;
+          quot_keep = '0;
+        end else if (above_q[ReadingBits-1:0] >= span_q) begin
+          rem_keep  = '0;
+          quot_keep = WBits'(1) << WeightFracBits;
+        end else begin
+          rem_keep  = {1'b0, above_q[ReadingBits-1:0]};
+          quot_keep = '0;
+        end
+      end
+      // rem < span after every step: ReadingBits + 1 bits hold it and its double.
+      IwDivide: rem_keep = (ReadingBits + 1)'(twice);
+      IwInc:    quot_keep = quot_q + WBits'(inc_q);
+      default: ;
+    endcase
+    rem_fit  = rem_keep;
+    quot_fit = quot_keep;
+    if (state_q == IwDivide) begin
+      rem_fit  = (ReadingBits + 1)'(diff);
+      quot_fit = quot_q | (WBits'(1'b1) << (count_q - CountBits'(1)));
+    end
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_fsm
     if (!rst_ni) begin
       state_q <= IwIdle;
       done_q  <= 1'b0;
       err_q   <= 1'b0;
+      order_q <= 1'b0;
       t_q     <= '0;
       j_q     <= '0;
       span_q  <= '0;
@@ -124,7 +169,13 @@ module interp_weight #(
       rem_q   <= '0;
       quot_q  <= '0;
       count_q <= '0;
+      inc_q   <= 1'b0;
     end else begin
+      // The order check's compares and OR reach a flop of their own; err_q takes it a cycle
+      // later (IwSpan: the readings are held since the start).
+      order_q <= order_bad;
+      rem_q   <= fits ? rem_fit : rem_keep;
+      quot_q  <= fits ? quot_fit : quot_keep;
       unique case (state_q)
         IwIdle: begin
           if (start_i) begin
@@ -135,10 +186,10 @@ module interp_weight #(
         end
         IwSelect: begin
           j_q     <= j_d;
-          err_q   <= order_bad;
           state_q <= IwSpan;
         end
         IwSpan: begin
+          err_q   <= order_q;
           span_q  <= r_hi - r_lo;
           above_q <= above;
           state_q <= IwClamp;
@@ -146,31 +197,20 @@ module interp_weight #(
         IwClamp: begin
           // num = CLAMP(t - r_j, 0, span); the quotient's top bit (weight 2^Wf) is
           // num >= span, i.e. num = span, after which the remainder is 0.
-          if (above_q[ReadingBits]) begin
-            rem_q  <= '0;
-            quot_q <= '0;
-          end else if (above_q[ReadingBits-1:0] >= span_q) begin
-            rem_q  <= '0;
-            quot_q <= WBits'(1) << WeightFracBits;
-          end else begin
-            rem_q  <= {1'b0, above_q[ReadingBits-1:0]};
-            quot_q <= '0;
-          end
           count_q <= CountBits'(WeightFracBits);
           state_q <= (WeightFracBits == 0) ? IwRound : IwDivide;
         end
         IwDivide: begin
-          // rem < span after every step: ReadingBits + 1 bits hold it and its double.
-          rem_q   <= fits ? (ReadingBits + 1)'(twice - {2'b00, span_q})
-                          : (ReadingBits + 1)'(twice);
-          quot_q  <= quot_q | (WBits'(fits) << (count_q - CountBits'(1)));
           count_q <= count_q - CountBits'(1);
           if (count_q == CountBits'(1)) begin
             state_q <= IwRound;
           end
         end
-        default: begin  // IwRound
-          quot_q  <= quot_q + WBits'(inc);
+        IwRound: begin
+          inc_q   <= inc;
+          state_q <= IwInc;
+        end
+        default: begin  // IwInc
           done_q  <= 1'b1;
           state_q <= IwIdle;
         end

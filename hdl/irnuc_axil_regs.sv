@@ -95,6 +95,9 @@ module irnuc_axil_regs
   // BLIND_REF, DRIFT_GAIN, FFC_TARGET) and the table readings.
   output logic [NumSlots-1:0][63:0]        slot_o,
   output logic [NumTable-1:0][31:0]        table_o,
+  // table_interp: READING or a TABLE_READING_k written now; what TABLE_SEL reads.
+  output logic                             table_write_o,
+  input  logic [31:0]                      table_sel_i,
   // A frame starts (the framer takes the pending settings).
   input  logic                             start_i,
   // Events (one cycle each) and levels for STATUS, the counters and IRQ_STATUS.
@@ -154,7 +157,8 @@ module irnuc_axil_regs
   localparam int unsigned IxCoefErrors = 19;
   localparam int unsigned IxFfcCtrl    = 20;
   localparam int unsigned IxFfcStatus  = 21;
-  localparam int unsigned NumFixed     = 22;
+  localparam int unsigned IxTableSel   = 22;
+  localparam int unsigned NumFixed     = 23;
   localparam int unsigned IxSlot       = NumFixed;              // slot k: LO, HI
   localparam int unsigned IxTable      = IxSlot + 2 * NumSlots;  // table reading k
   localparam int unsigned NumRegs      = IxTable + NumTable;
@@ -164,7 +168,8 @@ module irnuc_axil_regs
     RegCtrlOffset, RegFrameSizeOffset, RegCommandOffset, RegStatusOffset, RegIrqEnableOffset,
     RegIrqStatusOffset, RegFramesInOffset, RegFramesOutOffset, RegPixelsInOffset,
     RegPixelsOutOffset, RegDroppedOffset, RegPaddedOffset, RegSofErrorsOffset,
-    RegEolErrorsOffset, RegCoefErrorsOffset, RegFfcCtrlOffset, RegFfcStatusOffset
+    RegEolErrorsOffset, RegCoefErrorsOffset, RegFfcCtrlOffset, RegFfcStatusOffset,
+    RegTableSelOffset
   };
 
   // The byte offset of register index `ix`.
@@ -189,6 +194,7 @@ module irnuc_axil_regs
       ro[ix] = 1'b1;
     end
     ro[IxFfcStatus] = (HasFfc != 0);
+    ro[IxTableSel]  = (TableReadings != 0);
     return ro;
   endfunction
   localparam logic [NumRegs-1:0] ReadOnly = read_only();
@@ -202,17 +208,6 @@ module irnuc_axil_regs
     return hit;
   endfunction
 
-  function automatic logic [31:0] byte_mask(input logic [3:0] strb);
-    return {{8{strb[3]}}, {8{strb[2]}}, {8{strb[1]}}, {8{strb[0]}}};
-  endfunction
-
-  // The bits of a value field of `bits` bits that lie in word `word` (0: 31..0, 1: 63..32).
-  function automatic logic [31:0] value_mask(input int unsigned bits, input int unsigned word);
-    int unsigned n;
-    n = (bits > 32 * word) ? bits - 32 * word : 0;
-    return (n >= 32) ? 32'hffff_ffff : (32'd1 << n) - 32'd1;
-  endfunction
-
   // ---- write channel: hold address and data, decode (a cycle), write (a cycle) --------------
   logic                aw_held_q, w_held_q, dec_q, b_valid_q;
   logic                aw_held_d, w_held_d;
@@ -223,6 +218,7 @@ module irnuc_axil_regs
   axi_resp_e           b_resp_q;
   logic                w_legal_q, h_legal_q;  // the decoded write's width / height is legal
   logic                size_hit_q;  // the decoded write hits FRAME_SIZE's size bits
+  logic                table_hit_q;  // ... READING or a TABLE_READING_k (table_interp)
   logic                size_legal;            // both (the write cycle)
   logic                decode_now, wr;
   logic [NumRegs-1:0]  w_hit, wsel_q;
@@ -306,7 +302,8 @@ module irnuc_axil_regs
   assign size_view  = (32'(width_q) << RegFrameSizeWidthLsb)
                       | (32'(height_q) << RegFrameSizeHeightLsb);
   // The frame size the held write would make, and whether it is legal (decode cycle).
-  assign size_new   = (size_view & ~byte_mask(w_strb_q)) | (w_data_q & byte_mask(w_strb_q));
+  assign size_new   = (size_view & ~axil_byte_mask(w_strb_q))
+                      | (w_data_q & axil_byte_mask(w_strb_q));
   assign new_w      = RegFrameSizeWidthBits'(size_new >> RegFrameSizeWidthLsb);
   assign new_h      = RegFrameSizeHeightBits'(size_new >> RegFrameSizeHeightLsb);
   // Legality: each field is two byte lanes, so the compares are made for the four lane
@@ -317,7 +314,7 @@ module irnuc_axil_regs
     logic [31:0]                       lanes, size_c;
     logic [RegFrameSizeWidthBits-1:0]  w_c;
     logic [RegFrameSizeHeightBits-1:0] h_c;
-    assign lanes = byte_mask(4'((c << WLane) | (c << HLane)));
+    assign lanes = axil_byte_mask(4'((c << WLane) | (c << HLane)));
     assign size_c = (size_view & ~lanes) | (w_data_q & lanes);
     assign w_c = RegFrameSizeWidthBits'(size_c >> RegFrameSizeWidthLsb);
     assign h_c = RegFrameSizeHeightBits'(size_c >> RegFrameSizeHeightLsb);
@@ -335,13 +332,14 @@ module irnuc_axil_regs
   always_ff @(posedge clk_i) begin : p_decode
     if (decode_now) begin
       wsel_q       <= w_hit;
-      wmask        <= byte_mask(w_strb_q);
-      wdata        <= w_data_q & byte_mask(w_strb_q);
+      wmask        <= axil_byte_mask(w_strb_q);
+      wdata        <= w_data_q & axil_byte_mask(w_strb_q);
       w_legal_q    <= w_legal;
       h_legal_q    <= h_legal;
       new_w_q      <= WidthBits'(new_w);
       new_h_q      <= HeightBits'(new_h);
-      size_hit_q   <= w_hit[IxFrameSize] && |(byte_mask(w_strb_q) & SizeMask);
+      size_hit_q   <= w_hit[IxFrameSize] && |(axil_byte_mask(w_strb_q) & SizeMask);
+      table_hit_q  <= |w_hit[IxSlot + 4 +: 2] || |w_hit[IxTable +: NumTable];
     end
   end
 
@@ -395,8 +393,8 @@ module irnuc_axil_regs
   for (genvar k = 0; k < NumSlots; k++) begin : gen_slot
     if (SlotBits[k] > 0) begin : gen_on
       localparam int unsigned Bits   = SlotBits[k];
-      localparam logic [31:0] LoMask = value_mask(Bits, 0);
-      localparam logic [31:0] HiMask = value_mask(Bits, 1);
+      localparam logic [31:0] LoMask = axil_value_mask(Bits, 0);
+      localparam logic [31:0] HiMask = axil_value_mask(Bits, 1);
       logic [Bits-1:0] value_q;
       logic [63:0]     view;
       logic [31:0]     lo, hi;
@@ -425,7 +423,7 @@ module irnuc_axil_regs
 
   for (genvar k = 0; k < NumTable; k++) begin : gen_table
     if (k < TableReadings) begin : gen_on
-      localparam logic [31:0] Mask = value_mask(TableReadingBits, 0);
+      localparam logic [31:0] Mask = axil_value_mask(TableReadingBits, 0);
       logic [TableReadingBits-1:0] value_q;
       logic                        wr_k;
 
@@ -462,9 +460,10 @@ module irnuc_axil_regs
   end
 
   assign size_dirty_o = size_dirty_q;
-  // From flops in one LUT (the framer's start decision reads it): the register and its byte
-  // lanes decoded a cycle early (size_hit_q), the legality flags, the write cycle.
-  assign size_write_o = wr && size_hit_q && size_legal;
+  // From flops in one LUT (the framer's start decision reads both): the register and its
+  // byte lanes decoded a cycle early (size_hit_q, table_hit_q), legality, the write cycle.
+  assign size_write_o  = wr && size_hit_q && size_legal;
+  assign table_write_o = wr && table_hit_q && (TableReadings != 0);
 
   // ---- STATUS, IRQ ---------------------------------------------------------------------------
   logic [NumErrors-1:0] err_q, err_ev;
@@ -662,6 +661,7 @@ module irnuc_axil_regs
     rvals[IxFfcCtrl]    = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
     rvals[IxFfcStatus]  = (32'(ffc_busy_i && HasFfc != 0) << RegFfcStatusBusyLsb)
                           | (32'(ffc_done_q) << RegFfcStatusDoneLsb);
+    rvals[IxTableSel]   = (TableReadings != 0) ? table_sel_i : '0;
     for (int unsigned k = 0; k < NumSlots; k++) begin
       rvals[IxSlot + 2 * k]     = slot_o[k][31:0];
       rvals[IxSlot + 2 * k + 1] = slot_o[k][63:32];

@@ -2,14 +2,14 @@
 // items go to irnuc_axis_ffc (method_ffc_top and its streams) with Ffc = 1, to
 // method_drift_top with Drift = 1 (each frame's blind sum from the frame word), else to
 // nuc_dpc_top for two_point (Method = 1) or method_dpc_top for one_point, piecewise,
-// quadratic and tc_offset, whose two inputs move in lockstep (one item is a pixel and its
+// quadratic, tc_offset and table_interp, whose two inputs move in lockstep (one item is a pixel and its
 // word; the frame word rides on the pixel stream, read with sof). Without the ffc stage
 // the FFC streams are tied off: inputs never ready, outputs never valid.
 module irnuc_axis_core
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e (not table_interp)
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
@@ -41,6 +41,10 @@ module irnuc_axis_core
   parameter int unsigned TcGain         = 0,
   parameter int unsigned ReadingBits    = 14,
   parameter int unsigned ReadingRangeBits = 11,
+  // table_interp's weight format (method_dpc_top's).
+  parameter int unsigned WeightIntBits  = 1,
+  parameter int unsigned WeightFracBits = 15,
+  parameter int unsigned WeightRounding = 1,  // irnuc_pkg::rounding_e
   // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
   parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
   parameter int unsigned FfcFrames      = 8,
@@ -73,7 +77,8 @@ module irnuc_axis_core
                                                            QuadIntBits + QuadFracBits,
                                                            TcWordBits, TgWordBits),
   localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
-                                                          ReadingBits, 1),
+                                                          ReadingBits,
+                                                          WeightIntBits + WeightFracBits),
   localparam int unsigned BlindBits     = AdcBits + $clog2(BlindMax + 1),
   localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
   localparam int unsigned FrameBits     = (Drift != 0)
@@ -379,7 +384,10 @@ module irnuc_axis_core
       .TcOrder         (TcOrder),
       .TcGain          (TcGain),
       .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits)
+      .ReadingRangeBits(ReadingRangeBits),
+      .WeightIntBits   (WeightIntBits),
+      .WeightFracBits  (WeightFracBits),
+      .WeightRounding  (WeightRounding)
     ) u_core (
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),

@@ -91,6 +91,9 @@ module irnuc_axis_framer
   input  logic                  pend_dpc_en_i,
   input  logic                  pend_coef_sync_i,
   input  logic [FrameBits-1:0]  pend_frame_i,
+  // pend_frame_i is not ready (table_interp's weight computed): no frame starts in the
+  // next cycle (from flops, like size_write_i; 0 for the other methods).
+  input  logic                  hold_i,
   // The frame being corrected: its size (to the core) and its last line's index.
   output logic [WidthBits-1:0]  act_width_o,
   output logic [WidthBits-1:0]  act_width_m1_o,
@@ -436,7 +439,7 @@ module irnuc_axis_framer
   // Neither start_fire nor drained_d enters it: `fire` passes the next state's multiplexer
   // only.
   assign drained_d = empty_q && size_dirty_i && starting && !fire && !size_write_i;
-  assign wait_ok_d = s_wait_d && !size_write_i
+  assign wait_ok_d = s_wait_d && !size_write_i && !hold_i
                      && (!size_dirty_i || (starting && (fire || empty_q)));
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
@@ -529,7 +532,11 @@ module irnuc_axis_framer
   // Protocol assertions of the input and output streams: in the spill registers of the top
   // (vid, coef) and u_out. The count of items in flight never wraps:
   logic armed_q;  // from the second edge after reset
+  logic hold_q;   // hold_i of the cycle before (wait_ok_q's)
   irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
+  always_ff @(posedge clk_i) begin : p_hold
+    hold_q <= hold_i;
+  end
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
       a_flight_range: assert (32'(core_out_i) <= 32'(flight_q) + 32'(fire_q))
@@ -541,7 +548,7 @@ module irnuc_axis_framer
         else $error("irnuc_axis_framer: the position registers' line size is not the frame's");
       a_out_free: assert (out_free_q == out_ready)
         else $error("irnuc_axis_framer: out_free_q is not u_out's ready");
-      a_wait_ok: assert (wait_ok_q == (starting && start_ok))
+      a_wait_ok: assert (wait_ok_q == (starting && start_ok && !hold_q))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
       a_start_fire: assert (start_fire == (fire && starting))
         else $error("irnuc_axis_framer: start_fire is not a frame's first item");

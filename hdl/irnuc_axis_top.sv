@@ -30,16 +30,17 @@
 // (the shutter flag of each frame from FFC_CTRL, the fork, the FFC streams),
 // method_drift_top with Drift = 1 (one_point or two_point after the blind drift), else
 // nuc_dpc_top for two_point (Method = 1) and method_dpc_top for one_point, piecewise,
-// quadratic and tc_offset, whose two input streams move in lockstep (one item of the framer
-// is a pixel and its word). A method's per-frame word comes from its registers
-// (GAIN, LEVEL, READING and T_REF; BLIND_SUM, BLIND_REF and DRIFT_GAIN with Drift), taken
-// at a frame start like every shadowed register.
+// quadratic, tc_offset and table_interp, whose two input streams move in lockstep (one item
+// of the framer is a pixel and its word). A method's per-frame word comes from its registers
+// (GAIN, LEVEL, READING and T_REF; table_interp's weight from READING and TABLE_READING_k,
+// irnuc_axis_table, TABLE_SEL; BLIND_SUM, BLIND_REF and DRIFT_GAIN with Drift), taken at a
+// frame start like every shadowed register.
 // Every output port is a flop.
 module irnuc_axis_top
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e (not table_interp)
+  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e
   parameter int unsigned AdcBits        = 14,
   parameter int unsigned GainIntBits    = 2,
   parameter int unsigned GainFracBits   = 14,
@@ -71,6 +72,11 @@ module irnuc_axis_top
   parameter int unsigned TcGain         = 0,
   parameter int unsigned ReadingBits    = 14,
   parameter int unsigned ReadingRangeBits = 11,
+  // table_interp: the tables and the weight format (method_dpc_top's, interp_weight's).
+  parameter int unsigned Tables         = 3,
+  parameter int unsigned WeightIntBits  = 1,
+  parameter int unsigned WeightFracBits = 15,
+  parameter int unsigned WeightRounding = 1,  // irnuc_pkg::rounding_e
   // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
   parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
   parameter int unsigned FfcFrames      = 8,
@@ -103,7 +109,8 @@ module irnuc_axis_top
                                                            QuadIntBits + QuadFracBits,
                                                            TcWordBits, TgWordBits),
   localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
-                                                          ReadingBits, 1),
+                                                          ReadingBits,
+                                                          WeightIntBits + WeightFracBits),
   // blind_drift: the blind sum and its registers (BLIND_SUM, BLIND_REF, DRIFT_GAIN) ride
   // on the frame word above the base method's (irnuc_pkg::frame_blind_drift).
   localparam int unsigned BlindBits     = AdcBits + $clog2(BlindMax + 1),
@@ -192,45 +199,21 @@ module irnuc_axis_top
   output logic                  irq_o
 );
 
-  // The method's neutral words (NUC off, filler pixels; docs/integration.md) and its
-  // register slots; unity gain is 2^Gf when the format holds 1.0, else its largest code.
-  localparam logic [63:0] Unity = (GainIntBits > 0) ? (64'd1 << GainFracBits)
-                                                    : ((64'd1 << GainBits) - 64'd1);
-
-  function automatic logic [WordBits-1:0] neutral_word();
-    logic [WordBits-1:0] w;
-    w = '0;
-    unique case (MethodSel)
-      MethodOnePoint: ;  // offset 0 (the gain is the frame word's)
-      MethodPiecewise: begin
-        w |= WordBits'(Unity) << coef_piecewise_gain_lo_lsb();
-        w |= WordBits'(Unity) << coef_piecewise_gain_hi_lsb(GainBits);
-      end
-      default: w |= WordBits'(Unity) << coef_word_gain_lsb();  // the two-point word first
-    endcase
-    return w;
-  endfunction
-
-  function automatic logic [WordBits-1:0] bad_mask();
-    unique case (MethodSel)
-      MethodOnePoint:  return WordBits'(1) << coef_one_point_bad_lsb(OffsetBits);
-      MethodPiecewise: return WordBits'(1) << coef_piecewise_bad_lsb(GainBits,
-                                                                     KneeIntBits + KneeFracBits);
-      default:         return WordBits'(1) << coef_word_bad_lsb(GainBits, OffsetBits);
-    endcase
-  endfunction
-
-  localparam logic [WordBits-1:0]  NeutralWord  = neutral_word();
-  localparam logic [WordBits-1:0]  BadMask      = bad_mask();
+  // The method's neutral words (NUC off, filler pixels; docs/integration.md), from
+  // irnuc_method_pkg.
+  localparam logic [WordBits-1:0]  NeutralWord  = WordBits'(neutral_stream_word(
+      MethodSel, GainIntBits, GainFracBits, OffsetBits));
+  localparam logic [WordBits-1:0]  BadMask      = WordBits'(stream_bad_mask(
+      MethodSel, GainBits, OffsetBits, KneeIntBits + KneeFracBits));
   localparam logic [FrameBits-1:0] NeutralFrame = (MethodSel == MethodOnePoint)
-                                                  ? FrameBits'(Unity) : '0;
+      ? FrameBits'(unity_gain(GainIntBits, GainFracBits)) : '0;
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (Method <= 32'(MethodTcOffset))
-      else $fatal(1, "irnuc_axis_top: Method = %0d outside 0..%0d (no table_interp)",
-                  Method, 32'(MethodTcOffset));
-    assert (Ffc == 0 || MethodSel != MethodPiecewise)
+    assert (Method <= 32'(MethodTableInterp))
+      else $fatal(1, "irnuc_axis_top: Method = %0d outside 0..%0d", Method,
+                  32'(MethodTableInterp));
+    assert (Ffc == 0 || (MethodSel != MethodPiecewise && MethodSel != MethodTableInterp))
       else $fatal(1, "irnuc_axis_top: Ffc = 1 composes one_point, two_point, quadratic or tc_offset, not piecewise");
     assert (Drift == 0 || (Ffc == 0 && (MethodSel == MethodOnePoint
                                         || MethodSel == MethodTwoPoint)))
@@ -282,6 +265,8 @@ module irnuc_axis_top
   logic                  pend_sync;
   logic [7:0][63:0]      slots;
   logic [RegTableReadingCount-1:0][31:0] table_readings;
+  logic                  table_write, frame_hold;  // table_interp: irnuc_axis_table
+  logic [31:0]           table_sel;
   logic                  start, frame_start, beat, drop, pad, in_frame;
   logic                  sof_early, sof_late, eol_early, eol_late, coef_early, coef_late;
   logic                  pix_out, frame_out, core_err;
@@ -308,7 +293,8 @@ module irnuc_axis_top
     .CoefWordBits  (WordBits),
     .GainRegBits   ((MethodSel == MethodOnePoint) ? GainBits : 0),
     .LevelRegBits  ((MethodSel == MethodPiecewise) ? LevelBits : 0),
-    .ReadingRegBits((MethodSel == MethodTcOffset) ? ReadingBits : 0),
+    .ReadingRegBits((MethodSel == MethodTcOffset || MethodSel == MethodTableInterp)
+                    ? ReadingBits : 0),
     .TRefRegBits   ((MethodSel == MethodTcOffset) ? ReadingBits : 0),
     .BlindSumRegBits ((Drift != 0) ? BlindBits : 0),
     .BlindRefRegBits ((Drift != 0) ? BlindBits : 0),
@@ -316,7 +302,9 @@ module irnuc_axis_top
     .HasBlindDrift (Drift),
     .HasFfc        (Ffc),
     .FfcFrames     (FfcFrames),
-    .FfcTargetRegBits((Ffc != 0) ? OutBits + FfcFracBits : 0)
+    .FfcTargetRegBits((Ffc != 0) ? OutBits + FfcFracBits : 0),
+    .TableReadings ((MethodSel == MethodTableInterp) ? Tables : 0),
+    .TableReadingBits(ReadingBits)
   ) u_regs (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -350,6 +338,8 @@ module irnuc_axis_top
     .coef_sync_o     (pend_sync),
     .slot_o          (slots),
     .table_o         (table_readings),
+    .table_write_o   (table_write),
+    .table_sel_i     (table_sel),
     .start_i         (start),
     .frame_start_i   (frame_start),
     .beat_i          (beat),
@@ -373,9 +363,11 @@ module irnuc_axis_top
   );
 
   // ---- the frame word: the method's registers (slots of irnuc_axil_regs) --------------------
-  // one_point GAIN, piecewise LEVEL, tc_offset {T_REF, READING} (frame_tc_offset); none for
-  // two_point and quadratic; with Drift {DRIFT_GAIN, BLIND_REF, BLIND_SUM} above it
-  // (frame_blind_drift). The framer takes it at a frame start.
+  // one_point GAIN, piecewise LEVEL, tc_offset {T_REF, READING} (frame_tc_offset),
+  // table_interp the weight of READING between TABLE_READING_j and _j+1 (irnuc_axis_table,
+  // which holds the frame start while it computes it); none for two_point and quadratic;
+  // with Drift {DRIFT_GAIN, BLIND_REF, BLIND_SUM} above it (frame_blind_drift). The framer
+  // takes it at a frame start.
   logic [BaseFrameBits-1:0] base_frame;
   logic [FrameBits-1:0]     pend_frame;
 
@@ -388,6 +380,25 @@ module irnuc_axis_top
     assign fw.reading = slots[2][ReadingBits-1:0];
     assign fw.t_ref   = slots[3][ReadingBits-1:0];
     assign base_frame = fw;
+  end else if (MethodSel == MethodTableInterp) begin : gen_frame_table
+    logic [WeightFracBits:0] weight;
+    irnuc_axis_table #(
+      .ReadingBits   (ReadingBits),
+      .Tables        (Tables),
+      .WeightFracBits(WeightFracBits),
+      .WeightRounding(WeightRounding)
+    ) u_table (
+      .clk_i           (clk_i),
+      .rst_ni          (rst_ni),
+      .write_i         (table_write),
+      .reading_i       (slots[2][ReadingBits-1:0]),
+      .table_readings_i(table_readings),
+      .hold_o          (frame_hold),
+      .start_i         (start),
+      .weight_o        (weight),
+      .table_sel_o     (table_sel)
+    );
+    assign base_frame = BaseFrameBits'(weight);
   end else begin : gen_frame_none
     assign base_frame = '0;
   end
@@ -401,6 +412,12 @@ module irnuc_axis_top
     assign pend_frame    = fw;
   end else begin : gen_frame_base
     assign pend_frame = base_frame;
+  end
+  if (MethodSel != MethodTableInterp) begin : gen_no_table
+    assign frame_hold = 1'b0;
+    assign table_sel  = '0;
+    logic unused_table_write;
+    assign unused_table_write = table_write;
   end
 
   // The framer's frame word: the method's, the shutter flag above it with Ffc (FFC_CTRL,
@@ -451,6 +468,7 @@ module irnuc_axis_top
     .pend_dpc_en_i    (pend_dpc),
     .pend_coef_sync_i (pend_sync),
     .pend_frame_i     (pend_item_frame),
+    .hold_i           (frame_hold),
     .act_width_o      (act_w),
     .act_width_m1_o   (act_wm1),
     .act_height_o     (act_h),
@@ -513,6 +531,9 @@ module irnuc_axis_top
     .TcGain          (TcGain),
     .ReadingBits     (ReadingBits),
     .ReadingRangeBits(ReadingRangeBits),
+    .WeightIntBits   (WeightIntBits),
+    .WeightFracBits  (WeightFracBits),
+    .WeightRounding  (WeightRounding),
     .Ffc             (Ffc),
     .FfcFrames       (FfcFrames),
     .FfcHold         (FfcHold),

@@ -93,4 +93,51 @@ package irnuc_method_pkg;
     endcase
   endfunction
 
+  // ---- neutral stream word and bad flags, per method (irnuc_axis_top) -------------------
+  // NUC off and filler pixels (docs/integration.md "Methods"; Python
+  // irnuc.nuc_fixed.axis.neutral_word, bad_mask): every gain field 1.0 (2^Gf, or the largest
+  // code when the format has no integer bit), every other field 0; the bad flags' bits. In
+  // the low bits of StreamWordMax (the widest stream word, tcgain14's, has 97).
+  localparam int unsigned StreamWordMax = 128;
+
+  function automatic logic [StreamWordMax-1:0] unity_gain(input int unsigned gain_int_bits,
+                                                          input int unsigned gain_frac_bits);
+    return (gain_int_bits > 0) ? (StreamWordMax'(1) << gain_frac_bits)
+                               : ((StreamWordMax'(1) << (gain_int_bits + gain_frac_bits)) - 1);
+  endfunction
+
+  function automatic logic [StreamWordMax-1:0] neutral_stream_word(
+    input method_e     method,
+    input int unsigned gain_int_bits,
+    input int unsigned gain_frac_bits,
+    input int unsigned offset_bits);
+    logic [StreamWordMax-1:0] one;
+    int unsigned              gb;
+    gb  = gain_int_bits + gain_frac_bits;
+    one = unity_gain(gain_int_bits, gain_frac_bits);
+    unique case (method)
+      MethodOnePoint:    return '0;  // offset 0 (the gain is the frame word's)
+      MethodPiecewise:   return (one << coef_piecewise_gain_lo_lsb())
+                                | (one << coef_piecewise_gain_hi_lsb(gb));
+      MethodTableInterp: return (one << coef_word_gain_lsb())  // tables j and j + 1
+                                | (one << (coef_word_bits(gb, offset_bits) + coef_word_gain_lsb()));
+      default:           return one << coef_word_gain_lsb();  // the two-point word first
+    endcase
+  endfunction
+
+  function automatic logic [StreamWordMax-1:0] stream_bad_mask(
+    input method_e     method,
+    input int unsigned gain_bits,
+    input int unsigned offset_bits,
+    input int unsigned knee_bits);
+    logic [StreamWordMax-1:0] bad;
+    bad = StreamWordMax'(1) << coef_word_bad_lsb(gain_bits, offset_bits);
+    unique case (method)
+      MethodOnePoint:    return StreamWordMax'(1) << coef_one_point_bad_lsb(offset_bits);
+      MethodPiecewise:   return StreamWordMax'(1) << coef_piecewise_bad_lsb(gain_bits, knee_bits);
+      MethodTableInterp: return bad | (bad << coef_word_bits(gain_bits, offset_bits));
+      default:           return bad;
+    endcase
+  endfunction
+
 endpackage

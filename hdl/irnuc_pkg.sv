@@ -17,300 +17,185 @@ package irnuc_pkg;
   localparam int unsigned MulChunkBits = 17;
   // largest frame width and height, and line-buffer depth
   localparam int unsigned FrameDimMax = 65535;
-  // DPC reciprocal shift K = OutBits + this
-  localparam int unsigned DpcRecipGuardBits = 6;
-  // widest NUC sum (int64 golden model, one spare bit)
-  localparam int unsigned SumBitsMax = 62;
-  // ID register value
-  localparam int unsigned RegMapId = 1230130755;
-  // register map major version
-  localparam int unsigned RegMapMajor = 1;
-  // register map minor version
-  localparam int unsigned RegMapMinor = 0;
-  // AXI4-Lite address bits of the register window
-  localparam int unsigned RegAddrBits = 12;
-  // ID: identifies irnuc_axis_top
-  localparam int unsigned RegIdOffset = 0;
-  // ID.value
-  localparam int unsigned RegIdValueLsb = 0;
-  // ID.value width
-  localparam int unsigned RegIdValueBits = 32;
+  localparam int unsigned DpcRecipGuardBits = 6;  // DPC reciprocal shift K = OutBits + this
+  localparam int unsigned SumBitsMax = 62;  // widest NUC sum (int64 golden model, one spare bit)
+  localparam int unsigned RegMapId = 1230130755;  // ID register value
+  localparam int unsigned RegMapMajor = 1;  // register map major version
+  localparam int unsigned RegMapMinor = 0;  // register map minor version
+  localparam int unsigned RegAddrBits = 12;  // AXI4-Lite address bits of the register window
+  localparam int unsigned RegIdOffset = 0;  // ID: identifies irnuc_axis_top
+  localparam int unsigned RegIdValueLsb = 0;  // ID.value
+  localparam int unsigned RegIdValueBits = 32;  // ID.value width
   // VERSION: register map version and coefficient word layout version
   localparam int unsigned RegVersionOffset = 4;
-  // VERSION.minor
-  localparam int unsigned RegVersionMinorLsb = 0;
-  // VERSION.minor width
-  localparam int unsigned RegVersionMinorBits = 8;
-  // VERSION.major
-  localparam int unsigned RegVersionMajorLsb = 8;
-  // VERSION.major width
-  localparam int unsigned RegVersionMajorBits = 8;
-  // VERSION.coef_layout
-  localparam int unsigned RegVersionCoefLayoutLsb = 16;
-  // VERSION.coef_layout width
-  localparam int unsigned RegVersionCoefLayoutBits = 8;
+  localparam int unsigned RegVersionMinorLsb = 0;  // VERSION.minor
+  localparam int unsigned RegVersionMinorBits = 8;  // VERSION.minor width
+  localparam int unsigned RegVersionMajorLsb = 8;  // VERSION.major
+  localparam int unsigned RegVersionMajorBits = 8;  // VERSION.major width
+  localparam int unsigned RegVersionCoefLayoutLsb = 16;  // VERSION.coef_layout
+  localparam int unsigned RegVersionCoefLayoutBits = 8;  // VERSION.coef_layout width
   // CONFIG: widths and modes the core was built with (the pipeline configuration)
   localparam int unsigned RegConfigOffset = 8;
-  // CONFIG.adc_bits
-  localparam int unsigned RegConfigAdcBitsLsb = 0;
-  // CONFIG.adc_bits width
-  localparam int unsigned RegConfigAdcBitsBits = 8;
-  // CONFIG.out_bits
-  localparam int unsigned RegConfigOutBitsLsb = 8;
-  // CONFIG.out_bits width
-  localparam int unsigned RegConfigOutBitsBits = 8;
-  // CONFIG.word_bits
-  localparam int unsigned RegConfigWordBitsLsb = 16;
-  // CONFIG.word_bits width
-  localparam int unsigned RegConfigWordBitsBits = 8;
-  // CONFIG.method
-  localparam int unsigned RegConfigMethodLsb = 24;
-  // CONFIG.method width
-  localparam int unsigned RegConfigMethodBits = 3;
-  // CONFIG.blind_drift
-  localparam int unsigned RegConfigBlindDriftLsb = 27;
-  // CONFIG.ffc
-  localparam int unsigned RegConfigFfcLsb = 28;
-  // CONFIG.rounding
-  localparam int unsigned RegConfigRoundingLsb = 29;
-  // CONFIG.rounding width
-  localparam int unsigned RegConfigRoundingBits = 2;
-  // CONFIG.overflow
-  localparam int unsigned RegConfigOverflowLsb = 31;
+  localparam int unsigned RegConfigAdcBitsLsb = 0;  // CONFIG.adc_bits
+  localparam int unsigned RegConfigAdcBitsBits = 8;  // CONFIG.adc_bits width
+  localparam int unsigned RegConfigOutBitsLsb = 8;  // CONFIG.out_bits
+  localparam int unsigned RegConfigOutBitsBits = 8;  // CONFIG.out_bits width
+  localparam int unsigned RegConfigWordBitsLsb = 16;  // CONFIG.word_bits
+  localparam int unsigned RegConfigWordBitsBits = 8;  // CONFIG.word_bits width
+  localparam int unsigned RegConfigMethodLsb = 24;  // CONFIG.method
+  localparam int unsigned RegConfigMethodBits = 3;  // CONFIG.method width
+  localparam int unsigned RegConfigBlindDriftLsb = 27;  // CONFIG.blind_drift
+  localparam int unsigned RegConfigFfcLsb = 28;  // CONFIG.ffc
+  localparam int unsigned RegConfigRoundingLsb = 29;  // CONFIG.rounding
+  localparam int unsigned RegConfigRoundingBits = 2;  // CONFIG.rounding width
+  localparam int unsigned RegConfigOverflowLsb = 31;  // CONFIG.overflow
   // FORMAT: the gain and offset formats (compare with the memory image manifest)
   localparam int unsigned RegFormatOffset = 12;
-  // FORMAT.gain_int_bits
-  localparam int unsigned RegFormatGainIntBitsLsb = 0;
-  // FORMAT.gain_int_bits width
-  localparam int unsigned RegFormatGainIntBitsBits = 8;
-  // FORMAT.gain_frac_bits
-  localparam int unsigned RegFormatGainFracBitsLsb = 8;
-  // FORMAT.gain_frac_bits width
-  localparam int unsigned RegFormatGainFracBitsBits = 8;
-  // FORMAT.offset_int_bits
-  localparam int unsigned RegFormatOffsetIntBitsLsb = 16;
-  // FORMAT.offset_int_bits width
-  localparam int unsigned RegFormatOffsetIntBitsBits = 8;
-  // FORMAT.offset_frac_bits
-  localparam int unsigned RegFormatOffsetFracBitsLsb = 24;
-  // FORMAT.offset_frac_bits width
-  localparam int unsigned RegFormatOffsetFracBitsBits = 8;
+  localparam int unsigned RegFormatGainIntBitsLsb = 0;  // FORMAT.gain_int_bits
+  localparam int unsigned RegFormatGainIntBitsBits = 8;  // FORMAT.gain_int_bits width
+  localparam int unsigned RegFormatGainFracBitsLsb = 8;  // FORMAT.gain_frac_bits
+  localparam int unsigned RegFormatGainFracBitsBits = 8;  // FORMAT.gain_frac_bits width
+  localparam int unsigned RegFormatOffsetIntBitsLsb = 16;  // FORMAT.offset_int_bits
+  localparam int unsigned RegFormatOffsetIntBitsBits = 8;  // FORMAT.offset_int_bits width
+  localparam int unsigned RegFormatOffsetFracBitsLsb = 24;  // FORMAT.offset_frac_bits
+  localparam int unsigned RegFormatOffsetFracBitsBits = 8;  // FORMAT.offset_frac_bits width
   // FRAME_MAX: the largest frame the line buffers hold
   localparam int unsigned RegFrameMaxOffset = 16;
-  // FRAME_MAX.width
-  localparam int unsigned RegFrameMaxWidthLsb = 0;
-  // FRAME_MAX.width width
-  localparam int unsigned RegFrameMaxWidthBits = 16;
-  // FRAME_MAX.height
-  localparam int unsigned RegFrameMaxHeightLsb = 16;
-  // FRAME_MAX.height width
-  localparam int unsigned RegFrameMaxHeightBits = 16;
-  // CTRL: what the core does with each frame
-  localparam int unsigned RegCtrlOffset = 32;
-  // CTRL.nuc_en
-  localparam int unsigned RegCtrlNucEnLsb = 0;
-  // CTRL.nuc_en reset
-  localparam int unsigned RegCtrlNucEnReset = 1;
-  // CTRL.dpc_en
-  localparam int unsigned RegCtrlDpcEnLsb = 1;
-  // CTRL.dpc_en reset
-  localparam int unsigned RegCtrlDpcEnReset = 1;
-  // CTRL.coef_sync
-  localparam int unsigned RegCtrlCoefSyncLsb = 8;
-  // CTRL.coef_sync reset
-  localparam int unsigned RegCtrlCoefSyncReset = 1;
+  localparam int unsigned RegFrameMaxWidthLsb = 0;  // FRAME_MAX.width
+  localparam int unsigned RegFrameMaxWidthBits = 16;  // FRAME_MAX.width width
+  localparam int unsigned RegFrameMaxHeightLsb = 16;  // FRAME_MAX.height
+  localparam int unsigned RegFrameMaxHeightBits = 16;  // FRAME_MAX.height width
+  localparam int unsigned RegCtrlOffset = 32;  // CTRL: what the core does with each frame
+  localparam int unsigned RegCtrlNucEnLsb = 0;  // CTRL.nuc_en
+  localparam int unsigned RegCtrlNucEnReset = 1;  // CTRL.nuc_en reset
+  localparam int unsigned RegCtrlDpcEnLsb = 1;  // CTRL.dpc_en
+  localparam int unsigned RegCtrlDpcEnReset = 1;  // CTRL.dpc_en reset
+  localparam int unsigned RegCtrlCoefSyncLsb = 8;  // CTRL.coef_sync
+  localparam int unsigned RegCtrlCoefSyncReset = 1;  // CTRL.coef_sync reset
   // FRAME_SIZE: frame size; a write of 0 or above FRAME_MAX is refused (SLVERR, register unchanged); a new size waits until the previous frame has left the core
   localparam int unsigned RegFrameSizeOffset = 36;
-  // FRAME_SIZE.width
-  localparam int unsigned RegFrameSizeWidthLsb = 0;
-  // FRAME_SIZE.width width
-  localparam int unsigned RegFrameSizeWidthBits = 16;
-  // FRAME_SIZE.height
-  localparam int unsigned RegFrameSizeHeightLsb = 16;
-  // FRAME_SIZE.height width
-  localparam int unsigned RegFrameSizeHeightBits = 16;
-  // COMMAND: commands
-  localparam int unsigned RegCommandOffset = 40;
-  // COMMAND.clear_counters
-  localparam int unsigned RegCommandClearCountersLsb = 0;
+  localparam int unsigned RegFrameSizeWidthLsb = 0;  // FRAME_SIZE.width
+  localparam int unsigned RegFrameSizeWidthBits = 16;  // FRAME_SIZE.width width
+  localparam int unsigned RegFrameSizeHeightLsb = 16;  // FRAME_SIZE.height
+  localparam int unsigned RegFrameSizeHeightBits = 16;  // FRAME_SIZE.height width
+  localparam int unsigned RegCommandOffset = 40;  // COMMAND: commands
+  localparam int unsigned RegCommandClearCountersLsb = 0;  // COMMAND.clear_counters
   // STATUS: framing errors (sticky until written 1) and the state of the input
   localparam int unsigned RegStatusOffset = 48;
-  // STATUS.sof_early
-  localparam int unsigned RegStatusSofEarlyLsb = 0;
-  // STATUS.sof_early reset
-  localparam int unsigned RegStatusSofEarlyReset = 0;
-  // STATUS.sof_late
-  localparam int unsigned RegStatusSofLateLsb = 1;
-  // STATUS.sof_late reset
-  localparam int unsigned RegStatusSofLateReset = 0;
-  // STATUS.eol_early
-  localparam int unsigned RegStatusEolEarlyLsb = 2;
-  // STATUS.eol_early reset
-  localparam int unsigned RegStatusEolEarlyReset = 0;
-  // STATUS.eol_late
-  localparam int unsigned RegStatusEolLateLsb = 3;
-  // STATUS.eol_late reset
-  localparam int unsigned RegStatusEolLateReset = 0;
-  // STATUS.coef_early
-  localparam int unsigned RegStatusCoefEarlyLsb = 4;
-  // STATUS.coef_early reset
-  localparam int unsigned RegStatusCoefEarlyReset = 0;
-  // STATUS.coef_late
-  localparam int unsigned RegStatusCoefLateLsb = 5;
-  // STATUS.coef_late reset
-  localparam int unsigned RegStatusCoefLateReset = 0;
-  // STATUS.core_err
-  localparam int unsigned RegStatusCoreErrLsb = 8;
-  // STATUS.in_frame
-  localparam int unsigned RegStatusInFrameLsb = 16;
-  // STATUS.pending
-  localparam int unsigned RegStatusPendingLsb = 17;
-  // IRQ_ENABLE: which IRQ_STATUS bits drive irq_o
-  localparam int unsigned RegIrqEnableOffset = 52;
-  // IRQ_ENABLE.error
-  localparam int unsigned RegIrqEnableErrorLsb = 0;
-  // IRQ_ENABLE.error reset
-  localparam int unsigned RegIrqEnableErrorReset = 0;
-  // IRQ_ENABLE.frame_done
-  localparam int unsigned RegIrqEnableFrameDoneLsb = 1;
-  // IRQ_ENABLE.frame_done reset
-  localparam int unsigned RegIrqEnableFrameDoneReset = 0;
-  // IRQ_ENABLE.ffc_done
-  localparam int unsigned RegIrqEnableFfcDoneLsb = 2;
-  // IRQ_ENABLE.ffc_done reset
-  localparam int unsigned RegIrqEnableFfcDoneReset = 0;
+  localparam int unsigned RegStatusSofEarlyLsb = 0;  // STATUS.sof_early
+  localparam int unsigned RegStatusSofEarlyReset = 0;  // STATUS.sof_early reset
+  localparam int unsigned RegStatusSofLateLsb = 1;  // STATUS.sof_late
+  localparam int unsigned RegStatusSofLateReset = 0;  // STATUS.sof_late reset
+  localparam int unsigned RegStatusEolEarlyLsb = 2;  // STATUS.eol_early
+  localparam int unsigned RegStatusEolEarlyReset = 0;  // STATUS.eol_early reset
+  localparam int unsigned RegStatusEolLateLsb = 3;  // STATUS.eol_late
+  localparam int unsigned RegStatusEolLateReset = 0;  // STATUS.eol_late reset
+  localparam int unsigned RegStatusCoefEarlyLsb = 4;  // STATUS.coef_early
+  localparam int unsigned RegStatusCoefEarlyReset = 0;  // STATUS.coef_early reset
+  localparam int unsigned RegStatusCoefLateLsb = 5;  // STATUS.coef_late
+  localparam int unsigned RegStatusCoefLateReset = 0;  // STATUS.coef_late reset
+  localparam int unsigned RegStatusCoreErrLsb = 8;  // STATUS.core_err
+  localparam int unsigned RegStatusInFrameLsb = 16;  // STATUS.in_frame
+  localparam int unsigned RegStatusPendingLsb = 17;  // STATUS.pending
+  localparam int unsigned RegIrqEnableOffset = 52;  // IRQ_ENABLE: which IRQ_STATUS bits drive irq_o
+  localparam int unsigned RegIrqEnableErrorLsb = 0;  // IRQ_ENABLE.error
+  localparam int unsigned RegIrqEnableErrorReset = 0;  // IRQ_ENABLE.error reset
+  localparam int unsigned RegIrqEnableFrameDoneLsb = 1;  // IRQ_ENABLE.frame_done
+  localparam int unsigned RegIrqEnableFrameDoneReset = 0;  // IRQ_ENABLE.frame_done reset
+  localparam int unsigned RegIrqEnableFfcDoneLsb = 2;  // IRQ_ENABLE.ffc_done
+  localparam int unsigned RegIrqEnableFfcDoneReset = 0;  // IRQ_ENABLE.ffc_done reset
   // IRQ_STATUS: interrupt causes (sticky until written 1); irq_o = the OR of the bits set in both IRQ_STATUS and IRQ_ENABLE, registered
   localparam int unsigned RegIrqStatusOffset = 56;
-  // IRQ_STATUS.error
-  localparam int unsigned RegIrqStatusErrorLsb = 0;
-  // IRQ_STATUS.error reset
-  localparam int unsigned RegIrqStatusErrorReset = 0;
-  // IRQ_STATUS.frame_done
-  localparam int unsigned RegIrqStatusFrameDoneLsb = 1;
-  // IRQ_STATUS.frame_done reset
-  localparam int unsigned RegIrqStatusFrameDoneReset = 0;
-  // IRQ_STATUS.ffc_done
-  localparam int unsigned RegIrqStatusFfcDoneLsb = 2;
-  // IRQ_STATUS.ffc_done reset
-  localparam int unsigned RegIrqStatusFfcDoneReset = 0;
+  localparam int unsigned RegIrqStatusErrorLsb = 0;  // IRQ_STATUS.error
+  localparam int unsigned RegIrqStatusErrorReset = 0;  // IRQ_STATUS.error reset
+  localparam int unsigned RegIrqStatusFrameDoneLsb = 1;  // IRQ_STATUS.frame_done
+  localparam int unsigned RegIrqStatusFrameDoneReset = 0;  // IRQ_STATUS.frame_done reset
+  localparam int unsigned RegIrqStatusFfcDoneLsb = 2;  // IRQ_STATUS.ffc_done
+  localparam int unsigned RegIrqStatusFfcDoneReset = 0;  // IRQ_STATUS.ffc_done reset
   // FRAMES_IN: frames started at s_axis_video (start of frame accepted); wraps
   localparam int unsigned RegFramesInOffset = 64;
-  // FRAMES_IN.count
-  localparam int unsigned RegFramesInCountLsb = 0;
-  // FRAMES_IN.count width
-  localparam int unsigned RegFramesInCountBits = 32;
+  localparam int unsigned RegFramesInCountLsb = 0;  // FRAMES_IN.count
+  localparam int unsigned RegFramesInCountBits = 32;  // FRAMES_IN.count width
   // FRAMES_OUT: frames whose last pixel left m_axis_video; wraps
   localparam int unsigned RegFramesOutOffset = 68;
-  // FRAMES_OUT.count
-  localparam int unsigned RegFramesOutCountLsb = 0;
-  // FRAMES_OUT.count width
-  localparam int unsigned RegFramesOutCountBits = 32;
+  localparam int unsigned RegFramesOutCountLsb = 0;  // FRAMES_OUT.count
+  localparam int unsigned RegFramesOutCountBits = 32;  // FRAMES_OUT.count width
   // PIXELS_IN: beats taken from s_axis_video, dropped ones included; wraps
   localparam int unsigned RegPixelsInOffset = 72;
-  // PIXELS_IN.count
-  localparam int unsigned RegPixelsInCountLsb = 0;
-  // PIXELS_IN.count width
-  localparam int unsigned RegPixelsInCountBits = 32;
-  // PIXELS_OUT: beats sent on m_axis_video; wraps
-  localparam int unsigned RegPixelsOutOffset = 76;
-  // PIXELS_OUT.count
-  localparam int unsigned RegPixelsOutCountLsb = 0;
-  // PIXELS_OUT.count width
-  localparam int unsigned RegPixelsOutCountBits = 32;
+  localparam int unsigned RegPixelsInCountLsb = 0;  // PIXELS_IN.count
+  localparam int unsigned RegPixelsInCountBits = 32;  // PIXELS_IN.count width
+  localparam int unsigned RegPixelsOutOffset = 76;  // PIXELS_OUT: beats sent on m_axis_video; wraps
+  localparam int unsigned RegPixelsOutCountLsb = 0;  // PIXELS_OUT.count
+  localparam int unsigned RegPixelsOutCountBits = 32;  // PIXELS_OUT.count width
   // DROPPED: beats of s_axis_video dropped (late markers); wraps
   localparam int unsigned RegDroppedOffset = 80;
-  // DROPPED.count
-  localparam int unsigned RegDroppedCountLsb = 0;
-  // DROPPED.count width
-  localparam int unsigned RegDroppedCountBits = 32;
+  localparam int unsigned RegDroppedCountLsb = 0;  // DROPPED.count
+  localparam int unsigned RegDroppedCountBits = 32;  // DROPPED.count width
   // PADDED: filler pixels inserted (early markers); wraps
   localparam int unsigned RegPaddedOffset = 84;
-  // PADDED.count
-  localparam int unsigned RegPaddedCountLsb = 0;
-  // PADDED.count width
-  localparam int unsigned RegPaddedCountBits = 32;
+  localparam int unsigned RegPaddedCountLsb = 0;  // PADDED.count
+  localparam int unsigned RegPaddedCountBits = 32;  // PADDED.count width
   // SOF_ERRORS: start-of-frame errors, each counted once; wrap
   localparam int unsigned RegSofErrorsOffset = 88;
-  // SOF_ERRORS.early
-  localparam int unsigned RegSofErrorsEarlyLsb = 0;
-  // SOF_ERRORS.early width
-  localparam int unsigned RegSofErrorsEarlyBits = 16;
-  // SOF_ERRORS.late
-  localparam int unsigned RegSofErrorsLateLsb = 16;
-  // SOF_ERRORS.late width
-  localparam int unsigned RegSofErrorsLateBits = 16;
+  localparam int unsigned RegSofErrorsEarlyLsb = 0;  // SOF_ERRORS.early
+  localparam int unsigned RegSofErrorsEarlyBits = 16;  // SOF_ERRORS.early width
+  localparam int unsigned RegSofErrorsLateLsb = 16;  // SOF_ERRORS.late
+  localparam int unsigned RegSofErrorsLateBits = 16;  // SOF_ERRORS.late width
   // EOL_ERRORS: end-of-line errors, each counted once; wrap
   localparam int unsigned RegEolErrorsOffset = 92;
-  // EOL_ERRORS.early
-  localparam int unsigned RegEolErrorsEarlyLsb = 0;
-  // EOL_ERRORS.early width
-  localparam int unsigned RegEolErrorsEarlyBits = 16;
-  // EOL_ERRORS.late
-  localparam int unsigned RegEolErrorsLateLsb = 16;
-  // EOL_ERRORS.late width
-  localparam int unsigned RegEolErrorsLateBits = 16;
+  localparam int unsigned RegEolErrorsEarlyLsb = 0;  // EOL_ERRORS.early
+  localparam int unsigned RegEolErrorsEarlyBits = 16;  // EOL_ERRORS.early width
+  localparam int unsigned RegEolErrorsLateLsb = 16;  // EOL_ERRORS.late
+  localparam int unsigned RegEolErrorsLateBits = 16;  // EOL_ERRORS.late width
   // COEF_ERRORS: coefficient stream errors (CTRL.coef_sync = 1), each counted once; wrap
   localparam int unsigned RegCoefErrorsOffset = 96;
-  // COEF_ERRORS.early
-  localparam int unsigned RegCoefErrorsEarlyLsb = 0;
-  // COEF_ERRORS.early width
-  localparam int unsigned RegCoefErrorsEarlyBits = 16;
-  // COEF_ERRORS.late
-  localparam int unsigned RegCoefErrorsLateLsb = 16;
-  // COEF_ERRORS.late width
-  localparam int unsigned RegCoefErrorsLateBits = 16;
+  localparam int unsigned RegCoefErrorsEarlyLsb = 0;  // COEF_ERRORS.early
+  localparam int unsigned RegCoefErrorsEarlyBits = 16;  // COEF_ERRORS.early width
+  localparam int unsigned RegCoefErrorsLateLsb = 16;  // COEF_ERRORS.late
+  localparam int unsigned RegCoefErrorsLateBits = 16;  // COEF_ERRORS.late width
   // FFC_CTRL: flat-field correction: FFC_CTRL.frames shutter frames from the next frame start; N of them (ffc_frames) are averaged into the FFC offsets (docs/integration.md, FFC)
   localparam int unsigned RegFfcCtrlOffset = 128;
-  // FFC_CTRL.start
-  localparam int unsigned RegFfcCtrlStartLsb = 0;
-  // FFC_CTRL.frames
-  localparam int unsigned RegFfcCtrlFramesLsb = 16;
-  // FFC_CTRL.frames width
-  localparam int unsigned RegFfcCtrlFramesBits = 11;
-  // FFC_STATUS: flat-field correction state
-  localparam int unsigned RegFfcStatusOffset = 132;
-  // FFC_STATUS.busy
-  localparam int unsigned RegFfcStatusBusyLsb = 0;
-  // FFC_STATUS.done
-  localparam int unsigned RegFfcStatusDoneLsb = 1;
-  // GAIN_LO: one_point: the global gain, U Gi.Gf
-  localparam int unsigned RegGainLoOffset = 256;
-  // GAIN_HI
-  localparam int unsigned RegGainHiOffset = 260;
+  localparam int unsigned RegFfcCtrlStartLsb = 0;  // FFC_CTRL.start
+  localparam int unsigned RegFfcCtrlFramesLsb = 16;  // FFC_CTRL.frames
+  localparam int unsigned RegFfcCtrlFramesBits = 11;  // FFC_CTRL.frames width
+  localparam int unsigned RegFfcStatusOffset = 132;  // FFC_STATUS: flat-field correction state
+  localparam int unsigned RegFfcStatusBusyLsb = 0;  // FFC_STATUS.busy
+  localparam int unsigned RegFfcStatusDoneLsb = 1;  // FFC_STATUS.done
+  localparam int unsigned RegGainLoOffset = 256;  // GAIN_LO: one_point: the global gain, U Gi.Gf
+  localparam int unsigned RegGainHiOffset = 260;  // GAIN_HI
   // LEVEL_LO: piecewise: the output at every pixel's knee
   localparam int unsigned RegLevelLoOffset = 264;
-  // LEVEL_HI
-  localparam int unsigned RegLevelHiOffset = 268;
+  localparam int unsigned RegLevelHiOffset = 268;  // LEVEL_HI
   // READING_LO: the FPA temperature sensor reading for the next frame
   localparam int unsigned RegReadingLoOffset = 272;
-  // READING_HI
-  localparam int unsigned RegReadingHiOffset = 276;
+  localparam int unsigned RegReadingHiOffset = 276;  // READING_HI
   // T_REF_LO: tc_offset: the reading at which the polynomials are centred
   localparam int unsigned RegTRefLoOffset = 280;
-  // T_REF_HI
-  localparam int unsigned RegTRefHiOffset = 284;
+  localparam int unsigned RegTRefHiOffset = 284;  // T_REF_HI
   // BLIND_SUM_LO: blind_drift: the sum of the frame's blind pixel codes
   localparam int unsigned RegBlindSumLoOffset = 288;
-  // BLIND_SUM_HI
-  localparam int unsigned RegBlindSumHiOffset = 292;
+  localparam int unsigned RegBlindSumHiOffset = 292;  // BLIND_SUM_HI
   // BLIND_REF_LO: blind_drift: the blind pixel sum at calibration
   localparam int unsigned RegBlindRefLoOffset = 296;
-  // BLIND_REF_HI
-  localparam int unsigned RegBlindRefHiOffset = 300;
+  localparam int unsigned RegBlindRefHiOffset = 300;  // BLIND_REF_HI
   // DRIFT_GAIN_LO: blind_drift: drift (ADC codes) per code of blind sum change, two's complement
   localparam int unsigned RegDriftGainLoOffset = 304;
-  // DRIFT_GAIN_HI
-  localparam int unsigned RegDriftGainHiOffset = 308;
+  localparam int unsigned RegDriftGainHiOffset = 308;  // DRIFT_GAIN_HI
   // FFC_TARGET_LO: ffc: the output level the FFC flattens the shutter to
   localparam int unsigned RegFfcTargetLoOffset = 312;
-  // FFC_TARGET_HI
-  localparam int unsigned RegFfcTargetHiOffset = 316;
+  localparam int unsigned RegFfcTargetHiOffset = 316;  // FFC_TARGET_HI
   // TABLE_READING_0: table_interp: the reading of table k (strictly increasing); entries past the configured tables are reserved
   localparam int unsigned RegTableReadingOffset = 384;
-  // TABLE_READING_k spacing
-  localparam int unsigned RegTableReadingStride = 4;
-  // TABLE_READING_k entries
-  localparam int unsigned RegTableReadingCount = 16;
+  localparam int unsigned RegTableReadingStride = 4;  // TABLE_READING_k spacing
+  localparam int unsigned RegTableReadingCount = 16;  // TABLE_READING_k entries
+  // TABLE_SEL: table_interp: the table pair and weight interp_weight computed from the pending READING and TABLE_READING_k (the next frame's; point the coefficient DMA at the pair image of tables j and j + 1)
+  localparam int unsigned RegTableSelOffset = 448;
+  localparam int unsigned RegTableSelWeightLsb = 0;  // TABLE_SEL.weight
+  localparam int unsigned RegTableSelWeightBits = 24;  // TABLE_SEL.weight width
+  localparam int unsigned RegTableSelJLsb = 24;  // TABLE_SEL.j
+  localparam int unsigned RegTableSelJBits = 4;  // TABLE_SEL.j width
+  localparam int unsigned RegTableSelValidLsb = 28;  // TABLE_SEL.valid
+  localparam int unsigned RegTableSelErrorLsb = 29;  // TABLE_SEL.error
   // ---- legal parameter ranges (asserted by every module taking them)
   localparam int unsigned AdcBitsMin = 1;
   localparam int unsigned AdcBitsMax = 24;  // bits
@@ -649,6 +534,19 @@ package irnuc_pkg;
     AxiSlvErr = 2'b10,
     AxiDecErr = 2'b11
   } axi_resp_e;
+
+  // The register file's byte lanes of a write strobe, and the bits of a value of `bits` bits
+  // that lie in 32-bit word `word` (0: 31..0, 1: 63..32) of its register slot.
+  function automatic logic [31:0] axil_byte_mask(input logic [3:0] strb);
+    return {{8{strb[3]}}, {8{strb[2]}}, {8{strb[1]}}, {8{strb[0]}}};
+  endfunction
+
+  function automatic logic [31:0] axil_value_mask(input int unsigned bits,
+                                                  input int unsigned word);
+    int unsigned n;
+    n = (bits > 32 * word) ? bits - 32 * word : 0;
+    return (n >= 32) ? 32'hffff_ffff : (32'd1 << n) - 32'd1;
+  endfunction
 
   // ---- AXI4-Stream framing (irnuc_axis_framer) ----------------------------------------
   // The video input: where the framer stands with respect to the programmed frame.

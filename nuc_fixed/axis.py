@@ -33,6 +33,8 @@ words, not cycles (the RTL's cycles do not change what it computes).
 
 from __future__ import annotations
 
+import dataclasses
+import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -42,6 +44,8 @@ from irnuc.nuc_fixed import rtl_spec
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.layout import MemoryLayout, unpack_memory
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
+from irnuc.nuc_fixed.regmap import register_map
+from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_coeffs, interp_weight
 from irnuc.nuc_fixed.top import nuc_dpc_top
 
 #: The events counted by the register file (STATUS bits and *_ERRORS counters) and the
@@ -93,10 +97,13 @@ def neutral_gain(cfg: PipelineConfig) -> int:
 
 def stream_layouts(cfg: PipelineConfig) -> list[tuple[MemoryLayout, int]]:
     """The memories of the coefficient word and the bit each starts at: the base method's
-    calibration memories in order (``PipelineConfig.memories``). table_interp (a pair of
-    tables chosen per frame) is not a word of the wrapper: ValueError."""
+    calibration memories in order (``PipelineConfig.memories``); table_interp the pair of
+    tables the frame interpolates, ``lower`` (table j) at bit 0 and ``upper`` (table
+    j + 1) above it, each in a table's layout (:func:`table_pair_words`)."""
     if cfg.base_method == "table_interp":
-        raise ValueError("irnuc_axis_top does not wrap table_interp")
+        table = cfg.memories["table0"]
+        return [(dataclasses.replace(table, name="lower"), 0),
+                (dataclasses.replace(table, name="upper"), table.word_bits)]
     out, lsb = [], 0
     for m in cfg.memories.values():
         if m.source == "calibration":
@@ -129,8 +136,70 @@ def bad_mask(cfg: PipelineConfig) -> int:
 
 
 def neutral_frame(cfg: PipelineConfig) -> int:
-    """The frame word with NUC off: one_point's gain 1.0 (:func:`neutral_gain`), else 0."""
+    """The frame word with NUC off: one_point's gain 1.0 (:func:`neutral_gain`), else 0
+    (table_interp: weight 0, the lower table's word, neutral as well)."""
     return neutral_gain(cfg) if cfg.base_method == "one_point" else 0
+
+
+@dataclass(frozen=True)
+class TableSel:
+    """table_interp's selection from the pending READING and TABLE_READING_k (the register
+    TABLE_SEL once computed): the lower table ``j``, the ``weight`` of table j + 1 and
+    ``error`` (the table readings do not increase strictly: j and weight 0)."""
+
+    j: int
+    weight: int
+    error: bool = False
+
+    def register(self, valid: bool = True) -> int:
+        """What TABLE_SEL reads (every field 0 while not ``valid``: being computed, or no
+        READING / TABLE_READING_k written since reset)."""
+        if not valid:
+            return 0
+        reg = register_map()["TABLE_SEL"]
+        lsb = {f.name: f.lsb for f in reg.fields}
+        return ((self.weight << lsb["weight"]) | (self.j << lsb["j"]) | (1 << lsb["valid"])
+                | (int(self.error) << lsb["error"]))
+
+
+def table_sel(cfg: PipelineConfig, registers: dict[str, object]) -> TableSel:
+    """:class:`TableSel` of the register values ``reading`` and ``table_readings`` (the K
+    values of TABLE_READING_k): ``nuc_fixed.tempcomp.interp_weight``, or the error case."""
+    rs = [int(v) for v in registers["table_readings"]]  # type: ignore[union-attr]
+    if any(b <= a for a, b in itertools.pairwise(rs)):
+        return TableSel(0, 0, True)
+    iw = interp_weight(int(registers["reading"]), rs, cfg)  # type: ignore[call-overload]
+    return TableSel(iw.j, iw.w)
+
+
+def table_pair_words(coeffs: MethodCoefficients, j: int) -> np.ndarray:
+    """The coefficient words (H, W, Python ints) a DMA streams for a frame whose
+    TABLE_SEL.j is ``j``: table j's memory word at bit 0, table j + 1's above it, as in the
+    memory image (``NAME.bin`` of tables ``table{j}`` and ``table{j+1}``)."""
+    cfg = coeffs.cfg
+    if cfg.base_method != "table_interp" or not 0 <= j <= int(cfg.tables or 0) - 2:
+        raise ValueError(f"no table pair j = {j} in pipeline {cfg.name!r}")
+    words = coeffs.words()
+    bits = cfg.memories["table0"].word_bits
+    lo = np.asarray(words[f"table{j}"], np.uint64).astype(object)
+    hi = np.asarray(words[f"table{j + 1}"], np.uint64).astype(object)
+    return lo | (hi << bits)
+
+
+def table_pair_bin(coeffs: MethodCoefficients, j: int) -> bytes:
+    """:func:`table_pair_words` as the DMA's image: one word per pixel in raster order,
+    each in ceil(2 T / 8) bytes, little-endian (T < 64 the bits of a table's word); what
+    ``irnuc calibrate`` writes as ``table_pair{j}.bin``."""
+    table_pair_words(coeffs, j)  # checks j
+    bits = coeffs.cfg.memories["table0"].word_bits
+    words = coeffs.words()
+    lo = np.asarray(words[f"table{j}"], np.uint64).ravel()
+    hi = np.asarray(words[f"table{j + 1}"], np.uint64).ravel()
+    # The 2T-bit word as two little-endian uint64 limbs (vectorised: frames of 10^6 pixels).
+    limbs = np.empty((lo.size, 2), "<u8")
+    limbs[:, 0] = lo | (hi << np.uint64(bits))
+    limbs[:, 1] = hi >> np.uint64(64 - bits)
+    return limbs.view(np.uint8).reshape(-1, 16)[:, :(2 * bits + 7) // 8].tobytes()
 
 
 def _blind_layout(cfg: PipelineConfig) -> dict[str, tuple[int, int]]:
@@ -141,14 +210,17 @@ def _blind_layout(cfg: PipelineConfig) -> dict[str, tuple[int, int]]:
                                              DriftGainBits=cfg.registers["drift_gain"].width)
 
 
-def frame_word(cfg: PipelineConfig, registers: dict[str, int]) -> int:
+def frame_word(cfg: PipelineConfig, registers: dict[str, object]) -> int:
     """The frame word the framer takes at a frame start, from the method's register values
-    by name (``gain``, ``level``, ``reading``, ``t_ref``, ``blind_sum``, ``blind_ref``,
-    ``drift_gain``; a signed register as its two's complement bits): one_point the gain,
-    piecewise the level, tc_offset the spec's frame_tc_offset (reading, t_ref); else 0.
-    With blind_drift the spec's frame_blind_drift: that word, then the blind sum, the blind
-    reference and the drift gain."""
+    by name (``gain``, ``level``, ``reading``, ``t_ref``, ``table_readings``,
+    ``blind_sum``, ``blind_ref``, ``drift_gain``; a signed register as its two's complement
+    bits): one_point the gain, piecewise the level, tc_offset the spec's frame_tc_offset
+    (reading, t_ref), table_interp the weight (:func:`table_sel`); else 0. With blind_drift
+    the spec's frame_blind_drift: that word, then the blind sum, the blind reference and
+    the drift gain."""
     base = cfg.base_method
+    if base == "table_interp":
+        return table_sel(cfg, registers).weight
     word = 0
     if base == "one_point":
         word = int(registers["gain"])
@@ -179,6 +251,9 @@ def frame_method_inputs(f: CoreFrame, cfg: PipelineConfig
     base = cfg.base_method
     regs: dict[str, object] = {}
     reading = None
+    if base == "table_interp":
+        # Every table holds the interpolated values: any reading selects them.
+        return _interpolated(fields, f.frame_word, cfg), FrameInputs(reading=np.array([0]))
     if base in ("one_point", "piecewise"):
         regs["gain" if base == "one_point" else "level"] = f.frame_word
     elif base == "tc_offset":
@@ -200,6 +275,20 @@ def frame_method_inputs(f: CoreFrame, cfg: PipelineConfig
     inputs = FrameInputs(reading=None if reading is None else np.array([reading]),
                          blind_sums=sums)
     return MethodCoefficients(cfg=cfg, fields=fields, registers=regs), inputs
+
+
+def _interpolated(fields: dict[str, dict[str, np.ndarray]], weight: int,
+                  cfg: PipelineConfig) -> MethodCoefficients:
+    """table_interp: the frame's pair of tables and weight as a calibration read at reading
+    0 (every table the pair interpolated with the weight, ``interp_coeffs``; table readings
+    0, 1, ...: j = 0, weight 0), so method_top corrects the frame as the core does."""
+    lo, hi = fields["lower"], fields["upper"]
+    g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]),
+                         InterpWeight(0, int(weight)), cfg)
+    table = {"gain": g, "offset": o, "bad": lo["bad"]}
+    k = int(cfg.tables or 2)
+    return MethodCoefficients(cfg=cfg, fields={f"table{i}": dict(table) for i in range(k)},
+                              registers={"table_readings": tuple(range(k))})
 
 
 def core_output(f: CoreFrame, cfg: PipelineConfig) -> np.ndarray:
@@ -475,7 +564,8 @@ def ffc_framing(cfg: PipelineConfig, shutter: Sequence[bool],
 
 
 __all__ = ["COUNTS", "EVENTS", "AxisOutput", "CoreFrame", "FfcFraming", "FrameSettings",
-           "FramerResult", "axis_framer", "axis_top", "bad_mask", "coef_beats",
+           "FramerResult", "TableSel", "axis_framer", "axis_top", "bad_mask", "coef_beats",
            "coef_word_bits", "core_output", "ffc_framing", "ffc_shutter_flags",
            "frame_method_inputs", "frame_word", "neutral_frame", "neutral_gain",
-           "neutral_word", "stream_layouts", "video_beats"]
+           "neutral_word", "stream_layouts", "table_pair_bin", "table_pair_words",
+           "table_sel", "video_beats"]

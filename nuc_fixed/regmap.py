@@ -253,11 +253,11 @@ def coef_layout_version(cfg: PipelineConfig) -> int:
 
 
 def _coef_word_bits(cfg: PipelineConfig) -> int:
-    """Bits of one s_axis_coef word: the method's coefficient word (the memory word of
-    table_interp, which the wrapper does not build)."""
+    """Bits of one s_axis_coef word: the method's coefficient word (table_interp: the
+    pair of tables j and j + 1)."""
     from irnuc.nuc_fixed.axis import coef_word_bits
 
-    return cfg.word_bits if cfg.base_method == "table_interp" else coef_word_bits(cfg)
+    return coef_word_bits(cfg)
 
 
 def config_params(cfg: PipelineConfig, rmap: RegisterMap | None = None) -> dict[str, int]:

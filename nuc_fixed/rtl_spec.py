@@ -406,7 +406,10 @@ def sv_package_block() -> str:
              "  // Each module uses some of these: no warning for the others.",
              "  /* verilator lint_off UNUSEDPARAM */", "  // ---- constants"]
     for c in CONSTANTS:
-        lines += [f"  // {c.doc}", f"  localparam int unsigned {c.name} = {c.value};"]
+        decl = f"  localparam int unsigned {c.name} = {c.value};"
+        # The comment beside the declaration when both fit a line, else above it.
+        one = f"{decl}  // {c.doc}"
+        lines += [one] if len(one) <= 100 else [f"  // {c.doc}", decl]
     lines.append("  // ---- legal parameter ranges (asserted by every module taking them)")
     for r in RANGES:
         lines.append(f"  localparam int unsigned {r.name}Min = {r.lo};")

@@ -124,13 +124,17 @@ def test_neutral_words_of_the_methods_by_hand() -> None:
         "piecewise14": (one | one << 16, 1 << 48, 0),  # gain_lo, gain_hi, knee, bad[48]
         "quadratic14": (one, 1 << 32, 0),  # coeffs | quad[48:33] = 0
         "tcgain14": (one, 1 << 32, 0),  # coeffs | tc | tg = 0
+        # table j: gain[15:0] offset[31:16] bad[32] | table j + 1 the same from bit 33;
+        # the weight 0 (table j: its word is neutral too)
+        "table14": (one | one << 33, 1 << 32 | 1 << 65, 0),
     }
     for name, want in cases.items():
         cfg = load_pipeline(name)
         assert (neutral_word(cfg), bad_mask(cfg), neutral_frame(cfg)) == want, name
 
 
-@pytest.mark.parametrize("name", ["onepoint14", "piecewise14", "quadratic14", "tcgain14"])
+@pytest.mark.parametrize("name", ["onepoint14", "piecewise14", "quadratic14", "tcgain14",
+                                  "table14"])
 def test_method_words_read_back_as_the_calibration(name: str) -> None:
     """A frame of the method's words (irnuc.cosim.stream.frame_drive: the packing the RTL
     tests drive) and frame word is read back as the same calibration and reading, and the
@@ -149,6 +153,10 @@ def test_method_words_read_back_as_the_calibration(name: str) -> None:
     regs = {**c.registers, **({"reading": reading} if reading is not None else {})}
     settings = FrameSettings(5, 3, frame_word=frame_word(cfg, regs))
     assert settings.frame_word == drive.frame_word
+    if drive.interp is not None:  # table_interp: the DMA's pair image is the stream
+        from irnuc.nuc_fixed.axis import table_pair_words
+
+        assert table_pair_words(c, drive.interp.j).tolist() == drive.words.tolist()
     out = axis_top(*video_beats([raw]), *coef_beats([drive.words]), [settings], cfg)
     want = method_top(raw[None], c, FrameInputs(
         reading=None if reading is None else np.array([reading]))).y[0]
@@ -172,8 +180,8 @@ def test_the_configurations_the_wrapper_is_built_around() -> None:
     wrapped = {n for n in pipeline_names(method=None)
                if "irnuc_axis_top" in tops_for(load_pipeline(n))}
     assert wrapped == {"typical14", "wide16", "minimal", "onepoint14", "piecewise14",
-                       "quadratic14", "tcoffset14", "tcgain14", "ffc14", "quadffc14",
-                       "tcffc14", "drift14"}
+                       "quadratic14", "tcoffset14", "tcgain14", "table14", "ffc14",
+                       "quadffc14", "tcffc14", "drift14"}
     p = top_parameters("irnuc_axis_top", load_pipeline("drift14"))
     assert (p["Drift"], p["Method"], p["BlindMax"], p["DriftGainFracBits"]) == (1, 1, 8192, 24)
     assert "Ffc" not in p
@@ -182,6 +190,59 @@ def test_the_configurations_the_wrapper_is_built_around() -> None:
     p = top_parameters("irnuc_axis_top", load_pipeline("tcoffset14"))
     assert (p["Method"], p["ReadingBits"], p["TcOrder"]) == (4, 14, 2)
     assert "Method" not in top_parameters("irnuc_axis_top", load_pipeline("typical14"))
+    p = top_parameters("irnuc_axis_top", load_pipeline("table14"))
+    assert (p["Method"], p["Tables"], p["WeightFracBits"], p["WeightRounding"]) == (5, 3, 15, 1)
+    assert "Tables" not in top_parameters("irnuc_axis_core", load_pipeline("table14"))
+
+
+def test_table_sel_by_hand() -> None:
+    """table14's TABLE_SEL (j, the weight U1.15 of table j + 1, half_up) and frame word
+    for readings written out by hand, table readings 100, 200, 400; non-increasing table
+    readings give the error with j = weight = 0."""
+    from irnuc.nuc_fixed.axis import TableSel, frame_word, table_sel
+
+    cfg = load_pipeline("table14")
+    rs = (100, 200, 400)
+    cases = {  # reading: (j, w)
+        50: (0, 0), 100: (0, 0), 133: (0, 10813),  # 33/100 * 32768 = 10813.44
+        150: (0, 16384), 199: (0, 32440),  # 99/100 * 32768 = 32440.32
+        200: (1, 0), 300: (1, 16384), 399: (1, 32604),  # 199/200 * 32768 = 32604.16
+        400: (1, 32768), 500: (1, 32768), 250: (1, 8192),
+    }
+    for t, (j, w) in cases.items():
+        regs = {"reading": t, "table_readings": rs}
+        assert table_sel(cfg, regs) == TableSel(j, w), t
+        assert frame_word(cfg, regs) == w, t
+    # weight [23:0], j [27:24], valid [28], error [29]
+    assert TableSel(1, 16384).register() == 16384 | 1 << 24 | 1 << 28
+    assert TableSel(1, 16384).register(valid=False) == 0
+    for bad in ((100, 100, 400), (400, 200, 100), (100, 300, 200)):
+        regs = {"reading": 150, "table_readings": bad}
+        assert table_sel(cfg, regs) == TableSel(0, 0, True)
+        assert table_sel(cfg, regs).register() == 1 << 28 | 1 << 29
+        assert frame_word(cfg, regs) == 0
+
+
+def test_table_pair_image_by_hand() -> None:
+    """The DMA's pair image of table j (table_pair_words / table_pair_bin): a 1 x 2 frame
+    of table14 whose table words are written out by hand; 66-bit words in 9 bytes."""
+    from irnuc.nuc_fixed.axis import table_pair_bin, table_pair_words
+    from irnuc.nuc_fixed.method_top import MethodCoefficients
+
+    cfg = load_pipeline("table14")
+    fields = {f"table{k}": {"gain": np.array([[k + 1, 16384]]),
+                            "offset": np.array([[-k, 8 * k]]),
+                            "bad": np.array([[False, True]])} for k in range(3)}
+    c = MethodCoefficients(cfg, fields, {"table_readings": (1, 2, 3)})
+    # table k's word: gain | offset (16-bit two's complement) << 16 | bad << 32
+    word = {(k, 0): (k + 1) | ((-k) & 0xFFFF) << 16 for k in range(3)}
+    word |= {(k, 1): 16384 | (8 * k) << 16 | 1 << 32 for k in range(3)}
+    for j in (0, 1):
+        want = [[word[j, x] | word[j + 1, x] << 33 for x in (0, 1)]]
+        assert table_pair_words(c, j).tolist() == want
+        assert table_pair_bin(c, j) == b"".join(v.to_bytes(9, "little") for v in want[0])
+    with pytest.raises(ValueError, match="no table pair"):
+        table_pair_words(c, 2)
 
 
 # ---- the FFC framing (irnuc_axis_top around method_ffc_top) ---------------------------------

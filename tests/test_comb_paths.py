@@ -46,12 +46,14 @@ def test_no_combinational_input_to_output_path(top: str, config: str, tmp_path) 
     assert not found, f"{top} ({config}): combinational input -> output paths {found}"
 
 
-def test_axis_top_has_no_combinational_input_to_output_path(tmp_path) -> None:
+@pytest.mark.parametrize("config", ["minimal", "table14"])
+def test_axis_top_has_no_combinational_input_to_output_path(config: str, tmp_path) -> None:
     """The AXI wrapper (irnuc_axis_top, docs/integration.md): every AXI4-Stream tready,
     every AXI4-Lite ready/valid/response and irq_o comes from flip-flops (on minimal: the
-    wrapper's structure does not depend on the widths)."""
+    wrapper's structure does not depend on the widths; on table14 with irnuc_axis_table,
+    whose hold reaches the framer's start decision)."""
     top = "irnuc_axis_top"
-    paths = synth.comb_paths(cosim.hdl_sources(top), top, _params(top, "minimal"), tmp_path)
+    paths = synth.comb_paths(cosim.hdl_sources(top), top, _params(top, config), tmp_path)
     assert {"s_axis_video_tready", "s_axis_coef_tready", "m_axis_video_tvalid",
             "s_axil_awready", "s_axil_wready", "s_axil_bvalid", "s_axil_arready",
             "s_axil_rvalid", "irq_o"} <= set(paths), sorted(paths)

@@ -24,6 +24,8 @@ AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert", "irnuc_axil_regs_check",
                 "irnuc_assert_armed")
 AXI_CORE = ("irnuc_axis_core",)
+#: table_interp's selection in the wrapper, linted with the table_interp configuration.
+AXI_TABLE = ("irnuc_axis_table",)
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
 #: configuration of those stages and the mode variants.
 STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_drift",),
@@ -112,6 +114,7 @@ def _axi_method_configs() -> list[str]:
                          + [(m, c) for m in ("irnuc_axis_top", *AXI_CORE)
                             for c in _axi_method_configs()]
                          + [(m, "minimal") for m in AXI_CORE]
+                         + [(m, "table14") for m in AXI_TABLE]
                          + [(m, "minimal") for m in AXI_CHECKERS])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
@@ -159,7 +162,7 @@ def test_one_module_per_file() -> None:
         if units[0].startswith("package "):
             continue
         linted = (*MODULES, *METHOD_MODULES, *AXI_MODULES, *AXI_CHECKERS, *AXI_CORE,
-                  *STAGE_MODULES)
+                  *AXI_TABLE, *STAGE_MODULES)
         assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 

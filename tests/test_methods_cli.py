@@ -71,6 +71,18 @@ def test_plan_then_correct_every_method(tmp_path: Path, plan_file: Path, seq_fra
         assert (out / f).is_file()
     mc = read_method_image(out)
     assert mc.cfg.name == name
+    if mc.cfg.base_method == "table_interp":  # the DMA's pair images (irnuc_axis_top)
+        pairs = sorted(f for f in manifest["files"] if f.startswith("table_pair"))
+        assert pairs == [f"table_pair{j}.bin" for j in range(mc.cfg.tables - 1)]
+        for j, f in enumerate(pairs):
+            data = (out / f).read_bytes()
+            h, w = mc.shape
+            nb = -(-2 * mc.cfg.memories["table0"].word_bits // 8)
+            assert len(data) == h * w * nb
+            words = [int.from_bytes(data[k:k + nb], "little") for k in range(0, len(data), nb)]
+            lo, hi = (mc.words()[f"table{i}"].ravel().tolist() for i in (j, j + 1))
+            bits = mc.cfg.memories["table0"].word_bits
+            assert words == [a | b << bits for a, b in zip(lo, hi, strict=True)]
     corr = tmp_path / "corr"
     assert main(["correct", "--frames", str(seq_frames), "--coeffs", str(out), "--out",
                  str(corr)]) == 0

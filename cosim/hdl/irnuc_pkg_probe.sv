@@ -175,6 +175,13 @@ module irnuc_pkg_probe
   output logic [31:0] const_reg_table_reading_offset_o,
   output logic [31:0] const_reg_table_reading_stride_o,
   output logic [31:0] const_reg_table_reading_count_o,
+  output logic [31:0] const_reg_table_sel_offset_o,
+  output logic [31:0] const_reg_table_sel_weight_lsb_o,
+  output logic [31:0] const_reg_table_sel_weight_bits_o,
+  output logic [31:0] const_reg_table_sel_j_lsb_o,
+  output logic [31:0] const_reg_table_sel_j_bits_o,
+  output logic [31:0] const_reg_table_sel_valid_lsb_o,
+  output logic [31:0] const_reg_table_sel_error_lsb_o,
   output logic [31:0] min_adc_bits_o,
   output logic [31:0] max_adc_bits_o,
   output logic [31:0] min_gain_int_bits_o,
@@ -459,6 +466,13 @@ module irnuc_pkg_probe
   assign const_reg_table_reading_offset_o = 32'(RegTableReadingOffset);
   assign const_reg_table_reading_stride_o = 32'(RegTableReadingStride);
   assign const_reg_table_reading_count_o = 32'(RegTableReadingCount);
+  assign const_reg_table_sel_offset_o = 32'(RegTableSelOffset);
+  assign const_reg_table_sel_weight_lsb_o = 32'(RegTableSelWeightLsb);
+  assign const_reg_table_sel_weight_bits_o = 32'(RegTableSelWeightBits);
+  assign const_reg_table_sel_j_lsb_o = 32'(RegTableSelJLsb);
+  assign const_reg_table_sel_j_bits_o = 32'(RegTableSelJBits);
+  assign const_reg_table_sel_valid_lsb_o = 32'(RegTableSelValidLsb);
+  assign const_reg_table_sel_error_lsb_o = 32'(RegTableSelErrorLsb);
   assign min_adc_bits_o = 32'(AdcBitsMin);
   assign max_adc_bits_o = 32'(AdcBitsMax);
   assign min_gain_int_bits_o = 32'(GainIntBitsMin);

@@ -281,13 +281,29 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         write_bytes_atomic(tmp / "badpix.csv", ("\n".join(rows) + "\n").encode())
         write_bytes_atomic(tmp / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
         write_bytes_atomic(tmp / "summary.txt", text.encode())
+        # table_interp: the pair images a DMA streams into irnuc_axis_top (tables j and
+        # j + 1 in one word, TABLE_SEL.j picks one; docs/integration.md "table_interp").
+        pairs = _table_pair_images(tmp, c) if cfg.base_method == "table_interp" else ()
         manifest = write_method_image(tmp, c, extra_files=("coeffs.npz", "badpix.csv",
-                                                           "summary.json", "summary.txt"))
+                                                           "summary.json", "summary.txt",
+                                                           *pairs))
     say(text.rstrip("\n"))
     images = [n for n in manifest["files"] if n.endswith((".hex", ".bin"))]  # type: ignore[union-attr]
     say(f"wrote {out}/: coeffs.npz, badpix.csv, {', '.join(images)}, manifest.json, "
         "summary.json, summary.txt")
     return 0
+
+
+def _table_pair_images(directory: Path, coeffs: Any) -> tuple[str, ...]:
+    """Write ``table_pair{j}.bin`` for j = 0 .. K - 2 (nuc_fixed.axis.table_pair_bin)."""
+    from irnuc.common.io import write_bytes_atomic
+    from irnuc.nuc_fixed.axis import table_pair_bin
+
+    names = []
+    for j in range(int(coeffs.cfg.tables) - 1):
+        names.append(f"table_pair{j}.bin")
+        write_bytes_atomic(directory / names[-1], table_pair_bin(coeffs, j))
+    return tuple(names)
 
 
 # ---- correct ---------------------------------------------------------------------------

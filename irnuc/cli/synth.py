@@ -68,8 +68,7 @@ def run_synth(args: argparse.Namespace) -> int:
         for c, p in zip(cfgs, args.pipeline, strict=True):
             fits = tops_for(c)
             if args.top not in fits:
-                what = "+".join((c.method, *c.stages))
-                raise UserError(f"--top {args.top} --pipeline {p}: method {what!r} is built "
+                raise UserError(f"--top {args.top} --pipeline {p}: method {c.method!r} is built "
                                 f"by {', '.join(fits) or 'no top'}")
     if not 1.0 <= args.freq <= 1000.0:
         raise UserError(f"--freq {args.freq:g} is outside the allowed range 1..1000 MHz")

@@ -401,8 +401,8 @@ CATALOGUE: tuple[Mutant, ...] = (
        "      if (table_readings_i[i + 1] <= table_readings_i[i]) begin",
        "      if (1'b0) begin", "unordered table readings not flagged", **_IW),
     _m("iw_bit_position", "interp_weight.sv",
-       "quot_q  <= quot_q | (WBits'(fits) << (count_q - CountBits'(1)));",
-       "quot_q  <= quot_q | (WBits'(fits) << count_q);",
+       "quot_fit = quot_q | (WBits'(1'b1) << (count_q - CountBits'(1)));",
+       "quot_fit = quot_q | (WBits'(1'b1) << count_q);",
        "quotient bits one place too high", **_IW),
     # ---- method_dpc_top, the DPC and line buffer of the methods ------------------------
     _mm("top_frame_every_pixel", "method_dpc_top.sv",

@@ -10,6 +10,8 @@ from irnuc.verif.mutant import Mutant
 _AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
 #: The wrapper around method_dpc_top, with its method testbench.
 _AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+#: table_interp's selection (irnuc_axis_table, TABLE_SEL), with its testbench.
+_AXT = {"suite": "irnuc.cocotb_tests.tb_axis_table", "config": "table14"}
 #: The wrapper around method_ffc_top, with its FFC testbench.
 _AXF = {"suite": "irnuc.cocotb_tests.tb_axis_ffc", "config": "ffc14"}
 
@@ -77,7 +79,7 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "w_ready_q  <= !w_held_q;",
         "wready a cycle behind the write data register (write data taken while one is held)"),
     _ma("ax_size_write_never", "irnuc_axil_regs.sv",
-        "size_hit_q   <= w_hit[IxFrameSize] && |(byte_mask(w_strb_q) & SizeMask);",
+        "size_hit_q   <= w_hit[IxFrameSize] && |(axil_byte_mask(w_strb_q) & SizeMask);",
         "size_hit_q   <= 1'b0;",
         "a FRAME_SIZE write never raises size_dirty (its decoded hit lost): no drain before "
         "a new size"),
@@ -228,6 +230,33 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "owe_mode.acc_first || owe_mode.acc_add || owe_mode.refresh",
         "owe_mode.acc_first || owe_mode.acc_add",
         "the refresh frame owes no m_axis_foff words to the drain", **_AXF),
+    # ---- table_interp: the weight and table pair from READING and TABLE_READING_k ------------
+    _ma("ax_table_no_hold", "irnuc_axis_table.sv",
+        "assign hold_o   = write_i || stale_q || iw_busy;", "assign hold_o   = write_i;",
+        "a frame starts while its weight is being computed (the framer is held only in the "
+        "write's cycle)", **_AXT),
+    _ma("ax_table_restart_lost", "irnuc_axis_table.sv",
+        "stale_q <= write_i || (stale_q && !iw_start);", "stale_q <= write_i;",
+        "a write while the weight is computed does not restart it: the result is that of "
+        "the values interp_weight started with", **_AXT),
+    _ma("ax_table_error_weight", "irnuc_axis_table.sv",
+        "assign weight_o = iw_error ? '0 : iw_weight;", "assign weight_o = iw_weight;",
+        "non-increasing table readings: the frame takes interp_weight's meaningless weight, "
+        "not 0", **_AXT),
+    _ma("ax_framer_ignores_hold", "irnuc_axis_framer.sv",
+        "assign wait_ok_d = s_wait_d && !size_write_i && !hold_i",
+        "assign wait_ok_d = s_wait_d && !size_write_i",
+        "the framer starts a frame while irnuc_axis_table computes its weight", **_AXT),
+    _ma("ax_table_reading_from_t_ref", "irnuc_axis_top.sv",
+        ".reading_i       (slots[2][ReadingBits-1:0]),",
+        ".reading_i       (slots[3][ReadingBits-1:0]),",
+        "table_interp's weight computed from T_REF's slot (reserved: 0), not READING",
+        **_AXM, config="table14"),
+    _ma("ax_table_reading_no_restart", "irnuc_axil_regs.sv",
+        "table_hit_q  <= |w_hit[IxSlot + 4 +: 2] || |w_hit[IxTable +: NumTable];",
+        "table_hit_q  <= |w_hit[IxTable +: NumTable];",
+        "a READING write does not restart the weight (only a TABLE_READING_k write does)",
+        **_AXT),
 )
 
 __all__ = ["AXIS_MUTANTS"]

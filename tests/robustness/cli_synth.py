@@ -59,9 +59,20 @@ case("synth-pipeline-name-hidden", Y, "--pipeline {t}/named.toml",
      setup=_pipeline_named('".x"'))
 case("synth-top-unknown", Y, "--pipeline minimal --top nuc_dpc_topp",
      ("--top", "nuc_dpc_topp", "irnuc_axis_top"), "a top module irnuc synth does not build")
-case("synth-top-axis-other-method", Y, "--pipeline table14 --top irnuc_axis_top",
-     ("--top irnuc_axis_top", "table_interp", "method_dpc_top"),
-     "the AXI wrapper with a method it does not wrap")
+def _piecewise_ffc(w: Path, t: Path) -> None:
+    """A pipeline file of piecewise + ffc: a composition no stage top builds."""
+    from irnuc.nuc_fixed import load_pipeline
+
+    text = load_pipeline("piecewise14").to_toml().replace(
+        'method = "piecewise"', 'method = "piecewise+ffc"\nffc_frames = 8\n'
+        'ffc_output = "hold"\nformats.ffc = { int_bits = 12, frac_bits = 4, signed = true, '
+        'rounding = "half_up", overflow = "saturate" }')
+    (t / "pwffc.toml").write_text(text)
+
+
+case("synth-top-axis-other-method", Y, "--pipeline {t}/pwffc.toml --top irnuc_axis_top",
+     ("--top irnuc_axis_top", "piecewise+ffc", "no top"),
+     "the AXI wrapper with a composition no stage top builds", setup=_piecewise_ffc)
 case("synth-top-stage-on-methods-top", Y, "--pipeline drift14 --top method_dpc_top",
      ("--top method_dpc_top", "two_point+blind_drift", "method_drift_top"),
      "a configuration with a stage on the base methods' top, which has no stage")
