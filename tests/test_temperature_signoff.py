@@ -335,3 +335,17 @@ def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch)
     assert sy["prediction_error"]["xc7.lut"] == 50.0 and sy["prediction_error"]["xc7.ff"] == -50.0
     assert sy["prediction_error"]["fmax_mhz"] == -10.0
     assert sy["wrapper_overhead"]["xc7.lut"] == 1100.0 and sy["wrapper_overhead"]["fmax_mhz"] == -20.0
+
+
+def test_fmax_note_only_below_the_target() -> None:
+    """A recommendation synthesized below its target frequency gets a note naming the top,
+    the figure and the target; at or above it, or without a target, none."""
+    from irnuc.reports.report.phases.temperature import fmax_note
+
+    below = {"top": "irnuc_axis_top", "fmax_mhz": 148.04, "target_mhz": 150.0}
+    assert fmax_note(below) == (
+        "temperature: the recommendation's irnuc_axis_top reaches 148.0 MHz, below the 150 MHz "
+        "target, at this placer seed (irnuc synth --seed N tries others)")
+    assert fmax_note({**below, "fmax_mhz": 150.0}) is None
+    assert fmax_note({**below, "target_mhz": None}) is None
+    assert fmax_note({}) is None

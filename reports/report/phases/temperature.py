@@ -113,6 +113,17 @@ def datapath_cost(hw: Mapping[str, float], dsp_w: float) -> float:
     return round(dp(hw, dsp_w), 3)
 
 
+def fmax_note(sy: Mapping[str, Any]) -> str | None:
+    """The report's note when the recommendation's synthesis misses its target frequency
+    (one placement: a lead should see the miss, not only the number), else None."""
+    target = sy.get("target_mhz")
+    if not target or "fmax_mhz" not in sy or sy["fmax_mhz"] >= target:
+        return None
+    return (f"temperature: the recommendation's {sy['top']} reaches {sy['fmax_mhz']:.1f} MHz, "
+            f"below the {target:g} MHz target, at this placer seed (irnuc synth --seed N "
+            f"tries others)")
+
+
 def synth_top(cfg) -> tuple[str, str]:
     """The top the recommendation is synthesized with, and why."""
     from irnuc.cosim.synth import default_top, tops_for
@@ -302,6 +313,9 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 t1 = time.perf_counter()
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
+                note = fmax_note(r.get("synth") or {})
+                if note:
+                    rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
                 r["cosim"] = _cosim(t, r, spec.fpa_K)
