@@ -52,7 +52,7 @@ def _blind_sum(bench: Bench, c: MethodCoefficients) -> int:
     return min(max(ref + step, 0), top)
 
 
-async def _set_reading(bench: Bench, reading: int | None,
+async def _set_frame_registers(bench: Bench, reading: int | None,
                        c: MethodCoefficients | None = None) -> None:
     """The per-frame registers: READING (tc_offset), and with blind_drift a new BLIND_SUM
     (of ``c``'s calibration) for the next frame."""
@@ -102,7 +102,7 @@ async def method_frames_between(dut) -> None:
     results = []
     for k in range(4):
         reading = _reading(bench, c)
-        await _set_reading(bench, reading, c)
+        await _set_frame_registers(bench, reading, c)
         raw = random_raw(bench.cfg, H, W, bench.rng)
         words = frame_drive(c, reading).words
         res = await bench.run(video_beats([raw]), coef_beats([words]), [bench.settings()],
@@ -131,7 +131,7 @@ async def method_reading_mid_frame(dut) -> None:
     c = await _calibration(bench)
     names = [n for n, r in cfg.registers.items() if r.count == 1]
     readings = [_reading(bench, c) for _ in range(3)]
-    await _set_reading(bench, readings[0], c)
+    await _set_frame_registers(bench, readings[0], c)
     s0 = bench.settings()
     raws = [random_raw(cfg, H, W, bench.rng) for _ in range(3)]
     new = [{n: int(bench.rng.integers(0, 1 << cfg.registers[n].width)) for n in names}
@@ -172,7 +172,7 @@ async def method_tiny_frames(dut) -> None:
     cfg = bench.cfg
     c = await _calibration(bench, 1, 1)
     reading = _reading(bench, c)
-    await _set_reading(bench, reading, c)
+    await _set_frame_registers(bench, reading, c)
     results = []
     for idle, bp in (("none", "none"), ("random", "bursty")):
         raws = [random_raw(cfg, 1, 1, bench.rng) for _ in range(6)]

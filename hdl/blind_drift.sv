@@ -30,7 +30,7 @@ module blind_drift #(
   parameter int unsigned DriftGainIntBits  = 1,
   parameter int unsigned DriftGainFracBits = 24,
   // Derived, do not override.
-  localparam int unsigned SumBits          = AdcBits + $clog2(BlindMax + 1),
+  localparam int unsigned SumBits          = irnuc_pkg::blind_sum_bits(AdcBits, BlindMax),
   localparam int unsigned DriftBits        = DriftIntBits + DriftFracBits,
   localparam int unsigned GainBits         = DriftGainIntBits + DriftGainFracBits
 ) (

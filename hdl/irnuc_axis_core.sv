@@ -79,7 +79,7 @@ module irnuc_axis_core
   localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
                                                           ReadingBits,
                                                           WeightIntBits + WeightFracBits),
-  localparam int unsigned BlindBits     = AdcBits + $clog2(BlindMax + 1),
+  localparam int unsigned BlindBits     = blind_sum_bits(AdcBits, BlindMax),
   localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
   localparam int unsigned FrameBits     = (Drift != 0)
                                           ? frame_blind_drift_bits(BaseFrameBits, BlindBits,

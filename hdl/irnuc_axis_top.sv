@@ -113,7 +113,7 @@ module irnuc_axis_top
                                                           WeightIntBits + WeightFracBits),
   // blind_drift: the blind sum and its registers (BLIND_SUM, BLIND_REF, DRIFT_GAIN) ride
   // on the frame word above the base method's (irnuc_pkg::frame_blind_drift).
-  localparam int unsigned BlindBits     = AdcBits + $clog2(BlindMax + 1),
+  localparam int unsigned BlindBits     = blind_sum_bits(AdcBits, BlindMax),
   localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
   localparam int unsigned FrameBits     = (Drift != 0)
                                           ? frame_blind_drift_bits(BaseFrameBits, BlindBits,

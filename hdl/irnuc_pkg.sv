@@ -571,4 +571,12 @@ package irnuc_pkg;
     return $clog2(max_width + 256 + 1);
   endfunction
 
+  // ---- blind_drift ------------------------------------------------------------------------
+  // Width of a frame's blind pixel sum: A + bit_length(blind_max) (Python:
+  // PipelineConfig.blind_sum_bits), in blind_drift, method_drift_top and irnuc_axis_top.
+  function automatic int unsigned blind_sum_bits(input int unsigned adc_bits,
+                                                 input int unsigned blind_max);
+    return adc_bits + $clog2(blind_max + 1);
+  endfunction
+
 endpackage

@@ -46,7 +46,7 @@ module method_drift_top
   localparam int unsigned CoefBits         = coef_stream_bits(MethodSel, GainBits, OffsetBits,
                                                               1, 1, 1, 0),
   localparam int unsigned FrameBits        = frame_word_bits(MethodSel, GainBits, 1, 1, 1),
-  localparam int unsigned BlindBits        = AdcBits + $clog2(BlindMax + 1),
+  localparam int unsigned BlindBits        = blind_sum_bits(AdcBits, BlindMax),
   localparam int unsigned DriftBits        = DriftIntBits + DriftFracBits,
   localparam int unsigned DriftGainBits    = DriftGainIntBits + DriftGainFracBits,
   localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),

@@ -172,29 +172,30 @@ def table_sel(cfg: PipelineConfig, registers: dict[str, object]) -> TableSel:
     return TableSel(iw.j, iw.w)
 
 
-def table_pair_words(coeffs: MethodCoefficients, j: int) -> np.ndarray:
-    """The coefficient words (H, W, Python ints) a DMA streams for a frame whose
-    TABLE_SEL.j is ``j``: table j's memory word at bit 0, table j + 1's above it, as in the
-    memory image (``NAME.bin`` of tables ``table{j}`` and ``table{j+1}``)."""
+def _table_pair(coeffs: MethodCoefficients, j: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """Tables j and j + 1's memory words (uint64, (H, W)) and the bits of one."""
     cfg = coeffs.cfg
     if cfg.base_method != "table_interp" or not 0 <= j <= int(cfg.tables or 0) - 2:
         raise ValueError(f"no table pair j = {j} in pipeline {cfg.name!r}")
     words = coeffs.words()
-    bits = cfg.memories["table0"].word_bits
-    lo = np.asarray(words[f"table{j}"], np.uint64).astype(object)
-    hi = np.asarray(words[f"table{j + 1}"], np.uint64).astype(object)
-    return lo | (hi << bits)
+    return (np.asarray(words[f"table{j}"], np.uint64),
+            np.asarray(words[f"table{j + 1}"], np.uint64), cfg.memories["table0"].word_bits)
+
+
+def table_pair_words(coeffs: MethodCoefficients, j: int) -> np.ndarray:
+    """The coefficient words (H, W, Python ints) a DMA streams for a frame whose
+    TABLE_SEL.j is ``j``: table j's memory word at bit 0, table j + 1's above it, as in the
+    memory image (``NAME.bin`` of tables ``table{j}`` and ``table{j+1}``)."""
+    lo, hi, bits = _table_pair(coeffs, j)
+    return lo.astype(object) | (hi.astype(object) << bits)
 
 
 def table_pair_bin(coeffs: MethodCoefficients, j: int) -> bytes:
     """:func:`table_pair_words` as the DMA's image: one word per pixel in raster order,
     each in ceil(2 T / 8) bytes, little-endian (T < 64 the bits of a table's word); what
     ``irnuc calibrate`` writes as ``table_pair{j}.bin``."""
-    table_pair_words(coeffs, j)  # checks j
-    bits = coeffs.cfg.memories["table0"].word_bits
-    words = coeffs.words()
-    lo = np.asarray(words[f"table{j}"], np.uint64).ravel()
-    hi = np.asarray(words[f"table{j + 1}"], np.uint64).ravel()
+    lo, hi, bits = _table_pair(coeffs, j)
+    lo, hi = lo.ravel(), hi.ravel()
     # The 2T-bit word as two little-endian uint64 limbs (vectorised: frames of 10^6 pixels).
     limbs = np.empty((lo.size, 2), "<u8")
     limbs[:, 0] = lo | (hi << np.uint64(bits))
