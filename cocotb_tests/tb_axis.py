@@ -34,7 +34,7 @@ from cocotbext.axi import (  # noqa: E402
 
 from irnuc.cocotb_tests import tb_lib  # noqa: E402
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern, reset  # noqa: E402
-from irnuc.cosim import coverage  # noqa: E402
+from irnuc.cosim import coverage, driver  # noqa: E402
 from irnuc.cosim.axis_coverage import drift_delta_class  # noqa: E402
 from irnuc.cosim.methods import MethodScoreboard, golden_frames  # noqa: E402
 from irnuc.cosim.scoreboard import TopScoreboard  # noqa: E402
@@ -147,12 +147,25 @@ class Bench:
         assert got == want, f"{name} reads 0x{got:08x}, the model says 0x{want:08x}"
 
     def _array(self, name: str) -> list[str]:
-        """The registers of a method register array (table_readings: TABLE_READING_k),
+        """The registers of a method register array (table_readings: TABLE_READING[k]),
         entry k at k, the configured entries only."""
         regs = sorted((r for r in self.model.map.registers
                        if r.config_register == name and r.index is not None),
                       key=lambda r: r.index)
         return [r.name for r in regs[:self.cfg.registers[name].count]]
+
+    def registers(self):
+        """The register model peakrdl-python generates from the map (irnuc.cosim.driver),
+        on this bench's AXI4-Lite master: each access is :meth:`read` / :meth:`write`
+        (its response checked against the golden model, which follows the writes)."""
+        return driver.registers(self.read, self.write)
+
+    def slot(self, name: str) -> tuple[str, str]:
+        """The LO and HI registers of a method register's 64-bit slot (``reading`` ->
+        ``READING.LO``, ``READING.HI``), from the map."""
+        words = {r.word: r.name for r in self.model.map.registers
+                 if r.config_register == name and r.word is not None}
+        return words["lo"], words["hi"]
 
     def method_registers(self) -> dict[str, object]:
         """The pending values of the method's registers (GAIN, LEVEL, READING, T_REF, ...) by
@@ -160,8 +173,8 @@ class Bench:
         out: dict[str, object] = {}
         for name, r in self.cfg.registers.items():
             if r.count == 1:
-                lo = self.model.get(f"{name.upper()}_LO")
-                out[name] = lo | (self.model.get(f"{name.upper()}_HI") << 32)
+                lo, hi = self.slot(name)
+                out[name] = self.model.get(lo) | (self.model.get(hi) << 32)
             else:
                 out[name] = tuple(self.model.get(n) for n in self._array(name))
         return out
@@ -173,9 +186,10 @@ class Bench:
             for reg, v in zip(self._array(name), value, strict=True):  # type: ignore[call-overload]
                 await self.write(reg, int(v))
             return
-        await self.write(f"{name.upper()}_LO", int(value) & 0xFFFF_FFFF)  # type: ignore[call-overload]
+        lo, hi = self.slot(name)
+        await self.write(lo, int(value) & 0xFFFF_FFFF)  # type: ignore[call-overload]
         if self.cfg.registers[name].width > 32:
-            await self.write(f"{name.upper()}_HI", int(value) >> 32)  # type: ignore[call-overload]
+            await self.write(hi, int(value) >> 32)  # type: ignore[call-overload]
 
     def settings(self) -> FrameSettings:
         """What a frame starting now takes (the pending CTRL, FRAME_SIZE and method
@@ -605,7 +619,7 @@ async def marker_errors(dut) -> None:
         assert int(dut.irq_o.value) == 1, f"{name}: irq_o is 0 with IRQ_ENABLE.error"
         _sample("axis.irq", "error")
         await bench.clear_status()
-        for reg in regmap.COUNTERS:
+        for reg in bench.model.map.counters:
             bench.model.set_live(reg, bench.model.map[reg].fields[0].name, 0)
         await ClockCycles(dut.clk_i, 2)
         assert int(dut.irq_o.value) == 0, f"{name}: irq_o stays 1 after W1C"

@@ -13,6 +13,10 @@ words themselves (the offsets and accumulators the host feeds, the written-back 
 expected) and the output pixels from ``cosim.stages.ffc_run`` (one run of
 ``nuc_fixed.method_top`` with those readings), bit for bit, frame by frame (tlast on each
 frame's last word). ``FFC_STATUS`` and ``IRQ_STATUS.ffc_done`` against the register model.
+``ffc_refresh_idle_backpressure`` makes every register access of the sequence through the
+firmware's driver (:mod:`irnuc.cosim.driver`, the Python twin of ``firmware/irnuc_driver.c``)
+over the register model peakrdl-python generates from the map: bring-up, calibration,
+interrupt enables, FFC start, the wait for its end, the status.
 The FFC coverpoints (``cosim.axis_coverage``) are sampled from each sequence that passed.
 Small frames.
 """
@@ -32,7 +36,7 @@ from irnuc.cocotb_tests.method_stim import random_reading
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern
 from irnuc.cocotb_tests.tb_axis import TOP, Bench, _bench, _sample
 from irnuc.cocotb_tests.tb_ffc import _calibration, _raws
-from irnuc.cosim import coverage
+from irnuc.cosim import coverage, driver
 from irnuc.cosim.axis_coverage import ffc_axis_classes
 from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
 from irnuc.nuc_fixed import MethodCoefficients
@@ -139,7 +143,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                            label: str, ffc_idle: str | None = None,
                            ffc_bp: str | None = None, resize_after_run: bool = False,
                            size: tuple[int, int] = (H, W),
-                           resize_in_run: tuple[int, int] | None = None) -> None:
+                           resize_in_run: tuple[int, int] | None = None,
+                           firmware: bool = False) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
@@ -152,14 +157,25 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     FRAME_SIZE written to this other size in the middle of the run's last frame that writes
     back (its last shutter frame, or with N shutter frames its refresh frame); the open
     frames after it have that size, and the run's write-back frames must still end (tlast)
-    at the old size: the drain before the new size waits for their words."""
+    at the old size: the drain before the new size waits for their words. ``firmware``:
+    the register accesses are the firmware driver's (irnuc.cosim.driver: probe,
+    configure, load_calibration, set_reading, enable_irq, ffc_start, ffc_wait,
+    read_status), through the generated register model."""
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
     bench = await _bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
-    await bench.frame_size(fh, fw)
+    regs = bench.registers() if firmware else None
+    info = None
+    if regs is not None:
+        rc, info = await driver.probe(regs)
+        assert rc == driver.OK and info is not None, f"driver.probe: {rc}"
+        rc = await driver.configure(regs, info, cfg.base_method, fw, fh)
+        assert rc == driver.OK, f"driver.configure: {rc}"
+    else:
+        await bench.frame_size(fh, fw)
     for reg in ("FFC_CTRL", "FFC_STATUS"):
         await bench.check(reg)
     n = int(cfg.ffc_frames or 1)
@@ -168,8 +184,12 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     shutter = ffc_shutter_flags(start_frame + count + 3, {start_frame: count})
     framing = ffc_framing(cfg, shutter, start=start_frame)
     c = _calibration(cfg, fh, fw, rng, "camera")
-    for name, value in c.registers.items():  # tc_offset: T_REF
-        await bench.write_method_register(name, int(value))
+    if regs is not None:
+        await driver.load_calibration(regs, driver.Calibration(**{
+            name: int(value) for name, value in c.registers.items()}))
+    else:
+        for name, value in c.registers.items():  # tc_offset: T_REF
+            await bench.write_method_register(name, int(value))
     readings = [random_reading(cfg, c, rng) for _ in shutter]
     # The first frame after the run (after its refresh frame with N shutter frames).
     after = start_frame + count + int(count == n)
@@ -198,11 +218,21 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
 
     cbits = cfg.memories["ffc_offset"].word_bits
     done_bit = bench.model.map["IRQ_STATUS"].field("ffc_done")
-    await bench.write("IRQ_ENABLE", 1 << bench.model.map["IRQ_ENABLE"].field("ffc_done").lsb)
+    if regs is not None:
+        await driver.enable_irq(regs, error=1, ffc_done=1)
+    else:
+        await bench.write("IRQ_ENABLE", 1 << bench.model.map["IRQ_ENABLE"].field("ffc_done").lsb)
     bench.patterns(idle, idle, bp)
     s.patterns(ffc_idle, ffc_bp)
+
+    async def set_reading(value: int) -> None:
+        if regs is not None:
+            await driver.set_reading(regs, value)
+        else:
+            await bench.write_method_register("reading", value)
+
     if readings[0] is not None:
-        await bench.write_method_register("reading", readings[0])
+        await set_reading(readings[0])
     bench.send(*video, *coef)
     for k, f in enumerate(run.foff_in):
         assert framing.foff_in[k]
@@ -216,8 +246,11 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     seen: dict[str, int] = {}
 
     async def write_ffc() -> None:
-        await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
-                          | (count << ctrl.field("frames").lsb))
+        if regs is not None and info is not None:
+            assert await driver.ffc_start(regs, info, count) == driver.OK
+        else:
+            await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
+                              | (count << ctrl.field("frames").lsb))
         seen["write_beat"] = bench.beats_in
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
@@ -229,7 +262,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         """READING of frame k + 1, written while frame k streams (it must land before
         frame k + 1 starts: the core takes it at that frame start)."""
         async def write() -> None:
-            await bench.write_method_register("reading", int(readings[k + 1]))
+            await set_reading(int(readings[k + 1]))
             assert bench.beats_in < starts[k + 1], (
                 f"READING of frame {k + 1} written after that frame started "
                 f"({bench.beats_in} beats taken)")
@@ -307,20 +340,36 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     assert framing.done is not None, "the sequence does not finish the FFC"
     m.set_live("FFC_STATUS", "busy", 0)
     m.set_live("FFC_STATUS", "done", 1)
-    await bench.check("FFC_STATUS")
+    m.set_live("IRQ_STATUS", "ffc_done", 1)
+    m.set_live("IRQ_STATUS", "frame_done", 1)
     _sample("axis.ffc.status", "done")
-    irq = await bench.read("IRQ_STATUS")
-    assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
     assert int(dut.irq_o.value) == 1, "irq_o is 0 with IRQ_STATUS.ffc_done and its enable"
     _sample("axis.ffc.irq", "ffc_done")
-    assert await bench.read("FRAMES_IN") == len(raws)
-    assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
-    # a start clears done
-    await bench.write("IRQ_STATUS", done_bit.mask)
-    irq = await bench.read("IRQ_STATUS")
-    assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
-    assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
-    _sample("axis.ffc.irq", "cleared")
+    if regs is not None:
+        # The firmware's end of the run: FFC_STATUS.done polled, IRQ_STATUS.ffc_done
+        # cleared, the status read (its sticky bits cleared).
+        assert await driver.ffc_wait(regs, 4) == driver.OK
+        await bench.check("IRQ_STATUS")
+        await ClockCycles(dut.clk_i, 2)
+        assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+        st = await driver.read_status(regs)
+        assert (st.frames_in, st.frames_out) == (len(raws), len(shown)), st
+        assert st.irq_status == 1 << bench.model.map["IRQ_STATUS"].field("frame_done").lsb
+        assert not st.status & 0x3F and not (st.sof_errors | st.eol_errors | st.coef_errors)
+        await bench.check("IRQ_STATUS")
+        _sample("axis.ffc.irq", "cleared")
+    else:
+        await bench.check("FFC_STATUS")
+        irq = await bench.read("IRQ_STATUS")
+        assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
+        assert await bench.read("FRAMES_IN") == len(raws)
+        assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
+        # a start clears done
+        await bench.write("IRQ_STATUS", done_bit.mask)
+        irq = await bench.read("IRQ_STATUS")
+        assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
+        assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+        _sample("axis.ffc.irq", "cleared")
     if coverage.enabled():
         pattern_in = idle if idle == ffc_idle else "mixed"
         pattern_out = bp if bp == ffc_bp else "mixed"
@@ -343,8 +392,11 @@ async def ffc_refresh_full_rate(dut) -> None:
 
 @cocotb.test()
 async def ffc_refresh_idle_backpressure(dut) -> None:
-    """The refresh with idle cycles on every input and backpressure on every output."""
-    await refresh_sequence(dut, 41, None, "random", "random", "ffc refresh idle/bp")
+    """The refresh with idle cycles on every input and backpressure on every output, every
+    register access the firmware driver's (irnuc.cosim.driver over the generated register
+    model)."""
+    await refresh_sequence(dut, 41, None, "random", "random", "ffc refresh idle/bp",
+                           firmware=True)
 
 
 @cocotb.test()

@@ -83,8 +83,8 @@ async def method_registers(dut) -> None:
             continue
         value = int(bench.rng.integers(0, 1 << r.width))
         await bench.write_method_register(name, value)
-        await bench.check(f"{name.upper()}_LO")
-        await bench.check(f"{name.upper()}_HI")
+        for reg in bench.slot(name):
+            await bench.check(reg)
         assert bench.method_registers()[name] == value
     await bench.check("STATUS")
     _export()

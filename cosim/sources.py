@@ -64,7 +64,11 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
 }
 # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
 _AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
-_REGS = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
+# The register block generated from nuc_fixed/registers.rdl (its package first) and the
+# hand-written register file around it (cosim/regfiles.py, docs/registers.md).
+_REGBLOCK = ("irnuc_axil_regblock_pkg.sv", "irnuc_axil_regblock.sv")
+_REGS = (*_REGBLOCK, "irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
+MODULE_FILES["irnuc_axil_regblock"] = _REGBLOCK
 MODULE_FILES["irnuc_axil_regs"] = (*_PKG, *_ARMED, *_REGS)
 MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
 MODULE_FILES["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
@@ -117,6 +121,8 @@ MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
     "irnuc_axis_top.sv")))
 MODULE_FILES["irnuc_assert_armed"] = _ARMED
+# The smoke testbench of the FuseSoC core's sim target (cosim/hdl/, not the design).
+MODULE_FILES["irnuc_axis_top_tb"] = (*MODULE_FILES["irnuc_axis_top"], "irnuc_axis_top_tb.sv")
 # A file needed twice (the arming flop through two checkers) is compiled once.
 MODULE_FILES = {k: tuple(dict.fromkeys(v)) for k, v in MODULE_FILES.items()}
 
@@ -228,6 +234,8 @@ _BLOCK_PARAMETERS = {
     "irnuc_axil_assert": lambda p: {},
     "irnuc_assert_armed": lambda p: {},
     "irnuc_axil_regs_check": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
+    "irnuc_axil_regblock": lambda p: {},  # generated: no parameter
+    "irnuc_axis_top_tb": lambda p: {},  # irnuc_axis_top at its defaults
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
                               "Rounding": p["Rounding"]},
     "irnuc_clip": lambda p: {"InBits": p["OutBits"] + 4, "OutBits": p["OutBits"],

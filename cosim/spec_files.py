@@ -1,6 +1,9 @@
-"""The files generated from the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`):
-the block between the markers of ``hdl/irnuc_pkg.sv``, the whole package probe
-``cosim/hdl/irnuc_pkg_probe.sv`` and, in a checkout, the register map's documentation
+"""The files generated from the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`) and
+the register map (``nuc_fixed/registers.rdl``): the block between the markers of
+``hdl/irnuc_pkg.sv``, the whole package probe ``cosim/hdl/irnuc_pkg_probe.sv``, the register
+block and its package, the generated block of ``hdl/irnuc_axil_regs.sv``, the IP-XACT
+description (:mod:`irnuc.cosim.regfiles`) and, in a checkout, the C header
+``firmware/irnuc_regs.h``, the FuseSoC core and the register map's documentation
 ``docs/registers.md`` (:func:`irnuc.nuc_fixed.regmap.markdown`).
 
 ``python -m irnuc.cosim.spec_files --write`` rewrites them; ``--check`` (the default)
@@ -13,6 +16,7 @@ import sys
 from pathlib import Path
 
 from irnuc.common.io import write_text_atomic
+from irnuc.cosim import core_file, regfiles
 from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR
 from irnuc.nuc_fixed import regmap, rtl_spec
 
@@ -25,7 +29,8 @@ REGISTERS_DOC = HDL_DIR.parent / "docs" / "registers.md"
 def expected() -> dict[Path, str]:
     """Each generated file and the text it must have."""
     out = {PACKAGE: rtl_spec.replace_block(PACKAGE.read_text(), rtl_spec.sv_package_block()),
-           PROBE: rtl_spec.sv_probe()}
+           PROBE: rtl_spec.sv_probe(), **regfiles.expected(),
+           core_file.CORE: core_file.core_text()}
     if REGISTERS_DOC.parent.is_dir():
         out[REGISTERS_DOC] = regmap.markdown()
     return out

@@ -143,7 +143,7 @@ def neutral_frame(cfg: PipelineConfig) -> int:
 
 @dataclass(frozen=True)
 class TableSel:
-    """table_interp's selection from the pending READING and TABLE_READING_k (the register
+    """table_interp's selection from the pending READING and TABLE_READING[k] (the register
     TABLE_SEL once computed): the lower table ``j``, the ``weight`` of table j + 1 and
     ``error`` (the table readings do not increase strictly: j and weight 0)."""
 
@@ -153,7 +153,7 @@ class TableSel:
 
     def register(self, valid: bool = True) -> int:
         """What TABLE_SEL reads (every field 0 while not ``valid``: being computed, or no
-        READING / TABLE_READING_k written since reset)."""
+        READING / TABLE_READING[k] written since reset)."""
         if not valid:
             return 0
         reg = register_map()["TABLE_SEL"]
@@ -164,7 +164,7 @@ class TableSel:
 
 def table_sel(cfg: PipelineConfig, registers: dict[str, object]) -> TableSel:
     """:class:`TableSel` of the register values ``reading`` and ``table_readings`` (the K
-    values of TABLE_READING_k): ``nuc_fixed.tempcomp.interp_weight``, or the error case."""
+    values of TABLE_READING[k]): ``nuc_fixed.tempcomp.interp_weight``, or the error case."""
     rs = [int(v) for v in registers["table_readings"]]  # type: ignore[union-attr]
     if any(b <= a for a, b in itertools.pairwise(rs)):
         return TableSel(0, 0, True)

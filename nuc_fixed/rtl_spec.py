@@ -17,8 +17,9 @@ mode encodings and word layouts, each written here once.
 To add a constant, a range, an enum or a word layout (a per-method coefficient word): add it
 to :data:`CONSTANTS`, :data:`RANGES`, :data:`ENUMS` or :data:`LAYOUTS`, regenerate, and use
 the generated name in the RTL (docs/architecture.md, "Shared constants"). The AXI4-Lite
-register map is written in ``nuc_fixed/registers.toml``; its offsets, field positions and
-resets become :data:`REGISTER_CONSTANTS` (part of :data:`CONSTANTS`).
+register map is written in SystemRDL, ``nuc_fixed/registers.rdl`` (docs/regmap.md); its
+offsets, field positions and resets become :data:`REGISTER_CONSTANTS` (part of
+:data:`CONSTANTS`).
 """
 
 from __future__ import annotations
@@ -151,7 +152,7 @@ DPC_SUM_LEAVES = 9
 #: (irnuc_dsp_mul; ECP5's MULT18X18D is instantiated with both).
 MUL_STAGES = 2
 
-#: The AXI4-Lite register map of irnuc_axis_top (nuc_fixed/registers.toml, read by
+#: The AXI4-Lite register map of irnuc_axis_top (nuc_fixed/registers.rdl, read by
 #: :mod:`irnuc.nuc_fixed.regmap`): its identity, every offset, field position and width and
 #: numeric reset value, as package constants (``RegCtrlOffset``, ``RegCtrlNucEnLsb``, ...).
 REGISTER_CONSTANTS: tuple[Constant, ...] = tuple(

@@ -24,6 +24,9 @@ AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert", "irnuc_axil_regs_check",
                 "irnuc_assert_armed")
 AXI_CORE = ("irnuc_axis_core",)
+#: The register block generated from the map (no parameter: once) and the FuseSoC core's
+#: smoke testbench (irnuc_axis_top at its defaults: once).
+AXI_ONCE = ("irnuc_axil_regblock", "irnuc_axis_top_tb")
 #: table_interp's selection in the wrapper, linted with the table_interp configuration.
 AXI_TABLE = ("irnuc_axis_table",)
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
@@ -115,7 +118,7 @@ def _axi_method_configs() -> list[str]:
                             for c in _axi_method_configs()]
                          + [(m, "minimal") for m in AXI_CORE]
                          + [(m, "table14") for m in AXI_TABLE]
-                         + [(m, "minimal") for m in AXI_CHECKERS])
+                         + [(m, "minimal") for m in (*AXI_CHECKERS, *AXI_ONCE)])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
     report = proc.stdout + proc.stderr
@@ -162,7 +165,7 @@ def test_one_module_per_file() -> None:
         if units[0].startswith("package "):
             continue
         linted = (*MODULES, *METHOD_MODULES, *AXI_MODULES, *AXI_CHECKERS, *AXI_CORE,
-                  *AXI_TABLE, *STAGE_MODULES)
+                  *AXI_TABLE, *AXI_ONCE, *STAGE_MODULES)
         assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 
