@@ -189,9 +189,10 @@ module irnuc_axil_regs
                        || hwif_out.CTRL.coef_sync.swmod;
 
   // ---- FRAME_SIZE (external, shadowed) ------------------------------------------------------
-  // A write is answered two cycles after the block's request: the request is registered
-  // (cycle 1), the size it would make and whether it is legal are computed from flops and
-  // registered (cycle 2), then wr_ack with wr_err and the register written.
+  // A write is answered three cycles after the block's request, each step from flops: the
+  // request is registered (cycle 1), the size it would make (the written byte lanes over
+  // the register) registered (cycle 2), its width's and its height's legality registered
+  // (cycle 3), then wr_ack with wr_err and the register written.
   localparam int unsigned FieldW = RegFrameSizeWidthBits;
   localparam int unsigned FieldH = RegFrameSizeHeightBits;
 
@@ -201,17 +202,29 @@ module irnuc_axil_regs
   logic                  size_req_q;        // cycle 1: the write request and its bus
   logic [FieldW-1:0]     size_wd_q, size_bw_q;
   logic [FieldH-1:0]     size_hd_q, size_bh_q;
-  logic [FieldW-1:0]     new_w;  // the fields as written, compared at their own width
-  logic [FieldH-1:0]     new_h;
-  logic                  size_wr_q, size_legal_q, size_touch_q;  // cycle 2
-  logic [WidthBits-1:0]  new_w_q;
-  logic [HeightBits-1:0] new_h_q;
+  logic                  size_new_q;        // cycle 2: the size it would make
+  logic [FieldW-1:0]     new_w_q;  // the fields as written, compared at their own width
+  logic [FieldH-1:0]     new_h_q;
+  logic                  size_wr_q, w_legal_q, h_legal_q, size_touch_q;  // cycle 3
+  logic [WidthBits-1:0]  set_w_q;
+  logic [HeightBits-1:0] set_h_q;
+  logic                  size_legal;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_size_request
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_size_steps
     if (!rst_ni) begin
-      size_req_q <= 1'b0;
+      size_req_q   <= 1'b0;
+      size_new_q   <= 1'b0;
+      size_wr_q    <= 1'b0;
+      w_legal_q    <= 1'b0;
+      h_legal_q    <= 1'b0;
+      size_touch_q <= 1'b0;
     end else begin
-      size_req_q <= hwif_out.FRAME_SIZE.req && hwif_out.FRAME_SIZE.req_is_wr;
+      size_req_q   <= hwif_out.FRAME_SIZE.req && hwif_out.FRAME_SIZE.req_is_wr;
+      size_new_q   <= size_req_q;
+      size_wr_q    <= size_new_q;
+      w_legal_q    <= (new_w_q != '0) && (new_w_q <= FieldW'(MaxWidth));
+      h_legal_q    <= (new_h_q != '0) && (new_h_q <= FieldH'(MaxHeight));
+      size_touch_q <= size_new_q && |{size_bw_q, size_bh_q};
     end
   end
 
@@ -222,31 +235,20 @@ module irnuc_axil_regs
       size_hd_q <= hwif_out.FRAME_SIZE.wr_data.height;
       size_bh_q <= hwif_out.FRAME_SIZE.wr_biten.height;
     end
-  end
-
-  assign new_w = (FieldW'(width_q) & ~size_bw_q) | (size_wd_q & size_bw_q);
-  assign new_h = (FieldH'(height_q) & ~size_bh_q) | (size_hd_q & size_bh_q);
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_size_check
-    if (!rst_ni) begin
-      size_wr_q    <= 1'b0;
-      size_legal_q <= 1'b0;
-      size_touch_q <= 1'b0;
-      new_w_q      <= '0;
-      new_h_q      <= '0;
-    end else begin
-      size_wr_q    <= size_req_q;
-      size_legal_q <= (new_w != '0) && (new_w <= FieldW'(MaxWidth))
-                      && (new_h != '0) && (new_h <= FieldH'(MaxHeight));
-      size_touch_q <= |{size_bw_q, size_bh_q};
-      new_w_q      <= WidthBits'(new_w);
-      new_h_q      <= HeightBits'(new_h);
+    if (size_req_q) begin
+      new_w_q <= (FieldW'(width_q) & ~size_bw_q) | (size_wd_q & size_bw_q);
+      new_h_q <= (FieldH'(height_q) & ~size_bh_q) | (size_hd_q & size_bh_q);
+    end
+    if (size_new_q) begin
+      set_w_q <= WidthBits'(new_w_q);
+      set_h_q <= HeightBits'(new_h_q);
     end
   end
 
+  assign size_legal = w_legal_q && h_legal_q;
   // From flops in one LUT (the framer's start decision reads it).
-  assign size_write_o = size_wr_q && size_legal_q && size_touch_q;
-  assign wr_err       = size_wr_q && !size_legal_q;
+  assign size_write_o = size_wr_q && size_legal && size_touch_q;
+  assign wr_err       = size_wr_q && !size_legal;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_size
     if (!rst_ni) begin
@@ -256,13 +258,13 @@ module irnuc_axil_regs
       height_q     <= HeightBits'(MaxHeight);
       height_m1_q  <= HeightBits'(MaxHeight - 1);
       height_is1_q <= (MaxHeight == 1);
-    end else if (size_wr_q && size_legal_q) begin
-      width_q      <= new_w_q;
-      width_m1_q   <= new_w_q - WidthBits'(1);  // from the flop: no strobe merge before
-      width_is1_q  <= (new_w_q == WidthBits'(1));
-      height_q     <= new_h_q;
-      height_m1_q  <= new_h_q - HeightBits'(1);
-      height_is1_q <= (new_h_q == HeightBits'(1));
+    end else if (size_wr_q && size_legal) begin
+      width_q      <= set_w_q;
+      width_m1_q   <= set_w_q - WidthBits'(1);  // from the flop: no strobe merge before
+      width_is1_q  <= (set_w_q == WidthBits'(1));
+      height_q     <= set_h_q;
+      height_m1_q  <= set_h_q - HeightBits'(1);
+      height_is1_q <= (set_h_q == HeightBits'(1));
     end
   end
 
@@ -637,7 +639,7 @@ module irnuc_axil_regs
     .ext_ack_i (hwif_in.FRAME_SIZE.rd_ack || hwif_in.FRAME_SIZE.wr_ack
                 || hwif_in.FFC_CTRL.rd_ack || hwif_in.FFC_CTRL.wr_ack
                 || |slot_rd_ack || |slot_wr_ack || |table_ack),
-    .size_req_i(size_req_q),
+    .size_req_i(size_new_q),
     .size_ack_i(hwif_in.FRAME_SIZE.wr_ack)
   );
 `endif

@@ -19,7 +19,7 @@ module irnuc_axil_regs_check
   input logic                   rst_ni,
   input logic [NumExternal-1:0] ext_req_i,   // every external register's request
   input logic                   ext_ack_i,   // any external register's rd_ack or wr_ack
-  input logic                   size_req_i,  // FRAME_SIZE's request is a write
+  input logic                   size_req_i,  // FRAME_SIZE's write request, two cycles late
   input logic                   size_ack_i   // FRAME_SIZE's wr_ack
 );
 
@@ -43,7 +43,7 @@ module irnuc_axil_regs_check
 `ifdef IRNUC_ASSERT
   // The register block hands one external request at a time, for one cycle, and waits for
   // its acknowledge before the next (external_pending): the hand-written registers answer
-  // a read in its request's cycle and FRAME_SIZE's write two cycles after it.
+  // a read in its request's cycle and FRAME_SIZE's write three cycles after it.
   logic armed_q, size_req_q, ext_open_q;
   irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_track
@@ -62,7 +62,7 @@ module irnuc_axil_regs_check
       a_request_waits: assert (!(|ext_req_i) || !ext_open_q)
         else $error("irnuc_axil_regs: an external request before the last one's acknowledge");
       a_size_ack: assert (size_ack_i == size_req_q)
-        else $error("irnuc_axil_regs: FRAME_SIZE's write not acknowledged two cycles after it");
+        else $error("irnuc_axil_regs: FRAME_SIZE's write not acknowledged three cycles after it");
     end
   end
 `else

@@ -278,3 +278,30 @@ def test_cache_holds_the_extracted_map(tmp_path, monkeypatch) -> None:
         assert json.loads(entries[0].read_text())["map_id"] == fresh.map_id
     finally:
         regmap.register_map.cache_clear()
+
+
+def test_regmap_command_writes_one_build(tmp_path, capsys) -> None:
+    """``irnuc regmap --pipeline tcffc14``: the build's reset values in the header and the
+    IP-XACT (CONFIG.method 4, FFC_CTRL.frames N), its reserved registers marked in the
+    tables; an unknown pipeline is one line naming the flag, exit 2, nothing written."""
+    from irnuc.cli import main
+
+    cfg = load_pipeline("tcffc14")
+    out = tmp_path / "regmap"
+    assert main(["regmap", "--pipeline", "tcffc14", "--out", str(out)]) == 0
+    header = (out / "irnuc_regs.h").read_text()
+    assert re.search(r"IRNUC_REGS__CONFIG__METHOD_reset 0x4\b", header)
+    assert re.search(rf"IRNUC_REGS__FFC_CTRL__FRAMES_reset {cfg.ffc_frames:#x}\b", header)
+    xml = ET.parse(out / "irnuc_regs.xml")
+    ffc_ctrl = [r for r in xml.iter(f"{{{NS['ipxact']}}}register")
+                if r.findtext("ipxact:name", namespaces=NS) == "FFC_CTRL"][0]
+    resets = [_num(v.text) for v in ffc_ctrl.iter(f"{{{NS['ipxact']}}}value")]
+    assert cfg.ffc_frames in resets
+    md = (out / "registers.md").read_text()
+    assert "built for pipeline `tcffc14`" in md
+    assert re.search(r"`GAIN\.LO, \.HI` \| one_point \(reserved\)", md)
+    assert not re.search(r"`T_REF\.LO, \.HI` \| tc_offset \(reserved\)", md)
+    assert main(["regmap", "--pipeline", "nope", "--out", str(tmp_path / "bad")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--pipeline nope" in err[0]
+    assert not (tmp_path / "bad").exists()
