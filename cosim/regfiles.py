@@ -50,7 +50,7 @@ IPXACT = HDL_DIR / "irnuc_regs.xml"
 FIRMWARE_DIR = HDL_DIR.parent / "firmware"
 C_HEADER = FIRMWARE_DIR / "irnuc_regs.h"
 
-#: peakrdl-regblock's options (docs/registers.md, "The register block").
+#: peakrdl-regblock's options (docs/regmap.md, "The register block").
 REGBLOCK_OPTIONS: dict[str, Any] = {
     "module_name": REGBLOCK_MODULE,
     "package_name": f"{REGBLOCK_MODULE}_pkg",
@@ -78,7 +78,7 @@ def _regblock_cpuif() -> type:
     by an external register while it is 1 is answered SLVERR, FRAME_SIZE's value check).
     regblock's own AXI4-Lite slave reaches the address decode through its request
     multiplexer and its readies through logic; on ECP5 that read path closed at 108 MHz
-    (docs/registers.md, "The register block")."""
+    (docs/regmap.md, "The register block")."""
     from peakrdl_regblock.cpuif.axi4lite import AXI4Lite_Cpuif_flattened
 
     class IrnucAxi4Lite(AXI4Lite_Cpuif_flattened):
@@ -109,7 +109,7 @@ def _sv_head(what: str) -> list[str]:
             f"{_tool_version('peakrdl-regblock')}",
             "// (python -m irnuc.cosim.spec_files --write); do not edit. What it implements "
             "and why",
-            "// the rest is hand-written in irnuc_axil_regs: docs/registers.md.",
+            "// the rest is hand-written in irnuc_axil_regs: docs/regmap.md.",
             "/* verilator lint_off " + " */\n/* verilator lint_off ".join(_LINT_OFF) + " */"]
 
 
@@ -120,7 +120,7 @@ _RD_MUX_HELD = """\
     // irnuc: its CPU interface holds cpuif_addr from a request until the next one, which
     // waits for the response: the address held for an external read (pending_rd_addr) is
     // cpuif_addr, and the multiplexer between them (its select is the request and the
-    // stall logic) is not built (on ECP5 the read path's longest; docs/registers.md).
+    // stall logic) is not built (on ECP5 the read path's longest; docs/regmap.md).
     assign rd_mux_addr = decoded_addr;
 `ifndef SYNTHESIS
     always_ff @(posedge clk) begin

@@ -65,7 +65,7 @@ MODULE_FILES: dict[str, tuple[str, ...]] = {
 # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
 _AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
 # The register block generated from nuc_fixed/registers.rdl (its package first) and the
-# hand-written register file around it (cosim/regfiles.py, docs/registers.md).
+# hand-written register file around it (cosim/regfiles.py, docs/regmap.md).
 _REGBLOCK = ("irnuc_axil_regblock_pkg.sv", "irnuc_axil_regblock.sv")
 _REGS = (*_REGBLOCK, "irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
 MODULE_FILES["irnuc_axil_regblock"] = _REGBLOCK

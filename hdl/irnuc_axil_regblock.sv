@@ -1,6 +1,6 @@
 // the register block of irnuc_axil_regs: generated from nuc_fixed/registers.rdl by peakrdl-regblock 1.3.1
 // (python -m irnuc.cosim.spec_files --write); do not edit. What it implements and why
-// the rest is hand-written in irnuc_axil_regs: docs/registers.md.
+// the rest is hand-written in irnuc_axil_regs: docs/regmap.md.
 /* verilator lint_off MULTIDRIVEN */
 /* verilator lint_off UNUSEDSIGNAL */
 /* verilator lint_off UNUSEDPARAM */
@@ -1648,7 +1648,7 @@ module irnuc_axil_regblock (
     // irnuc: its CPU interface holds cpuif_addr from a request until the next one, which
     // waits for the response: the address held for an external read (pending_rd_addr) is
     // cpuif_addr, and the multiplexer between them (its select is the request and the
-    // stall logic) is not built (on ECP5 the read path's longest; docs/registers.md).
+    // stall logic) is not built (on ECP5 the read path's longest; docs/regmap.md).
     assign rd_mux_addr = decoded_addr;
 `ifndef SYNTHESIS
     always_ff @(posedge clk) begin

@@ -1,6 +1,6 @@
 // the register block's hardware interface types: generated from nuc_fixed/registers.rdl by peakrdl-regblock 1.3.1
 // (python -m irnuc.cosim.spec_files --write); do not edit. What it implements and why
-// the rest is hand-written in irnuc_axil_regs: docs/registers.md.
+// the rest is hand-written in irnuc_axil_regs: docs/regmap.md.
 /* verilator lint_off MULTIDRIVEN */
 /* verilator lint_off UNUSEDSIGNAL */
 /* verilator lint_off UNUSEDPARAM */
