@@ -185,6 +185,26 @@ module irnuc_axil_regblock (
     assign cpuif_wr_data    = axil_req_data;
     assign cpuif_wr_biten   = axil_req_biten;
 
+    `ifdef IRNUC_ASSERT
+    // Each ready is the complement of its holding flag (a flop of its own, never a cycle
+    // behind it): a valid taken while the register holds one would overwrite it.
+    logic axil_armed;
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) axil_armed <= '0;
+        else axil_armed <= '1;
+    end
+    always_ff @(posedge clk) begin
+        if(axil_armed) begin
+            assert_aw_ready: assert(axil_aw_ready == !axil_aw_held)
+                else $error("irnuc_axil_regblock: awready is not 'no write address held'");
+            assert_w_ready: assert(axil_w_ready == !axil_w_held)
+                else $error("irnuc_axil_regblock: wready is not 'no write data held'");
+            assert_ar_ready: assert(axil_ar_ready == !axil_ar_held)
+                else $error("irnuc_axil_regblock: arready is not 'no read address held'");
+        end
+    end
+    `endif
+
     assign s_axil_awready = axil_aw_ready;
     assign s_axil_wready  = axil_w_ready;
     assign s_axil_arready = axil_ar_ready;
