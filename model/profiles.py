@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from irnuc.common.errors import UserError
 from irnuc.common.schema import nearest
 from irnuc.model.validate import ConfigError, check_scalar
 
@@ -187,10 +188,14 @@ def _table_profile(file: Any, path: str, base_dir: Path | None) -> Profile:
     where = f"{path}.file = {file!r}"
     if not p.is_file():
         raise ConfigError(f"{where}: no such file ({p})")
-    try:
-        text = p.read_text()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{where}: cannot be read ({exc})") from None
+    from irnuc.common.io import OutputError, read_bytes_capped
+
+    try:  # capped, and refused inside the output folder being replaced
+        text = read_bytes_capped(p, f"{path}.file").decode()
+    except OutputError:
+        raise
+    except (UserError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{where}: {str(exc).removeprefix(f'{path}.file {p}: ')}") from None
     times: list[float] = []
     values: list[float] = []
     for number, raw in enumerate(text.splitlines(), start=1):

@@ -26,8 +26,8 @@ def test_frames_npz_contents(tmp_path, capsys):
         assert z["param_R_ref"].shape == (10 + 6, 12 + 6)
     # The result and the marker that lets a later run replace this folder as a whole.
     assert sorted(p.name for p in folder.iterdir()) == [".irnuc-output", "frames.npz"]
-    # Nothing but the result and its lock beside it: no temporary left behind.
-    assert sorted(p.name for p in folder.parent.iterdir()) == [".f.lock", "f"]
+    # Nothing but the result beside it: no temporary folder, no lock file left behind.
+    assert sorted(p.name for p in folder.parent.iterdir()) == ["f"]
     assert "wrote" in capsys.readouterr().out
     assert main(["frames", "-q", *SMALL, "--out", str(folder)]) == 0
     assert capsys.readouterr().out == ""

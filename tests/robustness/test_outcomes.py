@@ -59,8 +59,7 @@ def test_outcome_synth_cache_carries_the_asked_name(tmp_path: Path, monkeypatch:
     assert got["config_digest"] == load_pipeline(str(alias)).digest()
     assert got["source_digest"] == first["source_digest"]  # the same design, from the cache
     assert _files(work) == {"syn", "syn/.irnuc-output", "syn/synth.json", "syn/alias",
-                            "syn/alias/synth.json", "syn/minimal", "syn/minimal/synth.json",
-                            ".syn.lock"}
+                            "syn/alias/synth.json", "syn/minimal", "syn/minimal/synth.json"}
 
 
 _MAIN = "import sys; from irnuc.cli import main; sys.exit(main(sys.argv[1:]))"
