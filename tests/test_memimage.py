@@ -22,6 +22,7 @@ from irnuc.nuc_fixed import (
     unpack_words,
     write_memimage,
 )
+from irnuc.nuc_fixed.memimage import seal_manifest
 
 NAMES = pipeline_names()
 
@@ -111,12 +112,12 @@ def test_hex_corruption_detected(tmp_path: Path) -> None:
     # A hex file that matches its (re-made) hash but not the binary is caught word by word.
     manifest = json.loads((tmp_path / "manifest.json").read_text())
     manifest["files"]["coeffs.hex"] = hashlib.sha256(path.read_bytes()).hexdigest()
-    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    (tmp_path / "manifest.json").write_text(json.dumps(seal_manifest(manifest)))
     with pytest.raises(MemImageError, match=r"\(row, col\) \(1, 1\)"):
         read_memimage(tmp_path, source="hex")
     path.write_text("\n".join(lines[:-1]) + "\n")
     manifest["files"]["coeffs.hex"] = hashlib.sha256(path.read_bytes()).hexdigest()
-    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    (tmp_path / "manifest.json").write_text(json.dumps(seal_manifest(manifest)))
     with pytest.raises(MemImageError, match="15 lines, expected 16"):
         read_memimage(tmp_path, source="hex")
 
@@ -136,7 +137,7 @@ def test_manifest_mismatch_detected(tmp_path: Path) -> None:
         read_memimage(tmp_path, "wide16")
     m = json.loads((tmp_path / "manifest.json").read_text())
     m["version"] = 2
-    (tmp_path / "manifest.json").write_text(json.dumps(m))
+    (tmp_path / "manifest.json").write_text(json.dumps(seal_manifest(m)))
     with pytest.raises(MemImageError, match="version = 2"):
         read_memimage(tmp_path)
 

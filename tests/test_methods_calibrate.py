@@ -349,5 +349,5 @@ def test_method_image_corruption_is_named(tmp_path: Path) -> None:
     with pytest.raises(MemImageError, match="do not match their recorded SHA-256"):
         read_method_image(tmp_path)
     write_method_image(tmp_path, cal.coeffs)
-    with pytest.raises(MemImageError, match=re.escape("whose formats differ from pipeline 'tcgain14'")):
+    with pytest.raises(MemImageError, match=re.escape("whose fields differ from pipeline 'tcgain14'")):
         read_method_image(tmp_path, "tcgain14")

@@ -198,7 +198,8 @@ def _run_calibrate(args: argparse.Namespace) -> int:
         write_bytes_atomic(tmp / "summary.txt", text.encode())
         # Last: the manifest names and hashes every file above.
         write_memimage(tmp, words, cfg, extra_files=("coeffs.npz", "badpix.csv",
-                                                     "summary.json", "summary.txt"))
+                                                     "summary.json", "summary.txt"),
+                       fpa_sensor=data["fpa_sensor"])
     say(text.rstrip("\n"))
     say(f"wrote {out}/: coeffs.npz, badpix.csv, coeffs.hex, coeffs.bin, manifest.json, "
         "summary.json, summary.txt")
@@ -252,6 +253,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         points = run_plan(plan, scfg, seed=args.seed)
         source = {"plan": str(args.plan), "sensor": args.sensor, "seed": args.seed,
                   "set": sensor_set}
+        fpa_sensor = plan.fpa_sensor
     else:
         data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
                            work_per_pixel=CALIBRATE_BYTES["per_pixel"])
@@ -259,6 +261,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         _check_fields(data, cfg, f"--frames {args.frames}")
         points = points_from_frames(data, f"--frames {args.frames}")
         source = {"frames_file": str(args.frames)}
+        fpa_sensor = data["fpa_sensor"]
     try:
         cal = calibrate_points(points, cfg, thresholds=th, rounding=args.coeff_rounding,
                                max_saturated=args.max_saturated)
@@ -286,7 +289,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         pairs = _table_pair_images(tmp, c) if cfg.base_method == "table_interp" else ()
         manifest = write_method_image(tmp, c, extra_files=("coeffs.npz", "badpix.csv",
                                                            "summary.json", "summary.txt",
-                                                           *pairs))
+                                                           *pairs), fpa_sensor=fpa_sensor)
     say(text.rstrip("\n"))
     images = [n for n in manifest["files"] if n.endswith((".hex", ".bin"))]  # type: ignore[union-attr]
     say(f"wrote {out}/: coeffs.npz, badpix.csv, {', '.join(images)}, manifest.json, "
@@ -361,7 +364,7 @@ def _run_correct(args: argparse.Namespace) -> int:
     from irnuc.cli._args import flagged
     from irnuc.cli._files import load_frames
     from irnuc.common.io import claim_output_folder, output_folder, write_bytes_atomic
-    from irnuc.nuc_fixed.memimage import read_method_image
+    from irnuc.nuc_fixed.memimage import check_sensor, read_calibration
     from irnuc.nuc_fixed.method_top import FrameInputs, method_top, needs
 
     out = claim_output_folder(args.out, kind="correct", inputs={
@@ -375,7 +378,7 @@ def _run_correct(args: argparse.Namespace) -> int:
         raise UserError(f"--coeffs {args.coeffs}: no manifest.json (run irnuc calibrate)")
     want = load_pipeline_arg(args.pipeline) if args.pipeline else None
     try:
-        mc = read_method_image(coeffs, want, source=args.source)
+        mc, manifest = read_calibration(coeffs, want, source=args.source)
     except UserError as exc:
         raise flagged("--coeffs", args.coeffs, exc) from None
     cfg = mc.cfg
@@ -394,6 +397,8 @@ def _run_correct(args: argparse.Namespace) -> int:
                         f" (H x W) but the coefficients in {args.coeffs} are "
                         f"{mc.shape[0]} x {mc.shape[1]}")
     _check_fields(data, cfg, f"--frames {args.frames}")
+    check_sensor(manifest.get("fpa_sensor"), data["fpa_sensor"], cfg, f"--frames {args.frames}",
+                 f"--coeffs {args.coeffs}")
     fields = {name: np.asarray(data[_FRAME_FIELD_KEYS[name]]) for name in needs(cfg)}
     inputs = FrameInputs(reading=fields.get("fpa_reading"), blind_codes=fields.get("blind_codes"),
                          shutter=fields.get("shutter"))

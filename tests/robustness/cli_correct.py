@@ -35,14 +35,13 @@ def _set_manifest(folder: Path, m: Any) -> None:
 
 
 def _rehash(folder: Path) -> None:
-    from irnuc.nuc_fixed.memimage import _HASHED_FIELDS, _format_sha256
+    from irnuc.nuc_fixed.memimage import seal_manifest
 
     m = _manifest(folder)
     m["files"] = {n: hashlib.sha256((folder / n).read_bytes()).hexdigest()
                   for n in m["files"] if (folder / n).is_file()}
     m["sha256"] = m["files"].get("coeffs.bin", m.get("sha256"))
-    m["format_sha256"] = _format_sha256({k: m.get(k) for k in _HASHED_FIELDS})
-    _set_manifest(folder, m)
+    _set_manifest(folder, seal_manifest(m))
 
 
 def _edit_manifest(**fields: Any) -> Callable[[Path], None]:
@@ -58,6 +57,17 @@ def _edit_manifest(**fields: Any) -> Callable[[Path], None]:
 
 
 _DELETE = object()
+
+
+def _sealed(mutate: Callable[[Path], None]) -> Callable[[Path], None]:
+    """``mutate``, then the manifest's own hashes recomputed (not the files'), so that a
+    forged manifest reaches the checks behind its integrity hash."""
+    def sealed(folder: Path) -> None:
+        from irnuc.nuc_fixed.memimage import seal_manifest
+
+        mutate(folder)
+        _set_manifest(folder, seal_manifest(_manifest(folder)))
+    return sealed
 
 
 def _edit_file(name: str, change: Callable[[bytes], bytes]) -> Callable[[Path], None]:
@@ -124,7 +134,7 @@ case("correct-manifest-rounding-unknown-rehashed", R, CF, ("--coeffs", "rounding
      setup=_coeffs_copy(_edit_manifest(rounding="stochastic"), rehash=True))
 case("correct-manifest-word-bits", R, CF, ("--coeffs", "manifest.json", "word_bits = 64"),
      "word_bits that the formats contradict",
-     setup=_coeffs_copy(_edit_manifest(word_bits=64)))
+     setup=_coeffs_copy(_sealed(_edit_manifest(word_bits=64))))
 case("correct-manifest-size-swapped", R, CF, ("--coeffs", "format fields", "height", "width", "edited"),
      "width and height swapped in manifest.json (applied 8 x 6 coefficients to 6 x 8 frames, exit 0)",
      setup=_coeffs_copy(lambda d: _edit_manifest(width=_manifest(d)["height"],
@@ -132,9 +142,10 @@ case("correct-manifest-size-swapped", R, CF, ("--coeffs", "format fields", "heig
 case("correct-manifest-size-rehashed", R, CF, ("--coeffs", "coeffs.bin", "bytes"),
      "height changed, hashes recomputed", setup=_coeffs_copy(_edit_manifest(height=7), rehash=True))
 case("correct-manifest-config-missing", R, CF, ("--coeffs", "manifest.json", "['config']"), "no config name",
-     setup=_coeffs_copy(_edit_manifest(config=_DELETE)))
+     setup=_coeffs_copy(_sealed(_edit_manifest(config=_DELETE))))
 case("correct-manifest-file-path", R, CF, ("--coeffs", "plain name"), "a file name with a path",
-     setup=_coeffs_copy(lambda d: _edit_manifest(files={**_manifest(d)["files"], "../x": "0"})(d)))
+     setup=_coeffs_copy(_sealed(lambda d: _edit_manifest(files={**_manifest(d)["files"],
+                                                                "../x": "0"})(d))))
 case("correct-bin-missing", R, CF, ("--coeffs", "coeffs.bin", "missing"), "coeffs.bin deleted",
      setup=_coeffs_copy(lambda d: (d / "coeffs.bin").unlink()))
 case("correct-bin-changed", R, CF, ("--coeffs", "coeffs.bin", "SHA-256"), "one byte of coeffs.bin changed",
@@ -157,7 +168,8 @@ case("correct-hex-negative-rehashed", R, CF, ("--coeffs", "coeffs.hex", "line 1"
      setup=_coeffs_copy(_edit_file("coeffs.hex", lambda b: b"-" + b[1:]), rehash=True))
 case("correct-hex-binary-rehashed", R, CF, ("--coeffs", "coeffs.hex", "not ASCII"),
      "binary garbage as the hex file, hashes recomputed",
-     setup=_coeffs_copy(_edit_file("coeffs.hex", lambda b: bytes(range(128, 256)) + b), rehash=True))
+     setup=_coeffs_copy(_edit_file("coeffs.hex", lambda b: bytes(range(128, 256)) + b[128:]),
+                        rehash=True))
 case("correct-npz-changed", R, CF, ("--coeffs", "coeffs.npz", "SHA-256"), "coeffs.npz of another run",
      setup=_coeffs_copy(_edit_file("coeffs.npz", lambda b: b + b"\0")))
 case("correct-summary-changed", R, CF, ("--coeffs", "summary.json", "SHA-256"), "summary.json edited",
