@@ -103,7 +103,10 @@ class FpaSensor:
             if key not in known:
                 raise ConfigError(f"{path}.{key} is not a known field (known here: "
                                   f"{', '.join(known)})")
-        return cls(**{k: table[k] for k in known if k in table})
+        try:
+            return cls(**{k: table[k] for k in known if k in table})
+        except ConfigError as exc:  # named by where the table is (sequence.fpa_sensor.bits)
+            raise ConfigError(str(exc).replace("fpa_sensor.", f"{path}.", 1)) from None
 
 
 #: Nominal frame rate of a plain run (no sequence), Hz: its frames are stamped n / rate.

@@ -305,12 +305,19 @@ def measured_netd(fit: MeasuredNoise, good: np.ndarray,
     one given (closed form). Uncertainty: one standard error, from the chi-square spread of
     the residual variance (2 sigma^4 / dof per pixel) and the responsivity's fit error."""
     s2 = fit.sigma2_codes[good]
+    if s2.size == 0:
+        raise ConfigError("noise: no defect-free pixel to measure the NETD on")
     m = float(s2.mean())
     # Var of the mean of P variance estimates, each 2 sigma^4 / dof.
     rel_noise = math.sqrt(2.0 * float((s2**2).mean()) / fit.dof / s2.size) / (2.0 * m) if m else 0.0
     if fit.responsivity is not None and responsivity_codes_per_K is None:
         r = fit.responsivity[good]
         mean_r = float(r.mean())
+        if not (math.isfinite(mean_r) and mean_r != 0.0):
+            # Codes that do not follow the scene (a stuck, saturated or 1-bit sensor).
+            raise ConfigError(f"noise: the measured responsivity is {mean_r:g} codes/K (the "
+                              "codes do not follow the scene: stuck, saturated or too "
+                              "coarse); the NETD is not defined")
         rel_resp = math.sqrt(float((fit.responsivity_se[good] ** 2).mean()) / r.size) / abs(mean_r)
         method = "measured (noise and responsivity from the frames)"
     else:
@@ -318,6 +325,9 @@ def measured_netd(fit: MeasuredNoise, good: np.ndarray,
             raise ConfigError("noise: the scene does not vary in these frames, so the "
                               "responsivity cannot be measured; give it (closed form)")
         mean_r, rel_resp = float(responsivity_codes_per_K), 0.0
+        if not (math.isfinite(mean_r) and mean_r != 0.0):
+            raise ConfigError(f"noise: the closed-form responsivity is {mean_r:g} codes/K; the "
+                              "NETD is not defined")
         method = "measured noise, closed-form responsivity"
     value = math.sqrt(m) / mean_r
     return Netd(value, value * math.hypot(rel_noise, rel_resp), math.sqrt(m), mean_r, method)

@@ -220,6 +220,24 @@ def _shutter(table: Any, frame_rate: float, base_dir: Path | None) -> Shutter:
     return Shutter(frames, every, at_s, start, temp)
 
 
+def _shutter_within(shutter: Shutter, frame_rate: float, duration: float) -> None:
+    """ConfigError naming the key when a closing would come after the last frame (it
+    would never close: the run would hold no shutter frame where one was asked for)."""
+    n = max(1, round(duration * frame_rate))
+
+    def first(t: float) -> int:  # as shutter_frames: the first frame at or after t
+        return math.ceil(t * frame_rate - 1e-9)
+
+    end = f"the last frame ({n} frames: sequence.duration = {duration:g} s at {frame_rate:g} Hz)"
+    for i, t in enumerate(shutter.at):
+        if first(t) >= n:
+            raise ConfigError(f"sequence.shutter.at[{i}] = {t:g} s is after {end}; the shutter "
+                              "would never close there")
+    if shutter.every is not None and first(shutter.start) >= n:
+        raise ConfigError(f"sequence.shutter.start = {shutter.start:g} s is after {end}; the "
+                          "shutter would never close")
+
+
 def sequence_from_dict(data: Mapping[str, Any], source: str = "sequence",
                        base_dir: Path | None = None) -> DriftSequence:
     """A :class:`DriftSequence` from a parsed TOML document holding a ``[sequence]`` table
@@ -248,6 +266,8 @@ def sequence_from_dict(data: Mapping[str, Any], source: str = "sequence",
     fpa = parse_profile(table["fpa"], "sequence.fpa", base_dir, allow_lag=True)
     scene = parse_profile(table["scene"], "sequence.scene", base_dir)
     shutter = _shutter(table["shutter"], rate, base_dir) if "shutter" in table else None
+    if shutter is not None:
+        _shutter_within(shutter, rate, duration)
     sensor = FpaSensor.from_dict(dict(table.get("fpa_sensor", {})), "sequence.fpa_sensor")
     thermal = check_choice("sequence.thermal", table.get("thermal", "auto"), THERMAL_CHOICES)
     tol = check_scalar("sequence.steady_tolerance", table.get("steady_tolerance", 1e-3), 0.0,

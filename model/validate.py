@@ -36,10 +36,13 @@ def check_scalar(
 ) -> float:
     """Return ``value`` as a float if it is finite and inside the interval, else raise."""
     unit_s = f" {unit}" if unit else ""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ConfigError(f"{field} = {value!r} is not a number") from None
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    # A number only: true is not 1 and "30" is not 30 (a TOML string is a typo).
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | float | np.integer
+                                                              | np.floating):
+        raise ConfigError(f"{field} = {value!r} is not a number")
+    x = float(value)
     allowed = _interval(lo, hi, lo_open, hi_open)
     if not math.isfinite(x):
         raise ConfigError(f"{field} = {value!r}{unit_s} is not finite; allowed range {allowed}{unit_s}")
@@ -62,6 +65,14 @@ def check_int(field: str, value: Any, lo: int | None = None, hi: int | None = No
     return v
 
 
+def _holds_non_number(value: Any) -> bool:
+    """Whether a (nested) list or tuple holds a boolean, a string or another non-number
+    (numpy would convert a boolean mixed with numbers to 1.0)."""
+    if isinstance(value, list | tuple):
+        return any(_holds_non_number(v) for v in value)
+    return isinstance(value, bool | np.bool_ | str | bytes)
+
+
 def check_array(
     field: str,
     value: Any,
@@ -75,9 +86,13 @@ def check_array(
     """Return ``value`` as a float64 array if every element is finite and in range."""
     unit_s = f" {unit}" if unit else ""
     try:
-        arr = np.asarray(value, dtype=np.float64)
+        raw = np.asarray(value)
     except (TypeError, ValueError):
         raise ConfigError(f"{field} = {value!r} is not numeric") from None
+    # Numbers only: booleans and strings would convert (True to 1, "30" to 30).
+    if raw.dtype.kind not in "iuf" or _holds_non_number(value):
+        raise ConfigError(f"{field} = {value!r} is not numeric")
+    arr = raw.astype(np.float64)
     allowed = _interval(lo, hi, lo_open, hi_open)
     bad = ~np.isfinite(arr)
     if lo is not None:

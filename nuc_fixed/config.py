@@ -347,6 +347,11 @@ class PipelineConfig:
         if self.ffc_frames is not None and self.ffc_frames & (self.ffc_frames - 1):
             raise ConfigError(f"{src}: ffc_frames = {self.ffc_frames} must be a power of two "
                               "(the mean is a shift)")
+        if (base == "tc_offset" and self.reading_range_bits is not None
+                and self.reading_bits is not None and self.reading_range_bits > self.reading_bits):
+            raise ConfigError(f"{src}: reading_range_bits = {self.reading_range_bits} must be "
+                              f"at most reading_bits = {self.reading_bits} (a reading differs "
+                              "from t_ref by less than 2^reading_bits)")
         if base == "table_interp" and self.format("weight").int_bits < 1:
             raise ConfigError(f"{src}: formats.weight = {self.format('weight')} cannot hold "
                               "1.0; int_bits must be at least 1")

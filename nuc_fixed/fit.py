@@ -207,6 +207,53 @@ class _Q:
         return ff.to_value(codes) if np.ndim(value) else float(ff.to_value(codes)[0])
 
 
+def check_readings(cfg: PipelineConfig, readings: list[int], reference: int, source: str,
+                   sensor: str = "the FPA sensor") -> None:
+    """:class:`PlanError` when the FPA readings of the calibration points (one per FPA
+    point, ``reference`` the index of the reference point) cannot calibrate ``cfg``'s
+    method: a reading beyond ``reading_bits``; fewer distinct readings than the method
+    fits (``tc_order`` + 1 for tc_offset, every table for table_interp: the sensor cannot
+    tell the points apart); a point farther from the reference reading than
+    ``reading_range_bits`` holds (tc_offset).
+
+    Run before the simulation on the readings the plan's temperatures give, and on the
+    frames' readings before the fit.
+    """
+    base = cfg.base_method
+    if base not in ("tc_offset", "table_interp"):
+        return
+    order = int(cfg.tc_order or 1)
+    if base == "tc_offset" and len(readings) < order + 1:
+        raise PlanError(f"{source}: tc_order = {order} needs at least {order + 1} FPA "
+                        f"temperatures; the plan has {len(readings)}")
+    if base == "table_interp" and len(readings) != cfg.tables:
+        raise PlanError(f"{source}: method table_interp with tables = {cfg.tables} needs "
+                        f"{cfg.tables} FPA temperatures; the plan has {len(readings)}")
+    top = (1 << int(cfg.reading_bits or 1)) - 1
+    if max(readings) > top or min(readings) < 0:
+        raise FormatRangeError(f"{source}: {sensor} reads {readings} at the FPA points; pipeline "
+                        f"{cfg.name!r} has reading_bits = {cfg.reading_bits} (0..{top}): "
+                        "use a pipeline whose reading_bits holds the sensor's readings")
+    distinct = len(set(readings))
+    need = order + 1 if base == "tc_offset" else len(readings)
+    if distinct < need:
+        what = (f"tc_order = {cfg.tc_order} fits {need} distinct readings"
+                if base == "tc_offset" else "table_interp needs one reading per table, each "
+                "different")
+        raise PlanError(f"{source}: {sensor} reads {readings} at the FPA points ({distinct} "
+                        f"distinct); {what}: the sensor is too coarse for these temperatures "
+                        "(a smaller fpa_sensor.lsb_K, or FPA points farther apart)")
+    if base == "tc_offset":
+        lim = (1 << int(cfg.reading_range_bits or 1)) - 1
+        far = [r for r in readings if abs(r - readings[reference]) > lim]
+        if far:
+            raise FormatRangeError(f"{source}: {sensor} reads {far[0]} at an FPA point, "
+                            f"{far[0] - readings[reference]:+d} codes from the reference "
+                            f"reading {readings[reference]}; pipeline {cfg.name!r} has "
+                            f"reading_range_bits = {cfg.reading_range_bits} (+-{lim}): widen "
+                            "it, or calibrate over a smaller FPA range")
+
+
 def _reading_regressors(cfg: PipelineConfig, readings: list[int], t_ref: int) -> np.ndarray:
     """[1, v, v2] of each point as the datapath computes them (u clamped, u2 floored)."""
     ts = int(cfg.reading_range_bits or 1)
@@ -256,6 +303,7 @@ def _fit(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, t: np.ndarray
         if min(readings) < 0:
             raise PlanError(f"{pts.source}: method {cfg.method!r} needs the FPA reading of "
                             "every frame (fpa_reading); the frames lack it")
+        check_readings(cfg, readings, ref, pts.source)
         xbar = means.mean(axis=1)  # (P, H, W)
         tbar = float(np.mean(t))
         if base == "table_interp":

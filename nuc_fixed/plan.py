@@ -38,18 +38,32 @@ _SENSOR_FIELDS = {"bits": schema.number(1, 24, integer=True, unit="bits"),
                   "offset_K": schema.number(-100.0, 100.0, unit="K"),
                   "noise_K": schema.number(0.0, 100.0, unit="K")}
 
-_TEMPS = {"type": "array", "minItems": 1, "maxItems": 64,
-          "items": schema.number(100.0, 1000.0, unit="K")}
+def _model_range(key: str) -> dict[str, Any]:
+    """The range the sensor model takes for an environment temperature: a plan value the
+    model would refuse after the work is refused when the plan is read, named by its key."""
+    from irnuc.model.config import SCHEMA
+
+    f = SCHEMA[key]
+    return schema.number(f.lo, f.hi, lo_open=f.lo_open, hi_open=f.hi_open, unit="K")
+
+
+def _temps(items: dict[str, Any]) -> dict[str, Any]:
+    return {"type": "array", "minItems": 1, "maxItems": 64, "items": items}
+
+
+_TEMPS = _temps(schema.number(100.0, 1000.0, unit="K"))
+_FPA_TEMPS = _temps(_model_range("environment.T_substrate"))
+_CAM_TEMPS = _temps(_model_range("environment.T_cam"))
 
 #: The schema of a plan file: [plan] required, [fpa_sensor] optional.
 PLAN_SCHEMA: dict[str, Any] = schema.table({
     "plan": schema.table({
         "scene": _TEMPS,
-        "fpa": _TEMPS,
+        "fpa": _FPA_TEMPS,
         "frames": schema.number(1, 10000, integer=True, unit="frames"),
-        "cam": {**_TEMPS, "description": "housing temperature per FPA point (default: fpa)"},
-        "reference_fpa": schema.number(100.0, 1000.0, unit="K"),
-        "drift_cam": {**_TEMPS, "description": "housing temperatures at the reference FPA "
+        "cam": {**_CAM_TEMPS, "description": "housing temperature per FPA point (default: fpa)"},
+        "reference_fpa": _model_range("environment.T_substrate"),
+        "drift_cam": {**_CAM_TEMPS, "description": "housing temperatures at the reference FPA "
                       "point, for blind_drift's coupling"},
         "description": {"type": "string"},
     }, required=["scene", "fpa", "frames"]),
@@ -257,9 +271,9 @@ def points_from_frames(data: Mapping[str, Any], source: str = "--frames",
 
     Frames are grouped by their scene temperature (``scene_K``, else ``temps``) and FPA
     temperature (``fpa_K``; a file without it is one FPA point); shutter frames are left
-    out. Every point must hold the same number of frames (the smallest count is used, the
-    first frames of each point). ``fpa_reading`` gives the readings (needed by the
-    temperature methods, which say so).
+    out. Every point must hold the same number of frames (:class:`PlanError` naming the
+    points that differ: dropping frames would bias their means). ``fpa_reading`` gives the
+    readings (needed by the temperature methods, which say so).
     """
     codes = np.asarray(data["codes"])
     n = codes.shape[0]
@@ -282,7 +296,14 @@ def points_from_frames(data: Mapping[str, Any], source: str = "--frames",
                 raise PlanError(f"{source}: no frame at scene {ts:g} K with the FPA at "
                                 f"{tf:g} K; every scene must be imaged at every FPA temperature")
             groups[(p, s)] = idx
-    m = min(v.size for v in groups.values())
+    counts = {k: v.size for k, v in groups.items()}
+    m = min(counts.values())
+    if max(counts.values()) != m:
+        (p0, s0), (p1, s1) = min(counts, key=counts.get), max(counts, key=counts.get)
+        raise PlanError(f"{source}: {counts[(p1, s1)]} frames at scene {s_vals[s1]:g} K, FPA "
+                        f"{f_vals[p1]:g} K but {m} at scene {s_vals[s0]:g} K, FPA "
+                        f"{f_vals[p0]:g} K; every calibration point needs the same number of "
+                        "frames (shutter frames not counted)")
     P, S = len(f_vals), len(s_vals)
     sel = np.array([[groups[(p, s)][:m] for s in range(S)] for p in range(P)])
     ref = (int(np.argmin(np.abs(f_vals - np.mean(f_vals)))) if reference_fpa is None

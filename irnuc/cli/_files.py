@@ -38,6 +38,8 @@ def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]
     import numpy as np
     from numpy.lib import format as npformat
 
+    from irnuc.common.framefile import check_member_size
+
     if not zipfile.is_zipfile(path):
         raise UserError(f"{flag} {path}: not an .npz file (a zip archive of .npy arrays, as "
                         "written by numpy.savez or irnuc); a .npy, text or truncated file "
@@ -53,7 +55,10 @@ def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]
                     read = (npformat.read_array_header_1_0 if version == (1, 0)
                             else npformat.read_array_header_2_0)
                     shape, _, dtype = read(fh)
-                out[info.filename[:-4]] = (tuple(shape), np.dtype(dtype))
+                    header = fh.tell()
+                name = info.filename[:-4]
+                out[name] = (tuple(shape), np.dtype(dtype))
+                check_member_size(info, header, tuple(shape), np.dtype(dtype), name)
     except (OSError, EOFError, ValueError, zipfile.BadZipFile, KeyError, zlib.error) as exc:
         raise UserError(f"{flag} {path}: damaged or truncated .npz ({exc})") from None
     return out
@@ -88,8 +93,10 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     """
     import math
 
+    from irnuc.common.io import guard_input
     from irnuc.common.memory import check_memory
 
+    guard_input(path, flag)
     headers = npz_headers(path, flag)
     missing = [k for k in required if k not in headers]
     if missing:

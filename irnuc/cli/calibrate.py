@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import io
 import json
 from pathlib import Path
@@ -243,7 +244,13 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
                             f"pipeline {cfg.name!r} has adc_bits = {cfg.adc_bits} (use --set "
                             f"adc.bits={cfg.adc_bits} or another pipeline)")
         from irnuc.model.pipeline import check_simulation_memory
+        from irnuc.nuc_fixed.fit import check_readings
 
+        # What the plan's FPA sensor reads at its points (without noise): a sensor the
+        # method cannot use is refused before the simulation.
+        quiet = dataclasses.replace(plan.fpa_sensor, noise_K=0.0)
+        check_readings(cfg, quiet.read(np.asarray(plan.fpa)).tolist(), plan.reference_index,
+                       f"--plan {args.plan}", "its fpa_sensor")
         n = len(plan.fpa) * len(plan.scene) * plan.frames
         check_simulation_memory(scfg, n, ["codes"], what=(
             f"--plan {args.plan}: {len(plan.fpa)} FPA x {len(plan.scene)} scene temperatures x "

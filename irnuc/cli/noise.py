@@ -142,8 +142,11 @@ def run(args: argparse.Namespace) -> int:
     if fit.responsivity is None and closed is None:
         raise UserError(f"--frames {args.frames}: the scene does not vary and the file holds no "
                         "sensor configuration: no responsivity to turn codes into kelvin")
-    measured = nm.measured_netd(fit, good, None if fit.responsivity is not None
-                                else closed.responsivity_codes_per_K)
+    try:
+        measured = nm.measured_netd(fit, good, None if fit.responsivity is not None
+                                    else closed.responsivity_codes_per_K)
+    except nm.ConfigError as exc:
+        raise UserError(f"--frames {args.frames}: {exc}") from None
     resp = measured.responsivity_codes_per_K
     bar = progress("3D noise") if cube.shape[0] > 64 else None
     n3 = nm.noise_3d(cube, progress=bar)
