@@ -71,9 +71,11 @@ def random_registers(cfg: PipelineConfig, rng: np.random.Generator,
 def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
                         bad_fraction: float = 0.05, biased: bool = False,
                         registers: dict[str, object] | None = None) -> MethodCoefficients:
-    """Every calibration memory's fields drawn over their code ranges; one bad map for all
-    tables (table_interp)."""
+    """Every calibration memory's fields drawn over their code ranges; the bad map of one
+    memory, and for table_interp each table's bad map that one's with a few more pixels of
+    its own (a frame's DPC replaces the pixels flagged in either of its two tables)."""
     bad = rng.random((h, w)) < bad_fraction
+    per_table = cfg.base_method == "table_interp"
     fields: dict[str, dict[str, np.ndarray]] = {}
     for m in cfg.memories.values():
         if m.source != "calibration":
@@ -81,7 +83,8 @@ def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Gene
         vals: dict[str, np.ndarray] = {}
         for f in m.fields:
             if f.name == "bad":
-                vals[f.name] = bad.copy()
+                own = rng.random((h, w)) < bad_fraction / 2 if per_table else False
+                vals[f.name] = bad | own
             else:
                 lo, hi = field_range(f.width, f.signed)
                 vals[f.name] = _codes(rng, lo, hi, (h, w), biased)
@@ -141,6 +144,13 @@ def _corner_candidate(cfg: PipelineConfig, rng: np.random.Generator, h: int, w: 
         kf = cfg.format("knee").frac_bits
         at = rng.random((h, w)) < 0.25
         c.fields["coeffs"]["knee"] = np.where(at, raw << kf, c.fields["coeffs"]["knee"])
+    if base == "table_interp" and index % 3 == 0:
+        # A pixel bad in the even tables, one in the odd ones, one in every table: each
+        # pair (j, j + 1) has a pixel bad in its lower table only, its upper only, both.
+        for k in range(int(cfg.tables or 2)):
+            bad = c.fields[f"table{k}"]["bad"]
+            bad.flat[k % 2] = True
+            bad.flat[2 % bad.size] = True
     return FramePlan(coeffs=c, raw=raw, reading=random_reading(
         cfg, c, rng, mark=index // 2 if index % 2 == 0 else None))
 

@@ -262,6 +262,37 @@ async def random_calibrations(dut) -> None:
 
 
 @cocotb.test()
+async def no_good_pixel_keeps_corrections(dut) -> None:
+    """A calibration whose every pixel is bad: a mean frame without a good pixel gives no
+    target (the golden model's None; the RTL's division by 2 n = 0 must not be used), so
+    the refresh frame keeps the corrections it reads and writes them back unchanged
+    (m_foff), and ffc_kept_o says so; from nonzero corrections, two runs, exact."""
+    env = await _setup(dut, 6)
+    cfg = env.cfg
+    n = _n(cfg)
+    c = _calibration(cfg, 3, 5, env.rng, "camera")
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    fields["coeffs"]["bad"] = np.ones((3, 5), dtype=bool)
+    c = MethodCoefficients(cfg, fields, c.registers)
+    lo = -(1 << (cfg.format("ffc").bits - 1))
+    start = env.rng.integers(lo, -lo, size=(3, 5))
+    seq = [0] + [1] * n + [0, 0] + [1] * n + [0]
+    readings = [random_reading(cfg, c, env.rng) for _ in seq]
+    run = ffc_run(c, _raws(cfg, seq, 3, 5, env.rng, "camera"), [bool(s) for s in seq],
+                  readings=readings, golden=env.golden, offset=start)
+    assert len(run.kept) == 2 and all(t == 0 for t in run.targets)
+    refreshed = [f for f in run.foff_out if f is not None]
+    assert refreshed and all(np.array_equal(f, start) for f in refreshed)
+    await run_sequence(dut, run, env.golden, env.rng, backpressure="random")
+    assert int(dut.ffc_kept_o.value) == 1, "ffc_kept_o low after a mean frame of bad pixels"
+    # A good pixel again: a target, and the flag falls with the next division.
+    ok = _run_of(cfg, env.golden, env.rng, [0] + [1] * n + [0, 0], (3, 5))
+    assert not ok.kept
+    await run_sequence(dut, ok, env.golden, env.rng)
+    assert int(dut.ffc_kept_o.value) == 0, "ffc_kept_o high after a target was taken"
+
+
+@cocotb.test()
 async def checker_detects_mismatch(dut) -> None:
     """Against the golden model with another rounding of the correction the check must
     fail with mismatching outputs (of m_pix or m_foff), not a timeout."""

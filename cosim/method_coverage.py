@@ -23,6 +23,8 @@ decided from the golden model's values of what was driven and checked:
 ``table.region``             the reading below the first table, between, above the last
 ``table.diff``               g_(j+1) - g_j negative, 0, positive
 ``table.round``              w * dg's fraction below / at (even, odd) / above one half
+``table.bad``                a pixel flagged bad in table j only, in table j + 1 only, in both
+                             (DPC replaces it in each case)
 ``iw.region``                interp_weight: reading below, at a table reading, between, above
 ``iw.round``                 interp_weight: remainder below / at / above half the span
 ``iw.error``                 interp_weight: table readings that do not increase
@@ -58,6 +60,7 @@ SIGN_BINS = ("negative", "zero", "positive")
 FLOOR_BINS = ("exact", "floored")
 X_BINS = ("zero", "max", "other")
 U_BINS = ("clamped_low", "negative", "zero", "positive", "clamped_high")
+TABLE_BAD_BINS = ("lower_only", "upper_only", "both")
 SAT_BINS = ("sat_low", "in_range", "sat_high")
 HALF_BINS = ("below_half", "tie", "above_half")
 WEIGHT_BINS = ("zero", "one", "between")
@@ -100,7 +103,7 @@ def frame_classes(coeffs: MethodCoefficients, raw: np.ndarray, reading: int | No
     if res.frac > 0:
         # Only where the rounding reaches the output: a good pixel (DPC replaces a bad
         # one) whose result is in range (OUT would clip the difference away).
-        seen = ~np.asarray(coeffs.bad, dtype=bool) & (res.r >= 0) & (res.r < (1 << cfg.out_bits))
+        seen = ~np.asarray(fc["bad"], dtype=bool) & (res.r >= 0) & (res.r < (1 << cfg.out_bits))
         hit("method.round", ROUND_BINS, _round_class(res.s[..., seen], res.frac))
     hit("method.range", RANGE_BINS, _three(res.r, 0, (1 << cfg.out_bits) - 1))
     f = coeffs.fields
@@ -183,6 +186,10 @@ def _table_classes(coeffs: MethodCoefficients, reading: int | None, hit, out) ->
     hit("table.diff", SIGN_BINS, np.sign(dg) + 1)
     if wf > 0:
         hit("table.round", ROUND_BINS, _round_class(dg * iw.w, wf))
+    lo = coeffs.fields[f"table{iw.j}"]["bad"]
+    up = coeffs.fields[f"table{iw.j + 1}"]["bad"]
+    kinds = np.flatnonzero([(lo & ~up).any(), (~lo & up).any(), (lo & up).any()])
+    hit("table.bad", TABLE_BAD_BINS, kinds)
 
 
 def weight_classes(reading: int, table_readings: Sequence[int], cfg: PipelineConfig
@@ -249,6 +256,7 @@ def method_points(cfg: PipelineConfig, top: str = "method_dpc_top"
         points["table.weight"] = WEIGHT_BINS
         points["table.region"] = REGION_BINS
         points["table.diff"] = SIGN_BINS
+        points["table.bad"] = TABLE_BAD_BINS
         if cfg.format("weight").frac_bits > 0:
             points["table.round"] = ROUND_BINS
     return points, removed

@@ -187,7 +187,7 @@ module irnuc_axis_ffc
   logic                    macc_valid, macc_ready, mfoff_valid, mfoff_ready;
   logic [AccWordBits-1:0]  macc_data;
   logic [FoffWordBits-1:0] mfoff_data;
-  logic                    item_shutter, item_take, target_valid;
+  logic                    item_shutter, item_take, target_valid, target_kept;
   logic [OutBits+FfcFracBits-1:0] target;
 
   assign fork_pix_valid  = in_valid && !pix_took_q;
@@ -495,6 +495,7 @@ module irnuc_axis_ffc
     .m_pix_eol_o       (pix_eol),
     .ffc_target_valid_o(target_valid),
     .ffc_target_o      (target),
+    .ffc_kept_o        (target_kept),
     .frame_err_o       (frame_err_o)
   );
 
@@ -605,9 +606,10 @@ module irnuc_axis_ffc
   assign m_axis_foff_tdata = FoffBits'(mfoff_out);
 
   // Not used: the input tlast (the core counts the words of a frame by its size), the
-  // target the core computed.
+  // target the core computed and whether its refresh kept the offsets (no good pixel: the
+  // refresh frame's m_axis_foff then carries the words it read; no register shows it yet).
   logic unused_ffc;
-  assign unused_ffc = ^{s_axis_foff_tlast, s_axis_acc_tlast, target_valid, target};
+  assign unused_ffc = ^{s_axis_foff_tlast, s_axis_acc_tlast, target_valid, target, target_kept};
   if (FoffBits > FoffWordBits) begin : gen_foff_pad
     logic unused_foff;
     assign unused_foff = ^s_axis_foff_tdata[FoffBits-1:FoffWordBits];

@@ -19,7 +19,8 @@
 //   piecewise     pwl_core, the frame's level
 //   quadratic     quad_core
 //   tc_offset     tc_poly (tc_reading inside) -> nuc_core
-//   table_interp  table_interp -> nuc_core (DPC takes table j's bad flag)
+//   table_interp  table_interp -> nuc_core (DPC replaces a pixel flagged bad in table j or
+//                 in table j + 1, the two the frame interpolates between)
 // then dpc_core. One pixel per clock, no bubbles. Latency: 1 + the method's cores +
 // dpc_core (docs/rtl.md).
 module method_dpc_top
@@ -392,33 +393,27 @@ module method_dpc_top
         .s_gain1_i  (w.upper.gain),
         .s_offset1_i(w.upper.offset),
         .s_weight_i (frame[WeightFracBits:0]),
-        .s_user_i   ({pix_data, pix_sof, pix_eol, w.lower.bad}),
+        .s_user_i   ({pix_data, pix_sof, pix_eol, w.lower.bad | w.upper.bad}),
         .m_valid_o  (cf_valid),
         .m_ready_i  (cf_ready),
         .m_gain_o   (cf_gain),
         .m_offset_o (cf_offset),
         .m_user_o   (cf_user)
       );
-      // Table j + 1's bad flag equals table j's (one bad-pixel map for every table,
-      // asserted below); the weight's bits above Wf are 0.
-      logic unused_upper;
+      // The weight's bits above Wf are 0 (asserted below).
       if (WeightBits > WeightFracBits + 1) begin : gen_weight_high
-        assign unused_upper = ^{w.upper.bad, frame[WeightBits-1:WeightFracBits+1]};
-      end else begin : gen_weight_fits
-        assign unused_upper = w.upper.bad;
+        logic unused_weight;
+        assign unused_weight = ^frame[WeightBits-1:WeightFracBits+1];
       end
 `ifdef IRNUC_ASSERT
-      // table_interp's contracts (docs/datapath.md), at the join:
-      //   a_weight_range  the frame's weight is at most 2^Wf;
-      //   a_table_bad     the pixel's two tables agree on its bad flag.
+      // table_interp's contract (docs/datapath.md), at the join:
+      //   a_weight_range  the frame's weight is at most 2^Wf.
       logic armed_q;  // from the second edge after reset
       irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
       always_ff @(posedge clk_i) begin : p_check
         if (armed_q && join_take) begin
           a_weight_range: assert (64'(frame) <= (64'd1 << WeightFracBits))
             else $error("method_dpc_top: weight %0d above 2^%0d", frame, WeightFracBits);
-          a_table_bad: assert (w.lower.bad == w.upper.bad)
-            else $error("method_dpc_top: the two tables' bad flags differ");
         end
       end
 `endif

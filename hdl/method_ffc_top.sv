@@ -13,9 +13,11 @@
 //   s_acc    the accumulator (memory ffc_acc: U (A + n).0) of every pixel, in the frames
 //            that add to it (the 2nd..N-th shutter frame of a run) and in the refresh frame;
 //   m_acc    the new accumulator of every pixel, in the 1st..N-th shutter frame of a run;
-//   m_foff   the new FFC offset correction of every pixel, in the refresh frame (the frame
-//            after the N-th shutter frame): written back to ffc_offset, read from the next
-//            frame on (the refresh frame itself uses them already, as the golden model);
+//   m_foff   the FFC offset correction of every pixel in the refresh frame (the frame
+//            after the N-th shutter frame): the new one, or the one read when the mean
+//            frame had no good pixel (no target: ffc_kept_o); written back to ffc_offset,
+//            read from the next frame on (the refresh frame itself uses them already, as
+//            the golden model);
 //   m_pix    corrected pixels with sof/eol, of every frame but a held one (ffc_output
 //            hold: a shutter frame once an open frame was output; the display keeps the
 //            last open frame).
@@ -25,7 +27,8 @@
 //   v  = ROUND_(F' - Cf)(s_acc << (F' - F_acc))                             (ffc_mean)
 //   y  = OUT(ROUND_F(s + (c << (F - Cf)))),  c = dc in a refresh frame, else s_foff
 // and the DPC. The mean frame's v over good pixels give the target T (ffc_mean, one
-// division, before the refresh frame's first pixel is taken; ffc_target_o).
+// division, before the refresh frame's first pixel is taken; ffc_target_o); a mean frame
+// without a good pixel gives none (ffc_kept_o): its refresh frame keeps c = s_foff.
 // One pixel per clock, no bubbles, but for the division: a refresh frame's first pixel
 // waits for the target (NumBits + 3 cycles after the mean frame's last pixel).
 module method_ffc_top
@@ -125,9 +128,12 @@ module method_ffc_top
   output logic [OutBits-1:0]    m_pix_data_o,
   output logic                  m_pix_sof_o,
   output logic                  m_pix_eol_o,
-  // The last FFC target (register ffc_target, U B.Cf) and whether one was taken.
+  // The last FFC target (register ffc_target, U B.Cf) and whether one was taken; kept: its
+  // mean frame had no good pixel, so there is no target (0) and the refresh kept the
+  // offsets (valid with ffc_target_valid_o).
   output logic                  ffc_target_valid_o,
   output logic [TBits-1:0]      ffc_target_o,
+  output logic                  ffc_kept_o,
   // Sticky framing error (see dpc_core).
   output logic                  frame_err_o
 );
@@ -294,7 +300,7 @@ module method_ffc_top
   // and every pixel of the mean frame has been summed (none in flight between the join and
   // ffc_mean). At most Latency + 4 pixels sit between the join and ffc_mean, and tc_poly's
   // (below 32).
-  logic                    mean_valid, mean_good, target_valid, target_ready;
+  logic                    mean_valid, mean_good, target_valid, target_ready, target_empty;
   logic [TBits-1:0]        target;
   logic signed [VBits-1:0] mean_v;
 
@@ -314,11 +320,13 @@ module method_ffc_top
     .frame_taken_i (join_take && px_sof),
     .ready_o       (target_ready),
     .target_valid_o(target_valid),
-    .target_o      (target)
+    .target_o      (target),
+    .empty_o       (target_empty)
   );
 
   assign ffc_target_valid_o = target_valid;
   assign ffc_target_o       = target;
+  assign ffc_kept_o         = target_empty;
 
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
   logic need_acc, need_target, join_ready;
@@ -435,13 +443,13 @@ module method_ffc_top
     .side_o   (sum_side)
   );
 
-  // ---- ffc_refresh: dc and the mean's v on sa; the pixel's correction c --------------------
+  // ---- ffc_refresh: dc and the mean's v on sa; the pixel's correction c (written back) ------
   // Beside: {s, mean, write, hold, acc_new, sof, eol, bad}.
   localparam int unsigned RSide = SumBits + AccBits + 6;
 
   logic                 v_valid, c_valid, c_refresh;
   logic [RSide-1:0]     v_side, c_side;
-  logic [CBits-1:0]     c_c, c_dc;
+  logic [CBits-1:0]     c_c;
   logic [SumBits-1:0]   c_sum;
   logic [AccBits-1:0]   c_acc;
   logic                 c_write, c_hold, c_sof, c_eol, c_bad, c_mean;
@@ -463,6 +471,7 @@ module method_ffc_top
     .sum_i    (asum_s),
     .target_i (target),
     .refresh_i(sum_side[Side-2]),
+    .keep_i   (target_empty),
     .c_i      (sum_side[3 +: CBits]),
     .side_i   ({sum_s, sum_side[Side-1], sum_side[Side-3 -: 2], sum_acc_new, sum_side[2:0]}),
     .v_valid_o(v_valid),
@@ -470,7 +479,6 @@ module method_ffc_top
     .v_side_o (v_side),
     .valid_o  (c_valid),
     .refresh_o(c_refresh),
-    .dc_o     (c_dc),
     .c_o      (c_c),
     .side_o   (c_side)
   );
@@ -485,7 +493,7 @@ module method_ffc_top
   // ---- stage T: the FFC term added ---------------------------------------------------------
   logic                t_valid_q;
   logic [TotBits-1:0]  t_sum_q;
-  localparam int unsigned User = 6 + AccBits + CBits;  // {hold, write, acc, refresh, dc, sof, eol, bad}
+  localparam int unsigned User = 6 + AccBits + CBits;  // {hold, write, acc, refresh, c, sof, eol, bad}
   logic [User-1:0]     t_user_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_t_valid
@@ -500,7 +508,7 @@ module method_ffc_top
     if (en) begin
       t_sum_q  <= TotBits'($signed(c_sum))
                   + (TotBits'($signed(c_c)) << (FracBits - FfcFracBits));
-      t_user_q <= {c_hold, c_write, c_acc, c_refresh, c_dc, c_sof, c_eol, c_bad};
+      t_user_q <= {c_hold, c_write, c_acc, c_refresh, c_c, c_sof, c_eol, c_bad};
     end
   end
 
@@ -531,9 +539,9 @@ module method_ffc_top
 
   logic               o_hold, o_write, o_refresh, o_sof, o_eol, o_bad;
   logic [AccBits-1:0] o_acc;
-  logic [CBits-1:0]   o_dc;
+  logic [CBits-1:0]   o_c;
 
-  assign {o_hold, o_write, o_acc, o_refresh, o_dc, o_sof, o_eol, o_bad} = out_user;
+  assign {o_hold, o_write, o_acc, o_refresh, o_c, o_sof, o_eol, o_bad} = out_user;
 
   // A stream fork: the item leaves once every destination it goes to has taken it.
   logic [2:0] need, dest_valid, dest_ready, sent_q;
@@ -568,7 +576,7 @@ module method_ffc_top
     .rst_ni (rst_ni),
     .valid_i(dest_valid[2]),
     .ready_o(dest_ready[2]),
-    .data_i (o_dc),
+    .data_i (o_c),
     .valid_o(m_foff_valid_o),
     .ready_i(m_foff_ready_i),
     .data_o (m_foff_data_o)

@@ -282,11 +282,12 @@ def _interpolated(fields: dict[str, dict[str, np.ndarray]], weight: int,
                   cfg: PipelineConfig) -> MethodCoefficients:
     """table_interp: the frame's pair of tables and weight as a calibration read at reading
     0 (every table the pair interpolated with the weight, ``interp_coeffs``; table readings
-    0, 1, ...: j = 0, weight 0), so method_top corrects the frame as the core does."""
+    0, 1, ...: j = 0, weight 0), so method_top corrects the frame as the core does (its
+    DPC replacing a pixel flagged in either table of the pair)."""
     lo, hi = fields["lower"], fields["upper"]
     g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]),
                          InterpWeight(0, int(weight)), cfg)
-    table = {"gain": g, "offset": o, "bad": lo["bad"]}
+    table = {"gain": g, "offset": o, "bad": lo["bad"] | hi["bad"]}
     k = int(cfg.tables or 2)
     return MethodCoefficients(cfg=cfg, fields={f"table{i}": dict(table) for i in range(k)},
                               registers={"table_readings": tuple(range(k))})

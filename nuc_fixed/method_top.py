@@ -57,7 +57,12 @@ class MethodCoefficients:
 
     @property
     def bad(self) -> np.ndarray:
-        """The defective-pixel map (the ``bad`` field of the first memory)."""
+        """The defective-pixel map: the ``bad`` field of the first memory (table_interp: a
+        pixel flagged in any table; a frame's DPC replaces those of its two tables,
+        :func:`frame_coefficients`)."""
+        if self.cfg.base_method == "table_interp":
+            return np.logical_or.reduce([self.fields[f"table{k}"]["bad"]
+                                         for k in range(int(self.cfg.tables or 0))])
         return next(iter(self.fields.values()))["bad"]
 
     @property
@@ -97,12 +102,6 @@ class MethodCoefficients:
             if m.name not in self.fields:
                 raise InputError(f"coefficients lack memory {m.name!r} (method {cfg.method!r})")
             pack_memory(self.fields[m.name], m)  # checks every field's range
-        if cfg.base_method == "table_interp":
-            b0 = self.fields["table0"]["bad"]
-            for k in range(1, int(cfg.tables or 0)):
-                if not np.array_equal(self.fields[f"table{k}"]["bad"], b0):
-                    raise InputError(f"table{k}: its bad flags differ from table0's; one "
-                                     "bad-pixel map serves every table")
         for r in cfg.registers.values():
             if r.source != "calibration":
                 continue
@@ -148,6 +147,10 @@ class MethodOutput:
         coefficients (``pending`` says so).
     pending : the last accumulation completed with the last frame, so its refresh pass
         (the next frame) was not seen.
+    kept : the refreshes (by the index of their N-th shutter frame, as ``refreshes``) whose
+        mean pass had no good pixel: no target (0 in ``targets``, as the RTL's target
+        register reads), and the refresh pass kept every pixel's previous correction
+        (``offsets`` repeats it).
     """
 
     y: np.ndarray
@@ -158,6 +161,7 @@ class MethodOutput:
     targets: tuple[int, ...] = ()
     offsets: tuple[np.ndarray, ...] = ()
     pending: bool = False
+    kept: tuple[int, ...] = ()
 
 
 def needs(cfg: PipelineConfig) -> tuple[str, ...]:
@@ -173,7 +177,9 @@ def needs(cfg: PipelineConfig) -> tuple[str, ...]:
 
 
 def frame_coefficients(c: MethodCoefficients, reading: int | None) -> dict[str, np.ndarray]:
-    """The per-pixel coefficient codes the core uses in a frame with this reading."""
+    """The per-pixel coefficient codes the core uses in a frame with this reading, and
+    ``bad``, the map its DPC replaces (table_interp: flagged in table j or j + 1, the two
+    the frame interpolates between; docs/datapath.md "table_interp")."""
     cfg = c.cfg
     base = cfg.base_method
     if base == "tc_offset":
@@ -181,14 +187,15 @@ def frame_coefficients(c: MethodCoefficients, reading: int | None) -> dict[str, 
         cs = c.fields["coeffs"]
         g, o = tc_coeffs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
                          tr, cfg)
-        return {"gain": g, "offset": o}
+        return {"gain": g, "offset": o, "bad": cs["bad"]}
     if base == "table_interp":
         iw = interp_weight(int(reading), c.registers["table_readings"], cfg)  # type: ignore[arg-type]
         lo, hi = c.fields[f"table{iw.j}"], c.fields[f"table{iw.j + 1}"]
         g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]), iw, cfg)
-        return {"gain": g, "offset": o}
+        return {"gain": g, "offset": o, "bad": lo["bad"] | hi["bad"]}
     if base == "one_point":
-        return {"gain": np.int64(c.registers["gain"]), "offset": c.fields["coeffs"]["offset"]}
+        return {"gain": np.int64(c.registers["gain"]), "offset": c.fields["coeffs"]["offset"],
+                "bad": c.fields["coeffs"]["bad"]}
     return dict(c.fields["coeffs"])
 
 
@@ -269,8 +276,9 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     # A completed accumulation waiting for its refresh pass: (accumulator, target). The
     # pass runs in the next frame with that frame's coefficients (the hardware evaluates
     # the accumulator beside that frame's pixels; docs/datapath.md "ffc").
-    pending: tuple[np.ndarray, int] | None = None
+    pending: tuple[np.ndarray, int | None] | None = None
     targets: list[int] = []
+    kept: list[int] = []
     offsets: list[np.ndarray] = []
     fc: dict[str, np.ndarray] = {}
     i = 0
@@ -281,7 +289,7 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             cache[key] = frame_coefficients(coeffs, key)
         fc = cache[key]
         if state is not None and pending is not None:
-            state.offset = _refresh(coeffs, fc, *pending)
+            state.offset = _refresh(coeffs, fc, *pending, state.offset)
             offsets.append(state.offset)
             pending = None
         # Frames i..j-1 share their coefficients and nothing changes state between them
@@ -295,7 +303,7 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             res = base_core(coeffs, fc, xi, xfrac=cfg.format("drift").frac_bits, signed_x=True)
         else:
             res = base_core(coeffs, fc, x3[i:j], ffc=None if state is None else state.offset)
-        yi = dpc_core(res.y, coeffs.bad, cfg)
+        yi = dpc_core(res.y, fc["bad"], cfg)
         if state is not None and shutter is not None and shutter[i]:
             if cfg.ffc_output == "hold" and last is not None:
                 out[i] = last
@@ -307,10 +315,12 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
                 if ffc_target is None:
                     nb = ffc_shift(cfg)
                     ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
-                    tgt = ffc_mean_target(ref.s, ref.frac, ~coeffs.bad, cfg)
+                    tgt = ffc_mean_target(ref.s, ref.frac, ~fc["bad"], cfg)
                 else:
                     tgt = int(ffc_target)
-                targets.append(tgt)
+                if tgt is None:  # no good pixel: the refresh keeps the offsets
+                    kept.append(i)
+                targets.append(0 if tgt is None else tgt)
                 pending = (np.asarray(state.acc), tgt)
                 state.refreshes.append(i)
         else:
@@ -322,18 +332,21 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     if state is not None and pending is not None:
         # The refresh pass would be the next frame: its coefficients are not known here,
         # the last frame's stand in.
-        state.offset = _refresh(coeffs, fc, *pending)
+        state.offset = _refresh(coeffs, fc, *pending, state.offset)
         offsets.append(state.offset)
     return MethodOutput(y=out.reshape(x.shape), delta=delta,
                         ffc_offset=None if state is None else state.offset,
                         refreshes=tuple(state.refreshes) if state else (), held=held,
                         targets=tuple(targets), offsets=tuple(offsets),
-                        pending=pending is not None)
+                        pending=pending is not None, kept=tuple(kept))
 
 
 def _refresh(coeffs: MethodCoefficients, fc: Mapping[str, np.ndarray], acc: np.ndarray,
-             target: int) -> np.ndarray:
+             target: int | None, offset: np.ndarray) -> np.ndarray:
     """The refresh pass: the base core on the accumulator (``fc``: the coefficients of
-    the frame the pass runs in), then ``ffc_refresh`` towards ``target``."""
+    the frame the pass runs in), then ``ffc_refresh`` towards ``target``; without a
+    target (no good pixel) every pixel keeps its correction ``offset``."""
+    if target is None:
+        return np.array(offset)
     ref = base_core(coeffs, fc, acc, xfrac=ffc_shift(coeffs.cfg), sum_only=True)
     return ffc_refresh(ref.s, ref.frac, target, coeffs.cfg)

@@ -55,6 +55,15 @@ def sub(a: W, b: W) -> W:
     return W(max(a.as_signed(), b.as_signed()) + 1, True)
 
 
+def diff_unsigned(a: W, b: W) -> W:
+    """Width of a - b of two unsigned words: max of both + 1, signed. Exact (|a - b| <=
+    2^max - 1), one bit below :func:`sub`'s rule of sums; the RTL's blind-sum change and
+    table gain difference take it (docs/datapath.md, "Notation")."""
+    if a.signed or b.signed:
+        raise ValueError("diff_unsigned takes two unsigned words")
+    return W(max(a.bits, b.bits) + 1, True)
+
+
 def mul(a: W, b: W) -> W:
     """Width of a * b: the sum of the widths (signed if either is)."""
     return W(a.bits + b.bits, a.signed or b.signed)
@@ -159,7 +168,7 @@ def method_widths(cfg: PipelineConfig) -> dict[str, W | int]:
     if cfg.has("blind_drift"):
         d, m = cfg.format("drift"), cfg.format("drift_gain")
         sb = W(cfg.blind_sum_bits, False)
-        bd = sub(sb, sb)
+        bd = diff_unsigned(sb, sb)
         dp = mul(bd, W(m.bits, True))
         out |= {"drift.bsum": sb, "drift.bd": bd, "drift.dp": dp,
                 "drift.delta": W(d.bits, True), "drift.x": x.w}
@@ -192,7 +201,8 @@ def method_widths(cfg: PipelineConfig) -> dict[str, W | int]:
         out |= {"interp.num": W(r + wf.frac_bits, False), "interp.span": W(r, False),
                 "interp.w": w}
         for kind, bits in (("g", cfg.gain_bits), ("o", cfg.offset_bits)):
-            diff = sub(W(bits, kind == "o"), W(bits, kind == "o"))
+            diff = (sub(W(bits, True), W(bits, True)) if kind == "o"
+                    else diff_unsigned(W(bits, False), W(bits, False)))
             prod = mul(diff, w)
             out |= {f"interp.{kind}.diff": diff, f"interp.{kind}.prod": prod}
     out |= {f"core.{k}": v for k, v in core_widths(cfg, x, cfg.has("ffc")).items()}

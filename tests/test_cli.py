@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -102,3 +103,27 @@ def test_out_that_is_a_file_is_refused_before_work(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--out" in err and "not a folder" in err and "Traceback" not in err
     assert target.read_text() == "keep"
+
+
+def test_synth_help_names_every_method_the_axi_top_wraps(capsys):
+    # `irnuc synth --help` once listed five of the methods irnuc_axis_top wraps: its words
+    # must be the co-simulation layer's lists (AXIS_METHODS, STAGE_BASES), and every named
+    # configuration that tops_for builds in irnuc_axis_top must be named in it.
+    from irnuc.cli import synth as synth_cli
+    from irnuc.cosim.sources import AXIS_METHODS, STAGE_BASES, STAGE_TOPS
+    from irnuc.cosim.synth import tops_for
+    from irnuc.nuc_fixed import load_pipeline, pipeline_names
+
+    assert synth_cli.AXIS_WRAPS == AXIS_METHODS
+    assert synth_cli.AXIS_STAGES == {s: STAGE_BASES[t] for s, t in STAGE_TOPS.items()}
+    with pytest.raises(SystemExit):
+        main(["synth", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    wrapped = text.split("irnuc_axis_top (", 1)[1].split("); default", 1)[0]
+    for name in pipeline_names(method=None):
+        cfg = load_pipeline(name)
+        if "irnuc_axis_top" not in tops_for(cfg):
+            continue
+        assert cfg.base_method in wrapped, name
+        for stage in cfg.stages:
+            assert re.search(rf"{stage} with [a-z_, ]*{cfg.base_method}", wrapped), name

@@ -32,9 +32,14 @@ def frames_path(value: str, flag: str = "--frames", name: str = "frames.npz") ->
     return p
 
 
-def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]:
+def npz_headers(path: Path, flag: str, damaged: list[str] | None = None
+                ) -> dict[str, tuple[tuple[int, ...], Any]]:
     """Shape and dtype of every array of an ``.npz`` file, read from the headers only (no
-    data), so that sizes can be checked before anything is loaded."""
+    data), so that sizes can be checked before anything is loaded.
+
+    A member whose header disagrees with the size the archive stores for it is damaged:
+    a one-line error, or, with ``damaged`` given, its description appended there (so that
+    the caller can first judge the sizes the headers claim)."""
     import numpy as np
     from numpy.lib import format as npformat
 
@@ -58,7 +63,12 @@ def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]
                     header = fh.tell()
                 name = info.filename[:-4]
                 out[name] = (tuple(shape), np.dtype(dtype))
-                check_member_size(info, header, tuple(shape), np.dtype(dtype), name)
+                try:
+                    check_member_size(info, header, tuple(shape), np.dtype(dtype), name)
+                except ValueError as exc:
+                    if damaged is None:
+                        raise
+                    damaged.append(str(exc))
     except (OSError, EOFError, ValueError, zipfile.BadZipFile, KeyError, zlib.error) as exc:
         raise UserError(f"{flag} {path}: damaged or truncated .npz ({exc})") from None
     return out
@@ -97,7 +107,8 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     from irnuc.common.memory import check_memory
 
     guard_input(path, flag)
-    headers = npz_headers(path, flag)
+    damaged: list[str] = []
+    headers = npz_headers(path, flag, damaged)
     missing = [k for k in required if k not in headers]
     if missing:
         raise UserError(f"{flag} {path}: missing key(s) {', '.join(missing)}; the file "
@@ -111,6 +122,8 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     check_memory(need, f"{flag} {path}" + (f" ({big} {headers[big][0]} {headers[big][1]})"
                                            if big else ""),
                  "give fewer or smaller frames")
+    if damaged:  # after the sizes the headers claim: a header bomb is named as such
+        raise UserError(f"{flag} {path}: damaged or truncated .npz ({damaged[0]})")
     from irnuc.common.framefile import open_member
 
     try:

@@ -9,7 +9,14 @@ import json
 from pathlib import Path
 from typing import Any
 
-from irnuc.cli._args import add_out, add_pipeline, load_pipeline_arg, parse_assignments, say
+from irnuc.cli._args import (
+    add_out,
+    add_pipeline,
+    load_pipeline_arg,
+    parse_assignments,
+    say,
+    stderr,
+)
 from irnuc.common.errors import UserError
 
 CORRECTED_NAME = "corrected.npz"
@@ -86,12 +93,13 @@ def _pipeline_file(value: str | None) -> str | None:
     return file if Path(file).exists() else None
 
 
-#: Memory of the work after loading, per ADC code and per pixel of a frame, above measured
-#: peaks (docs/robustness.md): calibrate selects the two stacks and takes float64
-#: statistics (per code), then some twenty float64 maps (per pixel); correct makes the
-#: output codes and their compressed file.
-CALIBRATE_BYTES = {"per_code": 12.0, "per_pixel": 1500.0}
-CORRECT_BYTES = {"per_code": 8.0, "per_pixel": 128.0}
+def _work_bytes(what: str) -> dict[str, float]:
+    """Memory of the work after loading (nuc_fixed.calibrate's CALIBRATE_WORK_BYTES and
+    CORRECT_WORK_BYTES)."""
+    from irnuc.nuc_fixed import calibrate
+
+    return {"calibrate": calibrate.CALIBRATE_WORK_BYTES,
+            "correct": calibrate.CORRECT_WORK_BYTES}[what]
 
 
 def _split_set(items: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -166,8 +174,9 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     for flag, v in (("--t-low", args.t_low), ("--t-high", args.t_high)):
         if v is not None and not (np.isfinite(v) and v > 0):
             raise UserError(f"{flag} {v}: must be a finite temperature above 0 K")
-    data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
-                       work_per_pixel=CALIBRATE_BYTES["per_pixel"])
+    work = _work_bytes("calibrate")
+    data = load_frames(args.frames, work_per_code=work["per_code"],
+                       work_per_pixel=work["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     temps = data["temps"]
     sel_lo = _pick(temps, args.t_low, float(np.min(temps)), "--t-low")
@@ -262,8 +271,9 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
                   "set": sensor_set}
         fpa_sensor = plan.fpa_sensor
     else:
-        data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
-                           work_per_pixel=CALIBRATE_BYTES["per_pixel"])
+        work = _work_bytes("calibrate")
+        data = load_frames(args.frames, work_per_code=work["per_code"],
+                           work_per_pixel=work["per_pixel"])
         _check_adc(data, cfg, f"--frames {args.frames}")
         _check_fields(data, cfg, f"--frames {args.frames}")
         points = points_from_frames(data, f"--frames {args.frames}")
@@ -395,8 +405,9 @@ def _run_correct(args: argparse.Namespace) -> int:
         top = (1 << cfg.out_bits) - 1
         if not 0.0 <= args.ffc_target <= top:
             raise UserError(f"--ffc-target {args.ffc_target:g}: must lie in 0..{top} output codes")
-    data = load_frames(args.frames, work_per_code=CORRECT_BYTES["per_code"],
-                       work_per_pixel=CORRECT_BYTES["per_pixel"])
+    work = _work_bytes("correct")
+    data = load_frames(args.frames, work_per_code=work["per_code"],
+                       work_per_pixel=work["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     codes = data["codes"]
     if codes.shape[1:] != mc.shape:
@@ -422,7 +433,13 @@ def _run_correct(args: argparse.Namespace) -> int:
         extra["drift_delta"] = res.delta
     if cfg.has("ffc"):
         extra |= {"ffc_refreshes": np.asarray(res.refreshes, dtype=np.int64),
+                  "ffc_kept": np.asarray(res.kept, dtype=np.int64),
                   "held": res.held, "ffc_offset": res.ffc_offset}
+        if res.kept:
+            stderr(f"irnuc correct: warning: {len(res.kept)} FFC refresh(es) kept the previous "
+                   f"offsets (after frame(s) {', '.join(map(str, res.kept[:5]))}"
+                   f"{', ...' if len(res.kept) > 5 else ''}): every pixel of their mean frame "
+                   "is bad, so there is no target (ffc_kept in the output)")
     with output_folder(out, kind="correct") as tmp:
         write_bytes_atomic(tmp / CORRECTED_NAME, _npz_bytes(
             corrected=corrected, temps=data["temps"], out_bits=np.int64(cfg.out_bits),

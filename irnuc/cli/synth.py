@@ -7,19 +7,33 @@ import argparse
 
 from irnuc.cli._args import add_executor, add_out, load_pipeline_arg, progress, say
 
+#: What irnuc_axis_top wraps (the help's words; tests/test_synth.py checks them against
+#: irnuc.cosim.sources.AXIS_METHODS and STAGE_BASES, which are not imported here so that
+#: ``irnuc --help`` stays fast): its base methods, and per stage the bases it composes.
+AXIS_WRAPS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset", "table_interp")
+AXIS_STAGES = {"blind_drift": ("one_point", "two_point"),
+               "ffc": ("one_point", "two_point", "quadratic", "tc_offset")}
+
+
+def _words(items: tuple[str, ...], last: str = "and") -> str:
+    return ", ".join(items[:-1]) + f" {last} {items[-1]}" if len(items) > 1 else items[0]
+
+
+def top_help() -> str:
+    """The help of ``--top``: every top, and every method irnuc_axis_top wraps."""
+    stages = "; ".join(f"{stage} with {_words(bases, 'or')}" for stage, bases in AXIS_STAGES.items())
+    return ("the module to synthesize: nuc_dpc_top, method_dpc_top, method_drift_top, "
+            "method_ffc_top or irnuc_axis_top (the AXI4-Stream/AXI4-Lite wrapper of the core "
+            f"of {_words(AXIS_WRAPS)}, and of the compositions {stages}); default: the "
+            "pipeline's bare core (nuc_dpc_top for two_point, method_dpc_top for the other "
+            "base methods, the stage's top for a method with a stage)")
+
 
 def add_synth_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--pipeline", action="append", required=True, metavar="NAME|FILE.toml",
                    help="NUC + DPC configuration: a name in nuc_fixed/pipelines.toml or a "
                         "pipeline TOML file; repeat it to synthesize several (in parallel)")
-    p.add_argument("--top", default=None, metavar="MODULE",
-                   help="the module to synthesize: nuc_dpc_top, method_dpc_top, "
-                        "method_drift_top, method_ffc_top or irnuc_axis_top (the "
-                        "AXI4-Stream/AXI4-Lite wrapper of the core of two_point, one_point, "
-                        "piecewise, quadratic and tc_offset, and of the ffc compositions); "
-                        "default: the pipeline's bare core (nuc_dpc_top for two_point, "
-                        "method_dpc_top for the other base methods, the stage's top for a "
-                        "method with a stage)")
+    p.add_argument("--top", default=None, metavar="MODULE", help=top_help())
     p.add_argument("--max-width", type=int, default=None,
                    help="line-buffer length to synthesize (default: the pipeline's max_width)")
     p.add_argument("--max-height", type=int, default=None,

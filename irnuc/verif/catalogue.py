@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+from irnuc.cocotb_tests import tb_ffc, tb_interp_weight, tb_method, tb_stage
 from irnuc.common.errors import UserError
 from irnuc.verif.catalogue_axis import AXIS_MUTANTS
 from irnuc.verif.mutant import PKG_FILE, PKG_SUITE, PKG_TOP, SUITE_MODULE, SUITE_TOP, Mutant
@@ -44,8 +45,8 @@ def _m(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mut
     return Mutant(id, file, find, replace, what, **kw)
 
 
-_METHOD = {"top": "method_dpc_top", "suite": "irnuc.cocotb_tests.tb_method"}
-_IW = {"top": "interp_weight", "suite": "irnuc.cocotb_tests.tb_interp_weight",
+_METHOD = {"top": "method_dpc_top", "suite": tb_method.__name__}
+_IW = {"top": "interp_weight", "suite": tb_interp_weight.__name__,
        "config": "table14"}
 
 
@@ -55,9 +56,9 @@ def _mm(id: str, file: str, find: str, replace: str, what: str, config: str, **k
     return Mutant(id, file, find, replace, what, config=config, **{**_METHOD, **kw})
 
 
-_DRIFT = {"top": "method_drift_top", "suite": "irnuc.cocotb_tests.tb_stage",
+_DRIFT = {"top": "method_drift_top", "suite": tb_stage.__name__,
           "config": "drift14"}
-_FFC = {"top": "method_ffc_top", "suite": "irnuc.cocotb_tests.tb_ffc", "config": "ffc14"}
+_FFC = {"top": "method_ffc_top", "suite": tb_ffc.__name__, "config": "ffc14"}
 
 
 def _ms(id: str, file: str, find: str, replace: str, what: str, stage: dict, **kw: Any
@@ -426,6 +427,11 @@ CATALOGUE: tuple[Mutant, ...] = (
     _mm("top_table_weight_low", "method_dpc_top.sv", ".s_weight_i (frame[WeightFracBits:0]),",
         ".s_weight_i ({1'b0, frame[WeightFracBits-1:0]}),",
         "w = 2^Wf read as 0", "table14"),
+    _mm("top_table_bad_lower_only", "method_dpc_top.sv",
+        ".s_user_i   ({pix_data, pix_sof, pix_eol, w.lower.bad | w.upper.bad}),",
+        ".s_user_i   ({pix_data, pix_sof, pix_eol, w.lower.bad}),",
+        "table_interp's DPC takes table j's bad flag only (a pixel bad in table j + 1 is "
+        "interpolated from its coefficients and not replaced)", "table14"),
     _m("dpc_mask_no_enable", "dpc_core.sv",
        "    if (en) begin\n      mask_leaves_q <= nb_leaves;",
        "    if (1'b1) begin\n      mask_leaves_q <= nb_leaves;",
@@ -499,8 +505,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "taken_q       <= 1'b0;",
         "the started flag is never cleared: a later refresh frame takes the old target "
         "without a new division", _FFC),
-    _ms("fr_refresh_uses_old", "ffc_refresh.sv", "c_c_q       <= r_refresh_q ? dc_d : r_c_q;",
+    _ms("fr_refresh_uses_old", "ffc_refresh.sv",
+        "c_c_q       <= (r_refresh_q && !keep_i) ? dc_d : r_c_q;",
         "c_c_q       <= r_c_q;", "the refresh frame corrected with the old words", _FFC),
+    _ms("fr_keep_ignored", "ffc_refresh.sv",
+        "c_c_q       <= (r_refresh_q && !keep_i) ? dc_d : r_c_q;",
+        "c_c_q       <= r_refresh_q ? dc_d : r_c_q;",
+        "a refresh without a target (no good pixel in its mean frame) writes corrections "
+        "towards 0 instead of keeping them", _FFC),
+    _ms("fm_empty_never", "ffc_mean.sv", "none_q  <= n_q == '0;", "none_q  <= 1'b0;",
+        "a mean frame without a good pixel is taken as a target of 0", _FFC),
     _ms("fr_dc_truncated", "ffc_refresh.sv", ".Rounding(FfcRounding)\n  ) u_round_dc (",
         ".Rounding(0)\n  ) u_round_dc (", "the refresh's dc truncated, not rounded", _FFC),
     _ms("fs_first_frame_adds", "ffc_sums.sv",

@@ -5,15 +5,16 @@ from __future__ import annotations
 
 from typing import Any
 
+from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method, tb_axis_table
 from irnuc.verif.mutant import Mutant
 
-_AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
+_AXIS = {"top": "irnuc_axis_top", "suite": tb_axis.__name__}
 #: The wrapper around method_dpc_top, with its method testbench.
-_AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+_AXM = {"suite": tb_axis_method.__name__}
 #: table_interp's selection (irnuc_axis_table, TABLE_SEL), with its testbench.
-_AXT = {"suite": "irnuc.cocotb_tests.tb_axis_table", "config": "table14"}
+_AXT = {"suite": tb_axis_table.__name__, "config": "table14"}
 #: The wrapper around method_ffc_top, with its FFC testbench.
-_AXF = {"suite": "irnuc.cocotb_tests.tb_axis_ffc", "config": "ffc14"}
+_AXF = {"suite": tb_axis_ffc.__name__, "config": "ffc14"}
 
 
 def _ma(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:

@@ -103,10 +103,10 @@ def run_report(args: Any) -> int:
     from irnuc.reports.report.summary import load_baseline, make_summary
 
     argv = list(getattr(args, "argv", []) or [])
-    config = load_report_config(args.config, quick=args.quick)
     cfg_file = config_path(args.config)
     out = claim_output_folder(args.out, kind="report", inputs={
         "--config": cfg_file if cfg_file.is_file() else None})
+    config = load_report_config(args.config, quick=args.quick)
     check_runs_something(config, f"--config {args.config}", no_cosim=args.no_cosim,
                          junit=bool(args.junit))
     baseline = load_baseline(args.baseline, config) if args.baseline else None

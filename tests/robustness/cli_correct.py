@@ -82,7 +82,8 @@ def _flip_first_hex_digit(data: bytes) -> bytes:
     return (b"1" if first != b"1" else b"2") + data[1:]
 
 
-R = command("correct", (("irnuc.nuc_fixed.top", "nuc_dpc_top"),))
+R = command("correct", (("irnuc.nuc_fixed.top", "nuc_dpc_top"),
+                       ("irnuc.nuc_fixed.method_top", "method_top")))
 CF = "--frames {w}/good.npz --coeffs {t}/cal"
 case("correct-no-coeffs", R, "--frames {w}/good.npz", ("--coeffs", "required"), "--coeffs missing")
 case("correct-source-unknown", R, f"{CF} --source rom", ("--source", "invalid choice"), "an unknown --source",
@@ -204,3 +205,42 @@ case("correct-out-user-folder", R, CF + " --out {t}/out", ("--out", "other conte
      "--out is a user's folder", setup=lambda w, t: (_coeffs_copy()(w, t), user_folder(w, t)))
 case("correct-out-calibration", R, CF + " --out {t}/out", ("--out", "irnuc calibrate"),
      "--out holds a calibration", setup=lambda w, t: (_coeffs_copy()(w, t), other_kind("calibrate")(w, t)))
+
+
+# ---- the manifest's integrity, the FPA sensor, method and stages (issue 42) -------------------
+TC = "--frames {w}/tc_frames.npz --coeffs {t}/tcal"
+
+
+def _tcal_copy(mutate: Callable[[Path], None] | None = None) -> Callable[[Path, Path], None]:
+    def setup(w: Path, t: Path) -> None:
+        shutil.copytree(w / "tcal", t / "tcal")
+        if mutate is not None:
+            mutate(t / "tcal")
+    return setup
+
+
+def _edit_t_ref(folder: Path) -> None:
+    m = _manifest(folder)
+    m["registers"]["t_ref"] += 100
+    _set_manifest(folder, m)
+
+
+def _sparse_badpix(folder: Path) -> None:
+    with (folder / "badpix.csv").open("r+b") as fh:
+        fh.truncate(20 * 2**30)  # 20 GiB, sparse
+
+
+case("correct-manifest-register-edited", R, TC, ("--coeffs", "registers", "manifest was edited"),
+     "the register t_ref edited in manifest.json (taken: every temperature term shifted)",
+     setup=_tcal_copy(_edit_t_ref))
+case("correct-sensor-other", R, "--frames {w}/tc_frames_other.npz --coeffs {t}/tcal",
+     ("--frames", "FPA sensor", "lsb_K = 0.02", "lsb_K = 0.01"),
+     "frames of another FPA sensor than the calibration's (output off by thousands of codes)",
+     setup=_tcal_copy())
+case("correct-pipeline-stage-mismatch", R, f"{CF} --pipeline ffc14",
+     ("--coeffs", "differ from pipeline 'ffc14'", "'two_point+ffc'"),
+     "two-point coefficients for a pipeline with an FFC stage (the stage silently not applied)",
+     setup=_coeffs_copy())
+case("correct-manifest-file-huge", R, CF, ("--coeffs", "badpix.csv", "bytes, more than"),
+     "a 20 GB sparse file named by the manifest (read whole)",
+     setup=_coeffs_copy(_sparse_badpix))

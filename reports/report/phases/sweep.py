@@ -42,13 +42,16 @@ def sweep_specs(s: Mapping[str, Any]):
 def check_sweep(s: Mapping[str, Any], source: str) -> None:
     """The sweep's specification, before any work (the ADC of the sensor against the
     pipeline's, the axes)."""
-    from irnuc.reports.studies.sweep import check_widths
+    from irnuc.reports.studies.sweep import check_sweep_memory, check_widths
 
     sensor, axes = sweep_specs(s)
     sensor.check()
     axes.check()
     check_widths(sensor, axes, sensor_name=f"{source}: sweep.preset",
                  pipeline_name="sweep.pipeline")
+    workers = int(s.get("workers", 2))
+    check_sweep_memory(sensor, axes, workers, f"{source}: the sweep (sweep.workers = "
+                       f"{workers})", "use a smaller frame, fewer frames or fewer workers")
 
 
 #: The fields of a point's record (``SweepPoint.record``) the recommended entry repeats.
