@@ -43,7 +43,13 @@ def add_synth_arguments(p: argparse.ArgumentParser) -> None:
                         "slowest)")
     p.add_argument("--freq", type=float, default=150.0, metavar="MHZ",
                    help="clock nextpnr aims at (default: %(default)s MHz)")
-    p.add_argument("--seed", type=int, default=1, help="placer seed (default: %(default)s)")
+    p.add_argument("--seed", type=int, default=1,
+                   help="placer seed; with --seeds the first of them (default: %(default)s)")
+    p.add_argument("--seeds", type=int, default=1, metavar="N",
+                   help="place each configuration at N placer seeds (--seed, --seed + 1, "
+                        "...; in parallel on --workers, each placement cached) and report the "
+                        "best, the worst and the spread; synth.json keeps the best "
+                        "placement's figures (default: %(default)s)")
     p.add_argument("--out-of-context", action="store_true",
                    help="place and route as a block inside a larger design: ports not on "
                         "package pins, no I/O buffers (nextpnr --out-of-context)")
@@ -62,7 +68,7 @@ def run_synth(args: argparse.Namespace) -> int:
         plain_name,
         write_text_atomic,
     )
-    from irnuc.cosim.synth import SYNTH_TOPS, synth_configs, tops_for
+    from irnuc.cosim.synth import MAX_SEEDS, SYNTH_TOPS, synth_configs, tops_for
     from irnuc.nuc_fixed.rtl_spec import PIPELINE_RANGES
 
     out = claim_output_folder(args.out, kind="synth")
@@ -88,12 +94,18 @@ def run_synth(args: argparse.Namespace) -> int:
         raise UserError(f"--freq {args.freq:g} is outside the allowed range 1..1000 MHz")
     if not 0 <= args.seed < 2**31:
         raise UserError(f"--seed {args.seed} is outside the allowed range 0..2^31-1")
+    if not 1 <= args.seeds <= MAX_SEEDS:
+        raise UserError(f"--seeds {args.seeds} is outside the allowed range 1..{MAX_SEEDS}")
+    if args.seed + args.seeds - 1 >= 2**31:
+        raise UserError(f"--seed {args.seed} --seeds {args.seeds}: the last seed is past "
+                        "2^31-1")
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
     for c in cfgs:  # the changed frame limits must still be a legal configuration
         c.replace(**{k: v for k, v in (("max_width", args.max_width),
                                        ("max_height", args.max_height)) if v is not None})
-    results = synth_configs(cfgs, workers=args.workers if len(cfgs) > 1 else 0,
+    parallel = len(cfgs) > 1 or args.seeds > 1
+    results = synth_configs(cfgs, workers=args.workers if parallel else 0, seeds=args.seeds,
                             scheduler=args.scheduler, progress=progress("synth"),
                             top=args.top, max_width=args.max_width, max_height=args.max_height,
                             speed=args.speed, freq_mhz=args.freq, seed=args.seed,
@@ -107,18 +119,33 @@ def run_synth(args: argparse.Namespace) -> int:
                                   / "synth.json", json.dumps(r, indent=1) + "\n")
             index = {"configurations": [
                 {"name": r["config"]["name"], "fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"],
-                 "ecp5": r["ecp5"], "config_digest": r["config_digest"]} for r in results]}
+                 "ecp5": r["ecp5"], "config_digest": r["config_digest"],
+                 **({"seeds": r["seeds"]} if "seeds" in r else {})} for r in results]}
             write_text_atomic(tmp / "synth.json", json.dumps(index, indent=1) + "\n")
     for r in results:
         x, e = r["xc7"], r["ecp5"]
         say(f"{r['config']['name']} {r['top']} ({r['config']['max_width']} x {r['config']['max_height']}): "
-            f"Fmax {r['fmax_mhz']:.1f} MHz (ECP5-85k speed {r['speed']}"
+            f"Fmax {fmax_text(r)} (ECP5-85k speed {r['speed']}"
             f"{', out of context' if r.get('out_of_context') else ''}); xc7 {x['lut']} LUT, "
             f"{x['ff']} FF, {x['dsp']} DSP48, {x['bram18']} RAMB18, {x['bram36']} RAMB36, "
             f"{x['lutram']} LUTRAM; ECP5 {e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, "
             f"{e['dp16kd']} DP16KD" + (" (cached)" if r["cached"] else ""))
     say(f"wrote {out / 'synth.json'}")
     return 0
+
+
+def fmax_text(r: dict) -> str:
+    """A result's Fmax in words: one placement's, or the best, worst and spread of a seed
+    sweep (with the seed of each and how many placements reach the target)."""
+    sd = r.get("seeds")
+    if not sd:
+        return f"{r['fmax_mhz']:.1f} MHz"
+    seeds = sd["seeds"]
+    span = (f"seeds {seeds[0]}-{seeds[-1]}" if seeds == list(range(seeds[0], seeds[-1] + 1))
+            else "seeds " + ", ".join(map(str, seeds)))
+    return (f"best {sd['best_mhz']:.1f} MHz (seed {sd['best_seed']}), worst "
+            f"{sd['worst_mhz']:.1f} (seed {sd['worst_seed']}), spread {sd['spread_mhz']:.1f}, "
+            f"{sd['at_target']} of {sd['runs']} at {sd['target_mhz']:g} MHz over {span}")
 
 
 COMMANDS = {
