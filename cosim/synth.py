@@ -577,32 +577,30 @@ def _netlist_key(sources: Sequence[str | os.PathLike], top: str,
 def synth_netlist(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
                   *, use_cache: bool = True) -> tuple[Path, dict, dict]:
     """The design's ECP5 netlist and its xc7 and ECP5 cell counts, synthesized once and
-    cached (``synth/net-<key>/``: every placer seed of :func:`synth_config` places the
-    same netlist). Returns (the netlist JSON, :func:`synth_xc7`'s dict, :func:`synth_ecp5`'s
-    dict), the logs left out."""
+    cached (``synth/net-<key>/``: ``xc7/`` and ``ecp5/`` with the Yosys logs, the netlist
+    ``ecp5/<top>.json``, ``netlist.json``; every placer seed of :func:`synth_config` places
+    the same netlist). Returns (the netlist JSON, :func:`synth_xc7`'s dict,
+    :func:`synth_ecp5`'s dict), without the logs' paths."""
     from irnuc.common.cache import cache_dir
     from irnuc.common.io import file_lock, write_text_atomic
 
     key = _netlist_key(sources, top, params)
     root = cache_dir("synth")
     folder = root / f"net-{key}"
-    summary = folder / "netlist.json"
+    net, summary = folder / "ecp5" / f"{top}.json", folder / "netlist.json"
     with file_lock(root / f".net-{key}.lock"):
-        if use_cache and summary.is_file() and (folder / f"{top}.json").is_file():
-            data = json.loads(summary.read_text())
-            return folder / f"{top}.json", data["xc7"], data["ecp5"]
-        shutil.rmtree(folder, ignore_errors=True)
-        work = root / f"net-{key}.work"
-        shutil.rmtree(work, ignore_errors=True)
-        xc7 = synth_xc7(sources, top, params, work / "xc7")
-        net, ecp5 = synth_ecp5(sources, top, params, work / "ecp5")
-        folder.mkdir(parents=True)
-        shutil.copyfile(net, folder / net.name)
-        keep = {"xc7": {k: v for k, v in xc7.items() if k != "log"},
-                "ecp5": {k: v for k, v in ecp5.items() if k != "log"}}
-        write_text_atomic(summary, json.dumps(keep, indent=1) + "\n")  # last: the mark
-        shutil.rmtree(work, ignore_errors=True)
-    return folder / net.name, keep["xc7"], keep["ecp5"]
+        if not (use_cache and summary.is_file() and net.is_file()):
+            work = root / f"net-{key}.work"
+            shutil.rmtree(work, ignore_errors=True)
+            xc7 = synth_xc7(sources, top, params, work / "xc7")
+            _, ecp5 = synth_ecp5(sources, top, params, work / "ecp5")
+            keep = {"xc7": {k: v for k, v in xc7.items() if k != "log"},
+                    "ecp5": {k: v for k, v in ecp5.items() if k != "log"}}
+            write_text_atomic(work / summary.name, json.dumps(keep, indent=1) + "\n")
+            shutil.rmtree(folder, ignore_errors=True)
+            os.replace(work, folder)  # the netlists, their logs and summary as a unit
+        data = json.loads(summary.read_text())
+    return net, data["xc7"], data["ecp5"]
 
 
 def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
