@@ -456,6 +456,8 @@ module irnuc_axis_top
     .coef_ready_o     (coef_ready),
     .coef_data_i      (coef_data),
     .coef_last_i      (coef_last),
+    .coef_in_valid_i  (s_axis_coef_tvalid),
+    .coef_in_ready_i  (s_axis_coef_tready),
     .pend_width_i     (pend_w),
     .pend_height_i    (pend_h),
     .pend_width_m1_i  (pend_wm1),

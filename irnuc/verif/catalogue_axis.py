@@ -51,6 +51,11 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "out_free_q <= !m_valid_o || m_ready_i || out_free_q;",
         "the decision's copy of the output register's ready misses an item that fills its "
         "skid register (a third item sent over two held)"),
+    _ma("ax_go_ignores_output", "irnuc_axis_framer.sv",
+        "|| (cst_f == CoefFill)) && (!m_valid_o || m_ready_i);",
+        "|| (cst_f == CoefFill));",
+        "the registered decision (go_q) after an item sent ignores the output register's "
+        "ready: an item sent over two held"),
     _ma("ax_line_size_follows_pending", "irnuc_axis_framer.sv",
         "    end else if (s_wait_q) begin\n      lw_m1_q  <= pend_width_m1_i;",
         "    end else begin\n      lw_m1_q  <= pend_width_m1_i;",
