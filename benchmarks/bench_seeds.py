@@ -115,7 +115,7 @@ def main() -> None:
         "benchmark": "seeds", "configs": configs, "tops": tops,
         "seeds": synth.seed_list(args.seeds), "baseline": "seed 1 (the single-seed flow)",
         "goal": {"best_mhz": BEST_GOAL_MHZ, "worst_mhz": WORST_GOAL_MHZ},
-        "device": f"LFE5U-{synth.ECP5_DEVICE.upper().rstrip('K')}F {synth.ECP5_PACKAGE} speed "
+        "device": f"LFE5U-{synth.ECP5_DEVICE.removesuffix('k')}F {synth.ECP5_PACKAGE} speed "
                   f"{synth.ECP5_SPEED_DEFAULT}",
         "designs": rows, "by_top": by_top, "all": every,
         "ratio_mean_best_vs_seed1": every["ratio_mean_best_vs_seed1"],
