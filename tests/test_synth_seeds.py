@@ -190,3 +190,15 @@ def test_irnuc_synth_seeds_writes_the_fold(tmp_path, monkeypatch, capsys) -> Non
     line = capsys.readouterr().out
     assert ("Fmax best 158.0 MHz (seed 4), worst 144.8 (seed 3), spread 13.2, 2 of 3 at "
             "150 MHz over seeds 2-4") in line
+
+
+def test_report_text_of_a_seed_sweep() -> None:
+    """The report's Fmax text: nothing for one placement; the best of N, the worst and, in
+    detail, every seed's figure for a sweep."""
+    from irnuc.reports.report.render import seeds_text
+
+    assert seeds_text({"fmax_mhz": 150.0}) == ""
+    sweep = synth.best_of_seeds([_run(1, 148.04), _run(2, 161.5), _run(3, 139.25)])
+    assert seeds_text(sweep) == (" (best of 3 placer seeds, seed 2; worst 139.2 MHz, 1 of 3 "
+                                 "at the target)")
+    assert seeds_text(sweep, True).endswith("; seed 1: 148.0, seed 2: 161.5, seed 3: 139.2)")
