@@ -45,7 +45,7 @@ class RunContext:
     temps: np.ndarray = field(default_factory=lambda: np.empty(0))
     first_frame: int = 0
     counts: Counter = field(default_factory=Counter)
-    flicker: _noise.FlickerState | None = None
+    flicker: _noise.VossState | None = None
     #: ``demand(product)`` computes (once) and returns a product no stage input declared:
     #: for results needed only on a rare path, like the skimming fallback voltage.
     demand: Callable[[str], Any] | None = None

@@ -92,12 +92,12 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
         Stage("solve_reference", ("L_env", "k_scene", "seen", "defects", "params", "solve_coef"),
               ("solve_reference",), False, st.stage_reference_solution),
         st.make_skim_stage(cfg["readout"]["skimming"]),
-        Stage("integrator", ("v_bolo", "v_ref", "defect_index", "status"), ("v_int",), True,
+        Stage("integrator", ("v_sense", "v_ref", "defect_index", "status"), ("v_int",), True,
               st.stage_integrator),
         Stage("defect_index", ("defects",), ("defect_index", "defect_resp"), False,
               st.stage_defect_index),
         Stage("reference_layout", (), ("reference_positions",), False, st.stage_reference_layout),
-        Stage("reference_pixels", ("v_bolo", "status", "dT", "reference_positions"),
+        Stage("reference_pixels", ("v_sense", "status", "reference_positions"),
               ("blind_codes",), True, st.stage_reference_pixels),
     ]
     if env_varies:
@@ -113,14 +113,26 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     if key.thermal == "transient":
         stages.append(Stage("bolometer", ("Q", "params"), bolo_out, True,
                             st.stage_bolometer_transient))
+    elif cfg["bolometer"]["pulse"] == "integrated":
+        stages.append(Stage("pulse_reference", ("L_env", "k_scene", "seen", "defects", "params"),
+                            ("pulse_ref",), False, st.stage_pulse_reference))
+        fn = (st.stage_bolometer_train_lagged if key.thermal == "lagged"
+              else st.stage_bolometer_periodic)
+        stages.append(Stage("bolometer", ("Q", "params", "pulse_ref"), bolo_out, True, fn))
     else:
         fn = st.stage_bolometer_lagged if key.thermal == "lagged" else st.stage_bolometer
         stages.append(Stage("bolometer", ("Q", "params", "solve_coef", "solve_reference"),
                             bolo_out, True, fn))
+    if st.bolometer_noise_on(cfg):
+        stages.append(Stage("bolometer_noise", ("v_bolo", "dT", "status"), ("v_sense",), True,
+                            st.stage_bolometer_noise))
+    else:
+        stages.append(Stage("no_bolometer_noise", ("v_bolo",), ("v_sense",), True,
+                            lambda ctx, inp: {"v_sense": inp["v_bolo"]}))
     if st.noise_configured(cfg):
         stages.append(Stage("noisy_pixels", ("defects",), ("noisy_sigma",), False,
                             st.stage_noisy_pixels))
-        stages.append(Stage("noise", ("v_int", "v_bolo", "dT", "noisy_sigma"), ("v_out",), True,
+        stages.append(Stage("noise", ("v_int", "noisy_sigma"), ("v_out",), True,
                             st.stage_noise))
     else:
         stages.append(Stage("no_noise", ("v_int",), ("v_out",), True,
@@ -250,8 +262,11 @@ class Pipeline:
         """
         n = len(temps)
         key = self.graph_key(env, thermal)
-        if key.thermal != "steady" and frame_period is None:
-            raise ConfigError(f"thermal = {thermal!r} needs the frame period (s)")
+        period = st.frame_period(self.cfg)
+        if frame_period is not None and abs(frame_period - period) > 1e-12 * period:
+            raise ConfigError(f"frame_period = {frame_period:g} s differs from the sensor's "
+                              f"1 / readout.frame_rate = {period:g} s; configure the sensor "
+                              "with the run's frame rate")
         if env is not None:
             for k, v in env.items():
                 if np.shape(v) != (n,):
@@ -262,7 +277,7 @@ class Pipeline:
         chunked = [s for s in order if s.per_chunk]
         chunk_outputs = {o for s in stages if s.per_chunk for o in s.outputs}
         ctx = RunContext(self.cfg, self.layout, scene or Scene(), self.seed, counts=self.counts,
-                         frame_period=frame_period, transient=transient)
+                         frame_period=period, transient=transient)
         for stage in order:
             if not stage.per_chunk and not all(o in self._static for o in stage.outputs):
                 self.counts[stage.name] += 1

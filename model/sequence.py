@@ -42,7 +42,13 @@ from irnuc.model.core import bolometer as _kb
 from irnuc.model.fpa_sensor import FRAME_FIELDS, FpaSensor, frame_fields
 from irnuc.model.profiles import Profile, check_range, parse_profile
 from irnuc.model.scenes import Scene, check_temps
-from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.model.validate import (
+    ConfigError,
+    check_choice,
+    check_frame_period,
+    check_int,
+    check_scalar,
+)
 
 #: The thermal models a sequence may ask for (``auto`` chooses one of the first two).
 THERMAL_CHOICES = ("auto", "steady", "lagged", "transient")
@@ -308,11 +314,13 @@ def choose_thermal(cfg: Mapping[str, Any], seq: DriftSequence, sched: Schedule,
     period = seq.frame_period
     memory = math.exp(-period / tau_max) if tau_max > 0 else 0.0
     change = sched.largest_change()
-    err = memory * change
+    ramp = float(np.abs(np.diff(sched.fpa_K)).max(initial=0.0)) / period
+    err = max(memory * change, tau_max * ramp)
     facts = (f"the pixels' thermal time constant (up to {tau_max * 1e3:.3g} ms) leaves "
              f"{memory:.3g} of a change in the next frame ({period * 1e3:.3g} ms later); the "
-             f"largest change between frames is {change:.3g} K, so a frame remembers up to "
-             f"{err:.3g} K of the one before")
+             f"largest change between frames is {change:.3g} K and the substrate moves at up "
+             f"to {ramp:.3g} K/s (a pixel lags it by tau times that), so a frame remembers up "
+             f"to {err:.3g} K of the ones before")
     if seq.thermal == "lagged" and cfg["bolometer"]["variant"] == "paper":
         raise ConfigError("sequence.thermal = 'lagged' needs bolometer.variant = "
                           "'equilibrium': the paper variant switches the scene on with the bias "
@@ -382,6 +390,10 @@ def prepare(cfg: Mapping[str, Any], seq: DriftSequence, scene: str | Scene = "un
     seed = check_int("seed", seed, 0, 2**63 - 1)
     if isinstance(scene, str):
         scene = Scene(scene, dict(scene_params or {}))
+    check_frame_period(seq.frame_period, cfg["bolometer"]["t_int"],
+                       what=f"{seq.source}: sequence.frame_rate = {seq.frame_rate:g} Hz")
+    # the sequence's frame rate is the sensor's (every pixel is pulsed once per frame)
+    cfg = _pl.checked_config(apply_overrides(cfg, {"readout.frame_rate": seq.frame_rate}))
     sched = seq.schedule()
     check_temps(sched.scene_K)
     mid = {"environment.T_substrate": float(0.5 * (sched.fpa_K.min() + sched.fpa_K.max())),

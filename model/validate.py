@@ -14,7 +14,8 @@ import numpy as np
 
 from irnuc.common.errors import ConfigError
 
-__all__ = ["ConfigError", "check_array", "check_choice", "check_int", "check_scalar"]
+__all__ = ["ConfigError", "check_array", "check_choice", "check_frame_period", "check_int",
+           "check_scalar"]
 
 def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
     left = "(" if lo_open else "["
@@ -115,3 +116,16 @@ def check_choice(field: str, value: Any, choices: dict[str, Any] | tuple[str, ..
     if value not in choices:
         raise ConfigError(f"{field} = {value!r} is not one of {sorted(choices)}")
     return str(value)
+
+
+def check_frame_period(period: float, t_int: float, pulse_start: float = 0.0,
+                       what: str = "the frame period") -> None:
+    """Every thermal model pulses each pixel once per frame period: a period shorter than
+    ``pulse_start + t_int`` (s) is refused, with one message whichever model asks."""
+    need = pulse_start + t_int
+    if period < need * (1.0 - 1e-12):
+        start = "pulse_start + " if pulse_start else ""
+        raise ConfigError(
+            f"{what}: a frame period of {period:.6g} s is shorter than the bias pulse "
+            f"({start}bolometer.t_int = {need:.6g} s); every thermal model (steady, lagged, "
+            f"transient) needs the pulse inside the frame: at most {1.0 / need:.6g} frames/s")

@@ -297,9 +297,9 @@ def test_lagged_memory_matches_the_time_domain_model():
 
 
 def test_where_the_time_constant_is_far_below_the_frame_period_steady_is_used_and_equal():
-    """tau = 0.1 ms at 30 Hz: nothing is remembered (exp(-333)); ``auto`` says so and uses
-    the steady model, which gives the time-domain model's codes to the code and the lagged
-    model's bit for bit."""
+    """tau = 0.1 ms at 30 Hz: nothing is remembered (exp(-333)) and the pixel lags the
+    1 K/s substrate ramp by tau r = 0.1 mK; ``auto`` says so and uses the steady model,
+    which gives the time-domain and the lagged models' codes to the code."""
     cfg = _tiny(**LOW_BIAS, **{"bolometer.C": 1e-12})
     auto = simulate_sequence(cfg, _seq(**STEPS), seed=1)
     assert auto.thermal == "steady" and "steady model gives the same frames" in auto.thermal_reason
@@ -307,7 +307,7 @@ def test_where_the_time_constant_is_far_below_the_frame_period_steady_is_used_an
     lagged, _ = _codes(cfg, "lagged")
     transient, _ = _codes(cfg, "transient")
     np.testing.assert_array_equal(auto.codes, steady)
-    np.testing.assert_array_equal(lagged, steady)
+    assert np.abs(lagged - steady).max() <= 1
     assert np.abs(steady - transient).max() <= 1
 
 

@@ -17,7 +17,7 @@ import math
 
 from numba import njit, prange
 
-from irnuc.model.core.bolometer import STATUS_INVALID
+from irnuc.model.core.bolometer import STATUS_INVALID, STATUS_OK
 
 
 @njit(cache=True, error_model="numpy")
@@ -129,3 +129,26 @@ def frame_statistics(dT, status, r0, r1, c0, c1, codes, top):
         n_low += c == 0
         n_high += c == top
     return lo, hi, total, count, n_low, n_high
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def bolometer_noise(v, dT, status, T_s, I, t_int, johnson, kf_white, slow_amp, w, slow, out):
+    """The bolometer's own noise added to its voltage, (N, rows, cols), V: white with
+    variance 2 k T R / t_int (Johnson over the bandwidth 1/(2 t_int), ``johnson``) plus
+    kf_white v^2 (the 1/f octaves above the frame rate), from the standard normals ``w``;
+    plus slow_amp v ``slow`` (the slow 1/f octaves, ``slow`` of unit variance). T = T_s[n]
+    + dT and R = v / I. Pixels whose solve failed keep their voltage (they read the rail).
+    """
+    n_frames, rows, cols = v.shape
+    two_k_t = 2.0 * 1.380649e-23 / t_int
+    inv_I = 1.0 / I if I > 0.0 else 0.0
+    jf = 1.0 if johnson else 0.0
+    for i in prange(rows):
+        for n in range(n_frames):
+            Ts = T_s[n]
+            for j in range(cols):
+                vv = v[n, i, j]
+                T = max(Ts + dT[n, i, j], 0.0)
+                var = kf_white * vv * vv + jf * two_k_t * T * abs(vv) * inv_I
+                o = vv + math.sqrt(var) * w[n, i, j] + slow_amp * vv * slow[n, i, j]
+                out[n, i, j] = o if status[n, i, j] == STATUS_OK else vv
