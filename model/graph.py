@@ -19,8 +19,9 @@ from irnuc.model.scenes import Scene
 from irnuc.model.validate import ConfigError
 
 #: Per-frame environment a run may vary (arrays of one value per frame): substrate and
-#: housing temperature (K), shutter closed (bool) and the shutter's temperature (K).
-ENV_FIELDS = ("T_substrate", "T_cam", "shutter", "T_shutter")
+#: housing temperature (K), shutter closed (bool), the shutter's temperature (K) and the
+#: lens's (K; absent: at the housing).
+ENV_FIELDS = ("T_substrate", "T_cam", "shutter", "T_shutter", "T_lens")
 
 
 @dataclass(frozen=True)

@@ -68,6 +68,7 @@ class GraphKey:
     varying: frozenset[str] = frozenset()  # environment fields that vary per frame
     thermal: str = "steady"  # THERMAL_MODES
     shutter: bool = False  # some frame has its shutter closed
+    lens: bool = False  # the lens is not at the housing temperature in some frame
 
 
 def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Stage]:
@@ -79,6 +80,8 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     power_in = ("L_scene", "k_scene", "q_env", "defect_resp")
     if key.shutter:
         power_in += ("shutter_view", L_key)
+    if key.lens:
+        power_in += ("lens_view", L_key)
     stages = [
         Stage("params", (), ("params",), False, st.stage_params),
         Stage("defects", (), ("defects",), False, st.stage_defects),
@@ -109,6 +112,8 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     if key.shutter:
         stages.append(Stage("shutter_view", ("cos4",), ("shutter_view",), False,
                             st.stage_shutter_view))
+    if key.lens:
+        stages.append(Stage("lens_view", ("cos4",), ("lens_view",), False, st.stage_lens_view))
     bolo_out = ("v_bolo", "dT", "status", "iters")
     if key.thermal == "transient":
         stages.append(Stage("bolometer", ("Q", "params"), bolo_out, True,
@@ -230,7 +235,9 @@ class Pipeline:
         varying = frozenset(k for k in ("T_substrate", "T_cam")
                             if k in env and np.any(np.asarray(env[k]) != e[k]))
         shutter = bool("shutter" in env and np.any(env["shutter"]))
-        return GraphKey(varying, thermal, shutter)
+        lens = bool("T_lens" in env and np.any(np.asarray(env["T_lens"])
+                                                != np.asarray(env.get("T_cam", e["T_cam"]))))
+        return GraphKey(varying, thermal, shutter, lens)
 
     def iter_chunks(self, temps: np.ndarray, products: Sequence[str], scene: Scene | None = None,
                     *, env: Mapping[str, np.ndarray] | None = None, thermal: str = "steady",

@@ -185,6 +185,40 @@ def stage_shutter_view(ctx: RunContext, inp: dict) -> dict:
     return {"shutter_view": view}
 
 
+def stage_lens_view(ctx: RunContext, inp: dict) -> dict:
+    """The lens's share of each pixel's hemisphere: its emission (1 - tau) fills the optical
+    cone, pi sin^2(theta) cos^4(beta) (no reflection); shielded pixels do not see it."""
+    o = ctx.cfg["optics"]
+    cone = cone_factor(o["cone_method"], f_number=o["f_number"], fov=o["fov"])
+    view = (1.0 - o["transmission"]) * cone * inp["cos4"]
+    view[_shielded(ctx)] = 0.0
+    return {"lens_view": view}
+
+
+def _lens_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None:
+    """Add, in place, what a lens away from the housing temperature changes: eps A pi
+    (lens view) (L(T_lens) - L(T_cam)) (the housing term assumed the lens at T_cam)."""
+    env = ctx.env
+    if env is None or "T_lens" not in env:
+        return
+    n = Q.shape[0]
+    T_lens = np.asarray(env["T_lens"], dtype=np.float64)
+    T_cam = (np.asarray(env["T_cam"], dtype=np.float64) if "T_cam" in env
+             else np.full(n, float(ctx.cfg["environment"]["T_cam"])))
+    uniq, inv = np.unique(np.concatenate([T_lens, T_cam]), return_inverse=True)
+    L = _radiance(ctx, uniq)[inv]
+    dL = L[:n] - L[n:]
+    view = _base(ctx.cfg) * inp["lens_view"]
+    act = ctx.layout.active_slice
+    for k in range(n):
+        if dL[k] == 0.0:
+            continue
+        add = view * dL[k]
+        if resp is not None:
+            add[act] *= resp
+        Q[k] += add
+
+
 def _nominal_skim(ctx: RunContext, L_cam: Any, L_s: Any) -> Any:
     """Voltage of a nominal blind pixel, its shield as ``fpa.skim_shield`` says, V: a
     number, or one per frame when ``L_cam``, ``L_s`` are given per frame."""
@@ -255,8 +289,10 @@ def stage_power(ctx: RunContext, inp: dict) -> dict:
         _ks.power(inp["k_scene"], L, L.shape[1] == 1, q, per_frame, seen, blind,
                   _base(ctx.cfg), net, ctx.cfg["fpa"]["skim_shield"] == "substrate", L_cam,
                   L_s, resp if resp is not None else none, rs.start, cs.start, Q)
+    if "lens_view" in inp:
+        _lens_power(ctx, inp, Q, resp)
     if "shutter_view" in inp:
-        # the frames it overwrites need the defects' responsivity too
+        # the frames it overwrites need the defects' responsivity too (and hide the lens)
         _shutter_power(ctx, inp, Q, resp)
     return {"Q": Q}
 

@@ -465,6 +465,9 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
     if rounding is not None and rounding not in ROUNDING_MODES:
         raise ConfigError(f"rounding = {rounding!r} is not one of {sorted(ROUNDING_MODES)}")
     th = thresholds if thresholds is not None else load_thresholds()
+    # No method models the housing: it is fitted at the points where the housing is where
+    # it assumes (the reference point's offset from the FPA); the residual covers them all.
+    every_point, points = points, points.fpa_points()
     if points.adc_bits != cfg.adc_bits:
         raise InputError(f"{points.source}: the frames have adc_bits = {points.adc_bits} but "
                          f"pipeline {cfg.name!r} expects {cfg.adc_bits}")
@@ -539,7 +542,7 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
     coeffs = MethodCoefficients(cfg=cfg, fields=fields, registers=dict(q.regs))
     coeffs.check()
     cal = MethodCalibration(coeffs=coeffs, reasons=reasons, floats=q.floats, targets=t)
-    residual = point_residuals(cal, points)
+    residual = point_residuals(cal, every_point)
     counts = {r.name: int(((reasons & int(r)) != 0).sum()) for r in Reason}
     summary: dict[str, Any] = {
         "config": cfg.name,
@@ -547,7 +550,9 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
         "frame": [h, w],
         "points": {"scene_K": points.scene_K.tolist(), "fpa_K": points.fpa_K.tolist(),
                    "frames": int(n_m), "reference_fpa_K": float(points.fpa_K[ref]),
-                   "readings": [points.point_reading(p) for p in range(n_p)]},
+                   "readings": [points.point_reading(p) for p in range(n_p)],
+                   "housing_K": None if points.housing_K is None else points.housing_K.tolist(),
+                   "all_points": len(every_point.fpa_K)},
         "targets": t.tolist(),
         "rounding": rounding or "per format",
         "thresholds": th.to_dict(),
@@ -596,6 +601,8 @@ def point_residuals(cal: MethodCalibration, points: PointFrames) -> list[dict[st
             e = y[s].astype(np.float64)[good] - cal.targets[s]
             ef = float_correct(cal, means[p, s], reading, bchange)[good] - cal.targets[s]
             out.append({"fpa_K": float(points.fpa_K[p]), "scene_K": float(points.scene_K[s]),
+                        "housing_K": (None if points.housing_K is None
+                                      else float(points.housing_K[p])),
                         "reading": reading, "rms": float(np.sqrt(np.mean(e**2))),
                         "max_abs": float(np.abs(e).max()), "std": float(e.std()),
                         "float_rms": float(np.sqrt(np.mean(ef**2))),
@@ -629,7 +636,13 @@ def summary_text(cal: MethodCalibration) -> str:
         if n:
             lines.append(f"  {name:16s} {n}")
     worst = max(s["residual"], key=lambda r: r["std"])
+    housing = (f", housing {worst['housing_K']:g} K" if worst.get("housing_K") is not None
+               and worst["housing_K"] != worst["fpa_K"] else "")
     lines.append(f"residual fixed pattern (std over good pixels): worst {worst['std']:.3f} "
-                 f"codes at FPA {worst['fpa_K']:g} K, scene {worst['scene_K']:g} K (float fit "
-                 f"{worst['float_std']:.3f})")
+                 f"codes at FPA {worst['fpa_K']:g} K{housing}, scene {worst['scene_K']:g} K "
+                 f"(float fit {worst['float_std']:.3f})")
+    if s["points"].get("all_points", 0) > len(s["points"]["fpa_K"]):
+        lines.append(f"fitted on the {len(s['points']['fpa_K'])} points with the housing at "
+                     "the reference offset (no method models the housing); the residual covers "
+                     f"all {s['points']['all_points']}")
     return "\n".join(lines) + "\n"

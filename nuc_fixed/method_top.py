@@ -127,6 +127,9 @@ class FrameInputs:
     #: (N,) each frame's blind sum as a register holds it (BLIND_SUM of irnuc_axis_top),
     #: instead of ``blind_codes``
     blind_sums: np.ndarray | None = None
+    #: (N,) the housing temperature sensor's reading of each frame (frame files'
+    #: ``housing_reading``), for the methods that read the housing
+    housing_reading: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

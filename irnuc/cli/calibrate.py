@@ -246,7 +246,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         for k in ("environment.T_substrate", "environment.T_cam"):
             if k in sensor_set:
                 raise UserError(f"--set {k}: the plan sets it at every point (plan.fpa, "
-                                "plan.cam)")
+                                "plan.cam, plan.housing_offset)")
         scfg = load_sensor_arg(args.sensor, sensor_set)
         if int(scfg["adc"]["bits"]) != cfg.adc_bits:
             raise UserError(f"--sensor {args.sensor}: a {scfg['adc']['bits']}-bit ADC but "
@@ -260,12 +260,15 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         quiet = dataclasses.replace(plan.fpa_sensor, noise_K=0.0)
         check_readings(cfg, quiet.read(np.asarray(plan.fpa)).tolist(), plan.reference_index,
                        f"--plan {args.plan}", "its fpa_sensor")
-        n = len(plan.fpa) * len(plan.scene) * plan.frames
+        n_pts = len(plan.points())
+        n = n_pts * len(plan.scene) * plan.frames
+        where = (f"{len(plan.fpa)} FPA x {len(plan.housing_offset)} housing offsets"
+                 if plan.housing_offset else f"{n_pts} FPA")
         check_simulation_memory(scfg, n, ["codes"], what=(
-            f"--plan {args.plan}: {len(plan.fpa)} FPA x {len(plan.scene)} scene temperatures x "
+            f"--plan {args.plan}: {where} x {len(plan.scene)} scene temperatures x "
             f"{plan.frames} frames = {n} frame(s)"))
-        say(f"simulating {n} frame(s): {len(plan.fpa)} FPA x {len(plan.scene)} scene "
-            f"temperatures x {plan.frames} frames", 2)
+        say(f"simulating {n} frame(s): {where} x {len(plan.scene)} scene temperatures x "
+            f"{plan.frames} frames", 2)
         points = run_plan(plan, scfg, seed=args.seed)
         source = {"plan": str(args.plan), "sensor": args.sensor, "seed": args.seed,
                   "set": sensor_set}
@@ -418,8 +421,12 @@ def _run_correct(args: argparse.Namespace) -> int:
     check_sensor(manifest.get("fpa_sensor"), data["fpa_sensor"], cfg, f"--frames {args.frames}",
                  f"--coeffs {args.coeffs}")
     fields = {name: np.asarray(data[_FRAME_FIELD_KEYS[name]]) for name in needs(cfg)}
+    # the housing reading goes to the golden model the way the FPA's does (no shipped method
+    # reads it yet); a file of format 2 has none of its own (housing_synthesized)
+    housing = (None if data.get("housing_synthesized") or "housing_reading" not in data
+               else np.asarray(data["housing_reading"]))
     inputs = FrameInputs(reading=fields.get("fpa_reading"), blind_codes=fields.get("blind_codes"),
-                         shutter=fields.get("shutter"))
+                         shutter=fields.get("shutter"), housing_reading=housing)
     target = None
     if args.ffc_target is not None:
         target = int(np.floor(args.ffc_target * 2 ** cfg.format("ffc").frac_bits + 0.5))

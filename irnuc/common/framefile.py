@@ -27,7 +27,7 @@ import numpy as np
 from numpy.lib import format as npformat
 
 #: Version of the frame file's layout of keys (docs/sequences.md, "File format").
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 
 _LOCAL_HEADER = struct.Struct("<4s2B4HL2L2H")  # the ZIP local file header, 30 bytes
 _LOCAL_MAGIC = b"PK\x03\x04"
