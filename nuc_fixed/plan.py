@@ -266,7 +266,9 @@ class PointFrames:
         if len(np.unique(np.round(self.fpa_K[keep], 6))) != keep.size:
             raise PlanError(f"{self.source}: two points share an FPA temperature and the housing "
                             "offset of the reference point")
-        sel = (lambda a: None if a is None else a[keep])
+        def sel(a: np.ndarray | None) -> np.ndarray | None:
+            return None if a is None else a[keep]
+
         return replace(self, codes=self.codes[keep], fpa_K=self.fpa_K[keep],
                        reading=self.reading[keep], blind_codes=sel(self.blind_codes),
                        housing_K=self.housing_K[keep],

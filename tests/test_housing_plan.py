@@ -83,8 +83,8 @@ def test_points_are_every_combination_and_the_methods_fit_at_the_reference_offse
 def test_bad_plans_are_refused_naming_the_key(tmp_path, text, fragment):
     plan = tmp_path / "p.toml"
     body = "[plan]\nscene = [290.0, 370.0]\nfpa = [300.0, 310.0]\nframes = 2\n"
-    plan.write_text(body + text if not text.startswith("[") else body + text)
-    with pytest.raises(PlanError, match=None) as err:
+    plan.write_text(body + text)
+    with pytest.raises(PlanError) as err:
         load_plan(plan)
     assert fragment in str(err.value) and "\n" not in str(err.value)
 
