@@ -104,45 +104,85 @@ def flicker_variances(coefficient: float, frame_period: float, t_int: float
 class VossState:
     """A 1/f generator per pixel of ``shape`` (Voss-McCartney): FLICKER_OCTAVES values, the
     value of octave k drawn anew on every frame whose absolute index has k trailing zero
-    bits (every 2^(k+1) frames), all drawn at the run's first frame (the stationary state).
-    Their sum over sqrt(FLICKER_OCTAVES) has unit variance and a spectrum falling as about
-    1/f from the Nyquist frequency down FLICKER_OCTAVES octaves (within about 1.5 dB)."""
+    bits (every 2^(k+1) frames), all drawn at the run's first frame (the stationary state),
+    their running sum kept. The sum over sqrt(FLICKER_OCTAVES) has unit variance and a
+    spectrum falling as about 1/f from the Nyquist frequency down FLICKER_OCTAVES octaves
+    (within about 1.5 dB). The kernels of :mod:`model.core.stream` advance it in place
+    (:meth:`plan` gives them each frame's octave and key); :meth:`step` does it in numpy."""
 
     def __init__(self, shape: tuple[int, ...], stream: int) -> None:
         self.shape = tuple(shape)
         self.stream = stream
         self.values: np.ndarray | None = None
+        self.total: np.ndarray | None = None
         self.frame = -1
 
-    def step(self, seed: int, frame: int) -> np.ndarray:
-        """The generator at absolute ``frame`` (unit variance, ``shape``); frames must come
-        in order (a new run starts at any frame)."""
-        if self.values is None or frame != self.frame + 1:
-            self.values = np.stack([normals(seed, frame, self.stream + 1 + k, self.shape)
+    def plan(self, seed: int, first_frame: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """(octave (n,) int64, key (n,) uint64) of frames first_frame .. + n - 1: the octave
+        each draws anew (-1: none) and the key of its draws; the state starts (all octaves
+        drawn) when a run begins or skips frames."""
+        octave = np.full(n, -1, np.int64)
+        keys = np.zeros(n, np.uint64)
+        start = 0
+        if self.values is None or first_frame != self.frame + 1:
+            self.values = np.stack([normals(seed, first_frame, self.stream + 1 + k, self.shape)
                                     for k in range(FLICKER_OCTAVES)])
-        elif frame > 0:
-            k = (frame & -frame).bit_length() - 1  # trailing zeros
+            self.total = self.values.sum(axis=0)
+            start = 1
+        for i in range(start, n):
+            f = first_frame + i
+            k = (f & -f).bit_length() - 1 if f > 0 else FLICKER_OCTAVES
             if k < FLICKER_OCTAVES:
-                self.values[k] = normals(seed, frame, self.stream, self.shape)
-        self.frame = frame
-        return self.values.sum(axis=0) * (1.0 / math.sqrt(FLICKER_OCTAVES))
+                octave[i] = k
+                keys[i] = frame_key(seed, f, self.stream)
+        self.frame = first_frame + n - 1
+        return octave, keys
+
+    def step(self, seed: int, frame: int) -> np.ndarray:
+        """The generator at absolute ``frame`` (unit variance, ``shape``)."""
+        octave, _ = self.plan(seed, frame, 1)
+        assert self.values is not None and self.total is not None
+        k = int(octave[0])
+        if k >= 0:
+            new = normals(seed, frame, self.stream, self.shape)
+            self.total += new - self.values[k]
+            self.values[k] = new
+        return self.total * (1.0 / math.sqrt(FLICKER_OCTAVES))
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        """(values, total) for the kernels (after :meth:`plan`)."""
+        assert self.values is not None and self.total is not None
+        return self.values, self.total
+
+
+def keys(seed: int, first_frame: int, n: int, stream: int) -> np.ndarray:
+    """(n,) uint64: the keys of frames first_frame .. + n - 1 of a stream."""
+    return np.array([frame_key(seed, first_frame + k, stream) for k in range(n)], np.uint64)
 
 
 def add_noise(v: np.ndarray, sigma: np.ndarray | float, seed: int, first_frame: int,
               flicker_sigma: float = 0.0, flicker: VossState | None = None) -> np.ndarray:
-    """v plus white noise of standard deviation ``sigma`` (V) and optional 1/f noise of
-    ``flicker_sigma`` (V), per frame.
+    """v plus white noise of standard deviation ``sigma`` (V; a number or (H, W)) and
+    optional 1/f noise of ``flicker_sigma`` (V), per frame.
 
-    ``v`` is (N, H, W); ``sigma`` broadcasts to it. Frame k of ``v`` is absolute frame
-    ``first_frame + k`` for the choice of draws.
+    ``v`` is (N, H, W). Frame k of ``v`` is absolute frame ``first_frame + k`` for the
+    choice of draws.
     """
+    from irnuc.model.core import stream as _ks
+
+    v = np.ascontiguousarray(v, dtype=np.float64)
+    n = v.shape[0]
+    sg = np.asarray(sigma, dtype=np.float64)
+    sg = sg.reshape(1, 1) if sg.ndim == 0 else np.ascontiguousarray(np.broadcast_to(sg, v.shape[1:]))
+    if flicker is not None and flicker_sigma > 0.0:
+        octave, kf = flicker.plan(seed, first_frame, n)
+        vals, total = flicker.arrays()
+    else:
+        octave, kf = np.full(n, -1, np.int64), np.zeros(n, np.uint64)
+        vals, total = np.empty((0, 1, 1)), np.empty((1, 1))
     out = np.empty_like(v)
-    sigma = np.broadcast_to(sigma, v.shape)
-    for k in range(v.shape[0]):
-        f = first_frame + k
-        out[k] = v[k] + sigma[k] * normals(seed, f, NOISE_STREAM, v.shape[1:])
-        if flicker is not None and flicker_sigma > 0.0:
-            out[k] += flicker_sigma * flicker.step(seed, f)
+    _ks.output_noise(v, sg, keys(seed, first_frame, n, NOISE_STREAM), float(flicker_sigma),
+                     octave, kf, vals, total, _rng.ZIG_X, _rng.ZIG_F, out)
     return out
 
 

@@ -21,6 +21,7 @@ from irnuc.model import noise as _noise
 from irnuc.model import readout as _readout
 from irnuc.model.core import bolometer as _kb
 from irnuc.model.core import pulse as _kp
+from irnuc.model.core import rng as _rng
 from irnuc.model.core import stream as _ks
 from irnuc.model.core import warmstart as _kw
 from irnuc.model.defects import (
@@ -525,14 +526,13 @@ def thermal_noise_on(cfg: Mapping[str, Any]) -> bool:
                 and cfg["bolometer"]["pulse"] == "integrated")
 
 
-def _thermal_draws(ctx: RunContext, n: int) -> np.ndarray:
-    """(n, rows, cols) standard normals of the thermal fluctuation of this chunk's frames
-    (shape (0, rows, cols) when it is off)."""
+def _thermal_keys(ctx: RunContext, n: int) -> np.ndarray:
+    """(n,) uint64 keys of the thermal fluctuation's draws of this chunk's frames (empty when
+    it is off)."""
     if not thermal_noise_on(ctx.cfg):
-        return np.empty((0, *ctx.layout.shape))
+        return np.empty(0, np.uint64)
     ctx.counts["thermal_noise_frames"] += n
-    return np.stack([_noise.normals(ctx.seed, ctx.first_frame + k, _noise.THERMAL_STREAM,
-                                    ctx.layout.shape) for k in range(n)])
+    return _noise.keys(ctx.seed, ctx.first_frame, n, _noise.THERMAL_STREAM)
 
 
 def stage_bolometer_periodic(ctx: RunContext, inp: dict) -> dict:
@@ -542,12 +542,13 @@ def stage_bolometer_periodic(ctx: RunContext, inp: dict) -> dict:
     n = Q.shape[0]
     pr = inp["pulse_ref"]
     T_s = ctx.substrate(n)
-    noise = _thermal_draws(ctx, n)
-    sol = _periodic(ctx, Q, inp["params"], pr, T_s, keep=4 if noise.size else 0)
-    if noise.size:
+    keys = _thermal_keys(ctx, n)
+    sol = _periodic(ctx, Q, inp["params"], pr, T_s, keep=4 if keys.size else 0)
+    if keys.size:
         with threads_for(Q.size):
             _kp.thermal_noise_steady(sol["v_bolo"], sol["dT"], sol["theta0"], sol["ym1"],
-                                     sol["sens"], pr["d"], pr["omd"], pr["sig_eq"], T_s, noise)
+                                     sol["sens"], pr["d"], pr["omd"], pr["sig_eq"], T_s, keys,
+                                     _rng.ZIG_X, _rng.ZIG_F)
     return {k: sol[k] for k in ("v_bolo", "dT", "status", "iters")}
 
 
@@ -568,13 +569,13 @@ def stage_bolometer_train_lagged(ctx: RunContext, inp: dict) -> dict:
     v, m = np.empty(Q.shape), np.empty(Q.shape)
     status = np.empty(Q.shape, np.uint8)
     iters = np.empty(Q.shape, np.int32)
-    noise = _thermal_draws(ctx, n)
+    keys = _thermal_keys(ctx, n)
     with threads_for(Q.size):
         _kp.lagged_frames(Q, T_s, st["T_prev"], p["R_ref"], p["g"], p["C"], pr["d"], pr["omd"],
                           pr["excess"], pr["slope"], pr["teq"], st["theta"], st["has"],
-                          pr["period"], b["t_int"], B,
-                          b["T_ref"], b["bias_current"], pr["n"], b["runaway_temperature"],
-                          noise, pr["sig_eq"], v, m, status, iters)
+                          pr["period"], b["t_int"], B, b["T_ref"], b["bias_current"], pr["n"],
+                          b["runaway_temperature"], keys, pr["sig_eq"], v, m, status, iters,
+                          _rng.ZIG_X, _rng.ZIG_F)
     st.update(T_prev=float(T_s[-1]), has=True)
     return {"v_bolo": v, "dT": m, "status": status, "iters": iters}
 
@@ -733,22 +734,22 @@ def stage_bolometer_noise(ctx: RunContext, inp: dict) -> dict:
     shape = ctx.layout.shape
     white, slow = _noise.flicker_variances(nz["flicker_coefficient"], frame_period(cfg),
                                            b["t_int"])
-    w = np.stack([_noise.normals(ctx.seed, ctx.first_frame + k, _noise.BOLOMETER_STREAM, shape)
-                  for k in range(n)])
     if slow > 0.0:
         st = ctx.state.get("bolometer_flicker")
         if st is None:
             st = ctx.state["bolometer_flicker"] = _noise.VossState(shape, _noise.FLICKER_STREAM)
-        sl = np.stack([st.step(ctx.seed, ctx.first_frame + k) for k in range(n)])
+        octave, kf = st.plan(ctx.seed, ctx.first_frame, n)
+        vals, total = st.arrays()
     else:
-        sl = np.zeros((n, 1, 1))
-        sl = np.broadcast_to(sl, v.shape)
+        octave, kf = np.full(n, -1, np.int64), np.zeros(n, np.uint64)
+        vals, total = np.empty((0, 1, 1)), np.empty((1, 1))
     out = np.empty(v.shape)
     ctx.counts["bolometer_noise_frames"] += n
     with threads_for(v.size):
         _ks.bolometer_noise(v, inp["dT"], inp["status"], ctx.substrate(n), b["bias_current"],
-                            b["t_int"], bool(nz["johnson"]), white, math.sqrt(slow), w,
-                            np.ascontiguousarray(sl), out)
+                            b["t_int"], bool(nz["johnson"]), white, math.sqrt(slow),
+                            _noise.keys(ctx.seed, ctx.first_frame, n, _noise.BOLOMETER_STREAM),
+                            kf, octave, vals, total, _rng.ZIG_X, _rng.ZIG_F, out)
     return {"v_sense": out}
 
 

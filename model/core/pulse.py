@@ -47,6 +47,7 @@ from irnuc.model.core.bolometer import (
 )
 from irnuc.model.core.transient import M_AUTO, relax_ramp
 from irnuc.model.core.transient import pulse as _adaptive_pulse
+from irnuc.model.core.rng import normal_row
 from irnuc.model.core.warmstart import _exp_poly
 
 #: Largest |exponent| of a stage's resistance update by the polynomial.
@@ -367,18 +368,22 @@ def periodic_frames(Q, Ts, R_ref, g, C, d, omd, excess, slope, teq, B, T_ref, I,
 
 
 @njit(cache=True, parallel=True)
-def thermal_noise_steady(v, m, th0, ym1, s, d, omd, sig_eq, Ts, noise):
+def thermal_noise_steady(v, m, th0, ym1, s, d, omd, sig_eq, Ts, keys, x_tab, f_tab):
     """Add, in place, the thermal fluctuation of the pixel's temperature before the pulse to
     frames in the periodic state (no memory): a draw of the stationary variance
-    (k T^2 / C) (1 - d^2) / (1 - d^2 y^2) through the pulse's sensitivities (linear)."""
+    (k T^2 / C) (1 - d^2) / (1 - d^2 y^2) through the pulse's sensitivities (linear). The
+    standard normal of pixel (i, j) of frame f is that of (keys[f], i cols + j)
+    (:mod:`model.core.rng`)."""
     n_frames, rows, cols = v.shape
     for k in prange(n_frames * rows):
         f = k // rows
         i = k - f * rows
+        nz = np.empty(cols)
+        normal_row(keys[f], np.uint64(i) * np.uint64(cols), nz, x_tab, f_tab)
         for j in range(cols):
             sd = _stationary_sd(d[i, j], omd[i, j], ym1[f, i, j], sig_eq[i, j],
                                 Ts[f] + th0[f, i, j])
-            dl = sd * noise[f, i, j]
+            dl = sd * nz[j]
             v[f, i, j] += s[f, i, j] * dl
             m[f, i, j] += (1.0 + 0.5 * ym1[f, i, j]) * dl
 
@@ -408,16 +413,20 @@ def _fix_row(th0, Ts, Q, R_ref, g, C, B, T_ref, I, t_int, T_max, bad, v, m, dth,
 
 @njit(cache=True, error_model="numpy")
 def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, has_prev, P,
-                t_int, B, T_ref, I, n, T_max, noise, sig_eq, v_out, m_out, st_out, it_out, w,
-                tmp):
+                t_int, B, T_ref, I, n, T_max, keys, sig_eq, v_out, m_out, st_out, it_out, w,
+                tmp, base, x_tab, f_tab):
     """Frames of one row with the pixel's temperature carried (``state``: theta at the end
-    of the last pulse over the substrate then, K; updated in place)."""
+    of the last pulse over the substrate then, K; updated in place); the thermal
+    fluctuation's normal of pixel j is that of (keys[frame], base + j)."""
     n_frames, cols = Q.shape
     inv_Tref = 1.0 / T_ref
     th0 = tmp[0]
     dth, ym1, s = tmp[1], tmp[2], tmp[3]
     bad = np.zeros(cols, np.bool_)
-    has_noise = noise.shape[0] > 0
+    has_noise = keys.shape[0] > 0
+    noise = np.empty((n_frames if has_noise else 0, cols))
+    for k in range(noise.shape[0]):
+        normal_row(keys[k], base, noise[k], x_tab, f_tab)
     gs = np.empty(cols)
     it_buf = np.empty(cols, np.int32)
     for k in range(n_frames):
@@ -469,23 +478,24 @@ def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, 
 
 @njit(cache=True, parallel=True)
 def lagged_frames(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, has_prev, P,
-                  t_int, B, T_ref, I, n, T_max, noise, sig_eq, v_out, m_out, status, iters):
+                  t_int, B, T_ref, I, n, T_max, keys, sig_eq, v_out, m_out, status, iters,
+                  x_tab, f_tab):
     """Frames (N, rows, cols) with thermal memory: before each pulse the pixel has relaxed
     from the last pulse's end over P - t_int, the substrate linear from Ts_prev / the
     previous frame's value to the frame's (K); the pulse at the end of the frame period,
     the substrate held at its mid-pulse value. ``state`` (rows, cols): theta at the end of
     the last pulse (K, over the substrate at the frame's end), read if ``has_prev`` and
-    updated. ``noise`` (N, rows, cols) standard normals of the thermal fluctuation (shape
-    (0, rows, cols): none), ``sig_eq`` (rows, cols) sqrt(k_B / C), the equilibrium RMS of
-    the pixel's temperature over that temperature (1/K times K)."""
+    updated. ``keys`` (N,) uint64: the thermal fluctuation's draws of each frame (the normal
+    of pixel (i, j) that of (keys[f], i cols + j); empty: none), ``sig_eq`` (rows, cols)
+    sqrt(k_B / C), the equilibrium RMS of the pixel's temperature over that temperature."""
     rows, cols = Q.shape[1], Q.shape[2]
     for i in prange(rows):
         w = np.empty((14, cols))
         tmp = np.empty((10, cols))
         _lagged_row(Q[:, i], Ts, Ts_prev, R_ref[i], g[i], C[i], d[i], omd[i], excess[i],
                     slope[i], teq[i], state[i], has_prev, P, t_int, B, T_ref, I, n, T_max,
-                    noise[:, i], sig_eq[i], v_out[:, i], m_out[:, i], status[:, i], iters[:, i],
-                    w, tmp)
+                    keys, sig_eq[i], v_out[:, i], m_out[:, i], status[:, i], iters[:, i],
+                    w, tmp, np.uint64(i) * np.uint64(cols), x_tab, f_tab)
 
 
 @njit(cache=True)
