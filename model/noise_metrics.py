@@ -175,10 +175,11 @@ def operating_point(pipe: _pl.Pipeline, v: Mapping[str, Any], T_s: float) -> dic
     # the stationary RMS of the pre-pulse temperature (as model.core.pulse._stationary_sd)
     y = 1.0 + ym1
     one_d2 = pr["omd"] * (2.0 - pr["omd"])
-    den = one_d2 + pr["d"] ** 2 * (1.0 - y) * (1.0 + y)
+    den = one_d2 + (1.0 - pr["omd"]) ** 2 * (1.0 - y) * (1.0 + y)
     T0 = T_s + th0
+    sig_eq = np.sqrt(K_BOLTZMANN / p["C"])
     sd = np.where((den > 0) & (T0 > 0),
-                  pr["sig_eq"] * T0 * np.sqrt(one_d2 / np.where(den > 0, den, 1.0)), 0.0)
+                  sig_eq * T0 * np.sqrt(one_d2 / np.where(den > 0, den, 1.0)), 0.0)
     out["sens"] = sens
     out["thermal_sd"] = sd if st.thermal_noise_on(c) else np.zeros(th0.shape)
     return out

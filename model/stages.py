@@ -451,7 +451,7 @@ def choose_steps(cfg: Mapping[str, Any], q: float, T_s: float) -> int:
     x = (frame_period(cfg) - b["t_int"]) * g / C
     n = 1
     while n <= PULSE_MAX_STEPS:
-        err = _kp.nominal_steps_error(n, math.exp(-x), -math.expm1(-x), T_s, q,
+        err = _kp.nominal_steps_error(n, -math.expm1(-x), T_s, q,
                                       float(b["R_ref"]), g, C, B, b["T_ref"], b["bias_current"],
                                       b["t_int"], b["runaway_temperature"])
         if err * 16.0 / 15.0 <= PULSE_RTOL:
@@ -461,10 +461,10 @@ def choose_steps(cfg: Mapping[str, Any], q: float, T_s: float) -> int:
 
 
 def stage_pulse_reference(ctx: RunContext, inp: dict) -> dict:
-    """What the pulse train needs once per sensor: the step count, every pixel's decay
-    between pulses d = exp(-(P - t_int) g / C), sqrt(k / C) (the thermal fluctuation's RMS
-    over T) and its periodic excess theta_0 - Q/g at the sensor's environment looking at a
-    uniform scene at the housing temperature (the first guess of every periodic solve)."""
+    """What the pulse train needs once per sensor: the step count, every pixel's 1 - d, d =
+    exp(-(P - t_int) g / C) its decay between pulses, and the first guess of every periodic
+    solve: its periodic excess theta_0 - Q/g at the sensor's environment looking at a
+    uniform scene at the housing temperature, with its slope (single precision)."""
     b = ctx.cfg["bolometer"]
     p = inp["params"]
     L_cam, L_s = inp["L_env"]
@@ -476,27 +476,30 @@ def stage_pulse_reference(ctx: RunContext, inp: dict) -> dict:
     period = frame_period(ctx.cfg)
     n = choose_steps(ctx.cfg, float(np.median(Q[::7, ::7])), T_s)
     x = (period - b["t_int"]) * p["g"] / p["C"]
-    zero = np.zeros(Q.shape)
-    pr = {"n": n, "d": np.exp(-x), "omd": -np.expm1(-x), "excess": zero, "slope": zero,
-          "teq": zero}
-    sol = _periodic(ctx, Q[None], p, pr, np.array([T_s]), keep=4)
-    ok = sol["status"][0] == _kb.STATUS_OK
-    excess = np.where(ok, sol["theta0"][0] - Q / p["g"], 0.0)
-    # how the excess moves with the unbiased equilibrium temperature (to first order)
-    d, omd, ym1 = pr["d"], pr["omd"], sol["ym1"][0]
-    den = omd - d * ym1
-    slope = np.where(ok & (den > 0), d * ym1 / np.where(den > 0, den, 1.0), 0.0)
-    from irnuc.model.core.constants import K_BOLTZMANN
-
-    return {"pulse_ref": {**pr, "excess": np.ascontiguousarray(excess),
-                          "slope": np.ascontiguousarray(slope), "teq": T_s + Q / p["g"],
-                          "sig_eq": np.sqrt(K_BOLTZMANN / p["C"]), "period": period}}
+    # the nominal pixel's excess first: every pixel then starts a Newton step or two away
+    q_nom = float(np.median(Q[::7, ::7]))
+    nominal = {k: np.full((1, 1), float(b[k])) for k in ("R_ref", "g", "C")}
+    xn = (period - b["t_int"]) * nominal["g"] / nominal["C"]
+    z1 = np.zeros((1, 1), np.float32)
+    nom = _periodic(ctx, np.full((1, 1, 1), q_nom), nominal,
+                    {"n": n, "omd": -np.expm1(-xn), "excess": z1, "slope": z1, "teq": z1},
+                    np.array([T_s]), keep=1)
+    ex_nom = float(nom["theta0"][0, 0, 0] - q_nom / b["g"]) if nom["status"][0, 0, 0] == 0 else 0.0
+    zero = np.zeros(Q.shape, np.float32)
+    pr = {"n": n, "omd": -np.expm1(-x), "excess": np.full(Q.shape, ex_nom, np.float32),
+          "slope": zero, "teq": zero}
+    sol = _periodic(ctx, Q[None], p, pr, np.array([T_s]), keep=2)
+    excess, slope, teq = (np.empty(Q.shape, np.float32) for _ in range(3))
+    _kp.reference_maps(Q, p["g"], sol["theta0"][0], sol["ym1"][0], pr["omd"],
+                       sol["status"][0], T_s, excess, slope, teq)
+    return {"pulse_ref": {**pr, "excess": excess, "slope": slope, "teq": teq,
+                          "period": period}}
 
 
 def _periodic(ctx: RunContext, Q: np.ndarray, p: Mapping[str, np.ndarray], pr: Mapping[str, Any],
               T_s: np.ndarray, keep: int = 0) -> dict:
     """The periodic state of the pulse train of (N, rows, cols) frames (no memory); with
-    ``keep`` 1 also theta_0, with 4 also the pulse's rise, y - 1 and the voltage's
+    ``keep`` 1 also theta_0, 2 theta_0 and y - 1, 4 also the pulse's rise and the voltage's
     sensitivity S."""
     b = ctx.cfg["bolometer"]
     B = _kb.activation_temperature(b["tcr"], b["T_ref"])
@@ -508,12 +511,14 @@ def _periodic(ctx: RunContext, Q: np.ndarray, p: Mapping[str, np.ndarray], pr: M
     aux = np.empty((keep, *shape)) if keep else np.empty((0, 1, 1, 1))
     with threads_for(Q.size):
         _kp.periodic_frames(Q, np.ascontiguousarray(T_s, dtype=np.float64), p["R_ref"], p["g"],
-                            p["C"], pr["d"], pr["omd"], pr["excess"], pr["slope"], pr["teq"],
+                            p["C"], pr["omd"], pr["excess"], pr["slope"], pr["teq"],
                             B, b["T_ref"], b["bias_current"], b["t_int"], pr["n"],
                             b["runaway_temperature"], v, m, status, iters, aux)
     out = {"v_bolo": v, "dT": m, "status": status, "iters": iters}
     if keep:
         out |= {"theta0": aux[0]}
+    if keep == 2:
+        out |= {"ym1": aux[1]}
     if keep >= 4:
         out |= {"rise": aux[1], "ym1": aux[2], "sens": aux[3]}
     return out
@@ -547,7 +552,7 @@ def stage_bolometer_periodic(ctx: RunContext, inp: dict) -> dict:
     if keys.size:
         with threads_for(Q.size):
             _kp.thermal_noise_steady(sol["v_bolo"], sol["dT"], sol["theta0"], sol["ym1"],
-                                     sol["sens"], pr["d"], pr["omd"], pr["sig_eq"], T_s, keys,
+                                     sol["sens"], inp["params"]["C"], pr["omd"], T_s, keys,
                                      _rng.ZIG_X, _rng.ZIG_F)
     return {k: sol[k] for k in ("v_bolo", "dT", "status", "iters")}
 
@@ -571,10 +576,10 @@ def stage_bolometer_train_lagged(ctx: RunContext, inp: dict) -> dict:
     iters = np.empty(Q.shape, np.int32)
     keys = _thermal_keys(ctx, n)
     with threads_for(Q.size):
-        _kp.lagged_frames(Q, T_s, st["T_prev"], p["R_ref"], p["g"], p["C"], pr["d"], pr["omd"],
+        _kp.lagged_frames(Q, T_s, st["T_prev"], p["R_ref"], p["g"], p["C"], pr["omd"],
                           pr["excess"], pr["slope"], pr["teq"], st["theta"], st["has"],
                           pr["period"], b["t_int"], B, b["T_ref"], b["bias_current"], pr["n"],
-                          b["runaway_temperature"], keys, pr["sig_eq"], v, m, status, iters,
+                          b["runaway_temperature"], keys, v, m, status, iters,
                           _rng.ZIG_X, _rng.ZIG_F)
     st.update(T_prev=float(T_s[-1]), has=True)
     return {"v_bolo": v, "dT": m, "status": status, "iters": iters}
@@ -587,9 +592,9 @@ def _nominal_periodic(ctx: RunContext, q: np.ndarray, T_s: np.ndarray) -> np.nda
     nominal = {k: np.full((1, 1), float(b[k])) for k in ("R_ref", "g", "C")}
     period = frame_period(ctx.cfg)
     x = (period - b["t_int"]) * nominal["g"] / nominal["C"]
-    zero = np.zeros((1, 1))
+    zero = np.zeros((1, 1), np.float32)
     pr = {"n": choose_steps(ctx.cfg, float(np.median(q)), float(np.median(T_s))),
-          "d": np.exp(-x), "omd": -np.expm1(-x), "excess": zero, "slope": zero, "teq": zero}
+          "omd": -np.expm1(-x), "excess": zero, "slope": zero, "teq": zero}
     return _periodic(ctx, q.reshape(-1, 1, 1), nominal, pr, T_s)["v_bolo"][:, 0, 0]
 
 

@@ -47,6 +47,7 @@ from irnuc.model.core.bolometer import (
 )
 from irnuc.model.core.transient import M_AUTO, relax_ramp
 from irnuc.model.core.transient import pulse as _adaptive_pulse
+from irnuc.model.core.constants import K_BOLTZMANN as K_B
 from irnuc.model.core.rng import normal_row
 
 #: Largest |exponent| of a stage's resistance update by the polynomial.
@@ -316,7 +317,7 @@ def slow_periodic(eq, d, omd, Ts, Q, R_ref, g, C, B, T_ref, I, t_int, T_max, gue
 
 
 @njit(cache=True, error_model="numpy")
-def periodic_row(Q, Ts, R_ref, g, C, d, omd, guess, B, T_ref, I, t_int, n, T_max,
+def periodic_row(Q, Ts, R_ref, g, C, omd, guess, B, T_ref, I, t_int, n, T_max,
                  th0_out, v_out, m_out, dth_out, ym1_out, s_out, status, iters, w, tmp):
     """The periodic state of the pulse train for a row: theta_0 (K, before the pulse) with
     theta_0 = Q/g + (theta_end(theta_0) - Q/g) d, Newton from ``guess`` (K) with the fast
@@ -349,7 +350,8 @@ def periodic_row(Q, Ts, R_ref, g, C, d, omd, guess, B, T_ref, I, t_int, n, T_max
                 pending[j] = False
                 iters[j] = -1  # the slow path below
                 continue
-            step, ok = _newton_step(th0[j], Q[j] / g[j], d[j], omd[j], dth[j], ym1[j], Ts)
+            step, ok = _newton_step(th0[j], Q[j] / g[j], 1.0 - omd[j], omd[j], dth[j], ym1[j],
+                                    Ts)
             if not ok:
                 pending[j] = False
                 iters[j] = -1
@@ -371,7 +373,8 @@ def periodic_row(Q, Ts, R_ref, g, C, d, omd, guess, B, T_ref, I, t_int, n, T_max
             break
     for j in range(cols):
         if pending[j] or iters[j] < 0:
-            r = slow_periodic(Q[j] / g[j], d[j], omd[j], Ts, Q[j], R_ref[j], g[j], C[j], B, T_ref,
+            r = slow_periodic(Q[j] / g[j], 1.0 - omd[j], omd[j], Ts, Q[j], R_ref[j], g[j], C[j], B,
+                              T_ref,
                               I, t_int, T_max, guess[j])
             th0_out[j], v_out[j], m_out[j], dth_out[j], ym1_out[j], s_out[j] = r[:6]
             status[j] = r[6]
@@ -389,12 +392,12 @@ def _guess(Q, Ts, g, excess, slope, teq, out):
 
 
 @njit(cache=True, parallel=True)
-def periodic_frames(Q, Ts, R_ref, g, C, d, omd, excess, slope, teq, B, T_ref, I, t_int, n,
+def periodic_frames(Q, Ts, R_ref, g, C, omd, excess, slope, teq, B, T_ref, I, t_int, n,
                     T_max, v_out, m_out, status, iters, aux):
     """:func:`periodic_row` for (N, rows, cols) frames at substrate Ts (N,) K, from the
     first guess (:func:`_guess`: the reference's excess, moved linearly). ``aux`` (4, N, rows, cols) receives
-    theta_0, the pulse's rise, y - 1 and S; (1, N, rows, cols) theta_0 only; size 0:
-    none."""
+    theta_0, the pulse's rise, y - 1 and S; (2, ...) theta_0 and y - 1; (1, ...) theta_0;
+    size 0: none."""
     n_frames, rows, cols = Q.shape
     keep = aux.shape[0]
     for k in prange(n_frames * rows):
@@ -406,20 +409,23 @@ def periodic_frames(Q, Ts, R_ref, g, C, d, omd, excess, slope, teq, B, T_ref, I,
         gs = np.empty(cols)
         _guess(Q[f, i], Ts[f], g[i], excess[i], slope[i], teq[i], gs)
         if keep >= 4:
-            periodic_row(Q[f, i], Ts[f], R_ref[i], g[i], C[i], d[i], omd[i], gs, B, T_ref, I,
+            periodic_row(Q[f, i], Ts[f], R_ref[i], g[i], C[i], omd[i], gs, B, T_ref, I,
                          t_int, n, T_max, aux[0, f, i], v_out[f, i], m_out[f, i], aux[1, f, i],
                          aux[2, f, i], aux[3, f, i], status[f, i], iters[f, i], w, tmp)
         else:
-            periodic_row(Q[f, i], Ts[f], R_ref[i], g[i], C[i], d[i], omd[i], gs, B, T_ref, I,
+            periodic_row(Q[f, i], Ts[f], R_ref[i], g[i], C[i], omd[i], gs, B, T_ref, I,
                          t_int, n, T_max, scratch[0], v_out[f, i], m_out[f, i], scratch[1],
                          scratch[2], scratch[3], status[f, i], iters[f, i], w, tmp)
-            if keep == 1:
+            if keep >= 1:
                 for j in range(cols):
                     aux[0, f, i, j] = scratch[0, j]
+            if keep == 2:
+                for j in range(cols):
+                    aux[1, f, i, j] = scratch[2, j]
 
 
 @njit(cache=True, parallel=True)
-def thermal_noise_steady(v, m, th0, ym1, s, d, omd, sig_eq, Ts, keys, x_tab, f_tab):
+def thermal_noise_steady(v, m, th0, ym1, s, C, omd, Ts, keys, x_tab, f_tab):
     """Add, in place, the thermal fluctuation of the pixel's temperature before the pulse to
     frames in the periodic state (no memory): a draw of the stationary variance
     (k T^2 / C) (1 - d^2) / (1 - d^2 y^2) through the pulse's sensitivities (linear). The
@@ -432,7 +438,7 @@ def thermal_noise_steady(v, m, th0, ym1, s, d, omd, sig_eq, Ts, keys, x_tab, f_t
         nz = np.empty(cols)
         normal_row(keys[f], np.uint64(i) * np.uint64(cols), nz, x_tab, f_tab)
         for j in range(cols):
-            sd = _stationary_sd(d[i, j], omd[i, j], ym1[f, i, j], sig_eq[i, j],
+            sd = _stationary_sd(omd[i, j], ym1[f, i, j], math.sqrt(K_B / C[i, j]),
                                 Ts[f] + th0[f, i, j])
             dl = sd * nz[j]
             v[f, i, j] += s[f, i, j] * dl
@@ -440,9 +446,11 @@ def thermal_noise_steady(v, m, th0, ym1, s, d, omd, sig_eq, Ts, keys, x_tab, f_t
 
 
 @njit(cache=True)
-def _stationary_sd(d, omd, ym1, sig_eq, T0):
+def _stationary_sd(omd, ym1, sig_eq, T0):
     """RMS of the pre-pulse temperature in the periodic state, K: k T^2 / C relaxed between
-    pulses (1 - d^2) and contracted by each pulse (y): sqrt((1 - d^2) / (1 - d^2 y^2))."""
+    pulses (1 - d^2, d = 1 - omd) and contracted by each pulse (y):
+    sqrt((1 - d^2) / (1 - d^2 y^2)), sig_eq = sqrt(k / C)."""
+    d = 1.0 - omd
     y = 1.0 + ym1
     one_d2 = omd * (2.0 - omd)
     den = one_d2 + d * d * (1.0 - y) * (1.0 + y)
@@ -463,8 +471,8 @@ def _fix_row(th0, Ts, Q, R_ref, g, C, B, T_ref, I, t_int, T_max, bad, v, m, dth,
 
 
 @njit(cache=True, error_model="numpy")
-def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, has_prev, P,
-                t_int, B, T_ref, I, n, T_max, keys, sig_eq, v_out, m_out, st_out, it_out, w,
+def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, omd, excess, slope, teq, state, has_prev, P,
+                t_int, B, T_ref, I, n, T_max, keys, v_out, m_out, st_out, it_out, w,
                 tmp, base, x_tab, f_tab):
     """Frames of one row with the pixel's temperature carried (``state``: theta at the end
     of the last pulse over the substrate then, K; updated in place); the thermal
@@ -489,12 +497,12 @@ def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, 
         if k == 0 and not has_prev:
             # the first frame of a run starts in the periodic state of its own conditions
             _guess(Q[k], Tpulse, g, excess, slope, teq, gs)
-            periodic_row(Q[k], Tpulse, R_ref, g, C, d, omd, gs, B, T_ref, I, t_int, n, T_max,
+            periodic_row(Q[k], Tpulse, R_ref, g, C, omd, gs, B, T_ref, I, t_int, n, T_max,
                          th0, v_out[k], m_out[k], dth, ym1, s, st_out[k], it_buf, w, tmp[4:10])
             for j in range(cols):
                 it_out[k, j] = it_buf[j]
                 if has_noise:  # a stationary draw, through the pulse's sensitivities
-                    dl = _stationary_sd(d[j], omd[j], ym1[j], sig_eq[j], Tpulse + th0[j]) \
+                    dl = _stationary_sd(omd[j], ym1[j], math.sqrt(K_B / C[j]), Tpulse + th0[j]) \
                         * noise[k, j]
                     v_out[k, j] += s[j] * dl
                     m_out[k, j] += (1.0 + 0.5 * ym1[j]) * dl
@@ -508,7 +516,8 @@ def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, 
                 if has_noise:
                     T0 = Tpulse + t0
                     if T0 > 0.0:
-                        t0 += sig_eq[j] * T0 * math.sqrt(omd[j] * (2.0 - omd[j])) * noise[k, j]
+                        t0 += (math.sqrt(K_B / C[j]) * T0 * math.sqrt(omd[j] * (2.0 - omd[j]))
+                               * noise[k, j])
                 th0[j] = t0
             if n > 0:
                 pulse_row(th0, Tpulse, Q[k], R_ref, g, C, B, inv_Tref, I, t_int, n, T_max,
@@ -528,8 +537,8 @@ def _lagged_row(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, 
 
 
 @njit(cache=True, parallel=True)
-def lagged_frames(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state, has_prev, P,
-                  t_int, B, T_ref, I, n, T_max, keys, sig_eq, v_out, m_out, status, iters,
+def lagged_frames(Q, Ts, Ts_prev, R_ref, g, C, omd, excess, slope, teq, state, has_prev, P,
+                  t_int, B, T_ref, I, n, T_max, keys, v_out, m_out, status, iters,
                   x_tab, f_tab):
     """Frames (N, rows, cols) with thermal memory: before each pulse the pixel has relaxed
     from the last pulse's end over P - t_int, the substrate linear from Ts_prev / the
@@ -537,20 +546,20 @@ def lagged_frames(Q, Ts, Ts_prev, R_ref, g, C, d, omd, excess, slope, teq, state
     the substrate held at its mid-pulse value. ``state`` (rows, cols): theta at the end of
     the last pulse (K, over the substrate at the frame's end), read if ``has_prev`` and
     updated. ``keys`` (N,) uint64: the thermal fluctuation's draws of each frame (the normal
-    of pixel (i, j) that of (keys[f], i cols + j); empty: none), ``sig_eq`` (rows, cols)
-    sqrt(k_B / C), the equilibrium RMS of the pixel's temperature over that temperature."""
+    of pixel (i, j) that of (keys[f], i cols + j); empty: none): the equilibrium RMS of the
+    pixel's temperature is T sqrt(k_B / C)."""
     rows, cols = Q.shape[1], Q.shape[2]
     for i in prange(rows):
         w = np.empty((14, cols))
         tmp = np.empty((10, cols))
-        _lagged_row(Q[:, i], Ts, Ts_prev, R_ref[i], g[i], C[i], d[i], omd[i], excess[i],
+        _lagged_row(Q[:, i], Ts, Ts_prev, R_ref[i], g[i], C[i], omd[i], excess[i],
                     slope[i], teq[i], state[i], has_prev, P, t_int, B, T_ref, I, n, T_max,
-                    keys, sig_eq[i], v_out[:, i], m_out[:, i], status[:, i], iters[:, i],
+                    keys, v_out[:, i], m_out[:, i], status[:, i], iters[:, i],
                     w, tmp, np.uint64(i) * np.uint64(cols), x_tab, f_tab)
 
 
 @njit(cache=True)
-def nominal_steps_error(n, d, omd, Ts, Q, R_ref, g, C, B, T_ref, I, t_int, T_max):
+def nominal_steps_error(n, omd, Ts, Q, R_ref, g, C, B, T_ref, I, t_int, T_max):
     """|v(n) - v(2n)| / v of the nominal pixel's periodic state (the estimate of the error
     of n steps is 16/15 of it), or inf where the fast path fails."""
     out = np.empty((2, 1))
@@ -562,13 +571,34 @@ def nominal_steps_error(n, d, omd, Ts, Q, R_ref, g, C, B, T_ref, I, t_int, T_max
         st = np.empty(1, np.uint8)
         it = np.empty(1, np.int32)
         periodic_row(np.array([Q]), Ts, np.array([R_ref]), np.array([g]), np.array([C]),
-                     np.array([d]), np.array([omd]), np.array([Q / g]), B, T_ref, I, t_int, nn,
+                     np.array([omd]), np.array([Q / g]), B, T_ref, I, t_int, nn,
                      T_max, th0, out[k], m, e, y, s, st, it, w, tmp)
         if st[0] != STATUS_OK or it[0] > PERIODIC_MAX_IT or it[0] < 0:
             return math.inf
     if out[1, 0] == 0.0:  # no bias: nothing to integrate but the linear relaxation
         return abs(out[0, 0])
     return abs(out[0, 0] - out[1, 0]) / abs(out[1, 0])
+
+
+@njit(cache=True, parallel=True)
+def reference_maps(Q, g, th0, ym1, omd, status, T_s, excess, slope, teq):
+    """The periodic solve's first-guess maps from a solved reference frame (rows, cols):
+    the excess theta_0 - Q/g (K), its slope with the unbiased equilibrium temperature,
+    d (y - 1) / (1 - d y), and that temperature T_s + Q/g (K); 0 where the reference failed
+    (single precision: a guess)."""
+    rows, cols = Q.shape
+    for i in prange(rows):
+        for j in range(cols):
+            eq = Q[i, j] / g[i, j]
+            teq[i, j] = T_s + eq
+            excess[i, j] = 0.0
+            slope[i, j] = 0.0
+            if status[i, j] == STATUS_OK:
+                excess[i, j] = th0[i, j] - eq
+                d = 1.0 - omd[i, j]
+                den = omd[i, j] - d * ym1[i, j]
+                if den > 0.0:
+                    slope[i, j] = d * ym1[i, j] / den
 
 
 __all__ = ["lagged_frames", "periodic_frames", "relax_ramp", "resistance", "thermal_noise_steady"]
