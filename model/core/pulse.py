@@ -45,10 +45,10 @@ from irnuc.model.core.bolometer import (
     STATUS_RUNAWAY,
     resistance,
 )
-from irnuc.model.core.transient import M_AUTO, relax_ramp
-from irnuc.model.core.transient import pulse as _adaptive_pulse
 from irnuc.model.core.constants import K_BOLTZMANN as K_B
 from irnuc.model.core.rng import normal_row
+from irnuc.model.core.transient import M_AUTO, relax_ramp
+from irnuc.model.core.transient import pulse as _adaptive_pulse
 
 #: Largest |exponent| of a stage's resistance update by the polynomial.
 ZMAX = 0.25
