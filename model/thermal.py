@@ -28,7 +28,8 @@ from typing import Any
 
 import numpy as np
 
-from irnuc.model.validate import ConfigError, check_scalar
+from irnuc.model.profiles import _number
+from irnuc.model.validate import ConfigError
 
 #: Keys of a ``[sequence.network]`` table: (required, optional).
 NETWORK_KEYS: tuple[tuple[str, ...], tuple[str, ...]] = (
@@ -156,8 +157,3 @@ def _foh(A: np.ndarray, Bw: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarra
     return E[:m, :m], E[:m, m:m + p], E[:m, m + p:]
 
 
-def _number(path: str, key: str, value: Any, lo: float, hi: float, unit: str,
-            lo_open: bool = False) -> float:
-    if isinstance(value, bool):
-        raise ConfigError(f"{path}.{key} = {value!r} is not a number")
-    return check_scalar(f"{path}.{key}", value, lo, hi, lo_open=lo_open, unit=unit)

@@ -49,8 +49,10 @@ from irnuc.model.core.constants import K_BOLTZMANN as K_B
 from irnuc.model.core.rng import normal_row
 from irnuc.model.core.transient import M_AUTO, relax_ramp
 from irnuc.model.core.transient import pulse as _adaptive_pulse
+from irnuc.model.core.warmstart import _exp_poly
 
-#: Largest |exponent| of a stage's resistance update by the polynomial.
+#: Largest |exponent| of a stage's resistance update by the degree-9 polynomial
+#: (:func:`model.core.warmstart._exp_poly`: relative error below ZMAX^10 / 10! < 3e-13).
 ZMAX = 0.25
 #: Newton iterations of the periodic solve before a pixel goes to the slow path.
 PERIODIC_MAX_IT = 12
@@ -69,22 +71,6 @@ SLOW_MAX_SUB = 200_000
 #: The pulse's loops let the compiler fuse a multiply and an add (``contract``, no other
 #: fast-math liberty): the same bits run after run on one machine, 20 % less time.
 FM = {"contract"}
-
-
-@njit(cache=True, error_model="numpy", fastmath=FM)
-def _exp_poly(z):
-    """e^z by its degree-9 Taylor polynomial (Horner), for |z| <= ZMAX (relative error
-    below ZMAX^10 / 10! < 3e-13)."""
-    p = 1.0 / 362880.0
-    p = p * z + 1.0 / 40320.0
-    p = p * z + 1.0 / 5040.0
-    p = p * z + 1.0 / 720.0
-    p = p * z + 1.0 / 120.0
-    p = p * z + 1.0 / 24.0
-    p = p * z + 1.0 / 6.0
-    p = p * z + 0.5
-    p = p * z + 1.0
-    return p * z + 1.0
 
 
 #: e^k for k = -8 .. 8 (the integer part of an exponent, :func:`_exp_vec`).

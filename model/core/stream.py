@@ -134,11 +134,13 @@ def frame_statistics(dT, status, r0, r1, c0, c1, codes, top):
 
 
 @njit(cache=True, error_model="numpy")
-def _voss_row(vals, total, octave, key, base, x_tab, f_tab, new_row):
-    """Octave ``octave`` of a row's Voss generator drawn anew (the running sum kept)."""
-    if octave < 0:
+def _row_draws(key_w, has_slow, vals, total, octave, key_f, base, x_tab, f_tab, w, new_row):
+    """A row's white normals (``w``, of key_w) and, with ``has_slow``, octave ``octave`` of
+    its Voss generator drawn anew (of key_f; the running sum ``total`` kept)."""
+    normal_row(key_w, base, w, x_tab, f_tab)
+    if not has_slow or octave < 0:
         return
-    normal_row(key, base, new_row, x_tab, f_tab)
+    normal_row(key_f, base, new_row, x_tab, f_tab)
     for j in range(new_row.shape[0]):
         total[j] += new_row[j] - vals[octave, j]
         vals[octave, j] = new_row[j]
@@ -166,10 +168,8 @@ def bolometer_noise(v, dT, status, T_s, I, t_int, johnson, kf_white, slow_amp, k
         new_row = np.empty(cols)
         base = np.uint64(i) * np.uint64(cols)
         for n in range(n_frames):
-            normal_row(keys_w[n], base, w, x_tab, f_tab)
-            if has_slow:
-                _voss_row(vals[:, i], total[i], octave[n], keys_f[n], base, x_tab, f_tab,
-                          new_row)
+            _row_draws(keys_w[n], has_slow, vals[:, i], total[i], octave[n], keys_f[n], base,
+                       x_tab, f_tab, w, new_row)
             Ts = T_s[n]
             for j in range(cols):
                 vv = v[n, i, j]
@@ -196,10 +196,8 @@ def output_noise(v, sigma, keys, flicker_sigma, octave, keys_f, vals, total, x_t
         new_row = np.empty(cols)
         base = np.uint64(i) * np.uint64(cols)
         for n in range(n_frames):
-            normal_row(keys[n], base, w, x_tab, f_tab)
-            if has_slow:
-                _voss_row(vals[:, i], total[i], octave[n], keys_f[n], base, x_tab, f_tab,
-                          new_row)
+            _row_draws(keys[n], has_slow, vals[:, i], total[i], octave[n], keys_f[n], base,
+                       x_tab, f_tab, w, new_row)
             for j in range(cols):
                 sg = sigma[i, j] if per_pixel else sigma[0, 0]
                 o = v[n, i, j] + sg * w[j]
