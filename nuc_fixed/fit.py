@@ -552,6 +552,7 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
                    "frames": int(n_m), "reference_fpa_K": float(points.fpa_K[ref]),
                    "readings": [points.point_reading(p) for p in range(n_p)],
                    "housing_K": None if points.housing_K is None else points.housing_K.tolist(),
+                   "housing_offset_K": _offsets(every_point),
                    "all_points": len(every_point.fpa_K)},
         "targets": t.tolist(),
         "rounding": rounding or "per format",
@@ -610,6 +611,16 @@ def point_residuals(cal: MethodCalibration, points: PointFrames) -> list[dict[st
     return out
 
 
+def _offsets(points: Any) -> list[float] | None:
+    """The plan's housing offsets from the FPA (K, sorted) when it sets the housing at more
+    than one, else None."""
+    if points.housing_K is None:
+        return None
+    off = sorted({round(float(h - f), 9)
+                  for h, f in zip(points.housing_K, points.fpa_K, strict=True)})
+    return off if len(off) > 1 else None
+
+
 def summary_text(cal: MethodCalibration) -> str:
     """A short human-readable report of a method calibration."""
     s = cal.summary
@@ -617,7 +628,9 @@ def summary_text(cal: MethodCalibration) -> str:
     lines = [
         f"irnuc calibration, pipeline {s['config']} (method {s['method']}), frame "
         f"{s['frame'][1]} x {s['frame'][0]} (W x H), scenes {pts['scene_K']} K x FPA "
-        f"{pts['fpa_K']} K x {pts['frames']} frames (reference FPA {pts['reference_fpa_K']:g} K)",
+        f"{pts['fpa_K']} K"
+        + (f" x housing offset {pts['housing_offset_K']} K" if pts.get("housing_offset_K") else "")
+        + f" x {pts['frames']} frames (reference FPA {pts['reference_fpa_K']:g} K)",
         f"targets (output codes): {', '.join(f'{v:.3f}' for v in s['targets'])}",
     ]
     for key, r in s["coefficients"].items():

@@ -31,9 +31,11 @@ def test_the_issue_plan_works_as_written(tmp_path, capsys):
                  "fpa.active_rows=12", "--set", "fpa.active_cols=16", "--out", str(out)]) == 0
     text = capsys.readouterr().out
     assert "fitted on the 3 points with the housing at the reference offset" in text
+    assert "x housing offset [-5.0, 0.0, 5.0] K x 4 frames" in text
     s = json.loads((out / "summary.json").read_text())
     assert s["points"]["all_points"] == 9 and s["points"]["fpa_K"] == [290.0, 300.0, 310.0]
     assert s["points"]["housing_K"] == [290.0, 300.0, 310.0]
+    assert s["points"]["housing_offset_K"] == [-5.0, 0.0, 5.0]
     res = {(r["fpa_K"], r["housing_K"], r["scene_K"]): r["std"] for r in s["residual"]}
     assert len(res) == 18  # 3 FPA x 3 housing x 2 scenes
     # the method assumes the housing at the FPA: there it corrects to a code or so, 5 K
