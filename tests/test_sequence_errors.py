@@ -160,3 +160,57 @@ def test_every_number_of_a_plan_refuses_booleans_and_strings(tmp_path) -> None:
             with pytest.raises(PlanError) as exc:
                 load_plan(write(doc))
             assert _dotted(path) in str(exc.value), (path, str(exc.value))
+
+
+WORLD = {"sequence": {
+    "frame_rate": 30.0, "duration": 2.0, "record_every": 2,
+    "ambient": {"profile": "ramp", "start": 290.0, "rate": 1.0},
+    "network": {"start": 290.0, "housing_tau": 900.0, "fpa_tau": 120.0, "lens_tau": 600.0,
+                "shutter_tau": 300.0, "housing_self_heating": 3.0, "fpa_self_heating": 6.0},
+    "scene": {"profile": "constant", "value": 300.0},
+    "fpa_sensor": {"lag_s": 2.0},
+    "housing_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.1,
+                       "noise_K": 0.01, "lag_s": 5.0, "node": "lens"},
+}}
+
+
+def test_every_number_of_the_thermal_world_refuses_booleans_and_strings(tmp_path) -> None:
+    """The same for issue 35's keys: the ambient, the network, the housing sensor, the
+    sensors' lags, record_every, and a plan's housing offsets and housing sensor."""
+    import copy
+    import json
+
+    from irnuc.model.sequence import sequence_from_dict
+    from irnuc.model.validate import ConfigError
+    from irnuc.nuc_fixed.plan import PlanError, load_plan
+
+    def refused(doc, error, load):
+        load(doc)  # valid as it is
+        for path in _numeric_leaves(doc):
+            for bad in (True, "30"):
+                d = copy.deepcopy(doc)
+                node = d
+                for k in path[:-1]:
+                    node = node[k]
+                node[path[-1]] = bad
+                with pytest.raises(error) as exc:
+                    load(d)
+                assert _dotted(path) in str(exc.value), (path, str(exc.value))
+        return len(_numeric_leaves(doc))
+
+    assert refused(WORLD, ConfigError, sequence_from_dict) == 20
+
+    def plan(doc):
+        lines = []
+        for table, fields in doc.items():
+            lines.append(f"[{table}]")
+            lines += [f"{k} = {json.dumps(v)}" for k, v in fields.items()]
+        p = tmp_path / "p.toml"
+        p.write_text("\n".join(lines) + "\n")
+        return load_plan(str(p))
+
+    doc = {"plan": {"scene": [290.0, 330.0], "fpa": [288.0, 298.0], "frames": 2,
+                    "housing_offset": [-5.0, 0.0, 5.0]},
+           "housing_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.0,
+                              "noise_K": 0.0, "lag_s": 0.0, "node": "housing"}}
+    assert refused(doc, PlanError, plan) == 14
