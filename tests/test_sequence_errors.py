@@ -103,63 +103,63 @@ FULL = {"sequence": {
 }}
 
 
-def test_every_number_of_a_sequence_refuses_booleans_and_strings() -> None:
-    """`frame_rate = true` was taken as 1 Hz and `"30"` as 30: every number field of a
-    sequence (and of its profiles, shutter and FPA sensor) refuses a boolean and a string,
-    naming its dotted key."""
+def _refuses_every_number(doc, error, load) -> int:
+    """Load ``doc`` as it is, then with each of its numbers made a boolean and a string (its
+    own value's text): each refused with ``error`` naming the dotted key. The numbers'
+    count."""
     import copy
 
-    from irnuc.model.sequence import sequence_from_dict
-    from irnuc.model.validate import ConfigError
-
-    sequence_from_dict(FULL)  # valid as it is
-    leaves = _numeric_leaves(FULL)
-    assert len(leaves) == 25
+    load(doc)  # valid as it is
+    leaves = _numeric_leaves(doc)
     for path in leaves:
         for bad in (True, "30"):
-            doc = copy.deepcopy(FULL)
-            node = doc
+            d = copy.deepcopy(doc)
+            node = d
             for k in path[:-1]:
                 node = node[k]
-            good = node[path[-1]]
-            node[path[-1]] = bad if bad is True else str(good)
-            with pytest.raises(ConfigError) as exc:
-                sequence_from_dict(doc)
+            node[path[-1]] = bad if bad is True else str(node[path[-1]])
+            with pytest.raises(error) as exc:
+                load(d)
             assert _dotted(path) in str(exc.value), (path, str(exc.value))
+    return len(leaves)
 
 
-def test_every_number_of_a_plan_refuses_booleans_and_strings(tmp_path) -> None:
+def _plan_loader(tmp_path):
+    """load_plan of a document written as a TOML file."""
     import json
 
-    from irnuc.nuc_fixed.plan import PlanError, load_plan
+    from irnuc.nuc_fixed.plan import load_plan
 
-    plan = {"plan": {"scene": [290.0, 330.0], "fpa": [288.0, 298.0], "frames": 2,
-                     "cam": [290.0, 300.0], "reference_fpa": 288.0, "drift_cam": [295.0]},
-            "fpa_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.0,
-                           "noise_K": 0.0}}
-
-    def write(doc) -> str:
+    def load(doc):
         lines = []
         for table, fields in doc.items():
             lines.append(f"[{table}]")
             lines += [f"{k} = {json.dumps(v)}" for k, v in fields.items()]
         p = tmp_path / "p.toml"
         p.write_text("\n".join(lines) + "\n")
-        return str(p)
+        return load_plan(str(p))
 
-    load_plan(write(plan))
-    leaves = _numeric_leaves(plan)
-    assert len(leaves) == 14
-    for path in leaves:
-        for bad in (True, "30"):
-            doc = json.loads(json.dumps(plan))
-            node = doc
-            for k in path[:-1]:
-                node = node[k]
-            node[path[-1]] = bad
-            with pytest.raises(PlanError) as exc:
-                load_plan(write(doc))
-            assert _dotted(path) in str(exc.value), (path, str(exc.value))
+    return load
+
+
+def test_every_number_of_a_sequence_refuses_booleans_and_strings() -> None:
+    """`frame_rate = true` was taken as 1 Hz and `"30"` as 30: every number field of a
+    sequence (and of its profiles, shutter and FPA sensor) refuses a boolean and a string,
+    naming its dotted key."""
+    from irnuc.model.sequence import sequence_from_dict
+    from irnuc.model.validate import ConfigError
+
+    assert _refuses_every_number(FULL, ConfigError, sequence_from_dict) == 25
+
+
+def test_every_number_of_a_plan_refuses_booleans_and_strings(tmp_path) -> None:
+    from irnuc.nuc_fixed.plan import PlanError
+
+    plan = {"plan": {"scene": [290.0, 330.0], "fpa": [288.0, 298.0], "frames": 2,
+                     "cam": [290.0, 300.0], "reference_fpa": 288.0, "drift_cam": [295.0]},
+            "fpa_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.0,
+                           "noise_K": 0.0}}
+    assert _refuses_every_number(plan, PlanError, _plan_loader(tmp_path)) == 14
 
 
 WORLD = {"sequence": {
@@ -177,40 +177,13 @@ WORLD = {"sequence": {
 def test_every_number_of_the_thermal_world_refuses_booleans_and_strings(tmp_path) -> None:
     """The same for issue 35's keys: the ambient, the network, the housing sensor, the
     sensors' lags, record_every, and a plan's housing offsets and housing sensor."""
-    import copy
-    import json
-
     from irnuc.model.sequence import sequence_from_dict
     from irnuc.model.validate import ConfigError
-    from irnuc.nuc_fixed.plan import PlanError, load_plan
+    from irnuc.nuc_fixed.plan import PlanError
 
-    def refused(doc, error, load):
-        load(doc)  # valid as it is
-        for path in _numeric_leaves(doc):
-            for bad in (True, "30"):
-                d = copy.deepcopy(doc)
-                node = d
-                for k in path[:-1]:
-                    node = node[k]
-                node[path[-1]] = bad
-                with pytest.raises(error) as exc:
-                    load(d)
-                assert _dotted(path) in str(exc.value), (path, str(exc.value))
-        return len(_numeric_leaves(doc))
-
-    assert refused(WORLD, ConfigError, sequence_from_dict) == 20
-
-    def plan(doc):
-        lines = []
-        for table, fields in doc.items():
-            lines.append(f"[{table}]")
-            lines += [f"{k} = {json.dumps(v)}" for k, v in fields.items()]
-        p = tmp_path / "p.toml"
-        p.write_text("\n".join(lines) + "\n")
-        return load_plan(str(p))
-
+    assert _refuses_every_number(WORLD, ConfigError, sequence_from_dict) == 20
     doc = {"plan": {"scene": [290.0, 330.0], "fpa": [288.0, 298.0], "frames": 2,
                     "housing_offset": [-5.0, 0.0, 5.0]},
            "housing_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.0,
                               "noise_K": 0.0, "lag_s": 0.0, "node": "housing"}}
-    assert refused(doc, PlanError, plan) == 14
+    assert _refuses_every_number(doc, PlanError, _plan_loader(tmp_path)) == 14
