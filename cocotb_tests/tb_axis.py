@@ -287,7 +287,7 @@ class Bench:
         words and frame word read back as a calibration and a reading, corrected by
         nuc_fixed.method_top)."""
         golden = self.env.golden
-        if self.cfg.method == "two_point":
+        if self.cfg.plain:
             top = TopScoreboard(golden)
             for f in fr.frames:
                 top.expect_frames(f.raw, f.words)

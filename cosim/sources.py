@@ -10,6 +10,7 @@ from pathlib import Path
 
 import irnuc.hdl
 from irnuc.common.errors import UserError
+from irnuc.nuc_fixed import methods
 from irnuc.nuc_fixed.config import PipelineConfig
 
 #: Folder of the SystemVerilog sources (the design).
@@ -77,9 +78,6 @@ MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
     "irnuc_axis_table.sv", "irnuc_axis_top.sv")))
 # table_interp's weight and table pair per frame from the registers (irnuc_axis_top).
 MODULE_FILES["irnuc_axis_table"] = (*_PKG, *_ARMED, "interp_weight.sv", "irnuc_axis_table.sv")
-#: The base methods irnuc_axis_top is built around (its parameter Method).
-AXIS_METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset",
-                "table_interp")
 # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
 MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
@@ -150,67 +148,35 @@ _MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
     "irnuc_axis_table": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
 }
 
-#: The module each base method's datapath is checked in on its own (method_dpc_top holds
-#: every method; these are the method's own cores).
-METHOD_CORES: dict[str, tuple[str, ...]] = {
-    "one_point": ("nuc_core",),
-    "two_point": ("nuc_core",),
-    "piecewise": ("pwl_core",),
-    "quadratic": ("quad_core",),
-    "tc_offset": ("tc_poly", "tc_reading", "nuc_core"),
-    "table_interp": ("table_interp", "interp_weight", "nuc_core"),
-}
-
-#: The method formats method_dpc_top takes (``<Name>IntBits``, ``<Name>FracBits``).
-_METHOD_FORMATS = ("knee", "level", "quad", "tc1", "tc2", "tg1", "tg2", "weight")
-#: Method parameters as SystemVerilog parameters (the names of nuc_fixed.layout.rtl_package).
-_METHOD_FIELDS = {"square_bits": "SquareBits", "tc_order": "TcOrder",
-                  "reading_bits": "ReadingBits", "reading_range_bits": "ReadingRangeBits",
-                  "tables": "Tables"}
-
-
-def _sv_name(text: str) -> str:
-    return "".join(p[:1].upper() + p[1:] for p in text.split("_") if p)
+def method_cores() -> dict[str, tuple[str, ...]]:
+    """The modules each base method's datapath is checked in on its own
+    (``MethodSpec.rtl_checked``; method_dpc_top holds every method)."""
+    return {m.name: m.rtl_checked for m in methods.BASES.values()}
 
 
 def method_parameters(cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of ``method_dpc_top`` (and its cores) beyond
-    :meth:`~PipelineConfig.rtl_parameters`: ``Method`` (the index in
-    :data:`~irnuc.nuc_fixed.config.BASE_METHODS`, ``irnuc_method_pkg::method_e``), every
-    method format's ``<Name>IntBits``/``<Name>FracBits`` (``WeightRounding`` too), and the
-    method fields (``SquareBits``, ``TcOrder``, ``TcGain``, ``ReadingBits``, ...).
+    :meth:`~PipelineConfig.rtl_parameters`: ``Method`` (the base method's code, its index
+    in the registry, ``irnuc_pkg::method_e``), every format's ``<Name>IntBits`` /
+    ``<Name>FracBits`` (and a computed format's modes: ``WeightRounding``) and every
+    parameter of the base method (``SquareBits``, ``TcOrder``, ``TcGain``,
+    ``ReadingBits``, ...), from the registry (``nuc_fixed.methods.rtl_parameters``).
 
     Raises :class:`UserError` for a method with stages (``blind_drift``, ``ffc``): the RTL
     has the base methods.
     """
-    from irnuc.nuc_fixed.config import BASE_METHODS
-
     if cfg.stages:
         raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has stages "
                         f"({', '.join(cfg.stages)}); method_dpc_top implements the "
-                        f"base methods {', '.join(BASE_METHODS)} (the stages: "
+                        f"base methods {', '.join(methods.BASES)} (the stages: "
                         f"{', '.join(STAGE_TOPS.values())})")
     return _base_parameters(cfg)
 
 
 def _base_parameters(cfg: PipelineConfig) -> dict[str, int]:
     """:func:`method_parameters` of the base method of any configuration."""
-    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
-
-    out = {"Method": BASE_METHODS.index(cfg.base_method)}
-    for f in cfg.formats:
-        if f.name in _METHOD_FORMATS:
-            out[f"{_sv_name(f.name)}IntBits"] = f.int_bits
-            out[f"{_sv_name(f.name)}FracBits"] = f.frac_bits
-        if f.name == "weight":
-            out["WeightRounding"] = ROUNDING_MODES[f.rounding]
-    for field, name in _METHOD_FIELDS.items():
-        value = getattr(cfg, field)
-        if value is not None:
-            out[name] = int(value)
-    if cfg.tc_gain is not None:
-        out["TcGain"] = int(cfg.tc_gain)
-    return out
+    return {"Method": list(methods.BASES).index(cfg.base_method),
+            **methods.rtl_parameters(cfg, (cfg.base,))}
 
 
 #: Parameters of the generic building blocks for a configuration: the sizes they get
@@ -235,29 +201,17 @@ _BLOCK_PARAMETERS = {
     "irnuc_dsp_mul": lambda p: {},
 }
 
-#: The method register slots of irnuc_axil_regs (parameter <Name>RegBits) and the
-#: PipelineConfig.registers each holds.
-_REG_SLOTS = {"GainRegBits": "gain", "LevelRegBits": "level", "ReadingRegBits": "reading",
-              "TRefRegBits": "t_ref", "BlindSumRegBits": "blind_sum",
-              "BlindRefRegBits": "blind_ref", "DriftGainRegBits": "drift_gain",
-              "FfcTargetRegBits": "ffc_target"}
-
-
 def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
     """The parameters of ``irnuc_axil_regs`` for ``cfg``: the widths and modes, the method
-    (code, stages) and the width of every method register (0 where the method has none)."""
+    (code, stages) and the width of every method register slot (``RegisterSlot`` of the
+    registry: 0 where the method has none)."""
     from irnuc.nuc_fixed.regmap import config_params
 
     p = cfg.rtl_parameters()
     c = config_params(cfg)
-    regs = cfg.registers
-    table = regs.get("table_readings")
     return {**p, "MethodCode": c["MethodCode"], "HasBlindDrift": c["HasBlindDrift"],
             "HasFfc": c["HasFfc"], "FfcFrames": c["FfcFrames"],
-            "CoefLayoutVersion": c["CoefLayoutVersion"],
-            **{k: (regs[n].width if n in regs else 0) for k, n in _REG_SLOTS.items()},
-            "TableReadings": table.count if table else 0,
-            "TableReadingBits": table.width if table else 1}
+            "CoefLayoutVersion": c["CoefLayoutVersion"], **methods.slot_parameters(cfg)}
 
 
 #: Modules whose parameters include the method's (method_parameters).
@@ -290,7 +244,7 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
         return {**stage_parameters("method_ffc_top", cfg), "Ffc": 1}
     if axis and stage_top(cfg) == "method_drift_top":
         return {**stage_parameters("method_drift_top", cfg), "Drift": 1}
-    if axis and cfg.method in AXIS_METHODS and cfg.method != "two_point":
+    if axis and not cfg.stages and not cfg.plain:
         p = {**params, **method_parameters(cfg)}
         # Tables: irnuc_axis_table's, in the top (the core takes the weight only).
         return {k: v for k, v in p.items() if k != "Tables" or top == "irnuc_axis_top"}
@@ -316,12 +270,10 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
 # ---- the stages -------------------------------------------------------------------------
 
 #: The composition top of each stage (a configuration has at most one stage).
-STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top", "ffc": "method_ffc_top"}
+STAGE_TOPS: dict[str, str] = {s.name: s.rtl_top for s in methods.STAGES.values()}
 #: The base methods each stage top composes with (its parameter ``Method``).
-STAGE_BASES: dict[str, tuple[str, ...]] = {
-    "method_drift_top": ("one_point", "two_point"),
-    "method_ffc_top": ("one_point", "two_point", "quadratic", "tc_offset"),
-}
+STAGE_BASES: dict[str, tuple[str, ...]] = {s.rtl_top: s.rtl_bases
+                                           for s in methods.STAGES.values()}
 
 
 #: The blocks of the stage tops and the parameters of their top each takes (the lint of
@@ -352,15 +304,6 @@ def stage_top(cfg: PipelineConfig) -> str | None:
     return None
 
 
-def _format_parameters(cfg: PipelineConfig, name: str, prefix: str) -> dict[str, int]:
-    from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
-
-    f = cfg.format(name)
-    return {f"{prefix}IntBits": f.int_bits, f"{prefix}FracBits": f.frac_bits,
-            f"{prefix}Rounding": ROUNDING_MODES[f.rounding],
-            f"{prefix}Overflow": OVERFLOW_MODES[f.overflow]}
-
-
 def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of a stage top: those of ``method_dpc_top`` for the base method
     and the stage's (blind_drift: ``BlindMax``, ``Drift*``, ``DriftGain*``; ffc:
@@ -376,13 +319,4 @@ def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
                         f"RTL yet)")
     params = {**cfg.rtl_parameters(), **_base_parameters(cfg)}
     params.pop("Tables", None)
-    if cfg.has("blind_drift"):
-        params |= {"BlindMax": int(cfg.blind_max or 1),
-                   **_format_parameters(cfg, "drift", "Drift")}
-        g = cfg.format("drift_gain")
-        params |= {"DriftGainIntBits": g.int_bits, "DriftGainFracBits": g.frac_bits}
-    if cfg.has("ffc"):
-        params |= {"FfcFrames": int(cfg.ffc_frames or 1),
-                   "FfcHold": int(cfg.ffc_output == "hold"),
-                   **_format_parameters(cfg, "ffc", "Ffc")}
-    return params
+    return params | methods.rtl_parameters(cfg, cfg.parts[1:])

@@ -155,17 +155,17 @@ class RegisterMap:
 
 
 def _methods() -> tuple[str, ...]:
-    from irnuc.nuc_fixed.config import BASE_METHODS
+    from irnuc.nuc_fixed import methods
 
-    return BASE_METHODS
+    return tuple(methods.BASES)
 
 
 def check_requires(rmap: RegisterMap) -> None:
     """Every ``requires`` names a base method or a stage (checked when a model is made: the
     configuration module reads the map through ``rtl_spec`` while it is being imported)."""
-    from irnuc.nuc_fixed.config import STAGES
+    from irnuc.nuc_fixed import methods
 
-    known = set(_methods()) | set(STAGES)
+    known = set(_methods()) | set(methods.STAGES)
     for r in rmap.registers:
         if set(r.requires) - known:
             raise ConfigError(f"register {r.name}: requires "
@@ -249,7 +249,7 @@ def coef_layout_version(cfg: PipelineConfig) -> int:
     writes for the method (1: two_point, 2: every other method)."""
     from irnuc.nuc_fixed.memimage import MEMIMAGE_VERSION, METHOD_IMAGE_VERSION
 
-    return MEMIMAGE_VERSION if cfg.method == "two_point" else METHOD_IMAGE_VERSION
+    return MEMIMAGE_VERSION if cfg.plain else METHOD_IMAGE_VERSION
 
 
 def _coef_word_bits(cfg: PipelineConfig) -> int:

@@ -95,15 +95,15 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
 
 
 def _axi_method_configs() -> list[str]:
-    """The method configurations irnuc_axis_top is built around (cosim.sources.AXIS_METHODS,
-    no stage, two_point aside) and those it builds a stage top for (method_ffc_top,
-    method_drift_top)."""
-    from irnuc.cosim.sources import AXIS_METHODS, stage_top
+    """The method configurations irnuc_axis_top is built around (every base method without
+    a stage, the plain two_point aside) and those it builds a stage top for
+    (method_ffc_top, method_drift_top)."""
+    from irnuc.cosim.sources import stage_top
 
     out = []
     for n in pipeline_names(method=None):
         cfg = load_pipeline(n)
-        if (not cfg.stages and cfg.method in AXIS_METHODS and cfg.method != "two_point") \
+        if (not cfg.stages and not cfg.plain) \
                 or stage_top(cfg) in ("method_ffc_top", "method_drift_top"):
             out.append(n)
     return out
