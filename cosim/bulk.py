@@ -29,7 +29,7 @@ from irnuc.common.cache import cache_dir
 from irnuc.common.errors import UserError
 from irnuc.cosim.builds import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
-from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
+from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters, verilator_g
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
 from irnuc.nuc_fixed import PipelineConfig, nuc_dpc_top
 from irnuc.nuc_fixed.memimage import check_words
@@ -80,7 +80,7 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
             f'#include "V{top}.h"\nusing BulkTop = V{top};\n' + BULK_TOPS[top])
         cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
-               *[f"-G{k}={v}" for k, v in params.items()],
+               *verilator_g(params),
                *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
         from irnuc.cosim import _objcache

@@ -6,12 +6,14 @@ Widths and modes come only from a :class:`~irnuc.nuc_fixed.config.PipelineConfig
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 
 import irnuc.hdl
 from irnuc.common.errors import UserError
 from irnuc.nuc_fixed import methods
 from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.methods import rtl as methods_rtl
 
 #: Folder of the SystemVerilog sources (the design).
 HDL_DIR = Path(irnuc.hdl.__file__).resolve().parent
@@ -37,18 +39,33 @@ _QUAD = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "quad_core.sv")))
 _TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
 _TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
+# The methods' fronts (hdl/<MethodSpec.rtl_module>.sv and what it instantiates), every one
+# behind the same ports, and frame_coefficients, which picks the configured method's; the
+# core of each kind (method_core) and the DPC tail of every top.
+_FRONTS = {m.rtl_module: tuple(dict.fromkeys((*_SPILL, *_ARITH, *_ARMED, *m.rtl_files,
+                                               f"{m.rtl_module}.sv")))
+           for m in methods.BASES.values()}
+_FRAME_COEF = (*dict.fromkeys(f for files in _FRONTS.values() for f in files),
+               "frame_coefficients.sv")
+_METHOD_CORE = tuple(dict.fromkeys((*_NUC, *_PWL, *_QUAD, "method_core.sv")))
+_TAIL = (*_DPC, "dpc_tail.sv")
+
 #: Module -> the HDL files it needs, in dependency order (one module per file; the
 #: packages first). Files are looked up in ``hdl/``, then in ``cosim/hdl/``.
 MODULE_FILES: dict[str, tuple[str, ...]] = {
     "nuc_core": (*_PKG, *_NUC),
     "dpc_core": (*_PKG, *_DPC),
-    "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_DPC, "nuc_dpc_top.sv"))),
+    "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_TAIL, "nuc_dpc_top.sv"))),
     "pwl_core": (*_PKG, *_PWL),
     "quad_core": (*_PKG, *_QUAD),
     "tc_poly": (*_PKG, *_TC),
     "table_interp": (*_PKG, *_TABLE),
-    "method_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_PWL, *_QUAD, *_TC, *_TABLE,
-                                           *_DPC, "method_dpc_top.sv"))),
+    "method_dpc_top": tuple(dict.fromkeys((*_PKG, *_FRAME_COEF, *_METHOD_CORE, *_TAIL,
+                                           "method_dpc_top.sv"))),
+    **{name: (*_PKG, *files) for name, files in _FRONTS.items()},
+    "frame_coefficients": (*_PKG, *_FRAME_COEF),
+    "method_core": (*_PKG, *_METHOD_CORE),
+    "dpc_tail": (*_PKG, *_TAIL),
     "dpc_ctrl": (*_PKG, *_ARMED, "dpc_ctrl.sv"),
     "irnuc_spill_register": _SPILL,
     "irnuc_stream_assert": _ASSERT,
@@ -90,18 +107,17 @@ MODULE_FILES |= {
     "core_out": (*_PKG, *_CORE_OUT),
     "drift_sub": ("drift_sub.sv",),
     "blind_drift": (*_PKG, *_BLIND),
-    "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_CORE_SUM,
-                                             *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
+    "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_FRAME_COEF,
+                                             *_CORE_SUM, *_CORE_OUT, *_TAIL,
+                                             "method_drift_top.sv"))),
     "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
     "ffc_mean": (*_ARMED, "ffc_mean.sv"),
     "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
     "ffc_sums": (*_SPKG, *_CORE_SUM, "ffc_sums.sv"),
-    "frame_coefficients": (*_PKG, *_TC, "frame_coefficients.sv"),
     "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "irnuc_axis_buffer.sv",
-                                           "ffc_ctrl.sv", "ffc_mean.sv", *_TC,
-                                           "frame_coefficients.sv", *_CORE_SUM, "ffc_sums.sv",
-                                           *_CORE_OUT, "ffc_refresh.sv", *_DPC,
-                                           "method_ffc_top.sv"))),
+                                           "ffc_ctrl.sv", "ffc_mean.sv", *_FRAME_COEF,
+                                           *_CORE_SUM, "ffc_sums.sv", *_CORE_OUT,
+                                           "ffc_refresh.sv", *_TAIL, "method_ffc_top.sv"))),
 }
 # The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
 # Its core and FFC side (irnuc_axis_core, irnuc_axis_ffc) are modules of their own.
@@ -215,8 +231,38 @@ def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
 
 
 #: Modules whose parameters include the method's (method_parameters).
-_METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
-                   "table_interp", "interp_weight", "irnuc_axis_table")
+_METHOD_MODULES = ("pwl_core", "quad_core", "tc_poly", "tc_reading", "table_interp",
+                   "interp_weight", "irnuc_axis_table")
+
+def tool_parameters(params: Mapping[str, int], tool: str) -> dict[str, str]:
+    """The ``-G`` values of ``params`` in a tool's syntax (``verilator`` or ``slang``).
+
+    A typed enum parameter (a top's ``Method``, ``irnuc_pkg::method_e``) is given as a
+    sized constant to Verilator (``3'd4``: a 32-bit integer is truncated with a warning)
+    and as its literal to slang (``irnuc_pkg::MethodTcOffset``: slang converts no integer
+    to an enum); the others as integers.
+    """
+    from irnuc.nuc_fixed.rtl_spec import METHOD
+
+    # name -> (bits, package, literals by code): method_e, and method_core's core_kind_e.
+    enums = {"Method": (METHOD.bits, "irnuc_pkg", [lit.name for lit in METHOD.literals]),
+             "Kind": (2, "irnuc_method_pkg", list(methods_rtl.CORE_KINDS.values()))}
+    out = {}
+    for k, v in params.items():
+        e = enums.get(k)
+        if e is None:
+            out[k] = str(int(v))
+        elif tool == "verilator":
+            out[k] = f"{e[0]}'d{int(v)}"
+        else:
+            out[k] = f"{e[1]}::{e[2][int(v)]}"
+    return out
+
+
+def verilator_g(params: Mapping[str, int]) -> list[str]:
+    """Verilator's ``-G`` options of ``params`` (:func:`tool_parameters`)."""
+    return [f"-G{k}={v}" for k, v in tool_parameters(params, "verilator").items()]
+
 
 def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     """HDL files needed to elaborate module ``top``.
@@ -231,25 +277,50 @@ def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
             for name in MODULE_FILES[top]]
 
 
+def _values(cfg: PipelineConfig) -> dict[str, int]:
+    """Every RTL parameter ``cfg`` decides: the base ones, ``Method``, the formats and
+    parameters of its base method and stages, the flags of its stages (irnuc_axis_top's
+    ``Ffc``, ``Drift``: only those set)."""
+    return {**cfg.rtl_parameters(), "Method": list(methods.BASES).index(cfg.base_method),
+            **methods.rtl_parameters(cfg),
+            **{s.rtl_flag: 1 for s in cfg.parts[1:] if s.rtl_flag}}
+
+
+def _check_stage_top(top: str, cfg: PipelineConfig) -> None:
+    """A stage's top (or its part of irnuc_axis_top's core) is built only for a
+    configuration of that stage and a base method it composes with."""
+    for s in methods.STAGES.values():
+        if top in (s.rtl_top, s.rtl_wrapper):
+            stage_parameters(s.rtl_top, cfg)
+
+
 def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
-    """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's)."""
+    """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's): for a
+    top with a generated header (``nuc_fixed.methods.rtl``), a method front and
+    frame_coefficients, those of its parameters ``cfg`` decides."""
     hdl_sources(top)
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
-    if top == "irnuc_axis_ffc":
-        return stage_parameters("method_ffc_top", cfg)
-    axis = top in ("irnuc_axis_top", "irnuc_axis_core")  # the same parameters
-    if axis and stage_top(cfg) == "method_ffc_top":
-        return {**stage_parameters("method_ffc_top", cfg), "Ffc": 1}
-    if axis and stage_top(cfg) == "method_drift_top":
-        return {**stage_parameters("method_drift_top", cfg), "Drift": 1}
-    if axis and not cfg.stages and not cfg.plain:
-        p = {**params, **method_parameters(cfg)}
-        # Tables: irnuc_axis_table's, in the top (the core takes the weight only).
-        return {k: v for k, v in p.items() if k != "Tables" or top == "irnuc_axis_top"}
-    if top in STAGE_TOPS.values():
-        return stage_parameters(top, cfg)
+    generated = methods_rtl.modules()
+    fronts = {m.rtl_module for m in methods.BASES.values()}
+    if top in generated or top in fronts or top == "frame_coefficients":
+        if top == "method_dpc_top":
+            method_parameters(cfg)  # a method with a stage is refused
+        _check_stage_top(top, cfg)
+        spec = generated.get(top)
+        if spec is not None and spec.flags and cfg.stages:
+            stage_parameters(stage_top(cfg) or "method_dpc_top", cfg)
+        names = methods_rtl.parameters_of(top)
+        if spec is not None and spec.flags and cfg.plain:
+            return {k: v for k, v in params.items() if k in names}  # nuc_dpc_top inside
+        vals = _values(cfg)
+        return {k: vals[k] for k in names if k in vals}
+    if top == "method_core":
+        vals = {**_values(cfg), "Kind": list(methods_rtl.CORE_KINDS).index(cfg.base.core)}
+        return {k: vals[k] for k in methods_rtl.module_parameters(top, HDL_DIR) if k in vals}
+    if top == "dpc_tail":
+        return {k: params[k] for k in ("OutBits", "MaxWidth", "MaxHeight")}
     if top in _STAGE_BLOCKS:
         want = stage_top(cfg)
         if want is None:
@@ -261,8 +332,6 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
         return _BLOCK_PARAMETERS[top](params)
     if top in _METHOD_MODULES:
         params = {**params, **method_parameters(cfg)}
-        if top == "method_dpc_top":
-            return {k: v for k, v in params.items() if k != "Tables"}
     keep = _MODULE_PARAMETERS.get(top)
     return params if keep is None else {k: params[k] for k in keep if k in params}
 
@@ -289,10 +358,6 @@ _STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
     "ffc_refresh": ("OutBits", "FfcIntBits", "FfcFracBits", "FfcRounding", "FfcOverflow"),
     "ffc_sums": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits",
                  "FfcFracBits"),
-    "frame_coefficients": ("Method", *_COEF, "QuadIntBits", "QuadFracBits", "Tc1IntBits",
-                           "Tc1FracBits", "Tc2IntBits", "Tc2FracBits", "Tg1IntBits",
-                           "Tg1FracBits", "Tg2IntBits", "Tg2FracBits", "TcOrder", "TcGain",
-                           "ReadingBits", "ReadingRangeBits", "Rounding"),
 }
 
 

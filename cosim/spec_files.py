@@ -1,7 +1,11 @@
-"""The files generated from the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`):
-the block between the markers of ``hdl/irnuc_pkg.sv``, the whole package probe
-``cosim/hdl/irnuc_pkg_probe.sv`` and, in a checkout, the register map's documentation
-``docs/registers.md`` (:func:`irnuc.nuc_fixed.regmap.markdown`).
+"""The files generated from the shared-constants spec (:mod:`irnuc.nuc_fixed.rtl_spec`) and
+the method registry (:mod:`irnuc.nuc_fixed.methods.rtl`): the block between the markers of
+``hdl/irnuc_pkg.sv``, the whole package probe ``cosim/hdl/irnuc_pkg_probe.sv``, the
+generated blocks of the design (``// irnuc-params:``: ``irnuc_method_pkg``'s functions, the
+tops' and the method fronts' parameter headers, the forwarded parameter lists,
+irnuc_axis_top's frame word), the whole ``hdl/frame_coefficients.sv`` and, in a checkout,
+the register map's documentation ``docs/registers.md``
+(:func:`irnuc.nuc_fixed.regmap.markdown`).
 
 ``python -m irnuc.cosim.spec_files --write`` rewrites them; ``--check`` (the default)
 lists the stale ones and exits 1. ``tests/test_rtl_spec.py`` runs the check.
@@ -15,6 +19,7 @@ from pathlib import Path
 from irnuc.common.io import write_text_atomic
 from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR
 from irnuc.nuc_fixed import regmap, rtl_spec
+from irnuc.nuc_fixed.methods import rtl as methods_rtl
 
 PACKAGE = HDL_DIR / "irnuc_pkg.sv"
 PROBE = SIM_HDL_DIR / "irnuc_pkg_probe.sv"
@@ -22,10 +27,19 @@ PROBE = SIM_HDL_DIR / "irnuc_pkg_probe.sv"
 REGISTERS_DOC = HDL_DIR.parent / "docs" / "registers.md"
 
 
+FRAME_COEFFICIENTS = HDL_DIR / "frame_coefficients.sv"
+
+
 def expected() -> dict[Path, str]:
     """Each generated file and the text it must have."""
     out = {PACKAGE: rtl_spec.replace_block(PACKAGE.read_text(), rtl_spec.sv_package_block()),
-           PROBE: rtl_spec.sv_probe()}
+           PROBE: rtl_spec.sv_probe(), FRAME_COEFFICIENTS: methods_rtl.frame_coefficients()}
+    for p in sorted(HDL_DIR.glob("*.sv")):
+        if p == FRAME_COEFFICIENTS:
+            continue
+        text = p.read_text()
+        if methods_rtl.BEGIN in text or methods_rtl.FORWARD in text or methods_rtl.FRAME in text:
+            out[p] = methods_rtl.fill(text, HDL_DIR)
     if REGISTERS_DOC.parent.is_dir():
         out[REGISTERS_DOC] = regmap.markdown()
     return out

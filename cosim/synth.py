@@ -189,7 +189,9 @@ def _run_yosys(workdir: Path, name: str, passes: Sequence[str],
 def _read_slang(sources: Sequence[str | os.PathLike], top: str,
                 params: Mapping[str, int], primitives: Path | None = None) -> str:
     files = [str(Path(s).resolve()) for s in sources]
-    gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
+    from irnuc.cosim.sources import tool_parameters
+
+    gens = " ".join(f"-G {k}={v}" for k, v in tool_parameters(params, "slang").items())
     # SYNTHESIS: parameter checks and protocol assertions stay out (`ifndef SYNTHESIS).
     defines = "-D SYNTHESIS"
     if primitives is not None:

@@ -160,14 +160,15 @@ class Register:
 class RegisterSlot:
     """A method register's slot in irnuc_axil_regs: the width parameter ``param``
     (``GainRegBits``) holds the width of ``register`` where the configuration has it, else
-    ``absent``; ``count`` (``TableReadings``) its count. ``sv_width`` is the width's
-    SystemVerilog expression in a top (for the generated slot widths)."""
+    ``absent``; ``count`` (``TableReadings``) its count. ``sv_width`` / ``sv_count`` are
+    their SystemVerilog expressions in a top (for the generated slot widths)."""
 
     param: str
     register: str
     sv_width: str
     absent: int = 0
     count: str = ""
+    sv_count: str = ""
 
 
 # ---- what a method declares ---------------------------------------------------------------
@@ -179,7 +180,10 @@ class FormatSpec:
     ``computed``: a value the datapath computes (its rounding and overflow are datapath
     modes; a stored coefficient always saturates). ``rtl_modes``: which of ``rounding`` and
     ``overflow`` the RTL takes as ``<Name>Rounding`` / ``<Name>Overflow``. ``sv_default``:
-    the RTL parameters' defaults (int bits, frac bits).
+    the RTL parameters' defaults (int bits, frac bits). ``rtl_scope``: which RTL needs its
+    parameters (``front``: the method's front; ``core``: the core of its kind, e.g.
+    quad_core's quadratic term, also on every front's ports; ``wrapper``: only
+    irnuc_axis_top; a stage's: its top).
     """
 
     name: str
@@ -188,6 +192,7 @@ class FormatSpec:
     computed: bool = False
     rtl_modes: tuple[str, ...] = ()
     sv_default: tuple[int, int] = (1, 0)
+    rtl_scope: str = "front"
 
     @property
     def sv(self) -> str:
@@ -201,7 +206,8 @@ class ParamSpec:
 
     ``schema`` is the field's JSON schema (its range and unit), ``rtl`` the RTL
     parameter (None: not one), ``rtl_type`` its SystemVerilog type (``int unsigned`` or
-    ``bit``), ``to_rtl`` the value the RTL gets (default ``int(value)``).
+    ``bit``), ``to_rtl`` the value the RTL gets (default ``int(value)``), ``rtl_scope``
+    which RTL needs it (as :class:`FormatSpec`).
     """
 
     field: str
@@ -211,12 +217,13 @@ class ParamSpec:
     rtl_type: str = "int unsigned"
     sv_default: int = 0
     to_rtl: Callable[[Any], int] = int
+    rtl_scope: str = "front"
 
     @classmethod
     def range(cls, field_: str, lo: int, hi: int, unit: str, doc: str, rtl: str | None,
-              sv_default: int) -> ParamSpec:
+              sv_default: int, rtl_scope: str = "front") -> ParamSpec:
         return cls(field_, schema.number(lo, hi, integer=True, unit=unit), doc, rtl,
-                   sv_default=sv_default)
+                   sv_default=sv_default, rtl_scope=rtl_scope)
 
 
 @dataclass(frozen=True)
@@ -279,7 +286,10 @@ class MethodSpec:
     ``rtl_module`` (its front, ``hdl/<rtl_module>.sv``), ``rtl_files`` (the files the front
     needs beyond the packages, in dependency order), ``rtl_checked`` (the modules its
     datapath is checked in on its own), ``rtl_derived`` (SystemVerilog localparams its
-    stream widths use), ``slots`` (its registers' slots in the register file),
+    stream widths use), ``rtl_base_params`` (base parameters its front takes beyond the
+    gain and offset formats: tc_offset's ``Rounding``), ``rtl_front_registered`` (its front
+    is a pipeline whose outputs are flops: tc_offset's, table_interp's; the others pass
+    through), ``slots`` (its registers' slots in the register file),
     ``corner_registers`` (registers the corner stimulus puts at 0 and their largest code),
     ``plain`` (the configuration without stages is the plain two-point NUC: memory image
     version 1, ``nuc_dpc_top``).
@@ -299,6 +309,8 @@ class MethodSpec:
     rtl_files: tuple[str, ...] = ()
     rtl_checked: tuple[str, ...] = ()
     rtl_derived: tuple[tuple[str, str], ...] = ()
+    rtl_base_params: tuple[str, ...] = ()
+    rtl_front_registered: bool = False
     slots: tuple[RegisterSlot, ...] = ()
     corner_registers: tuple[str, ...] = ()
     plain: bool = False
@@ -369,8 +381,7 @@ class MethodSpec:
         (H, W), bits), for a frame with these readings, and per-frame data the frame word
         needs (None)."""
         words = c.words()
-        mems = c.cfg.memories
-        return [(words[p.memory], mems[p.memory].word_bits) for p in self.stream], None
+        return [(words[name], m.word_bits) for name, m in self.stream_memories(c.cfg)], None
 
     def stream_key(self, c: MethodCoefficients, frame: Frame) -> Any:
         """What decides the coefficient stream of a frame (its image in the bulk harness):
@@ -442,6 +453,7 @@ class StageSpec:
     ``rtl_bases``: those its RTL top (``rtl_top``) implements; ``excludes``: stages it does
     not go with; ``place``: where it acts (``input``: on the core's input, ``sum``: a term
     of the core's sum); ``rtl_flag``: irnuc_axis_top's ``bit`` parameter building its top;
+    ``rtl_wrapper``: the module of irnuc_axis_top's core holding its top (irnuc_axis_ffc);
     the rest as :class:`MethodSpec`.
     """
 
@@ -457,7 +469,9 @@ class StageSpec:
     layouts: tuple[WordLayout, ...] = ()
     rtl_top: str = ""
     rtl_flag: str = ""
+    rtl_wrapper: str = ""
     rtl_files: tuple[str, ...] = ()
+    rtl_derived: tuple[tuple[str, str], ...] = ()
     slots: tuple[RegisterSlot, ...] = ()
 
     def used_formats(self, cfg: PipelineConfig) -> tuple[str, ...]:

@@ -118,6 +118,8 @@ STAGE = BlindDrift(
     excludes=("ffc",),
     layouts=(FRAME_BLIND_DRIFT,),
     rtl_top="method_drift_top", rtl_flag="Drift",
+    rtl_derived=(("BlindBits", "blind_sum_bits(AdcBits, BlindMax)"),
+                 ("DriftGainBits", "DriftGainIntBits + DriftGainFracBits")),
     rtl_files=("blind_drift.sv", "drift_sub.sv"),
     slots=(RegisterSlot("BlindSumRegBits", "blind_sum", "BlindBits"),
            RegisterSlot("BlindRefRegBits", "blind_ref", "BlindBits"),

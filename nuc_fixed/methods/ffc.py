@@ -75,7 +75,7 @@ STAGE = Ffc(
     # Its correction is an extra term of the sum, whatever forms the rest.
     bases=None, rtl_bases=("one_point", "two_point", "quadratic", "tc_offset"),
     excludes=("blind_drift",),
-    rtl_top="method_ffc_top", rtl_flag="Ffc",
+    rtl_top="method_ffc_top", rtl_flag="Ffc", rtl_wrapper="irnuc_axis_ffc",
     rtl_files=("ffc_ctrl.sv", "ffc_mean.sv", "ffc_sums.sv", "ffc_refresh.sv"),
     slots=(RegisterSlot("FfcTargetRegBits", "ffc_target", "OutBits + FfcFracBits"),),
 )

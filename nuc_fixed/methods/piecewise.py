@@ -101,9 +101,9 @@ class Piecewise(MethodSpec):
 METHOD = Piecewise(
     name="piecewise", doc="two gains meeting at a per-pixel knee", core="pwl", scenes=3,
     formats=(FormatSpec("knee", False, "piecewise breakpoint, ADC codes (per pixel)",
-                        sv_default=(14, 2)),
+                        sv_default=(14, 2), rtl_scope="core"),
              FormatSpec("level", False, "piecewise output at the breakpoint, output codes "
-                        "(register)", sv_default=(14, 4))),
+                        "(register)", sv_default=(14, 4), rtl_scope="core")),
     layouts=(COEF_PIECEWISE,),
     stream=(Word("coeffs", COEF_PIECEWISE),),
     frame_word=(Block("level", "LevelBits"),),

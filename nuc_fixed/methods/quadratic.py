@@ -93,9 +93,9 @@ class Quadratic(MethodSpec):
 METHOD = Quadratic(
     name="quadratic", doc="gain, offset and a quadratic term", core="quad", scenes=3,
     formats=(FormatSpec("quad", True, "quadratic term at full-scale input, output codes "
-                        "(per pixel)", sv_default=(10, 6)),),
+                        "(per pixel)", sv_default=(10, 6), rtl_scope="core"),),
     params=(ParamSpec.range("square_bits", 1, 24, "bits", "bits the square of a raw code is "
-                            "truncated to", "SquareBits", 18),),
+                            "truncated to", "SquareBits", 18, rtl_scope="core"),),
     layouts=(QUAD_WORD,),
     stream=(Word("coeffs", COEF_WORD), Word("quad", QUAD_WORD)),
     rtl_module="method_quadratic", rtl_checked=("quad_core",),

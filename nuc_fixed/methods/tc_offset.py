@@ -307,5 +307,6 @@ METHOD = TcOffset(
     rtl_module="method_tc_offset", rtl_checked=("tc_poly", "tc_reading", "nuc_core"),
     rtl_files=("tc_reading.sv", "tc_poly.sv"),
     rtl_derived=(("TcWordBits", _TC_BITS), ("TgWordBits", _TG_BITS)),
+    rtl_base_params=("Rounding",), rtl_front_registered=True,
     slots=(RegisterSlot("TRefRegBits", "t_ref", "ReadingBits"),),
 )
