@@ -772,9 +772,10 @@ def fill(text: str, hdl_dir: object) -> str:
 
 
 __all__ = [
-    "BASE", "CORE_KINDS",
+    "BASE",
     "BEGIN",
     "COEF",
+    "CORE_KINDS",
     "END",
     "FORWARD",
     "FRAME",
