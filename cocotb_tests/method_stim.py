@@ -156,3 +156,47 @@ def corner_frames(cfg: PipelineConfig, rng: np.random.Generator, h: int = 8, w: 
         left -= got
     assert not left, f"{cfg.name}: no corner frame reaches {sorted(left)}"
     return chosen
+
+
+def ffc_calibration(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
+                 kind: str) -> MethodCoefficients:
+    """A calibration for an FFC sequence: ``random``: every field over its code range;
+    ``camera``: gains near 1, small offsets and quadratic terms (the corrections then stay
+    inside the ffc format)."""
+    c = random_coefficients(cfg, h, w, rng, biased=kind == "random")
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    co = fields["coeffs"]
+    co["bad"] = co["bad"].copy()
+    co["bad"][0, 0] = False  # a target needs a good pixel
+    if kind == "random":
+        return MethodCoefficients(cfg, fields, c.registers)
+    if "gain" in co:
+        one = 1 << cfg.gain_frac_bits
+        co["gain"] = one + rng.integers(-one // 8, one // 8 + 1, size=(h, w))
+    co["offset"] = rng.integers(-(1 << (cfg.offset_frac_bits + 6)),
+                                1 << (cfg.offset_frac_bits + 6), size=(h, w))
+    if "quad" in fields:
+        fields["quad"]["quad"] = rng.integers(-(1 << 9), 1 << 9, size=(h, w))
+    for m in ("tc", "tg"):
+        for k in fields.get(m, {}):
+            fields[m][k] = rng.integers(-64, 65, size=(h, w))
+    regs = dict(c.registers)
+    if "gain" in regs:
+        regs["gain"] = 1 << cfg.gain_frac_bits
+    return MethodCoefficients(cfg, fields, regs)
+
+
+def ffc_raws(cfg: PipelineConfig, shutter: list[int], h: int, w: int, rng: np.random.Generator,
+          kind: str) -> list[np.ndarray]:
+    """The frames of an FFC sequence: scene frames (random codes) and shutter frames (a
+    level with a fixed pattern and temporal noise; ``random``: any codes)."""
+    top = (1 << cfg.adc_bits) - 1
+    level = int(rng.integers(top // 4, 3 * top // 4))
+    pattern = rng.integers(-200, 201, size=(h, w))
+    out = []
+    for s in shutter:
+        if s and kind != "random":
+            out.append(np.clip(level + pattern + rng.integers(-8, 9, size=(h, w)), 0, top))
+        else:
+            out.append(random_raw(cfg, h, w, rng, biased=kind == "random"))
+    return out

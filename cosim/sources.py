@@ -39,100 +39,120 @@ _QUAD = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "quad_core.sv")))
 _TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
 _TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
-# The methods' fronts (hdl/<MethodSpec.rtl_module>.sv and what it instantiates), every one
-# behind the same ports, and frame_coefficients, which picks the configured method's; the
-# core of each kind (method_core) and the DPC tail of every top.
-_FRONTS = {m.rtl_module: tuple(dict.fromkeys((*_SPILL, *_ARITH, *_ARMED, *m.rtl_files,
-                                               f"{m.rtl_module}.sv")))
-           for m in methods.BASES.values()}
-_FRAME_COEF = (*dict.fromkeys(f for files in _FRONTS.values() for f in files),
-               "frame_coefficients.sv")
-_METHOD_CORE = tuple(dict.fromkeys((*_NUC, *_PWL, *_QUAD, "method_core.sv")))
-_TAIL = (*_DPC, "dpc_tail.sv")
+def _module_files() -> dict[str, tuple[str, ...]]:
+    """Module -> the HDL files it needs, in dependency order (one module per file; the
+    packages first), the methods' from the registry (:func:`module_files`)."""
+    # The methods' fronts (hdl/<MethodSpec.rtl_module>.sv and what it instantiates), every one
+    # behind the same ports, and frame_coefficients, which picks the configured method's; the
+    # core of each kind (method_core) and the DPC tail of every top.
+    fronts = {m.rtl_module: tuple(dict.fromkeys((*_SPILL, *_ARITH, *_ARMED, *m.rtl_files,
+                                                   f"{m.rtl_module}.sv")))
+               for m in methods.BASES.values()}
+    frame_coef = (*dict.fromkeys(f for files in fronts.values() for f in files),
+                   "frame_coefficients.sv")
+    method_core = tuple(dict.fromkeys((*_NUC, *_PWL, *_QUAD, "method_core.sv")))
+    tail = (*_DPC, "dpc_tail.sv")
 
-#: Module -> the HDL files it needs, in dependency order (one module per file; the
-#: packages first). Files are looked up in ``hdl/``, then in ``cosim/hdl/``.
-MODULE_FILES: dict[str, tuple[str, ...]] = {
-    "nuc_core": (*_PKG, *_NUC),
-    "dpc_core": (*_PKG, *_DPC),
-    "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_TAIL, "nuc_dpc_top.sv"))),
-    "pwl_core": (*_PKG, *_PWL),
-    "quad_core": (*_PKG, *_QUAD),
-    "tc_poly": (*_PKG, *_TC),
-    "table_interp": (*_PKG, *_TABLE),
-    "method_dpc_top": tuple(dict.fromkeys((*_PKG, *_FRAME_COEF, *_METHOD_CORE, *_TAIL,
-                                           "method_dpc_top.sv"))),
-    **{name: (*_PKG, *files) for name, files in _FRONTS.items()},
-    "frame_coefficients": (*_PKG, *_FRAME_COEF),
-    "method_core": (*_PKG, *_METHOD_CORE),
-    "dpc_tail": (*_PKG, *_TAIL),
-    "dpc_ctrl": (*_PKG, *_ARMED, "dpc_ctrl.sv"),
-    "irnuc_spill_register": _SPILL,
-    "irnuc_stream_assert": _ASSERT,
-    "irnuc_frame_assert": (*_PKG, *_FRAME),
-    "irnuc_add_tree": ("irnuc_add_tree.sv",),
-    "irnuc_mul_parts": (*_PKG, *_MUL),
-    "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
-    "irnuc_round": (*_PKG, "irnuc_round.sv"),
-    "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
-    "tc_reading": (*_PKG, *_MUL, "irnuc_add_tree.sv", "tc_reading.sv"),
-    "interp_weight": (*_PKG, "interp_weight.sv"),
-    "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
-    "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
-}
-# The AXI top: the core, the framer, the register file and the AXI protocol checkers.
-_AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
-_REGS = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
-MODULE_FILES["irnuc_axil_regs"] = (*_PKG, *_ARMED, *_REGS)
-MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
-MODULE_FILES["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
-MODULE_FILES["irnuc_axis_assert"] = (*_ARMED, "irnuc_axis_assert.sv")
-MODULE_FILES["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
-MODULE_FILES["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
-MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
-    *_REGS, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv", "interp_weight.sv",
-    "irnuc_axis_table.sv", "irnuc_axis_top.sv")))
-# table_interp's weight and table pair per frame from the registers (irnuc_axis_top).
-MODULE_FILES["irnuc_axis_table"] = (*_PKG, *_ARMED, "interp_weight.sv", "irnuc_axis_table.sv")
-# Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
-MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
+    files: dict[str, tuple[str, ...]] = {
+        "nuc_core": (*_PKG, *_NUC),
+        "dpc_core": (*_PKG, *_DPC),
+        "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *tail, "nuc_dpc_top.sv"))),
+        "pwl_core": (*_PKG, *_PWL),
+        "quad_core": (*_PKG, *_QUAD),
+        "tc_poly": (*_PKG, *_TC),
+        "table_interp": (*_PKG, *_TABLE),
+        "method_dpc_top": tuple(dict.fromkeys((*_PKG, *frame_coef, *method_core, *tail,
+                                               "method_dpc_top.sv"))),
+        **{name: (*_PKG, *files) for name, files in fronts.items()},
+        "frame_coefficients": (*_PKG, *frame_coef),
+        "method_core": (*_PKG, *method_core),
+        "dpc_tail": (*_PKG, *tail),
+        "dpc_ctrl": (*_PKG, *_ARMED, "dpc_ctrl.sv"),
+        "irnuc_spill_register": _SPILL,
+        "irnuc_stream_assert": _ASSERT,
+        "irnuc_frame_assert": (*_PKG, *_FRAME),
+        "irnuc_add_tree": ("irnuc_add_tree.sv",),
+        "irnuc_mul_parts": (*_PKG, *_MUL),
+        "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
+        "irnuc_round": (*_PKG, "irnuc_round.sv"),
+        "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
+        "tc_reading": (*_PKG, *_MUL, "irnuc_add_tree.sv", "tc_reading.sv"),
+        "interp_weight": (*_PKG, "interp_weight.sv"),
+        "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
+        "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
+    }
+    # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
+    axi_assert = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
+    regs = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
+    files["irnuc_axil_regs"] = (*_PKG, *_ARMED, *regs)
+    files["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
+    files["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
+    files["irnuc_axis_assert"] = (*_ARMED, "irnuc_axis_assert.sv")
+    files["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
+    files["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
+    files["irnuc_axis_top"] = tuple(dict.fromkeys((
+        *files["nuc_dpc_top"], *files["method_dpc_top"], *axi_assert,
+        *regs, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv", "interp_weight.sv",
+        "irnuc_axis_table.sv", "irnuc_axis_top.sv")))
+    # table_interp's weight and table pair per frame from the registers (irnuc_axis_top).
+    files["irnuc_axis_table"] = (*_PKG, *_ARMED, "interp_weight.sv", "irnuc_axis_table.sv")
+    # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
+    files["nuc_dpc_batch"] = (*files["nuc_dpc_top"], "nuc_dpc_batch.sv")
 
-# ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
-_SPKG = (*_PKG, "irnuc_stage_pkg.sv")
-_CORE_SUM = (*_ARITH, "core_sum.sv")
-_BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
-MODULE_FILES |= {
-    "core_sum": (*_SPKG, *_CORE_SUM),
-    "core_out": (*_PKG, *_CORE_OUT),
-    "drift_sub": ("drift_sub.sv",),
-    "blind_drift": (*_PKG, *_BLIND),
-    "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_FRAME_COEF,
-                                             *_CORE_SUM, *_CORE_OUT, *_TAIL,
-                                             "method_drift_top.sv"))),
-    "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
-    "ffc_mean": (*_ARMED, "ffc_mean.sv"),
-    "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
-    "ffc_sums": (*_SPKG, *_CORE_SUM, "ffc_sums.sv"),
-    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "irnuc_axis_buffer.sv",
-                                           "ffc_ctrl.sv", "ffc_mean.sv", *_FRAME_COEF,
-                                           *_CORE_SUM, "ffc_sums.sv", *_CORE_OUT,
-                                           "ffc_refresh.sv", *_TAIL, "method_ffc_top.sv"))),
-}
-# The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
-# Its core and FFC side (irnuc_axis_core, irnuc_axis_ffc) are modules of their own.
-MODULE_FILES["irnuc_axis_ffc"] = tuple(dict.fromkeys((
-    *MODULE_FILES["method_ffc_top"], "irnuc_axis_ffc.sv")))
-MODULE_FILES["irnuc_axis_core"] = tuple(dict.fromkeys((
-    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"],
-    *MODULE_FILES["irnuc_axis_ffc"], *MODULE_FILES["method_drift_top"],
-    "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
-MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
-    "irnuc_axis_top.sv")))
-MODULE_FILES["irnuc_assert_armed"] = _ARMED
-# A file needed twice (the arming flop through two checkers) is compiled once.
-MODULE_FILES = {k: tuple(dict.fromkeys(v)) for k, v in MODULE_FILES.items()}
+    # ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
+    spkg = (*_PKG, "irnuc_stage_pkg.sv")
+    core_sum = (*_ARITH, "core_sum.sv")
+    blind = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
+    files |= {
+        "core_sum": (*spkg, *core_sum),
+        "core_out": (*_PKG, *_CORE_OUT),
+        "drift_sub": ("drift_sub.sv",),
+        "blind_drift": (*_PKG, *blind),
+        "method_drift_top": tuple(dict.fromkeys((*spkg, *blind, "drift_sub.sv", *frame_coef,
+                                                 *core_sum, *_CORE_OUT, *tail,
+                                                 "method_drift_top.sv"))),
+        "ffc_ctrl": (*spkg, "ffc_ctrl.sv"),
+        "ffc_mean": (*_ARMED, "ffc_mean.sv"),
+        "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
+        "ffc_sums": (*spkg, *core_sum, "ffc_sums.sv"),
+        "method_ffc_top": tuple(dict.fromkeys((*spkg, *_SPILL, "irnuc_axis_buffer.sv",
+                                               "ffc_ctrl.sv", "ffc_mean.sv", *frame_coef,
+                                               *core_sum, "ffc_sums.sv", *_CORE_OUT,
+                                               "ffc_refresh.sv", *tail, "method_ffc_top.sv"))),
+    }
+    # The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
+    # Its core and FFC side (irnuc_axis_core, irnuc_axis_ffc) are modules of their own.
+    files["irnuc_axis_ffc"] = tuple(dict.fromkeys((
+        *files["method_ffc_top"], "irnuc_axis_ffc.sv")))
+    files["irnuc_axis_core"] = tuple(dict.fromkeys((
+        *files["nuc_dpc_top"], *files["method_dpc_top"],
+        *files["irnuc_axis_ffc"], *files["method_drift_top"],
+        "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
+    files["irnuc_axis_top"] = tuple(dict.fromkeys((
+        *files["irnuc_axis_core"], *files["irnuc_axis_top"][:-1],
+        "irnuc_axis_top.sv")))
+    files["irnuc_assert_armed"] = _ARMED
+    # A file needed twice (the arming flop through two checkers) is compiled once.
+    files = {k: tuple(dict.fromkeys(v)) for k, v in files.items()}
+    return files
+
+
+_FILES_OF: dict[tuple[str, ...], dict[str, tuple[str, ...]]] = {}
+
+
+def module_files() -> dict[str, tuple[str, ...]]:
+    """Module -> the HDL files it needs, for the methods registered now (a test may
+    register one; :data:`MODULE_FILES` is the shipped registry's)."""
+    key = tuple(methods.BASES)
+    if key not in _FILES_OF:
+        _FILES_OF[key] = _module_files()
+    return _FILES_OF[key]
+
+
+#: Module -> the HDL files it needs (the shipped methods'; :func:`module_files`). Files are
+#: looked up in ``hdl/``, then in ``cosim/hdl/``.
+MODULE_FILES: dict[str, tuple[str, ...]] = module_files()
+
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
@@ -270,11 +290,12 @@ def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     ``hdl_dir`` replaces ``hdl/`` (a modified copy of the design, e.g. a mutant); files it
     lacks are taken from ``cosim/hdl/``.
     """
-    if top not in MODULE_FILES:
-        raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(MODULE_FILES))}")
+    files = module_files()
+    if top not in files:
+        raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(files))}")
     base = Path(hdl_dir) if hdl_dir is not None else HDL_DIR
     return [base / name if (base / name).is_file() else SIM_HDL_DIR / name
-            for name in MODULE_FILES[top]]
+            for name in files[top]]
 
 
 def _values(cfg: PipelineConfig) -> dict[str, int]:

@@ -30,16 +30,26 @@ REGISTERS_DOC = HDL_DIR.parent / "docs" / "registers.md"
 FRAME_COEFFICIENTS = HDL_DIR / "frame_coefficients.sv"
 
 
-def expected() -> dict[Path, str]:
-    """Each generated file and the text it must have."""
-    out = {PACKAGE: rtl_spec.replace_block(PACKAGE.read_text(), rtl_spec.sv_package_block()),
-           PROBE: rtl_spec.sv_probe(), FRAME_COEFFICIENTS: methods_rtl.frame_coefficients()}
-    for p in sorted(HDL_DIR.glob("*.sv")):
-        if p == FRAME_COEFFICIENTS:
+def design_files(hdl_dir: Path = HDL_DIR) -> dict[Path, str]:
+    """The generated design files of a copy of ``hdl/`` (``hdl_dir``) and their text: the
+    package's block, ``frame_coefficients.sv`` and every file with generated blocks."""
+    hdl_dir = Path(hdl_dir)
+    pkg, frame = hdl_dir / PACKAGE.name, hdl_dir / FRAME_COEFFICIENTS.name
+    out = {pkg: rtl_spec.replace_block(pkg.read_text(), rtl_spec.sv_package_block()),
+           frame: methods_rtl.frame_coefficients()}
+    for p in sorted(hdl_dir.glob("*.sv")):
+        if p == frame:
             continue
         text = p.read_text()
-        if methods_rtl.BEGIN in text or methods_rtl.FORWARD in text or methods_rtl.FRAME in text:
-            out[p] = methods_rtl.fill(text, HDL_DIR)
+        if any(m in text for m in (methods_rtl.BEGIN, methods_rtl.FORWARD, methods_rtl.FRAME,
+                                   methods_rtl.PORTS)):
+            out[p] = methods_rtl.fill(text, hdl_dir)
+    return out
+
+
+def expected() -> dict[Path, str]:
+    """Each generated file and the text it must have."""
+    out = {**design_files(), PROBE: rtl_spec.sv_probe()}
     if REGISTERS_DOC.parent.is_dir():
         out[REGISTERS_DOC] = regmap.markdown()
     return out
