@@ -16,7 +16,7 @@ The memory and register layouts (:class:`CoeffFormat`, :class:`Field`,
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -272,69 +272,84 @@ class Block:
 StreamPart = Word | Block
 
 
-# ---- the base method ----------------------------------------------------------------------
+# ---- what a base method and a stage share --------------------------------------------------
 
 @dataclass(frozen=True)
-class MethodSpec:
-    """A base correction method (one datapath per pixel).
-
-    Data: ``name`` (the configuration's ``method``), ``doc`` (one line), ``core`` (the core
-    kind: ``lin``, ``quad`` or ``pwl``; ``nuc_fixed.cores.CORES``), ``formats`` and
-    ``params`` (those it may use), ``readings`` (the per-frame readings it takes, by
-    name), ``scenes`` (calibration scenes it needs), ``layouts`` (its memory words, generated
-    into ``irnuc_pkg``), ``stream`` / ``frame_word`` (its RTL stream words, bit 0 first),
-    ``rtl_module`` (its front, ``hdl/<rtl_module>.sv``), ``rtl_files`` (the files the front
-    needs beyond the packages, in dependency order), ``rtl_checked`` (the modules its
-    datapath is checked in on its own), ``rtl_derived`` (SystemVerilog localparams its
-    stream widths use), ``rtl_base_params`` (base parameters its front takes beyond the
-    gain and offset formats: tc_offset's ``Rounding``), ``rtl_front_registered`` (its front
-    is a pipeline whose outputs are flops: tc_offset's, table_interp's; the others pass
-    through), ``slots`` (its registers' slots in the register file),
-    ``corner_registers`` (registers the corner stimulus puts at 0 and their largest code),
-    ``plain`` (the configuration without stages is the plain two-point NUC: memory image
-    version 1, ``nuc_dpc_top``).
-    """
+class PartSpec:
+    """What a base method and a stage both declare: ``name``, ``doc`` (one line),
+    ``formats`` and ``params`` (those it may use), ``readings`` (the per-frame readings it
+    takes, by name), ``layouts`` (its memory and frame words, generated into ``irnuc_pkg``),
+    ``rtl_files`` (the RTL files it needs beyond the packages, in dependency order),
+    ``rtl_derived`` (SystemVerilog localparams: (name, expression)), ``slots`` (its
+    registers' slots in the register file); and what it does to a configuration: the formats
+    and parameters it uses, its checks, memories, registers and widths."""
 
     name: str
     doc: str
-    core: str
     formats: tuple[FormatSpec, ...] = ()
     params: tuple[ParamSpec, ...] = ()
     readings: tuple[str, ...] = ()
-    scenes: int = 2
     layouts: tuple[WordLayout, ...] = ()
-    stream: tuple[StreamPart, ...] = ()
-    frame_word: tuple[StreamPart, ...] = ()
-    rtl_module: str = ""
     rtl_files: tuple[str, ...] = ()
-    rtl_checked: tuple[str, ...] = ()
     rtl_derived: tuple[tuple[str, str], ...] = ()
-    rtl_base_params: tuple[str, ...] = ()
-    rtl_front_registered: bool = False
     slots: tuple[RegisterSlot, ...] = ()
-    corner_registers: tuple[str, ...] = ()
-    plain: bool = False
-    extra: Mapping[str, Any] = field(default_factory=dict)
 
-    # ---- configuration ---------------------------------------------------------------
     def used_formats(self, cfg: PipelineConfig) -> tuple[str, ...]:
-        """The names in ``formats`` a configuration of this method uses."""
+        """The names in ``formats`` a configuration uses."""
         return tuple(f.name for f in self.formats)
 
     def used_params(self, cfg: PipelineConfig) -> tuple[str, ...]:
-        """The parameters a configuration of this method must set."""
+        """The parameters a configuration must set."""
         return tuple(p.field for p in self.params)
 
     def check(self, cfg: PipelineConfig, src: str) -> None:
         """Checks beyond the schema (ConfigError naming ``src``)."""
 
     def memories(self, cfg: PipelineConfig) -> list[MemoryLayout]:
-        """Its per-pixel memories for ``cfg``, in order (the first holds the bad flags)."""
-        raise NotImplementedError
+        """Its per-pixel memories for ``cfg``, in order."""
+        return []
 
     def registers(self, cfg: PipelineConfig) -> list[Register]:
-        """Its calibration registers for ``cfg`` (the readings' come from the readings)."""
+        """Its registers for ``cfg`` (the readings' come from the readings)."""
         return []
+
+    def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
+        """Its intermediate widths beyond the core's, by dotted name (docs/datapath.md)."""
+        return {}
+
+
+# ---- the base method ----------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class MethodSpec(PartSpec):
+    """A base correction method (one datapath per pixel).
+
+    Beyond :class:`PartSpec`: ``core`` (the core kind: ``lin``, ``quad`` or ``pwl``;
+    ``nuc_fixed.cores.CORES``), ``scenes`` (calibration scenes it needs), ``stream`` /
+    ``frame_word`` (its RTL stream words, bit 0 first), ``rtl_module`` (its front,
+    ``hdl/<rtl_module>.sv``), ``rtl_checked`` (the modules its datapath is checked in on its
+    own), ``rtl_base_params`` (base parameters its front takes beyond the gain and offset
+    formats: tc_offset's ``Rounding``), ``rtl_front_registered`` (its front is a pipeline
+    whose outputs are flops: tc_offset's, table_interp's; the others pass through),
+    ``corner_registers`` (registers the corner stimulus puts at 0 and their largest code),
+    ``plain`` (the configuration without stages is the plain two-point NUC: memory image
+    version 1, ``nuc_dpc_top``). Its memories (the first holds the bad flags) it must give.
+    """
+
+    core: str = "lin"
+    scenes: int = 2
+    stream: tuple[StreamPart, ...] = ()
+    frame_word: tuple[StreamPart, ...] = ()
+    rtl_module: str = ""
+    rtl_checked: tuple[str, ...] = ()
+    rtl_base_params: tuple[str, ...] = ()
+    rtl_front_registered: bool = False
+    corner_registers: tuple[str, ...] = ()
+    plain: bool = False
+
+    def memories(self, cfg: PipelineConfig) -> list[MemoryLayout]:
+        """Its per-pixel memories for ``cfg``, in order (the first holds the bad flags)."""
+        raise NotImplementedError
 
     # ---- golden model ----------------------------------------------------------------
     def check_coefficients(self, c: MethodCoefficients) -> None:
@@ -345,10 +360,6 @@ class MethodSpec:
         in a frame with these readings (lin: gain, offset; quad: + quad; pwl: gain_lo,
         gain_hi, knee, level)."""
         raise NotImplementedError
-
-    def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
-        """Its intermediate widths beyond the core's, by dotted name (docs/datapath.md)."""
-        return {}
 
     # ---- calibration -------------------------------------------------------------------
     def fit(self, cfg: PipelineConfig, pts: Any, means: np.ndarray, t: np.ndarray,
@@ -446,48 +457,24 @@ class MethodSpec:
 # ---- the stages ---------------------------------------------------------------------------
 
 @dataclass(frozen=True)
-class StageSpec:
+class StageSpec(PartSpec):
     """A stage composed with a base method (``two_point+ffc``).
 
-    ``bases``: the base methods the golden model composes it with (None: every one);
-    ``rtl_bases``: those its RTL top (``rtl_top``) implements; ``excludes``: stages it does
-    not go with; ``place``: where it acts (``input``: on the core's input, ``sum``: a term
-    of the core's sum); ``rtl_flag``: irnuc_axis_top's ``bit`` parameter building its top;
-    ``rtl_wrapper``: the module of irnuc_axis_top's core holding its top (irnuc_axis_ffc);
-    the rest as :class:`MethodSpec`.
+    Beyond :class:`PartSpec`: ``place`` (where it acts: ``input``, on the core's input;
+    ``sum``, a term of the core's sum), ``bases`` (the base methods the golden model
+    composes it with; None: every one), ``rtl_bases`` (those its RTL top ``rtl_top``
+    implements), ``excludes`` (stages it does not go with), ``rtl_flag`` (irnuc_axis_top's
+    ``bit`` parameter building its top), ``rtl_wrapper`` (the module of irnuc_axis_top's
+    core holding its top: irnuc_axis_ffc).
     """
 
-    name: str
-    doc: str
-    place: str
-    formats: tuple[FormatSpec, ...] = ()
-    params: tuple[ParamSpec, ...] = ()
-    readings: tuple[str, ...] = ()
+    place: str = "sum"
     bases: tuple[str, ...] | None = None
     rtl_bases: tuple[str, ...] = ()
     excludes: tuple[str, ...] = ()
-    layouts: tuple[WordLayout, ...] = ()
     rtl_top: str = ""
     rtl_flag: str = ""
     rtl_wrapper: str = ""
-    rtl_files: tuple[str, ...] = ()
-    rtl_derived: tuple[tuple[str, str], ...] = ()
-    slots: tuple[RegisterSlot, ...] = ()
-
-    def used_formats(self, cfg: PipelineConfig) -> tuple[str, ...]:
-        return tuple(f.name for f in self.formats)
-
-    def used_params(self, cfg: PipelineConfig) -> tuple[str, ...]:
-        return tuple(p.field for p in self.params)
-
-    def check(self, cfg: PipelineConfig, src: str) -> None:
-        """Checks beyond the schema (ConfigError naming ``src``)."""
-
-    def memories(self, cfg: PipelineConfig) -> list[MemoryLayout]:
-        return []
-
-    def registers(self, cfg: PipelineConfig) -> list[Register]:
-        return []
 
     def fit(self, cfg: PipelineConfig, pts: Any, means: np.ndarray, good: np.ndarray,
             q: Any) -> None:
@@ -497,10 +484,8 @@ class StageSpec:
         """The core's input after this stage (``place == "input"``)."""
         return None
 
-    def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
-        return {}
-
 
 __all__ = ["Block", "Classes", "CoeffFormat", "Field", "FormatSpec", "Frame", "MemoryLayout",
-           "MethodSpec", "ParamSpec", "Points", "ReadingSpec", "Register", "RegisterSlot",
+           "MethodSpec", "ParamSpec", "PartSpec", "Points", "ReadingSpec", "Register",
+           "RegisterSlot",
            "StageSpec", "StreamPart", "Word", "memory", "sv_name", "word_memory"]
