@@ -36,8 +36,6 @@ _DPC = (*_SPILL, *_FRAME, *_MUL, "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
 _CORE_OUT = (*_ASSERT, "irnuc_axis_buffer.sv", "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
 _PWL = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "pwl_core.sv")))
 _QUAD = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "quad_core.sv")))
-_TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
-_TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
 def _module_files() -> dict[str, tuple[str, ...]]:
     """Module -> the HDL files it needs, in dependency order (one module per file; the
@@ -59,8 +57,6 @@ def _module_files() -> dict[str, tuple[str, ...]]:
         "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *tail, "nuc_dpc_top.sv"))),
         "pwl_core": (*_PKG, *_PWL),
         "quad_core": (*_PKG, *_QUAD),
-        "tc_poly": (*_PKG, *_TC),
-        "table_interp": (*_PKG, *_TABLE),
         "method_dpc_top": tuple(dict.fromkeys((*_PKG, *frame_coef, *method_core, *tail,
                                                "method_dpc_top.sv"))),
         **{name: (*_PKG, *files) for name, files in fronts.items()},
@@ -76,11 +72,14 @@ def _module_files() -> dict[str, tuple[str, ...]]:
         "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
         "irnuc_round": (*_PKG, "irnuc_round.sv"),
         "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
-        "tc_reading": (*_PKG, *_MUL, "irnuc_add_tree.sv", "tc_reading.sv"),
         "interp_weight": (*_PKG, "interp_weight.sv"),
         "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
         "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
     }
+    # Each file of a method's front on its own (tc_poly, table_interp, ...).
+    for m in methods.BASES.values():
+        for i, f in enumerate(m.rtl_files):
+            files[f.removesuffix(".sv")] = (*_PKG, *_SPILL, *_ARITH, *m.rtl_files[:i + 1])
     # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
     axi_assert = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
     regs = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
@@ -158,32 +157,6 @@ MODULE_FILES: dict[str, tuple[str, ...]] = module_files()
 #: simulation build and the lint define it, synthesis does not.
 ASSERT_DEFINE = "+define+IRNUC_ASSERT"
 
-_BASE = ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
-         "OutBits", "Rounding", "Overflow")
-_COEF = ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits")
-
-#: The parameters each sub-module takes (``nuc_dpc_top`` and ``method_dpc_top`` take all
-#: of theirs).
-_MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
-    "nuc_core": _BASE,
-    "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
-    "dpc_ctrl": ("MaxWidth", "MaxHeight"),
-    "irnuc_axis_framer": (*_COEF, "AdcBits", "MaxWidth", "MaxHeight"),
-    "nuc_dpc_top": (*_BASE, "MaxWidth", "MaxHeight"),
-    "irnuc_pkg_probe": ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
-                        "OutBits"),
-    "pwl_core": ("AdcBits", "GainIntBits", "GainFracBits", "KneeIntBits", "KneeFracBits",
-                 "LevelIntBits", "LevelFracBits", "OutBits", "Rounding", "Overflow"),
-    "quad_core": (*_BASE, "QuadIntBits", "QuadFracBits", "SquareBits"),
-    "tc_poly": (*_COEF, "Tc1IntBits", "Tc1FracBits", "Tc2IntBits", "Tc2FracBits",
-                "Tg1IntBits", "Tg1FracBits", "Tg2IntBits", "Tg2FracBits", "TcOrder", "TcGain",
-                "ReadingBits", "ReadingRangeBits", "Rounding"),
-    "tc_reading": ("ReadingBits", "ReadingRangeBits"),
-    "table_interp": (*_COEF, "WeightFracBits", "WeightRounding"),
-    "interp_weight": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
-    "irnuc_axis_table": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
-}
-
 def method_cores() -> dict[str, tuple[str, ...]]:
     """The modules each base method's datapath is checked in on its own
     (``MethodSpec.rtl_checked``; method_dpc_top holds every method)."""
@@ -249,10 +222,6 @@ def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
             "HasFfc": c["HasFfc"], "FfcFrames": c["FfcFrames"],
             "CoefLayoutVersion": c["CoefLayoutVersion"], **methods.slot_parameters(cfg)}
 
-
-#: Modules whose parameters include the method's (method_parameters).
-_METHOD_MODULES = ("pwl_core", "quad_core", "tc_poly", "tc_reading", "table_interp",
-                   "interp_weight", "irnuc_axis_table")
 
 def tool_parameters(params: Mapping[str, int], tool: str) -> dict[str, str]:
     """The ``-G`` values of ``params`` in a tool's syntax (``verilator`` or ``slang``).
@@ -348,13 +317,14 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
             raise UserError(f"pipeline {cfg.name!r}: {top} is a block of the stage tops; "
                             f"method {cfg.method!r} has no stage")
         p = stage_parameters(want, cfg)
-        return {k: p[k] for k in _STAGE_BLOCKS[top] if k in p}
+        declared = methods_rtl.module_parameters(top, hdl_sources(top)[-1].parent)
+        return {k: p[k] for k in declared if k in p}
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
-    if top in _METHOD_MODULES:
-        params = {**params, **method_parameters(cfg)}
-    keep = _MODULE_PARAMETERS.get(top)
-    return params if keep is None else {k: params[k] for k in keep if k in params}
+    # Any other module: the parameters its file declares that cfg decides.
+    vals = _values(cfg)
+    declared = methods_rtl.module_parameters(top, hdl_sources(top)[-1].parent)
+    return {k: vals[k] for k in declared if k in vals}
 
 
 # ---- the stages -------------------------------------------------------------------------
@@ -366,20 +336,10 @@ STAGE_BASES: dict[str, tuple[str, ...]] = {s.rtl_top: s.rtl_bases
                                            for s in methods.STAGES.values()}
 
 
-#: The blocks of the stage tops and the parameters of their top each takes (the lint of
-#: every module, at the sizes it gets in its top).
-_STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
-    "blind_drift": ("AdcBits", "BlindMax", "DriftIntBits", "DriftFracBits", "DriftRounding",
-                    "DriftOverflow", "DriftGainIntBits", "DriftGainFracBits"),
-    "drift_sub": ("AdcBits", "DriftIntBits", "DriftFracBits"),
-    "core_sum": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits"),
-    "core_out": ("OutBits", "Rounding", "Overflow"),
-    "ffc_ctrl": ("FfcFrames",),
-    "ffc_mean": (),
-    "ffc_refresh": ("OutBits", "FfcIntBits", "FfcFracBits", "FfcRounding", "FfcOverflow"),
-    "ffc_sums": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits",
-                 "FfcFracBits"),
-}
+#: The blocks of the stage tops (the lint of every module, at the sizes it gets in its top:
+#: the parameters its file declares, of its top's).
+_STAGE_BLOCKS = ("blind_drift", "drift_sub", "core_sum", "core_out", "ffc_ctrl", "ffc_mean",
+                 "ffc_refresh", "ffc_sums")
 
 
 def stage_top(cfg: PipelineConfig) -> str | None:

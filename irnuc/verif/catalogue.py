@@ -433,6 +433,20 @@ CATALOGUE: tuple[Mutant, ...] = (
         ".s_user_i   ({s_user_i, w.lower.bad}),",
         "table_interp's DPC takes table j's bad flag only (a pixel bad in table j + 1 is "
         "interpolated from its coefficients and not replaced)", "table14"),
+    _mm("top_two_point_bad", "method_two_point.sv",
+        "assign m_user_o    = {s_user_i, w.bad};", "assign m_user_o    = {s_user_i, 1'b0};",
+        "two_point's bad flag dropped (no pixel replaced)", "typical14"),
+    _mm("top_pwl_gains_swapped", "method_piecewise.sv",
+        "assign m_gain_o    = w.gain_lo;", "assign m_gain_o    = w.gain_hi;",
+        "piecewise's gain below the knee read from the gain above it", "piecewise14"),
+    # frame_coefficients (the configured method's front) and method_core (its kind's core).
+    _mm("fc_front_of_other_method", "frame_coefficients.sv",
+        "if (Method == MethodOnePoint) begin : gen_one_point",
+        "if (Method == MethodOnePoint || Method == MethodTwoPoint) begin : gen_one_point",
+        "two_point's words read by one_point's front", "typical14"),
+    _mm("mc_pwl_gain_hi_from_lo", "method_core.sv", ".s_gain_hi_i (s_gain_hi_i),",
+        ".s_gain_hi_i (s_gain_i),", "pwl_core's gain above the knee wired to the one below",
+        "piecewise14"),
     _m("dpc_mask_no_enable", "dpc_core.sv",
        "    if (en) begin\n      mask_leaves_q <= nb_leaves;",
        "    if (1'b1) begin\n      mask_leaves_q <= nb_leaves;",
@@ -552,6 +566,11 @@ CATALOGUE: tuple[Mutant, ...] = (
        ".s_sof_i       (nuc_user[2]),\n    .s_eol_i       (nuc_user[1]),",
        ".s_sof_i       (nuc_user[1]),\n    .s_eol_i       (nuc_user[2]),",
        "sof and eol swapped on the way to dpc_core"),
+    # dpc_tail (the DPC and frame check of every top).
+    _m("tail_size_swapped", "dpc_tail.sv",
+       ".frame_width_i (frame_width_i),\n    .frame_height_i(frame_height_i),",
+       ".frame_width_i (frame_height_i),\n    .frame_height_i(frame_width_i),",
+       "the frame's width and height swapped on the way to dpc_core"),
     *AXIS_MUTANTS,
 )
 

@@ -729,7 +729,16 @@ def module_parameters(module: str, hdl_dir: object) -> list[str]:
             module in {m.rtl_module for m in methods.BASES.values()}:
         return parameters_of(module)
     text = (Path(str(hdl_dir)) / f"{module}.sv").read_text()
-    head = text[:text.index(") (")] if ") (" in text else text
+    text = re.sub(r"//[^\n]*", "", text)
+    head = text[re.search(rf"\bmodule\s+{module}\b", text).end():]
+    if "#(" not in head.split(");")[0]:
+        return []
+    start = end = head.index("#(") + 1
+    depth = 1
+    while depth:  # to the parenthesis closing #(
+        end += 1
+        depth += {"(": 1, ")": -1}.get(head[end], 0)
+    head = head[start:end]
     return re.findall(r"\bparameter\b[^=;()]*?\b([A-Z]\w*)\s*=", head)
 
 
