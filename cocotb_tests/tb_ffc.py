@@ -25,6 +25,7 @@ from irnuc.cosim.scoreboard import Scoreboard
 from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
 from irnuc.cosim.stream import coef_stream_bits, frame_word_bits
 from irnuc.nuc_fixed import PipelineConfig
+from irnuc.nuc_fixed.method_top import MethodCoefficients
 from irnuc.nuc_fixed.widths import ffc_shift
 
 
@@ -226,7 +227,7 @@ async def no_good_pixel_keeps_corrections(dut) -> None:
     env = await _setup(dut, 6)
     cfg = env.cfg
     n = _n(cfg)
-    c = _calibration(cfg, 3, 5, env.rng, "camera")
+    c = ffc_calibration(cfg, 3, 5, env.rng, "camera")
     fields = {m: dict(v) for m, v in c.fields.items()}
     fields["coeffs"]["bad"] = np.ones((3, 5), dtype=bool)
     c = MethodCoefficients(cfg, fields, c.registers)
@@ -234,7 +235,7 @@ async def no_good_pixel_keeps_corrections(dut) -> None:
     start = env.rng.integers(lo, -lo, size=(3, 5))
     seq = [0] + [1] * n + [0, 0] + [1] * n + [0]
     readings = [random_reading(cfg, c, env.rng) for _ in seq]
-    run = ffc_run(c, _raws(cfg, seq, 3, 5, env.rng, "camera"), [bool(s) for s in seq],
+    run = ffc_run(c, ffc_raws(cfg, seq, 3, 5, env.rng, "camera"), [bool(s) for s in seq],
                   readings=readings, golden=env.golden, offset=start)
     assert len(run.kept) == 2 and all(t == 0 for t in run.targets)
     refreshed = [f for f in run.foff_out if f is not None]
