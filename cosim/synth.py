@@ -189,7 +189,9 @@ def _run_yosys(workdir: Path, name: str, passes: Sequence[str],
 def _read_slang(sources: Sequence[str | os.PathLike], top: str,
                 params: Mapping[str, int], primitives: Path | None = None) -> str:
     files = [str(Path(s).resolve()) for s in sources]
-    gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
+    from irnuc.cosim.sources import tool_parameters
+
+    gens = " ".join(f"-G {k}={v}" for k, v in tool_parameters(params, "slang").items())
     # SYNTHESIS: parameter checks and protocol assertions stay out (`ifndef SYNTHESIS).
     defines = "-D SYNTHESIS"
     if primitives is not None:
@@ -487,20 +489,17 @@ def tops_for(cfg) -> tuple[str, ...]:
     wrapper around it when it has a stage the top composes with its base method
     (:data:`irnuc.cosim.sources.STAGE_BASES`; none otherwise); for two_point the bare
     core, the methods' top and the AXI wrapper; for the other base methods
-    ``method_dpc_top``, and the AXI wrapper around it where it wraps the method
-    (:data:`irnuc.cosim.sources.AXIS_METHODS`)."""
-    from irnuc.cosim.sources import AXIS_METHODS, STAGE_BASES, stage_top
+    ``method_dpc_top`` and the AXI wrapper around it (it wraps every base method)."""
+    from irnuc.cosim.sources import STAGE_BASES, stage_top
 
     if cfg.stages:
         top = stage_top(cfg)
         if top is None or cfg.base_method not in STAGE_BASES[top]:
             return ()
         return (top, "irnuc_axis_top")
-    if cfg.method == "two_point":
+    if cfg.plain:
         return ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
-    if cfg.method in AXIS_METHODS:
-        return ("method_dpc_top", "irnuc_axis_top")
-    return ("method_dpc_top",)
+    return ("method_dpc_top", "irnuc_axis_top")
 
 
 def default_top(cfg) -> str:
@@ -511,7 +510,7 @@ def default_top(cfg) -> str:
 
     if cfg.stages:
         return stage_top(cfg) or "method_dpc_top"
-    return "nuc_dpc_top" if cfg.method == "two_point" else "method_dpc_top"
+    return "nuc_dpc_top" if cfg.plain else "method_dpc_top"
 
 
 def memory_traffic(cfg) -> dict:

@@ -526,7 +526,7 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
     cfg = coeffs.cfg
     coeffs.check()
     words = coeffs.words()
-    if cfg.method == "two_point":
+    if cfg.plain:
         return write_memimage(directory, words["coeffs"], cfg, extra_files, fpa_sensor)
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)

@@ -155,21 +155,23 @@ class RegisterMap:
 
 
 def _methods() -> tuple[str, ...]:
-    from irnuc.nuc_fixed.config import BASE_METHODS
+    from irnuc.nuc_fixed import methods
 
-    return BASE_METHODS
+    return tuple(methods.BASES)
 
 
 def check_requires(rmap: RegisterMap) -> None:
-    """Every ``requires`` names a base method or a stage (checked when a model is made: the
-    configuration module reads the map through ``rtl_spec`` while it is being imported)."""
-    from irnuc.nuc_fixed.config import STAGES
+    """Every ``requires`` names a base method, a stage or a reading (checked when a model is
+    made: the configuration module reads the map through ``rtl_spec`` while it is being
+    imported)."""
+    from irnuc.nuc_fixed import methods
 
-    known = set(_methods()) | set(STAGES)
+    known = set(_methods()) | set(methods.STAGES) | set(methods.READINGS)
     for r in rmap.registers:
         if set(r.requires) - known:
             raise ConfigError(f"register {r.name}: requires "
-                              f"{sorted(set(r.requires) - known)[0]!r} is not a method or "
+                              f"{sorted(set(r.requires) - known)[0]!r} is not a method, "
+                              "reading or "
                               f"stage ({', '.join(sorted(known))})")
 
 
@@ -249,7 +251,7 @@ def coef_layout_version(cfg: PipelineConfig) -> int:
     writes for the method (1: two_point, 2: every other method)."""
     from irnuc.nuc_fixed.memimage import MEMIMAGE_VERSION, METHOD_IMAGE_VERSION
 
-    return MEMIMAGE_VERSION if cfg.method == "two_point" else METHOD_IMAGE_VERSION
+    return MEMIMAGE_VERSION if cfg.plain else METHOD_IMAGE_VERSION
 
 
 def _coef_word_bits(cfg: PipelineConfig) -> int:
@@ -294,9 +296,12 @@ class RegisterModel:
 
     # ---- what the configuration has ------------------------------------------------------
     def present(self, reg: Register | str) -> bool:
-        """Whether the configured method has the register (else it is reserved)."""
+        """Whether the configured method has the register (else it is reserved): its
+        ``requires`` names the base method, a stage or a reading one of them takes."""
         r = self.map[reg] if isinstance(reg, str) else reg
-        if r.requires and not ({self.cfg.base_method, *self.cfg.stages} & set(r.requires)):
+        has = {self.cfg.base_method, *self.cfg.stages,
+               *(x for part in self.cfg.parts for x in part.readings)}
+        if r.requires and not (has & set(r.requires)):
             return False
         if r.config_register is not None:
             cr = self.cfg.registers.get(r.config_register)
@@ -466,6 +471,16 @@ def sv_constants(rmap: RegisterMap | None = None) -> list[tuple[str, int, str]]:
     return out
 
 
+def _requires_text(name: str) -> str:
+    """A ``requires`` entry for the page: a reading with the methods that take it."""
+    from irnuc.nuc_fixed import methods
+
+    if name not in methods.READINGS:
+        return name
+    takers = [m.name for m in methods.BASES.values() if name in m.readings]
+    return f"reading {name} ({', '.join(takers)})"
+
+
 def markdown(rmap: RegisterMap | None = None) -> str:
     """``docs/registers.md``: the register map as tables (generated; do not edit)."""
     rmap = rmap or register_map()
@@ -510,7 +525,7 @@ def markdown(rmap: RegisterMap | None = None) -> str:
         elif "config_register" in g:
             off = f"0x{g['offset']:03x}, 0x{g['offset'] + 4:03x}"
             name = f"{g['name']}_LO, _HI"
-        req = ", ".join(g.get("requires", ())) or "-"
+        req = ", ".join(_requires_text(r) for r in g.get("requires", ())) or "-"
         lines.append(f"| {off} | `{name}` | {req} | {'yes' if g.get('shadowed') else '-'} | "
                      f"{g['doc']} |")
     lines.append("")

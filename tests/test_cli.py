@@ -107,15 +107,14 @@ def test_out_that_is_a_file_is_refused_before_work(tmp_path, capsys):
 
 def test_synth_help_names_every_method_the_axi_top_wraps(capsys):
     # `irnuc synth --help` once listed five of the methods irnuc_axis_top wraps: its words
-    # must be the co-simulation layer's lists (AXIS_METHODS, STAGE_BASES), and every named
-    # configuration that tops_for builds in irnuc_axis_top must be named in it.
+    # must be the method registry's (every base method, each stage's rtl_bases), and every
+    # named configuration that tops_for builds in irnuc_axis_top must be named in it.
     from irnuc.cli import synth as synth_cli
-    from irnuc.cosim.sources import AXIS_METHODS, STAGE_BASES, STAGE_TOPS
     from irnuc.cosim.synth import tops_for
-    from irnuc.nuc_fixed import load_pipeline, pipeline_names
+    from irnuc.nuc_fixed import load_pipeline, methods, pipeline_names
 
-    assert synth_cli.AXIS_WRAPS == AXIS_METHODS
-    assert synth_cli.AXIS_STAGES == {s: STAGE_BASES[t] for s, t in STAGE_TOPS.items()}
+    assert synth_cli.AXIS_WRAPS == tuple(methods.BASES)
+    assert synth_cli.AXIS_STAGES == {s.name: s.rtl_bases for s in methods.STAGES.values()}
     with pytest.raises(SystemExit):
         main(["synth", "--help"])
     text = " ".join(capsys.readouterr().out.split())

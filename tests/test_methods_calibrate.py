@@ -240,7 +240,7 @@ def test_plan_calibrates_every_method(model_points: PointFrames, name: str) -> N
         assert rep["saturated"] == 0, key
         assert rep["calibratable"]["int_bits_needed"] <= rep["int_bits"], key
     res = {(r["fpa_K"], r["scene_K"]): r for r in s["residual"]}
-    temperature = cal.cfg.base_method in ("tc_offset", "table_interp")
+    temperature = "fpa" in cal.cfg.base.readings
     for (fpa, _), r in res.items():
         if cal.cfg.base_method == "one_point":
             continue  # a global gain leaves the gain spread: large everywhere

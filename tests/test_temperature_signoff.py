@@ -13,6 +13,7 @@ import pytest
 from irnuc.cli import main
 from irnuc.reports.report.base import Report
 from irnuc.reports.report.phases import temperature as tp
+from irnuc.reports.report.sections import Section
 from irnuc.reports.report.summary import SCHEMA_PATH, compare_baseline
 from irnuc.reports.studies import signoff as so
 from irnuc.reports.studies.hwcost import coefficient_memory
@@ -261,7 +262,7 @@ def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch) -> None:
     sec = _section()
     sec["recommended"]["cosim"] = c
     rep = Report(config={"name": "x"}, verbose=False)
-    rep.sections["temperature"] = sec
+    rep.sections["temperature"] = Section.of(sec)
     tp.temperature_metrics(rep, sec)
     s = make_summary(rep, [], None, None)
     assert s["status"] == "fail"
@@ -299,7 +300,7 @@ def test_a_sweep_without_a_valid_point_fails_the_report() -> None:
     sec["points"] = [_pt(0, "piecewise14", 1, 1, 0.0, valid=False)]
     sec["recommended"] = None
     rep = Report(config={"name": "x"}, verbose=False)
-    rep.sections["temperature"] = sec
+    rep.sections["temperature"] = Section.of(sec)
     tp.temperature_metrics(rep, sec)
     s = make_summary(rep, [], None, None)
     assert s["status"] == "fail"

@@ -152,7 +152,7 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     if not 0.0 <= args.max_saturated <= 1.0:
         raise UserError(f"--max-saturated {args.max_saturated}: must lie in 0..1")
     th = _load_thresholds(args, th_set)
-    if args.plan is not None or cfg.method != "two_point":
+    if args.plan is not None or not cfg.plain:
         for flag in ("--t-low", "--t-high", "--targets"):
             if getattr(args, flag[2:].replace("-", "_")) is not None:
                 raise UserError(f"{flag}: not with --plan or a method other than two_point "
@@ -304,9 +304,9 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         write_bytes_atomic(tmp / "badpix.csv", ("\n".join(rows) + "\n").encode())
         write_bytes_atomic(tmp / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
         write_bytes_atomic(tmp / "summary.txt", text.encode())
-        # table_interp: the pair images a DMA streams into irnuc_axis_top (tables j and
-        # j + 1 in one word, TABLE_SEL.j picks one; docs/integration.md "table_interp").
-        pairs = _table_pair_images(tmp, c) if cfg.base_method == "table_interp" else ()
+        # Images a DMA streams into irnuc_axis_top beyond the memories (table_interp: tables
+        # j and j + 1 in one word, TABLE_SEL.j picks one; docs/integration.md).
+        pairs = _dma_images(tmp, c)
         manifest = write_method_image(tmp, c, extra_files=("coeffs.npz", "badpix.csv",
                                                            "summary.json", "summary.txt",
                                                            *pairs), fpa_sensor=fpa_sensor)
@@ -317,16 +317,15 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
     return 0
 
 
-def _table_pair_images(directory: Path, coeffs: Any) -> tuple[str, ...]:
-    """Write ``table_pair{j}.bin`` for j = 0 .. K - 2 (nuc_fixed.axis.table_pair_bin)."""
+def _dma_images(directory: Path, coeffs: Any) -> tuple[str, ...]:
+    """Write the method's DMA images (``MethodSpec.dma_images``: table_interp's
+    ``table_pair{j}.bin``)."""
     from irnuc.common.io import write_bytes_atomic
-    from irnuc.nuc_fixed.axis import table_pair_bin
 
-    names = []
-    for j in range(int(coeffs.cfg.tables) - 1):
-        names.append(f"table_pair{j}.bin")
-        write_bytes_atomic(directory / names[-1], table_pair_bin(coeffs, j))
-    return tuple(names)
+    images = coeffs.cfg.base.dma_images(coeffs)
+    for name, data in images.items():
+        write_bytes_atomic(directory / name, data)
+    return tuple(images)
 
 
 # ---- correct ---------------------------------------------------------------------------
@@ -425,8 +424,7 @@ def _run_correct(args: argparse.Namespace) -> int:
     # reads it yet); a file of format 2 has none of its own (housing_synthesized)
     housing = (None if data.get("housing_synthesized") or "housing_reading" not in data
                else np.asarray(data["housing_reading"]))
-    inputs = FrameInputs(reading=fields.get("fpa_reading"), blind_codes=fields.get("blind_codes"),
-                         shutter=fields.get("shutter"), housing_reading=housing)
+    inputs = dataclasses.replace(FrameInputs.from_fields(cfg, fields), housing_reading=housing)
     target = None
     if args.ffc_target is not None:
         target = int(np.floor(args.ffc_target * 2 ** cfg.format("ffc").frac_bits + 0.5))

@@ -7,9 +7,10 @@ import argparse
 
 from irnuc.cli._args import add_executor, add_out, load_pipeline_arg, progress, say
 
-#: What irnuc_axis_top wraps (the help's words; tests/test_synth.py checks them against
-#: irnuc.cosim.sources.AXIS_METHODS and STAGE_BASES, which are not imported here so that
-#: ``irnuc --help`` stays fast): its base methods, and per stage the bases it composes.
+#: What irnuc_axis_top wraps (the help's words; tests/test_cli.py checks them against the
+#: method registry, nuc_fixed.methods: BASES and each StageSpec's rtl_bases, not imported
+#: here so that ``irnuc --help`` stays fast): every base method, and per stage the bases
+#: its top composes.
 AXIS_WRAPS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset", "table_interp")
 AXIS_STAGES = {"blind_drift": ("one_point", "two_point"),
                "ffc": ("one_point", "two_point", "quadratic", "tc_offset")}

@@ -113,8 +113,8 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "frame_out_q <= core_valid && m_axis_video_tready && core_eol;",
         "FRAMES_OUT and IRQ_STATUS.frame_done at every line's end"),
     _ma("ax_reading_from_t_ref", "irnuc_axis_top.sv",
-        "assign fw.reading = slots[2][ReadingBits-1:0];",
-        "assign fw.reading = slots[3][ReadingBits-1:0];",
+        "assign part0.reading = slots[2][ReadingBits-1:0];",
+        "assign part0.reading = slots[3][ReadingBits-1:0];",
         "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
     # ---- irnuc_axis_core: the core of the method -------------------------------------------
     _ma("ax_core_eol_from_sof", "irnuc_axis_core.sv",

@@ -22,6 +22,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from irnuc.reports.report.base import Report, progress
+from irnuc.reports.report.sections import Section
 
 #: The figures of a synthesis the sign-off keeps per point (dotted: family.resource).
 HW_KEYS = ("xc7.lut", "xc7.ff", "xc7.dsp", "xc7.bram36", "ecp5.lut4", "ecp5.ff", "ecp5.mult18",
@@ -353,7 +354,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         _camera_figure(rep, res)
         times["figures"] = round(time.perf_counter() - t1, 3)
         d["seconds"] = times
-    rep.sections["temperature"] = d
+    rep.sections["temperature"] = Section.of(d)
     temperature_metrics(rep, d)
 
 
