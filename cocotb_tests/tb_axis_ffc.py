@@ -32,10 +32,9 @@ from cocotb.triggers import ClockCycles, SimTimeoutError, with_timeout
 from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.method_stim import random_reading
+from irnuc.cocotb_tests.axis_bench import TOP, Bench, make_bench, sample
+from irnuc.cocotb_tests.method_stim import ffc_calibration, ffc_raws, random_reading
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern
-from irnuc.cocotb_tests.tb_axis import TOP, Bench, _bench, _sample
-from irnuc.cocotb_tests.tb_ffc import _calibration, _raws
 from irnuc.cosim import coverage, driver
 from irnuc.cosim.axis_coverage import ffc_axis_classes
 from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
@@ -80,8 +79,8 @@ class FfcStreams:
                 drv.pause = False
             else:
                 drv.set_pause_generator(pause_pattern(name, self.bench.rng))
-        _sample("stream.idle", idle)
-        _sample("stream.backpressure", bp)
+        sample("stream.idle", idle)
+        sample("stream.backpressure", bp)
 
 
 async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
@@ -164,7 +163,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
-    bench = await _bench(dut, salt)
+    bench = await make_bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
     regs = bench.registers() if firmware else None
@@ -183,7 +182,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     start_frame = 2
     shutter = ffc_shutter_flags(start_frame + count + 3, {start_frame: count})
     framing = ffc_framing(cfg, shutter, start=start_frame)
-    c = _calibration(cfg, fh, fw, rng, "camera")
+    c = ffc_calibration(cfg, fh, fw, rng, "camera")
     if regs is not None:
         await driver.load_calibration(regs, driver.Calibration(**{
             name: int(value) for name, value in c.registers.items()}))
@@ -196,10 +195,10 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     sizes = [(fh, fw)] * after + [resize_in_run or (fh, fw)] * (len(shutter) - after)
     golden = bench.env.golden
     if resize_in_run is None:
-        run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
+        run = ffc_run(c, ffc_raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
                       shutter, readings=readings, golden=golden)
     else:
-        run = _joined(*(ffc_run(cc, _raws(cfg, [int(v) for v in sh], *shape, rng, "camera"),
+        run = _joined(*(ffc_run(cc, ffc_raws(cfg, [int(v) for v in sh], *shape, rng, "camera"),
                                 sh, readings=rd, golden=golden)
                         for cc, sh, shape, rd in (
                             (c, shutter[:after], (fh, fw), readings[:after]),
@@ -255,7 +254,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
         await bench.check("FFC_STATUS")
-        _sample("axis.ffc.status", "busy")
+        sample("axis.ffc.status", "busy")
         assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
 
     def write_reading(k: int):
@@ -335,16 +334,16 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         assert last - first + 1 == 2 * fh * fw, (
             f"the last two frames' {2 * fh * fw} pixels took {last - first + 1} cycles; "
             f"idle/stalled cycles by port {window}")
-        _sample("stream.back_to_back", "frames")
+        sample("stream.back_to_back", "frames")
 
     assert framing.done is not None, "the sequence does not finish the FFC"
     m.set_live("FFC_STATUS", "busy", 0)
     m.set_live("FFC_STATUS", "done", 1)
     m.set_live("IRQ_STATUS", "ffc_done", 1)
     m.set_live("IRQ_STATUS", "frame_done", 1)
-    _sample("axis.ffc.status", "done")
+    sample("axis.ffc.status", "done")
     assert int(dut.irq_o.value) == 1, "irq_o is 0 with IRQ_STATUS.ffc_done and its enable"
-    _sample("axis.ffc.irq", "ffc_done")
+    sample("axis.ffc.irq", "ffc_done")
     if regs is not None:
         # The firmware's end of the run: FFC_STATUS.done polled, IRQ_STATUS.ffc_done
         # cleared, the status read (its sticky bits cleared).
@@ -357,7 +356,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         assert st.irq_status == 1 << bench.model.map["IRQ_STATUS"].field("frame_done").lsb
         assert not st.status & 0x3F and not (st.sof_errors | st.eol_errors | st.coef_errors)
         await bench.check("IRQ_STATUS")
-        _sample("axis.ffc.irq", "cleared")
+        sample("axis.ffc.irq", "cleared")
     else:
         await bench.check("FFC_STATUS")
         irq = await bench.read("IRQ_STATUS")
@@ -369,7 +368,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         irq = await bench.read("IRQ_STATUS")
         assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
         assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
-        _sample("axis.ffc.irq", "cleared")
+        sample("axis.ffc.irq", "cleared")
     if coverage.enabled():
         pattern_in = idle if idle == ffc_idle else "mixed"
         pattern_out = bp if bp == ffc_bp else "mixed"

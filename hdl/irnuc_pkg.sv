@@ -228,7 +228,7 @@ package irnuc_pkg;
     OverflowWrap = 1'd1  // keep the low B bits
   } overflow_e;
   localparam int unsigned OverflowCount = 2;
-  // ---- base correction method of method_dpc_top (module parameter Method; the order of nuc_fixed.config.BASE_METHODS)
+  // ---- base correction method (parameter Method of the tops; the order of the registry, nuc_fixed.methods.BASES)
   typedef enum logic [2:0] {
     MethodOnePoint = 3'd0,  // per-pixel offset, global gain register
     MethodTwoPoint = 3'd1,  // per-pixel gain and offset

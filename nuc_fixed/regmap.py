@@ -412,16 +412,17 @@ def _check_map(rmap: RegisterMap) -> None:
 
 
 def check_requires(rmap: RegisterMap) -> None:
-    """Every ``irnuc_requires`` names a base method or a stage (checked when a model is
-    made: the configuration module reads the map through ``rtl_spec`` while it is being
-    imported)."""
-    from irnuc.nuc_fixed.config import BASE_METHODS, STAGES
+    """Every ``irnuc_requires`` names a base method, a stage or a reading (checked when a
+    model is made: the configuration module reads the map through ``rtl_spec`` while it is
+    being imported)."""
+    from irnuc.nuc_fixed import methods
 
-    known = set(BASE_METHODS) | set(STAGES)
+    known = set(methods.BASES) | set(methods.STAGES) | set(methods.READINGS)
     for r in rmap.registers:
         if set(r.requires) - known:
             raise ConfigError(f"{REGISTERS_RDL}: register {r.name}: irnuc_requires "
-                              f"{sorted(set(r.requires) - known)[0]!r} is not a method or "
+                              f"{sorted(set(r.requires) - known)[0]!r} is not a method, "
+                              "reading or "
                               f"stage ({', '.join(sorted(known))})")
 
 
@@ -436,20 +437,21 @@ def coef_layout_version(cfg: PipelineConfig) -> int:
     writes for the method (1: two_point, 2: every other method)."""
     from irnuc.nuc_fixed.memimage import MEMIMAGE_VERSION, METHOD_IMAGE_VERSION
 
-    return MEMIMAGE_VERSION if cfg.method == "two_point" else METHOD_IMAGE_VERSION
+    return MEMIMAGE_VERSION if cfg.plain else METHOD_IMAGE_VERSION
 
 
 def config_params(cfg: PipelineConfig) -> dict[str, int]:
     """The values of the map's parameters (the resets that are configuration values) for
     configuration ``cfg``: the RTL parameters of the same names."""
+    from irnuc.nuc_fixed import methods
     from irnuc.nuc_fixed.axis import coef_word_bits
-    from irnuc.nuc_fixed.config import BASE_METHODS
 
     p = cfg.rtl_parameters()
     return {**{k: p[k] for k in ("AdcBits", "OutBits", "Rounding", "Overflow", "MaxWidth",
                                  "MaxHeight", "GainIntBits", "GainFracBits", "OffsetIntBits",
                                  "OffsetFracBits")},
-            "WordBits": coef_word_bits(cfg), "MethodCode": BASE_METHODS.index(cfg.base_method),
+            "WordBits": coef_word_bits(cfg),
+            "MethodCode": tuple(methods.BASES).index(cfg.base_method),
             "HasBlindDrift": int(cfg.has("blind_drift")), "HasFfc": int(cfg.has("ffc")),
             "FfcFrames": int(cfg.ffc_frames or 0),
             "CoefLayoutVersion": coef_layout_version(cfg)}
@@ -475,9 +477,12 @@ class RegisterModel:
 
     # ---- what the configuration has ------------------------------------------------------
     def present(self, reg: Register | str) -> bool:
-        """Whether the configured method has the register (else it is reserved)."""
+        """Whether the configured method has the register (else it is reserved): its
+        ``requires`` names the base method, a stage or a reading one of them takes."""
         r = self.map[reg] if isinstance(reg, str) else reg
-        if r.requires and not ({self.cfg.base_method, *self.cfg.stages} & set(r.requires)):
+        has = {self.cfg.base_method, *self.cfg.stages,
+               *(x for part in self.cfg.parts for x in part.readings)}
+        if r.requires and not (has & set(r.requires)):
             return False
         if r.config_register is not None:
             cr = self.cfg.registers.get(r.config_register)
@@ -651,6 +656,16 @@ def _number(value: int) -> str:
     return f"0x{value:x}" if value > 9 else str(value)
 
 
+def _requires_text(name: str) -> str:
+    """A ``requires`` entry for the page: a reading with the methods that take it."""
+    from irnuc.nuc_fixed import methods
+
+    if name not in methods.READINGS:
+        return name
+    takers = [m.name for m in methods.BASES.values() if name in m.readings]
+    return f"reading {name} ({', '.join(takers)})"
+
+
 def markdown(rmap: RegisterMap | None = None, build: PipelineConfig | None = None) -> str:
     """``docs/registers.md``: the register map as tables (generated; do not edit). With a
     ``build`` (``irnuc regmap``): that configuration's page, its reset values and which
@@ -719,7 +734,7 @@ def markdown(rmap: RegisterMap | None = None, build: PipelineConfig | None = Non
         elif g.kind == "slot":
             off = f"0x{first.offset:03x}, 0x{last.offset:03x}"
             name = f"{g.name}.LO, .HI"
-        req = ", ".join(first.requires) or "-"
+        req = ", ".join(_requires_text(r) for r in first.requires) or "-"
         if model is not None and not model.present(first):
             req += " (reserved)"
         lines.append(f"| {off} | `{name}` | {req} | {'yes' if first.shadowed else '-'} | "

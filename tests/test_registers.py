@@ -293,8 +293,8 @@ def test_regmap_command_writes_one_build(tmp_path, capsys) -> None:
     assert re.search(r"IRNUC_REGS__CONFIG__METHOD_reset 0x4\b", header)
     assert re.search(rf"IRNUC_REGS__FFC_CTRL__FRAMES_reset {cfg.ffc_frames:#x}\b", header)
     xml = ET.parse(out / "irnuc_regs.xml")
-    ffc_ctrl = [r for r in xml.iter(f"{{{NS['ipxact']}}}register")
-                if r.findtext("ipxact:name", namespaces=NS) == "FFC_CTRL"][0]
+    ffc_ctrl = next(r for r in xml.iter(f"{{{NS['ipxact']}}}register")
+                if r.findtext("ipxact:name", namespaces=NS) == "FFC_CTRL")
     resets = [_num(v.text) for v in ffc_ctrl.iter(f"{{{NS['ipxact']}}}value")]
     assert cfg.ffc_frames in resets
     md = (out / "registers.md").read_text()

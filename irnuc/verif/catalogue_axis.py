@@ -5,15 +5,16 @@ from __future__ import annotations
 
 from typing import Any
 
+from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method, tb_axis_table
 from irnuc.verif.mutant import Mutant
 
-_AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
+_AXIS = {"top": "irnuc_axis_top", "suite": tb_axis.__name__}
 #: The wrapper around method_dpc_top, with its method testbench.
-_AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+_AXM = {"suite": tb_axis_method.__name__}
 #: table_interp's selection (irnuc_axis_table, TABLE_SEL), with its testbench.
-_AXT = {"suite": "irnuc.cocotb_tests.tb_axis_table", "config": "table14"}
+_AXT = {"suite": tb_axis_table.__name__, "config": "table14"}
 #: The wrapper around method_ffc_top, with its FFC testbench.
-_AXF = {"suite": "irnuc.cocotb_tests.tb_axis_ffc", "config": "ffc14"}
+_AXF = {"suite": tb_axis_ffc.__name__, "config": "ffc14"}
 
 
 def _ma(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
@@ -50,6 +51,11 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "out_free_q <= !m_valid_o || m_ready_i || out_free_q;",
         "the decision's copy of the output register's ready misses an item that fills its "
         "skid register (a third item sent over two held)"),
+    _ma("ax_go_ignores_output", "irnuc_axis_framer.sv",
+        "|| (cst_f == CoefFill)) && (!m_valid_o || m_ready_i);",
+        "|| (cst_f == CoefFill));",
+        "the registered decision (go_q) after an item sent ignores the output register's "
+        "ready: an item sent over two held"),
     _ma("ax_line_size_follows_pending", "irnuc_axis_framer.sv",
         "    end else if (s_wait_q) begin\n      lw_m1_q  <= pend_width_m1_i;",
         "    end else begin\n      lw_m1_q  <= pend_width_m1_i;",
@@ -116,8 +122,8 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "frame_out_q <= core_valid && m_axis_video_tready && core_eol;",
         "FRAMES_OUT and IRQ_STATUS.frame_done at every line's end"),
     _ma("ax_reading_from_t_ref", "irnuc_axis_top.sv",
-        "assign fw.reading = slots[2][ReadingBits-1:0];",
-        "assign fw.reading = slots[3][ReadingBits-1:0];",
+        "assign part0.reading = slots[2][ReadingBits-1:0];",
+        "assign part0.reading = slots[3][ReadingBits-1:0];",
         "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
     # ---- irnuc_axis_core: the core of the method -------------------------------------------
     _ma("ax_core_eol_from_sof", "irnuc_axis_core.sv",
