@@ -145,20 +145,18 @@ class FfcTrigger:
 class _Trigger:
     """The trigger's state from frame to frame (the flops of ``irnuc_ffc_trigger``)."""
 
-    def __init__(self, policy: FfcPolicy) -> None:
-        self.policy = policy
+    def __init__(self) -> None:
         self.sat = (1 << period_bits()) - 1
         self.since, self.ref, self.due, self.first = 0, 0, False, True
 
-    def frame(self, reading: int, reference: bool) -> tuple[bool, bool, bool]:
+    def frame(self, reading: int, reference: bool, p: FfcPolicy) -> tuple[bool, bool, bool]:
         """A frame starts with ``reading`` (``reference``: an FFC_CTRL.start applies to
-        it): (period_hit, threshold_hit, request)."""
+        it) under policy ``p``: (period_hit, threshold_hit, request)."""
         if reference or self.first:
             self.since, self.ref = 0, int(reading)
         else:
             self.since = min(self.since + 1, self.sat)
         self.first = False
-        p = self.policy
         ph = p.period != 0 and self.since >= p.period
         th = p.threshold != 0 and abs(int(reading) - self.ref) >= p.threshold
         request = (ph or th) and not self.due
@@ -174,7 +172,7 @@ def _codes(readings: Sequence[int] | np.ndarray, who: str) -> np.ndarray:
 
 
 def ffc_trigger(readings: Sequence[int] | np.ndarray, ffc_starts: Iterable[int],
-                policy: FfcPolicy) -> FfcTrigger:
+                policy: FfcPolicy | Sequence[FfcPolicy]) -> FfcTrigger:
     """``irnuc_ffc_trigger``: the FFC request of each frame (module docstring's rule).
 
     Parameters
@@ -185,17 +183,22 @@ def ffc_trigger(readings: Sequence[int] | np.ndarray, ffc_starts: Iterable[int],
         The frames an ``FFC_CTRL.start`` applies to (the start written before that frame
         started and after the previous frame started; the keys of
         :func:`irnuc.nuc_fixed.axis.ffc_shutter_flags`' ``starts``).
-    policy : FfcPolicy
-        The period and threshold in force at each frame start.
+    policy : FfcPolicy or sequence of FfcPolicy
+        The period and threshold in force at each frame start (one for all frames, or one
+        per frame: FFC_PERIOD / FFC_THRESHOLD written between frames; the state, due
+        included, carries over a change).
     """
     r = _codes(readings, "ffc_trigger")
+    policies = [policy] * r.size if isinstance(policy, FfcPolicy) else list(policy)
+    if len(policies) != r.size:
+        raise ConfigError(f"ffc_trigger: {len(policies)} policies for {r.size} frames")
     starts = {int(s) for s in ffc_starts}
     n = r.size
     out = {k: np.zeros(n, np.int64) for k in ("since", "ref")}
     flags = {k: np.zeros(n, bool) for k in ("period_hit", "threshold_hit", "due", "request")}
-    t = _Trigger(policy)
+    t = _Trigger()
     for i in range(n):
-        ph, th, req = t.frame(int(r[i]), i in starts)
+        ph, th, req = t.frame(int(r[i]), i in starts, policies[i])
         out["since"][i], out["ref"][i] = t.since, t.ref
         flags["period_hit"][i], flags["threshold_hit"][i] = ph, th
         flags["due"][i], flags["request"][i] = t.due, req
@@ -211,14 +214,14 @@ def closed_loop(readings: Sequence[int] | np.ndarray, policy: FfcPolicy,
     Frame 0 is the power-on FFC."""
     r = _codes(readings, "closed_loop")
     starts: list[int] = [0] if r.size else []
-    t = _Trigger(policy)
+    t = _Trigger()
     pending, free_from = False, ffc_frames + 1
     for i in range(r.size):
         begin = i == 0 or (pending and i >= free_from)
         if begin and i > 0:
             starts.append(i)
             free_from, pending = i + ffc_frames + 1, False
-        pending = t.frame(int(r[i]), begin)[2] or pending
+        pending = t.frame(int(r[i]), begin, policy)[2] or pending
     return starts
 
 
