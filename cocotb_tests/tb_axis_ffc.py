@@ -578,10 +578,10 @@ async def ffc_request_period(dut) -> None:
 @cocotb.test()
 async def ffc_request_threshold(dut) -> None:
     """FFC_PERIOD = 7, FFC_THRESHOLD = 20 codes, the reading moving: the threshold alone at
-    frame 3, both at frame 7 (due fell at 5), an FFC before frame 9, the threshold again at
-    frame 11 against the new reference; under backpressure. On a build without the FPA
-    reading (READING reserved, the reading 0) only the period fires."""
-    offsets = [0, 5, 12, 25, 30, 10, 0, -22, -5, 3, 6, 45, 40, 2]
+    frame 3 (a change of exactly 20), both at frame 7 (due fell at 5), an FFC before frame
+    9, the threshold again at frame 11 against the new reference; under backpressure. On a
+    build without the FPA reading (READING reserved, the reading 0) only the period fires."""
+    offsets = [0, 5, 12, 20, 30, 10, 0, -22, -5, 3, 6, 45, 40, 2]
     await trigger_sequence(dut, 51, {0: (7, 20)}, offsets, {9}, {5, 10},
                            "ffc request threshold", bp="random")
 

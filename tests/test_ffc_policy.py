@@ -96,3 +96,29 @@ def test_closed_loop() -> None:
     assert closed_loop([0] * 14, FfcPolicy(period=1), 3) == [0, 4, 8, 12]
     # No trigger: only the power-on FFC.
     assert closed_loop([5, 9, 200], FfcPolicy(), 8) == [0]
+
+
+def test_shutter_cost_hand_worked() -> None:
+    """A 0.1 K/frame ramp at 1 Hz read with a 0.1 K sensor (reading = frame), a 0.5 K
+    threshold, N = 2, one settle frame, residual 10 + 100 x change mK. The power-on FFC at
+    0; |reading - ref| = 5 at frames 5, 11, 17 -> FFCs at 6, 12, 18. Lost: 0-2, 6-8, 12-14,
+    18-19 = 11 of 20 frames. Each FFC holds the mean FPA of its two shutter frames (300.05,
+    300.65, 301.25 K) from its refresh frame; the shown frames 3-5, 9-11, 15-17 are 0.25,
+    0.35, 0.45 K from it: 35, 45, 55 mK."""
+    from irnuc.reports.studies.ffc_interval import residual_at, shutter_cost
+
+    i = np.arange(20)
+    c = shutter_cost(300.0 + 0.1 * i, i, 1.0, FfcPolicy(threshold=5), 2,
+                     {"m": (np.array([0.0, 1.0]), np.array([10.0, 110.0]))})
+    assert c["ffc_starts"] == 4
+    assert c["events_per_hour"] == pytest.approx(4 / (20 / 3600))
+    assert c["dead_frames"] == 11 and c["dead_time_pct"] == pytest.approx(55.0)
+    assert c["worst_change_K"] == pytest.approx(0.45)
+    r = c["residual"]["m"]
+    assert r["worst_mK"] == pytest.approx(55.0) and r["mean_mK"] == pytest.approx(45.0)
+    assert r["peaks_mK"] == pytest.approx([55.0, 55.0, 55.0])
+    assert r["beyond_curve_frames"] == 0
+    # Beyond the curve: linear from its last two points; the change's sign does not count.
+    y, beyond = residual_at(np.array([3.0, -0.5]), np.array([0.0, 1.0, 2.0]),
+                            np.array([0.0, 10.0, 30.0]))
+    assert y.tolist() == pytest.approx([50.0, 5.0]) and beyond.tolist() == [True, False]
