@@ -27,10 +27,11 @@ import tempfile
 from pathlib import Path
 
 from bench_placer import GOAL_MHZ, _ints
+from bench_regfile import measure
 
 from irnuc.common.cache import cache_dir
 from irnuc.cosim import synth
-from irnuc.cosim.sources import HDL_DIR, hdl_sources, top_parameters
+from irnuc.cosim.sources import HDL_DIR, hdl_sources
 from irnuc.nuc_fixed import load_pipeline
 
 TOP = "irnuc_axis_top"
@@ -72,26 +73,9 @@ def main() -> None:
     if bad:
         sys.exit(f"bench_ffc_trigger: --configs {bad[0]} has no ffc stage")
 
-    results: dict[str, dict[str, dict]] = {}
     with tempfile.TemporaryDirectory(prefix="bench-ffc-trigger-") as tmp:
         variants = {"trigger": HDL_DIR, "before": _before_hdl(args.before, Path(tmp))}
-        for name, cfg in cfgs.items():
-            params = top_parameters(TOP, cfg)
-            results[name] = {}
-            for variant, hdl_dir in variants.items():
-                work = args.out / name / variant
-                net, cells = synth.synth_ecp5(_sources(hdl_dir), TOP, params, work / "ecp5")
-                fmax = {}
-                for seed in seeds:
-                    pnr = synth.place_route_ecp5(net, work / f"pnr_s{seed}", freq_mhz=GOAL_MHZ,
-                                                 seed=seed)
-                    fmax[str(seed)] = pnr["fmax_mhz"]
-                    print(f"{name} {variant} seed {seed}: {pnr['fmax_mhz']:.1f} MHz, "
-                          f"{cells['lut4']} LUT4, {cells['ff']} FF", flush=True)
-                results[name][variant] = {
-                    "lut4": cells["lut4"], "ff": cells["ff"], "ccu2c": cells["ccu2c"],
-                    "fmax_mhz": fmax, "best_mhz": max(fmax.values()),
-                    "at_goal": max(fmax.values()) >= GOAL_MHZ}
+        results = measure(cfgs, variants, _sources, seeds, args.out)
 
     def total(variant: str, key: str) -> float:
         return sum(results[n][variant][key] for n in configs)

@@ -52,6 +52,32 @@ def _sources(hdl_dir: Path | None) -> list[Path]:
     return [p for p in files if not p.name.startswith("irnuc_axil_regblock")]
 
 
+def measure(cfgs: dict, variants: dict[str, Path | None], sources, seeds: list[int],
+            out: Path) -> dict[str, dict[str, dict]]:
+    """Each configuration's ``TOP`` synthesized for ECP5 once per variant (an hdl folder;
+    ``sources(folder)`` its files), placed and routed once per seed: configuration ->
+    variant -> LUT4, FF, CCU2C, the Fmax of each seed, the best, whether it met the goal."""
+    results: dict[str, dict[str, dict]] = {}
+    for name, cfg in cfgs.items():
+        params = top_parameters(TOP, cfg)
+        results[name] = {}
+        for variant, hdl_dir in variants.items():
+            work = out / name / variant
+            net, cells = synth.synth_ecp5(sources(hdl_dir), TOP, params, work / "ecp5")
+            fmax = {}
+            for seed in seeds:
+                pnr = synth.place_route_ecp5(net, work / f"pnr_s{seed}", freq_mhz=GOAL_MHZ,
+                                             seed=seed)
+                fmax[str(seed)] = pnr["fmax_mhz"]
+                print(f"{name} {variant} seed {seed}: {pnr['fmax_mhz']:.1f} MHz, "
+                      f"{cells['lut4']} LUT4, {cells['ff']} FF", flush=True)
+            results[name][variant] = {
+                "lut4": cells["lut4"], "ff": cells["ff"], "ccu2c": cells["ccu2c"],
+                "fmax_mhz": fmax, "best_mhz": max(fmax.values()),
+                "at_goal": max(fmax.values()) >= GOAL_MHZ}
+    return results
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--configs", default="minimal,typical14,tcffc14,table14,drift14")
@@ -62,26 +88,9 @@ def main() -> None:
     configs = [c.strip() for c in args.configs.split(",") if c.strip()]
     cfgs = {name: load_pipeline(name) for name in configs}  # a bad name fails before work
 
-    results: dict[str, dict[str, dict]] = {}
     with tempfile.TemporaryDirectory(prefix="bench-regfile-") as tmp:
         variants = {"generated": None, "baseline": _baseline_hdl(Path(tmp))}
-        for name, cfg in cfgs.items():
-            params = top_parameters(TOP, cfg)
-            results[name] = {}
-            for variant, hdl_dir in variants.items():
-                work = args.out / name / variant
-                net, cells = synth.synth_ecp5(_sources(hdl_dir), TOP, params, work / "ecp5")
-                fmax = {}
-                for seed in seeds:
-                    pnr = synth.place_route_ecp5(net, work / f"pnr_s{seed}", freq_mhz=GOAL_MHZ,
-                                                 seed=seed)
-                    fmax[str(seed)] = pnr["fmax_mhz"]
-                    print(f"{name} {variant} seed {seed}: {pnr['fmax_mhz']:.1f} MHz, "
-                          f"{cells['lut4']} LUT4", flush=True)
-                results[name][variant] = {
-                    "lut4": cells["lut4"], "ff": cells["ff"], "ccu2c": cells["ccu2c"],
-                    "fmax_mhz": fmax, "best_mhz": max(fmax.values()),
-                    "at_goal": max(fmax.values()) >= GOAL_MHZ}
+        results = measure(cfgs, variants, _sources, seeds, args.out)
 
     def total(variant: str, key: str) -> float:
         return sum(results[n][variant][key] for n in configs)
