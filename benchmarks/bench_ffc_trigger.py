@@ -19,7 +19,6 @@ from __future__ import annotations
 import argparse
 import io
 import json
-import statistics
 import subprocess
 import sys
 import tarfile
@@ -27,7 +26,7 @@ import tempfile
 from pathlib import Path
 
 from bench_placer import GOAL_MHZ, _ints
-from bench_regfile import measure
+from bench_regfile import measure, ratios
 
 from irnuc.common.cache import cache_dir
 from irnuc.cosim import synth
@@ -77,21 +76,11 @@ def main() -> None:
         variants = {"trigger": HDL_DIR, "before": _before_hdl(args.before, Path(tmp))}
         results = measure(cfgs, variants, _sources, seeds, args.out)
 
-    def total(variant: str, key: str) -> float:
-        return sum(results[n][variant][key] for n in configs)
-
-    def mean_best(variant: str) -> float:
-        return statistics.fmean(results[n][variant]["best_mhz"] for n in configs)
-
     print(json.dumps({
         "benchmark": "ffc_trigger", "top": TOP, "configs": configs, "seeds": seeds,
         "goal_mhz": GOAL_MHZ, "before": args.before, "results": results,
         "all_at_goal": all(results[n]["trigger"]["at_goal"] for n in configs),
-        "ratio_lut4_trigger_vs_before": round(total("trigger", "lut4")
-                                              / total("before", "lut4"), 3),
-        "ratio_ff_trigger_vs_before": round(total("trigger", "ff") / total("before", "ff"), 3),
-        "ratio_mean_best_fmax_trigger_vs_before": round(mean_best("trigger")
-                                                        / mean_best("before"), 3),
+        **ratios(results, "trigger", "before"),
         "tools": synth.tool_versions(),
     }))
 

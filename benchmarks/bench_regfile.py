@@ -78,6 +78,20 @@ def measure(cfgs: dict, variants: dict[str, Path | None], sources, seeds: list[i
     return results
 
 
+def ratios(results: dict[str, dict[str, dict]], new: str, old: str) -> dict[str, float]:
+    """Variant ``new`` over ``old`` over every configuration: the sums of LUT4 and FF, the
+    means of the best Fmax."""
+    def total(variant: str, key: str) -> float:
+        return sum(r[variant][key] for r in results.values())
+
+    def mean_best(variant: str) -> float:
+        return statistics.fmean(r[variant]["best_mhz"] for r in results.values())
+
+    return {f"ratio_lut4_{new}_vs_{old}": round(total(new, "lut4") / total(old, "lut4"), 3),
+            f"ratio_ff_{new}_vs_{old}": round(total(new, "ff") / total(old, "ff"), 3),
+            f"ratio_mean_best_fmax_{new}_vs_{old}": round(mean_best(new) / mean_best(old), 3)}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--configs", default="minimal,typical14,tcffc14,table14,drift14")
@@ -92,23 +106,12 @@ def main() -> None:
         variants = {"generated": None, "baseline": _baseline_hdl(Path(tmp))}
         results = measure(cfgs, variants, _sources, seeds, args.out)
 
-    def total(variant: str, key: str) -> float:
-        return sum(results[n][variant][key] for n in configs)
-
-    def mean_best(variant: str) -> float:
-        return statistics.fmean(results[n][variant]["best_mhz"] for n in configs)
-
     print(json.dumps({
         "benchmark": "register_file", "top": TOP, "configs": configs, "seeds": seeds,
         "goal_mhz": GOAL_MHZ, "baseline": "benchmarks/rtl_baseline/irnuc_axil_regs.sv",
         "results": results,
         "all_at_goal": all(results[n]["generated"]["at_goal"] for n in configs),
-        "ratio_lut4_generated_vs_baseline": round(total("generated", "lut4")
-                                                  / total("baseline", "lut4"), 3),
-        "ratio_ff_generated_vs_baseline": round(total("generated", "ff")
-                                                / total("baseline", "ff"), 3),
-        "ratio_mean_best_fmax_generated_vs_baseline": round(mean_best("generated")
-                                                            / mean_best("baseline"), 3),
+        **ratios(results, "generated", "baseline"),
         "tools": synth.tool_versions(),
     }))
 
