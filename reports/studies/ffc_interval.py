@@ -46,6 +46,9 @@ POLICIES: dict[str, tuple[float | None, float | None]] = {
     "3 min or 0.1 K": (180.0, 0.1),
 }
 QUICK_POLICIES = ("Lepton: 3 min or 1.5 K", "0.1 K")
+#: The policies whose sawtooth the figure draws (a trace of 10 s maxima in the JSON).
+TRACE_POLICIES = ("Lepton: 3 min or 1.5 K", "0.1 K")
+TRACE_S = 10.0
 #: The thermal world's scenarios the policies run on (model/scenarios/<name>.toml).
 SCENARIOS = ("power_on_warmup", "ambient_ramp")
 #: Frames lost per FFC besides its shutter frames: the shutter's movement.
@@ -82,7 +85,8 @@ def residual_at(change_K: np.ndarray, curve_K: np.ndarray, curve_mK: np.ndarray
 
 def shutter_cost(fpa_K: np.ndarray, readings: np.ndarray, frame_rate: float, policy: Any,
                  ffc_frames: int, curves: dict[str, tuple[np.ndarray, np.ndarray]],
-                 settle_frames: int = SETTLE_FRAMES) -> dict[str, Any]:
+                 settle_frames: int = SETTLE_FRAMES, trace_s: float | None = None
+                 ) -> dict[str, Any]:
     """The cost of an FFC trigger policy on a sequence, closed loop.
 
     Parameters
@@ -102,6 +106,9 @@ def shutter_cost(fpa_K: np.ndarray, readings: np.ndarray, frame_rate: float, pol
         frame's residual is its method's curve at its change (:func:`residual_at`).
     settle_frames : int
         Frames lost per FFC besides its N shutter frames (the shutter moving).
+    trace_s : float or None
+        With a value, ``trace``: the largest residual of the shown frames in each span of
+        that many seconds (mK, NaN where none is shown), the sawtooth to draw.
 
     Returns the FFC starts (frames), events per hour (the power-on FFC at frame 0
     included), the frames lost (each FFC's N shutter frames and ``settle_frames``) and
@@ -138,6 +145,13 @@ def shutter_cost(fpa_K: np.ndarray, readings: np.ndarray, frame_rate: float, pol
             "worst_mK": float(r[shown].max(initial=0.0)),
             "mean_mK": float(r[shown].mean()) if shown.any() else 0.0,
             "peaks_mK": peaks, "beyond_curve_frames": int((beyond & shown).sum())}
+        if trace_s:
+            step = max(1, round(trace_s * frame_rate))
+            shown_r = np.where(shown, r, -np.inf)
+            pad = -(-n // step) * step - n
+            m = np.pad(shown_r, (0, pad), constant_values=-np.inf).reshape(-1, step).max(1)
+            out.setdefault("trace", {"t_s": (np.arange(m.size) * step / frame_rate).tolist()})
+            out["trace"][name] = np.where(np.isfinite(m), m, np.nan).tolist()
     return out
 
 
@@ -163,7 +177,8 @@ def policy_costs(curves: dict[str, tuple[np.ndarray, np.ndarray]], ffc_frames: i
         for pname in policies:
             period_s, change_K = POLICIES[pname]
             pol = FfcPolicy.from_physical(period_s, change_K, seq.frame_rate, lsb)
-            cost = shutter_cost(sched.fpa_K, readings, seq.frame_rate, pol, ffc_frames, curves)
+            cost = shutter_cost(sched.fpa_K, readings, seq.frame_rate, pol, ffc_frames, curves,
+                                trace_s=TRACE_S if pname in TRACE_POLICIES else None)
             cost["policy"] = pol.describe(seq.frame_rate, lsb)
             out[sc_name]["policies"][pname] = cost
     return out
@@ -250,13 +265,39 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None, scene_K: floa
 
 
 def figure(result: dict[str, Any]) -> bytes:
-    """Residual against time since the FFC, one panel per ramp, the NETD."""
+    """Residual against time since the FFC, one panel per ramp, the NETD; below, the
+    sawtooth of the traced policies on each scenario."""
     from irnuc.reports.studies.figures import png
 
     plt = dc.pyplot()
     ramps = result["ramps"]
-    fig, axes = plt.subplots(1, len(ramps), figsize=(5.2 * len(ramps), 3.8), squeeze=False)
-    for ax, (rname, ramp) in zip(axes[0], ramps.items(), strict=True):
+    scen = result.get("policies", {})
+    cols = max(len(ramps), len(scen))
+    rows = 2 if scen else 1
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.8 * rows), squeeze=False)
+    for ax in axes[0][len(ramps):]:
+        ax.set_visible(False)
+    for ax, (sname, sc) in zip(axes[-1] if scen else [], scen.items(), strict=False):
+        k = 0
+        for pname, c in sc["policies"].items():
+            tr = c.get("trace")
+            if not tr:
+                continue
+            for m in (x for x in tr if x != "t_s"):
+                ax.plot(np.asarray(tr["t_s"]) / 60.0, tr[m], lw=0.8, color=f"C{k}",
+                        label=f"{m}, {pname}: {c['dead_time_pct']:.2g} % dead")
+                k += 1
+        ax.axhline(result["netd_mK"], color="k", ls=":", lw=1, label="NETD")
+        ax.axhline(0.5 * result["netd_mK"], color="k", ls="--", lw=0.8, label="0.5 NETD")
+        ax.set_yscale("log")
+        ax.set_xlabel("time, min")
+        ax.set_ylabel("residual fixed pattern, mK (10 s max)")
+        ax.set_title(f"{sname}: FFC on request (closed loop)", fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6)
+    for ax in (axes[-1][len(scen):] if scen else []):
+        ax.set_visible(False)
+    for ax, (rname, ramp) in zip(axes[0], ramps.items(), strict=False):
         for i, (m, v) in enumerate(result["fpn_mK"].items()):
             lp = ramp["longest_period_min"][m]
             tag = "stays below" if lp is None else f"{lp:.2g} min"
@@ -271,7 +312,7 @@ def figure(result: dict[str, Any]) -> bytes:
         ax.set_title(f"FPA ramp {rname}", fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.subplots_adjust(top=0.8)
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.9 if rows == 2 else 0.8))
     fig.suptitle(f"{TITLE}\nFFC at FPA {result['ffc_fpa_K']:g} K ({result['ffc_frames']} "
                  f"frames), scene {result['scene_K']:g} K", fontsize=9)
     return png(fig)
