@@ -83,6 +83,11 @@ def test_ffc_interval() -> None:
                 <= c["residual"]["two_point+ffc"]["worst_mK"] + 1.0)
     assert (fine["residual"]["two_point+ffc"]["worst_mK"]
             < lep["residual"]["two_point+ffc"]["worst_mK"])
+    # The sawtooth's trace: the largest residual of each 10 s of the 20 min.
+    tr = lep["trace"]
+    assert len(tr["t_s"]) == 120 and tr["t_s"][1] == 10.0
+    assert np.nanmax(tr["two_point+ffc"]) == pytest.approx(
+        lep["residual"]["two_point+ffc"]["worst_mK"])
     assert ffc_interval.figure(r).startswith(PNG)
 
 
