@@ -52,6 +52,46 @@ def _sources(hdl_dir: Path | None) -> list[Path]:
     return [p for p in files if not p.name.startswith("irnuc_axil_regblock")]
 
 
+def measure(cfgs: dict, variants: dict[str, Path | None], sources, seeds: list[int],
+            out: Path) -> dict[str, dict[str, dict]]:
+    """Each configuration's ``TOP`` synthesized for ECP5 once per variant (an hdl folder;
+    ``sources(folder)`` its files), placed and routed once per seed: configuration ->
+    variant -> LUT4, FF, CCU2C, the Fmax of each seed, the best, whether it met the goal."""
+    results: dict[str, dict[str, dict]] = {}
+    for name, cfg in cfgs.items():
+        params = top_parameters(TOP, cfg)
+        results[name] = {}
+        for variant, hdl_dir in variants.items():
+            work = out / name / variant
+            net, cells = synth.synth_ecp5(sources(hdl_dir), TOP, params, work / "ecp5")
+            fmax = {}
+            for seed in seeds:
+                pnr = synth.place_route_ecp5(net, work / f"pnr_s{seed}", freq_mhz=GOAL_MHZ,
+                                             seed=seed)
+                fmax[str(seed)] = pnr["fmax_mhz"]
+                print(f"{name} {variant} seed {seed}: {pnr['fmax_mhz']:.1f} MHz, "
+                      f"{cells['lut4']} LUT4, {cells['ff']} FF", flush=True)
+            results[name][variant] = {
+                "lut4": cells["lut4"], "ff": cells["ff"], "ccu2c": cells["ccu2c"],
+                "fmax_mhz": fmax, "best_mhz": max(fmax.values()),
+                "at_goal": max(fmax.values()) >= GOAL_MHZ}
+    return results
+
+
+def ratios(results: dict[str, dict[str, dict]], new: str, old: str) -> dict[str, float]:
+    """Variant ``new`` over ``old`` over every configuration: the sums of LUT4 and FF, the
+    means of the best Fmax."""
+    def total(variant: str, key: str) -> float:
+        return sum(r[variant][key] for r in results.values())
+
+    def mean_best(variant: str) -> float:
+        return statistics.fmean(r[variant]["best_mhz"] for r in results.values())
+
+    return {f"ratio_lut4_{new}_vs_{old}": round(total(new, "lut4") / total(old, "lut4"), 3),
+            f"ratio_ff_{new}_vs_{old}": round(total(new, "ff") / total(old, "ff"), 3),
+            f"ratio_mean_best_fmax_{new}_vs_{old}": round(mean_best(new) / mean_best(old), 3)}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--configs", default="minimal,typical14,tcffc14,table14,drift14")
@@ -62,44 +102,16 @@ def main() -> None:
     configs = [c.strip() for c in args.configs.split(",") if c.strip()]
     cfgs = {name: load_pipeline(name) for name in configs}  # a bad name fails before work
 
-    results: dict[str, dict[str, dict]] = {}
     with tempfile.TemporaryDirectory(prefix="bench-regfile-") as tmp:
         variants = {"generated": None, "baseline": _baseline_hdl(Path(tmp))}
-        for name, cfg in cfgs.items():
-            params = top_parameters(TOP, cfg)
-            results[name] = {}
-            for variant, hdl_dir in variants.items():
-                work = args.out / name / variant
-                net, cells = synth.synth_ecp5(_sources(hdl_dir), TOP, params, work / "ecp5")
-                fmax = {}
-                for seed in seeds:
-                    pnr = synth.place_route_ecp5(net, work / f"pnr_s{seed}", freq_mhz=GOAL_MHZ,
-                                                 seed=seed)
-                    fmax[str(seed)] = pnr["fmax_mhz"]
-                    print(f"{name} {variant} seed {seed}: {pnr['fmax_mhz']:.1f} MHz, "
-                          f"{cells['lut4']} LUT4", flush=True)
-                results[name][variant] = {
-                    "lut4": cells["lut4"], "ff": cells["ff"], "ccu2c": cells["ccu2c"],
-                    "fmax_mhz": fmax, "best_mhz": max(fmax.values()),
-                    "at_goal": max(fmax.values()) >= GOAL_MHZ}
-
-    def total(variant: str, key: str) -> float:
-        return sum(results[n][variant][key] for n in configs)
-
-    def mean_best(variant: str) -> float:
-        return statistics.fmean(results[n][variant]["best_mhz"] for n in configs)
+        results = measure(cfgs, variants, _sources, seeds, args.out)
 
     print(json.dumps({
         "benchmark": "register_file", "top": TOP, "configs": configs, "seeds": seeds,
         "goal_mhz": GOAL_MHZ, "baseline": "benchmarks/rtl_baseline/irnuc_axil_regs.sv",
         "results": results,
         "all_at_goal": all(results[n]["generated"]["at_goal"] for n in configs),
-        "ratio_lut4_generated_vs_baseline": round(total("generated", "lut4")
-                                                  / total("baseline", "lut4"), 3),
-        "ratio_ff_generated_vs_baseline": round(total("generated", "ff")
-                                                / total("baseline", "ff"), 3),
-        "ratio_mean_best_fmax_generated_vs_baseline": round(mean_best("generated")
-                                                            / mean_best("baseline"), 3),
+        **ratios(results, "generated", "baseline"),
         "tools": synth.tool_versions(),
     }))
 

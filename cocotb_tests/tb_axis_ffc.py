@@ -32,7 +32,7 @@ from cocotb.triggers import ClockCycles, SimTimeoutError, with_timeout
 from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.axis_bench import TOP, Bench, make_bench, sample
+from irnuc.cocotb_tests.axis_bench import TOP, Bench, export, make_bench, sample
 from irnuc.cocotb_tests.method_stim import ffc_calibration, ffc_raws, random_reading
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern
 from irnuc.cosim import coverage, driver
@@ -432,3 +432,164 @@ async def ffc_one_line(dut) -> None:
     """The refresh on frames of one line: the write-back streams' last-line flag holds
     from the frame's first word (tlast on every line's last word, the line is the frame)."""
     await refresh_sequence(dut, 43, None, "random", "random", "ffc one line", size=(1, 16))
+
+
+# ---- the FFC request (FFC_PERIOD, FFC_THRESHOLD; irnuc_ffc_trigger) ------------------------
+
+#: Frame size of the request sequences: the trigger acts once per frame start, so frames are
+#: small (one line and a few pixels past the DPC window's width).
+TRIGGER_SIZE = (2, 4)
+
+
+async def trigger_sequence(dut, salt: int, policy: dict[int, tuple[int, int]],
+                           offsets: list[int], starts: set[int], clears: set[int],
+                           label: str, bp: str = "none") -> None:
+    """Frames sent one at a time (each frame's registers written before it, its state read
+    after its start) with the FFC request enabled: ``policy`` maps a frame to the
+    (FFC_PERIOD, FFC_THRESHOLD) written before it; ``offsets`` the FPA reading of each frame
+    as an offset from a random base reading (tc_offset: READING written before each frame;
+    a build without the reading reads 0 there); ``starts`` the frames an FFC_CTRL.start
+    (one shutter frame: a short run) is written before; ``clears`` the frames before which
+    IRQ_STATUS.ffc_request is cleared (W1C). After each frame start FFC_TRIGGER, FFC_REF,
+    IRQ_STATUS.ffc_request and irq_o (IRQ_ENABLE.ffc_request only) must be those of the
+    golden policy (nuc_fixed.ffc_policy.ffc_trigger) frame by frame; the pixels, the FFC
+    streams and FFC_PERIOD / FFC_THRESHOLD read back are checked against their models."""
+    from irnuc.nuc_fixed.ffc_policy import FfcPolicy, ffc_trigger
+
+    fh, fw = TRIGGER_SIZE
+    bench = await make_bench(dut, salt)
+    cfg, rng, m = bench.cfg, bench.rng, bench.model
+    s = FfcStreams(bench)
+    await bench.frame_size(fh, fw)
+    n_frames = len(offsets)
+    shutter = ffc_shutter_flags(n_frames, dict.fromkeys(starts, 1))
+    framing = ffc_framing(cfg, shutter)
+    c = ffc_calibration(cfg, fh, fw, rng, "camera")
+    for name, value in c.registers.items():  # tc_offset: T_REF
+        await bench.write_method_register(name, int(value))
+    has_reading = random_reading(cfg, c, rng) is not None
+    if has_reading:
+        top = (1 << int(cfg.reading_bits)) - 1
+        base = int(rng.integers(64, top - 64))
+        readings: list[int | None] = [int(np.clip(base + d, 0, top)) for d in offsets]
+    else:
+        readings = [None] * n_frames
+    run = ffc_run(c, ffc_raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
+                  shutter, readings=readings, golden=bench.env.golden)
+    cbits = cfg.memories["ffc_offset"].word_bits
+
+    # The golden policy, the policy of each frame the one written last before it, on the
+    # readings as the RTL sees them (0 without the reading).
+    seen = [0 if r is None else r for r in readings]
+    pols, pol = [], FfcPolicy()
+    for k in range(n_frames):
+        pol = FfcPolicy(*policy[k]) if k in policy else pol
+        pols.append(pol)
+    t = ffc_trigger(seen, starts, pols)
+    expect_req = [bool(v) for v in t.request]
+
+    await bench.write("IRQ_ENABLE",
+                      1 << m.map["IRQ_ENABLE"].field("ffc_request").lsb)
+    bench.patterns("none", "none", bp)
+    s.patterns("none", bp)
+    ctrl = m.map["FFC_CTRL"]
+    rbit = m.map["IRQ_STATUS"].field("ffc_request")
+    sticky, cov = False, set()
+    last_request: int | None = None
+    frame_beats = fh * fw
+    for k in range(n_frames):
+        if k in policy:
+            await bench.write("FFC_PERIOD", policy[k][0])
+            await bench.write("FFC_THRESHOLD", policy[k][1])
+            await bench.check("FFC_PERIOD")
+            await bench.check("FFC_THRESHOLD")
+        if k in clears:
+            await bench.write("IRQ_STATUS", rbit.mask)
+            sticky = False
+            got = (await bench.read("IRQ_STATUS") & rbit.mask) >> rbit.lsb
+            assert got == 0, f"frame {k}: IRQ_STATUS.ffc_request still 1 after its W1C"
+            await ClockCycles(dut.clk_i, 2)
+            assert int(dut.irq_o.value) == 0, f"frame {k}: irq_o stays 1 after the W1C"
+            cov.add("cleared")
+        if readings[k] is not None:
+            await bench.write_method_register("reading", int(readings[k]))
+        if k in starts:
+            await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
+                              | (1 << ctrl.field("frames").lsb))
+        f = run.frames[k]
+        bench.send(*video_beats([f.raw]), *coef_beats([f.drive.words]))
+        s.foff.send_nowait(AxiStreamFrame(_unsigned(run.foff_in[k], cbits)))
+        if run.acc_in[k] is not None:
+            s.acc.send_nowait(AxiStreamFrame([int(v) for v in np.ravel(run.acc_in[k])]))
+        target = (k + 1) * frame_beats
+        for _ in range(200 * frame_beats):
+            if bench.beats_in >= target:
+                break
+            await ClockCycles(dut.clk_i, 1)
+        assert bench.beats_in >= target, f"frame {k}: {bench.beats_in} of {target} beats taken"
+        await ClockCycles(dut.clk_i, 8)
+        m.set_live("FFC_TRIGGER", "since", int(t.since[k]))
+        m.set_live("FFC_TRIGGER", "period", int(t.period_hit[k]))
+        m.set_live("FFC_TRIGGER", "threshold", int(t.threshold_hit[k]))
+        m.set_live("FFC_REF", "reading", int(t.ref[k]))
+        await bench.check("FFC_TRIGGER")
+        await bench.check("FFC_REF")
+        sticky = sticky or expect_req[k]
+        got = (await bench.read("IRQ_STATUS") & rbit.mask) >> rbit.lsb
+        assert got == int(sticky), (
+            f"frame {k}: IRQ_STATUS.ffc_request {got}, the policy says {int(sticky)} (request "
+            f"{expect_req[k]}, since {int(t.since[k])}, ref {int(t.ref[k])}, reading {seen[k]})")
+        assert int(dut.irq_o.value) == int(sticky), f"frame {k}: irq_o is not ffc_request"
+        if expect_req[k]:
+            ph, th = bool(t.period_hit[k]), bool(t.threshold_hit[k])
+            cov.add("both" if ph and th else "period" if ph else "threshold")
+            if last_request is not None and any(last_request < f_ <= k for f_ in starts):
+                cov.add("rearmed")  # a request, an FFC, a request again
+            last_request = k
+    off = [k for k, p in enumerate(pols) if p == FfcPolicy()]
+    if len(off) > 1 and not any(expect_req[k] for k in off):
+        cov.add("disabled")  # frames with both triggers 0 (and checked: no request)
+    shown = [f for f, v in zip(run.frames, framing.shown, strict=True) if v]
+    got_px = await bench.receive(sum(f.raw.size for f in shown), 4000)
+    sb = StageScoreboard(bench.env.golden)
+    for f in shown:
+        sb.expect_frame(f)
+    sb.observe_arrays(**got_px)
+    res = sb.result()
+    tb_lib.record(label=label, compared=res.compared, errors=res.errors, lines=res.lines[:10],
+                  requests=[k for k, v in enumerate(expect_req) if v])
+    tb_lib.assert_passed(res)
+    want_acc = sum(a is not None for a in run.acc_out)
+    assert s.acc_out.count() == want_acc, (
+        f"{s.acc_out.count()} m_axis_acc frames, the golden model's {want_acc}")
+    for b in sorted(cov):
+        sample("axis.ffc.request", b)
+    export()
+
+
+@cocotb.test()
+async def ffc_request_period(dut) -> None:
+    """FFC_PERIOD = 3: requests at frames 3, 8 and 12 (FFCs before frames 5 and 9 restart
+    the count), the first two cleared (W1C) before the next; a request after the FFC that
+    answered the first one (re-armed)."""
+    await trigger_sequence(dut, 50, {0: (3, 0)}, [0] * 14, {5, 9}, {4, 9}, "ffc request period")
+
+
+@cocotb.test()
+async def ffc_request_threshold(dut) -> None:
+    """FFC_PERIOD = 7, FFC_THRESHOLD = 20 codes, the reading moving: the threshold alone at
+    frame 3 (a change of exactly 20), both at frame 7 (due fell at 5), an FFC before frame
+    9, the threshold again at frame 11 against the new reference; under backpressure. On a
+    build without the FPA reading (READING reserved, the reading 0) only the period fires."""
+    offsets = [0, 5, 12, 20, 30, 10, 0, -22, -5, 3, 6, 45, 40, 2]
+    await trigger_sequence(dut, 51, {0: (7, 20)}, offsets, {9}, {5, 10},
+                           "ffc request threshold", bp="random")
+
+
+@cocotb.test()
+async def ffc_request_disabled(dut) -> None:
+    """Both triggers 0 over six frames with a moving reading and an FFC: no request; then
+    FFC_PERIOD = 2 written with the count already past it: a request at the next frame."""
+    offsets = [0, 40, -40, 80, 3, 9, 100, 0]
+    await trigger_sequence(dut, 52, {0: (0, 0), 6: (2, 0)}, offsets, {3}, set(),
+                           "ffc request disabled")

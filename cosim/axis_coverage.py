@@ -27,6 +27,10 @@ and checked, or by a register read that matched the model:
                           under backpressure)
 ``axis.ffc.refresh``      a start written mid-frame whose shutter frames begin at the next frame
                           start and end in a refresh (``next_frame_start``)
+``axis.ffc.request``      IRQ_STATUS.ffc_request raised (FFC_PERIOD, FFC_THRESHOLD) by the period
+                          alone, the threshold alone, both at once; frames with both 0 and no
+                          request; cleared by its W1C (irq_o low); raised again after an FFC
+                          that followed a request (``rearmed``)
 ``axis.ffc.drain``        FRAME_SIZE written after held frames went in: the next frame waits for
                           the framer's drain, whose count of items out of the core includes the
                           held ones (``after_held``); a new size written during a run's
@@ -113,6 +117,7 @@ FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.shutter": ("full_rate", "backpressure"),
     "axis.ffc.refresh": ("next_frame_start",),
     "axis.ffc.drain": ("after_held", "new_size_in_run", "new_size_in_refresh"),
+    "axis.ffc.request": ("period", "threshold", "both", "disabled", "cleared", "rearmed"),
 }
 
 
@@ -201,6 +206,13 @@ class AxisCoverageModel(CoverageModel):
             self.removed["axis.ffc.drain"] = {
                 "after_held": f"ffc_output = {cfg.ffc_output!r}: shutter frames are passed, "
                               "never held"}
+        if cfg.has("ffc") and "fpa" not in cfg.base.readings:
+            gone = ("threshold", "both")
+            points["axis.ffc.request"] = tuple(b for b in points["axis.ffc.request"]
+                                               if b not in gone)
+            self.removed["axis.ffc.request"] = dict.fromkeys(
+                gone, f"{cfg.base_method} takes no FPA reading: READING is reserved, the "
+                      "reading 0, the threshold never reached")
         for name, bins in points.items():
             point(name, bins)
 

@@ -97,6 +97,8 @@ class Example:
     reading: int | None = None
     ffc_frames: int = 0
     max_polls: int = 1000
+    ffc_period: int = 0  # the FFC request (frames, reading codes); both 0: none
+    ffc_threshold: int = 0
 
 
 def registers(read: Callable[[int], Awaitable[int]],
@@ -189,6 +191,16 @@ async def ffc_start(regs: Any, info: Info, frames: int) -> int:
     return OK
 
 
+async def ffc_policy(regs: Any, info: Info, period: int, threshold: int) -> int:
+    """The FFC request: FFC_PERIOD (frames since the last FFC) and FFC_THRESHOLD (FPA
+    reading codes since it); 0 turns a trigger off."""
+    if not info_has_ffc(regs, info):
+        return ERR_NO_FFC
+    await regs.FFC_PERIOD.write(period & _fld(regs.FFC_PERIOD, "frames").max_value)
+    await regs.FFC_THRESHOLD.write(threshold & _fld(regs.FFC_THRESHOLD, "codes").max_value)
+    return OK
+
+
 async def ffc_wait(regs: Any, max_polls: int) -> int:
     """Poll FFC_STATUS.done; once it is 1 clear IRQ_STATUS.ffc_done (W1C)."""
     for _ in range(max_polls):
@@ -215,7 +227,8 @@ async def read_status(regs: Any) -> Status:
 
 async def example(regs: Any, ex: Example) -> tuple[int, Status | None]:
     """The bring-up of ``irnuc_example()``: identify, configure, calibrate, enable the
-    interrupts, run a flat-field correction (``ffc_frames``), read the status."""
+    interrupts, set the FFC request (``ffc_period``, ``ffc_threshold``), run a flat-field
+    correction (``ffc_frames``), read the status."""
     rc, info = await probe(regs)
     if rc != OK or info is None:
         return rc, None
@@ -225,8 +238,11 @@ async def example(regs: Any, ex: Example) -> tuple[int, Status | None]:
     await load_calibration(regs, ex.cal)
     if ex.reading is not None:
         await set_reading(regs, ex.reading)
-    await enable_irq(regs, error=1, ffc_done=int(ex.ffc_frames > 0))
-    if ex.ffc_frames:
+    policy = bool(ex.ffc_period or ex.ffc_threshold)
+    await enable_irq(regs, error=1, ffc_done=int(ex.ffc_frames > 0), ffc_request=int(policy))
+    if policy:
+        rc = await ffc_policy(regs, info, ex.ffc_period, ex.ffc_threshold)
+    if rc == OK and ex.ffc_frames:
         rc = await ffc_start(regs, info, ex.ffc_frames)
         if rc == OK:
             rc = await ffc_wait(regs, ex.max_polls)
@@ -235,6 +251,6 @@ async def example(regs: Any, ex: Example) -> tuple[int, Status | None]:
 
 __all__ = ["ERR_ID", "ERR_METHOD", "ERR_NO_FFC", "ERR_SIZE", "ERR_TIMEOUT", "ERR_VERSION",
            "METHODS", "OK", "Calibration", "Example", "Info", "Status", "configure",
-           "ctrl_default", "enable_irq", "example", "ffc_start", "ffc_wait", "info_has_ffc",
+           "ctrl_default", "enable_irq", "example", "ffc_policy", "ffc_start", "ffc_wait", "info_has_ffc",
            "info_method", "load_calibration", "probe", "read_status", "registers",
            "set_reading", "write64"]

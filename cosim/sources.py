@@ -85,7 +85,7 @@ def _module_files() -> dict[str, tuple[str, ...]]:
     # The register block generated from nuc_fixed/registers.rdl (its package first) and the
     # hand-written register file around it (cosim/regfiles.py, docs/regmap.md).
     regblock = ("irnuc_axil_regblock_pkg.sv", "irnuc_axil_regblock.sv")
-    regs = (*regblock, "irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
+    regs = (*regblock, "irnuc_axil_regs_check.sv", "irnuc_ffc_trigger.sv", "irnuc_axil_regs.sv")
     files["irnuc_axil_regblock"] = regblock
     files["irnuc_axil_regs"] = (*_PKG, *_ARMED, *regs)
     files["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
@@ -93,6 +93,7 @@ def _module_files() -> dict[str, tuple[str, ...]]:
     files["irnuc_axis_assert"] = (*_ARMED, "irnuc_axis_assert.sv")
     files["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
     files["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
+    files["irnuc_ffc_trigger"] = (*_ARMED, "irnuc_ffc_trigger.sv")
     files["irnuc_axis_top"] = tuple(dict.fromkeys((
         *files["nuc_dpc_top"], *files["method_dpc_top"], *axi_assert,
         *regs, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv", "interp_weight.sv",
@@ -210,6 +211,7 @@ _BLOCK_PARAMETERS = {
     "irnuc_axil_assert": lambda p: {},
     "irnuc_assert_armed": lambda p: {},
     "irnuc_axil_regs_check": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
+    "irnuc_ffc_trigger": lambda p: {},
     "irnuc_axil_regblock": lambda p: {},  # generated: no parameter
     "irnuc_axis_top_tb": lambda p: {},  # irnuc_axis_top at its defaults
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,

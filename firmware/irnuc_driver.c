@@ -92,6 +92,19 @@ int irnuc_ffc_start(volatile irnuc_regs_t *regs, const irnuc_info_t *info, unsig
     return IRNUC_OK;
 }
 
+int irnuc_ffc_policy(volatile irnuc_regs_t *regs, const irnuc_info_t *info, uint32_t period,
+                     uint32_t threshold)
+{
+    if (!irnuc_info_has_ffc(info))
+        return IRNUC_ERR_NO_FFC;
+    IRNUC_WRITE32(IRNUC_REG(regs, FFC_PERIOD),
+                  (period << IRNUC_REGS__FFC_PERIOD__FRAMES_bp) & IRNUC_REGS__FFC_PERIOD__FRAMES_bm);
+    IRNUC_WRITE32(IRNUC_REG(regs, FFC_THRESHOLD),
+                  (threshold << IRNUC_REGS__FFC_THRESHOLD__CODES_bp)
+                  & IRNUC_REGS__FFC_THRESHOLD__CODES_bm);
+    return IRNUC_OK;
+}
+
 int irnuc_ffc_wait(volatile irnuc_regs_t *regs, unsigned max_polls)
 {
     for (unsigned k = 0; k < max_polls; k++) {

@@ -125,6 +125,12 @@ void irnuc_enable_irq(volatile irnuc_regs_t *regs, uint32_t mask);
 int irnuc_ffc_start(volatile irnuc_regs_t *regs, const irnuc_info_t *info, unsigned frames);
 int irnuc_ffc_wait(volatile irnuc_regs_t *regs, unsigned max_polls);
 
+/* The FFC request (docs/integration.md, "FFC requests"): IRQ_STATUS.ffc_request rises when
+ * `period` frames have passed since the last FFC or the FPA reading has moved by
+ * `threshold` codes since it (0: that trigger off). */
+int irnuc_ffc_policy(volatile irnuc_regs_t *regs, const irnuc_info_t *info, uint32_t period,
+                     uint32_t threshold);
+
 /* STATUS, IRQ_STATUS and the counters read; the sticky bits read as 1 cleared (W1C). */
 void irnuc_read_status(volatile irnuc_regs_t *regs, irnuc_status_t *st);
 

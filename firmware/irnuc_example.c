@@ -1,8 +1,9 @@
 /*
  * irnuc_example.c - the bring-up of irnuc_axis_top with irnuc_driver.h, as a camera's
  * firmware would run it: identify the core, set the frame size and the enables, load the
- * calibration's registers, enable the interrupts, run a flat-field correction (the
- * shutter closed), read the status and counters. irnuc_example() is the sequence; main()
+ * calibration's registers, enable the interrupts, set the FFC request's period and
+ * threshold, run a flat-field correction (the shutter closed), read the status and
+ * counters. irnuc_example() is the sequence; main()
  * is for a bare-metal target with the register file at IRNUC_BASE (build with
  * -DIRNUC_BASE=0x43c00000, say). tests/test_firmware.py builds it with gcc and runs it
  * against the Python register model; irnuc.cosim.driver.example is the same sequence in
@@ -22,11 +23,15 @@ int irnuc_example(volatile irnuc_regs_t *regs, const irnuc_example_t *ex, irnuc_
     irnuc_load_calibration(regs, &ex->cal);
     if (ex->has_reading)
         irnuc_set_reading(regs, ex->reading);
+    const bool policy = ex->ffc_period || ex->ffc_threshold;
     irnuc_enable_irq(regs, IRNUC_REGS__IRQ_ENABLE__ERROR_bm
-                           | (ex->ffc_frames ? IRNUC_REGS__IRQ_ENABLE__FFC_DONE_bm : 0));
+                           | (ex->ffc_frames ? IRNUC_REGS__IRQ_ENABLE__FFC_DONE_bm : 0)
+                           | (policy ? IRNUC_REGS__IRQ_ENABLE__FFC_REQUEST_bm : 0));
+    if (policy)
+        rc = irnuc_ffc_policy(regs, &info, ex->ffc_period, ex->ffc_threshold);
     /* Here the platform starts the coefficient DMA (the memory image of irnuc calibrate,
      * one word per pixel) and the video: docs/integration.md, "DMA". */
-    if (ex->ffc_frames) {
+    if (rc == IRNUC_OK && ex->ffc_frames) {
         rc = irnuc_ffc_start(regs, &info, ex->ffc_frames);
         if (rc == IRNUC_OK)
             rc = irnuc_ffc_wait(regs, ex->max_polls);

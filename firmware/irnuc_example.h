@@ -15,6 +15,8 @@ typedef struct {
     uint64_t reading;
     unsigned ffc_frames;        /* shutter frames of a flat-field correction; 0: none */
     unsigned max_polls;         /* FFC_STATUS reads before giving up */
+    uint32_t ffc_period;        /* the FFC request's period (frames) and threshold */
+    uint32_t ffc_threshold;     /* (reading codes); both 0: no request */
 } irnuc_example_t;
 
 /* Returns IRNUC_OK or the first error; `st` holds the status read at the end. */

@@ -20,7 +20,7 @@ extern "C" {
 #define IRNUC_REGS__VERSION__MINOR_bm 0xff
 #define IRNUC_REGS__VERSION__MINOR_bp 0
 #define IRNUC_REGS__VERSION__MINOR_bw 8
-#define IRNUC_REGS__VERSION__MINOR_reset 0x0
+#define IRNUC_REGS__VERSION__MINOR_reset 0x1
 #define IRNUC_REGS__VERSION__MAJOR_bm 0xff00
 #define IRNUC_REGS__VERSION__MAJOR_bp 8
 #define IRNUC_REGS__VERSION__MAJOR_bw 8
@@ -173,6 +173,10 @@ extern "C" {
 #define IRNUC_REGS__IRQ_ENABLE__FFC_DONE_bp 2
 #define IRNUC_REGS__IRQ_ENABLE__FFC_DONE_bw 1
 #define IRNUC_REGS__IRQ_ENABLE__FFC_DONE_reset 0x0
+#define IRNUC_REGS__IRQ_ENABLE__FFC_REQUEST_bm 0x8
+#define IRNUC_REGS__IRQ_ENABLE__FFC_REQUEST_bp 3
+#define IRNUC_REGS__IRQ_ENABLE__FFC_REQUEST_bw 1
+#define IRNUC_REGS__IRQ_ENABLE__FFC_REQUEST_reset 0x0
 
 // reg - irnuc_regs.IRQ_STATUS
 #define IRNUC_REGS__IRQ_STATUS__ERROR_bm 0x1
@@ -187,6 +191,10 @@ extern "C" {
 #define IRNUC_REGS__IRQ_STATUS__FFC_DONE_bp 2
 #define IRNUC_REGS__IRQ_STATUS__FFC_DONE_bw 1
 #define IRNUC_REGS__IRQ_STATUS__FFC_DONE_reset 0x0
+#define IRNUC_REGS__IRQ_STATUS__FFC_REQUEST_bm 0x8
+#define IRNUC_REGS__IRQ_STATUS__FFC_REQUEST_bp 3
+#define IRNUC_REGS__IRQ_STATUS__FFC_REQUEST_bw 1
+#define IRNUC_REGS__IRQ_STATUS__FFC_REQUEST_reset 0x0
 
 // reg - irnuc_regs.FRAMES_IN
 #define IRNUC_REGS__FRAMES_IN__COUNT_bm 0xffffffff
@@ -273,6 +281,38 @@ extern "C" {
 #define IRNUC_REGS__FFC_STATUS__DONE_bp 1
 #define IRNUC_REGS__FFC_STATUS__DONE_bw 1
 #define IRNUC_REGS__FFC_STATUS__DONE_reset 0x0
+
+// reg - irnuc_regs.FFC_PERIOD
+#define IRNUC_REGS__FFC_PERIOD__FRAMES_bm 0xffffff
+#define IRNUC_REGS__FFC_PERIOD__FRAMES_bp 0
+#define IRNUC_REGS__FFC_PERIOD__FRAMES_bw 24
+#define IRNUC_REGS__FFC_PERIOD__FRAMES_reset 0x0
+
+// reg - irnuc_regs.FFC_THRESHOLD
+#define IRNUC_REGS__FFC_THRESHOLD__CODES_bm 0xffffff
+#define IRNUC_REGS__FFC_THRESHOLD__CODES_bp 0
+#define IRNUC_REGS__FFC_THRESHOLD__CODES_bw 24
+#define IRNUC_REGS__FFC_THRESHOLD__CODES_reset 0x0
+
+// reg - irnuc_regs.FFC_TRIGGER
+#define IRNUC_REGS__FFC_TRIGGER__SINCE_bm 0xffffff
+#define IRNUC_REGS__FFC_TRIGGER__SINCE_bp 0
+#define IRNUC_REGS__FFC_TRIGGER__SINCE_bw 24
+#define IRNUC_REGS__FFC_TRIGGER__SINCE_reset 0x0
+#define IRNUC_REGS__FFC_TRIGGER__PERIOD_bm 0x1000000
+#define IRNUC_REGS__FFC_TRIGGER__PERIOD_bp 24
+#define IRNUC_REGS__FFC_TRIGGER__PERIOD_bw 1
+#define IRNUC_REGS__FFC_TRIGGER__PERIOD_reset 0x0
+#define IRNUC_REGS__FFC_TRIGGER__THRESHOLD_bm 0x2000000
+#define IRNUC_REGS__FFC_TRIGGER__THRESHOLD_bp 25
+#define IRNUC_REGS__FFC_TRIGGER__THRESHOLD_bw 1
+#define IRNUC_REGS__FFC_TRIGGER__THRESHOLD_reset 0x0
+
+// reg - irnuc_regs.FFC_REF
+#define IRNUC_REGS__FFC_REF__READING_bm 0xffffff
+#define IRNUC_REGS__FFC_REF__READING_bp 0
+#define IRNUC_REGS__FFC_REF__READING_bw 24
+#define IRNUC_REGS__FFC_REF__READING_reset 0x0
 
 // reg - irnuc_regs.GAIN.LO
 #define IRNUC_REGS__GAIN__LO__VALUE_bm 0xffffffff
@@ -470,7 +510,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint8_t RESERVED_64_7f[0x1c];
     uint32_t FFC_CTRL;
     uint32_t FFC_STATUS;
-    uint8_t RESERVED_88_ff[0x78];
+    uint32_t FFC_PERIOD;
+    uint32_t FFC_THRESHOLD;
+    uint32_t FFC_TRIGGER;
+    uint32_t FFC_REF;
+    uint8_t RESERVED_98_ff[0x68];
     irnuc_regs__GAIN_t GAIN;
     irnuc_regs__LEVEL_t LEVEL;
     irnuc_regs__READING_t READING;

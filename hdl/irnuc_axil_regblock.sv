@@ -260,6 +260,10 @@ module irnuc_axil_regblock (
         logic COEF_ERRORS;
         logic FFC_CTRL;
         logic FFC_STATUS;
+        logic FFC_PERIOD;
+        logic FFC_THRESHOLD;
+        logic FFC_TRIGGER;
+        logic FFC_REF;
         struct {
             logic LO;
             logic HI;
@@ -380,6 +384,20 @@ module irnuc_axil_regblock (
         decoded_reg_strb.FFC_STATUS = cpuif_req_masked & (cpuif_addr == 12'h84) & !cpuif_req_is_wr;
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h84);
         is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h84) & !cpuif_req_is_wr;
+        decoded_reg_strb.FFC_PERIOD = cpuif_req_masked & (cpuif_addr == 12'h88);
+        is_external |= cpuif_req_masked & (cpuif_addr == 12'h88);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h88);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h88);
+        decoded_reg_strb.FFC_THRESHOLD = cpuif_req_masked & (cpuif_addr == 12'h8c);
+        is_external |= cpuif_req_masked & (cpuif_addr == 12'h8c);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h8c);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h8c);
+        decoded_reg_strb.FFC_TRIGGER = cpuif_req_masked & (cpuif_addr == 12'h90) & !cpuif_req_is_wr;
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h90);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h90) & !cpuif_req_is_wr;
+        decoded_reg_strb.FFC_REF = cpuif_req_masked & (cpuif_addr == 12'h94) & !cpuif_req_is_wr;
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h94);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h94) & !cpuif_req_is_wr;
         decoded_reg_strb.GAIN.LO = cpuif_req_masked & (cpuif_addr == 12'h100);
         is_external |= cpuif_req_masked & (cpuif_addr == 12'h100);
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h100);
@@ -543,6 +561,10 @@ module irnuc_axil_regblock (
                 logic next;
                 logic load_next;
             } ffc_done;
+            struct {
+                logic next;
+                logic load_next;
+            } ffc_request;
         } IRQ_ENABLE;
         struct {
             struct {
@@ -557,6 +579,10 @@ module irnuc_axil_regblock (
                 logic next;
                 logic load_next;
             } ffc_done;
+            struct {
+                logic next;
+                logic load_next;
+            } ffc_request;
         } IRQ_STATUS;
         struct {
             struct {
@@ -698,6 +724,9 @@ module irnuc_axil_regblock (
             struct {
                 logic value;
             } ffc_done;
+            struct {
+                logic value;
+            } ffc_request;
         } IRQ_ENABLE;
         struct {
             struct {
@@ -709,6 +738,9 @@ module irnuc_axil_regblock (
             struct {
                 logic value;
             } ffc_done;
+            struct {
+                logic value;
+            } ffc_request;
         } IRQ_STATUS;
         struct {
             struct {
@@ -1086,6 +1118,28 @@ module irnuc_axil_regblock (
             end
         end
     end
+    // Field: irnuc_regs.IRQ_ENABLE.ffc_request
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.IRQ_ENABLE.ffc_request.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.IRQ_ENABLE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.IRQ_ENABLE.ffc_request.value & ~decoded_wr_biten[3:3]) | (decoded_wr_data[3:3] & decoded_wr_biten[3:3]);
+            load_next_c = '1;
+        end
+        field_combo.IRQ_ENABLE.ffc_request.next = next_c;
+        field_combo.IRQ_ENABLE.ffc_request.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.IRQ_ENABLE.ffc_request.value <= 1'h0;
+        end else begin
+            if(field_combo.IRQ_ENABLE.ffc_request.load_next) begin
+                field_storage.IRQ_ENABLE.ffc_request.value <= field_combo.IRQ_ENABLE.ffc_request.next;
+            end
+        end
+    end
     // Field: irnuc_regs.IRQ_STATUS.error
     always_comb begin
         automatic logic [0:0] next_c;
@@ -1161,10 +1215,36 @@ module irnuc_axil_regblock (
             end
         end
     end
+    // Field: irnuc_regs.IRQ_STATUS.ffc_request
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.IRQ_STATUS.ffc_request.value;
+        load_next_c = '0;
+        if(hwif_in.IRQ_STATUS.ffc_request.next) begin // stickybit
+            next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.IRQ_STATUS && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.IRQ_STATUS.ffc_request.value & ~(decoded_wr_data[3:3] & decoded_wr_biten[3:3]);
+            load_next_c = '1;
+        end
+        field_combo.IRQ_STATUS.ffc_request.next = next_c;
+        field_combo.IRQ_STATUS.ffc_request.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.IRQ_STATUS.ffc_request.value <= 1'h0;
+        end else begin
+            if(field_combo.IRQ_STATUS.ffc_request.load_next) begin
+                field_storage.IRQ_STATUS.ffc_request.value <= field_combo.IRQ_STATUS.ffc_request.next;
+            end
+        end
+    end
     assign hwif_out.IRQ_STATUS.intr =
         |(field_storage.IRQ_STATUS.error.value & field_storage.IRQ_ENABLE.error.value)
         || |(field_storage.IRQ_STATUS.frame_done.value & field_storage.IRQ_ENABLE.frame_done.value)
-        || |(field_storage.IRQ_STATUS.ffc_done.value & field_storage.IRQ_ENABLE.ffc_done.value);
+        || |(field_storage.IRQ_STATUS.ffc_done.value & field_storage.IRQ_ENABLE.ffc_done.value)
+        || |(field_storage.IRQ_STATUS.ffc_request.value & field_storage.IRQ_ENABLE.ffc_request.value);
     // Field: irnuc_regs.FRAMES_IN.count
     always_comb begin
         automatic logic [31:0] next_c;
@@ -1494,6 +1574,16 @@ module irnuc_axil_regblock (
     assign hwif_out.FFC_CTRL.req_is_wr = decoded_req_is_wr;
     assign hwif_out.FFC_CTRL.wr_data = decoded_wr_data;
     assign hwif_out.FFC_CTRL.wr_biten = decoded_wr_biten;
+    // External register: irnuc_regs.FFC_PERIOD
+    assign hwif_out.FFC_PERIOD.req = decoded_reg_strb.FFC_PERIOD;
+    assign hwif_out.FFC_PERIOD.req_is_wr = decoded_req_is_wr;
+    assign hwif_out.FFC_PERIOD.wr_data = decoded_wr_data;
+    assign hwif_out.FFC_PERIOD.wr_biten = decoded_wr_biten;
+    // External register: irnuc_regs.FFC_THRESHOLD
+    assign hwif_out.FFC_THRESHOLD.req = decoded_reg_strb.FFC_THRESHOLD;
+    assign hwif_out.FFC_THRESHOLD.req_is_wr = decoded_req_is_wr;
+    assign hwif_out.FFC_THRESHOLD.wr_data = decoded_wr_data;
+    assign hwif_out.FFC_THRESHOLD.wr_biten = decoded_wr_biten;
     // External register: irnuc_regs.GAIN.LO
     assign hwif_out.GAIN.LO.req = decoded_reg_strb.GAIN.LO;
     assign hwif_out.GAIN.LO.req_is_wr = decoded_req_is_wr;
@@ -1590,6 +1680,8 @@ module irnuc_axil_regblock (
         wr_ack = '0;
         wr_ack |= hwif_in.FRAME_SIZE.wr_ack;
         wr_ack |= hwif_in.FFC_CTRL.wr_ack;
+        wr_ack |= hwif_in.FFC_PERIOD.wr_ack;
+        wr_ack |= hwif_in.FFC_THRESHOLD.wr_ack;
         wr_ack |= hwif_in.GAIN.LO.wr_ack;
         wr_ack |= hwif_in.GAIN.HI.wr_ack;
         wr_ack |= hwif_in.LEVEL.LO.wr_ack;
@@ -1624,6 +1716,8 @@ module irnuc_axil_regblock (
         rd_ack = '0;
         rd_ack |= hwif_in.FRAME_SIZE.rd_ack;
         rd_ack |= hwif_in.FFC_CTRL.rd_ack;
+        rd_ack |= hwif_in.FFC_PERIOD.rd_ack;
+        rd_ack |= hwif_in.FFC_THRESHOLD.rd_ack;
         rd_ack |= hwif_in.GAIN.LO.rd_ack;
         rd_ack |= hwif_in.GAIN.HI.rd_ack;
         rd_ack |= hwif_in.LEVEL.LO.rd_ack;
@@ -1698,7 +1792,7 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h0)][31:0] = 32'h49524e43;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h4)) begin
-            readback_data_var[ad_hi(12'h4)][7:0] = 8'h0;
+            readback_data_var[ad_hi(12'h4)][7:0] = 8'h1;
             readback_data_var[ad_hi(12'h4)][15:8] = 8'h1;
             readback_data_var[ad_hi(12'h4)][23:16] = hwif_in.VERSION.coef_layout.next;
         end
@@ -1745,11 +1839,13 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h34)][0] = field_storage.IRQ_ENABLE.error.value;
             readback_data_var[ad_hi(12'h34)][1] = field_storage.IRQ_ENABLE.frame_done.value;
             readback_data_var[ad_hi(12'h34)][2] = field_storage.IRQ_ENABLE.ffc_done.value;
+            readback_data_var[ad_hi(12'h34)][3] = field_storage.IRQ_ENABLE.ffc_request.value;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h38)) begin
             readback_data_var[ad_hi(12'h38)][0] = field_storage.IRQ_STATUS.error.value;
             readback_data_var[ad_hi(12'h38)][1] = field_storage.IRQ_STATUS.frame_done.value;
             readback_data_var[ad_hi(12'h38)][2] = field_storage.IRQ_STATUS.ffc_done.value;
+            readback_data_var[ad_hi(12'h38)][3] = field_storage.IRQ_STATUS.ffc_request.value;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h40)) begin
             readback_data_var[ad_hi(12'h40)][31:0] = field_storage.FRAMES_IN.count.value;
@@ -1787,6 +1883,20 @@ module irnuc_axil_regblock (
         if(ad_low(rd_mux_addr) == ad_low(12'h84)) begin
             readback_data_var[ad_hi(12'h84)][0] = hwif_in.FFC_STATUS.busy.next;
             readback_data_var[ad_hi(12'h84)][1] = hwif_in.FFC_STATUS.done.next;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h88)) begin
+            readback_data_var[ad_hi(12'h88)] = hwif_in.FFC_PERIOD.rd_data;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h8c)) begin
+            readback_data_var[ad_hi(12'h8c)] = hwif_in.FFC_THRESHOLD.rd_data;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h90)) begin
+            readback_data_var[ad_hi(12'h90)][23:0] = hwif_in.FFC_TRIGGER.since.next;
+            readback_data_var[ad_hi(12'h90)][24] = hwif_in.FFC_TRIGGER.period.next;
+            readback_data_var[ad_hi(12'h90)][25] = hwif_in.FFC_TRIGGER.threshold.next;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h94)) begin
+            readback_data_var[ad_hi(12'h94)][23:0] = hwif_in.FFC_REF.reading.next;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h100)) begin
             readback_data_var[ad_hi(12'h100)] = hwif_in.GAIN.LO.rd_data;

@@ -193,9 +193,14 @@ package irnuc_axil_regblock_pkg;
     } irnuc_regs__IRQ_STATUS__ffc_done__in_t;
 
     typedef struct {
+        logic next;
+    } irnuc_regs__IRQ_STATUS__ffc_request__in_t;
+
+    typedef struct {
         irnuc_regs__IRQ_STATUS__error__in_t error;
         irnuc_regs__IRQ_STATUS__frame_done__in_t frame_done;
         irnuc_regs__IRQ_STATUS__ffc_done__in_t ffc_done;
+        irnuc_regs__IRQ_STATUS__ffc_request__in_t ffc_request;
     } irnuc_regs__IRQ_STATUS__in_t;
 
     typedef struct {
@@ -309,6 +314,54 @@ package irnuc_axil_regblock_pkg;
         irnuc_regs__FFC_STATUS__busy__in_t busy;
         irnuc_regs__FFC_STATUS__done__in_t done;
     } irnuc_regs__FFC_STATUS__in_t;
+
+    typedef struct packed {
+        logic [7:0] _reserved_31_24;
+        logic [23:0] frames;
+    } irnuc_regs__FFC_PERIOD__fields__in_t;
+
+    typedef struct {
+        logic rd_ack;
+        irnuc_regs__FFC_PERIOD__fields__in_t rd_data;
+        logic wr_ack;
+    } irnuc_regs__FFC_PERIOD__in_t;
+
+    typedef struct packed {
+        logic [7:0] _reserved_31_24;
+        logic [23:0] codes;
+    } irnuc_regs__FFC_THRESHOLD__fields__in_t;
+
+    typedef struct {
+        logic rd_ack;
+        irnuc_regs__FFC_THRESHOLD__fields__in_t rd_data;
+        logic wr_ack;
+    } irnuc_regs__FFC_THRESHOLD__in_t;
+
+    typedef struct {
+        logic [23:0] next;
+    } irnuc_regs__FFC_TRIGGER__since__in_t;
+
+    typedef struct {
+        logic next;
+    } irnuc_regs__FFC_TRIGGER__period__in_t;
+
+    typedef struct {
+        logic next;
+    } irnuc_regs__FFC_TRIGGER__threshold__in_t;
+
+    typedef struct {
+        irnuc_regs__FFC_TRIGGER__since__in_t since;
+        irnuc_regs__FFC_TRIGGER__period__in_t period;
+        irnuc_regs__FFC_TRIGGER__threshold__in_t threshold;
+    } irnuc_regs__FFC_TRIGGER__in_t;
+
+    typedef struct {
+        logic [23:0] next;
+    } irnuc_regs__FFC_REF__reading__in_t;
+
+    typedef struct {
+        irnuc_regs__FFC_REF__reading__in_t reading;
+    } irnuc_regs__FFC_REF__in_t;
 
     typedef struct packed {
         logic [31:0] value;
@@ -563,6 +616,10 @@ package irnuc_axil_regblock_pkg;
         irnuc_regs__COEF_ERRORS__in_t COEF_ERRORS;
         irnuc_regs__FFC_CTRL__in_t FFC_CTRL;
         irnuc_regs__FFC_STATUS__in_t FFC_STATUS;
+        irnuc_regs__FFC_PERIOD__in_t FFC_PERIOD;
+        irnuc_regs__FFC_THRESHOLD__in_t FFC_THRESHOLD;
+        irnuc_regs__FFC_TRIGGER__in_t FFC_TRIGGER;
+        irnuc_regs__FFC_REF__in_t FFC_REF;
         irnuc_regs__GAIN__in_t GAIN;
         irnuc_regs__LEVEL__in_t LEVEL;
         irnuc_regs__READING__in_t READING;
@@ -633,6 +690,30 @@ package irnuc_axil_regblock_pkg;
         irnuc_regs__FFC_CTRL__fields__out_t wr_data;
         irnuc_regs__FFC_CTRL__fields__out_t wr_biten;
     } irnuc_regs__FFC_CTRL__out_t;
+
+    typedef struct packed {
+        logic [7:0] _reserved_31_24;
+        logic [23:0] frames;
+    } irnuc_regs__FFC_PERIOD__fields__out_t;
+
+    typedef struct {
+        logic req;
+        logic req_is_wr;
+        irnuc_regs__FFC_PERIOD__fields__out_t wr_data;
+        irnuc_regs__FFC_PERIOD__fields__out_t wr_biten;
+    } irnuc_regs__FFC_PERIOD__out_t;
+
+    typedef struct packed {
+        logic [7:0] _reserved_31_24;
+        logic [23:0] codes;
+    } irnuc_regs__FFC_THRESHOLD__fields__out_t;
+
+    typedef struct {
+        logic req;
+        logic req_is_wr;
+        irnuc_regs__FFC_THRESHOLD__fields__out_t wr_data;
+        irnuc_regs__FFC_THRESHOLD__fields__out_t wr_biten;
+    } irnuc_regs__FFC_THRESHOLD__out_t;
 
     typedef struct packed {
         logic [31:0] value;
@@ -867,6 +948,8 @@ package irnuc_axil_regblock_pkg;
         irnuc_regs__COMMAND__out_t COMMAND;
         irnuc_regs__IRQ_STATUS__out_t IRQ_STATUS;
         irnuc_regs__FFC_CTRL__out_t FFC_CTRL;
+        irnuc_regs__FFC_PERIOD__out_t FFC_PERIOD;
+        irnuc_regs__FFC_THRESHOLD__out_t FFC_THRESHOLD;
         irnuc_regs__GAIN__out_t GAIN;
         irnuc_regs__LEVEL__out_t LEVEL;
         irnuc_regs__READING__out_t READING;

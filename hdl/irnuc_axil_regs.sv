@@ -19,6 +19,8 @@
 //     size, the size minus one and the size-is-one flags are flops for the framer; a new
 //     size raises size_dirty_o (the framer drains the core before using it);
 //   * FFC_CTRL: its reset (FfcFrames) and presence (HasFfc) are the build's;
+//   * FFC_PERIOD, FFC_THRESHOLD: present on FFC builds only; with FFC_TRIGGER and FFC_REF
+//     they are irnuc_ffc_trigger's (the FFC request, IRQ_STATUS.ffc_request);
 //   * the method registers (the 64-bit slots GAIN .. FFC_TARGET, TABLE_READING[k]): their
 //     widths and presence are the build's (no flop for a bit the build has not; bits from
 //     the width on read 0).
@@ -604,6 +606,83 @@ module irnuc_axil_regs
   end
 
   assign hwif_in.FFC_CTRL.rd_data = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
+
+  // ---- the FFC request: FFC_PERIOD, FFC_THRESHOLD (external), FFC_TRIGGER, FFC_REF ---------
+  // irnuc_ffc_trigger compares, at each frame start, the frames since the last FFC with
+  // FFC_PERIOD and |READING - the reading at the last FFC| with FFC_THRESHOLD; a request
+  // is IRQ_STATUS.ffc_request. On a build without the FFC the registers are reserved (no
+  // flops, read 0) and the cause never rises.
+  localparam int unsigned PeriodBits = RegFfcPeriodFramesBits;
+  localparam int unsigned ThrBits    = RegFfcThresholdCodesBits;
+  localparam int unsigned TrigRdBits = (ReadingRegBits > 0) ? ReadingRegBits : 1;
+  logic [PeriodBits-1:0] period_q, trig_since;
+  logic [ThrBits-1:0]    thr_q;
+  logic [TrigRdBits-1:0] trig_ref;
+  logic                  period_wr, thr_wr, trig_period, trig_thr, trig_request;
+
+  assign period_wr = hwif_out.FFC_PERIOD.req && hwif_out.FFC_PERIOD.req_is_wr;
+  assign thr_wr    = hwif_out.FFC_THRESHOLD.req && hwif_out.FFC_THRESHOLD.req_is_wr;
+  assign hwif_in.FFC_PERIOD.rd_ack    = hwif_out.FFC_PERIOD.req
+                                        && !hwif_out.FFC_PERIOD.req_is_wr;
+  assign hwif_in.FFC_PERIOD.wr_ack    = period_wr;
+  assign hwif_in.FFC_THRESHOLD.rd_ack = hwif_out.FFC_THRESHOLD.req
+                                        && !hwif_out.FFC_THRESHOLD.req_is_wr;
+  assign hwif_in.FFC_THRESHOLD.wr_ack = thr_wr;
+
+  if (HasFfc != 0) begin : gen_ffc_trigger
+    always_ff @(posedge clk_i or negedge rst_ni) begin : p_trigger_regs
+      if (!rst_ni) begin
+        period_q <= PeriodBits'(RegFfcPeriodFramesReset);
+        thr_q    <= ThrBits'(RegFfcThresholdCodesReset);
+      end else begin
+        if (period_wr) begin
+          period_q <= (period_q & ~hwif_out.FFC_PERIOD.wr_biten.frames)
+                      | (hwif_out.FFC_PERIOD.wr_data.frames & hwif_out.FFC_PERIOD.wr_biten.frames);
+        end
+        if (thr_wr) begin
+          thr_q <= (thr_q & ~hwif_out.FFC_THRESHOLD.wr_biten.codes)
+                   | (hwif_out.FFC_THRESHOLD.wr_data.codes & hwif_out.FFC_THRESHOLD.wr_biten.codes);
+        end
+      end
+    end
+
+    irnuc_ffc_trigger #(
+      .PeriodBits   (PeriodBits),
+      .ThresholdBits(ThrBits),
+      .ReadingBits  (ReadingRegBits)
+    ) u_ffc_trigger (
+      .clk_i,
+      .rst_ni,
+      .start_i,
+      .ffc_start_i(ffc_start_q),
+      .reading_i  (TrigRdBits'(slot_o[SlotReading])),
+      .period_i   (period_q),
+      .threshold_i(thr_q),
+      .since_o    (trig_since),
+      .ref_o      (trig_ref),
+      .period_o   (trig_period),
+      .threshold_o(trig_thr),
+      .request_o  (trig_request)
+    );
+  end else begin : gen_no_ffc_trigger
+    assign period_q     = '0;
+    assign thr_q        = '0;
+    assign trig_since   = '0;
+    assign trig_ref     = '0;
+    assign trig_period  = 1'b0;
+    assign trig_thr     = 1'b0;
+    assign trig_request = 1'b0;
+  end
+
+  assign hwif_in.FFC_PERIOD.rd_data.frames    = period_q;
+  assign hwif_in.FFC_PERIOD.rd_data._reserved_31_24 = '0;
+  assign hwif_in.FFC_THRESHOLD.rd_data.codes  = thr_q;
+  assign hwif_in.FFC_THRESHOLD.rd_data._reserved_31_24 = '0;
+  assign hwif_in.FFC_TRIGGER.since.next       = trig_since;
+  assign hwif_in.FFC_TRIGGER.period.next      = trig_period;
+  assign hwif_in.FFC_TRIGGER.threshold.next   = trig_thr;
+  assign hwif_in.FFC_REF.reading.next         = RegFfcRefReadingBits'(trig_ref);
+  assign hwif_in.IRQ_STATUS.ffc_request.next  = trig_request;
   assign hwif_in.FFC_STATUS.busy.next = ffc_busy_i && (HasFfc != 0);
   assign hwif_in.FFC_STATUS.done.next = ffc_done_q;
   assign ffc_start_o  = ffc_start_q;
@@ -619,7 +698,11 @@ module irnuc_axil_regs
 
   // Not used: the FFC_CTRL word's bits outside its fields; table_sel's bits outside TABLE_SEL.
   logic unused_bits;
-  assign unused_bits = ^{hwif_out.FFC_CTRL.wr_data, hwif_out.FFC_CTRL.wr_biten, table_sel};
+  assign unused_bits = ^{hwif_out.FFC_CTRL.wr_data, hwif_out.FFC_CTRL.wr_biten, table_sel,
+                         hwif_out.FFC_PERIOD.wr_data._reserved_31_24,
+                         hwif_out.FFC_PERIOD.wr_biten._reserved_31_24,
+                         hwif_out.FFC_THRESHOLD.wr_data._reserved_31_24,
+                         hwif_out.FFC_THRESHOLD.wr_biten._reserved_31_24};
 
 `ifndef SYNTHESIS
   // The parameters' ranges and (IRNUC_ASSERT) the external requests: irnuc_axil_regs_check.
@@ -631,13 +714,16 @@ module irnuc_axil_regs
   irnuc_axil_regs_check #(
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .WidthBits(WidthBits), .HeightBits(HeightBits),
     .NumSlots(NumSlots), .SlotBits(SlotBits), .TableReadings(TableReadings),
-    .TableReadingBits(TableReadingBits), .NumExternal(2 + 2 * NumSlots + NumTable)
+    .TableReadingBits(TableReadingBits), .NumExternal(4 + 2 * NumSlots + NumTable)
   ) u_check (
     .clk_i,
     .rst_ni,
-    .ext_req_i ({hwif_out.FRAME_SIZE.req, hwif_out.FFC_CTRL.req, slot_req, table_req}),
+    .ext_req_i ({hwif_out.FRAME_SIZE.req, hwif_out.FFC_CTRL.req, hwif_out.FFC_PERIOD.req,
+                 hwif_out.FFC_THRESHOLD.req, slot_req, table_req}),
     .ext_ack_i (hwif_in.FRAME_SIZE.rd_ack || hwif_in.FRAME_SIZE.wr_ack
                 || hwif_in.FFC_CTRL.rd_ack || hwif_in.FFC_CTRL.wr_ack
+                || hwif_in.FFC_PERIOD.rd_ack || hwif_in.FFC_PERIOD.wr_ack
+                || hwif_in.FFC_THRESHOLD.rd_ack || hwif_in.FFC_THRESHOLD.wr_ack
                 || |slot_rd_ack || |slot_wr_ack || |table_ack),
     .size_req_i(size_new_q),
     .size_ack_i(hwif_in.FRAME_SIZE.wr_ack)

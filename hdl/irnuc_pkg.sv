@@ -21,7 +21,7 @@ package irnuc_pkg;
   localparam int unsigned SumBitsMax = 62;  // widest NUC sum (int64 golden model, one spare bit)
   localparam int unsigned RegMapId = 1230130755;  // ID register value
   localparam int unsigned RegMapMajor = 1;  // register map major version
-  localparam int unsigned RegMapMinor = 0;  // register map minor version
+  localparam int unsigned RegMapMinor = 1;  // register map minor version
   localparam int unsigned RegAddrBits = 12;  // AXI4-Lite address bits of the register window
   // 64-bit slots of the method registers (GAIN .. FFC_TARGET)
   localparam int unsigned RegSlotCount = 8;
@@ -106,6 +106,8 @@ package irnuc_pkg;
   localparam int unsigned RegIrqEnableFrameDoneReset = 0;  // IRQ_ENABLE.frame_done reset
   localparam int unsigned RegIrqEnableFfcDoneLsb = 2;  // IRQ_ENABLE.ffc_done
   localparam int unsigned RegIrqEnableFfcDoneReset = 0;  // IRQ_ENABLE.ffc_done reset
+  localparam int unsigned RegIrqEnableFfcRequestLsb = 3;  // IRQ_ENABLE.ffc_request
+  localparam int unsigned RegIrqEnableFfcRequestReset = 0;  // IRQ_ENABLE.ffc_request reset
   // IRQ_STATUS: interrupt causes (sticky until written 1); irq_o = the OR of the bits set in both IRQ_STATUS and IRQ_ENABLE, registered
   localparam int unsigned RegIrqStatusOffset = 56;
   localparam int unsigned RegIrqStatusErrorLsb = 0;  // IRQ_STATUS.error
@@ -114,6 +116,8 @@ package irnuc_pkg;
   localparam int unsigned RegIrqStatusFrameDoneReset = 0;  // IRQ_STATUS.frame_done reset
   localparam int unsigned RegIrqStatusFfcDoneLsb = 2;  // IRQ_STATUS.ffc_done
   localparam int unsigned RegIrqStatusFfcDoneReset = 0;  // IRQ_STATUS.ffc_done reset
+  localparam int unsigned RegIrqStatusFfcRequestLsb = 3;  // IRQ_STATUS.ffc_request
+  localparam int unsigned RegIrqStatusFfcRequestReset = 0;  // IRQ_STATUS.ffc_request reset
   // FRAMES_IN: frames started at s_axis_video (start of frame accepted); wraps
   localparam int unsigned RegFramesInOffset = 64;
   localparam int unsigned RegFramesInCountLsb = 0;  // FRAMES_IN.count
@@ -163,6 +167,26 @@ package irnuc_pkg;
   localparam int unsigned RegFfcStatusOffset = 132;  // FFC_STATUS: flat-field correction state
   localparam int unsigned RegFfcStatusBusyLsb = 0;  // FFC_STATUS.busy
   localparam int unsigned RegFfcStatusDoneLsb = 1;  // FFC_STATUS.done
+  // FFC_PERIOD: FFC request period: IRQ_STATUS.ffc_request rises at the frame start where FFC_TRIGGER.since reaches it (docs/integration.md, FFC requests)
+  localparam int unsigned RegFfcPeriodOffset = 136;
+  localparam int unsigned RegFfcPeriodFramesLsb = 0;  // FFC_PERIOD.frames
+  localparam int unsigned RegFfcPeriodFramesBits = 24;  // FFC_PERIOD.frames width
+  localparam int unsigned RegFfcPeriodFramesReset = 0;  // FFC_PERIOD.frames reset
+  // FFC_THRESHOLD: FFC request threshold: IRQ_STATUS.ffc_request rises at the frame start where |READING - FFC_REF.reading| reaches it (READING as the frame takes it; a build without the FPA reading reads 0 there: use the period)
+  localparam int unsigned RegFfcThresholdOffset = 140;
+  localparam int unsigned RegFfcThresholdCodesLsb = 0;  // FFC_THRESHOLD.codes
+  localparam int unsigned RegFfcThresholdCodesBits = 24;  // FFC_THRESHOLD.codes width
+  localparam int unsigned RegFfcThresholdCodesReset = 0;  // FFC_THRESHOLD.codes reset
+  // FFC_TRIGGER: the FFC request's state, updated a few cycles after each frame start
+  localparam int unsigned RegFfcTriggerOffset = 144;
+  localparam int unsigned RegFfcTriggerSinceLsb = 0;  // FFC_TRIGGER.since
+  localparam int unsigned RegFfcTriggerSinceBits = 24;  // FFC_TRIGGER.since width
+  localparam int unsigned RegFfcTriggerPeriodLsb = 24;  // FFC_TRIGGER.period
+  localparam int unsigned RegFfcTriggerThresholdLsb = 25;  // FFC_TRIGGER.threshold
+  // FFC_REF: the FPA reading of the last FFC (of the frame its FFC_CTRL.start applied to)
+  localparam int unsigned RegFfcRefOffset = 148;
+  localparam int unsigned RegFfcRefReadingLsb = 0;  // FFC_REF.reading
+  localparam int unsigned RegFfcRefReadingBits = 24;  // FFC_REF.reading width
   localparam int unsigned RegGainLoOffset = 256;  // GAIN.LO: one_point: the global gain, U Gi.Gf
   localparam int unsigned RegGainHiOffset = 260;  // GAIN.HI
   // LEVEL.LO: piecewise: the output at every pixel's knee

@@ -121,7 +121,9 @@ def _example(config: str, **kw: object) -> tuple[driver.Example, list[str]]:
             cal[name] = (0x1234_5678_9A << k) & ((1 << r.width) - 1)
             args.append(f"{name}={cal[name]}")
     settings = {"width": 6, "height": 4, "reading": 0x2A5 if "reading" in cfg.registers
-                else None, "ffc_frames": int(cfg.ffc_frames or 0), "max_polls": 10, **kw}
+                else None, "ffc_frames": int(cfg.ffc_frames or 0), "max_polls": 10,
+                "ffc_period": 5400 if cfg.has("ffc") else 0,
+                "ffc_threshold": 150 if cfg.has("ffc") else 0, **kw}
     args += [f"{k}={v}" for k, v in settings.items() if v is not None]
     ex = driver.Example(cfg.base_method, settings["width"], settings["height"],  # type: ignore[arg-type]
                         driver.Calibration(**cal), **{k: v for k, v in settings.items()  # type: ignore[arg-type]
@@ -160,6 +162,9 @@ def test_c_example_is_the_python_driver(mock_binary: Path, config: str) -> None:
     if cfg.has("ffc"):
         assert m.commands == [("FFC_CTRL", "start")]
         assert m.get("FFC_CTRL", "frames") == cfg.ffc_frames
+        # The FFC request: the Lepton's 3 min at 30 Hz and 1.5 K at 0.01 K, its interrupt.
+        assert (m.get("FFC_PERIOD"), m.get("FFC_THRESHOLD")) == (5400, 150)
+        assert m.get("IRQ_ENABLE", "ffc_request") == 1
         assert sum(o == c_bus.ffc_offset for _k, o, *_ in c_bus.log) == FFC_POLLS + 1
 
 
@@ -177,7 +182,8 @@ def test_c_example_errors(mock_binary: Path, config: str, change: dict, code: in
     ex, args = _example(config, **kw)
     if "method" in change:
         ex = driver.Example(BASE_METHODS[change["method"]], ex.width, ex.height, ex.cal,
-                            ex.reading, ex.ffc_frames, ex.max_polls)
+                            ex.reading, ex.ffc_frames, ex.max_polls, ex.ffc_period,
+                            ex.ffc_threshold)
         args = [f"method={change['method']}", *args[1:]]
     c_bus, py_bus = ModelBus(config), ModelBus(config)
     c_rc, _ = _run_c(mock_binary, c_bus, args)

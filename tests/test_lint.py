@@ -27,9 +27,10 @@ AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert", "irnuc_axil_regs_check",
                 "irnuc_assert_armed")
 AXI_CORE = ("irnuc_axis_core",)
-#: The register block generated from the map (no parameter: once) and the FuseSoC core's
-#: smoke testbench (irnuc_axis_top at its defaults: once).
-AXI_ONCE = ("irnuc_axil_regblock", "irnuc_axis_top_tb")
+#: The register block generated from the map (no parameter: once), the FuseSoC core's
+#: smoke testbench (irnuc_axis_top at its defaults: once) and the FFC request at its
+#: defaults (once; inside irnuc_axil_regs with each FFC build's reading width, 0 included).
+AXI_ONCE = ("irnuc_axil_regblock", "irnuc_axis_top_tb", "irnuc_ffc_trigger")
 #: table_interp's selection in the wrapper, linted with the table_interp configuration.
 AXI_TABLE = ("irnuc_axis_table",)
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every

@@ -64,6 +64,30 @@ def test_ffc_interval() -> None:
     slow, fast = r["ramps"]["0.5 K/min"], r["ramps"]["2 K/min"]
     assert slow["longest_period_min"]["two_point+ffc"] == pytest.approx(
         4 * fast["longest_period_min"]["two_point+ffc"])
+    # The shutter's cost (issue 36) on the power-on warm-up (quick: two policies).
+    warm = r["policies"]["power_on_warmup"]
+    assert warm["frame_rate"] == 30.0 and warm["duration_s"] == 1200.0
+    lep, fine = warm["policies"]["Lepton: 3 min or 1.5 K"], warm["policies"]["0.1 K"]
+    assert (lep["period_frames"], lep["threshold_codes"]) == (5400, 150)  # 180 s x 30, 1.5 / 0.01
+    assert fine["threshold_codes"] == 10
+    # 20 min: at least the power-on FFC and the period's 3 min; a 0.1 K threshold on a 6 K
+    # warm-up needs tens more, and loses N + 1 = 9 frames to each.
+    assert lep["ffc_starts"] >= 1 + 1200 // 180 and fine["ffc_starts"] > 3 * lep["ffc_starts"]
+    for c in (lep, fine):
+        assert c["events_per_hour"] == pytest.approx(c["ffc_starts"] * 3)
+        assert c["dead_frames"] == c["ffc_starts"] * (r["ffc_frames"] + 1)
+        assert c["dead_time_pct"] == pytest.approx(100 * c["dead_frames"] / 36000)
+    assert fine["worst_change_K"] <= 0.1 + 0.02 < lep["worst_change_K"] <= 1.5 + 0.02
+    for c in (lep, fine):  # tc_offset follows the FPA between FFCs; two_point does not
+        assert (c["residual"]["tc_offset+ffc"]["worst_mK"]
+                <= c["residual"]["two_point+ffc"]["worst_mK"] + 1.0)
+    assert (fine["residual"]["two_point+ffc"]["worst_mK"]
+            < lep["residual"]["two_point+ffc"]["worst_mK"])
+    # The sawtooth's trace: the largest residual of each 10 s of the 20 min.
+    tr = lep["trace"]
+    assert len(tr["t_s"]) == 120 and tr["t_s"][1] == 10.0
+    assert np.nanmax(tr["two_point+ffc"]) == pytest.approx(
+        lep["residual"]["two_point+ffc"]["worst_mK"])
     assert ffc_interval.figure(r).startswith(PNG)
 
 

@@ -110,6 +110,8 @@ module irnuc_pkg_probe
   output logic [31:0] const_reg_irq_enable_frame_done_reset_o,
   output logic [31:0] const_reg_irq_enable_ffc_done_lsb_o,
   output logic [31:0] const_reg_irq_enable_ffc_done_reset_o,
+  output logic [31:0] const_reg_irq_enable_ffc_request_lsb_o,
+  output logic [31:0] const_reg_irq_enable_ffc_request_reset_o,
   output logic [31:0] const_reg_irq_status_offset_o,
   output logic [31:0] const_reg_irq_status_error_lsb_o,
   output logic [31:0] const_reg_irq_status_error_reset_o,
@@ -117,6 +119,8 @@ module irnuc_pkg_probe
   output logic [31:0] const_reg_irq_status_frame_done_reset_o,
   output logic [31:0] const_reg_irq_status_ffc_done_lsb_o,
   output logic [31:0] const_reg_irq_status_ffc_done_reset_o,
+  output logic [31:0] const_reg_irq_status_ffc_request_lsb_o,
+  output logic [31:0] const_reg_irq_status_ffc_request_reset_o,
   output logic [31:0] const_reg_frames_in_offset_o,
   output logic [31:0] const_reg_frames_in_count_lsb_o,
   output logic [31:0] const_reg_frames_in_count_bits_o,
@@ -157,6 +161,22 @@ module irnuc_pkg_probe
   output logic [31:0] const_reg_ffc_status_offset_o,
   output logic [31:0] const_reg_ffc_status_busy_lsb_o,
   output logic [31:0] const_reg_ffc_status_done_lsb_o,
+  output logic [31:0] const_reg_ffc_period_offset_o,
+  output logic [31:0] const_reg_ffc_period_frames_lsb_o,
+  output logic [31:0] const_reg_ffc_period_frames_bits_o,
+  output logic [31:0] const_reg_ffc_period_frames_reset_o,
+  output logic [31:0] const_reg_ffc_threshold_offset_o,
+  output logic [31:0] const_reg_ffc_threshold_codes_lsb_o,
+  output logic [31:0] const_reg_ffc_threshold_codes_bits_o,
+  output logic [31:0] const_reg_ffc_threshold_codes_reset_o,
+  output logic [31:0] const_reg_ffc_trigger_offset_o,
+  output logic [31:0] const_reg_ffc_trigger_since_lsb_o,
+  output logic [31:0] const_reg_ffc_trigger_since_bits_o,
+  output logic [31:0] const_reg_ffc_trigger_period_lsb_o,
+  output logic [31:0] const_reg_ffc_trigger_threshold_lsb_o,
+  output logic [31:0] const_reg_ffc_ref_offset_o,
+  output logic [31:0] const_reg_ffc_ref_reading_lsb_o,
+  output logic [31:0] const_reg_ffc_ref_reading_bits_o,
   output logic [31:0] const_reg_gain_lo_offset_o,
   output logic [31:0] const_reg_gain_hi_offset_o,
   output logic [31:0] const_reg_level_lo_offset_o,
@@ -402,6 +422,8 @@ module irnuc_pkg_probe
   assign const_reg_irq_enable_frame_done_reset_o = 32'(RegIrqEnableFrameDoneReset);
   assign const_reg_irq_enable_ffc_done_lsb_o = 32'(RegIrqEnableFfcDoneLsb);
   assign const_reg_irq_enable_ffc_done_reset_o = 32'(RegIrqEnableFfcDoneReset);
+  assign const_reg_irq_enable_ffc_request_lsb_o = 32'(RegIrqEnableFfcRequestLsb);
+  assign const_reg_irq_enable_ffc_request_reset_o = 32'(RegIrqEnableFfcRequestReset);
   assign const_reg_irq_status_offset_o = 32'(RegIrqStatusOffset);
   assign const_reg_irq_status_error_lsb_o = 32'(RegIrqStatusErrorLsb);
   assign const_reg_irq_status_error_reset_o = 32'(RegIrqStatusErrorReset);
@@ -409,6 +431,8 @@ module irnuc_pkg_probe
   assign const_reg_irq_status_frame_done_reset_o = 32'(RegIrqStatusFrameDoneReset);
   assign const_reg_irq_status_ffc_done_lsb_o = 32'(RegIrqStatusFfcDoneLsb);
   assign const_reg_irq_status_ffc_done_reset_o = 32'(RegIrqStatusFfcDoneReset);
+  assign const_reg_irq_status_ffc_request_lsb_o = 32'(RegIrqStatusFfcRequestLsb);
+  assign const_reg_irq_status_ffc_request_reset_o = 32'(RegIrqStatusFfcRequestReset);
   assign const_reg_frames_in_offset_o = 32'(RegFramesInOffset);
   assign const_reg_frames_in_count_lsb_o = 32'(RegFramesInCountLsb);
   assign const_reg_frames_in_count_bits_o = 32'(RegFramesInCountBits);
@@ -449,6 +473,22 @@ module irnuc_pkg_probe
   assign const_reg_ffc_status_offset_o = 32'(RegFfcStatusOffset);
   assign const_reg_ffc_status_busy_lsb_o = 32'(RegFfcStatusBusyLsb);
   assign const_reg_ffc_status_done_lsb_o = 32'(RegFfcStatusDoneLsb);
+  assign const_reg_ffc_period_offset_o = 32'(RegFfcPeriodOffset);
+  assign const_reg_ffc_period_frames_lsb_o = 32'(RegFfcPeriodFramesLsb);
+  assign const_reg_ffc_period_frames_bits_o = 32'(RegFfcPeriodFramesBits);
+  assign const_reg_ffc_period_frames_reset_o = 32'(RegFfcPeriodFramesReset);
+  assign const_reg_ffc_threshold_offset_o = 32'(RegFfcThresholdOffset);
+  assign const_reg_ffc_threshold_codes_lsb_o = 32'(RegFfcThresholdCodesLsb);
+  assign const_reg_ffc_threshold_codes_bits_o = 32'(RegFfcThresholdCodesBits);
+  assign const_reg_ffc_threshold_codes_reset_o = 32'(RegFfcThresholdCodesReset);
+  assign const_reg_ffc_trigger_offset_o = 32'(RegFfcTriggerOffset);
+  assign const_reg_ffc_trigger_since_lsb_o = 32'(RegFfcTriggerSinceLsb);
+  assign const_reg_ffc_trigger_since_bits_o = 32'(RegFfcTriggerSinceBits);
+  assign const_reg_ffc_trigger_period_lsb_o = 32'(RegFfcTriggerPeriodLsb);
+  assign const_reg_ffc_trigger_threshold_lsb_o = 32'(RegFfcTriggerThresholdLsb);
+  assign const_reg_ffc_ref_offset_o = 32'(RegFfcRefOffset);
+  assign const_reg_ffc_ref_reading_lsb_o = 32'(RegFfcRefReadingLsb);
+  assign const_reg_ffc_ref_reading_bits_o = 32'(RegFfcRefReadingBits);
   assign const_reg_gain_lo_offset_o = 32'(RegGainLoOffset);
   assign const_reg_gain_hi_offset_o = 32'(RegGainHiOffset);
   assign const_reg_level_lo_offset_o = 32'(RegLevelLoOffset);

@@ -19,7 +19,9 @@ STUDIES: dict[str, tuple[str, str]] = {
     "camera_temperature": ("camera_temperature", "housing temperature rising, falling and "
                            "constant: two_point with and without blind_drift, per frame"),
     "ffc_interval": ("ffc_interval", "residual against time since the last FFC under FPA "
-                     "ramps of 0.5 and 2 K/min; the longest FFC period below the NETD"),
+                     "ramps of 0.5 and 2 K/min; the longest FFC period below the NETD; "
+                     "the shutter's cost of FFC trigger policies (period, temperature "
+                     "change) on the warm-up and ambient-ramp scenarios"),
     "methods_range": ("methods_range", "every method over FPA 288-308 K and scenes 280-380 K "
                       "against coefficient memory and bandwidth"),
     "method_bits": ("method_bits", "residual against fraction bits 3..16 for every method "

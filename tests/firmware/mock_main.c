@@ -64,6 +64,8 @@ int main(int argc, char **argv)
         else if (!strcmp(key, "reading")) { ex.has_reading = true; ex.reading = v; }
         else if (!strcmp(key, "ffc_frames")) ex.ffc_frames = (unsigned)v;
         else if (!strcmp(key, "max_polls")) ex.max_polls = (unsigned)v;
+        else if (!strcmp(key, "ffc_period")) ex.ffc_period = (uint32_t)v;
+        else if (!strcmp(key, "ffc_threshold")) ex.ffc_threshold = (uint32_t)v;
         else if (!strcmp(key, "gain")) { ex.cal.set |= IRNUC_CAL_GAIN; ex.cal.gain = v; }
         else if (!strcmp(key, "level")) { ex.cal.set |= IRNUC_CAL_LEVEL; ex.cal.level = v; }
         else if (!strcmp(key, "t_ref")) { ex.cal.set |= IRNUC_CAL_T_REF; ex.cal.t_ref = v; }
