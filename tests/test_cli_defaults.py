@@ -36,6 +36,14 @@ DEFAULT_PATH_TESTS: dict[str, tuple[str, str]] = {
     "regmap": ("test_registers.py", "test_regmap_command_writes_one_build"),
 }
 
+#: study name -> (test file, the test function or fixture that runs ``irnuc study NAME``
+#: through the command line): a study whose own glue (a text table, its figure) runs only
+#: from there.
+STUDY_TESTS: dict[str, tuple[str, str]] = {
+    "ffc_interval": ("test_methods_studies.py", "test_study_cli"),
+    "housing": ("test_housing_study.py", "housing_run"),
+}
+
 #: Flags that skip a phase of a command (its default path runs it).
 OFF_PATH = {
     "mutate": ("--no-coverage", "--configs", "--list"),
@@ -82,6 +90,19 @@ def test_the_named_test_runs_the_default_path(command: str) -> None:
     off = OFF_PATH.get(command, ())
     assert any(not set(c) & set(off) for c in calls), (
         f"{file}::{name} runs `irnuc {command}` only with {off}: not its default path")
+
+
+@pytest.mark.parametrize("study", sorted(STUDY_TESTS))
+def test_the_named_test_runs_the_study(study: str) -> None:
+    from irnuc.cli.study import STUDIES
+
+    assert study in STUDIES
+    file, name = STUDY_TESTS[study]
+    tree = ast.parse((TESTS / file).read_text())
+    funcs = [n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef) and n.name == name]
+    assert len(funcs) == 1, f"{file}::{name} not found"
+    calls = [c for c in _cli_calls(funcs[0], "study") if study in c]
+    assert calls, f"{file}::{name} does not run `irnuc study {study}`"
 
 
 def test_the_check_can_fail() -> None:

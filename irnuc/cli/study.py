@@ -26,6 +26,9 @@ STUDIES: dict[str, tuple[str, str]] = {
                       "against coefficient memory and bandwidth"),
     "method_bits": ("method_bits", "residual against fraction bits 3..16 for every method "
                     "(the paper's Table 2)"),
+    "housing": ("housing", "residual and level error against the housing-FPA difference "
+                "(-5..+5 K) for every temperature method, calibrated at housing = FPA and "
+                "over FPA x housing; the blind pixels' coupling to the housing"),
 }
 
 
@@ -46,10 +49,16 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def _study_module(name: str) -> Any:
     """The module of study ``name`` (imported here, not by string, so that the layer
     contract sees the command line's use of the reports)."""
-    from irnuc.reports.studies import camera_temperature, ffc_interval, method_bits, methods_range
+    from irnuc.reports.studies import (
+        camera_temperature,
+        ffc_interval,
+        housing,
+        method_bits,
+        methods_range,
+    )
 
     modules = {m.__name__.rsplit(".", 1)[-1]: m
-               for m in (camera_temperature, ffc_interval, method_bits, methods_range)}
+               for m in (camera_temperature, ffc_interval, housing, method_bits, methods_range)}
     return modules[STUDIES[name][0]]
 
 
@@ -85,16 +94,21 @@ def run(args: argparse.Namespace) -> int:
     result: dict[str, Any] = module.run(quick=args.quick, sensor=sensor,
                                         progress=progress(args.name))
     fig = module.figure(result)
+    # a study with a text table (``table(result) -> str``) writes it beside the JSON
+    text = module.table(result) if hasattr(module, "table") else None
     with output_folder(out, kind="study") as tmp:
         write_bytes_atomic(tmp / f"{args.name}.json",
                            (json.dumps(result, indent=1) + "\n").encode())
         write_bytes_atomic(tmp / f"{args.name}.png", fig)
+        if text is not None:
+            write_bytes_atomic(tmp / f"{args.name}.txt", text.encode())
+    files = [f"{args.name}.json", f"{args.name}.png"] + ([f"{args.name}.txt"] if text else [])
     say(f"{args.name}: {result['title']} ({result['seconds']:.1f} s); wrote "
-        f"{out / (args.name + '.json')} and {out / (args.name + '.png')}")
+        + ", ".join(str(out / f) for f in files))
     return 0
 
 
 COMMANDS = {
     "study": ("Correction-method studies: camera temperature, FFC interval, methods over an "
-              "FPA range, fraction bits per method", add_arguments, run),
+              "FPA range, fraction bits per method, the housing away from the FPA", add_arguments, run),
 }

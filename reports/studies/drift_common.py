@@ -72,14 +72,16 @@ def calibrate_methods(sensor: StudySensor, names: Sequence[str], plan: Mapping[s
                       drift_cam: Sequence[float] = (), reference_fpa: float | None = None,
                       cfg_changes: Mapping[str, Mapping[str, Any]] | None = None
                       ) -> dict[str, Any]:
-    """Run one calibration plan on the model and calibrate every named configuration."""
+    """Run one calibration plan on the model and calibrate every named configuration
+    (``plan["housing_offset"]``, K, optional: the plan over FPA x housing)."""
     from irnuc.nuc_fixed import load_pipeline
     from irnuc.nuc_fixed.fit import calibrate_points
     from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
 
     p = CalibrationPlan(scene=tuple(plan["scene"]), fpa=tuple(plan["fpa"]),
                         frames=int(plan["frames"]), drift_cam=tuple(drift_cam),
-                        reference_fpa=reference_fpa)
+                        reference_fpa=reference_fpa,
+                        housing_offset=tuple(plan.get("housing_offset", ())))
     pts = run_plan(p, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
     cals = {}
     for n in names:
