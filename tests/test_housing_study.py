@@ -24,7 +24,11 @@ def housing_run(tmp_path_factory: pytest.TempPathFactory) -> dict:
                  "--set", f"fpa.active_cols={COLS}", "--out", str(out), "-q"]) == 0
     assert (out / "housing.png").read_bytes().startswith(PNG)
     text = (out / "housing.txt").read_text()
-    data = json.loads((out / "housing.json").read_text())
+
+    def strict(c: str) -> float:
+        raise AssertionError(f"{c} in the study's JSON")
+
+    data = json.loads((out / "housing.json").read_text(), parse_constant=strict)
     data["_text"] = text
     return data
 
@@ -159,6 +163,14 @@ def test_a_bad_sensor_file_is_one_line(tmp_path: Path, capsys: pytest.CaptureFix
     assert main(["study", "housing", "--sensor", str(bad), "--out", str(tmp_path / "x")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "active_rows" in err and str(bad) in err, err
+
+
+def test_undefined_values_are_null_in_the_json() -> None:
+    # a responsivity <= 0 (a ring that ignores the housing, a dead image) gives inf mK
+    from irnuc.reports.studies.housing import _json_safe
+
+    assert _json_safe({"a": [1.0, float("inf")], "b": (float("nan"), 2), "c": "x"}) == {
+        "a": [1.0, None], "b": [None, 2], "c": "x"}
 
 
 def test_the_api_refuses_a_grid_without_the_reference() -> None:

@@ -58,6 +58,18 @@ def _plans(offsets: Sequence[float]) -> dict[str, tuple[dict[str, Any], tuple[fl
                              tuple(ref + o for o in offsets if o != 0.0))}
 
 
+def _json_safe(obj: Any) -> Any:
+    """``obj`` with every non-finite float None (a responsivity <= 0 gives an infinite mK:
+    strict JSON has no Infinity)."""
+    if isinstance(obj, dict):
+        return {k: _json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_json_safe(v) for v in obj]
+    if isinstance(obj, float) and not np.isfinite(obj):
+        return None
+    return obj
+
+
 def _same(a: Any, b: Any) -> bool:
     """Whether two calibrations' coefficients are the same codes (every field, register)."""
     if a.coeffs.registers != b.coeffs.registers:
@@ -164,7 +176,7 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None,
     blind["drift14_fitted_coupling"] = {k: cals[k]["cal"]["drift14"].summary["drift_coupling"]
                                         for k in cals if "drift14" in cals[k]["cal"]}
     nd = dc.netd(sensor, fpa_ref)
-    return {
+    return _json_safe({
         "study": NAME, "title": TITLE, "quick": quick,
         "sensor": {"preset": str(sensor.preset), "rows": sensor.rows, "cols": sensor.cols,
                    "seed": sensor.seed, "overrides": dict(sensor.overrides)},
@@ -175,7 +187,7 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None,
         "rows": rows, "blind_pixels": blind,
         "netd_mK": nd.netd_K * 1e3, "netd": nd.as_dict(),
         "seconds": time.perf_counter() - t0,
-    }
+    })
 
 
 def blind_coupling(ref_frames: dict[float, tuple[np.ndarray, ...]],
@@ -215,9 +227,11 @@ def blind_coupling(ref_frames: dict[float, tuple[np.ndarray, ...]],
     a = np.polyfit(offs, A[:, 3 * mid][:, good], 1)[0]                       # (G,)
     b = np.polyfit(offs, B[:, 3 * mid], 1)[0]                                # (K,)
     bm = float(b.mean())
-    k = float(a.mean() / bm)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a ring that ignores the housing
+        k = float(np.float64(a.mean()) / bm)
     k_i = np.zeros(good.shape)
-    k_i[good] = a / bm
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k_i[good] = a / bm
     g = gain[good]
     # k = 1 before the gain and a global term after it, c_out output codes per code of the
     # blind mean (fitted at the middle scene): the pattern of k = 1, the level of the fit
@@ -272,14 +286,20 @@ def _pick(offs: Sequence[float]) -> list[int]:
     return list(dict.fromkeys(idx))
 
 
+def _f(v: float | None, spec: str = "7.0f") -> str:
+    """A number of the table, or a dash where it is undefined (None)."""
+    return format(v, spec) if v is not None else format("-", ">" + spec.split(".")[0])
+
+
 def table(result: dict[str, Any]) -> str:
     """A short text table: worst residual and level error at a few offsets, per row."""
     offs = result["offset_K"]
     idx = _pick(offs)
     head = " ".join(f"{offs[i]:+6g}K" for i in idx)
     s = result["sensor"]
+    preset = s["preset"] if s["preset"] in ("default", "paper") else "from a file"
     lines = [result["title"],
-             f"sensor {s['preset']} {s['rows']} x {s['cols']}, seed {s['seed']}; FPA "
+             f"sensor {preset} {s['rows']} x {s['cols']}, seed {s['seed']}; FPA "
              f"{', '.join(f'{t:g}' for t in result['fpa_K'])} K; scenes "
              f"{', '.join(f'{t:g}' for t in result['scene_K'])} K; NETD "
              f"{result['netd_mK']:.1f} mK (300 K scene)",
@@ -294,32 +314,31 @@ def table(result: dict[str, Any]) -> str:
                   f"{'configuration':40s} {'calibration':15s} {head} | {head}"]
         for r in result["rows"]:
             label = r["config"] + (f" ({r['variant']})" if r["variant"] else "")
-            fp = " ".join(f"{r[fk][i]:7.0f}" for i in idx)
-            lv = " ".join(f"{r[lk][i]:7.0f}" for i in idx)
+            fp = " ".join(_f(r[fk][i]) for i in idx)
+            lv = " ".join(_f(r[lk][i]) for i in idx)
             lines.append(f"{label:40s} {r['calibration']:15s} {fp} | {lv}")
     b = result["blind_pixels"]
+    h, f, pp = b["housing"], b["fpa"], b["per_pixel_coupling"]
     lines += ["", f"blind pixels ({b['blind_pixels']}), reference FPA, scene "
-              f"{b['fit_scene_K']:g} K: housing {b['housing']['blind_codes_per_K']:+.1f} "
-              f"codes/K vs the image's {b['housing']['active_codes_per_K']:+.1f} (ratio "
-              f"{b['housing']['blind_to_active']:.3f}); FPA {b['fpa']['blind_codes_per_K']:+.1f}"
-              f" vs {b['fpa']['active_codes_per_K']:+.1f} (ratio "
-              f"{b['fpa']['blind_to_active']:.3f})",
-              f"coupling: global {b['global_coupling']:.3f}; per pixel "
-              f"{b['per_pixel_coupling']['mean']:.3f} +- {b['per_pixel_coupling']['std']:.3f} "
-              f"({b['per_pixel_coupling']['min']:.3f}..{b['per_pixel_coupling']['max']:.3f}, "
-              f"radial fraction {b['per_pixel_coupling']['radial_fraction']:.2f})"]
+              f"{b['fit_scene_K']:g} K: housing {_f(h['blind_codes_per_K'], '+.1f')} "
+              f"codes/K vs the image's {_f(h['active_codes_per_K'], '+.1f')} (ratio "
+              f"{_f(h['blind_to_active'], '.3f')}); FPA {_f(f['blind_codes_per_K'], '+.1f')}"
+              f" vs {_f(f['active_codes_per_K'], '+.1f')} (ratio "
+              f"{_f(f['blind_to_active'], '.3f')})",
+              f"coupling: global {_f(b['global_coupling'], '.3f')}; per pixel "
+              f"{_f(pp['mean'], '.3f')} +- {_f(pp['std'], '.3f')} ({_f(pp['min'], '.3f')}.."
+              f"{_f(pp['max'], '.3f')}, radial fraction {_f(pp['radial_fraction'], '.2f')})"]
     for rec in b["residual"]:
         j = [int(np.argmin([abs(o - offs[i]) for o in b["offset_K"]])) for i in idx]
         lines.append(f"  scene {rec['scene_K']:g} K, housing {head}: pattern mK | level mK")
         for col, what in (("none", "no correction"), ("global", "global k (pattern, level)"),
                           ("k1", "k = 1"), ("per_pixel", "per-pixel k_i")):
-            lv = (" | " + " ".join(f"{rec[col + '_level_mK'][i]:7.0f}" for i in j)
+            lv = (" | " + " ".join(_f(rec[col + "_level_mK"][i]) for i in j)
                   if col + "_level_mK" in rec else "")
-            lines.append(f"    {what:28s}" + " ".join(f"{rec[col + '_mK'][i]:7.0f}" for i in j)
-                         + lv)
+            lines.append(f"    {what:28s}" + " ".join(_f(rec[col + "_mK"][i]) for i in j) + lv)
         lines.append(f"    {'k = 1 + global after gain':28s}" + " ".join(
-            f"{rec['k1_mK'][i]:7.0f}" for i in j) + " | " + " ".join(
-            f"{rec['two_term_level_mK'][i]:7.0f}" for i in j))
+            _f(rec["k1_mK"][i]) for i in j) + " | " + " ".join(
+            _f(rec["two_term_level_mK"][i]) for i in j))
     return "\n".join(lines) + "\n"
 
 
@@ -336,10 +355,11 @@ def figure(result: dict[str, Any]) -> bytes:
         i = labels.setdefault(label, len(labels))
         ls = "-" if r["calibration"] == "housing_at_fpa" else "--"
         kw = {"label": label} if r["calibration"] == "housing_at_fpa" else {}
-        axes[0].plot(result["offset_K"], r["worst_fpn_mK"], ls, marker="o", ms=2,
-                     color=f"C{i % 10}", **kw)
-        axes[1].plot(result["offset_K"], np.maximum(r["worst_level_error_mK"], 1e-1), ls,
-                     marker="o", ms=2, color=f"C{i % 10}")
+        fpn, lev = ([np.nan if v is None else v for v in r[k]]
+                    for k in ("worst_fpn_mK", "worst_level_error_mK"))
+        axes[0].plot(result["offset_K"], fpn, ls, marker="o", ms=2, color=f"C{i % 10}", **kw)
+        axes[1].plot(result["offset_K"], np.maximum(lev, 1e-1), ls, marker="o", ms=2,
+                     color=f"C{i % 10}")
     axes[0].axhline(result["netd_mK"], color="k", ls=":", lw=1, label="NETD (300 K scene)")
     axes[0].set_ylabel("worst residual fixed pattern, mK")
     axes[1].set_ylabel("worst |level error|, mK")
