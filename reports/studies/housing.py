@@ -215,7 +215,8 @@ def blind_coupling(ref_frames: dict[float, tuple[np.ndarray, ...]],
     the level error its mean leaves. Also k = 1 (the paper repository's; the ring's change
     subtracted whole) and, with it, a global term after the gain (``two_term``: c_out
     output codes per code of the blind mean, fitted at the middle scene; its pattern is
-    k = 1's).
+    k = 1's), and a per-pixel word k_i - k of f fraction bits (its width, and the pattern
+    at the fit scene and the ends of the offsets).
     """
     from irnuc.reports.studies.metrics import radial_artefact
 
@@ -256,6 +257,20 @@ def blind_coupling(ref_frames: dict[float, tuple[np.ndarray, ...]],
             cols["two_term_level_mK"].append(
                 1e3 * float((g * (dA - dB)).mean() - c_out * dB) / resp)
         per_scene.append({**rec, **cols})
+    # a per-pixel word: k_i - k in two's complement with f fraction bits, at the fit scene
+    # and the offsets' ends
+    words = {}
+    ends = [int(np.argmin(offs)), int(np.argmax(offs))]
+    dev = k_i[good] - k
+    resp_m = per_scene[mid]["responsivity_codes_per_K"]
+    for f in (6, 8, 10, 12):
+        q = np.round(dev * 2.0**f)
+        bits = int(np.ceil(np.log2(max(np.abs(q).max(), 1.0) + 1.0))) + 1
+        kq = k + q / 2.0**f
+        words[str(f)] = {"bits": bits, "pattern_mK": [
+            1e3 * float((g * (A[i, 3 * mid][good] - A[o0, 3 * mid][good]
+                              - kq * float(B[i, 3 * mid].mean() - B[o0, 3 * mid].mean()))
+                         ).std()) / resp_m for i in ends]}
     # the FPA: the same slopes with the housing held
     d = np.asarray(sorted(fpa_frames), dtype=np.float64)
     af = np.polyfit(d, np.stack([fpa_frames[x][0][0][good] for x in d]).astype(np.float64), 1)[0]
@@ -274,7 +289,8 @@ def blind_coupling(ref_frames: dict[float, tuple[np.ndarray, ...]],
         "per_pixel_coupling": {"mean": float(k_i[good].mean()), "std": float(k_i[good].std()),
                                "min": float(k_i[good].min()), "max": float(k_i[good].max()),
                                "relative_spread": float(k_i[good].std() / k_i[good].mean()),
-                               "radial_rms": radial[0], "radial_fraction": radial[1]},
+                               "radial_rms": radial[0], "radial_fraction": radial[1],
+                               "word_by_frac_bits": words},
         "residual": per_scene,
     }
 
@@ -328,6 +344,10 @@ def table(result: dict[str, Any]) -> str:
               f"coupling: global {_f(b['global_coupling'], '.3f')}; per pixel "
               f"{_f(pp['mean'], '.3f')} +- {_f(pp['std'], '.3f')} ({_f(pp['min'], '.3f')}.."
               f"{_f(pp['max'], '.3f')}, radial fraction {_f(pp['radial_fraction'], '.2f')})"]
+    lines.append("per-pixel word k_i - k: " + "; ".join(
+        f"{w['bits']} bits at 2^-{fb}: {_f(w['pattern_mK'][0], '.1f')} / "
+        f"{_f(w['pattern_mK'][-1], '.1f')} mK at the offsets' ends"
+        for fb, w in pp["word_by_frac_bits"].items()))
     for rec in b["residual"]:
         j = [int(np.argmin([abs(o - offs[i]) for o in b["offset_K"]])) for i in idx]
         lines.append(f"  scene {rec['scene_K']:g} K, housing {head}: pattern mK | level mK")
