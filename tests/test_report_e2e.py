@@ -102,6 +102,22 @@ def test_temperature_section_in_summary_and_html(tiny_run) -> None:
     for text in ("id='temperature'", "FFC sawtooth", "3D noise", "Camera-temperature test",
                  "Residual against fraction bits per method"):
         assert text in h, text
+    # The sign-off verdict apart from the regression status (issue 37): judged on the
+    # residual against the tolerance (the tiny configuration neither synthesizes nor
+    # co-simulates its recommendation: those checks did not run).
+    so = s["signoff"]
+    assert so["verdict"] == ("met" if r["meets_tolerance"] else "not met")
+    assert t["verdict"] == so and so["recommendation"] == r["key"]
+    assert [(c["name"], c["status"]) for c in so["checks"]][1:] == [("fmax", "not run"),
+                                                                    ("cosim", "not run")]
+    assert f"sign-off: {so['verdict']} (" in h and "Sign-off: <b>" in h
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(out / "junit.xml").getroot()
+    cases = {(tc.get("classname"), tc.get("name")): tc for tc in root.iter("testcase")}
+    sign = cases.pop(("signoff", "temperature"))
+    assert (sign.find("failure") is not None) == (so["verdict"] == "not met")
+    assert cases and all(cn != "signoff" for cn, _ in cases)  # the co-simulation's, kept
 
 
 def test_html_shows_fronts_costs_and_cosim_detail(tiny_run) -> None:

@@ -126,10 +126,11 @@ def _section() -> dict:
                      "passed": True, "source": "x", "seconds": 1.0, "ffc_events": 0}}
     pt = {**_pt(0, "typical14", 31, 31, 8.0), "per_fpa": [[288.0, 7.5], [308.0, 8.0]],
           "bandwidth_MBps": 71.4, "meets_tolerance": True, "hw": None, "datapath_cost": None}
-    return {"spec": {}, "points": [pt], "netd_mK": 20.0, "netd": {}, "tolerance_mK": 10.0,
-            "tolerance": "0.5 x NETD", "noise_3d": {"components": {}}, "camera_temperature": {},
-            "fronts": {"memory_bits": {}, "datapath_cost": None, "bandwidth_MBps": {}},
-            "recommended": rec, "cost": None}
+    d = {"spec": {}, "points": [pt], "netd_mK": 20.0, "netd": {}, "tolerance_mK": 10.0,
+         "tolerance": "0.5 x NETD", "noise_3d": {"components": {}}, "camera_temperature": {},
+         "fronts": {"memory_bits": {}, "datapath_cost": None, "bandwidth_MBps": {}},
+         "recommended": rec, "cost": None}
+    return {**d, "verdict": tp.signoff_verdict(d).to_json()}
 
 
 def _validator(name: str = "temperature"):

@@ -110,8 +110,15 @@ def paper_context(p: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
+def status_line(summary: Mapping[str, Any]) -> str:
+    """The run's two outcomes on one line, apart: the regression status and the sign-off
+    verdict with its reason ("regression: pass · sign-off: not met (...)")."""
+    so = summary["signoff"]
+    return f"regression: {summary['status']} · sign-off: {so['verdict']} ({so['reason']})"
+
+
 def headline(rep: Report, summary: Mapping[str, Any]) -> list[tuple[str, str]]:
-    rows = []
+    rows = [("regression · sign-off", status_line(summary))]
     s = rep.sections
     if "calibration" in s:
         d = s["calibration"]["detection"]

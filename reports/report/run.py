@@ -84,7 +84,44 @@ def write_outputs(rep: Report, summary: dict[str, Any], out: Path) -> None:
     if t:
         write_text_atomic(out / "recommended_temperature.toml", t["pipeline_toml"])
     write_text_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
+    signoff_junit(out / "junit.xml", summary["signoff"], "temperature" in rep.sections)
     write_text_atomic(out / "index.html", render_report(rep, summary))
+
+
+def signoff_junit(path: Path, signoff: Mapping[str, Any], ran: bool) -> None:
+    """Add the sign-off's own testcase (classname ``signoff``, name ``temperature``) to
+    ``junit.xml`` in a testsuite of its own, the regression's testcases unchanged: failed
+    (with the reason) when the verdict is not met, skipped when not run. Without a
+    ``junit.xml`` (no co-simulation) the file is written with this testcase alone when the
+    sign-off ran; a CI that does not gate on the sign-off skips classname ``signoff``."""
+    import xml.etree.ElementTree as ET
+
+    from irnuc.common.io import write_text_atomic
+
+    if path.is_file():
+        root = ET.parse(path).getroot()  # ours, or an ingested --junit already parsed
+        if root.tag == "testsuite":
+            wrapper = ET.Element("testsuites")
+            wrapper.append(root)
+            root = wrapper
+    elif ran:
+        root = ET.Element("testsuites")
+    else:
+        return
+    v = signoff["verdict"]
+    suite = ET.SubElement(root, "testsuite", name="signoff", tests="1",
+                          failures=str(int(v == "not met")), errors="0",
+                          skipped=str(int(v == "not run")))
+    tc = ET.SubElement(suite, "testcase", classname="signoff", name="temperature", time="0.000")
+    if v == "not met":
+        ET.SubElement(tc, "failure", message=f"sign-off not met: {signoff['reason']}"[:200]).text = \
+            signoff["reason"]
+    elif v == "not run":
+        ET.SubElement(tc, "skipped", message=signoff["reason"][:200])
+    else:
+        ET.SubElement(tc, "system-out").text = f"sign-off met: {signoff['reason']}"
+    ET.indent(root)
+    write_text_atomic(path, ET.tostring(root, encoding="unicode") + "\n")
 
 
 def check_scheduler(scheduler: str | None) -> None:
@@ -103,6 +140,7 @@ def run_report(args: Any) -> int:
     from irnuc.common.io import claim_output_folder, output_folder
     from irnuc.reports.report.phases.cosim import parse_junit
     from irnuc.reports.report.phases.sweep import check_sweep
+    from irnuc.reports.report.render import status_line
     from irnuc.reports.report.summary import load_baseline, make_summary
 
     argv = list(getattr(args, "argv", []) or [])
@@ -130,6 +168,10 @@ def run_report(args: Any) -> int:
     written = [str(Path(out) / n) for n in OUTPUTS if (Path(out) / n).is_file()]
     if not args.no_progress:  # -q: errors only
         print(f"wrote {', '.join(written)} in {total:.1f} s ({times})")
+        print(status_line(summary))
+    bs = summary.get("baseline", {}).get("signoff")
+    if bs and bs["regressed"]:
+        print(f"irnuc report: {bs['text']}", file=sys.stderr)
     if summary["status"] != "pass":
         for r in summary["status_reasons"]:
             print(f"irnuc report: FAIL: {r}", file=sys.stderr)

@@ -196,5 +196,53 @@ class CosimSection(Section):
     mismatches: int | None = field(default=None, metadata=OMIT)
 
 
-__all__ = ["OMIT", "CosimCheck", "CosimSection", "Recommendation", "Record", "Section",
-           "SweepSection", "SynthCheck", "frozen", "thaw"]
+# ---- the temperature sign-off ------------------------------------------------------------------
+
+#: A sign-off verdict: the recommendation meets every requirement checked; misses one; or
+#: there was nothing to judge (no ``[temperature]`` section).
+VERDICTS = ("met", "not met", "not run")
+
+
+@dataclass(frozen=True)
+class SignoffCheck(Record):
+    """One requirement of the sign-off: ``residual`` (the worst residual against the
+    tolerance), ``fmax`` (the synthesis at its best placer seed against the target) or
+    ``cosim`` (bit-exact co-simulation); ``status`` one of :data:`VERDICTS`."""
+
+    name: str
+    status: str
+    detail: str
+
+    def __post_init__(self) -> None:
+        if self.status not in VERDICTS:
+            raise ValueError(f"sign-off check {self.name}: status {self.status!r} not in {VERDICTS}")
+
+
+@dataclass(frozen=True)
+class Verdict(Record):
+    """The sign-off verdict of the Temperature section, apart from the regression status:
+    ``not met`` when any check is not met (``reason`` names each), ``met`` when the
+    residual is met and nothing else missed (the checks not run are named in the reason),
+    ``not run`` when there was no sign-off."""
+
+    verdict: str
+    reason: str
+    recommendation: str | None = None
+    checks: tuple[SignoffCheck, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.verdict not in VERDICTS:
+            raise ValueError(f"sign-off verdict {self.verdict!r} not in {VERDICTS}")
+        object.__setattr__(self, "checks", tuple(self.checks))
+
+
+@dataclass(frozen=True)
+class TemperatureSection(Section):
+    """The Temperature section: the study's tables (``data``) and the sign-off verdict."""
+
+    verdict: Verdict | None = None
+
+
+__all__ = ["OMIT", "VERDICTS", "CosimCheck", "CosimSection", "Recommendation", "Record", "Section",
+           "SignoffCheck", "SweepSection", "SynthCheck", "TemperatureSection", "Verdict", "frozen",
+           "thaw"]

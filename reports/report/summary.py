@@ -56,6 +56,14 @@ BASELINE_SCHEMA: dict[str, Any] = {
                 },
             },
         },
+        # Optional: a summary made before the sign-off verdict has none (compared as "no
+        # sign-off in the baseline").
+        "signoff": {
+            "type": "object",
+            "required": ["verdict", "reason"],
+            "properties": {"verdict": {"enum": ["met", "not met", "not run"]},
+                           "reason": {"type": "string"}},
+        },
         "provenance": {
             "type": "object",
             "required": ["config_name", "config_hash"],
@@ -168,6 +176,41 @@ def compare_baseline(metrics: Mapping[str, Mapping[str, Any]],
     return out
 
 
+def signoff_of(rep: Report) -> dict[str, Any]:
+    """The run's sign-off verdict as ``summary.json`` carries it (``not run`` without a
+    Temperature section)."""
+    from irnuc.reports.report.phases.temperature import NOT_RUN
+
+    v = getattr(rep.sections.get("temperature"), "verdict", None) or NOT_RUN
+    return v.to_json()
+
+
+def compare_signoff(signoff: Mapping[str, Any], baseline: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The sign-off verdict against the baseline's, apart from the metrics' comparison:
+    ``change`` is ``regressed`` (met before, not met now), ``improved`` (not met before,
+    met now), ``unchanged``, ``changed`` (to or from ``not run``) or ``no baseline
+    sign-off`` (a summary made before the verdict existed)."""
+    now = signoff["verdict"]
+    if baseline is None:
+        return {"verdict": now, "baseline": None, "baseline_reason": None,
+                "change": "no baseline sign-off", "regressed": False,
+                "text": "no sign-off in the baseline"}
+    was = baseline["verdict"]
+    if was == now:
+        change = "unchanged"
+    elif was == "met" and now == "not met":
+        change = "regressed"
+    elif was == "not met" and now == "met":
+        change = "improved"
+    else:
+        change = "changed"
+    text = f"sign-off {was} -> {now}" if was != now else f"sign-off {now}, as in the baseline"
+    if change == "regressed":
+        text = f"sign-off REGRESSED: met in the baseline, not met now ({signoff['reason']})"
+    return {"verdict": now, "baseline": was, "baseline_reason": baseline.get("reason"),
+            "change": change, "regressed": change == "regressed", "text": text}
+
+
 def load_baseline(path: str | Path, config: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """A validated baseline summary (one-line :class:`ReportError` naming the field).
 
@@ -252,11 +295,14 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
         "metrics": rep.metrics,
         "notes": rep.notes,
     }
+    # The sign-off's verdict, apart from the regression status (which it does not change).
+    signoff = signoff_of(rep)
     reasons = []
     if baseline is not None:
         cmp = compare_baseline(rep.metrics, baseline["metrics"])
         cmp["path"] = str(baseline_path)
         cmp["git_commit"] = (baseline.get("provenance") or {}).get("git_commit")
+        cmp["signoff"] = compare_signoff(signoff, baseline.get("signoff"))
         summary["baseline"] = cmp
         if cmp["regressions"]:
             reasons.append(f"{len(cmp['regressions'])} metric(s) regressed against the baseline")
@@ -281,4 +327,5 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
                        f"{tc['pixels_compared']} compared")
     summary["status"] = "fail" if reasons else "pass"
     summary["status_reasons"] = reasons
+    summary["signoff"] = signoff
     return _clean(json.loads(json.dumps(summary, default=_json_default)))

@@ -22,7 +22,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from irnuc.reports.report.base import Report, progress
-from irnuc.reports.report.sections import Section
+from irnuc.reports.report.sections import SignoffCheck, TemperatureSection, Verdict
 
 #: The figures of a synthesis the sign-off keeps per point (dotted: family.resource).
 HW_KEYS = ("xc7.lut", "xc7.ff", "xc7.dsp", "xc7.bram36", "ecp5.lut4", "ecp5.ff", "ecp5.mult18",
@@ -354,8 +354,75 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         _camera_figure(rep, res)
         times["figures"] = round(time.perf_counter() - t1, 3)
         d["seconds"] = times
-    rep.sections["temperature"] = Section.of(d)
+    rep.sections["temperature"] = TemperatureSection.of(d, verdict=signoff_verdict(d))
     temperature_metrics(rep, d)
+
+
+#: The verdict when there was no sign-off to judge.
+NOT_RUN = Verdict("not run", "no [temperature] section in the configuration: no sign-off")
+
+
+def _residual_check(d: Mapping[str, Any], r: Mapping[str, Any]) -> SignoffCheck:
+    w, tol = float(r["worst_fpn_mK"]), float(d["tolerance_mK"])
+    basis = str(d.get("tolerance", "")).split(" = ")[0]  # "0.5 x NETD" or "15 mK (tolerance_mK)"
+    if r["meets_tolerance"]:
+        return SignoffCheck("residual", "met", f"{r['key']}: {w:.3g} mK <= tolerance {tol:.3g} mK "
+                                               f"({basis})")
+    return SignoffCheck("residual", "not met",
+                        f"{r['key']}: {w:.3g} mK > tolerance {tol:.3g} mK ({basis}), the lowest "
+                        "residual of the sweep")
+
+
+def _fmax_check(sy: Mapping[str, Any] | None) -> SignoffCheck:
+    if not sy:
+        return SignoffCheck("fmax", "not run", "not synthesized ([temperature] synth = false)")
+    from irnuc.cosim.synth import TARGET_MHZ
+
+    target = float(sy.get("target_mhz") or TARGET_MHZ)
+    sd = sy.get("seeds")
+    best = float(sd["best_mhz"] if sd else sy["fmax_mhz"])
+    at = (f"at the best of {sd['runs']} placer seeds (seed {sd['best_seed']})" if sd
+          else "at one placer seed")
+    ok = best >= target
+    return SignoffCheck("fmax", "met" if ok else "not met",
+                        f"{sy['top']} {best:.1f} MHz {at} {'>=' if ok else '<'} {target:g} MHz")
+
+
+def _cosim_check(c: Mapping[str, Any] | None) -> SignoffCheck:
+    if not c:
+        return SignoffCheck("cosim", "not run", "not co-simulated ([temperature] cosim = false)")
+    if c.get("not_run") or c.get("passed") is None:
+        return SignoffCheck("cosim", "not run", f"not co-simulated: {c.get('not_run')}")
+    top = c.get("top") or "the bulk harness"
+    if c["passed"] and not c["mismatches"]:
+        return SignoffCheck("cosim", "met", f"co-simulated through {top}: {c['pixels_compared']} "
+                                            "pixels bit-exact")
+    return SignoffCheck("cosim", "not met",
+                        f"co-simulated through {top}: {c['mismatches']} mismatch(es) of "
+                        f"{c['pixels_compared']} pixels")
+
+
+def signoff_verdict(d: Mapping[str, Any] | None) -> Verdict:
+    """The sign-off verdict of a Temperature section's results ``d`` (None: no sign-off),
+    apart from the regression status (docs/reports.md, "The sign-off verdict").
+
+    ``not met`` when the recommendation misses its tolerance, its synthesis misses the
+    target frequency at its best placer seed, or its co-simulation mismatches (or when the
+    sweep had no valid point); ``met`` otherwise, the checks that did not run named in the
+    reason; ``not run`` without a sign-off.
+    """
+    if d is None:
+        return NOT_RUN
+    r = d.get("recommended")
+    if not r:
+        return Verdict("not met", "no valid point in the sweep: nothing to recommend")
+    checks = (_residual_check(d, r), _fmax_check(r.get("synth")), _cosim_check(r.get("cosim")))
+    missed = [c.detail for c in checks if c.status == "not met"]
+    if missed:
+        return Verdict("not met", "; ".join(missed), r["key"], checks)
+    skipped = [c.name for c in checks if c.status == "not run"]
+    reason = checks[0].detail + (f" (not checked: {', '.join(skipped)})" if skipped else "")
+    return Verdict("met", reason, r["key"], checks)
 
 
 def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> dict[str, Any]:
