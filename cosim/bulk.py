@@ -17,6 +17,7 @@ harness, which plays the external memory) are given to :func:`run_frames` as a
 from __future__ import annotations
 
 import json
+import resource
 import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -73,14 +74,18 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
-    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT], [BULK_HARNESS],
-                       hdl_dir=hdl_dir)
+    # The harness includes bulk_top.h: the model's header, its class and its ports, and the
+    # generated scheduler it calls between the public evals (bulk_main.cpp "Evals").
+    root = f"V{top}___024root"
+    header = (f'#include "V{top}.h"\n#include "{root}.h"\nusing BulkTop = V{top};\n'
+              f"void {root}___eval({root}* vlSelf);\n"
+              f"#define BULK_EVAL(model) {root}___eval((model)->rootp)\n" + BULK_TOPS[top])
+    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header],
+                       [BULK_HARNESS], hdl_dir=hdl_dir)
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
-        # The harness includes bulk_top.h: the model's header, its class and its ports.
-        (build_dir / "bulk_top.h").write_text(
-            f'#include "V{top}.h"\nusing BulkTop = V{top};\n' + BULK_TOPS[top])
+        (build_dir / "bulk_top.h").write_text(header)
         cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
                *verilator_g(params),
@@ -141,6 +146,14 @@ class BulkResult:
     #: method_ffc_top: the m_acc and m_foff words written, in order (uint64).
     acc: np.ndarray | None = None
     foff: np.ndarray | None = None
+    #: CPU time (user + system) of the harness processes, s: the cost of the run apart
+    #: from the other work on a shared machine (wall time ``sim_seconds`` includes it).
+    cpu_seconds: float = 0.0
+
+
+def _children_cpu() -> float:
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
 
 
 @dataclass(frozen=True)
@@ -175,7 +188,8 @@ def _check_percent(name: str, value: int) -> int:
 
 def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: int = 0,
              stall_percent: int = 0, seed: int = 1,
-             work_dir: Path | None = None, shards: int = 1) -> BulkResult:
+             work_dir: Path | None = None, shards: int = 1,
+             public_eval: bool = False) -> BulkResult:
     """Stream frames through the bulk harness of :func:`build_bulk` and read the outputs.
 
     Parameters
@@ -200,6 +214,10 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
         output span ``last_out_cycle - first_out_cycle + 1`` are sums over the shards (as
         if their output phases ran back to back), so ``last - first + 1 = outputs +
         stall_cycles`` still holds when no cycle is lost. At most one shard per frame.
+    public_eval : bool
+        Every eval through the model's public ``eval()`` (the harness's previous path, a
+        quarter slower; the baseline of ``benchmarks/bench_methods_cosim.py``); the same
+        outputs and cycles either way (bulk_main.cpp "Evals").
 
     Returns
     -------
@@ -219,13 +237,14 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
     frames = x.reshape(-1, h, w)
     return run_frames(bld, frames, np.asarray(wd, dtype=np.uint64)[None, :, :, None],
                       np.zeros((frames.shape[0], 2), np.uint64), idle_percent=idle_percent,
-                      stall_percent=stall_percent, seed=seed, work_dir=work_dir, shards=shards)
+                      stall_percent=stall_percent, seed=seed, work_dir=work_dir, shards=shards,
+                      public_eval=public_eval)
 
 
 def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: np.ndarray, *,
                idle_percent: int = 0, stall_percent: int = 0, seed: int = 1,
                work_dir: Path | None = None, shards: int = 1,
-               stage: StageStreams | None = None) -> BulkResult:
+               stage: StageStreams | None = None, public_eval: bool = False) -> BulkResult:
     """The harness on checked stimulus: ``frames`` (N, H, W) raw codes, ``images``
     (M, H, W, L) coefficient words as L uint64 limbs (bit 0 first), ``frame_info`` (N, C):
     the image each frame streams, its frame word and (stage tops) the stage's columns;
@@ -242,7 +261,7 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
         with tempfile.TemporaryDirectory(dir=cache_dir("bulk")) as tmp:
             return run_frames(bld, frames, images, frame_info, idle_percent=idle_percent,
                               stall_percent=stall_percent, seed=seed, work_dir=Path(tmp),
-                              shards=shards, stage=stage)
+                              shards=shards, stage=stage, public_eval=public_eval)
     if stage is not None and stage.ffc and shards != 1:
         raise UserError(f"shards = {shards}: the FFC top's state crosses frames; use shards = 1")
     n_frames, h, w = frames.shape
@@ -252,9 +271,16 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
     work_dir.mkdir(parents=True, exist_ok=True)
     coef_file = work_dir / "coef.bin"
     np.ascontiguousarray(images, dtype="<u8").tofile(coef_file)
+    # One pixel file and one frame file for every shard: shard i starts at its first frame
+    # (the harness's skip=), so nothing is copied per shard once the clock runs.
+    pix_file, info_file = work_dir / "pix.bin", work_dir / "frames.bin"
+    np.ascontiguousarray(frames, dtype=pix_dtype).tofile(pix_file)
+    np.ascontiguousarray(frame_info, dtype="<u8").tofile(info_file)
     parts = [p for p in np.array_split(np.arange(n_frames), shards) if p.size]
     cols = frame_info.shape[1]
     opts = [] if cols == 2 else [f"cols={cols}"]
+    if public_eval:
+        opts.append("eval=public")
     if stage is not None:
         opts += [f"{k}={int(v)}" for k, v in stage.registers.items()]
     blind_at = None
@@ -274,15 +300,15 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
 
     outs, jobs = [], []
     t0 = time.perf_counter()
-    # Threads only wait for the harnesses; a shard starts as soon as its file is written.
+    # Children's CPU counts once they are reaped: only the harnesses run (and are waited
+    # for) between the two readings; a concurrent run in another thread would add its own.
+    cpu0 = _children_cpu()
+    # Threads only wait for the harnesses (a drift shard's blind file is written first).
     with ThreadPoolExecutor(len(parts)) as pool:
         for i, part in enumerate(parts):
-            pix_file, out_file = work_dir / f"pix{i}.bin", work_dir / f"out{i}.bin"
-            info_file = work_dir / f"frames{i}.bin"
+            out_file = work_dir / f"out{i}.bin"
             out_file.unlink(missing_ok=True)  # never read a previous run's outputs
-            np.ascontiguousarray(frames[part[0]:part[-1] + 1], dtype=pix_dtype).tofile(pix_file)
-            np.ascontiguousarray(frame_info[part[0]:part[-1] + 1], dtype="<u8").tofile(info_file)
-            extra = list(opts)
+            extra = [*opts, f"skip={int(part[0])}"] if part[0] else list(opts)
             if blind_at is not None and stage is not None and stage.blind is not None:
                 blind_file = work_dir / f"blind{i}.bin"
                 np.ascontiguousarray(stage.blind[blind_at[part[0]]:blind_at[part[-1] + 1]],
@@ -304,6 +330,7 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
             outs.append(out_file)
         infos = [j.result() for j in jobs]
     sim_seconds = time.perf_counter() - t0
+    cpu_seconds = _children_cpu() - cpu0
     ffc = stage is not None and stage.ffc
     out = np.concatenate([np.fromfile(f, dtype="<u4") for f in outs])
     mask = np.uint32((1 << cfg.out_bits) - 1)
@@ -325,6 +352,7 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
                      sum(int(i["inputs_taken"][3]) for i in infos)),
         acc=np.fromfile(work_dir / "acc.bin", dtype="<u8") if ffc else None,
         foff=np.fromfile(work_dir / "foff.bin", dtype="<u8") if ffc else None,
+        cpu_seconds=cpu_seconds,
     )
 
 

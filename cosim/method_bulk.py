@@ -73,7 +73,7 @@ def method_stimulus(coeffs: MethodCoefficients, readings: list[int | None]
 def run_method_bulk(bld: Build, coeffs: MethodCoefficients, raw: object,
                     readings: object | None = None, *, idle_percent: int = 0,
                     stall_percent: int = 0, seed: int = 1, work_dir: Path | None = None,
-                    shards: int = 1) -> BulkResult:
+                    shards: int = 1, public_eval: bool = False) -> BulkResult:
     """Stream frames (N, H, W) corrected with ``coeffs`` (and one FPA reading per frame
     for tc_offset and table_interp) through the bulk harness of ``method_dpc_top``.
 
@@ -94,7 +94,8 @@ def run_method_bulk(bld: Build, coeffs: MethodCoefficients, raw: object,
     rds = _readings(coeffs, frames.shape[0], readings)
     images, info = method_stimulus(coeffs, rds)
     return run_frames(bld, frames, images, info, idle_percent=idle_percent,
-                      stall_percent=stall_percent, seed=seed, work_dir=work_dir, shards=shards)
+                      stall_percent=stall_percent, seed=seed, work_dir=work_dir, shards=shards,
+                      public_eval=public_eval)
 
 
 def check_method_bulk(res: BulkResult, coeffs: MethodCoefficients, raw: object,

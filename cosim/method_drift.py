@@ -133,6 +133,16 @@ class MethodRun:
     golden_seconds: float
     readings: tuple[int, int]
     lines: list[str] = field(default_factory=list)
+    #: The co-simulation end to end, golden model excepted: stimulus written, harness run,
+    #: outputs read and compared, s.
+    bulk_seconds: float = 0.0
+    #: ``baseline=True``: the harness's time on the previous path (every eval through the
+    #: model's public ``eval()``), s, and that run's mismatches (missing and extra counted).
+    baseline_seconds: float | None = None
+    baseline_mismatches: int | None = None
+    #: CPU time of the harness processes, s (this path and the baseline's).
+    sim_cpu_seconds: float = 0.0
+    baseline_cpu_seconds: float | None = None
 
     @property
     def passed(self) -> bool:
@@ -147,6 +157,21 @@ class MethodRun:
                 "sim_seconds": round(self.sim_seconds, 3),
                 "golden_seconds": round(self.golden_seconds, 3),
                 "sim_pixels_per_s": round(self.pixels / max(self.sim_seconds, 1e-9)),
+                "sim_cpu_seconds": round(self.sim_cpu_seconds, 3),
+                "pixels_per_cpu_s": round(self.pixels / max(self.sim_cpu_seconds, 1e-9)),
+                "bulk_seconds": round(self.bulk_seconds, 3),
+                "end_to_end_pixels_per_s": round(
+                    self.pixels / max(self.bulk_seconds + self.golden_seconds, 1e-9)),
+                **({} if self.baseline_seconds is None else {
+                    "baseline_sim_seconds": round(self.baseline_seconds, 3),
+                    "baseline_pixels_per_s": round(self.pixels / max(self.baseline_seconds,
+                                                                     1e-9)),
+                    "baseline_mismatches": self.baseline_mismatches,
+                    "baseline_cpu_seconds": round(self.baseline_cpu_seconds or 0.0, 3),
+                    "cpu_ratio_to_baseline": round((self.baseline_cpu_seconds or 0.0)
+                                                   / max(self.sim_cpu_seconds, 1e-9), 3),
+                    "ratio_to_baseline": round(self.baseline_seconds
+                                               / max(self.sim_seconds, 1e-9), 3)}),
                 "reading_range": list(self.readings), "lines": self.lines[:10]}
 
 
@@ -154,9 +179,12 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
                  shape: tuple[int, int] = (480, 640), *, shards: int = 2,
                  idle_percent: int = 0, stall_percent: int = 0, seed: int = 0,
                  sequence: DriftSequence | None = None,
-                 coeffs: Mapping[str, MethodCoefficients] | None = None) -> list[MethodRun]:
+                 coeffs: Mapping[str, MethodCoefficients] | None = None,
+                 baseline: bool = False) -> list[MethodRun]:
     """Calibrate every configuration on the model, make a drift sequence, and co-simulate
-    each method on it (bulk harness, bit for bit against ``method_top``)."""
+    each method on it (bulk harness, bit for bit against ``method_top``). ``baseline``:
+    each method run a second time on the harness's previous path (``public_eval``),
+    checked as well, for the benchmark's ratio."""
     from irnuc.cosim.bulk import build_bulk
     from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
 
@@ -170,14 +198,25 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
         expected = method_top(seq.codes, c, FrameInputs(reading=rd)).y
         t_golden = time.perf_counter() - t0
         bld = build_bulk(cfg, top="method_dpc_top")
-        res = run_method_bulk(bld, c, seq.codes, rd, shards=shards, seed=seed + 1,
-                              idle_percent=idle_percent, stall_percent=stall_percent)
+        kw = {"shards": shards, "seed": seed + 1, "idle_percent": idle_percent,
+              "stall_percent": stall_percent}
+        t0 = time.perf_counter()
+        res = run_method_bulk(bld, c, seq.codes, rd, **kw)
         chk = check_method_bulk(res, c, seq.codes, rd, expected=expected)
+        t_bulk = time.perf_counter() - t0
+        base_s = base_bad = base_cpu = None
+        if baseline:
+            old = run_method_bulk(bld, c, seq.codes, rd, public_eval=True, **kw)
+            ochk = check_method_bulk(old, c, seq.codes, rd, expected=expected)
+            base_s, base_cpu = old.sim_seconds, old.cpu_seconds
+            base_bad = ochk.mismatches + ochk.missing + ochk.extra + int(old.frame_err)
         out.append(MethodRun(name=cfg.name, method=cfg.method, frames=seq.codes.shape[0],
                              pixels=int(seq.codes.size), compared=chk.compared,
                              mismatches=chk.mismatches, missing=chk.missing, extra=chk.extra,
                              frame_err=res.frame_err, cycles=res.cycles,
                              sim_seconds=res.sim_seconds, golden_seconds=t_golden,
                              readings=(int(seq.reading.min()), int(seq.reading.max())),
-                             lines=list(chk.lines)))
+                             lines=list(chk.lines), bulk_seconds=t_bulk,
+                             baseline_seconds=base_s, baseline_mismatches=base_bad,
+                             sim_cpu_seconds=res.cpu_seconds, baseline_cpu_seconds=base_cpu))
     return out
