@@ -1,0 +1,118 @@
+// Proof harness of the AXI4-Lite register file irnuc_axil_regs (`irnuc formal`,
+// docs/formal.md): the AXI4-Lite slave rules of irnuc_fv_axil on its s_axil port (the
+// master's assumed), with every other input free (the framer's events and levels, the FFC
+// unit, TABLE_SEL), and its own checks (irnuc_axil_regs_check with IRNUC_ASSERT). The
+// parameters are the register file's for one configuration (irnuc.cosim.sources.
+// register_file_parameters).
+module fv_axil_regs
+  import irnuc_pkg::*;
+#(
+  parameter int unsigned AdcBits           = 14,
+  parameter int unsigned GainIntBits       = 2,
+  parameter int unsigned GainFracBits      = 14,
+  parameter int unsigned OffsetIntBits     = 12,
+  parameter int unsigned OffsetFracBits    = 4,
+  parameter int unsigned OutBits           = 14,
+  parameter int unsigned Rounding          = 1,
+  parameter int unsigned Overflow          = 0,
+  parameter int unsigned MaxWidth          = 1024,
+  parameter int unsigned MaxHeight         = 1024,
+  // The configured method (CONFIG) and what it builds in.
+  parameter int unsigned MethodCode        = 1,
+  parameter int unsigned HasBlindDrift     = 0,
+  parameter int unsigned HasFfc            = 0,
+  parameter int unsigned FfcFrames         = 1,
+  parameter int unsigned CoefLayoutVersion = 1,
+  // Bits of one s_axis_coef word (the method's coefficient word; default two_point's).
+  parameter int unsigned CoefWordBits      = coef_word_bits(GainIntBits + GainFracBits,
+                                                            OffsetIntBits + OffsetFracBits),
+  // Widths of the method registers (PipelineConfig.registers), 0 = not in this method.
+  parameter int unsigned GainRegBits       = 0,
+  parameter int unsigned LevelRegBits      = 0,
+  parameter int unsigned ReadingRegBits    = 0,
+  parameter int unsigned TRefRegBits       = 0,
+  parameter int unsigned BlindSumRegBits   = 0,
+  parameter int unsigned BlindRefRegBits   = 0,
+  parameter int unsigned DriftGainRegBits  = 0,
+  parameter int unsigned FfcTargetRegBits  = 0,
+  parameter int unsigned TableReadings     = 0,
+  parameter int unsigned TableReadingBits  = 1,
+  localparam int unsigned AddrBits   = RegAddrBits,
+  localparam int unsigned WidthBits  = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits = $clog2(MaxHeight + 1)
+) (
+  input logic                  clk_i,
+  input logic                  rst_ni,
+  input logic [AddrBits-1:0]   s_axil_awaddr_i,
+  input logic                  s_axil_awvalid_i,
+  input logic [31:0]           s_axil_wdata_i,
+  input logic [3:0]            s_axil_wstrb_i,
+  input logic                  s_axil_wvalid_i,
+  input logic                  s_axil_bready_i,
+  input logic [AddrBits-1:0]   s_axil_araddr_i,
+  input logic                  s_axil_arvalid_i,
+  input logic                  s_axil_rready_i,
+  input logic [31:0]           table_sel_i,
+  input logic                  start_i,
+  input logic                  frame_start_i,
+  input logic                  beat_i,
+  input logic                  drop_i,
+  input logic                  pad_i,
+  input logic                  pix_out_i,
+  input logic                  frame_out_i,
+  input logic                  sof_early_i,
+  input logic                  sof_late_i,
+  input logic                  eol_early_i,
+  input logic                  eol_late_i,
+  input logic                  coef_early_i,
+  input logic                  coef_late_i,
+  input logic                  in_frame_i,
+  input logic                  core_err_i,
+  input logic                  ffc_busy_i,
+  input logic                  ffc_done_i
+);
+
+  logic                   s_axil_awready_o, s_axil_wready_o, s_axil_bvalid_o, s_axil_arready_o;
+  logic                   s_axil_rvalid_o;
+  logic [1:0]             s_axil_bresp_o, s_axil_rresp_o;
+  logic [31:0]            s_axil_rdata_o;
+
+  irnuc_axil_regs #(
+    .AdcBits(AdcBits), .GainIntBits(GainIntBits), .GainFracBits(GainFracBits),
+    .OffsetIntBits(OffsetIntBits), .OffsetFracBits(OffsetFracBits), .OutBits(OutBits),
+    .Rounding(Rounding), .Overflow(Overflow), .MaxWidth(MaxWidth), .MaxHeight(MaxHeight),
+    .MethodCode(MethodCode), .HasBlindDrift(HasBlindDrift), .HasFfc(HasFfc),
+    .FfcFrames(FfcFrames), .CoefLayoutVersion(CoefLayoutVersion), .CoefWordBits(CoefWordBits),
+    .GainRegBits(GainRegBits), .LevelRegBits(LevelRegBits), .ReadingRegBits(ReadingRegBits),
+    .TRefRegBits(TRefRegBits), .BlindSumRegBits(BlindSumRegBits),
+    .BlindRefRegBits(BlindRefRegBits), .DriftGainRegBits(DriftGainRegBits),
+    .FfcTargetRegBits(FfcTargetRegBits), .TableReadings(TableReadings),
+    .TableReadingBits(TableReadingBits)
+  ) u_dut (
+    .*,
+    .width_o(), .height_o(), .width_m1_o(), .height_m1_o(), .width_is1_o(), .height_is1_o(),
+    .size_dirty_o(), .size_write_o(), .nuc_en_o(), .dpc_en_o(), .coef_sync_o(), .slot_o(),
+    .table_o(), .table_write_o(), .ffc_start_o(), .ffc_frames_o(), .irq_o()
+  );
+
+  irnuc_fv_reset u_reset (.clk_i, .rst_ni);
+  irnuc_fv_axil #(.AddrBits(AddrBits), .MaxOpen(2)) u_axil (
+    .clk_i, .rst_ni,
+    .awaddr_i(s_axil_awaddr_i), .awprot_i(3'b000), .awvalid_i(s_axil_awvalid_i),
+    .awready_i(s_axil_awready_o), .wdata_i(s_axil_wdata_i), .wstrb_i(s_axil_wstrb_i),
+    .wvalid_i(s_axil_wvalid_i), .wready_i(s_axil_wready_o), .bresp_i(s_axil_bresp_o),
+    .bvalid_i(s_axil_bvalid_o), .bready_i(s_axil_bready_i), .araddr_i(s_axil_araddr_i),
+    .arprot_i(3'b000), .arvalid_i(s_axil_arvalid_i), .arready_i(s_axil_arready_o),
+    .rdata_i(s_axil_rdata_o), .rresp_i(s_axil_rresp_o), .rvalid_i(s_axil_rvalid_o),
+    .rready_i(s_axil_rready_i));
+
+`ifdef FORMAL
+  always_comb begin : p_cover
+    if (rst_ni) begin
+      c_read_wait: cover (s_axil_rvalid_o && !s_axil_rready_i && s_axil_bvalid_o);
+      c_two_writes: cover (u_axil.aw_open_q == 2'd2);
+    end
+  end
+`endif
+
+endmodule
