@@ -316,3 +316,90 @@ def tool_versions() -> dict[str, str]:
 
 __all__ = ["DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError", "check",
            "formal_sources", "pdr", "smtbmc", "tool_versions", "write_models"]
+
+
+# ---- equivalence of two netlists (a mutant and its original) -------------------------------
+
+_EQUIV = re.compile(r"Of those cells (\d+) are proven and (\d+) are unproven")
+
+
+def _miter_harness(top: str, gold: str, gate: str, ports: Sequence[tuple[str, str, int]]
+                   ) -> str:
+    """SystemVerilog of a miter: ``gold`` and ``gate`` (netlist modules with the ports of
+    ``top``) on the same inputs from reset, their outputs compared at every cycle out of
+    reset."""
+    ins = [(n, w) for n, d, w in ports if d == "input" and n not in ("clk_i", "rst_ni")]
+    outs = [(n, w) for n, d, w in ports if d == "output"]
+    decl = "".join(f",\n  input logic [{w - 1}:0] {n}" for n, w in ins)
+    wires = "".join(f"  logic [{w - 1}:0] gold_{n}, gate_{n};\n" for n, w in outs)
+
+    def inst(mod: str, side: str) -> str:
+        conns = [".clk_i", ".rst_ni", *[f".{n}({n})" for n, _ in ins],
+                 *[f".{n}({side}_{n})" for n, _ in outs]]
+        return f"  {mod} u_{side} (" + ", ".join(conns) + ");\n"
+
+    gold_all = ", ".join(f"gold_{n}" for n, _ in outs)
+    gate_all = ", ".join(f"gate_{n}" for n, _ in outs)
+    return (f"// The miter of {top}'s original and mutated netlists (irnuc mutate --auto).\n"
+            f"module eq_miter (\n  input logic clk_i,\n  input logic rst_ni{decl}\n);\n"
+            f"{wires}{inst(gold, 'gold')}{inst(gate, 'gate')}"
+            f"  irnuc_fv_reset u_reset (.clk_i, .rst_ni);\n"
+            f"  always_comb begin : p_equal\n    if (rst_ni) begin\n"
+            f"      a_equal: assert ({{{gold_all}}} == {{{gate_all}}});\n"
+            f"    end\n  end\nendmodule\n")
+
+
+def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str, int]],
+                workdir: str | os.PathLike, *, timeout: float = 600.0, depth: int = 30
+                ) -> dict:
+    """Decide whether two netlists of ``top`` (modules ``<top>__gold``, ``<top>__mut``,
+    every flop starting at 0) are equivalent at their ports from reset:
+
+    1. ``equiv_make`` / ``equiv_simple`` / ``equiv_induct`` (Yosys): the two netlists'
+       matching signals proved equal by induction, assuming equal states (both start at
+       0 and reset alike);
+    2. else a miter of the two (the outputs compared at every cycle out of reset) by PDR:
+       proved (equivalent) or a counterexample (not equivalent: a distinguishing input
+       sequence, written as a VCD);
+    3. else (PDR ran out of time) the miter bounded to ``depth`` cycles: a counterexample,
+       or undecided.
+
+    Returns ``{"verdict": "equivalent" | "different" | "undecided", "engine", "seconds",
+    "step", "vcd", "message"}``."""
+    wd = Path(workdir)
+    wd.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    g, m = f"{top}__gold", f"{top}__mut"
+    log = wd / "equiv.log"
+    try:
+        log = _run_yosys(wd, "equiv", [
+            f"read_verilog -sv {Path(gold).resolve()} {Path(gate).resolve()}",
+            "proc", "async2sync", "memory_map", "opt_clean",
+            f"equiv_make {g} {m} equiv", "hierarchy -top equiv", "equiv_simple -seq 2",
+            "equiv_induct -seq 2", "equiv_status"])
+        found = _EQUIV.search(log.read_text(errors="replace"))
+    except ToolError:
+        found = None
+    if found and int(found.group(2)) == 0:
+        return {"verdict": "equivalent", "engine": "equiv_induct",
+                "seconds": round(time.perf_counter() - t0, 2), "step": None, "vcd": None,
+                "message": f"{found.group(1)} matched signals proved equal by induction"}
+    harness = wd / "eq_miter.sv"
+    harness.write_text(_miter_harness(top, g, m, ports))
+    srcs = [Path(gold), Path(gate), FORMAL_DIR / "irnuc_fv_reset.sv", harness]
+    models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",))
+    res = check(models, "pdr", depth, wd / "miter", timeout=timeout)
+    if res.status == "proved":
+        return {"verdict": "equivalent", "engine": "pdr",
+                "seconds": round(time.perf_counter() - t0, 2), "step": None, "vcd": None,
+                "message": "the miter's outputs proved equal in every reachable state"}
+    if res.status != "failed":
+        res = check(models, "bmc", depth, wd / "miter", timeout=timeout)
+    seconds = round(time.perf_counter() - t0, 2)
+    if res.status == "failed":
+        return {"verdict": "different", "engine": res.engine, "seconds": seconds,
+                "step": res.step, "vcd": res.vcd,
+                "message": f"the outputs differ {res.step} cycles after reset"}
+    return {"verdict": "undecided", "engine": res.engine, "seconds": seconds, "step": None,
+            "vcd": None, "message": f"PDR gave no verdict in {timeout:g} s and the outputs "
+                                    f"agree for {depth} cycles ({res.status})"}
