@@ -80,15 +80,18 @@ class Check:
 
 
 def formal_sources(design: Sequence[str | os.PathLike], harness: str,
-                   formal_dir: Path | None = None) -> list[Path]:
-    """The files of a formal model: the design's (dependency order) then the property
-    modules and the harness ``hdl/formal/<harness>.sv``."""
+                   formal_dir: Path | None = None,
+                   generated: Sequence[str | os.PathLike] = ()) -> list[Path]:
+    """The files of a formal model: the design's (dependency order), ``generated`` files
+    (a package the properties import), the property modules the harness names
+    (``irnuc_fv_*``) and the harness ``hdl/formal/<harness>.sv``."""
     base = Path(formal_dir) if formal_dir is not None else FORMAL_DIR
-    props = sorted(p for p in base.glob("irnuc_fv_*.sv"))
     top = base / f"{harness}.sv"
     if not top.is_file():
         raise FormalError(f"no proof harness {top}")
-    return [*map(Path, design), *props, top]
+    names = sorted(set(re.findall(r"\b(irnuc_fv_\w+)\s+(?:#|u_)", top.read_text())))
+    props = [base / f"{n}.sv" for n in names if (base / f"{n}.sv").is_file()]
+    return [*map(Path, design), *map(Path, generated), *props, top]
 
 
 def _read(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],

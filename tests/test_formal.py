@@ -97,6 +97,16 @@ def test_quick_campaign(tmp_path, monkeypatch) -> None:
     assert not root.findall(".//failure")
     bad = dict(s, faults=[dict(s["faults"][0], detected=False)])
     assert len(ET.fromstring(formal.junit(bad)).findall(".//failure")) == 1
+    # The report reads the campaign from the cache (no run): a row per proof and fault.
+    from irnuc.reports.report import render
+    from irnuc.reports.report.phases.cosim import measured_formal
+
+    m = measured_formal()
+    assert m is not None and m["proved"] == len(proofs) and m["detected"] == len(faults)
+    rows = render.formal_rows(m)
+    assert [r[0] for r in rows["proofs"]] == [p.id for p in proofs]
+    assert all(r[4] == "proved" and r[3] == "unbounded" for r in rows["proofs"])
+    assert all(r[3] == "detected" for r in rows["faults"])
     # A second run comes from the cache.
     again = formal.run_campaign(proofs[:1], faults[:1], workers=0)
     assert all(r["cached"] for r in [*again["proofs"], *again["faults"]])
@@ -118,3 +128,24 @@ def test_quick_campaign(tmp_path, monkeypatch) -> None:
     err = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(err) == 1 and "--only nope" in err[0], bad.stderr
     assert not (tmp_path / "o2").exists()
+
+
+@pytest.mark.parametrize("module", ["irnuc_fv_stream", "irnuc_fv_order", "irnuc_fv_video",
+                                    "irnuc_fv_axil", "irnuc_fv_reset", "irnuc_fv_regs"])
+def test_property_modules_lint_clean(module: str, tmp_path) -> None:
+    """``verilator --lint-only -Wall -DFORMAL`` is clean for every property module (the
+    register semantics with minimal's generated map package)."""
+    from irnuc.cosim.verilator import verilator_executable
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.verif.formal_regmap import package
+
+    files = [fv.FORMAL_DIR / f"{module}.sv"]
+    if module == "irnuc_fv_regs":
+        pkg = tmp_path / "irnuc_fv_map.sv"
+        pkg.write_text(package(load_pipeline("minimal")))
+        files.insert(0, pkg)
+    proc = subprocess.run([str(verilator_executable()), "--lint-only", "-Wall", "-DFORMAL",
+                           "--top-module", module, *map(str, files)],
+                          capture_output=True, text=True)
+    report = proc.stdout + proc.stderr
+    assert proc.returncode == 0 and "%Warning" not in report and "%Error" not in report, report

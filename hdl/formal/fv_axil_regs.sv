@@ -1,9 +1,11 @@
 // Proof harness of the AXI4-Lite register file irnuc_axil_regs (`irnuc formal`,
 // docs/formal.md): the AXI4-Lite slave rules of irnuc_fv_axil on its s_axil port (the
-// master's assumed), with every other input free (the framer's events and levels, the FFC
-// unit, TABLE_SEL), and its own checks (irnuc_axil_regs_check with IRNUC_ASSERT). The
-// parameters are the register file's for one configuration (irnuc.cosim.sources.
-// register_file_parameters).
+// master's assumed) and the register semantics of irnuc_fv_regs (responses, reset values,
+// strobes, W1C against a simultaneous event, counters, STATUS.pending and the frame start),
+// with every other input free (the framer's events and levels, the FFC unit, TABLE_SEL),
+// and its own checks (irnuc_axil_regs_check with IRNUC_ASSERT). The parameters are the
+// register file's for one configuration (irnuc.cosim.sources.register_file_parameters), the
+// map package irnuc_fv_map that configuration's (irnuc.verif.formal_regmap).
 module fv_axil_regs
   import irnuc_pkg::*;
 #(
@@ -69,7 +71,8 @@ module fv_axil_regs
   input logic                  in_frame_i,
   input logic                  core_err_i,
   input logic                  ffc_busy_i,
-  input logic                  ffc_done_i
+  input logic                  ffc_done_i,
+  input logic [AddrBits-3:0]   pick_i  // the register irnuc_fv_regs follows (constant)
 );
 
   logic                   s_axil_awready_o, s_axil_wready_o, s_axil_bvalid_o, s_axil_arready_o;
@@ -106,11 +109,37 @@ module fv_axil_regs
     .rdata_i(s_axil_rdata_o), .rresp_i(s_axil_rresp_o), .rvalid_i(s_axil_rvalid_o),
     .rready_i(s_axil_rready_i));
 
+  irnuc_fv_regs #(.AddrBits(AddrBits), .Depth(2)) u_regs (
+    .clk_i, .rst_ni,
+    .awaddr_i(s_axil_awaddr_i), .awvalid_i(s_axil_awvalid_i), .awready_i(s_axil_awready_o),
+    .wdata_i(s_axil_wdata_i), .wstrb_i(s_axil_wstrb_i), .wvalid_i(s_axil_wvalid_i),
+    .wready_i(s_axil_wready_o), .bresp_i(s_axil_bresp_o), .bvalid_i(s_axil_bvalid_o),
+    .bready_i(s_axil_bready_i), .araddr_i(s_axil_araddr_i), .arvalid_i(s_axil_arvalid_i),
+    .arready_i(s_axil_arready_o), .rdata_i(s_axil_rdata_o), .rresp_i(s_axil_rresp_o),
+    .rvalid_i(s_axil_rvalid_o), .rready_i(s_axil_rready_i),
+    // irnuc_fv_map's event order (irnuc.verif.formal_regmap.EVENTS).
+    .ev_i({ffc_done_i, coef_late_i, coef_early_i, eol_late_i, eol_early_i, sof_late_i,
+           sof_early_i, pad_i, drop_i, pix_out_i, beat_i, frame_out_i, frame_start_i}),
+    .start_i, .pick_i);
+
 `ifdef FORMAL
+  logic [AddrBits-3:0] pick_q;
+  logic                init_q = 1'b1;
+  always_ff @(posedge clk_i) begin : p_pick
+    pick_q <= pick_i;
+    init_q <= 1'b0;
+  end
+  always_comb begin : p_env
+    if (!init_q) begin
+      m_pick_constant: assume (pick_i == pick_q);
+    end
+  end
   always_comb begin : p_cover
     if (rst_ni) begin
       c_read_wait: cover (s_axil_rvalid_o && !s_axil_rready_i && s_axil_bvalid_o);
       c_two_writes: cover (u_axil.aw_open_q == 2'd2);
+      c_picked_read: cover (s_axil_rvalid_o && u_regs.ar_q[0] == pick_i && pick_i == 10'd12
+                            && s_axil_rdata_o[0]);
     end
   end
 `endif

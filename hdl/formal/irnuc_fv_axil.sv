@@ -61,13 +61,25 @@ module irnuc_fv_axil #(
   assign ar_fire = arvalid_i && arready_i;
   assign r_fire  = rvalid_i && rready_i;
 
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_stall
+    if (!rst_ni) begin
+      aw_stall_q <= 1'b0;
+      w_stall_q  <= 1'b0;
+      ar_stall_q <= 1'b0;
+      b_stall_q  <= 1'b0;
+      r_stall_q  <= 1'b0;
+      reset_q    <= 1'b1;
+    end else begin
+      aw_stall_q <= awvalid_i && !awready_i;
+      w_stall_q  <= wvalid_i && !wready_i;
+      ar_stall_q <= arvalid_i && !arready_i;
+      b_stall_q  <= bvalid_i && !bready_i;
+      r_stall_q  <= rvalid_i && !rready_i;
+      reset_q    <= 1'b0;
+    end
+  end
+
   always_ff @(posedge clk_i) begin : p_sample
-    aw_stall_q <= rst_ni && awvalid_i && !awready_i;
-    w_stall_q  <= rst_ni && wvalid_i && !wready_i;
-    ar_stall_q <= rst_ni && arvalid_i && !arready_i;
-    b_stall_q  <= rst_ni && bvalid_i && !bready_i;
-    r_stall_q  <= rst_ni && rvalid_i && !rready_i;
-    reset_q    <= !rst_ni;
     aw_q       <= {awaddr_i, awprot_i};
     ar_q       <= {araddr_i, arprot_i};
     w_q        <= {wdata_i, wstrb_i};

@@ -44,6 +44,10 @@ from irnuc.verif.catalogue import catalogue
 #: its widths and modes, at a maximum frame of 3 x 2 pixels (every counter, the drain and
 #: the line logic at a size a solver goes through; the widths are the configuration's).
 PROOF_SIZE = (3, 2)
+#: The depth of the bounded register-semantics checks: reset, then four AXI4-Lite
+#: transactions or so (a write answered in 4 cycles, a read in 4) with events between; PDR
+#: finds no invariant for the followed register's mirror against 32-bit counters in hours.
+REGMAP_DEPTH = 14
 #: The depth of the bounded checks of irnuc_axis_top: the first output pixel of minimal
 #: leaves at cycle 24 and its first frame ends at 25 (the covers), the slower methods later.
 TOP_DEPTH = 40
@@ -70,6 +74,10 @@ class Proof:
     top: str | None = None
     #: in the test suite (a few seconds)
     quick: bool = False
+    #: the harness imports the configuration's register map (irnuc_fv_map)
+    regmap: bool = False
+    #: assertions left out of this proof (a Yosys name pattern; another proof has them)
+    exclude: str = ""
 
     @property
     def formal_top(self) -> str:
@@ -141,7 +149,15 @@ def _proofs() -> tuple[Proof, ...]:
     for name in _configs():
         out.append(Proof(f"axil_regs_{name}", "fv_axil_regs", "irnuc_axil_regs",
                          f"irnuc_axil_regs of {name}: AXI4-Lite slave rules, its own checks",
-                         config=name, cover=12, quick=name == "minimal"))
+                         config=name, cover=12, quick=name == "minimal", regmap=True,
+                         exclude="u_regs.*"))
+    for name in _configs():
+        out.append(Proof(f"axil_regmap_{name}", "fv_axil_regs", "irnuc_axil_regs",
+                         f"irnuc_axil_regs of {name}: the register semantics of "
+                         f"docs/registers.md (responses, reset values, strobes, W1C against "
+                         f"an event, counters, STATUS.pending), for {REGMAP_DEPTH} cycles from "
+                         f"reset", engine="bmc", depth=REGMAP_DEPTH, cover=0, config=name,
+                         regmap=True))
     for name in _configs():
         out.append(Proof(f"axis_top_{name}", "fv_axis_top", "irnuc_axis_top",
                          f"irnuc_axis_top of {name} at {PROOF_SIZE[0]} x {PROOF_SIZE[1]}: "
@@ -156,6 +172,8 @@ PROOFS: tuple[Proof, ...] = _proofs()
 
 _REGS = "axil_regs_minimal"
 _REGS_FFC = "axil_regs_ffc14"
+_MAP = "axil_regmap_minimal"
+_MAP_FFC = "axil_regmap_ffc14"
 
 #: The planted faults: at least one per property (tests/test_formal.py checks it).
 FAULTS: tuple[Fault, ...] = (
@@ -272,6 +290,49 @@ FAULTS: tuple[Fault, ...] = (
           "(catalogue)", mutant="ax_arready_late"),
     Fault("regs_ffc_arready_late", _REGS_FFC, "u_axil.a_open",
           "the same on the FFC register file (catalogue)", mutant="ax_arready_late"),
+    # ---- register semantics (irnuc_fv_regs): the classes the suite let escape ---------------
+    Fault("regs_ro_write_okay", _MAP, "u_regs.a_bresp",
+          "a write to a read-only register answered OKAY (an escaped class)",
+          file="irnuc_axil_regs.sv",
+          find="b_resp_q  <= (|(wsel_q & ~ReadOnly) && !(wsel_q[IxFrameSize] && !size_legal))",
+          replace="b_resp_q  <= (|wsel_q && !(wsel_q[IxFrameSize] && !size_legal))",
+          quick=True),
+    Fault("regs_ffc_status_ro_okay", _MAP_FFC, "u_regs.a_bresp",
+          "FFC_STATUS (read-only) written OKAY on an FFC configuration (catalogue)",
+          mutant="ax_ffc_status_ro_okay"),
+    Fault("regs_unmapped_read_okay", _MAP, "u_regs.a_rresp",
+          "a read outside the map answered OKAY", file="irnuc_axil_regs.sv",
+          find="r_resp_q <= (|rsel_q) ? AxiOkay : AxiSlvErr;", replace="r_resp_q <= AxiOkay;"),
+    Fault("regs_unmapped_read_data", _MAP, "u_regs.a_rdata_unmapped",
+          "a read outside the map returns 1, not 0", file="irnuc_axil_regs.sv",
+          find="    rd_data = '0;\n", replace="    rd_data = 32'(~|rsel_q);\n"),
+    Fault("regs_ctrl_reset", _MAP, "u_regs.a_reset_value",
+          "CTRL.nuc_en resets to 0, not 1 (a reset value: an escaped class)",
+          file="irnuc_axil_regs.sv", find="nuc_en_q     <= 1'(RegCtrlNucEnReset);",
+          replace="nuc_en_q     <= 1'b0;"),
+    Fault("regs_frame_max", _MAP, "u_regs.a_const",
+          "FRAME_MAX reads a width one short", file="irnuc_axil_regs.sv",
+          find="rvals[IxFrameMax] = (32'(MaxWidth) << RegFrameMaxWidthLsb)",
+          replace="rvals[IxFrameMax] = (32'(MaxWidth - 1) << RegFrameMaxWidthLsb)"),
+    Fault("regs_ctrl_strobes", _MAP, "u_regs.a_rw",
+          "CTRL ignores the byte strobes (an unwritten lane's field is cleared: an escaped "
+          "class)", file="irnuc_axil_regs.sv",
+          find="assign ctrl_new = (ctrl_view & ~wmask) | (wdata & CtrlMask);",
+          replace="assign ctrl_new = wdata & CtrlMask;", quick=True),
+    Fault("regs_ffc_frames_strobes", _MAP_FFC, "u_regs.a_rw",
+          "FFC_CTRL.frames ignores the byte strobes (catalogue)",
+          mutant="ax_ffc_frames_strobes"),
+    Fault("regs_w1c_clear_wins", _MAP, "u_regs.a_w1c",
+          "a W1C clear wins over an event in the same cycle (an escaped class)",
+          file="irnuc_axil_regs.sv",
+          find="err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));",
+          replace="err_q    <= (err_ev | err_q) & ~NumErrors'(err_clear >> "
+                  "RegStatusSofEarlyLsb);", quick=True),
+    Fault("regs_counts_idle", _MAP, "u_regs.a_count",
+          "the traffic counters count every cycle (catalogue)", mutant="ax_traffic_counts_idle"),
+    Fault("regs_pending_sticks", _MAP, "u_regs.a_pending",
+          "STATUS.pending stays 1 after the frame start that took the write (catalogue)",
+          mutant="ax_pending_sticks"),
 )
 
 
@@ -350,6 +411,11 @@ def _keep_only(label: str) -> str:
     return f"delete t:$check r:FLAVOR=assert %i n:{glob} n:*.{glob} %u %d"
 
 
+def _drop(pattern: str) -> str:
+    """The Yosys command that deletes the assertions whose name matches ``pattern``."""
+    return f"delete t:$check r:FLAVOR=assert %i n:{pattern} %i"
+
+
 def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = True) -> dict:
     """Run one proof (with ``fault`` planted: its property only, bounded); a JSON-ready
     result, cached by content. A fault's result has ``detected``."""
@@ -371,8 +437,17 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
                                     f"irnuc/verif/formal.py")
                 text = text.replace(find, replace)
             (hdl / file).write_text(text)
+        generated = []
+        if proof.regmap:
+            from irnuc.nuc_fixed import load_pipeline
+            from irnuc.verif.formal_regmap import package
+
+            cfg = load_pipeline(proof.config).replace(max_width=PROOF_SIZE[0],
+                                                      max_height=PROOF_SIZE[1])
+            generated.append(work / "irnuc_fv_map.sv")
+            generated[0].write_text(package(cfg))
         srcs = fv.formal_sources(hdl_sources(proof.design, hdl), proof.harness,
-                                 (hdl / "formal") if hdl else None)
+                                 (hdl / "formal") if hdl else None, generated)
         key = _key(proof, fault, params, srcs)
         name = (fault or proof).id
         cache = cache_dir("formal", "results") / f"{name}-{key}.json"
@@ -382,7 +457,8 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
             return out
         t0 = time.perf_counter()
         engine = "bmc" if fault is not None else proof.engine
-        extra = [_keep_only(fault.property)] if fault is not None else []
+        extra = ([_keep_only(fault.property)] if fault is not None else
+                 [_drop(proof.exclude)] if proof.exclude else [])
         models = fv.write_models(srcs, proof.formal_top, params, work / "model",
                                  aiger=engine == "pdr", extra=extra)
         res = fv.check(models, engine, proof.depth, work / "model")
@@ -520,6 +596,6 @@ def _case(cls: str, r: dict, ok: bool, message: str) -> str:
             + escape(message + trace) + "</failure>\n  </testcase>\n")
 
 
-__all__ = ["FAULTS", "PROOFS", "PROOF_SIZE", "TOP_DEPTH", "Fault", "Proof", "cached_summary",
+__all__ = ["FAULTS", "PROOFS", "PROOF_SIZE", "REGMAP_DEPTH", "TOP_DEPTH", "Fault", "Proof", "cached_summary",
            "formal_digest", "junit", "properties", "run_campaign", "run_proof", "select",
            "summarize", "unplanted_properties"]
