@@ -39,14 +39,9 @@ def test_targets_and_wrapper() -> None:
 
 @pytest.mark.cosim
 @pytest.mark.slow
-def test_small_automatic_campaign(tmp_path, monkeypatch) -> None:
-    from irnuc.common.cache import cache_dir
+def test_small_automatic_campaign(tmp_path, own_cache) -> None:
     from irnuc.cosim import formal
 
-    builds = cache_dir("sim_build")
-    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
-    (tmp_path / "cache").mkdir()
-    (tmp_path / "cache" / "sim_build").symlink_to(builds, target_is_directory=True)
     t = automut.TARGETS["interp_weight"]
     drawn = automut.draw(t, 3)
     # A fixed seed draws the same mutations; another seed others.

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_table, tb_interp_weight, tb_top
-from irnuc.common.cache import cache_dir
+from irnuc.common.cache import cache_dir, read_cached_json
 from irnuc.common.digest import digest
 from irnuc.common.errors import UserError
 from irnuc.common.io import write_text_atomic
@@ -184,13 +184,7 @@ def summarize(results: Sequence[dict]) -> dict:
 
 def cached_summary() -> dict | None:
     """The latest automatic campaign of the current RTL, or None."""
-    path = cache_dir("mutate") / f"auto-{mutate.rtl_digest()}.json"
-    if not path.is_file():
-        return None
-    try:
-        return json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError):
-        return None
+    return read_cached_json(cache_dir("mutate") / f"auto-{mutate.rtl_digest()}.json")
 
 
 __all__ = ["SEED", "TARGETS", "Target", "baseline", "cached_summary", "draw", "run_auto",

@@ -32,7 +32,7 @@ from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
-from irnuc.common.cache import cache_dir
+from irnuc.common.cache import cache_dir, read_cached_json
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.errors import UserError
 from irnuc.common.io import write_text_atomic
@@ -559,13 +559,7 @@ def summarize(proofs: Sequence[dict], faults: Sequence[dict]) -> dict:
 
 def cached_summary() -> dict | None:
     """The latest formal campaign of the current sources, or None."""
-    path = cache_dir("formal") / f"summary-{formal_digest()}.json"
-    if not path.is_file():
-        return None
-    try:
-        return json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError):
-        return None
+    return read_cached_json(cache_dir("formal") / f"summary-{formal_digest()}.json")
 
 
 def junit(summary: dict) -> str:

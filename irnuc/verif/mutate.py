@@ -35,7 +35,7 @@ import irnuc.cocotb_tests
 import irnuc.cosim
 import irnuc.nuc_fixed
 from irnuc.cocotb_tests import tb_top
-from irnuc.common.cache import cache_dir
+from irnuc.common.cache import cache_dir, read_cached_json
 from irnuc.common.digest import digest, files_digest
 from irnuc.common.errors import ToolError, UserError
 from irnuc.common.io import write_text_atomic
@@ -354,13 +354,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
 def cached_summary() -> dict | None:
     """The latest mutation campaign for the current RTL sources (killed, survived,
     equivalent with reasons, total, score, killing test per mutant), or None."""
-    path = cache_dir("mutate") / f"summary-{rtl_digest()}.json"
-    if not path.is_file():
-        return None
-    try:
-        return json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError):
-        return None
+    return read_cached_json(cache_dir("mutate") / f"summary-{rtl_digest()}.json")
 
 
 # ---- several configurations ---------------------------------------------------------------
