@@ -255,6 +255,9 @@ def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
     return {**p, "MethodCode": c["MethodCode"], "HasBlindDrift": c["HasBlindDrift"],
             "HasFfc": c["HasFfc"], "FfcFrames": c["FfcFrames"],
             "CoefLayoutVersion": c["CoefLayoutVersion"],
+            # CONFIG.word_bits: the method's coefficient word (irnuc_axis_top passes its
+            # WordBits; the module's default is two_point's).
+            "CoefWordBits": c["WordBits"],
             **{k: (regs[n].width if n in regs else 0) for k, n in _REG_SLOTS.items()},
             "TableReadings": table.count if table else 0,
             "TableReadingBits": table.width if table else 1}
