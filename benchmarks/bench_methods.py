@@ -69,7 +69,7 @@ def main() -> None:
                               "baseline_ms_per_frame": 1e3 * t_base, "methods": {}}
     for name in pipeline_names(method=None):
         cfg = load_pipeline(name)
-        if cfg.method == "two_point" and name != "typical14":
+        if cfg.plain and name != "typical14":
             continue
         c = random_coefficients(cfg, (h, w), rng)
         t = best_time(lambda c=c: method_top(raw, c, inputs), args.repeats) / n

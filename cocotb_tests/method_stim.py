@@ -3,12 +3,13 @@ FPA readings around the method's breakpoints, and corner frames chosen to hit ev
 coverage bin of the method (``irnuc.cosim.method_coverage``).
 
 Every value comes from the configuration's formats and memory layouts
-(``PipelineConfig.memories`` / ``registers``); every draw takes the caller's generator.
+(``PipelineConfig.memories`` / ``registers``) and the method's hints (``MethodSpec``:
+``draw_register`` for a register of a shape of its own, ``reading_marks``, ``corner``,
+``corner_registers``); every draw takes the caller's generator.
 """
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,27 +54,21 @@ def random_registers(cfg: PipelineConfig, rng: np.random.Generator,
         if r.source != "calibration":
             continue
         lo, hi = field_range(r.width, r.signed)
-        if r.name == "table_readings":
-            k = r.count
-            span = hi - lo + 1
-            gaps = rng.integers(1, max(2, span // (k + 1)), size=k)
-            start = int(rng.integers(lo, max(lo + 1, span - int(gaps.sum()))))
-            out[r.name] = tuple(int(v) for v in start + np.cumsum(gaps) - gaps[0])
-        elif r.name == "t_ref":
-            # Near the middle of the reading range, so both clamps can be reached.
-            mid = (hi + 1) // 2
-            out[r.name] = int(np.clip(mid + rng.integers(-(hi // 8) - 1, hi // 8 + 2), lo, hi))
-        else:
-            out[r.name] = int(_codes(rng, lo, hi, (), biased))
+        own = cfg.base.draw_register(r, rng, lo, hi)
+        out[r.name] = own if own is not None else int(_codes(rng, lo, hi, (), biased))
     return out
 
 
 def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
                         bad_fraction: float = 0.05, biased: bool = False,
                         registers: dict[str, object] | None = None) -> MethodCoefficients:
-    """Every calibration memory's fields drawn over their code ranges; one bad map for all
-    tables (table_interp)."""
+    """Every calibration memory's fields drawn over their code ranges; one bad map, and
+    where several memories have one (table_interp's tables) each memory's that one with a
+    few more pixels of its own (a frame's DPC replaces the pixels flagged in either of its
+    two tables)."""
     bad = rng.random((h, w)) < bad_fraction
+    per_table = sum(1 for m in cfg.memories.values() if m.source == "calibration"
+                    and any(f.name == "bad" for f in m.fields)) > 1
     fields: dict[str, dict[str, np.ndarray]] = {}
     for m in cfg.memories.values():
         if m.source != "calibration":
@@ -81,7 +76,8 @@ def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Gene
         vals: dict[str, np.ndarray] = {}
         for f in m.fields:
             if f.name == "bad":
-                vals[f.name] = bad.copy()
+                own = rng.random((h, w)) < bad_fraction / 2 if per_table else False
+                vals[f.name] = bad | own
             else:
                 lo, hi = field_range(f.width, f.signed)
                 vals[f.name] = _codes(rng, lo, hi, (h, w), biased)
@@ -91,15 +87,10 @@ def random_coefficients(cfg: PipelineConfig, h: int, w: int, rng: np.random.Gene
 
 
 def reading_marks(cfg: PipelineConfig, coeffs: MethodCoefficients) -> list[int]:
-    """The readings where the method's frame values change behaviour: t_ref and the
-    clamps (tc_offset), the table readings and the midpoints between them (table_interp:
-    w = 1/2 on an even span, a rounding tie)."""
-    if cfg.base_method == "tc_offset":
-        lim = (1 << int(cfg.reading_range_bits or 1)) - 1
-        t = int(coeffs.registers["t_ref"])
-        return [t, t - lim - 1, t - lim, t + lim, t + lim + 1, t - 1, t + 1]
-    rs = [int(v) for v in coeffs.registers["table_readings"]]
-    return rs + [(a + b) // 2 for a, b in itertools.pairwise(rs)] + [rs[0] - 1, rs[-1] + 1]
+    """The readings where the method's frame values change behaviour
+    (``MethodSpec.reading_marks``: t_ref and the clamps of tc_offset, the table readings and
+    the midpoints between them of table_interp: w = 1/2 on an even span, a rounding tie)."""
+    return cfg.base.reading_marks(coeffs)
 
 
 def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
@@ -107,7 +98,7 @@ def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
     """An FPA reading for a frame (None for methods without one): anywhere, or near the
     method's breakpoints (:func:`reading_marks`); ``mark`` picks breakpoint ``mark``
     exactly (cyclically)."""
-    if cfg.base_method not in ("tc_offset", "table_interp"):
+    if "fpa" not in cfg.base.readings:
         return None
     hi = (1 << int(cfg.reading_bits or 1)) - 1
     marks = reading_marks(cfg, coeffs)
@@ -131,16 +122,11 @@ def _corner_candidate(cfg: PipelineConfig, rng: np.random.Generator, h: int, w: 
     other candidate's reading is a breakpoint (:func:`reading_marks`, in turn)."""
     c = random_coefficients(cfg, h, w, rng, bad_fraction=0.0, biased=True)
     raw = random_raw(cfg, h, w, rng, biased=True)
-    base = cfg.base_method
-    for name in ("gain", "level"):  # the global registers at 0, their largest code, other
-        r = cfg.registers.get(name)
-        if r is not None and r.source == "calibration" and index % 3 < 2:
+    for name in cfg.base.corner_registers:  # at 0, their largest code, other
+        r = cfg.registers[name]
+        if index % 3 < 2:
             c.registers[name] = (0, (1 << r.width) - 1)[index % 3]
-    if base == "piecewise":
-        # Knees exactly at some pixels' codes (d = 0).
-        kf = cfg.format("knee").frac_bits
-        at = rng.random((h, w)) < 0.25
-        c.fields["coeffs"]["knee"] = np.where(at, raw << kf, c.fields["coeffs"]["knee"])
+    cfg.base.corner(c, raw, rng, index)
     return FramePlan(coeffs=c, raw=raw, reading=random_reading(
         cfg, c, rng, mark=index // 2 if index % 2 == 0 else None))
 
@@ -170,3 +156,47 @@ def corner_frames(cfg: PipelineConfig, rng: np.random.Generator, h: int = 8, w: 
         left -= got
     assert not left, f"{cfg.name}: no corner frame reaches {sorted(left)}"
     return chosen
+
+
+def ffc_calibration(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
+                 kind: str) -> MethodCoefficients:
+    """A calibration for an FFC sequence: ``random``: every field over its code range;
+    ``camera``: gains near 1, small offsets and quadratic terms (the corrections then stay
+    inside the ffc format)."""
+    c = random_coefficients(cfg, h, w, rng, biased=kind == "random")
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    co = fields["coeffs"]
+    co["bad"] = co["bad"].copy()
+    co["bad"][0, 0] = False  # a target needs a good pixel
+    if kind == "random":
+        return MethodCoefficients(cfg, fields, c.registers)
+    if "gain" in co:
+        one = 1 << cfg.gain_frac_bits
+        co["gain"] = one + rng.integers(-one // 8, one // 8 + 1, size=(h, w))
+    co["offset"] = rng.integers(-(1 << (cfg.offset_frac_bits + 6)),
+                                1 << (cfg.offset_frac_bits + 6), size=(h, w))
+    if "quad" in fields:
+        fields["quad"]["quad"] = rng.integers(-(1 << 9), 1 << 9, size=(h, w))
+    for m in ("tc", "tg"):
+        for k in fields.get(m, {}):
+            fields[m][k] = rng.integers(-64, 65, size=(h, w))
+    regs = dict(c.registers)
+    if "gain" in regs:
+        regs["gain"] = 1 << cfg.gain_frac_bits
+    return MethodCoefficients(cfg, fields, regs)
+
+
+def ffc_raws(cfg: PipelineConfig, shutter: list[int], h: int, w: int, rng: np.random.Generator,
+          kind: str) -> list[np.ndarray]:
+    """The frames of an FFC sequence: scene frames (random codes) and shutter frames (a
+    level with a fixed pattern and temporal noise; ``random``: any codes)."""
+    top = (1 << cfg.adc_bits) - 1
+    level = int(rng.integers(top // 4, 3 * top // 4))
+    pattern = rng.integers(-200, 201, size=(h, w))
+    out = []
+    for s in shutter:
+        if s and kind != "random":
+            out.append(np.clip(level + pattern + rng.integers(-8, 9, size=(h, w)), 0, top))
+        else:
+            out.append(random_raw(cfg, h, w, rng, biased=kind == "random"))
+    return out

@@ -13,6 +13,10 @@ words themselves (the offsets and accumulators the host feeds, the written-back 
 expected) and the output pixels from ``cosim.stages.ffc_run`` (one run of
 ``nuc_fixed.method_top`` with those readings), bit for bit, frame by frame (tlast on each
 frame's last word). ``FFC_STATUS`` and ``IRQ_STATUS.ffc_done`` against the register model.
+``ffc_refresh_idle_backpressure`` makes every register access of the sequence through the
+firmware's driver (:mod:`irnuc.cosim.driver`, the Python twin of ``firmware/irnuc_driver.c``)
+over the register model peakrdl-python generates from the map: bring-up, calibration,
+interrupt enables, FFC start, the wait for its end, the status.
 The FFC coverpoints (``cosim.axis_coverage``) are sampled from each sequence that passed.
 Small frames.
 """
@@ -28,11 +32,10 @@ from cocotb.triggers import ClockCycles, SimTimeoutError, with_timeout
 from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.method_stim import random_reading
+from irnuc.cocotb_tests.axis_bench import TOP, Bench, make_bench, sample
+from irnuc.cocotb_tests.method_stim import ffc_calibration, ffc_raws, random_reading
 from irnuc.cocotb_tests.streams import CLK_PERIOD_NS, pause_pattern
-from irnuc.cocotb_tests.tb_axis import TOP, Bench, _bench, _sample
-from irnuc.cocotb_tests.tb_ffc import _calibration, _raws
-from irnuc.cosim import coverage
+from irnuc.cosim import coverage, driver
 from irnuc.cosim.axis_coverage import ffc_axis_classes
 from irnuc.cosim.stages import FfcRun, StageScoreboard, ffc_run
 from irnuc.nuc_fixed import MethodCoefficients
@@ -76,8 +79,8 @@ class FfcStreams:
                 drv.pause = False
             else:
                 drv.set_pause_generator(pause_pattern(name, self.bench.rng))
-        _sample("stream.idle", idle)
-        _sample("stream.backpressure", bp)
+        sample("stream.idle", idle)
+        sample("stream.backpressure", bp)
 
 
 async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
@@ -140,7 +143,8 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                            ffc_bp: str | None = None, resize_after_run: bool = False,
                            size: tuple[int, int] = (H, W),
                            resize_in_run: tuple[int, int] | None = None,
-                           second_run: int | None = None, traffic: bool = False) -> None:
+                           second_run: int | None = None, traffic: bool = False,
+                           firmware: bool = False) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
@@ -158,11 +162,14 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     this many shutter frames) in the middle of that open frame: a second run, checked like
     the first (FFC_STATUS busy after its start, done at its end). ``traffic``: random
     register traffic (cocotb_tests.axil_traffic) before the sequence and while it streams
-    (W1C clears of STATUS, read-only, reserved and unmapped offsets, reads anywhere)."""
+    (W1C clears of STATUS, read-only, reserved and unmapped offsets, reads anywhere).
+    ``firmware``: the register accesses are the firmware driver's (irnuc.cosim.driver:
+    probe, configure, load_calibration, set_reading, enable_irq, ffc_start, ffc_wait,
+    read_status), through the generated register model."""
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
-    bench = await _bench(dut, salt)
+    bench = await make_bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
     t = None
@@ -173,7 +180,15 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         t.hold_readies(True)
         await t.quiet_ops(40)
         await t.restore()
-    await bench.frame_size(fh, fw)
+    regs = bench.registers() if firmware else None
+    info = None
+    if regs is not None:
+        rc, info = await driver.probe(regs)
+        assert rc == driver.OK and info is not None, f"driver.probe: {rc}"
+        rc = await driver.configure(regs, info, cfg.base_method, fw, fh)
+        assert rc == driver.OK, f"driver.configure: {rc}"
+    else:
+        await bench.frame_size(fh, fw)
     for reg in ("FFC_CTRL", "FFC_STATUS"):
         await bench.check(reg)
     n = int(cfg.ffc_frames or 1)
@@ -187,17 +202,21 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     last_start, last_count = max(runs.items())
     shutter = ffc_shutter_flags(last_start + last_count + 3, runs)
     framing = ffc_framing(cfg, shutter, start=last_start)
-    c = _calibration(cfg, fh, fw, rng, "camera")
-    for name, value in c.registers.items():  # tc_offset: T_REF
-        await bench.write_method_register(name, int(value))
+    c = ffc_calibration(cfg, fh, fw, rng, "camera")
+    if regs is not None:
+        await driver.load_calibration(regs, driver.Calibration(**{
+            name: int(value) for name, value in c.registers.items()}))
+    else:
+        for name, value in c.registers.items():  # tc_offset: T_REF
+            await bench.write_method_register(name, int(value))
     readings = [random_reading(cfg, c, rng) for _ in shutter]
     sizes = [(fh, fw)] * after + [resize_in_run or (fh, fw)] * (len(shutter) - after)
     golden = bench.env.golden
     if resize_in_run is None:
-        run = ffc_run(c, _raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
+        run = ffc_run(c, ffc_raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
                       shutter, readings=readings, golden=golden)
     else:
-        run = _joined(*(ffc_run(cc, _raws(cfg, [int(v) for v in sh], *shape, rng, "camera"),
+        run = _joined(*(ffc_run(cc, ffc_raws(cfg, [int(v) for v in sh], *shape, rng, "camera"),
                                 sh, readings=rd, golden=golden)
                         for cc, sh, shape, rd in (
                             (c, shutter[:after], (fh, fw), readings[:after]),
@@ -216,11 +235,21 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
 
     cbits = cfg.memories["ffc_offset"].word_bits
     done_bit = bench.model.map["IRQ_STATUS"].field("ffc_done")
-    await bench.write("IRQ_ENABLE", 1 << bench.model.map["IRQ_ENABLE"].field("ffc_done").lsb)
+    if regs is not None:
+        await driver.enable_irq(regs, error=1, ffc_done=1)
+    else:
+        await bench.write("IRQ_ENABLE", 1 << bench.model.map["IRQ_ENABLE"].field("ffc_done").lsb)
     bench.patterns(idle, idle, bp)
     s.patterns(ffc_idle, ffc_bp)
+
+    async def set_reading(value: int) -> None:
+        if regs is not None:
+            await driver.set_reading(regs, value)
+        else:
+            await bench.write_method_register("reading", value)
+
     if readings[0] is not None:
-        await bench.write_method_register("reading", readings[0])
+        await set_reading(readings[0])
     bench.send(*video, *coef)
     for k, f in enumerate(run.foff_in):
         assert framing.foff_in[k]
@@ -234,20 +263,23 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     seen: dict[str, int] = {}
 
     async def write_ffc(frames: int = count, again: bool = False) -> None:
-        await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
-                          | (frames << ctrl.field("frames").lsb))
+        if regs is not None and info is not None:
+            assert await driver.ffc_start(regs, info, frames) == driver.OK
+        else:
+            await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
+                              | (frames << ctrl.field("frames").lsb))
         seen["write_beat" if not again else "second_beat"] = bench.beats_in
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
         m.set_live("FFC_STATUS", "done", 0)  # a start clears done
         await bench.check("FFC_STATUS")
-        _sample("axis.ffc.status", "busy")
+        sample("axis.ffc.status", "busy")
         if not again:
             assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
         else:
             # The first run finished: done then, IRQ_STATUS.ffc_done cleared for the second.
             await bench.write("IRQ_STATUS", done_bit.mask)
-            _sample("axis.ffc.runs", "second")
+            sample("axis.ffc.runs", "second")
 
     async def write_ffc_again() -> None:
         await write_ffc(second_run, again=True)
@@ -256,7 +288,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         """READING of frame k + 1, written while frame k streams (it must land before
         frame k + 1 starts: the core takes it at that frame start)."""
         async def write() -> None:
-            await bench.write_method_register("reading", int(readings[k + 1]))
+            await set_reading(int(readings[k + 1]))
             assert bench.beats_in < starts[k + 1], (
                 f"READING of frame {k + 1} written after that frame started "
                 f"({bench.beats_in} beats taken)")
@@ -342,25 +374,41 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         assert last - first + 1 == 2 * fh * fw, (
             f"the last two frames' {2 * fh * fw} pixels took {last - first + 1} cycles; "
             f"idle/stalled cycles by port {window}")
-        _sample("stream.back_to_back", "frames")
+        sample("stream.back_to_back", "frames")
 
     assert framing.done is not None, "the sequence does not finish the FFC"
     m.set_live("FFC_STATUS", "busy", 0)
     m.set_live("FFC_STATUS", "done", 1)
-    await bench.check("FFC_STATUS")
-    _sample("axis.ffc.status", "done")
-    irq = await bench.read("IRQ_STATUS")
-    assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
+    m.set_live("IRQ_STATUS", "ffc_done", 1)
+    m.set_live("IRQ_STATUS", "frame_done", 1)
+    sample("axis.ffc.status", "done")
     assert int(dut.irq_o.value) == 1, "irq_o is 0 with IRQ_STATUS.ffc_done and its enable"
-    _sample("axis.ffc.irq", "ffc_done")
-    assert await bench.read("FRAMES_IN") == len(raws)
-    assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
-    # a start clears done
-    await bench.write("IRQ_STATUS", done_bit.mask)
-    irq = await bench.read("IRQ_STATUS")
-    assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
-    assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
-    _sample("axis.ffc.irq", "cleared")
+    sample("axis.ffc.irq", "ffc_done")
+    if regs is not None:
+        # The firmware's end of the run: FFC_STATUS.done polled, IRQ_STATUS.ffc_done
+        # cleared, the status read (its sticky bits cleared).
+        assert await driver.ffc_wait(regs, 4) == driver.OK
+        await bench.check("IRQ_STATUS")
+        await ClockCycles(dut.clk_i, 2)
+        assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+        st = await driver.read_status(regs)
+        assert (st.frames_in, st.frames_out) == (len(raws), len(shown)), st
+        assert st.irq_status == 1 << bench.model.map["IRQ_STATUS"].field("frame_done").lsb
+        assert not st.status & 0x3F and not (st.sof_errors | st.eol_errors | st.coef_errors)
+        await bench.check("IRQ_STATUS")
+        sample("axis.ffc.irq", "cleared")
+    else:
+        await bench.check("FFC_STATUS")
+        irq = await bench.read("IRQ_STATUS")
+        assert (irq & done_bit.mask) >> done_bit.lsb == 1, f"IRQ_STATUS 0x{irq:x}: no ffc_done"
+        assert await bench.read("FRAMES_IN") == len(raws)
+        assert await bench.read("FRAMES_OUT") == len(shown), "held frames are not output"
+        # a start clears done
+        await bench.write("IRQ_STATUS", done_bit.mask)
+        irq = await bench.read("IRQ_STATUS")
+        assert not irq & done_bit.mask, f"IRQ_STATUS 0x{irq:x} after its W1C"
+        assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+        sample("axis.ffc.irq", "cleared")
     if coverage.enabled():
         pattern_in = idle if idle == ffc_idle else "mixed"
         pattern_out = bp if bp == ffc_bp else "mixed"
@@ -383,8 +431,11 @@ async def ffc_refresh_full_rate(dut) -> None:
 
 @cocotb.test()
 async def ffc_refresh_idle_backpressure(dut) -> None:
-    """The refresh with idle cycles on every input and backpressure on every output."""
-    await refresh_sequence(dut, 41, None, "random", "random", "ffc refresh idle/bp")
+    """The refresh with idle cycles on every input and backpressure on every output, every
+    register access the firmware driver's (irnuc.cosim.driver over the generated register
+    model)."""
+    await refresh_sequence(dut, 41, None, "random", "random", "ffc refresh idle/bp",
+                           firmware=True)
 
 
 @cocotb.test()

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import cocotb
 
+from irnuc.cocotb_tests.axis_bench import Bench, export, make_bench, sample
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
-from irnuc.cocotb_tests.tb_axis import Bench, _bench, _export, _sample
 from irnuc.cosim.stream import coef_stream_bits, frame_drive
 from irnuc.nuc_fixed.axis import FrameSettings, coef_beats, frame_word, video_beats
 from irnuc.nuc_fixed.config import BASE_METHODS
@@ -60,7 +60,7 @@ async def _set_frame_registers(bench: Bench, reading: int | None,
         await bench.write_method_register("reading", reading)
     if c is not None and bench.cfg.has("blind_drift"):
         await bench.write_method_register("blind_sum", _blind_sum(bench, c))
-        _sample("axis.drift.blind_sum", "between_frames")
+        sample("axis.drift.blind_sum", "between_frames")
 
 
 @cocotb.test()
@@ -70,7 +70,7 @@ async def method_registers(dut) -> None:
     coefficient word (irnuc.cosim.stream's layout, a second derivation); the method's
     registers read back what was written, and only from a frame start on do they reach
     the core (STATUS.pending)."""
-    bench = await _bench(dut, 20)
+    bench = await make_bench(dut, 20)
     m, cfg = bench.model, bench.cfg
     for r in m.map.registers:
         await bench.check(r.offset)
@@ -83,11 +83,11 @@ async def method_registers(dut) -> None:
             continue
         value = int(bench.rng.integers(0, 1 << r.width))
         await bench.write_method_register(name, value)
-        await bench.check(f"{name.upper()}_LO")
-        await bench.check(f"{name.upper()}_HI")
+        for reg in bench.slot(name):
+            await bench.check(reg)
         assert bench.method_registers()[name] == value
     await bench.check("STATUS")
-    _export()
+    export()
 
 
 @cocotb.test()
@@ -97,17 +97,17 @@ async def method_register_traffic(dut) -> None:
     methods' reserved; frames of a random calibration streamed with traffic."""
     from irnuc.cocotb_tests.axil_traffic import register_traffic as traffic
 
-    bench = await _bench(dut, 25)
+    bench = await make_bench(dut, 25)
 
     def frames(b: Bench, h: int, w: int):
         c = random_coefficients(b.cfg, h, w, b.rng, bad_fraction=0.2)
         raw = random_raw(b.cfg, h, w, b.rng)
         # The READING the frame takes (its register as the model holds it).
-        reading = (b.model.get("READING_LO") if "reading" in b.cfg.registers else None)
+        reading = b.method_registers().get("reading")
         return video_beats([raw]), coef_beats([frame_drive(c, reading).words])
 
     await traffic(bench, frames)
-    _export()
+    export()
 
 
 @cocotb.test()
@@ -116,7 +116,7 @@ async def method_frames_between(dut) -> None:
     between frames (tc_offset; the other methods their registers), under idle and
     backpressure, then one frame with NUC and DPC off (the neutral word and frame word):
     bit for bit against nuc_fixed.method_top."""
-    bench = await _bench(dut, 21)
+    bench = await make_bench(dut, 21)
     c = await _calibration(bench)
     patterns = ("none", "random", "bursty", "alternate")
     results = []
@@ -138,7 +138,7 @@ async def method_frames_between(dut) -> None:
                           label="nuc and dpc off")
     results.append(res)
     await bench.check_counts(results)
-    _export()
+    export()
 
 
 @cocotb.test()
@@ -146,7 +146,7 @@ async def method_reading_mid_frame(dut) -> None:
     """The method's registers written in the middle of a frame (READING, T_REF, GAIN or
     LEVEL) change only the frames that start after the write: three frames back to back,
     a write in frame 0 and one in frame 1."""
-    bench = await _bench(dut, 22)
+    bench = await make_bench(dut, 22)
     cfg = bench.cfg
     c = await _calibration(bench)
     names = [n for n, r in cfg.registers.items() if r.count == 1]
@@ -170,7 +170,7 @@ async def method_reading_mid_frame(dut) -> None:
             for n, value in v.items():
                 await bench.write_method_register(n, value)
             if "blind_sum" in v:
-                _sample("axis.drift.blind_sum", "mid_frame")
+                sample("axis.drift.blind_sum", "mid_frame")
         return write
 
     res = await bench.run(video_beats(raws), coef_beats(words), settings,
@@ -179,8 +179,8 @@ async def method_reading_mid_frame(dut) -> None:
                           idle="random", coef_idle="random", bp="random",
                           label="registers mid frame")
     assert [f.frame_word for f in res.frames] == [s.frame_word for s in settings]
-    _sample("stream.back_to_back", "frames")  # three frames in one stream
-    _export()
+    sample("stream.back_to_back", "frames")  # three frames in one stream
+    export()
 
 
 @cocotb.test()
@@ -188,7 +188,7 @@ async def method_tiny_frames(dut) -> None:
     """Frames of one pixel back to back at full rate, then under idle and backpressure
     (blind_drift: a blind item and a drift code per frame, each frame waiting for its
     own): bit for bit."""
-    bench = await _bench(dut, 23)
+    bench = await make_bench(dut, 23)
     cfg = bench.cfg
     c = await _calibration(bench, 1, 1)
     reading = _reading(bench, c)
@@ -203,4 +203,4 @@ async def method_tiny_frames(dut) -> None:
         assert len(res.frames) == len(raws)
         results.append(res)
     await bench.check_counts(results)
-    _export()
+    export()

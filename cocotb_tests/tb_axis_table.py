@@ -14,8 +14,8 @@ import cocotb
 import numpy as np
 from cocotb.triggers import RisingEdge
 
+from irnuc.cocotb_tests.axis_bench import Bench, export, make_bench, sample
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, reading_marks
-from irnuc.cocotb_tests.tb_axis import Bench, _bench, _export, _sample
 from irnuc.nuc_fixed.axis import FrameSettings, coef_beats, table_pair_words, video_beats
 from irnuc.nuc_fixed.tempcomp import interp_weight
 
@@ -41,15 +41,15 @@ async def _settled(bench: Bench, want: int, tries: int = 12) -> int:
         if got == want:
             w, j = want & 0xFF_FFFF, want >> 24 & 0xF
             if want >> 29 & 1:
-                _sample("axis.table.sel", "error")
+                sample("axis.table.sel", "error")
             else:
-                _sample("axis.table.sel", "valid")
-                _sample("axis.table.j", str(j))
-                _sample("axis.table.weight", "zero" if w == 0 else "one" if w == one
+                sample("axis.table.sel", "valid")
+                sample("axis.table.j", str(j))
+                sample("axis.table.weight", "zero" if w == 0 else "one" if w == one
                         else "between")
             return busy
         assert got == 0, f"TABLE_SEL reads 0x{got:08x}; 0 or 0x{want:08x} expected"
-        _sample("axis.table.sel", "computing")
+        sample("axis.table.sel", "computing")
         busy += 1
     raise AssertionError(f"TABLE_SEL not valid after {tries} reads (want 0x{want:08x})")
 
@@ -70,7 +70,7 @@ async def table_sel_readback(dut) -> None:
     rewritten: j and the weight of interp_weight, never a value but 0 (being computed) or
     the expected one; a read straight after a write sees the computation (valid 0). Reset
     value 0 (nothing written yet)."""
-    bench = await _bench(dut, 40)
+    bench = await make_bench(dut, 40)
     cfg = bench.cfg
     assert await bench.read("TABLE_SEL") == 0
     busy, js, ws = 0, set(), set()
@@ -89,7 +89,7 @@ async def table_sel_readback(dut) -> None:
     assert js == set(range(int(cfg.tables) - 1)), js
     assert {0, 1 << cfg.format("weight").frac_bits} <= ws, ws
     assert busy > 0, "no read saw TABLE_SEL being computed"
-    _export()
+    export()
 
 
 class _Regs:
@@ -104,7 +104,7 @@ async def table_sel_error(dut) -> None:
     """Table readings that do not increase strictly (two equal, then decreasing): TABLE_SEL
     reads error with j = weight = 0 and the frame takes weight 0 (its lower table's words
     unweighted); readings made increasing again clear it."""
-    bench = await _bench(dut, 41)
+    bench = await make_bench(dut, 41)
     cfg = bench.cfg
     await bench.frame_size(H, W)
     c = random_coefficients(cfg, H, W, bench.rng, bad_fraction=0.2)
@@ -133,7 +133,7 @@ async def table_sel_error(dut) -> None:
                                    [bench.settings()], idle="bursty", coef_idle="alternate",
                                    bp="alternate", label="increasing again"))
     await bench.check_counts(results)
-    _export()
+    export()
 
 
 @cocotb.test()
@@ -144,7 +144,7 @@ async def frame_start_waits(dut) -> None:
     and written in the second half of the frame before it (a gap before the next frame's
     first beat); each frame bit for bit with the weight of its own reading (tables j and
     j + 1 of it, whose words differ)."""
-    bench = await _bench(dut, 42)
+    bench = await make_bench(dut, 42)
     cfg = bench.cfg
     wf = cfg.format("weight").frac_bits
     await bench.frame_size(H, W)
@@ -174,7 +174,7 @@ async def frame_start_waits(dut) -> None:
     # s_axis_video's two-entry buffer takes two beats whatever the framer does; the third
     # enters once the framer took the first (the frame started).
     assert taken[2] - written >= wf + 5, (written, taken[:3])
-    _sample("axis.table.held", "between_frames")
+    sample("axis.table.held", "between_frames")
     # In the frame before: frame 1 takes the new reading, after a gap.
     await bench.write_method_register("reading", t0)
     await _settled(bench, _sel(bench, iw0.j, iw0.w))
@@ -195,6 +195,6 @@ async def frame_start_waits(dut) -> None:
     gaps = np.diff(taken[H * W - 2:H * W + 4])
     assert gaps.max() > 1, f"no gap in the beats around the frame start: {gaps}"
     assert (np.diff(taken[:H * W - 2]) == 1).all(), "gaps inside the first frame"
-    _sample("axis.table.held", "in_frame_before")
-    _sample("stream.back_to_back", "frames")
-    _export()
+    sample("axis.table.held", "in_frame_before")
+    sample("stream.back_to_back", "frames")
+    export()

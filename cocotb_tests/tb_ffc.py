@@ -18,7 +18,7 @@ import numpy as np
 from cocotb.triggers import ClockCycles
 
 from irnuc.cocotb_tests import tb_lib
-from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
+from irnuc.cocotb_tests.method_stim import ffc_calibration, ffc_raws, random_reading
 from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
 from irnuc.cosim import coverage
 from irnuc.cosim.scoreboard import Scoreboard
@@ -50,54 +50,11 @@ async def _setup(dut, salt: int) -> tb_lib.Env:
     return env
 
 
-def _calibration(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,
-                 kind: str) -> MethodCoefficients:
-    """``random``: every field over its code range; ``camera``: gains near 1, small
-    offsets and quadratic terms (the corrections then stay inside the ffc format)."""
-    c = random_coefficients(cfg, h, w, rng, biased=kind == "random")
-    fields = {m: dict(v) for m, v in c.fields.items()}
-    co = fields["coeffs"]
-    co["bad"] = co["bad"].copy()
-    co["bad"][0, 0] = False  # a target needs a good pixel
-    if kind == "random":
-        return MethodCoefficients(cfg, fields, c.registers)
-    if "gain" in co:
-        one = 1 << cfg.gain_frac_bits
-        co["gain"] = one + rng.integers(-one // 8, one // 8 + 1, size=(h, w))
-    co["offset"] = rng.integers(-(1 << (cfg.offset_frac_bits + 6)),
-                                1 << (cfg.offset_frac_bits + 6), size=(h, w))
-    if "quad" in fields:
-        fields["quad"]["quad"] = rng.integers(-(1 << 9), 1 << 9, size=(h, w))
-    for m in ("tc", "tg"):
-        for k in fields.get(m, {}):
-            fields[m][k] = rng.integers(-64, 65, size=(h, w))
-    regs = dict(c.registers)
-    if "gain" in regs:
-        regs["gain"] = 1 << cfg.gain_frac_bits
-    return MethodCoefficients(cfg, fields, regs)
-
-
-def _raws(cfg: PipelineConfig, shutter: list[int], h: int, w: int, rng: np.random.Generator,
-          kind: str) -> list[np.ndarray]:
-    """Scene frames (random codes) and shutter frames (a level with a fixed pattern and
-    temporal noise; ``random``: any codes)."""
-    top = (1 << cfg.adc_bits) - 1
-    level = int(rng.integers(top // 4, 3 * top // 4))
-    pattern = rng.integers(-200, 201, size=(h, w))
-    out = []
-    for s in shutter:
-        if s and kind != "random":
-            out.append(np.clip(level + pattern + rng.integers(-8, 9, size=(h, w)), 0, top))
-        else:
-            out.append(random_raw(cfg, h, w, rng, biased=kind == "random"))
-    return out
-
-
 def _run_of(cfg: PipelineConfig, golden: PipelineConfig, rng: np.random.Generator,
             shutter: list[int], shape: tuple[int, int], kind: str = "camera") -> FfcRun:
-    c = _calibration(cfg, *shape, rng, kind)
+    c = ffc_calibration(cfg, *shape, rng, kind)
     readings = [random_reading(cfg, c, rng) for _ in shutter]
-    return ffc_run(c, _raws(cfg, shutter, *shape, rng, kind), [bool(s) for s in shutter],
+    return ffc_run(c, ffc_raws(cfg, shutter, *shape, rng, kind), [bool(s) for s in shutter],
                    readings=readings, golden=golden)
 
 
@@ -259,6 +216,37 @@ async def random_calibrations(dut) -> None:
     seq = [0] + [1] * n + [0, 0] + [1] * n + [1, 0]
     run = _run_of(env.cfg, env.golden, env.rng, seq, (4, 8), kind="random")
     await run_sequence(dut, run, env.golden, env.rng, idle="random", backpressure="random")
+
+
+@cocotb.test()
+async def no_good_pixel_keeps_corrections(dut) -> None:
+    """A calibration whose every pixel is bad: a mean frame without a good pixel gives no
+    target (the golden model's None; the RTL's division by 2 n = 0 must not be used), so
+    the refresh frame keeps the corrections it reads and writes them back unchanged
+    (m_foff), and ffc_kept_o says so; from nonzero corrections, two runs, exact."""
+    env = await _setup(dut, 6)
+    cfg = env.cfg
+    n = _n(cfg)
+    c = ffc_calibration(cfg, 3, 5, env.rng, "camera")
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    fields["coeffs"]["bad"] = np.ones((3, 5), dtype=bool)
+    c = MethodCoefficients(cfg, fields, c.registers)
+    lo = -(1 << (cfg.format("ffc").bits - 1))
+    start = env.rng.integers(lo, -lo, size=(3, 5))
+    seq = [0] + [1] * n + [0, 0] + [1] * n + [0]
+    readings = [random_reading(cfg, c, env.rng) for _ in seq]
+    run = ffc_run(c, ffc_raws(cfg, seq, 3, 5, env.rng, "camera"), [bool(s) for s in seq],
+                  readings=readings, golden=env.golden, offset=start)
+    assert len(run.kept) == 2 and all(t == 0 for t in run.targets)
+    refreshed = [f for f in run.foff_out if f is not None]
+    assert refreshed and all(np.array_equal(f, start) for f in refreshed)
+    await run_sequence(dut, run, env.golden, env.rng, backpressure="random")
+    assert int(dut.ffc_kept_o.value) == 1, "ffc_kept_o low after a mean frame of bad pixels"
+    # A good pixel again: a target, and the flag falls with the next division.
+    ok = _run_of(cfg, env.golden, env.rng, [0] + [1] * n + [0, 0], (3, 5))
+    assert not ok.kept
+    await run_sequence(dut, ok, env.golden, env.rng)
+    assert int(dut.ffc_kept_o.value) == 0, "ffc_kept_o high after a target was taken"
 
 
 @cocotb.test()

@@ -30,6 +30,7 @@ from irnuc.cocotb_tests.streams import (
     start_clock_and_reset,
 )
 from irnuc.cosim import coverage
+from irnuc.cosim.methods import MethodFrame
 from irnuc.cosim.metrics import record
 from irnuc.cosim.scoreboard import Scoreboard, ScoreResult, TopScoreboard
 from irnuc.nuc_fixed import PipelineConfig, nuc_dpc_top, pack_words, unpack_words
@@ -218,3 +219,27 @@ def check_top_widths(dut: SimHandleBase, cfg: PipelineConfig) -> None:
     assert got == (cfg.adc_bits, cfg.word_bits, cfg.out_bits), (
         f"pixel, word and output widths {got}; the configuration says "
         f"{(cfg.adc_bits, cfg.word_bits, cfg.out_bits)}")
+
+
+def method_sources(dut, frames: list[MethodFrame], rng: np.random.Generator, idle_pix,
+                   idle_coef, garbage: bool) -> tuple[Source, Source]:
+    """The two sources of a method's top (``s_pix`` with the frame word, ``s_coef``; the
+    frame size travels with the pixels); with ``garbage`` the frame word of every pixel but a
+    frame's first is random (the RTL reads it at sof only)."""
+    pix_bus = StreamBus.from_prefix(dut, "s_pix", extra=("frame_width_i", "frame_height_i"))
+    fbits = pix_bus.width("frame")
+    cols: dict[str, list[np.ndarray]] = {k: [] for k in pix_bus.names}
+    for fr in frames:
+        h, w = fr.raw.shape
+        sof, eol = markers(h, w)
+        word = np.full(h * w, fr.drive.frame_word, dtype=object)
+        if garbage and h * w > 1:
+            word[1:] = [int(v) for v in rng.integers(0, 1 << min(fbits, 62), size=h * w - 1)]
+        for k, v in (("data", fr.raw.ravel()), ("sof", sof), ("eol", eol), ("frame", word),
+                     ("frame_width", np.full(h * w, w)), ("frame_height", np.full(h * w, h))):
+            cols[k].append(np.asarray(v, dtype=object))
+    pix = Source(pix_bus, {k: np.concatenate(v) for k, v in cols.items()}, idle_pix, rng)
+    coef = Source(StreamBus.from_prefix(dut, "s_coef"),
+                  {"data": np.concatenate([f.drive.words.ravel() for f in frames])},
+                  idle_coef, rng)
+    return pix, coef

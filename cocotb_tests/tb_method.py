@@ -28,7 +28,7 @@ from irnuc.cocotb_tests.method_stim import (
     random_reading,
     random_registers,
 )
-from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
+from irnuc.cocotb_tests.streams import Sink, StreamBus, reset, run_streams
 from irnuc.cosim import coverage
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS
 from irnuc.cosim.methods import MethodFrame, MethodScoreboard, golden_frames
@@ -66,29 +66,6 @@ def _frames(plans: list[FramePlan], golden: PipelineConfig) -> list[MethodFrame]
     return out
 
 
-def _sources(dut, frames: list[MethodFrame], rng: np.random.Generator, idle_pix, idle_coef,
-             garbage: bool) -> tuple[Source, Source]:
-    """The two sources (the frame size travels with the pixels); with ``garbage`` the frame
-    word of every pixel but a frame's first is random (the RTL reads it at sof only)."""
-    pix_bus = StreamBus.from_prefix(dut, "s_pix", extra=("frame_width_i", "frame_height_i"))
-    fbits = pix_bus.width("frame")
-    cols: dict[str, list[np.ndarray]] = {k: [] for k in pix_bus.names}
-    for fr in frames:
-        h, w = fr.raw.shape
-        sof, eol = tb_lib.markers(h, w)
-        word = np.full(h * w, fr.drive.frame_word, dtype=object)
-        if garbage and h * w > 1:
-            word[1:] = [int(v) for v in rng.integers(0, 1 << min(fbits, 62), size=h * w - 1)]
-        for k, v in (("data", fr.raw.ravel()), ("sof", sof), ("eol", eol), ("frame", word),
-                     ("frame_width", np.full(h * w, w)), ("frame_height", np.full(h * w, h))):
-            cols[k].append(np.asarray(v, dtype=object))
-    pix = Source(pix_bus, {k: np.concatenate(v) for k, v in cols.items()}, idle_pix, rng)
-    coef = Source(StreamBus.from_prefix(dut, "s_coef"),
-                  {"data": np.concatenate([f.drive.words.ravel() for f in frames])},
-                  idle_coef, rng)
-    return pix, coef
-
-
 async def run_frames(dut, frames: list[MethodFrame], golden: PipelineConfig,
                      rng: np.random.Generator, idle_pix: float | str = 0.0,
                      idle_coef: float | str = 0.0, backpressure: float | str = 0.0,
@@ -96,7 +73,7 @@ async def run_frames(dut, frames: list[MethodFrame], golden: PipelineConfig,
     """Stream ``frames`` back to back (unless the sources pause) through the DUT; return the
     scoreboard's result (recorded for the suite runner), the sink and the input cycles of
     the pixels."""
-    pix, coef = _sources(dut, frames, rng, idle_pix, idle_coef, garbage)
+    pix, coef = tb_lib.method_sources(dut, frames, rng, idle_pix, idle_coef, garbage)
     sink = Sink(StreamBus.from_prefix(dut, "m_pix"), backpressure, rng,
                 expect=sum(f.raw.size for f in frames))
     await run_streams(dut, [pix, coef], sink)
@@ -248,7 +225,7 @@ async def reset_mid_frame(dut) -> None:
     env = await _setup(dut, 5)
     cfg, golden, rng = env.cfg, env.golden, env.rng
     frames = _frames(_plans(cfg, rng, [(6, 10)]), golden)
-    pix, coef = _sources(dut, frames, rng, 0.0, 0.0, garbage=False)
+    pix, coef = tb_lib.method_sources(dut, frames, rng, 0.0, 0.0, garbage=False)
     sink = Sink(StreamBus.from_prefix(dut, "m_pix"), 0.5, rng, expect=5)
     await run_streams(dut, [pix, coef], sink)
     await reset(dut, 2)

@@ -22,7 +22,6 @@ from cocotb.triggers import ClockCycles
 from irnuc.cocotb_tests import tb_lib
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw
 from irnuc.cocotb_tests.streams import Sink, Source, StreamBus, reset, run_streams
-from irnuc.cocotb_tests.tb_method import _sources
 from irnuc.cosim import coverage
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS
 from irnuc.cosim.scoreboard import ScoreResult
@@ -116,7 +115,7 @@ async def run_frames(dut, frames: list[DriftFrame], golden: PipelineConfig,
     """Stream ``frames`` (their blind items, pixels and words) through the DUT; return the
     scoreboard's result and the sink."""
     _set_registers(dut, frames)
-    pix, coef = _sources(dut, frames, rng, idle_pix, idle_coef, garbage=True)
+    pix, coef = tb_lib.method_sources(dut, frames, rng, idle_pix, idle_coef, garbage=True)
     blind = _blind_source(dut, frames, idle_blind, rng)
     sink = Sink(StreamBus.from_prefix(dut, "m_pix"), backpressure, rng,
                 expect=sum(f.raw.size for f in frames))
@@ -219,7 +218,7 @@ async def reset_mid_frame(dut) -> None:
     cfg, golden, rng = env.cfg, env.golden, env.rng
     frames = _frames(cfg, golden, rng, [(6, 10), (6, 10)])
     _set_registers(dut, frames)
-    pix, coef = _sources(dut, frames, rng, 0.0, 0.0, garbage=False)
+    pix, coef = tb_lib.method_sources(dut, frames, rng, 0.0, 0.0, garbage=False)
     blind = _blind_source(dut, frames, 0.0, rng)
     sink = Sink(StreamBus.from_prefix(dut, "m_pix"), 0.5, rng, expect=5)
     await run_streams(dut, [blind, pix, coef], sink)

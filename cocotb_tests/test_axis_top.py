@@ -26,7 +26,7 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 CONFIGS = ("minimal", "typical14")
 #: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame;
 #: two_point + blind_drift: the blind sum (BLIND_SUM) likewise, method_drift_top the core;
-#: table_interp: the same, each frame's weight computed from READING and TABLE_READING_k.
+#: table_interp: the same, each frame's weight computed from READING and TABLE_READING[k].
 METHOD_CONFIGS = ("tcoffset14", "drift14", "table14")
 #: table_interp: TABLE_SEL and the frame start held while the weight is computed.
 TABLE_CONFIGS = ("table14",)

@@ -1,7 +1,7 @@
 """Bulk co-simulation (C++ harness, raw binary files) of ``nuc_dpc_top`` against the golden model.
 
-The harness (``cocotb_tests/harness/bulk_main.cpp``) streams whole frames through the
-Verilated RTL; ``nuc_fixed.cosim.check_bulk`` compares every output code and marker with
+The harness (``cosim/harness/bulk_main.cpp``) streams whole frames through the
+Verilated RTL; ``irnuc.cosim.check_bulk`` compares every output code and marker with
 ``nuc_fixed.nuc_dpc_top`` in numpy. Every named configuration, several frame shapes
 (back-to-back frames, the widest line buffer, 1 x 1 frames), full rate (no bubble) and
 random idle gaps with backpressure, frames sharded over parallel harness processes, and a

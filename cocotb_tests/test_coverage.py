@@ -95,7 +95,18 @@ def test_ffc_classes_of_a_sequence_by_hand() -> None:
     assert got["ffc.refresh_frame"] == {"open"}
     assert got["ffc.first_frame"] == {"shutter"}
     assert got["ffc.tiny_frame"] == set()  # 6-pixel frames
+    assert got["ffc.target"] == {"mean"}
     assert list(run.held) == [False] * 3 + [True] * 8 + [False] + [True] * 3 + [False]
+    # Every pixel bad: the refresh has no target and keeps the corrections.
+    from irnuc.cosim.stages import ffc_run
+    from irnuc.nuc_fixed.method_top import MethodCoefficients
+
+    c = run.frames[0].coeffs
+    fields = {m: {**v, "bad": np.ones((2, 3), bool)} for m, v in c.fields.items()}
+    kept = ffc_run(MethodCoefficients(cfg, fields, c.registers),
+                   [f.raw for f in run.frames], list(run.shutter))
+    assert kept.kept == (10,)
+    assert ffc_classes(kept, cfg)["ffc.target"] == {"no_good_pixel"}
 
 
 def _snap(bins: dict[str, int], removed: dict[str, str] | None = None) -> dict:

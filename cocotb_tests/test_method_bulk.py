@@ -77,7 +77,7 @@ def test_method_bulk_model_drift(config: str) -> None:
     calibrated on the model: exact, and the readings span the calibrated FPA range."""
     seq, cals = _drift()
     cfg = load_pipeline(config)
-    rd = seq.reading if cfg.base_method in ("tc_offset", "table_interp") else None
+    rd = seq.reading if "fpa" in cfg.base.readings else None
     res = run_method_bulk(_build(config), cals[config], seq.codes, rd, shards=2)
     chk = check_method_bulk(res, cals[config], seq.codes, rd)
     assert chk.passed, chk.report()

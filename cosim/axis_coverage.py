@@ -49,7 +49,8 @@ sampled by ``cocotb_tests/tb_axis_method.py``) the model holds the stream points
 ========================= =========================================================================
 
 On a table_interp configuration (sampled by ``cocotb_tests/tb_axis_table.py``) the model
-holds the stream points and table_interp's selection (:data:`TABLE_AXIS_POINTS`):
+holds the stream points and table_interp's selection (:data:`TABLE_AXIS_POINTS`, the method's
+``MethodSpec.axis_points``):
 
 ========================= =========================================================================
 ``axis.table.j``          TABLE_SEL.j read back (and matched) at every value 0 .. K - 2
@@ -70,6 +71,7 @@ from __future__ import annotations
 from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS, CoverageModel
 from irnuc.nuc_fixed.axis import EVENTS, FfcFraming
 from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.methods.table_interp import TABLE_AXIS_POINTS
 
 __all__ = ["AXIS_POINTS", "AXIS_TOPS", "DRIFT_AXIS_POINTS", "FFC_AXIS_POINTS",
            "REGISTER_ACCESS", "RESET_SIZE_PIXELS", "TABLE_AXIS_POINTS", "TRAFFIC_POINTS",
@@ -149,13 +151,6 @@ def drift_delta_class(delta: int, lo: int, hi: int) -> str:
     return "negative" if delta < 0 else "positive" if delta > 0 else "zero"
 
 
-#: Coverpoint -> bins of table_interp's selection (a table_interp configuration; the bins
-#: of ``axis.table.j`` are the configuration's, 0 .. K - 2).
-TABLE_AXIS_POINTS: dict[str, tuple[str, ...]] = {
-    "axis.table.weight": ("zero", "between", "one"),
-    "axis.table.sel": ("computing", "valid", "error"),
-    "axis.table.held": ("between_frames", "in_frame_before"),
-}
 
 
 def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
@@ -217,9 +212,9 @@ class AxisCoverageModel(CoverageModel):
         point = self.add_point
         points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else
                       DRIFT_AXIS_POINTS if cfg.has("blind_drift") else AXIS_POINTS)
-        if cfg.base_method == "table_interp" and not cfg.stages:
-            points = {"axis.table.j": tuple(str(j) for j in range(int(cfg.tables) - 1)),
-                      **TABLE_AXIS_POINTS}
+        own = cfg.base.axis_points(cfg)  # a method's own part of the wrapper
+        if own and not cfg.stages:
+            points = dict(own)
         if cfg.has("ffc") and cfg.ffc_output != "hold":
             points["axis.ffc.drain"] = tuple(b for b in points["axis.ffc.drain"]
                                              if b != "after_held")

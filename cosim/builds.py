@@ -26,7 +26,13 @@ from irnuc.common.io import file_lock, write_text_atomic
 from irnuc.common.process import ChildTimeout, python_module, run_child
 from irnuc.cosim import _objcache
 from irnuc.cosim._cocotb_adapter import PORTS_ONLY
-from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
+from irnuc.cosim.sources import (
+    ASSERT_DEFINE,
+    hdl_sources,
+    tool_parameters,
+    top_parameters,
+    verilator_g,
+)
 from irnuc.cosim.verilator import (
     RtlError,
     fst_supported,
@@ -164,7 +170,9 @@ def build(top: str, cfg: PipelineConfig, *, waves: bool = False,
         log = build_dir / "build.log"
         spec = {"visibility": visibility,
                 "build": {"sources": [str(p) for p in hdl_sources(top, hdl_dir)],
-                          "hdl_toplevel": top, "parameters": params, "defines": defines,
+                          "hdl_toplevel": top,
+                          "parameters": tool_parameters(params, "verilator"),
+                          "defines": defines,
                           "build_dir": str(build_dir),
                           "build_args": [*BUILD_ARGS, *trace, *cov, *extra_args],
                           "waves": waves, "always": True, "log_file": str(log)}}
@@ -194,7 +202,7 @@ def build_binary(top: str, cfg: PipelineConfig, args: Sequence[str] = ()) -> Pat
         _objcache.write_pch_header(build_dir)  # -include'd; Verilator runs make itself
         cmd = [str(verilator_executable()), "--binary", "-Mdir", str(build_dir),
                "--top-module", top, "-o", top, *BUILD_ARGS, *args,
-               *[f"-G{k}={v}" for k, v in params.items()], *[str(p) for p in hdl_sources(top)]]
+               *verilator_g(params), *[str(p) for p in hdl_sources(top)]]
         # In its own process group, dying with irnuc (irnuc.common.process).
         proc = run_child(cmd, env=verilator_env(), log=log)
         if proc.returncode != 0:

@@ -29,7 +29,7 @@ from irnuc.common.cache import cache_dir
 from irnuc.common.errors import UserError
 from irnuc.cosim.builds import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
 from irnuc.cosim.scoreboard import ScoreResult, TopScoreboard
-from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
+from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters, verilator_g
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
 from irnuc.nuc_fixed import PipelineConfig, nuc_dpc_top
 from irnuc.nuc_fixed.memimage import check_words
@@ -52,7 +52,8 @@ _MAKE_OPT = ("OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O2")
 _SOF_BIT, _EOL_BIT = 31, 30
 
 
-def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None) -> Build:
+def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None,
+               hdl_dir: Path | None = None) -> Build:
     """Build (cached) the bulk harness of ``top`` for ``cfg``.
 
     ``top`` defaults to ``nuc_dpc_top`` for the two-point method, ``method_dpc_top``
@@ -61,7 +62,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness source. A build
     takes about 10-15 s on 2 cores. ``assertions=False`` leaves the protocol assertions
     out: only for measuring what they cost (benchmarks/bench_cosim.py); every
-    co-simulation keeps them.
+    co-simulation keeps them. ``hdl_dir`` replaces ``hdl/`` (a modified copy of the
+    design: a test's method); part of the cache key through the files' contents.
     """
     from irnuc.cosim.synth import default_top
 
@@ -71,7 +73,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
-    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT], [BULK_HARNESS])
+    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT], [BULK_HARNESS],
+                       hdl_dir=hdl_dir)
 
     def make(build_dir: Path) -> None:
         log = build_dir / "build.log"
@@ -80,8 +83,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
             f'#include "V{top}.h"\nusing BulkTop = V{top};\n' + BULK_TOPS[top])
         cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
                "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
-               *[f"-G{k}={v}" for k, v in params.items()],
-               *[str(p) for p in hdl_sources(top)], str(BULK_HARNESS)]
+               *verilator_g(params),
+               *[str(p) for p in hdl_sources(top, hdl_dir)], str(BULK_HARNESS)]
         from irnuc.common.process import run_child
         from irnuc.cosim import _objcache
 

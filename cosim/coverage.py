@@ -70,12 +70,11 @@ from irnuc.cosim.coverage_data import (
 )
 from irnuc.nuc_fixed import PipelineConfig, nuc_core, rtl_spec
 from irnuc.nuc_fixed.dpc import neighbour_counts
+from irnuc.nuc_fixed.methods.bins import RANGE_BINS, ROUND_BINS
 
 #: Environment variable naming the JSON file a testbench exports its coverage to.
 COVERAGE_ENV = "IRNUC_TB_COVERAGE"
 
-ROUND_BINS = ("below_half", "tie_even", "tie_odd", "above_half")
-RANGE_BINS = ("below_zero", "in_range", "above_max")
 POSITIONS = ("corner", "edge", "interior", "thin")
 #: In-frame neighbours a pixel of each position class has at most.
 MAX_NEIGHBOURS = {"corner": 3, "edge": 5, "interior": 8, "thin": 2}

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from irnuc.common.process import run_child
-from irnuc.cosim.sources import hdl_sources, top_parameters
+from irnuc.cosim.sources import hdl_sources, top_parameters, verilator_g
 from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
 from irnuc.nuc_fixed.config import PipelineConfig
 
@@ -54,7 +54,7 @@ def elaborate(top: str, cfg: PipelineConfig, hdl_dir: Path | None = None) -> Ela
     with tempfile.TemporaryDirectory(prefix="irnuc-elab-") as tmp:
         cmd = [str(verilator_executable()), "--json-only", "-Mdir", tmp, "--top-module", top,
                "-DSYNTHESIS", "-Wno-fatal",
-               *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],
+               *verilator_g(top_parameters(top, cfg)),
                *[str(p) for p in hdl_sources(top, hdl_dir)]]
         proc = run_child(cmd, env=verilator_env(), capture=True)
         tree = Path(tmp) / f"V{top}.tree.json"

@@ -29,9 +29,9 @@ from irnuc.cosim.methods import MethodScoreboard, golden_frames
 from irnuc.cosim.scoreboard import Scoreboard, ScoreResult
 from irnuc.cosim.stages import DriftFrame, FfcRun, StageScoreboard
 from irnuc.cosim.stream import frame_word, stream_limbs
+from irnuc.nuc_fixed import methods
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
-from irnuc.nuc_fixed.tempcomp import interp_weight
 from irnuc.nuc_fixed.validate import InputError, check_frame_shape, int_array
 
 __all__ = ["check_drift_bulk", "check_ffc_bulk", "check_method_bulk", "ffc_schedule",
@@ -39,8 +39,9 @@ __all__ = ["check_drift_bulk", "check_ffc_bulk", "check_method_bulk", "ffc_sched
 
 
 def _readings(coeffs: MethodCoefficients, n: int, readings: object | None) -> list[int | None]:
+    """One FPA reading per frame for a method that takes it (``MethodSpec.readings``)."""
     cfg = coeffs.cfg
-    if cfg.base_method not in ("tc_offset", "table_interp"):
+    if "fpa" not in cfg.base.readings:
         return [None] * n
     if readings is None:
         raise InputError(f"method {cfg.method!r} needs one FPA reading per frame")
@@ -60,13 +61,12 @@ def method_stimulus(coeffs: MethodCoefficients, readings: list[int | None]
     info = np.zeros((len(readings), 2), dtype=np.uint64)
     cfg = coeffs.cfg
     for i, rd in enumerate(readings):
-        iw = (interp_weight(int(rd), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
-              if cfg.base_method == "table_interp" else None)
-        key = None if iw is None else iw.j
+        # The method decides when the image changes (table_interp: with the table pair).
+        key = cfg.base.stream_key(coeffs, methods.frame(cfg, rd))
         if key not in keys:
             keys[key] = len(images)
             images.append(stream_limbs(coeffs, rd))
-        info[i] = (keys[key], frame_word(coeffs, rd, iw))
+        info[i] = (keys[key], frame_word(coeffs, rd))
     return np.stack(images), info
 
 

@@ -23,6 +23,8 @@ decided from the golden model's values of what was driven and checked:
 ``table.region``             the reading below the first table, between, above the last
 ``table.diff``               g_(j+1) - g_j negative, 0, positive
 ``table.round``              w * dg's fraction below / at (even, odd) / above one half
+``table.bad``                a pixel flagged bad in table j only, in table j + 1 only, in both
+                             (DPC replaces it in each case)
 ``iw.region``                interp_weight: reading below, at a table reading, between, above
 ``iw.round``                 interp_weight: remainder below / at / above half the span
 ``iw.error``                 interp_weight: table readings that do not increase
@@ -38,12 +40,21 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from irnuc.cosim.coverage import RANGE_BINS, ROUND_BINS, CoverageModel
+from irnuc.cosim.coverage import CoverageModel
+from irnuc.nuc_fixed import methods
 from irnuc.nuc_fixed.config import PipelineConfig
-from irnuc.nuc_fixed.fixed import round_shift
 from irnuc.nuc_fixed.method_top import MethodCoefficients, base_core, frame_coefficients
-from irnuc.nuc_fixed.tempcomp import interp_weight, tc_reading
-from irnuc.nuc_fixed.widths import core_frac, square_shift
+from irnuc.nuc_fixed.methods.bins import (
+    FRAME_WORD_BINS,
+    HALF_BINS,
+    RANGE_BINS,
+    ROUND_BINS,
+    hit,
+    round_class,
+    three,
+)
+from irnuc.nuc_fixed.tempcomp import interp_weight
+from irnuc.nuc_fixed.widths import core_frac
 
 __all__ = ["METHOD_TOPS", "MethodCoverageModel", "frame_classes", "method_points",
            "weight_classes"]
@@ -51,138 +62,30 @@ __all__ = ["METHOD_TOPS", "MethodCoverageModel", "frame_classes", "method_points
 #: The tops whose coverage model is :class:`MethodCoverageModel`.
 METHOD_TOPS = ("method_dpc_top", "interp_weight")
 
-FRAME_WORD_BINS = ("changed", "changed_tiny", "same")
-LEVEL_BINS = ("zero", "max", "other")
-SEGMENT_BINS = ("below_knee", "at_knee", "above_knee")
-SIGN_BINS = ("negative", "zero", "positive")
-FLOOR_BINS = ("exact", "floored")
-X_BINS = ("zero", "max", "other")
-U_BINS = ("clamped_low", "negative", "zero", "positive", "clamped_high")
-SAT_BINS = ("sat_low", "in_range", "sat_high")
-HALF_BINS = ("below_half", "tie", "above_half")
-WEIGHT_BINS = ("zero", "one", "between")
-REGION_BINS = ("below", "between", "above")
 IW_REGION_BINS = ("below", "at_reading", "between", "above")
 #: The frame a boundary change counts as short: fewer pixels than any method's pipeline.
 TINY_FRAME = 4
 
 
-def _round_class(s: np.ndarray, f: int) -> np.ndarray:
-    """ROUND_BINS index of every value with f > 0 fraction bits."""
-    frac = s & ((1 << f) - 1)
-    half = 1 << (f - 1)
-    odd = (s >> f) & 1
-    return np.where(frac < half, 0, np.where(frac > half, 3, 1 + odd))
-
-
-def _three(v: np.ndarray, lo: int, hi: int) -> np.ndarray:
-    """0 below lo, 1 in [lo, hi], 2 above hi."""
-    return np.where(v < lo, 0, np.where(v > hi, 2, 1))
-
-
-def _level(v: int, bits: int) -> str:
-    return "zero" if v == 0 else "max" if v == (1 << bits) - 1 else "other"
-
-
 def frame_classes(coeffs: MethodCoefficients, raw: np.ndarray, reading: int | None
                   ) -> dict[str, set[str]]:
-    """The bins one frame hits: {coverpoint: {bin, ...}} (golden-model values)."""
+    """The bins one frame hits: {coverpoint: {bin, ...}} (golden-model values): the core's
+    rounding and range, and the method's own (``MethodSpec.coverage_classes``)."""
     cfg = coeffs.cfg
-    base = cfg.base_method
     raw = np.asarray(raw, dtype=np.int64)
     out: dict[str, set[str]] = {}
-
-    def hit(point: str, labels: Sequence[str], idx: np.ndarray | Sequence[int]) -> None:
-        out.setdefault(point, set()).update(labels[int(k)] for k in np.unique(idx))
-
-    fc = frame_coefficients(coeffs, reading)
+    frame = methods.frame(cfg, reading)
+    fc = frame_coefficients(coeffs, frame)
     res = base_core(coeffs, fc, raw)
     if res.frac > 0:
         # Only where the rounding reaches the output: a good pixel (DPC replaces a bad
         # one) whose result is in range (OUT would clip the difference away).
-        seen = ~np.asarray(coeffs.bad, dtype=bool) & (res.r >= 0) & (res.r < (1 << cfg.out_bits))
-        hit("method.round", ROUND_BINS, _round_class(res.s[..., seen], res.frac))
-    hit("method.range", RANGE_BINS, _three(res.r, 0, (1 << cfg.out_bits) - 1))
-    f = coeffs.fields
-    if base == "one_point":
-        out["one_point.gain"] = {_level(int(coeffs.registers["gain"]), cfg.gain_bits)}
-    elif base == "piecewise":
-        kf = cfg.format("knee").frac_bits
-        d = (raw << kf) - f["coeffs"]["knee"]
-        hit("piecewise.segment", SEGMENT_BINS, np.sign(d) + 1)
-        out["piecewise.level"] = {_level(int(coeffs.registers["level"]),
-                                         cfg.format("level").bits)}
-    elif base == "quadratic":
-        q = f["quad"]["quad"]
-        hit("quadratic.quad", SIGN_BINS, np.sign(q) + 1)
-        hit("quadratic.x", X_BINS, np.where(raw == 0, 0, np.where(
-            raw == (1 << cfg.adc_bits) - 1, 1, 2)))
-        k = _floor_bits(cfg)
-        if k > 0:
-            qp = q * ((raw * raw) >> square_shift(cfg))
-            hit("quadratic.floor", FLOOR_BINS, (qp & ((1 << k) - 1)) != 0)
-    elif base == "tc_offset":
-        _tc_classes(coeffs, reading, hit, out)
-    elif base == "table_interp":
-        _table_classes(coeffs, reading, hit, out)
+        seen = ~np.asarray(fc["bad"], dtype=bool) & (res.r >= 0) & (res.r < (1 << cfg.out_bits))
+        hit(out, "method.round", ROUND_BINS, round_class(res.s[..., seen], res.frac))
+    hit(out, "method.range", RANGE_BINS, three(res.r, 0, (1 << cfg.out_bits) - 1))
+    for point, bins in cfg.base.coverage_classes(coeffs, raw, frame, res).items():
+        out.setdefault(point, set()).update(bins)
     return out
-
-
-def _floor_bits(cfg: PipelineConfig) -> int:
-    """K = QPf - F: the bits the quadratic term drops (0: exact)."""
-    qpf = cfg.format("quad").frac_bits + 2 * cfg.adc_bits - square_shift(cfg)
-    return max(0, qpf - core_frac(cfg, 0, False))
-
-
-def _tc_classes(coeffs: MethodCoefficients, reading: int | None, hit, out) -> None:
-    cfg = coeffs.cfg
-    t_ref = int(coeffs.registers["t_ref"])
-    ts = int(cfg.reading_range_bits or 1)
-    lim = (1 << ts) - 1
-    diff = int(reading) - t_ref  # type: ignore[arg-type]
-    u_bin = (0 if diff < -lim else 4 if diff > lim else 1 if diff < 0 else 3 if diff > 0
-             else 2)
-    out["tc.u"] = {U_BINS[u_bin]}
-    tr = tc_reading(int(reading), t_ref, cfg)  # type: ignore[arg-type]
-    cs = coeffs.fields["coeffs"]
-    tc = {**coeffs.fields["tc"], **coeffs.fields.get("tg", {})}
-    order = int(cfg.tc_order or 1)
-
-    def poly(c0: np.ndarray, base: str, names: list[str]) -> tuple[np.ndarray, int]:
-        # The polynomial before its rounding, at Fo fraction bits (docs/datapath.md
-        # "tc_poly"), and Fo - base fraction bits.
-        fo = max(cfg.format(base).frac_bits, *(cfg.format(n).frac_bits + ts for n in names))
-        acc = c0 << (fo - cfg.format(base).frac_bits)
-        for n, v in zip(names, (tr.u, tr.u2), strict=False):
-            acc = acc + ((tc[n] * v) << (fo - cfg.format(n).frac_bits - ts))
-        return acc, fo - cfg.format(base).frac_bits
-
-    so, k = poly(cs["offset"], "offset", ["tc1", "tc2"][:order])
-    ro = np.asarray(round_shift(np.ascontiguousarray(so), k, cfg.rounding))
-    half = 1 << (cfg.offset_bits - 1)
-    hit("tc.offset", SAT_BINS, _three(ro, -half, half - 1))
-    if k > 0:
-        frac = so & ((1 << k) - 1)
-        hit("tc.round", HALF_BINS, np.sign(frac - (1 << (k - 1))) + 1)
-    if cfg.tc_gain:
-        sg, kg = poly(cs["gain"], "gain", ["tg1", "tg2"][:order])
-        rg = np.asarray(round_shift(np.ascontiguousarray(sg), kg, cfg.rounding))
-        hit("tc.gain", SAT_BINS, _three(rg, 0, (1 << cfg.gain_bits) - 1))
-
-
-def _table_classes(coeffs: MethodCoefficients, reading: int | None, hit, out) -> None:
-    cfg = coeffs.cfg
-    rs = list(coeffs.registers["table_readings"])
-    iw = interp_weight(int(reading), rs, cfg)  # type: ignore[arg-type]
-    wf = cfg.format("weight").frac_bits
-    out["table.weight"] = {"zero" if iw.w == 0 else "one" if iw.w == 1 << wf else "between"}
-    t = int(reading)  # type: ignore[arg-type]
-    out["table.region"] = {"below" if t < rs[0] else "above" if t > rs[-1] else "between"}
-    g0 = coeffs.fields[f"table{iw.j}"]["gain"]
-    dg = coeffs.fields[f"table{iw.j + 1}"]["gain"] - g0
-    hit("table.diff", SIGN_BINS, np.sign(dg) + 1)
-    if wf > 0:
-        hit("table.round", ROUND_BINS, _round_class(dg * iw.w, wf))
 
 
 def weight_classes(reading: int, table_readings: Sequence[int], cfg: PipelineConfig
@@ -205,52 +108,27 @@ def weight_classes(reading: int, table_readings: Sequence[int], cfg: PipelineCon
 def method_points(cfg: PipelineConfig, top: str = "method_dpc_top"
                   ) -> tuple[dict[str, tuple[str, ...]], dict[str, dict[str, str]]]:
     """The method coverpoints of ``top`` on ``cfg``: {name: bins} and the removed bins
-    {name: {bin: reason}}."""
+    {name: {bin: reason}}: the core's rounding and range, the frame word's changes, and the
+    method's own (``MethodSpec.coverage_points``)."""
     points: dict[str, tuple[str, ...]] = {}
     removed: dict[str, dict[str, str]] = {}
     if top == "interp_weight":
         return {"iw.region": IW_REGION_BINS, "iw.round": HALF_BINS, "iw.error": ("order",)}, {}
-    base = cfg.base_method
+    base = cfg.base
     if core_frac(cfg, 0, False) > 0:
         points["method.round"] = ROUND_BINS
     else:
         removed["method.round"] = {b: "F = 0: nothing is rounded" for b in ROUND_BINS}
     points["method.range"] = RANGE_BINS
-    if base in ("two_point", "quadratic"):
+    if not base.frame_word:
         points["method.frame_word"] = ("same",)
-        removed["method.frame_word"] = {b: f"{base} has no frame word"
+        removed["method.frame_word"] = {b: f"{base.name} has no frame word"
                                         for b in FRAME_WORD_BINS if b != "same"}
     else:
         points["method.frame_word"] = FRAME_WORD_BINS
-    if base == "one_point":
-        points["one_point.gain"] = LEVEL_BINS
-    elif base == "piecewise":
-        points["piecewise.segment"] = SEGMENT_BINS
-        points["piecewise.level"] = LEVEL_BINS
-    elif base == "quadratic":
-        points["quadratic.quad"] = SIGN_BINS
-        points["quadratic.x"] = X_BINS
-        if _floor_bits(cfg) > 0:
-            points["quadratic.floor"] = FLOOR_BINS
-        else:
-            removed["quadratic.floor"] = {b: "QPf <= F: the term is never floored"
-                                          for b in FLOOR_BINS}
-    elif base == "tc_offset":
-        points["tc.u"] = U_BINS
-        points["tc.offset"] = SAT_BINS
-        if cfg.tc_gain:
-            points["tc.gain"] = SAT_BINS
-        ts = int(cfg.reading_range_bits or 1)
-        names = ["tc1", "tc2"][: int(cfg.tc_order or 1)]
-        if max(cfg.offset_frac_bits, *(cfg.format(n).frac_bits + ts for n in names)) \
-                > cfg.offset_frac_bits:
-            points["tc.round"] = HALF_BINS
-    elif base == "table_interp":
-        points["table.weight"] = WEIGHT_BINS
-        points["table.region"] = REGION_BINS
-        points["table.diff"] = SIGN_BINS
-        if cfg.format("weight").frac_bits > 0:
-            points["table.round"] = ROUND_BINS
+    own, own_removed = base.coverage_points(cfg)
+    points |= own
+    removed |= own_removed
     return points, removed
 
 

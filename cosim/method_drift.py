@@ -165,8 +165,7 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
     out = []
     for cfg in cfgs:
         c = cals[cfg.name]
-        needs = cfg.base_method in ("tc_offset", "table_interp")
-        rd = seq.reading if needs else None
+        rd = seq.reading if "fpa" in cfg.base.readings else None
         t0 = time.perf_counter()
         expected = method_top(seq.codes, c, FrameInputs(reading=rd)).y
         t_golden = time.perf_counter() - t0

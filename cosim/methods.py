@@ -96,7 +96,8 @@ class MethodScoreboard(Scoreboard):
                                 {m: {k: v[y:y + 1, x:x + 1] for k, v in vals.items()}
                                  for m, vals in c.fields.items()}, c.registers)
         res = base_core(px, one, fr.raw[y:y + 1, x:x + 1].astype(np.int64))
-        frame_gain = "" if self.golden.base_method not in ("tc_offset", "table_interp") else (
+        # A method whose coefficients follow its readings: the frame's gain and offset.
+        frame_gain = "" if not self.golden.base.readings else (
             f" frame gain {int(np.ravel(one['gain'])[0])} offset {int(np.ravel(one['offset'])[0])}")
         return (f"frame {f} x {x} y {y}: raw {int(fr.raw[y, x])} reading {fr.reading} "
                 f"frame word {fr.drive.frame_word:#x} {fields}{frame_gain} | expected "

@@ -14,7 +14,7 @@ them with an allow-list of patterns, each with the reason the register needs no 
   reset survives a reset with its old value.
 
 Names are flattened hierarchical names with array indices and bit ranges dropped
-(``u_dpc.u_ctrl.gen_x[1].q`` -> ``u_dpc.u_ctrl.gen_x.q``); patterns are
+(``u_tail.u_dpc.u_ctrl.gen_x[1].q`` -> ``u_tail.u_dpc.u_ctrl.gen_x.q``); patterns are
 :func:`fnmatch.fnmatchcase` globs.
 """
 
@@ -65,19 +65,19 @@ ALLOWED: dict[str, dict[str, str]] = {
         "*.gen_tree.gen_level.side_q": _TREE,
         "u_nuc.rnd_q": "rounded NUC value; rnd_valid_q resets",
         "u_nuc.rnd_user_q": "frame markers of the rounded value; rnd_valid_q resets",
-        "u_dpc.mask_ctr_q": "DPC mask stage data; mask_valid_q resets",
-        "u_dpc.mask_leaves_q": "DPC mask stage data; mask_valid_q resets",
-        "u_dpc.mask_good_q": "DPC mask stage data; mask_valid_q resets",
-        **{f"u_dpc.{r}": ("DPC count n, floor(n/2), n != 0 and R[n] beside the neighbour "
+        "u_tail.u_dpc.mask_ctr_q": "DPC mask stage data; mask_valid_q resets",
+        "u_tail.u_dpc.mask_leaves_q": "DPC mask stage data; mask_valid_q resets",
+        "u_tail.u_dpc.mask_good_q": "DPC mask stage data; mask_valid_q resets",
+        **{f"u_tail.u_dpc.{r}": ("DPC count n, floor(n/2), n != 0 and R[n] beside the neighbour "
                           "sum's levels, whose valid_q reset")
            for r in ("cnt_q", "half2_q", "half3_q", "nz2_q", "nz3_q", "rec2_q", "rec3_q")},
-        **{f"u_dpc.{r}": "DPC sum stage data (M, R[n], side band); sum_valid resets"
+        **{f"u_tail.u_dpc.{r}": "DPC sum stage data (M, R[n], side band); sum_valid resets"
            for r in ("sum_m", "sum_recip", "sum_ctr")},
-        "u_dpc.win_q": ("3 x 3 window pixels: the window's valid and position flags reset "
+        "u_tail.u_dpc.win_q": ("3 x 3 window pixels: the window's valid and position flags reset "
                         "and mask every value not of the current frame"),
-        "u_dpc.u_lb.gen_inferred.mem_q": _LB,
-        "u_dpc.u_lb.gen_inferred.out_q": _LB,
-        "u_dpc.u_lb.gen_inferred.rd_data_q": _LB,
+        "u_tail.u_dpc.u_lb.gen_inferred.mem_q": _LB,
+        "u_tail.u_dpc.u_lb.gen_inferred.out_q": _LB,
+        "u_tail.u_dpc.u_lb.gen_inferred.rd_data_q": _LB,
     },
 }
 

@@ -90,7 +90,7 @@ def _stage_run(cfg: PipelineConfig, frames: int, shape: tuple[int, int], seed: i
     bld = build_bulk(cfg, top=default_top(cfg))
     out: dict[str, Any] = {"top": bld.top}
     if ffc:
-        rd = ([int(v) for v in seq.reading] if cfg.base_method == "tc_offset" else None)
+        rd = [int(v) for v in seq.reading] if "fpa" in cfg.base.readings else None
         t0 = time.perf_counter()
         run = ffc_run(cal, list(seq.codes), [bool(v) for v in flags], readings=rd)  # type: ignore[union-attr]
         t_golden = time.perf_counter() - t0

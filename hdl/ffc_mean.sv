@@ -8,11 +8,13 @@
 // restoring division starts, one quotient bit a cycle (NumBits cycles, then the clamp into
 // a register):
 // q = floor((2 sum + n) / 2n) is the half-up quotient of sum / n for sum >= 0; a negative
-// sum gives T = 0 (its rounded quotient is at most 0), as does n_good = 0 (the golden
-// model refuses it). The target is then held on target_o (target_valid_o) until the next
-// start; the sums restart with the division. ready_o: the waiting frame's division has
-// started and its target is valid (until the cycle after a frame's first pixel is taken,
-// frame_taken_i).
+// sum gives T = 0 (its rounded quotient is at most 0). n_good = 0 (no good pixel in the
+// mean frame) gives no target: empty_o is 1 and target_o 0 (the division by 2n = 0 runs
+// but its quotient is not used), and the refresh keeps the previous offsets (keep_i of
+// ffc_refresh; nuc_fixed.ffc.ffc_mean_target returns None). The target and empty_o are then
+// held (target_valid_o) until the next division is done; the sums restart with the
+// division. ready_o: the waiting frame's division has started and its target is valid
+// (until the cycle after a frame's first pixel is taken, frame_taken_i).
 module ffc_mean #(
   parameter int unsigned VBits     = 20,  // v, signed
   parameter int unsigned NBits     = 21,  // n_good, unsigned (clog2 of the largest frame + 1)
@@ -34,7 +36,8 @@ module ffc_mean #(
   input  logic                    frame_taken_i,  // a frame's first pixel is taken
   output logic                    ready_o,        // the waiting frame's target is valid
   output logic                    target_valid_o,
-  output logic [TBits-1:0]        target_o
+  output logic [TBits-1:0]        target_o,
+  output logic                    empty_o         // no good pixel: no target
 );
 
   localparam int unsigned CountBits = $clog2(NumBits + 1);
@@ -106,6 +109,8 @@ module ffc_mean #(
   logic [DenBits-1:0]   rem_q;
   logic [CountBits-1:0] count_q;
   logic                 zero_q;  // sum < 0 or n = 0: T = 0
+  logic                 none_q;  // n = 0: no target (empty_o once done)
+  logic                 empty_q;
   logic                 busy_q, valid_q, done_q;
   logic                 over_q;  // a quotient bit at or above TBits is set
   logic [TBits-1:0]     target_q;
@@ -145,6 +150,7 @@ module ffc_mean #(
       rem_q   <= '0;
       count_q <= CountBits'(NumBits);
       zero_q  <= sum_q < 0 || n_q == '0;
+      none_q  <= n_q == '0;
       over_q  <= 1'b0;
     end else if (busy_q) begin
       rem_q   <= fits ? rem_diff[DenBits-1:0] : rem_shift[DenBits-1:0];
@@ -163,10 +169,12 @@ module ffc_mean #(
   always_ff @(posedge clk_i) begin : p_target
     if (done_q) begin
       target_q <= zero_q ? '0 : over_q ? TMax : num_q[TBits-1:0];
+      empty_q  <= none_q;
     end
   end
 
   assign target_o       = target_q;
+  assign empty_o        = empty_q;
   assign target_valid_o = valid_q;
   assign ready_o        = started_q && valid_q;
 

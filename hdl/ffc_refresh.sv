@@ -10,8 +10,9 @@
 //   D  sa aligned to F' and the difference;
 //   R  both rounded: v_o, with v_valid_o and the side band of the same pixel (v_side_o),
 //      for the mean pass;
-//   C  dc clipped, and the pixel's correction c_o = refresh_i ? dc : c_i (the new word
-//      in a refresh frame, the word read in any other).
+//   C  dc clipped, and the pixel's correction c_o = refresh_i && !keep_i ? dc : c_i (the
+//      new word in a refresh frame, the word read in any other, and in a refresh frame
+//      without a target: keep_i, no good pixel in its mean frame).
 // SideBits of side band travel beside the three stages (latency 3 from valid_i to
 // valid_o). Only the valid flags reset; the data registers are read only when valid.
 module ffc_refresh
@@ -41,16 +42,16 @@ module ffc_refresh
   input  logic [SumBits-1:0]      sum_i,      // sa
   input  logic [TBits-1:0]        target_i,   // T, steady while a refresh frame passes
   input  logic                    refresh_i,  // a refresh frame: c_o = dc
+  input  logic                    keep_i,     // ... but no target: c_o = c_i (steady as target_i)
   input  logic [CBits-1:0]        c_i,        // the pixel's correction otherwise
   input  logic [SideBits-1:0]     side_i,
   // Stage R: the pixel's v.
   output logic                    v_valid_o,
   output logic signed [VBits-1:0] v_o,
   output logic [SideBits-1:0]     v_side_o,
-  // Stage C: the pixel's dc and correction.
+  // Stage C: the pixel's correction (written back in a refresh frame).
   output logic                    valid_o,
   output logic                    refresh_o,
-  output logic [CBits-1:0]        dc_o,
   output logic [CBits-1:0]        c_o,
   output logic [SideBits-1:0]     side_o
 );
@@ -162,7 +163,7 @@ module ffc_refresh
   );
 
   logic                c_valid_q, c_refresh_q;
-  logic [CBits-1:0]    c_c_q, c_dc_q;
+  logic [CBits-1:0]    c_c_q;
   logic [SideBits-1:0] c_side_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_c_valid
@@ -175,8 +176,7 @@ module ffc_refresh
 
   always_ff @(posedge clk_i) begin : p_c
     if (en_i) begin
-      c_c_q       <= r_refresh_q ? dc_d : r_c_q;
-      c_dc_q      <= dc_d;
+      c_c_q       <= (r_refresh_q && !keep_i) ? dc_d : r_c_q;
       c_refresh_q <= r_refresh_q;
       c_side_q    <= r_side_q;
     end
@@ -184,7 +184,6 @@ module ffc_refresh
 
   assign valid_o   = c_valid_q;
   assign refresh_o = c_refresh_q;
-  assign dc_o      = c_dc_q;
   assign c_o       = c_c_q;
   assign side_o    = c_side_q;
 

@@ -16,6 +16,7 @@
 // Every register moves with en_i (the enclosing pipeline's enable); only the valid flags
 // reset. Latency: 1 + Latency (both cores padded to Latency, irnuc_stage_pkg).
 module ffc_sums
+  import irnuc_method_pkg::*;
   import irnuc_stage_pkg::*;
 #(
   parameter int unsigned Kind           = 0,  // irnuc_stage_pkg::core_kind_e

@@ -1,24 +1,29 @@
-// AXI4-Lite register file of irnuc_axis_top: the map of nuc_fixed/registers.toml (offsets,
-// fields and resets are the irnuc_pkg constants generated from it; docs/registers.md).
+// AXI4-Lite register file of irnuc_axis_top: the map of nuc_fixed/registers.rdl
+// (docs/registers.md).
 //
-// Slave: the write address and data are each taken into a holding register (awready /
-// wready = it is empty); when both are held and no response waits, the address is decoded
-// into one-hot register selects (a cycle), the write done and its response raised (the next
-// cycle) and held until bready. A read address is taken when no read is in progress, decoded
-// (a cycle), read through an AND-OR of the selects (a cycle) and held until rready. Every
-// output is a flop: the readies are flops of their own, the complements of the holding
-// flags the logic reads (each holding register follows its input while empty: no input
-// passes an enable). No input-to-output path. One write and one read at a time; reads have
-// no side effects.
-//
-// Responses: OKAY, or SLVERR for an offset outside the map, a write to a register without
-// a writable field and a frame size of 0 or above MaxWidth x MaxHeight (the register keeps
-// its value). A register of a method or stage that is not built in (method register slot
-// of width 0, FFC registers without HasFfc) reads 0 and ignores writes, answered OKAY.
-//
+// u_regblock (irnuc_axil_regblock, generated from the map by peakrdl-regblock) is the
+// AXI4-Lite slave, the address decode, the registers it can store (CTRL, COMMAND, STATUS's
+// sticky bits, IRQ_ENABLE, IRQ_STATUS, the counters) and the read-back; its responses
+// (SLVERR outside the map, for a write to a read-only and a read of a write-only register)
+// depend on the address and the access only. This module connects its hardware interface
+// (hwif_in / hwif_out, docs/registers.md "Hardware interface"):
+//   * the build's constants (VERSION.coef_layout, CONFIG, FORMAT, FRAME_MAX: fields the
+//     map resets to a parameter of the map, driven from this module's parameter of that
+//     name), the events and levels (STATUS, IRQ_STATUS, the counters' increments, FFC_STATUS,
+//     TABLE_SEL); irq_o is a flop of the block's interrupt;
+//   * the settings it stores (CTRL; STATUS.pending from its software-modified strobes);
+// and implements the registers the map marks `external`, each answered a cycle after the
+// block's (registered) request:
+//   * FRAME_SIZE: a size of 0 or above FRAME_MAX is refused with SLVERR (hwif_wr_err: an
+//     answer that depends on the value written) and the register keeps its value; the
+//     size, the size minus one and the size-is-one flags are flops for the framer; a new
+//     size raises size_dirty_o (the framer drains the core before using it);
+//   * FFC_CTRL: its reset (FfcFrames) and presence (HasFfc) are the build's;
+//   * the method registers (the 64-bit slots GAIN .. FFC_TARGET, TABLE_READING[k]): their
+//     widths and presence are the build's (no flop for a bit the build has not; bits from
+//     the width on read 0).
 // Shadowed registers (CTRL, FRAME_SIZE, the method registers): the framer takes them at a
-// frame start (start_i); a write changes the pending value, STATUS.pending is 1 until then,
-// and a new frame size raises size_dirty_o (the framer drains the core before using it).
+// frame start (start_i); a write changes the pending value, STATUS.pending is 1 until then.
 module irnuc_axil_regs
   import irnuc_pkg::*;
 #(
@@ -56,8 +61,8 @@ module irnuc_axil_regs
   localparam int unsigned AddrBits         = RegAddrBits,
   localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
-  localparam int unsigned NumSlots         = 8,
-  localparam int unsigned NumTable         = RegTableReadingCount
+  localparam int unsigned NumTable         = RegTableReadingCount,
+  localparam int unsigned NumSlots         = RegSlotCount
 ) (
   input  logic                             clk_i,
   input  logic                             rst_ni,
@@ -95,7 +100,7 @@ module irnuc_axil_regs
   // BLIND_REF, DRIFT_GAIN, FFC_TARGET) and the table readings.
   output logic [NumSlots-1:0][63:0]        slot_o,
   output logic [NumTable-1:0][31:0]        table_o,
-  // table_interp: READING or a TABLE_READING_k written now; what TABLE_SEL reads.
+  // table_interp: READING or a TABLE_READING[k] written now; what TABLE_SEL reads.
   output logic                             table_write_o,
   input  logic [31:0]                      table_sel_i,
   // A frame starts (the framer takes the pending settings).
@@ -124,257 +129,150 @@ module irnuc_axil_regs
   output logic                             irq_o
 );
 
-  localparam int unsigned SlotBits [NumSlots] = '{
-    GainRegBits, LevelRegBits, ReadingRegBits, TRefRegBits, BlindSumRegBits, BlindRefRegBits,
-    DriftGainRegBits, FfcTargetRegBits
-  };
-  localparam int unsigned SlotOffset [NumSlots] = '{
-    RegGainLoOffset, RegLevelLoOffset, RegReadingLoOffset, RegTRefLoOffset,
-    RegBlindSumLoOffset, RegBlindRefLoOffset, RegDriftGainLoOffset, RegFfcTargetLoOffset
-  };
-  localparam int unsigned NumErrors = 6;
+  // The block's package is not imported: it also holds the map's parameters (CONFIG's
+  // defaults), which this module's parameters of the same names replace.
+  irnuc_axil_regblock_pkg::irnuc_regs__in_t  hwif_in;
+  irnuc_axil_regblock_pkg::irnuc_regs__out_t hwif_out;
+  logic             wr_err;  // an external write refused (FRAME_SIZE), with its wr_ack
 
-  // ---- the map: one index per register word -----------------------------------------------
-  localparam int unsigned IxId         = 0;
-  localparam int unsigned IxVersion    = 1;
-  localparam int unsigned IxConfig     = 2;
-  localparam int unsigned IxFormat     = 3;
-  localparam int unsigned IxFrameMax   = 4;
-  localparam int unsigned IxCtrl       = 5;
-  localparam int unsigned IxFrameSize  = 6;
-  localparam int unsigned IxCommand    = 7;
-  localparam int unsigned IxStatus     = 8;
-  localparam int unsigned IxIrqEnable  = 9;
-  localparam int unsigned IxIrqStatus  = 10;
-  localparam int unsigned IxFramesIn   = 11;
-  localparam int unsigned IxFramesOut  = 12;
-  localparam int unsigned IxPixelsIn   = 13;
-  localparam int unsigned IxPixelsOut  = 14;
-  localparam int unsigned IxDropped    = 15;
-  localparam int unsigned IxPadded     = 16;
-  localparam int unsigned IxSofErrors  = 17;
-  localparam int unsigned IxEolErrors  = 18;
-  localparam int unsigned IxCoefErrors = 19;
-  localparam int unsigned IxFfcCtrl    = 20;
-  localparam int unsigned IxFfcStatus  = 21;
-  localparam int unsigned IxTableSel   = 22;
-  localparam int unsigned NumFixed     = 23;
-  localparam int unsigned IxSlot       = NumFixed;              // slot k: LO, HI
-  localparam int unsigned IxTable      = IxSlot + 2 * NumSlots;  // table reading k
-  localparam int unsigned NumRegs      = IxTable + NumTable;
+  irnuc_axil_regblock u_regblock (
+    .clk           (clk_i),
+    .arst_n        (rst_ni),
+    .s_axil_awready(s_axil_awready_o),
+    .s_axil_awvalid(s_axil_awvalid_i),
+    .s_axil_awaddr (s_axil_awaddr_i),
+    .s_axil_awprot (3'b000),
+    .s_axil_wready (s_axil_wready_o),
+    .s_axil_wvalid (s_axil_wvalid_i),
+    .s_axil_wdata  (s_axil_wdata_i),
+    .s_axil_wstrb  (s_axil_wstrb_i),
+    .s_axil_bready (s_axil_bready_i),
+    .s_axil_bvalid (s_axil_bvalid_o),
+    .s_axil_bresp  (s_axil_bresp_o),
+    .s_axil_arready(s_axil_arready_o),
+    .s_axil_arvalid(s_axil_arvalid_i),
+    .s_axil_araddr (s_axil_araddr_i),
+    .s_axil_arprot (3'b000),
+    .s_axil_rready (s_axil_rready_i),
+    .s_axil_rvalid (s_axil_rvalid_o),
+    .s_axil_rdata  (s_axil_rdata_o),
+    .s_axil_rresp  (s_axil_rresp_o),
+    .hwif_wr_err   (wr_err),
+    .hwif_in       (hwif_in),
+    .hwif_out      (hwif_out)
+  );
 
-  localparam int unsigned FixedOffset [NumFixed] = '{
-    RegIdOffset, RegVersionOffset, RegConfigOffset, RegFormatOffset, RegFrameMaxOffset,
-    RegCtrlOffset, RegFrameSizeOffset, RegCommandOffset, RegStatusOffset, RegIrqEnableOffset,
-    RegIrqStatusOffset, RegFramesInOffset, RegFramesOutOffset, RegPixelsInOffset,
-    RegPixelsOutOffset, RegDroppedOffset, RegPaddedOffset, RegSofErrorsOffset,
-    RegEolErrorsOffset, RegCoefErrorsOffset, RegFfcCtrlOffset, RegFfcStatusOffset,
-    RegTableSelOffset
-  };
+  // ---- the build's constants (fields reset to a parameter of the map) ----------------------
+  assign hwif_in.VERSION.coef_layout.next    = RegVersionCoefLayoutBits'(CoefLayoutVersion);
+  assign hwif_in.CONFIG.adc_bits.next        = RegConfigAdcBitsBits'(AdcBits);
+  assign hwif_in.CONFIG.out_bits.next        = RegConfigOutBitsBits'(OutBits);
+  assign hwif_in.CONFIG.word_bits.next       = RegConfigWordBitsBits'(CoefWordBits);
+  assign hwif_in.CONFIG.method.next          = RegConfigMethodBits'(MethodCode);
+  assign hwif_in.CONFIG.blind_drift.next     = (HasBlindDrift != 0);
+  assign hwif_in.CONFIG.ffc.next             = (HasFfc != 0);
+  assign hwif_in.CONFIG.rounding.next        = RegConfigRoundingBits'(Rounding);
+  assign hwif_in.CONFIG.overflow.next        = (Overflow != 0);
+  assign hwif_in.FORMAT.gain_int_bits.next   = RegFormatGainIntBitsBits'(GainIntBits);
+  assign hwif_in.FORMAT.gain_frac_bits.next  = RegFormatGainFracBitsBits'(GainFracBits);
+  assign hwif_in.FORMAT.offset_int_bits.next = RegFormatOffsetIntBitsBits'(OffsetIntBits);
+  assign hwif_in.FORMAT.offset_frac_bits.next = RegFormatOffsetFracBitsBits'(OffsetFracBits);
+  assign hwif_in.FRAME_MAX.width.next        = RegFrameMaxWidthBits'(MaxWidth);
+  assign hwif_in.FRAME_MAX.height.next       = RegFrameMaxHeightBits'(MaxHeight);
 
-  // The byte offset of register index `ix`.
-  function automatic int unsigned reg_offset(input int unsigned ix);
-    if (ix < NumFixed) begin
-      return FixedOffset[ix];
-    end
-    if (ix < IxTable) begin
-      return SlotOffset[(ix - IxSlot) / 2] + 32'd4 * ((ix - IxSlot) % 2);
-    end
-    return RegTableReadingOffset + (ix - IxTable) * RegTableReadingStride;
-  endfunction
+  // ---- CTRL (shadowed; stored by the block) -------------------------------------------------
+  logic ctrl_touch;  // a write changed a CTRL field (its byte lanes enabled)
 
-  // Registers a write to is answered SLVERR: no writable field (reserved ones are OKAY).
-  function automatic logic [NumRegs-1:0] read_only();
-    logic [NumRegs-1:0] ro;
-    ro = '0;
-    for (int unsigned ix = IxId; ix <= IxFrameMax; ix++) begin
-      ro[ix] = 1'b1;
-    end
-    for (int unsigned ix = IxFramesIn; ix <= IxCoefErrors; ix++) begin
-      ro[ix] = 1'b1;
-    end
-    ro[IxFfcStatus] = (HasFfc != 0);
-    ro[IxTableSel]  = (TableReadings != 0);
-    return ro;
-  endfunction
-  localparam logic [NumRegs-1:0] ReadOnly = read_only();
+  assign nuc_en_o    = hwif_out.CTRL.nuc_en.value;
+  assign dpc_en_o    = hwif_out.CTRL.dpc_en.value;
+  assign coef_sync_o = hwif_out.CTRL.coef_sync.value;
+  assign ctrl_touch  = hwif_out.CTRL.nuc_en.swmod || hwif_out.CTRL.dpc_en.swmod
+                       || hwif_out.CTRL.coef_sync.swmod;
 
-  // The register indices a word address hits (at most one).
-  function automatic logic [NumRegs-1:0] decode(input logic [AddrBits-3:0] word);
-    logic [NumRegs-1:0] hit;
-    for (int unsigned ix = 0; ix < NumRegs; ix++) begin
-      hit[ix] = (32'({word, 2'b00}) == reg_offset(ix));
-    end
-    return hit;
-  endfunction
+  // ---- FRAME_SIZE (external, shadowed) ------------------------------------------------------
+  // A write is answered three cycles after the block's request, each step from flops: the
+  // request is registered (cycle 1), the size it would make (the written byte lanes over
+  // the register) registered (cycle 2), its width's and its height's legality registered
+  // (cycle 3), then wr_ack with wr_err and the register written.
+  localparam int unsigned FieldW = RegFrameSizeWidthBits;
+  localparam int unsigned FieldH = RegFrameSizeHeightBits;
 
-  // ---- write channel: hold address and data, decode (a cycle), write (a cycle) --------------
-  logic                aw_held_q, w_held_q, dec_q, b_valid_q;
-  logic                aw_held_d, w_held_d;
-  logic                aw_ready_q, w_ready_q;  // the ports: !aw_held_q, !w_held_q as flops
-  logic [AddrBits-1:0] aw_addr_q;
-  logic [31:0]         w_data_q;
-  logic [3:0]          w_strb_q;
-  axi_resp_e           b_resp_q;
-  logic                w_legal_q, h_legal_q;  // the decoded write's width / height is legal
-  logic                size_hit_q;  // the decoded write hits FRAME_SIZE's size bits
-  logic                table_hit_q;  // ... READING or a TABLE_READING_k (table_interp)
-  logic                size_legal;            // both (the write cycle)
-  logic                decode_now, wr;
-  logic [NumRegs-1:0]  w_hit, wsel_q;
-  logic [31:0]         wmask, wdata;  // the decoded write: byte lanes and their data
+  logic [WidthBits-1:0]  width_q, width_m1_q;
+  logic [HeightBits-1:0] height_q, height_m1_q;
+  logic                  width_is1_q, height_is1_q, size_dirty_q;
+  logic                  size_req_q;        // cycle 1: the write request and its bus
+  logic [FieldW-1:0]     size_wd_q, size_bw_q;
+  logic [FieldH-1:0]     size_hd_q, size_bh_q;
+  logic                  size_new_q;        // cycle 2: the size it would make
+  logic [FieldW-1:0]     new_w_q;  // the fields as written, compared at their own width
+  logic [FieldH-1:0]     new_h_q;
+  logic                  size_wr_q, w_legal_q, h_legal_q, size_touch_q;  // cycle 3
+  logic [WidthBits-1:0]  set_w_q;
+  logic [HeightBits-1:0] set_h_q;
+  logic                  size_legal;
 
-  assign decode_now = aw_held_q && w_held_q && !dec_q && !b_valid_q;
-  assign wr         = dec_q;
-  assign w_hit      = decode(aw_addr_q[AddrBits-1:2]);
-  // A holding register fills on its valid while empty and empties with the write cycle (it
-  // is full then: no transfer in the same cycle).
-  assign aw_held_d  = !dec_q && (aw_held_q || s_axil_awvalid_i);
-  assign w_held_d   = !dec_q && (w_held_q || s_axil_wvalid_i);
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_write_channel
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_size_steps
     if (!rst_ni) begin
-      aw_held_q  <= 1'b0;
-      w_held_q   <= 1'b0;
-      aw_ready_q <= 1'b1;
-      w_ready_q  <= 1'b1;
-      dec_q      <= 1'b0;
-      b_valid_q  <= 1'b0;
-      b_resp_q   <= AxiOkay;
+      size_req_q   <= 1'b0;
+      size_new_q   <= 1'b0;
+      size_wr_q    <= 1'b0;
+      w_legal_q    <= 1'b0;
+      h_legal_q    <= 1'b0;
+      size_touch_q <= 1'b0;
     end else begin
-      aw_held_q  <= aw_held_d;
-      w_held_q   <= w_held_d;
-      aw_ready_q <= !aw_held_d;
-      w_ready_q  <= !w_held_d;
-      dec_q      <= decode_now;
-      if (dec_q) begin
-        b_valid_q <= 1'b1;
-        // OKAY for a writable or reserved register, SLVERR for a read-only or unmapped
-        // one and for an illegal frame size (from the decode cycle's registers).
-        b_resp_q  <= (|(wsel_q & ~ReadOnly) && !(wsel_q[IxFrameSize] && !size_legal))
-                     ? AxiOkay : AxiSlvErr;
-      end else if (s_axil_bready_i) begin
-        b_valid_q <= 1'b0;
-      end
+      size_req_q   <= hwif_out.FRAME_SIZE.req && hwif_out.FRAME_SIZE.req_is_wr;
+      size_new_q   <= size_req_q;
+      size_wr_q    <= size_new_q;
+      w_legal_q    <= (new_w_q != '0) && (new_w_q <= FieldW'(MaxWidth));
+      h_legal_q    <= (new_h_q != '0) && (new_h_q <= FieldH'(MaxHeight));
+      size_touch_q <= size_new_q && |{size_bw_q, size_bh_q};
     end
   end
 
-  // An empty holding register follows its input (the enable is a flop, not the handshake):
-  // it keeps what it had in the cycle it filled.
-  always_ff @(posedge clk_i) begin : p_write_payload
-    if (!aw_held_q) begin
-      aw_addr_q <= s_axil_awaddr_i;
+  always_ff @(posedge clk_i) begin : p_size_bus
+    if (hwif_out.FRAME_SIZE.req) begin
+      size_wd_q <= hwif_out.FRAME_SIZE.wr_data.width;
+      size_bw_q <= hwif_out.FRAME_SIZE.wr_biten.width;
+      size_hd_q <= hwif_out.FRAME_SIZE.wr_data.height;
+      size_bh_q <= hwif_out.FRAME_SIZE.wr_biten.height;
     end
-    if (!w_held_q) begin
-      w_data_q <= s_axil_wdata_i;
-      w_strb_q <= s_axil_wstrb_i;
+    if (size_req_q) begin
+      new_w_q <= (FieldW'(width_q) & ~size_bw_q) | (size_wd_q & size_bw_q);
+      new_h_q <= (FieldH'(height_q) & ~size_bh_q) | (size_hd_q & size_bh_q);
     end
-  end
-
-  assign s_axil_awready_o = aw_ready_q;
-  assign s_axil_wready_o  = w_ready_q;
-  assign s_axil_bvalid_o  = b_valid_q;
-  assign s_axil_bresp_o   = b_resp_q;
-
-  // ---- CTRL and FRAME_SIZE (shadowed) ------------------------------------------------------
-  localparam logic [31:0] CtrlMask = (32'd1 << RegCtrlNucEnLsb) | (32'd1 << RegCtrlDpcEnLsb)
-                                     | (32'd1 << RegCtrlCoefSyncLsb);
-  localparam logic [31:0] WidthField  = ((32'd1 << RegFrameSizeWidthBits) - 32'd1)
-                                        << RegFrameSizeWidthLsb;
-  localparam logic [31:0] HeightField = ((32'd1 << RegFrameSizeHeightBits) - 32'd1)
-                                        << RegFrameSizeHeightLsb;
-  localparam logic [31:0] SizeMask    = WidthField | HeightField;
-  // The byte lanes of the two fields (each two lanes, checked below).
-  localparam int unsigned WLane       = RegFrameSizeWidthLsb / 8;
-  localparam int unsigned HLane       = RegFrameSizeHeightLsb / 8;
-
-  logic                  nuc_en_q, dpc_en_q, coef_sync_q;
-  logic [WidthBits-1:0]  width_q, width_m1_q, new_w_q;
-  logic [HeightBits-1:0] height_q, height_m1_q, new_h_q;
-  logic                  width_is1_q, height_is1_q, size_dirty_q, pending_q;
-  logic [31:0]           ctrl_view, size_view, ctrl_new, size_new;
-  logic [RegFrameSizeWidthBits-1:0]  new_w;  // the fields as written: compared at their
-  logic [RegFrameSizeHeightBits-1:0] new_h;  // own width (short carry chains)
-  logic                  w_legal, h_legal, wr_ctrl, wr_size, shadow_touch;
-
-  assign ctrl_view  = (32'(nuc_en_q) << RegCtrlNucEnLsb) | (32'(dpc_en_q) << RegCtrlDpcEnLsb)
-                      | (32'(coef_sync_q) << RegCtrlCoefSyncLsb);
-  assign size_view  = (32'(width_q) << RegFrameSizeWidthLsb)
-                      | (32'(height_q) << RegFrameSizeHeightLsb);
-  // The frame size the held write would make, and whether it is legal (decode cycle).
-  assign size_new   = (size_view & ~axil_byte_mask(w_strb_q))
-                      | (w_data_q & axil_byte_mask(w_strb_q));
-  assign new_w      = RegFrameSizeWidthBits'(size_new >> RegFrameSizeWidthLsb);
-  assign new_h      = RegFrameSizeHeightBits'(size_new >> RegFrameSizeHeightLsb);
-  // Legality: each field is two byte lanes, so the compares are made for the four lane
-  // choices in parallel, from flops, and the strobes pick one after them (the strobes'
-  // fanout no longer precedes the carry chains).
-  logic [3:0] w_legal_c, h_legal_c;
-  for (genvar c = 0; c < 4; c++) begin : gen_legal
-    logic [31:0]                       lanes, size_c;
-    logic [RegFrameSizeWidthBits-1:0]  w_c;
-    logic [RegFrameSizeHeightBits-1:0] h_c;
-    assign lanes = axil_byte_mask(4'((c << WLane) | (c << HLane)));
-    assign size_c = (size_view & ~lanes) | (w_data_q & lanes);
-    assign w_c = RegFrameSizeWidthBits'(size_c >> RegFrameSizeWidthLsb);
-    assign h_c = RegFrameSizeHeightBits'(size_c >> RegFrameSizeHeightLsb);
-    assign w_legal_c[c] = (w_c != '0) && (w_c <= RegFrameSizeWidthBits'(MaxWidth));
-    assign h_legal_c[c] = (h_c != '0) && (h_c <= RegFrameSizeHeightBits'(MaxHeight));
-  end
-  assign w_legal    = w_legal_c[w_strb_q[WLane +: 2]];
-  assign h_legal    = h_legal_c[w_strb_q[HLane +: 2]];
-  logic unused_new;  // the fields' bits above the frame size (a legal size has none)
-  assign unused_new = ^{new_w, new_h};
-
-  // The decode cycle: the register hit, the byte lanes, the new frame size and whether its
-  // width and its height are legal (two flops: the AND of the two compares is made in the
-  // write cycle; the response is made from these in the next cycle).
-  always_ff @(posedge clk_i) begin : p_decode
-    if (decode_now) begin
-      wsel_q       <= w_hit;
-      wmask        <= axil_byte_mask(w_strb_q);
-      wdata        <= w_data_q & axil_byte_mask(w_strb_q);
-      w_legal_q    <= w_legal;
-      h_legal_q    <= h_legal;
-      new_w_q      <= WidthBits'(new_w);
-      new_h_q      <= HeightBits'(new_h);
-      size_hit_q   <= w_hit[IxFrameSize] && |(axil_byte_mask(w_strb_q) & SizeMask);
-      table_hit_q  <= |w_hit[IxSlot + 4 +: 2] || |w_hit[IxTable +: NumTable];
+    if (size_new_q) begin
+      set_w_q <= WidthBits'(new_w_q);
+      set_h_q <= HeightBits'(new_h_q);
     end
   end
 
-  assign ctrl_new = (ctrl_view & ~wmask) | (wdata & CtrlMask);
-  assign wr_ctrl  = wr && wsel_q[IxCtrl];
   assign size_legal = w_legal_q && h_legal_q;
-  assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal;
+  // From flops in one LUT (the framer's start decision reads it).
+  assign size_write_o = size_wr_q && size_legal && size_touch_q;
+  assign wr_err       = size_wr_q && !size_legal;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_settings
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_size
     if (!rst_ni) begin
-      nuc_en_q     <= 1'(RegCtrlNucEnReset);
-      dpc_en_q     <= 1'(RegCtrlDpcEnReset);
-      coef_sync_q  <= 1'(RegCtrlCoefSyncReset);
       width_q      <= WidthBits'(MaxWidth);
       width_m1_q   <= WidthBits'(MaxWidth - 1);
       width_is1_q  <= (MaxWidth == 1);
       height_q     <= HeightBits'(MaxHeight);
       height_m1_q  <= HeightBits'(MaxHeight - 1);
       height_is1_q <= (MaxHeight == 1);
-    end else begin
-      if (wr_ctrl) begin
-        nuc_en_q    <= ctrl_new[RegCtrlNucEnLsb];
-        dpc_en_q    <= ctrl_new[RegCtrlDpcEnLsb];
-        coef_sync_q <= ctrl_new[RegCtrlCoefSyncLsb];
-      end
-      if (wr_size) begin
-        width_q      <= new_w_q;
-        width_m1_q   <= new_w_q - WidthBits'(1);  // from the flop: no strobe merge before
-        width_is1_q  <= (new_w_q == WidthBits'(1));
-        height_q     <= new_h_q;
-        height_m1_q  <= new_h_q - HeightBits'(1);
-        height_is1_q <= (new_h_q == HeightBits'(1));
-      end
+    end else if (size_wr_q && size_legal) begin
+      width_q      <= set_w_q;
+      width_m1_q   <= set_w_q - WidthBits'(1);  // from the flop: no strobe merge before
+      width_is1_q  <= (set_w_q == WidthBits'(1));
+      height_q     <= set_h_q;
+      height_m1_q  <= set_h_q - HeightBits'(1);
+      height_is1_q <= (set_h_q == HeightBits'(1));
     end
   end
+
+  assign hwif_in.FRAME_SIZE.rd_ack       = hwif_out.FRAME_SIZE.req
+                                           && !hwif_out.FRAME_SIZE.req_is_wr;
+  assign hwif_in.FRAME_SIZE.wr_ack       = size_wr_q;
+  assign hwif_in.FRAME_SIZE.rd_data.width  = FieldW'(width_q);
+  assign hwif_in.FRAME_SIZE.rd_data.height = FieldH'(height_q);
 
   assign width_o      = width_q;
   assign height_o     = height_q;
@@ -382,158 +280,302 @@ module irnuc_axil_regs
   assign height_m1_o  = height_m1_q;
   assign width_is1_o  = width_is1_q;
   assign height_is1_o = height_is1_q;
-  assign nuc_en_o     = nuc_en_q;
-  assign dpc_en_o     = dpc_en_q;
-  assign coef_sync_o  = coef_sync_q;
 
-  // ---- method registers (shadowed) ---------------------------------------------------------
+  // ---- the method registers (external, shadowed) --------------------------------------------
+  // irnuc-regmap: begin (generated from nuc_fixed/registers.rdl; do not edit)
+  // The method registers' 64-bit slots (the map's register files of LO and HI; 
+  // NumSlots = irnuc_pkg::RegSlotCount), their widths (this module's parameters,
+  // 0 = not in this build) and their indices.
+  localparam int unsigned SlotBits [NumSlots] = '{
+    GainRegBits,
+    LevelRegBits,
+    ReadingRegBits,
+    TRefRegBits,
+    BlindSumRegBits,
+    BlindRefRegBits,
+    DriftGainRegBits,
+    FfcTargetRegBits
+  };
+  /* verilator lint_off UNUSEDPARAM */  // the indices the module does not name
+  localparam int unsigned SlotGain = 0;
+  localparam int unsigned SlotLevel = 1;
+  localparam int unsigned SlotReading = 2;
+  localparam int unsigned SlotTRef = 3;
+  localparam int unsigned SlotBlindSum = 4;
+  localparam int unsigned SlotBlindRef = 5;
+  localparam int unsigned SlotDriftGain = 6;
+  localparam int unsigned SlotFfcTarget = 7;
+  /* verilator lint_on UNUSEDPARAM */
+  logic [NumSlots-1:0][1:0]       slot_req, slot_req_is_wr, slot_rd_ack, slot_wr_ack;
+  logic [NumSlots-1:0][1:0][31:0] slot_wr_data, slot_wr_biten, slot_rd_data;
+  assign slot_req[0][0]       = hwif_out.GAIN.LO.req;
+  assign slot_req_is_wr[0][0] = hwif_out.GAIN.LO.req_is_wr;
+  assign slot_wr_data[0][0]   = hwif_out.GAIN.LO.wr_data.value;
+  assign slot_wr_biten[0][0]  = hwif_out.GAIN.LO.wr_biten.value;
+  assign hwif_in.GAIN.LO.rd_ack       = slot_rd_ack[0][0];
+  assign hwif_in.GAIN.LO.rd_data.value = slot_rd_data[0][0];
+  assign hwif_in.GAIN.LO.wr_ack       = slot_wr_ack[0][0];
+  assign slot_req[0][1]       = hwif_out.GAIN.HI.req;
+  assign slot_req_is_wr[0][1] = hwif_out.GAIN.HI.req_is_wr;
+  assign slot_wr_data[0][1]   = hwif_out.GAIN.HI.wr_data.value;
+  assign slot_wr_biten[0][1]  = hwif_out.GAIN.HI.wr_biten.value;
+  assign hwif_in.GAIN.HI.rd_ack       = slot_rd_ack[0][1];
+  assign hwif_in.GAIN.HI.rd_data.value = slot_rd_data[0][1];
+  assign hwif_in.GAIN.HI.wr_ack       = slot_wr_ack[0][1];
+  assign slot_req[1][0]       = hwif_out.LEVEL.LO.req;
+  assign slot_req_is_wr[1][0] = hwif_out.LEVEL.LO.req_is_wr;
+  assign slot_wr_data[1][0]   = hwif_out.LEVEL.LO.wr_data.value;
+  assign slot_wr_biten[1][0]  = hwif_out.LEVEL.LO.wr_biten.value;
+  assign hwif_in.LEVEL.LO.rd_ack       = slot_rd_ack[1][0];
+  assign hwif_in.LEVEL.LO.rd_data.value = slot_rd_data[1][0];
+  assign hwif_in.LEVEL.LO.wr_ack       = slot_wr_ack[1][0];
+  assign slot_req[1][1]       = hwif_out.LEVEL.HI.req;
+  assign slot_req_is_wr[1][1] = hwif_out.LEVEL.HI.req_is_wr;
+  assign slot_wr_data[1][1]   = hwif_out.LEVEL.HI.wr_data.value;
+  assign slot_wr_biten[1][1]  = hwif_out.LEVEL.HI.wr_biten.value;
+  assign hwif_in.LEVEL.HI.rd_ack       = slot_rd_ack[1][1];
+  assign hwif_in.LEVEL.HI.rd_data.value = slot_rd_data[1][1];
+  assign hwif_in.LEVEL.HI.wr_ack       = slot_wr_ack[1][1];
+  assign slot_req[2][0]       = hwif_out.READING.LO.req;
+  assign slot_req_is_wr[2][0] = hwif_out.READING.LO.req_is_wr;
+  assign slot_wr_data[2][0]   = hwif_out.READING.LO.wr_data.value;
+  assign slot_wr_biten[2][0]  = hwif_out.READING.LO.wr_biten.value;
+  assign hwif_in.READING.LO.rd_ack       = slot_rd_ack[2][0];
+  assign hwif_in.READING.LO.rd_data.value = slot_rd_data[2][0];
+  assign hwif_in.READING.LO.wr_ack       = slot_wr_ack[2][0];
+  assign slot_req[2][1]       = hwif_out.READING.HI.req;
+  assign slot_req_is_wr[2][1] = hwif_out.READING.HI.req_is_wr;
+  assign slot_wr_data[2][1]   = hwif_out.READING.HI.wr_data.value;
+  assign slot_wr_biten[2][1]  = hwif_out.READING.HI.wr_biten.value;
+  assign hwif_in.READING.HI.rd_ack       = slot_rd_ack[2][1];
+  assign hwif_in.READING.HI.rd_data.value = slot_rd_data[2][1];
+  assign hwif_in.READING.HI.wr_ack       = slot_wr_ack[2][1];
+  assign slot_req[3][0]       = hwif_out.T_REF.LO.req;
+  assign slot_req_is_wr[3][0] = hwif_out.T_REF.LO.req_is_wr;
+  assign slot_wr_data[3][0]   = hwif_out.T_REF.LO.wr_data.value;
+  assign slot_wr_biten[3][0]  = hwif_out.T_REF.LO.wr_biten.value;
+  assign hwif_in.T_REF.LO.rd_ack       = slot_rd_ack[3][0];
+  assign hwif_in.T_REF.LO.rd_data.value = slot_rd_data[3][0];
+  assign hwif_in.T_REF.LO.wr_ack       = slot_wr_ack[3][0];
+  assign slot_req[3][1]       = hwif_out.T_REF.HI.req;
+  assign slot_req_is_wr[3][1] = hwif_out.T_REF.HI.req_is_wr;
+  assign slot_wr_data[3][1]   = hwif_out.T_REF.HI.wr_data.value;
+  assign slot_wr_biten[3][1]  = hwif_out.T_REF.HI.wr_biten.value;
+  assign hwif_in.T_REF.HI.rd_ack       = slot_rd_ack[3][1];
+  assign hwif_in.T_REF.HI.rd_data.value = slot_rd_data[3][1];
+  assign hwif_in.T_REF.HI.wr_ack       = slot_wr_ack[3][1];
+  assign slot_req[4][0]       = hwif_out.BLIND_SUM.LO.req;
+  assign slot_req_is_wr[4][0] = hwif_out.BLIND_SUM.LO.req_is_wr;
+  assign slot_wr_data[4][0]   = hwif_out.BLIND_SUM.LO.wr_data.value;
+  assign slot_wr_biten[4][0]  = hwif_out.BLIND_SUM.LO.wr_biten.value;
+  assign hwif_in.BLIND_SUM.LO.rd_ack       = slot_rd_ack[4][0];
+  assign hwif_in.BLIND_SUM.LO.rd_data.value = slot_rd_data[4][0];
+  assign hwif_in.BLIND_SUM.LO.wr_ack       = slot_wr_ack[4][0];
+  assign slot_req[4][1]       = hwif_out.BLIND_SUM.HI.req;
+  assign slot_req_is_wr[4][1] = hwif_out.BLIND_SUM.HI.req_is_wr;
+  assign slot_wr_data[4][1]   = hwif_out.BLIND_SUM.HI.wr_data.value;
+  assign slot_wr_biten[4][1]  = hwif_out.BLIND_SUM.HI.wr_biten.value;
+  assign hwif_in.BLIND_SUM.HI.rd_ack       = slot_rd_ack[4][1];
+  assign hwif_in.BLIND_SUM.HI.rd_data.value = slot_rd_data[4][1];
+  assign hwif_in.BLIND_SUM.HI.wr_ack       = slot_wr_ack[4][1];
+  assign slot_req[5][0]       = hwif_out.BLIND_REF.LO.req;
+  assign slot_req_is_wr[5][0] = hwif_out.BLIND_REF.LO.req_is_wr;
+  assign slot_wr_data[5][0]   = hwif_out.BLIND_REF.LO.wr_data.value;
+  assign slot_wr_biten[5][0]  = hwif_out.BLIND_REF.LO.wr_biten.value;
+  assign hwif_in.BLIND_REF.LO.rd_ack       = slot_rd_ack[5][0];
+  assign hwif_in.BLIND_REF.LO.rd_data.value = slot_rd_data[5][0];
+  assign hwif_in.BLIND_REF.LO.wr_ack       = slot_wr_ack[5][0];
+  assign slot_req[5][1]       = hwif_out.BLIND_REF.HI.req;
+  assign slot_req_is_wr[5][1] = hwif_out.BLIND_REF.HI.req_is_wr;
+  assign slot_wr_data[5][1]   = hwif_out.BLIND_REF.HI.wr_data.value;
+  assign slot_wr_biten[5][1]  = hwif_out.BLIND_REF.HI.wr_biten.value;
+  assign hwif_in.BLIND_REF.HI.rd_ack       = slot_rd_ack[5][1];
+  assign hwif_in.BLIND_REF.HI.rd_data.value = slot_rd_data[5][1];
+  assign hwif_in.BLIND_REF.HI.wr_ack       = slot_wr_ack[5][1];
+  assign slot_req[6][0]       = hwif_out.DRIFT_GAIN.LO.req;
+  assign slot_req_is_wr[6][0] = hwif_out.DRIFT_GAIN.LO.req_is_wr;
+  assign slot_wr_data[6][0]   = hwif_out.DRIFT_GAIN.LO.wr_data.value;
+  assign slot_wr_biten[6][0]  = hwif_out.DRIFT_GAIN.LO.wr_biten.value;
+  assign hwif_in.DRIFT_GAIN.LO.rd_ack       = slot_rd_ack[6][0];
+  assign hwif_in.DRIFT_GAIN.LO.rd_data.value = slot_rd_data[6][0];
+  assign hwif_in.DRIFT_GAIN.LO.wr_ack       = slot_wr_ack[6][0];
+  assign slot_req[6][1]       = hwif_out.DRIFT_GAIN.HI.req;
+  assign slot_req_is_wr[6][1] = hwif_out.DRIFT_GAIN.HI.req_is_wr;
+  assign slot_wr_data[6][1]   = hwif_out.DRIFT_GAIN.HI.wr_data.value;
+  assign slot_wr_biten[6][1]  = hwif_out.DRIFT_GAIN.HI.wr_biten.value;
+  assign hwif_in.DRIFT_GAIN.HI.rd_ack       = slot_rd_ack[6][1];
+  assign hwif_in.DRIFT_GAIN.HI.rd_data.value = slot_rd_data[6][1];
+  assign hwif_in.DRIFT_GAIN.HI.wr_ack       = slot_wr_ack[6][1];
+  assign slot_req[7][0]       = hwif_out.FFC_TARGET.LO.req;
+  assign slot_req_is_wr[7][0] = hwif_out.FFC_TARGET.LO.req_is_wr;
+  assign slot_wr_data[7][0]   = hwif_out.FFC_TARGET.LO.wr_data.value;
+  assign slot_wr_biten[7][0]  = hwif_out.FFC_TARGET.LO.wr_biten.value;
+  assign hwif_in.FFC_TARGET.LO.rd_ack       = slot_rd_ack[7][0];
+  assign hwif_in.FFC_TARGET.LO.rd_data.value = slot_rd_data[7][0];
+  assign hwif_in.FFC_TARGET.LO.wr_ack       = slot_wr_ack[7][0];
+  assign slot_req[7][1]       = hwif_out.FFC_TARGET.HI.req;
+  assign slot_req_is_wr[7][1] = hwif_out.FFC_TARGET.HI.req_is_wr;
+  assign slot_wr_data[7][1]   = hwif_out.FFC_TARGET.HI.wr_data.value;
+  assign slot_wr_biten[7][1]  = hwif_out.FFC_TARGET.HI.wr_biten.value;
+  assign hwif_in.FFC_TARGET.HI.rd_ack       = slot_rd_ack[7][1];
+  assign hwif_in.FFC_TARGET.HI.rd_data.value = slot_rd_data[7][1];
+  assign hwif_in.FFC_TARGET.HI.wr_ack       = slot_wr_ack[7][1];
+  // irnuc-regmap: end
+
   logic [NumSlots-1:0] slot_touch;
-  logic [NumTable-1:0] table_touch;
+  logic [NumTable-1:0] table_touch, table_wr;
 
   for (genvar k = 0; k < NumSlots; k++) begin : gen_slot
+    logic [1:0] wr;  // a write to the slot's LO, HI word in this cycle
+    for (genvar w = 0; w < 2; w++) begin : gen_word
+      assign wr[w]              = slot_req[k][w] && slot_req_is_wr[k][w];
+      assign slot_rd_ack[k][w]  = slot_req[k][w] && !slot_req_is_wr[k][w];
+      assign slot_wr_ack[k][w]  = wr[w];
+    end
     if (SlotBits[k] > 0) begin : gen_on
-      localparam int unsigned Bits   = SlotBits[k];
-      localparam logic [31:0] LoMask = axil_value_mask(Bits, 0);
-      localparam logic [31:0] HiMask = axil_value_mask(Bits, 1);
+      localparam int unsigned Bits = SlotBits[k];
+      localparam logic [63:0] Mask = (Bits >= 64) ? '1 : ((64'd1 << Bits) - 64'd1);
       logic [Bits-1:0] value_q;
-      logic [63:0]     view;
-      logic [31:0]     lo, hi;
-      logic            wr_lo, wr_hi;
+      logic [63:0]     view, data, biten;
 
       assign view  = 64'(value_q);
-      assign wr_lo = wr && wsel_q[IxSlot + 2 * k];
-      assign wr_hi = wr && wsel_q[IxSlot + 2 * k + 1];
-      assign lo    = wr_lo ? (view[31:0] & ~wmask) | (wdata & LoMask) : view[31:0];
-      assign hi    = wr_hi ? (view[63:32] & ~wmask) | (wdata & HiMask) : view[63:32];
-      assign slot_touch[k] = (wr_lo && |(wmask & LoMask)) || (wr_hi && |(wmask & HiMask));
+      assign data  = {slot_wr_data[k][1], slot_wr_data[k][0]};
+      assign biten = {slot_wr_biten[k][1] & {32{wr[1]}}, slot_wr_biten[k][0] & {32{wr[0]}}};
+      assign slot_touch[k] = |(biten & Mask);
 
       always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
         if (!rst_ni) begin
           value_q <= '0;
-        end else if (wr_lo || wr_hi) begin
-          value_q <= Bits'({hi, lo});
+        end else if (|wr) begin
+          value_q <= Bits'((view & ~biten) | (data & biten));
         end
       end
-      assign slot_o[k] = view;
+      assign slot_o[k]          = view;
+      assign slot_rd_data[k][0] = view[31:0];
+      assign slot_rd_data[k][1] = view[63:32];
     end else begin : gen_off
-      assign slot_touch[k] = 1'b0;
-      assign slot_o[k]     = '0;
+      assign slot_touch[k]      = 1'b0;
+      assign slot_o[k]          = '0;
+      assign slot_rd_data[k]    = '0;
+      logic unused_slot;
+      assign unused_slot = ^{slot_wr_data[k], slot_wr_biten[k]};
     end
   end
 
   for (genvar k = 0; k < NumTable; k++) begin : gen_table
+    assign table_wr[k] = hwif_out.TABLE_READING[k].req && hwif_out.TABLE_READING[k].req_is_wr;
+    assign hwif_in.TABLE_READING[k].rd_ack = hwif_out.TABLE_READING[k].req
+                                             && !hwif_out.TABLE_READING[k].req_is_wr;
+    assign hwif_in.TABLE_READING[k].wr_ack = table_wr[k];
     if (k < TableReadings) begin : gen_on
       localparam logic [31:0] Mask = axil_value_mask(TableReadingBits, 0);
       logic [TableReadingBits-1:0] value_q;
-      logic                        wr_k;
+      logic [31:0]                 biten;
 
-      assign wr_k           = wr && wsel_q[IxTable + k];
-      assign table_touch[k] = wr_k && |(wmask & Mask);
+      assign biten          = hwif_out.TABLE_READING[k].wr_biten.value & {32{table_wr[k]}};
+      assign table_touch[k] = |(biten & Mask);
 
       always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
         if (!rst_ni) begin
           value_q <= '0;
-        end else if (wr_k) begin
-          value_q <= TableReadingBits'(((32'(value_q) & ~wmask) | (wdata & Mask)));
+        end else if (table_wr[k]) begin
+          value_q <= TableReadingBits'((32'(value_q) & ~biten)
+                                       | (hwif_out.TABLE_READING[k].wr_data.value & biten));
         end
       end
       assign table_o[k] = 32'(value_q);
     end else begin : gen_off
       assign table_touch[k] = 1'b0;
       assign table_o[k]     = '0;
+      logic unused_table;
+      assign unused_table = ^{hwif_out.TABLE_READING[k].wr_data.value,
+                              hwif_out.TABLE_READING[k].wr_biten.value};
     end
+    assign hwif_in.TABLE_READING[k].rd_data.value = table_o[k];
   end
 
+  // READING or a TABLE_READING[k] written in this cycle (any byte lanes): irnuc_axis_table
+  // computes the weight again.
+  assign table_write_o = (TableReadings != 0)
+                         && (|(slot_req[SlotReading] & slot_req_is_wr[SlotReading])
+                             || |table_wr);
+
+  // ---- STATUS.pending and the size change ---------------------------------------------------
   // A write that changes a shadowed register: pending until the next frame start (a write
   // in the start cycle stays pending: the framer took the value before it).
-  assign shadow_touch = (wr_ctrl && |(wmask & CtrlMask)) || (wr_size && |(wmask & SizeMask))
-                        || |slot_touch || |table_touch;
+  logic pending_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_pending
     if (!rst_ni) begin
       pending_q    <= 1'b0;
       size_dirty_q <= 1'b0;
     end else begin
-      pending_q    <= shadow_touch || (pending_q && !start_i);
+      pending_q    <= ctrl_touch || size_write_o || |slot_touch || |table_touch
+                      || (pending_q && !start_i);
       size_dirty_q <= size_write_o || (size_dirty_q && !start_i);
     end
   end
 
   assign size_dirty_o = size_dirty_q;
-  // From flops in one LUT (the framer's start decision reads both): the register and its
-  // byte lanes decoded a cycle early (size_hit_q, table_hit_q), legality, the write cycle.
-  assign size_write_o  = wr && size_hit_q && size_legal;
-  assign table_write_o = wr && table_hit_q && (TableReadings != 0);
 
-  // ---- STATUS, IRQ ---------------------------------------------------------------------------
-  logic [NumErrors-1:0] err_q, err_ev;
-  logic [2:0]           irq_en_q, irq_st_q, irq_ev;
-  logic                 irq_q;
-  logic [31:0]          err_clear, irq_clear;
+  // ---- STATUS, IRQ_STATUS, the counters ---------------------------------------------------
+  assign hwif_in.STATUS.sof_early.hwset  = sof_early_i;
+  assign hwif_in.STATUS.sof_late.hwset   = sof_late_i;
+  assign hwif_in.STATUS.eol_early.hwset  = eol_early_i;
+  assign hwif_in.STATUS.eol_late.hwset   = eol_late_i;
+  assign hwif_in.STATUS.coef_early.hwset = coef_early_i;
+  assign hwif_in.STATUS.coef_late.hwset  = coef_late_i;
+  assign hwif_in.STATUS.core_err.next    = core_err_i;
+  assign hwif_in.STATUS.in_frame.next    = in_frame_i;
+  assign hwif_in.STATUS.pending.next     = pending_q;
 
-  assign err_ev    = {coef_late_i, coef_early_i, eol_late_i, eol_early_i, sof_late_i,
-                      sof_early_i};
-  assign irq_ev    = {ffc_done_i && (HasFfc != 0), frame_out_i, |err_ev};
-  assign err_clear = (wr && wsel_q[IxStatus]) ? wdata : '0;
-  assign irq_clear = (wr && wsel_q[IxIrqStatus]) ? wdata : '0;
+  assign hwif_in.IRQ_STATUS.error.next      = sof_early_i || sof_late_i || eol_early_i
+                                              || eol_late_i || coef_early_i || coef_late_i;
+  assign hwif_in.IRQ_STATUS.frame_done.next = frame_out_i;
+  assign hwif_in.IRQ_STATUS.ffc_done.next   = ffc_done_i && (HasFfc != 0);
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_status
+  // The counters' synchronous reset (the map's signal counters_clear): COMMAND's pulse, and
+  // the cycle after rst_ni (init_q, 1 from reset): a clear mapped to the flops' set/reset
+  // input, no logic before their adders.
+  logic init_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_init
     if (!rst_ni) begin
-      err_q    <= '0;
-      irq_en_q <= '0;
-      irq_st_q <= '0;
-      irq_q    <= 1'b0;
+      init_q <= 1'b1;
     end else begin
-      err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));
-      irq_st_q <= irq_ev | (irq_st_q & ~3'(irq_clear >> RegIrqStatusErrorLsb));
-      irq_q    <= |(irq_st_q & irq_en_q);
-      if (wr && wsel_q[IxIrqEnable]) begin
-        irq_en_q <= 3'((((32'(irq_en_q) << RegIrqEnableErrorLsb) & ~wmask) | wdata)
-                       >> RegIrqEnableErrorLsb);
-      end
+      init_q <= 1'b0;
     end
   end
+  assign hwif_in.counters_clear = init_q || hwif_out.COMMAND.clear_counters.value;
+  assign hwif_in.FRAMES_IN.count.incr   = frame_start_i;
+  assign hwif_in.FRAMES_OUT.count.incr  = frame_out_i;
+  assign hwif_in.PIXELS_IN.count.incr   = beat_i;
+  assign hwif_in.PIXELS_OUT.count.incr  = pix_out_i;
+  assign hwif_in.DROPPED.count.incr     = drop_i;
+  assign hwif_in.PADDED.count.incr      = pad_i;
+  assign hwif_in.SOF_ERRORS.early.incr  = sof_early_i;
+  assign hwif_in.SOF_ERRORS.late.incr   = sof_late_i;
+  assign hwif_in.EOL_ERRORS.early.incr  = eol_early_i;
+  assign hwif_in.EOL_ERRORS.late.incr   = eol_late_i;
+  assign hwif_in.COEF_ERRORS.early.incr = coef_early_i;
+  assign hwif_in.COEF_ERRORS.late.incr  = coef_late_i;
 
+  logic irq_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_irq
+    if (!rst_ni) begin
+      irq_q <= 1'b0;
+    end else begin
+      irq_q <= hwif_out.IRQ_STATUS.intr;
+    end
+  end
   assign irq_o = irq_q;
 
-  // ---- counters --------------------------------------------------------------------------------
-  // Traffic (32 bits, the registers FRAMES_IN .. PADDED in that order) and error causes (16
-  // bits, in the order of err_ev: SOF early/late, EOL early/late, COEF early/late); all wrap.
-  localparam int unsigned NumTraffic = 6;
-  logic                              clear;
-  logic [NumTraffic-1:0]             traffic_ev;
-  logic [NumTraffic-1:0][31:0]       traffic_q;
-  logic [NumErrors-1:0][15:0]        errors_q;
-
-  assign clear      = wr && wsel_q[IxCommand] && wdata[RegCommandClearCountersLsb];
-  assign traffic_ev = {pad_i, drop_i, pix_out_i, beat_i, frame_out_i, frame_start_i};
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_counters
-    if (!rst_ni) begin
-      traffic_q <= '0;
-      errors_q  <= '0;
-    end else if (clear) begin
-      traffic_q <= '0;
-      errors_q  <= '0;
-    end else begin
-      // The event enables the count (+1 from flops), not a carry-in: a stream handshake
-      // (pix_out_i is the video output's) then reaches one enable, not a 32-bit carry chain.
-      for (int unsigned k = 0; k < NumTraffic; k++) begin
-        if (traffic_ev[k]) begin
-          traffic_q[k] <= traffic_q[k] + 32'd1;
-        end
-      end
-      for (int unsigned k = 0; k < NumErrors; k++) begin
-        if (err_ev[k]) begin
-          errors_q[k] <= errors_q[k] + 16'd1;
-        end
-      end
-    end
-  end
-
-  // ---- FFC --------------------------------------------------------------------------------------
+  // ---- FFC_CTRL (external), FFC_STATUS ------------------------------------------------------
   logic [RegFfcCtrlFramesBits-1:0] ffc_frames_q;
-  logic                            ffc_start_q, ffc_done_q;
+  logic                            ffc_start_q, ffc_done_q, ffc_wr;
+
+  assign ffc_wr = hwif_out.FFC_CTRL.req && hwif_out.FFC_CTRL.req_is_wr;
+  assign hwif_in.FFC_CTRL.rd_ack = hwif_out.FFC_CTRL.req && !hwif_out.FFC_CTRL.req_is_wr;
+  assign hwif_in.FFC_CTRL.wr_ack = ffc_wr;
 
   if (HasFfc != 0) begin : gen_ffc
     always_ff @(posedge clk_i or negedge rst_ni) begin : p_ffc
@@ -542,11 +584,11 @@ module irnuc_axil_regs
         ffc_start_q  <= 1'b0;
         ffc_done_q   <= 1'b0;
       end else begin
-        ffc_start_q <= wr && wsel_q[IxFfcCtrl] && wdata[RegFfcCtrlStartLsb];
-        if (wr && wsel_q[IxFfcCtrl]) begin
-          ffc_frames_q <= RegFfcCtrlFramesBits'(
-            (((32'(ffc_frames_q) << RegFfcCtrlFramesLsb) & ~wmask) | wdata)
-            >> RegFfcCtrlFramesLsb);
+        ffc_start_q <= ffc_wr && hwif_out.FFC_CTRL.wr_data.start
+                       && hwif_out.FFC_CTRL.wr_biten.start;
+        if (ffc_wr) begin
+          ffc_frames_q <= (ffc_frames_q & ~hwif_out.FFC_CTRL.wr_biten.frames)
+                          | (hwif_out.FFC_CTRL.wr_data.frames & hwif_out.FFC_CTRL.wr_biten.frames);
         end
         if (ffc_done_i) begin
           ffc_done_q <= 1'b1;
@@ -561,139 +603,44 @@ module irnuc_axil_regs
     assign ffc_done_q   = 1'b0;
   end
 
+  assign hwif_in.FFC_CTRL.rd_data = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
+  assign hwif_in.FFC_STATUS.busy.next = ffc_busy_i && (HasFfc != 0);
+  assign hwif_in.FFC_STATUS.done.next = ffc_done_q;
   assign ffc_start_o  = ffc_start_q;
   assign ffc_frames_o = ffc_frames_q;
 
-  // ---- read channel: hold the address, decode (a cycle), read (a cycle) -------------------------
-  logic                     ar_held_q, rdec_q, r_valid_q;
-  logic                     ar_busy_d, ar_busy_q, ar_ready_q;  // busy: held, decoded or answered
-  logic                     r_valid_d;
-  logic [AddrBits-1:0]      ar_addr_q;
-  logic [NumRegs-1:0]       rsel_q;
-  logic [31:0]              r_data_q, rd_data;
-  axi_resp_e                r_resp_q;
-  logic [NumRegs-1:0][31:0] rvals;
+  // ---- TABLE_SEL ------------------------------------------------------------------------------
+  logic [31:0] table_sel;
+  assign table_sel = (TableReadings != 0) ? table_sel_i : '0;
+  assign hwif_in.TABLE_SEL.weight.next = table_sel[RegTableSelWeightLsb +: RegTableSelWeightBits];
+  assign hwif_in.TABLE_SEL.j.next      = table_sel[RegTableSelJLsb +: RegTableSelJBits];
+  assign hwif_in.TABLE_SEL.valid.next  = table_sel[RegTableSelValidLsb];
+  assign hwif_in.TABLE_SEL.error.next  = table_sel[RegTableSelErrorLsb];
 
-  // A read address is taken when none is held, decoded or answered (busy); arready is a flop
-  // of its own, the complement of ar_busy_q, which the logic reads.
-  assign r_valid_d = rdec_q || (r_valid_q && !s_axil_rready_i);
-  assign ar_busy_d = (s_axil_arvalid_i && !ar_busy_q) || ar_held_q || r_valid_d;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_read_channel
-    if (!rst_ni) begin
-      ar_held_q  <= 1'b0;
-      ar_busy_q  <= 1'b0;
-      ar_ready_q <= 1'b1;
-      rdec_q     <= 1'b0;
-      r_valid_q  <= 1'b0;
-      r_resp_q   <= AxiOkay;
-    end else begin
-      ar_held_q  <= s_axil_arvalid_i && !ar_busy_q;
-      ar_busy_q  <= ar_busy_d;
-      ar_ready_q <= !ar_busy_d;
-      rdec_q     <= ar_held_q;
-      r_valid_q  <= r_valid_d;
-      if (rdec_q) begin
-        r_resp_q <= (|rsel_q) ? AxiOkay : AxiSlvErr;
-      end
-    end
-  end
-
-  // The address register follows the input while no read is in progress (see the write).
-  always_ff @(posedge clk_i) begin : p_read_payload
-    if (!ar_busy_q) begin
-      ar_addr_q <= s_axil_araddr_i;
-    end
-    if (ar_held_q) begin
-      rsel_q <= decode(ar_addr_q[AddrBits-1:2]);
-    end
-    if (rdec_q) begin
-      r_data_q <= rd_data;
-    end
-  end
-
-  assign s_axil_arready_o = ar_ready_q;
-  assign s_axil_rvalid_o  = r_valid_q;
-  assign s_axil_rdata_o   = r_data_q;
-  assign s_axil_rresp_o   = r_resp_q;
-
-  // What each register reads.
-  always_comb begin : p_read_values
-    rvals = '0;
-    rvals[IxId]      = 32'(RegMapId) << RegIdValueLsb;
-    rvals[IxVersion] = (32'(RegMapMinor) << RegVersionMinorLsb)
-                       | (32'(RegMapMajor) << RegVersionMajorLsb)
-                       | (32'(CoefLayoutVersion) << RegVersionCoefLayoutLsb);
-    rvals[IxConfig]  = (32'(AdcBits) << RegConfigAdcBitsLsb)
-                       | (32'(OutBits) << RegConfigOutBitsLsb)
-                       | (32'(CoefWordBits) << RegConfigWordBitsLsb)
-                       | (32'(MethodCode) << RegConfigMethodLsb)
-                       | (32'(HasBlindDrift) << RegConfigBlindDriftLsb)
-                       | (32'(HasFfc) << RegConfigFfcLsb)
-                       | (32'(Rounding) << RegConfigRoundingLsb)
-                       | (32'(Overflow) << RegConfigOverflowLsb);
-    rvals[IxFormat]  = (32'(GainIntBits) << RegFormatGainIntBitsLsb)
-                       | (32'(GainFracBits) << RegFormatGainFracBitsLsb)
-                       | (32'(OffsetIntBits) << RegFormatOffsetIntBitsLsb)
-                       | (32'(OffsetFracBits) << RegFormatOffsetFracBitsLsb);
-    rvals[IxFrameMax] = (32'(MaxWidth) << RegFrameMaxWidthLsb)
-                        | (32'(MaxHeight) << RegFrameMaxHeightLsb);
-    rvals[IxCtrl]      = ctrl_view;
-    rvals[IxFrameSize] = size_view;
-    rvals[IxStatus]    = (32'(err_q) << RegStatusSofEarlyLsb)
-                         | (32'(core_err_i) << RegStatusCoreErrLsb)
-                         | (32'(in_frame_i) << RegStatusInFrameLsb)
-                         | (32'(pending_q) << RegStatusPendingLsb);
-    rvals[IxIrqEnable]  = 32'(irq_en_q) << RegIrqEnableErrorLsb;
-    rvals[IxIrqStatus]  = 32'(irq_st_q) << RegIrqStatusErrorLsb;
-    rvals[IxFramesIn]   = traffic_q[0];
-    rvals[IxFramesOut]  = traffic_q[1];
-    rvals[IxPixelsIn]   = traffic_q[2];
-    rvals[IxPixelsOut]  = traffic_q[3];
-    rvals[IxDropped]    = traffic_q[4];
-    rvals[IxPadded]     = traffic_q[5];
-    rvals[IxSofErrors]  = (32'(errors_q[0]) << RegSofErrorsEarlyLsb)
-                          | (32'(errors_q[1]) << RegSofErrorsLateLsb);
-    rvals[IxEolErrors]  = (32'(errors_q[2]) << RegEolErrorsEarlyLsb)
-                          | (32'(errors_q[3]) << RegEolErrorsLateLsb);
-    rvals[IxCoefErrors] = (32'(errors_q[4]) << RegCoefErrorsEarlyLsb)
-                          | (32'(errors_q[5]) << RegCoefErrorsLateLsb);
-    rvals[IxFfcCtrl]    = 32'(ffc_frames_q) << RegFfcCtrlFramesLsb;
-    rvals[IxFfcStatus]  = (32'(ffc_busy_i && HasFfc != 0) << RegFfcStatusBusyLsb)
-                          | (32'(ffc_done_q) << RegFfcStatusDoneLsb);
-    rvals[IxTableSel]   = (TableReadings != 0) ? table_sel_i : '0;
-    for (int unsigned k = 0; k < NumSlots; k++) begin
-      rvals[IxSlot + 2 * k]     = slot_o[k][31:0];
-      rvals[IxSlot + 2 * k + 1] = slot_o[k][63:32];
-    end
-    for (int unsigned k = 0; k < NumTable; k++) begin
-      rvals[IxTable + k] = table_o[k];
-    end
-  end
-
-  // The selected register's value: an AND-OR of one-hot selects (no address decode here).
-  always_comb begin : p_read_mux
-    rd_data = '0;
-    for (int unsigned ix = 0; ix < NumRegs; ix++) begin
-      rd_data |= rvals[ix] & {32{rsel_q[ix]}};
-    end
-  end
-
-  // Address bits 1:0 select a byte of the word (not used: whole words are read).
-  logic unused_addr;
-  assign unused_addr = ^{aw_addr_q[1:0], ar_addr_q[1:0]};
+  // Not used: the FFC_CTRL word's bits outside its fields; table_sel's bits outside TABLE_SEL.
+  logic unused_bits;
+  assign unused_bits = ^{hwif_out.FFC_CTRL.wr_data, hwif_out.FFC_CTRL.wr_biten, table_sel};
 
 `ifndef SYNTHESIS
-  // The parameters' ranges and (IRNUC_ASSERT) the ready flops: irnuc_axil_regs_check.
+  // The parameters' ranges and (IRNUC_ASSERT) the external requests: irnuc_axil_regs_check.
+  logic [NumTable-1:0] table_req, table_ack;
+  for (genvar k = 0; k < NumTable; k++) begin : gen_table_check
+    assign table_req[k] = hwif_out.TABLE_READING[k].req;
+    assign table_ack[k] = hwif_in.TABLE_READING[k].rd_ack || hwif_in.TABLE_READING[k].wr_ack;
+  end
   irnuc_axil_regs_check #(
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .WidthBits(WidthBits), .HeightBits(HeightBits),
     .NumSlots(NumSlots), .SlotBits(SlotBits), .TableReadings(TableReadings),
-    .TableReadingBits(TableReadingBits)
+    .TableReadingBits(TableReadingBits), .NumExternal(2 + 2 * NumSlots + NumTable)
   ) u_check (
-    .clk_i, .rst_ni, .aw_ready_i(aw_ready_q), .aw_held_i(aw_held_q), .w_ready_i(w_ready_q),
-    .w_held_i(w_held_q), .ar_ready_i(ar_ready_q), .ar_busy_i(ar_busy_q),
-    .ar_held_i(ar_held_q), .rdec_i(rdec_q), .r_valid_i(r_valid_q), .wr_i(wr),
-    .size_hit_i(size_hit_q), .size_hit_ref_i(wsel_q[IxFrameSize] && |(wmask & SizeMask))
+    .clk_i,
+    .rst_ni,
+    .ext_req_i ({hwif_out.FRAME_SIZE.req, hwif_out.FFC_CTRL.req, slot_req, table_req}),
+    .ext_ack_i (hwif_in.FRAME_SIZE.rd_ack || hwif_in.FRAME_SIZE.wr_ack
+                || hwif_in.FFC_CTRL.rd_ack || hwif_in.FFC_CTRL.wr_ack
+                || |slot_rd_ack || |slot_wr_ack || |table_ack),
+    .size_req_i(size_new_q),
+    .size_ack_i(hwif_in.FRAME_SIZE.wr_ack)
   );
 `endif
 

@@ -1,6 +1,7 @@
 // Checks of irnuc_axil_regs that synthesis does not see: its parameters at elaboration, and
-// (with IRNUC_ASSERT) its ready flops, each the complement of the state it stands for. The
-// AXI4-Lite ports themselves are checked in the top (irnuc_axil_assert).
+// (with IRNUC_ASSERT) the contract of the generated register block's external requests
+// that the hand-written registers rely on. The AXI4-Lite ports themselves are checked in
+// the top (irnuc_axil_assert).
 module irnuc_axil_regs_check
   import irnuc_pkg::*;
 #(
@@ -11,22 +12,15 @@ module irnuc_axil_regs_check
   parameter int unsigned NumSlots         = 8,
   parameter int unsigned SlotBits [NumSlots] = '{default: 0},
   parameter int unsigned TableReadings    = 0,
-  parameter int unsigned TableReadingBits = 16
+  parameter int unsigned TableReadingBits = 16,
+  parameter int unsigned NumExternal      = 1
 ) (
-  input logic clk_i,
-  input logic rst_ni,
-  input logic aw_ready_i,  // the register file's flops
-  input logic aw_held_i,
-  input logic w_ready_i,
-  input logic w_held_i,
-  input logic ar_ready_i,
-  input logic ar_busy_i,
-  input logic ar_held_i,
-  input logic rdec_i,
-  input logic r_valid_i,
-  input logic wr_i,          // the write cycle
-  input logic size_hit_i,    // size_hit_q, decoded a cycle early
-  input logic size_hit_ref_i // the write's hit of FRAME_SIZE's size bits, from wsel_q, wmask
+  input logic                   clk_i,
+  input logic                   rst_ni,
+  input logic [NumExternal-1:0] ext_req_i,   // every external register's request
+  input logic                   ext_ack_i,   // any external register's rd_ack or wr_ack
+  input logic                   size_req_i,  // FRAME_SIZE's write request, two cycles late
+  input logic                   size_ack_i   // FRAME_SIZE's wr_ack
 );
 
   initial begin : p_param_ranges
@@ -36,9 +30,6 @@ module irnuc_axil_regs_check
                   MaxWidth, MaxHeight, MaxWidthMin, MaxWidthMax);
     assert (WidthBits <= RegFrameSizeWidthBits && HeightBits <= RegFrameSizeHeightBits)
       else $fatal(1, "irnuc_axil_regs: the frame size does not fit FRAME_SIZE");
-    assert (RegFrameSizeWidthLsb % 8 == 0 && RegFrameSizeWidthBits == 16
-            && RegFrameSizeHeightLsb % 8 == 0 && RegFrameSizeHeightBits == 16)
-      else $fatal(1, "irnuc_axil_regs: FRAME_SIZE's fields are not two byte lanes each");
     for (int k = 0; k < NumSlots; k++) begin
       assert (SlotBits[k] <= 64)
         else $fatal(1, "irnuc_axil_regs: method register %0d of %0d bits > 64", k,
@@ -50,27 +41,33 @@ module irnuc_axil_regs_check
   end
 
 `ifdef IRNUC_ASSERT
-  logic armed_q;  // from the second edge after reset
+  // The register block hands one external request at a time, for one cycle, and waits for
+  // its acknowledge before the next (external_pending): the hand-written registers answer
+  // a read in its request's cycle and FRAME_SIZE's write three cycles after it.
+  logic armed_q, size_req_q, ext_open_q;
   irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_track
+    if (!rst_ni) begin
+      size_req_q <= 1'b0;
+      ext_open_q <= 1'b0;
+    end else begin
+      size_req_q <= size_req_i;
+      ext_open_q <= (ext_open_q || |ext_req_i) && !ext_ack_i;
+    end
+  end
   always_ff @(posedge clk_i) begin : p_check
     if (armed_q) begin
-      a_aw_ready: assert (aw_ready_i == !aw_held_i)
-        else $error("irnuc_axil_regs: awready is not 'no write address held'");
-      a_w_ready: assert (w_ready_i == !w_held_i)
-        else $error("irnuc_axil_regs: wready is not 'no write data held'");
-      a_ar_busy: assert (ar_busy_i == (ar_held_i || rdec_i || r_valid_i))
-        else $error("irnuc_axil_regs: the read channel's busy flag lost its read");
-      a_ar_ready: assert (ar_ready_i == !ar_busy_i)
-        else $error("irnuc_axil_regs: arready is not 'no read in progress'");
-      a_size_hit: assert (!wr_i || size_hit_i == size_hit_ref_i)
-        else $error("irnuc_axil_regs: size_hit_q is not the write's hit of FRAME_SIZE's size");
+      a_one_request: assert ($onehot0(ext_req_i))
+        else $error("irnuc_axil_regs: two external requests in one cycle");
+      a_request_waits: assert (!(|ext_req_i) || !ext_open_q)
+        else $error("irnuc_axil_regs: an external request before the last one's acknowledge");
+      a_size_ack: assert (size_ack_i == size_req_q)
+        else $error("irnuc_axil_regs: FRAME_SIZE's write not acknowledged three cycles after it");
     end
   end
 `else
   logic unused_ports;
-  assign unused_ports = ^{clk_i, rst_ni, aw_ready_i, aw_held_i, w_ready_i, w_held_i,
-                          ar_ready_i, ar_busy_i, ar_held_i, rdec_i, r_valid_i, wr_i,
-                          size_hit_i, size_hit_ref_i};
+  assign unused_ports = ^{clk_i, rst_ni, ext_req_i, ext_ack_i, size_req_i, size_ack_i};
 `endif
 
 endmodule

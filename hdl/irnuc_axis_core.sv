@@ -9,84 +9,83 @@ module irnuc_axis_core
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e
-  parameter int unsigned AdcBits        = 14,
-  parameter int unsigned GainIntBits    = 2,
-  parameter int unsigned GainFracBits   = 14,
-  parameter int unsigned OffsetIntBits  = 12,
-  parameter int unsigned OffsetFracBits = 4,
-  parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned MaxWidth       = 1024,
-  parameter int unsigned MaxHeight      = 1024,
-  // Formats and parameters of the base methods (method_dpc_top's; a method reads only its
-  // own; docs/datapath.md "Formats").
-  parameter int unsigned KneeIntBits    = 14,
-  parameter int unsigned KneeFracBits   = 2,
-  parameter int unsigned LevelIntBits   = 14,
-  parameter int unsigned LevelFracBits  = 4,
-  parameter int unsigned QuadIntBits    = 10,
-  parameter int unsigned QuadFracBits   = 6,
-  parameter int unsigned SquareBits     = 18,
-  parameter int unsigned Tc1IntBits     = 13,
-  parameter int unsigned Tc1FracBits    = 3,
-  parameter int unsigned Tc2IntBits     = 12,
-  parameter int unsigned Tc2FracBits    = 4,
-  parameter int unsigned Tg1IntBits     = 2,
-  parameter int unsigned Tg1FracBits    = 14,
-  parameter int unsigned Tg2IntBits     = 2,
-  parameter int unsigned Tg2FracBits    = 14,
-  parameter int unsigned TcOrder        = 2,
-  parameter int unsigned TcGain         = 0,
-  parameter int unsigned ReadingBits    = 14,
-  parameter int unsigned ReadingRangeBits = 11,
-  // table_interp's weight format (method_dpc_top's).
-  parameter int unsigned WeightIntBits  = 1,
-  parameter int unsigned WeightFracBits = 15,
-  parameter int unsigned WeightRounding = 1,  // irnuc_pkg::rounding_e
-  // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
-  parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
-  parameter int unsigned FfcFrames      = 8,
-  parameter int unsigned FfcHold        = 1,
-  parameter int unsigned FfcIntBits     = 12,
-  parameter int unsigned FfcFracBits    = 4,
-  parameter int unsigned FfcRounding    = 1,
-  parameter int unsigned FfcOverflow    = 0,
-  // The blind_drift stage (method_drift_top's parameters; docs/datapath.md "blind_drift").
-  parameter int unsigned Drift          = 0,  // 1: the core is method_drift_top
-  parameter int unsigned BlindMax       = 8192,
-  parameter int unsigned DriftIntBits   = 14,
-  parameter int unsigned DriftFracBits  = 2,
-  parameter int unsigned DriftRounding  = 1,
-  parameter int unsigned DriftOverflow  = 0,
+  // irnuc-params: begin irnuc_axis_core (generated from nuc_fixed.methods; do not edit)
+  // the base method (irnuc_pkg::method_e)
+  parameter method_e     Method            = MethodTwoPoint,
+  parameter int unsigned AdcBits           = 14,
+  parameter int unsigned GainIntBits       = 2,
+  parameter int unsigned GainFracBits      = 14,
+  parameter int unsigned OffsetIntBits     = 12,
+  parameter int unsigned OffsetFracBits    = 4,
+  parameter int unsigned OutBits           = 14,
+  parameter int unsigned Rounding          = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow          = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth          = 1024,
+  parameter int unsigned MaxHeight         = 1024,
+  parameter int unsigned KneeIntBits       = 14,
+  parameter int unsigned KneeFracBits      = 2,
+  parameter int unsigned LevelIntBits      = 14,
+  parameter int unsigned LevelFracBits     = 4,
+  parameter int unsigned QuadIntBits       = 10,
+  parameter int unsigned QuadFracBits      = 6,
+  parameter int unsigned SquareBits        = 18,  // bits the square of a raw code is truncated to
+  parameter int unsigned ReadingBits       = 14,  // bits of the FPA sensor's reading
+  parameter int unsigned Tc1IntBits        = 13,
+  parameter int unsigned Tc1FracBits       = 3,
+  parameter int unsigned Tc2IntBits        = 12,
+  parameter int unsigned Tc2FracBits       = 4,
+  parameter int unsigned Tg1IntBits        = 2,
+  parameter int unsigned Tg1FracBits       = 14,
+  parameter int unsigned Tg2IntBits        = 2,
+  parameter int unsigned Tg2FracBits       = 14,
+  parameter int unsigned TcOrder           = 2,  // order of the polynomials
+  parameter bit          TcGain            = 1'b0,  // the gain is a polynomial too
+  parameter int unsigned ReadingRangeBits  = 11,  // Ts: v = (t - t_ref) / 2^Ts
+  parameter int unsigned WeightIntBits     = 1,
+  parameter int unsigned WeightFracBits    = 15,
+  parameter int unsigned WeightRounding    = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned DriftIntBits      = 14,
+  parameter int unsigned DriftFracBits     = 2,
+  parameter int unsigned DriftRounding     = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned DriftOverflow     = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned DriftGainIntBits  = 1,
   parameter int unsigned DriftGainFracBits = 24,
+  parameter int unsigned BlindMax          = 8192,  // the most blind pixels a frame has
+  parameter bit          Drift             = 1'b0,  // 1: the core is method_drift_top
+  parameter int unsigned FfcIntBits        = 12,
+  parameter int unsigned FfcFracBits       = 4,
+  parameter int unsigned FfcRounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned FfcOverflow       = 0,  // irnuc_pkg::overflow_e
+  // N, the shutter frames of a refresh (a power of two)
+  parameter int unsigned FfcFrames         = 8,
+  // what the output shows during the shutter frames
+  parameter bit          FfcHold           = 1'b1,
+  parameter bit          Ffc               = 1'b0,  // 1: the core is method_ffc_top
   // Derived, do not override.
-  localparam method_e     MethodSel     = method_e'(Method),
-  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned LevelBits     = LevelIntBits + LevelFracBits,
-  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
-                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
-  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
-                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
-  // The coefficient word of the method (s_axis_coef) and the frame word of its registers.
-  localparam int unsigned WordBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits,
-                                                           KneeIntBits + KneeFracBits,
-                                                           QuadIntBits + QuadFracBits,
-                                                           TcWordBits, TgWordBits),
-  localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
-                                                          ReadingBits,
-                                                          WeightIntBits + WeightFracBits),
+  localparam int unsigned GainBits          = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits        = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned KneeBits          = KneeIntBits + KneeFracBits,
+  localparam int unsigned LevelBits         = LevelIntBits + LevelFracBits,
+  localparam int unsigned QuadBits          = QuadIntBits + QuadFracBits,
+  localparam int unsigned TcWordBits        = Tc1IntBits + Tc1FracBits
+                                              + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits        = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                              + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned WeightBits        = WeightIntBits + WeightFracBits,
+  localparam int unsigned WordBits          = coef_stream_bits(Method, OffsetBits, GainBits,
+                                                               KneeBits, QuadBits, TcWordBits,
+                                                               TgWordBits),
+  localparam int unsigned BaseFrameBits     = frame_word_bits(Method, GainBits, LevelBits,
+                                                              ReadingBits, WeightBits),
+  localparam int unsigned WidthBits         = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits        = $clog2(MaxHeight + 1),
+  // irnuc-params: end
   localparam int unsigned BlindBits     = blind_sum_bits(AdcBits, BlindMax),
   localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
   localparam int unsigned FrameBits     = (Drift != 0)
                                           ? frame_blind_drift_bits(BaseFrameBits, BlindBits,
                                                                    DriftGainBits)
                                           : BaseFrameBits,
-  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
-  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // The FFC words (memories ffc_offset and ffc_acc) and their AXI4-Stream widths.
   localparam int unsigned FoffWordBits  = FfcIntBits + FfcFracBits,
   localparam int unsigned AccWordBits   = AdcBits + $clog2(FfcFrames),
@@ -154,38 +153,44 @@ module irnuc_axis_core
 
   if (Ffc != 0) begin : gen_ffc
     irnuc_axis_ffc #(
-      .Method          (Method),
-      .AdcBits         (AdcBits),
-      .GainIntBits     (GainIntBits),
-      .GainFracBits    (GainFracBits),
-      .OffsetIntBits   (OffsetIntBits),
-      .OffsetFracBits  (OffsetFracBits),
-      .OutBits         (OutBits),
-      .Rounding        (Rounding),
-      .Overflow        (Overflow),
-      .MaxWidth        (MaxWidth),
-      .MaxHeight       (MaxHeight),
-      .QuadIntBits     (QuadIntBits),
-      .QuadFracBits    (QuadFracBits),
-      .SquareBits      (SquareBits),
-      .Tc1IntBits      (Tc1IntBits),
-      .Tc1FracBits     (Tc1FracBits),
-      .Tc2IntBits      (Tc2IntBits),
-      .Tc2FracBits     (Tc2FracBits),
-      .Tg1IntBits      (Tg1IntBits),
-      .Tg1FracBits     (Tg1FracBits),
-      .Tg2IntBits      (Tg2IntBits),
-      .Tg2FracBits     (Tg2FracBits),
-      .TcOrder         (TcOrder),
-      .TcGain          (TcGain),
-      .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits),
-      .FfcFrames       (FfcFrames),
-      .FfcHold         (FfcHold),
-      .FfcIntBits      (FfcIntBits),
-      .FfcFracBits     (FfcFracBits),
-      .FfcRounding     (FfcRounding),
-      .FfcOverflow     (FfcOverflow)
+      // irnuc-params: forward irnuc_axis_ffc (generated from nuc_fixed.methods; do not edit)
+      .Method           (Method),
+      .AdcBits          (AdcBits),
+      .GainIntBits      (GainIntBits),
+      .GainFracBits     (GainFracBits),
+      .OffsetIntBits    (OffsetIntBits),
+      .OffsetFracBits   (OffsetFracBits),
+      .OutBits          (OutBits),
+      .Rounding         (Rounding),
+      .Overflow         (Overflow),
+      .MaxWidth         (MaxWidth),
+      .MaxHeight        (MaxHeight),
+      .KneeIntBits      (KneeIntBits),
+      .KneeFracBits     (KneeFracBits),
+      .LevelIntBits     (LevelIntBits),
+      .LevelFracBits    (LevelFracBits),
+      .QuadIntBits      (QuadIntBits),
+      .QuadFracBits     (QuadFracBits),
+      .SquareBits       (SquareBits),
+      .ReadingBits      (ReadingBits),
+      .Tc1IntBits       (Tc1IntBits),
+      .Tc1FracBits      (Tc1FracBits),
+      .Tc2IntBits       (Tc2IntBits),
+      .Tc2FracBits      (Tc2FracBits),
+      .Tg1IntBits       (Tg1IntBits),
+      .Tg1FracBits      (Tg1FracBits),
+      .Tg2IntBits       (Tg2IntBits),
+      .Tg2FracBits      (Tg2FracBits),
+      .TcOrder          (TcOrder),
+      .TcGain           (TcGain),
+      .ReadingRangeBits (ReadingRangeBits),
+      .FfcIntBits       (FfcIntBits),
+      .FfcFracBits      (FfcFracBits),
+      .FfcRounding      (FfcRounding),
+      .FfcOverflow      (FfcOverflow),
+      .FfcFrames        (FfcFrames),
+      .FfcHold          (FfcHold)
+      // irnuc-params: end
     ) u_ffc (
       .clk_i             (clk_i),
       .rst_ni            (rst_ni),
@@ -274,24 +279,33 @@ module irnuc_axis_core
     end
 
     method_drift_top #(
-      .Method           (Method),
-      .AdcBits          (AdcBits),
-      .GainIntBits      (GainIntBits),
-      .GainFracBits     (GainFracBits),
-      .OffsetIntBits    (OffsetIntBits),
-      .OffsetFracBits   (OffsetFracBits),
-      .OutBits          (OutBits),
-      .Rounding         (Rounding),
-      .Overflow         (Overflow),
-      .MaxWidth         (MaxWidth),
-      .MaxHeight        (MaxHeight),
-      .BlindMax         (BlindMax),
-      .DriftIntBits     (DriftIntBits),
-      .DriftFracBits    (DriftFracBits),
-      .DriftRounding    (DriftRounding),
-      .DriftOverflow    (DriftOverflow),
-      .DriftGainIntBits (DriftGainIntBits),
-      .DriftGainFracBits(DriftGainFracBits)
+
+      // irnuc-params: forward method_drift_top (generated from nuc_fixed.methods; do not edit)
+      .Method            (Method),
+      .AdcBits           (AdcBits),
+      .GainIntBits       (GainIntBits),
+      .GainFracBits      (GainFracBits),
+      .OffsetIntBits     (OffsetIntBits),
+      .OffsetFracBits    (OffsetFracBits),
+      .OutBits           (OutBits),
+      .Rounding          (Rounding),
+      .Overflow          (Overflow),
+      .MaxWidth          (MaxWidth),
+      .MaxHeight         (MaxHeight),
+      .KneeIntBits       (KneeIntBits),
+      .KneeFracBits      (KneeFracBits),
+      .LevelIntBits      (LevelIntBits),
+      .LevelFracBits     (LevelFracBits),
+      .QuadIntBits       (QuadIntBits),
+      .QuadFracBits      (QuadFracBits),
+      .DriftIntBits      (DriftIntBits),
+      .DriftFracBits     (DriftFracBits),
+      .DriftRounding     (DriftRounding),
+      .DriftOverflow     (DriftOverflow),
+      .DriftGainIntBits  (DriftGainIntBits),
+      .DriftGainFracBits (DriftGainFracBits),
+      .BlindMax          (BlindMax)
+      // irnuc-params: end
     ) u_core (
       .clk_i          (clk_i),
       .rst_ni         (rst_ni),
@@ -319,18 +333,20 @@ module irnuc_axis_core
       .m_pix_eol_o    (m_eol_o),
       .frame_err_o    (frame_err_o)
     );
-  end else if (MethodSel == MethodTwoPoint) begin : gen_two_point
+  end else if (method_plain(Method)) begin : gen_plain
     nuc_dpc_top #(
-      .AdcBits       (AdcBits),
-      .GainIntBits   (GainIntBits),
-      .GainFracBits  (GainFracBits),
-      .OffsetIntBits (OffsetIntBits),
-      .OffsetFracBits(OffsetFracBits),
-      .OutBits       (OutBits),
-      .Rounding      (Rounding),
-      .Overflow      (Overflow),
-      .MaxWidth      (MaxWidth),
-      .MaxHeight     (MaxHeight)
+      // irnuc-params: forward nuc_dpc_top (generated from nuc_fixed.methods; do not edit)
+      .AdcBits        (AdcBits),
+      .GainIntBits    (GainIntBits),
+      .GainFracBits   (GainFracBits),
+      .OffsetIntBits  (OffsetIntBits),
+      .OffsetFracBits (OffsetFracBits),
+      .OutBits        (OutBits),
+      .Rounding       (Rounding),
+      .Overflow       (Overflow),
+      .MaxWidth       (MaxWidth),
+      .MaxHeight      (MaxHeight)
+      // irnuc-params: end
     ) u_core (
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),
@@ -355,39 +371,41 @@ module irnuc_axis_core
     assign unused_frame = ^item_frame_i;
   end else begin : gen_method
     method_dpc_top #(
-      .Method          (Method),
-      .AdcBits         (AdcBits),
-      .GainIntBits     (GainIntBits),
-      .GainFracBits    (GainFracBits),
-      .OffsetIntBits   (OffsetIntBits),
-      .OffsetFracBits  (OffsetFracBits),
-      .OutBits         (OutBits),
-      .Rounding        (Rounding),
-      .Overflow        (Overflow),
-      .MaxWidth        (MaxWidth),
-      .MaxHeight       (MaxHeight),
-      .KneeIntBits     (KneeIntBits),
-      .KneeFracBits    (KneeFracBits),
-      .LevelIntBits    (LevelIntBits),
-      .LevelFracBits   (LevelFracBits),
-      .QuadIntBits     (QuadIntBits),
-      .QuadFracBits    (QuadFracBits),
-      .SquareBits      (SquareBits),
-      .Tc1IntBits      (Tc1IntBits),
-      .Tc1FracBits     (Tc1FracBits),
-      .Tc2IntBits      (Tc2IntBits),
-      .Tc2FracBits     (Tc2FracBits),
-      .Tg1IntBits      (Tg1IntBits),
-      .Tg1FracBits     (Tg1FracBits),
-      .Tg2IntBits      (Tg2IntBits),
-      .Tg2FracBits     (Tg2FracBits),
-      .TcOrder         (TcOrder),
-      .TcGain          (TcGain),
-      .ReadingBits     (ReadingBits),
-      .ReadingRangeBits(ReadingRangeBits),
-      .WeightIntBits   (WeightIntBits),
-      .WeightFracBits  (WeightFracBits),
-      .WeightRounding  (WeightRounding)
+      // irnuc-params: forward method_dpc_top (generated from nuc_fixed.methods; do not edit)
+      .Method           (Method),
+      .AdcBits          (AdcBits),
+      .GainIntBits      (GainIntBits),
+      .GainFracBits     (GainFracBits),
+      .OffsetIntBits    (OffsetIntBits),
+      .OffsetFracBits   (OffsetFracBits),
+      .OutBits          (OutBits),
+      .Rounding         (Rounding),
+      .Overflow         (Overflow),
+      .MaxWidth         (MaxWidth),
+      .MaxHeight        (MaxHeight),
+      .KneeIntBits      (KneeIntBits),
+      .KneeFracBits     (KneeFracBits),
+      .LevelIntBits     (LevelIntBits),
+      .LevelFracBits    (LevelFracBits),
+      .QuadIntBits      (QuadIntBits),
+      .QuadFracBits     (QuadFracBits),
+      .SquareBits       (SquareBits),
+      .ReadingBits      (ReadingBits),
+      .Tc1IntBits       (Tc1IntBits),
+      .Tc1FracBits      (Tc1FracBits),
+      .Tc2IntBits       (Tc2IntBits),
+      .Tc2FracBits      (Tc2FracBits),
+      .Tg1IntBits       (Tg1IntBits),
+      .Tg1FracBits      (Tg1FracBits),
+      .Tg2IntBits       (Tg2IntBits),
+      .Tg2FracBits      (Tg2FracBits),
+      .TcOrder          (TcOrder),
+      .TcGain           (TcGain),
+      .ReadingRangeBits (ReadingRangeBits),
+      .WeightIntBits    (WeightIntBits),
+      .WeightFracBits   (WeightFracBits),
+      .WeightRounding   (WeightRounding)
+      // irnuc-params: end
     ) u_core (
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),

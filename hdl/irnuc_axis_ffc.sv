@@ -11,54 +11,65 @@ module irnuc_axis_ffc
   import irnuc_method_pkg::*;
   import irnuc_stage_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e: 0, 1, 3 or 4
-  parameter int unsigned AdcBits        = 14,
-  parameter int unsigned GainIntBits    = 2,
-  parameter int unsigned GainFracBits   = 14,
-  parameter int unsigned OffsetIntBits  = 12,
-  parameter int unsigned OffsetFracBits = 4,
-  parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned MaxWidth       = 1024,
-  parameter int unsigned MaxHeight      = 1024,
-  parameter int unsigned QuadIntBits    = 10,
-  parameter int unsigned QuadFracBits   = 6,
-  parameter int unsigned SquareBits     = 18,
-  parameter int unsigned Tc1IntBits     = 13,
-  parameter int unsigned Tc1FracBits    = 3,
-  parameter int unsigned Tc2IntBits     = 12,
-  parameter int unsigned Tc2FracBits    = 4,
-  parameter int unsigned Tg1IntBits     = 2,
-  parameter int unsigned Tg1FracBits    = 14,
-  parameter int unsigned Tg2IntBits     = 2,
-  parameter int unsigned Tg2FracBits    = 14,
-  parameter int unsigned TcOrder        = 2,
-  parameter int unsigned TcGain         = 0,
-  parameter int unsigned ReadingBits    = 14,
-  parameter int unsigned ReadingRangeBits = 11,
-  parameter int unsigned FfcFrames      = 8,
-  parameter int unsigned FfcHold        = 1,
-  parameter int unsigned FfcIntBits     = 12,
-  parameter int unsigned FfcFracBits    = 4,
-  parameter int unsigned FfcRounding    = 1,
-  parameter int unsigned FfcOverflow    = 0,
-  // Derived, do not override (as irnuc_axis_top's; no knee or level: not piecewise).
-  localparam method_e     MethodSel     = method_e'(Method),
-  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
-                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
-  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
-                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
-  localparam int unsigned WordBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits, 1,
-                                                           QuadIntBits + QuadFracBits,
-                                                           TcWordBits, TgWordBits),
-  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, 1, ReadingBits,
-                                                          1),
+  // irnuc-params: begin irnuc_axis_ffc (generated from nuc_fixed.methods; do not edit)
+  // the base method (irnuc_pkg::method_e)
+  parameter method_e     Method           = MethodTwoPoint,
+  parameter int unsigned AdcBits          = 14,
+  parameter int unsigned GainIntBits      = 2,
+  parameter int unsigned GainFracBits     = 14,
+  parameter int unsigned OffsetIntBits    = 12,
+  parameter int unsigned OffsetFracBits   = 4,
+  parameter int unsigned OutBits          = 14,
+  parameter int unsigned Rounding         = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow         = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth         = 1024,
+  parameter int unsigned MaxHeight        = 1024,
+  parameter int unsigned KneeIntBits      = 14,
+  parameter int unsigned KneeFracBits     = 2,
+  parameter int unsigned LevelIntBits     = 14,
+  parameter int unsigned LevelFracBits    = 4,
+  parameter int unsigned QuadIntBits      = 10,
+  parameter int unsigned QuadFracBits     = 6,
+  parameter int unsigned SquareBits       = 18,  // bits the square of a raw code is truncated to
+  parameter int unsigned ReadingBits      = 14,  // bits of the FPA sensor's reading
+  parameter int unsigned Tc1IntBits       = 13,
+  parameter int unsigned Tc1FracBits      = 3,
+  parameter int unsigned Tc2IntBits       = 12,
+  parameter int unsigned Tc2FracBits      = 4,
+  parameter int unsigned Tg1IntBits       = 2,
+  parameter int unsigned Tg1FracBits      = 14,
+  parameter int unsigned Tg2IntBits       = 2,
+  parameter int unsigned Tg2FracBits      = 14,
+  parameter int unsigned TcOrder          = 2,  // order of the polynomials
+  parameter bit          TcGain           = 1'b0,  // the gain is a polynomial too
+  parameter int unsigned ReadingRangeBits = 11,  // Ts: v = (t - t_ref) / 2^Ts
+  parameter int unsigned FfcIntBits       = 12,
+  parameter int unsigned FfcFracBits      = 4,
+  parameter int unsigned FfcRounding      = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned FfcOverflow      = 0,  // irnuc_pkg::overflow_e
+  // N, the shutter frames of a refresh (a power of two)
+  parameter int unsigned FfcFrames        = 8,
+  // what the output shows during the shutter frames
+  parameter bit          FfcHold          = 1'b1,
+  // Derived, do not override.
+  localparam int unsigned GainBits         = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits       = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned KneeBits         = KneeIntBits + KneeFracBits,
+  localparam int unsigned LevelBits        = LevelIntBits + LevelFracBits,
+  localparam int unsigned QuadBits         = QuadIntBits + QuadFracBits,
+  localparam int unsigned TcWordBits       = Tc1IntBits + Tc1FracBits
+                                             + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits       = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                             + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned WordBits         = coef_stream_bits(Method, OffsetBits, GainBits,
+                                                              KneeBits, QuadBits, TcWordBits,
+                                                              TgWordBits),
+  localparam int unsigned FrameBits        = frame_word_bits(Method, GainBits, LevelBits,
+                                                             ReadingBits, 32'd1),
+  localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
+  // irnuc-params: end
   localparam int unsigned ItemFrameBits = FrameBits + 1,
-  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
-  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   localparam int unsigned FoffWordBits  = FfcIntBits + FfcFracBits,
   localparam int unsigned AccWordBits   = AdcBits + $clog2(FfcFrames),
   localparam int unsigned FoffBits      = 8 * ((FoffWordBits + 7) / 8),
@@ -187,7 +198,7 @@ module irnuc_axis_ffc
   logic                    macc_valid, macc_ready, mfoff_valid, mfoff_ready;
   logic [AccWordBits-1:0]  macc_data;
   logic [FoffWordBits-1:0] mfoff_data;
-  logic                    item_shutter, item_take, target_valid;
+  logic                    item_shutter, item_take, target_valid, target_kept;
   logic [OutBits+FfcFracBits-1:0] target;
 
   assign fork_pix_valid  = in_valid && !pix_took_q;
@@ -429,38 +440,45 @@ module irnuc_axis_ffc
   end
 
   method_ffc_top #(
-    .Method          (Method),
-    .AdcBits         (AdcBits),
-    .GainIntBits     (GainIntBits),
-    .GainFracBits    (GainFracBits),
-    .OffsetIntBits   (OffsetIntBits),
-    .OffsetFracBits  (OffsetFracBits),
-    .OutBits         (OutBits),
-    .Rounding        (Rounding),
-    .Overflow        (Overflow),
-    .MaxWidth        (MaxWidth),
-    .MaxHeight       (MaxHeight),
-    .QuadIntBits     (QuadIntBits),
-    .QuadFracBits    (QuadFracBits),
-    .SquareBits      (SquareBits),
-    .Tc1IntBits      (Tc1IntBits),
-    .Tc1FracBits     (Tc1FracBits),
-    .Tc2IntBits      (Tc2IntBits),
-    .Tc2FracBits     (Tc2FracBits),
-    .Tg1IntBits      (Tg1IntBits),
-    .Tg1FracBits     (Tg1FracBits),
-    .Tg2IntBits      (Tg2IntBits),
-    .Tg2FracBits     (Tg2FracBits),
-    .TcOrder         (TcOrder),
-    .TcGain          (TcGain),
-    .ReadingBits     (ReadingBits),
-    .ReadingRangeBits(ReadingRangeBits),
-    .FfcFrames       (FfcFrames),
-    .FfcHold         (FfcHold),
-    .FfcIntBits      (FfcIntBits),
-    .FfcFracBits     (FfcFracBits),
-    .FfcRounding     (FfcRounding),
-    .FfcOverflow     (FfcOverflow)
+
+    // irnuc-params: forward method_ffc_top (generated from nuc_fixed.methods; do not edit)
+    .Method           (Method),
+    .AdcBits          (AdcBits),
+    .GainIntBits      (GainIntBits),
+    .GainFracBits     (GainFracBits),
+    .OffsetIntBits    (OffsetIntBits),
+    .OffsetFracBits   (OffsetFracBits),
+    .OutBits          (OutBits),
+    .Rounding         (Rounding),
+    .Overflow         (Overflow),
+    .MaxWidth         (MaxWidth),
+    .MaxHeight        (MaxHeight),
+    .KneeIntBits      (KneeIntBits),
+    .KneeFracBits     (KneeFracBits),
+    .LevelIntBits     (LevelIntBits),
+    .LevelFracBits    (LevelFracBits),
+    .QuadIntBits      (QuadIntBits),
+    .QuadFracBits     (QuadFracBits),
+    .SquareBits       (SquareBits),
+    .ReadingBits      (ReadingBits),
+    .Tc1IntBits       (Tc1IntBits),
+    .Tc1FracBits      (Tc1FracBits),
+    .Tc2IntBits       (Tc2IntBits),
+    .Tc2FracBits      (Tc2FracBits),
+    .Tg1IntBits       (Tg1IntBits),
+    .Tg1FracBits      (Tg1FracBits),
+    .Tg2IntBits       (Tg2IntBits),
+    .Tg2FracBits      (Tg2FracBits),
+    .TcOrder          (TcOrder),
+    .TcGain           (TcGain),
+    .ReadingRangeBits (ReadingRangeBits),
+    .FfcIntBits       (FfcIntBits),
+    .FfcFracBits      (FfcFracBits),
+    .FfcRounding      (FfcRounding),
+    .FfcOverflow      (FfcOverflow),
+    .FfcFrames        (FfcFrames),
+    .FfcHold          (FfcHold)
+    // irnuc-params: end
   ) u_core (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
@@ -495,6 +513,7 @@ module irnuc_axis_ffc
     .m_pix_eol_o       (pix_eol),
     .ffc_target_valid_o(target_valid),
     .ffc_target_o      (target),
+    .ffc_kept_o        (target_kept),
     .frame_err_o       (frame_err_o)
   );
 
@@ -605,9 +624,10 @@ module irnuc_axis_ffc
   assign m_axis_foff_tdata = FoffBits'(mfoff_out);
 
   // Not used: the input tlast (the core counts the words of a frame by its size), the
-  // target the core computed.
+  // target the core computed and whether its refresh kept the offsets (no good pixel: the
+  // refresh frame's m_axis_foff then carries the words it read; no register shows it yet).
   logic unused_ffc;
-  assign unused_ffc = ^{s_axis_foff_tlast, s_axis_acc_tlast, target_valid, target};
+  assign unused_ffc = ^{s_axis_foff_tlast, s_axis_acc_tlast, target_valid, target, target_kept};
   if (FoffBits > FoffWordBits) begin : gen_foff_pad
     logic unused_foff;
     assign unused_foff = ^s_axis_foff_tdata[FoffBits-1:FoffWordBits];

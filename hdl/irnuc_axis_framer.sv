@@ -78,6 +78,10 @@ module irnuc_axis_framer
   output logic                  coef_ready_o,
   input  logic [WordBits-1:0]   coef_data_i,
   input  logic                  coef_last_i,
+  // The coefficient input buffer's input side (u_coef_in's valid_i and ready_o = not full):
+  // its fill a cycle ahead, for the registered half of the decision (go_q).
+  input  logic                  coef_in_valid_i,
+  input  logic                  coef_in_ready_i,
   // Pending settings (the register file); *_m1 = value - 1, *_is1 = value is 1.
   input  logic [WidthBits-1:0]  pend_width_i,
   input  logic [HeightBits-1:0] pend_height_i,
@@ -182,6 +186,10 @@ module irnuc_axis_framer
   logic eff_nuc, eff_dpc, eff_sync;
   logic out_ready;   // u_out's ready (its skid register empty): drives its data registers
   logic out_free_q;  // a copy of it for the item decision, a flop of its own (a_out_free)
+  // go a cycle ahead (a_go): the word and the output allow an item, from a flop. Its next
+  // value is made with and without an item sent (the coefficient buffer's fill after a take
+  // or not, the output register's ready), `fire` picking one at the end like the states'.
+  logic go_q, go_d;
 
   // A new frame size waits for the drain (drained_q is at least a cycle after the write,
   // so the position registers are preloaded from the new size).
@@ -192,7 +200,7 @@ module irnuc_axis_framer
   assign pad_item = s_pad_q;
   assign item     = pix_item || pad_item;
   assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
-  assign go       = word_ok && out_free_q;  // the word and the output allow an item
+  assign go       = go_q;  // word_ok && out_free_q, registered (a_go)
   assign fire     = go && item;
   // A frame's first item (fire && starting) straight from flops: waiting, only a start of
   // frame is an item (the states are one-hot: a_start_fire).
@@ -226,6 +234,7 @@ module irnuc_axis_framer
     axis_vid_state_e       vst_f, vst_n;
     axis_coef_state_e      cst_f, cst_n;
     logic                  pad_frame_f, pad_frame_n, done_f;
+    logic                  coef_push, coef_any_pop, coef_any_keep, pop_f, pop_n, go_f, go_n;
 
     if (starting) begin
       {xr_n, xl_n, yr_n, yl_n} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
@@ -317,6 +326,21 @@ module irnuc_axis_framer
     c_fill_d    = fire ? (cst_f == CoefFill) : (cst_n == CoefFill);
     c_skip_d    = fire ? (cst_f == CoefSkip) : (cst_n == CoefSkip);
     late_d      = starting ? (late_q || drop_beat) && !fire : 1'b0;
+
+    // go of the next cycle. The coefficient buffer holds a word next cycle: after a take,
+    // the other entry or one pushed now (pop implies a word held); else the one held or one
+    // pushed now. A word is taken with an item in CoefNormal, and in CoefSkip without one.
+    // The output register's ready (out_free_q's next value) without and with an item sent.
+    coef_push     = coef_in_valid_i && coef_in_ready_i;
+    coef_any_pop  = coef_push || !coef_in_ready_i;
+    coef_any_keep = coef_push || coef_valid_i;
+    pop_f         = c_normal_q || (c_skip_q && coef_valid_i);
+    pop_n         = c_skip_q && coef_valid_i;
+    go_f = (((cst_f == CoefNormal) && (pop_f ? coef_any_pop : coef_any_keep))
+            || (cst_f == CoefFill)) && (!m_valid_o || m_ready_i);
+    go_n = (((cst_n == CoefNormal) && (pop_n ? coef_any_pop : coef_any_keep))
+            || (cst_n == CoefFill)) && (!m_valid_o || m_ready_i || out_free_q);
+    go_d = fire ? go_f : go_n;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
@@ -341,6 +365,7 @@ module irnuc_axis_framer
       pad_frame_q <= 1'b0;
       done_q      <= 1'b0;
       late_q      <= 1'b0;
+      go_q        <= 1'b0;  // no word held after reset
     end else begin
       vst_q       <= vst_d;
       cst_q       <= cst_d;
@@ -359,6 +384,7 @@ module irnuc_axis_framer
       pad_frame_q <= pad_frame_d;
       done_q      <= done_d;
       late_q      <= late_d;
+      go_q        <= go_d;
     end
   end
 
@@ -551,6 +577,8 @@ module irnuc_axis_framer
         else $error("irnuc_axis_framer: the position registers' line size is not the frame's");
       a_out_free: assert (out_free_q == out_ready)
         else $error("irnuc_axis_framer: out_free_q is not u_out's ready");
+      a_go: assert (go_q == (word_ok && out_free_q))
+        else $error("irnuc_axis_framer: go_q is not 'the word and the output allow an item'");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok && !hold_q))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
       a_start_fire: assert (start_fire == (fire && starting))

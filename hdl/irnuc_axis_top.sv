@@ -40,87 +40,101 @@ module irnuc_axis_top
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_method_pkg::method_e
-  parameter int unsigned AdcBits        = 14,
-  parameter int unsigned GainIntBits    = 2,
-  parameter int unsigned GainFracBits   = 14,
-  parameter int unsigned OffsetIntBits  = 12,
-  parameter int unsigned OffsetFracBits = 4,
-  parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned MaxWidth       = 1024,
-  parameter int unsigned MaxHeight      = 1024,
-  // Formats and parameters of the base methods (method_dpc_top's; a method reads only its
-  // own; docs/datapath.md "Formats").
-  parameter int unsigned KneeIntBits    = 14,
-  parameter int unsigned KneeFracBits   = 2,
-  parameter int unsigned LevelIntBits   = 14,
-  parameter int unsigned LevelFracBits  = 4,
-  parameter int unsigned QuadIntBits    = 10,
-  parameter int unsigned QuadFracBits   = 6,
-  parameter int unsigned SquareBits     = 18,
-  parameter int unsigned Tc1IntBits     = 13,
-  parameter int unsigned Tc1FracBits    = 3,
-  parameter int unsigned Tc2IntBits     = 12,
-  parameter int unsigned Tc2FracBits    = 4,
-  parameter int unsigned Tg1IntBits     = 2,
-  parameter int unsigned Tg1FracBits    = 14,
-  parameter int unsigned Tg2IntBits     = 2,
-  parameter int unsigned Tg2FracBits    = 14,
-  parameter int unsigned TcOrder        = 2,
-  parameter int unsigned TcGain         = 0,
-  parameter int unsigned ReadingBits    = 14,
-  parameter int unsigned ReadingRangeBits = 11,
-  // table_interp: the tables and the weight format (method_dpc_top's, interp_weight's).
-  parameter int unsigned Tables         = 3,
-  parameter int unsigned WeightIntBits  = 1,
-  parameter int unsigned WeightFracBits = 15,
-  parameter int unsigned WeightRounding = 1,  // irnuc_pkg::rounding_e
-  // The ffc stage (method_ffc_top's parameters; docs/datapath.md "ffc").
-  parameter int unsigned Ffc            = 0,  // 1: the core is method_ffc_top
-  parameter int unsigned FfcFrames      = 8,
-  parameter int unsigned FfcHold        = 1,
-  parameter int unsigned FfcIntBits     = 12,
-  parameter int unsigned FfcFracBits    = 4,
-  parameter int unsigned FfcRounding    = 1,
-  parameter int unsigned FfcOverflow    = 0,
-  // The blind_drift stage (method_drift_top's parameters; docs/datapath.md "blind_drift").
-  parameter int unsigned Drift          = 0,  // 1: the core is method_drift_top
-  parameter int unsigned BlindMax       = 8192,
-  parameter int unsigned DriftIntBits   = 14,
-  parameter int unsigned DriftFracBits  = 2,
-  parameter int unsigned DriftRounding  = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned DriftOverflow  = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned DriftGainIntBits  = 1,
-  parameter int unsigned DriftGainFracBits = 24,
+  // irnuc-params: begin irnuc_axis_top (generated from nuc_fixed.methods; do not edit)
+  // the base method (irnuc_pkg::method_e)
+  parameter method_e                  Method            = MethodTwoPoint,
+  parameter int unsigned              AdcBits           = 14,
+  parameter int unsigned              GainIntBits       = 2,
+  parameter int unsigned              GainFracBits      = 14,
+  parameter int unsigned              OffsetIntBits     = 12,
+  parameter int unsigned              OffsetFracBits    = 4,
+  parameter int unsigned              OutBits           = 14,
+  parameter int unsigned              Rounding          = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              Overflow          = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned              MaxWidth          = 1024,
+  parameter int unsigned              MaxHeight         = 1024,
+  parameter int unsigned              KneeIntBits       = 14,
+  parameter int unsigned              KneeFracBits      = 2,
+  parameter int unsigned              LevelIntBits      = 14,
+  parameter int unsigned              LevelFracBits     = 4,
+  parameter int unsigned              QuadIntBits       = 10,
+  parameter int unsigned              QuadFracBits      = 6,
+  // bits the square of a raw code is truncated to
+  parameter int unsigned              SquareBits        = 18,
+  parameter int unsigned              ReadingBits       = 14,  // bits of the FPA sensor's reading
+  parameter int unsigned              Tc1IntBits        = 13,
+  parameter int unsigned              Tc1FracBits       = 3,
+  parameter int unsigned              Tc2IntBits        = 12,
+  parameter int unsigned              Tc2FracBits       = 4,
+  parameter int unsigned              Tg1IntBits        = 2,
+  parameter int unsigned              Tg1FracBits       = 14,
+  parameter int unsigned              Tg2IntBits        = 2,
+  parameter int unsigned              Tg2FracBits       = 14,
+  parameter int unsigned              TcOrder           = 2,  // order of the polynomials
+  parameter bit                       TcGain            = 1'b0,  // the gain is a polynomial too
+  parameter int unsigned              ReadingRangeBits  = 11,  // Ts: v = (t - t_ref) / 2^Ts
+  parameter int unsigned              WeightIntBits     = 1,
+  parameter int unsigned              WeightFracBits    = 15,
+  parameter int unsigned              WeightRounding    = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              Tables            = 3,  // K, the tables
+  parameter int unsigned              DriftIntBits      = 14,
+  parameter int unsigned              DriftFracBits     = 2,
+  parameter int unsigned              DriftRounding     = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              DriftOverflow     = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned              DriftGainIntBits  = 1,
+  parameter int unsigned              DriftGainFracBits = 24,
+  // the most blind pixels a frame has
+  parameter int unsigned              BlindMax          = 8192,
+  parameter bit                       Drift             = 1'b0,  // 1: the core is method_drift_top
+  parameter int unsigned              FfcIntBits        = 12,
+  parameter int unsigned              FfcFracBits       = 4,
+  parameter int unsigned              FfcRounding       = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              FfcOverflow       = 0,  // irnuc_pkg::overflow_e
+  // N, the shutter frames of a refresh (a power of two)
+  parameter int unsigned              FfcFrames         = 8,
+  // what the output shows during the shutter frames
+  parameter bit                       FfcHold           = 1'b1,
+  parameter bit                       Ffc               = 1'b0,  // 1: the core is method_ffc_top
   // Derived, do not override.
-  localparam method_e     MethodSel     = method_e'(Method),
-  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned LevelBits     = LevelIntBits + LevelFracBits,
-  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
-                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
-  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
-                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
-  // The coefficient word of the method (s_axis_coef) and the frame word of its registers.
-  localparam int unsigned WordBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits,
-                                                           KneeIntBits + KneeFracBits,
-                                                           QuadIntBits + QuadFracBits,
-                                                           TcWordBits, TgWordBits),
-  localparam int unsigned BaseFrameBits = frame_word_bits(MethodSel, GainBits, LevelBits,
-                                                          ReadingBits,
-                                                          WeightIntBits + WeightFracBits),
-  // blind_drift: the blind sum and its registers (BLIND_SUM, BLIND_REF, DRIFT_GAIN) ride
-  // on the frame word above the base method's (irnuc_pkg::frame_blind_drift).
-  localparam int unsigned BlindBits     = blind_sum_bits(AdcBits, BlindMax),
-  localparam int unsigned DriftGainBits = DriftGainIntBits + DriftGainFracBits,
+  localparam int unsigned              GainBits          = GainIntBits + GainFracBits,
+  localparam int unsigned              OffsetBits        = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned              KneeBits          = KneeIntBits + KneeFracBits,
+  localparam int unsigned              LevelBits         = LevelIntBits + LevelFracBits,
+  localparam int unsigned              QuadBits          = QuadIntBits + QuadFracBits,
+  localparam int unsigned              TcWordBits        = Tc1IntBits + Tc1FracBits
+                                                           + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned              TgWordBits        = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                                           + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned              WeightBits        = WeightIntBits + WeightFracBits,
+  localparam int unsigned              WordBits          = coef_stream_bits(Method, OffsetBits,
+                                                                            GainBits, KneeBits,
+                                                                            QuadBits, TcWordBits,
+                                                                            TgWordBits),
+  localparam int unsigned              BaseFrameBits     = frame_word_bits(Method, GainBits,
+                                                                           LevelBits, ReadingBits,
+                                                                           WeightBits),
+  localparam int unsigned              WidthBits         = $clog2(MaxWidth + 1),
+  localparam int unsigned              HeightBits        = $clog2(MaxHeight + 1),
+  localparam int unsigned              BlindBits         = blind_sum_bits(AdcBits, BlindMax),
+  localparam int unsigned              DriftGainBits     = DriftGainIntBits + DriftGainFracBits,
+  localparam int unsigned              ReadingRegBits    = (Method == MethodTcOffset || Method == MethodTableInterp) ? ReadingBits : 0,
+  localparam int unsigned              GainRegBits       = (Method == MethodOnePoint) ? GainBits : 0,
+  localparam int unsigned              LevelRegBits      = (Method == MethodPiecewise) ? LevelBits : 0,
+  localparam int unsigned              TRefRegBits       = (Method == MethodTcOffset) ? ReadingBits : 0,
+  localparam int unsigned              TableReadingBits  = (Method == MethodTableInterp) ? ReadingBits : 1,
+  localparam int unsigned              TableReadings     = (Method == MethodTableInterp) ? Tables : 0,
+  localparam int unsigned              BlindSumRegBits   = (Drift) ? BlindBits : 0,
+  localparam int unsigned              BlindRefRegBits   = (Drift) ? BlindBits : 0,
+  localparam int unsigned              DriftGainRegBits  = (Drift) ? DriftGainBits : 0,
+  localparam int unsigned              FfcTargetRegBits  = (Ffc) ? OutBits + FfcFracBits : 0,
+  localparam logic [WordBits-1:0]      NeutralWord       = WordBits'(neutral_stream_word(Method, GainIntBits, GainFracBits, OffsetBits, GainBits, KneeBits, QuadBits, TcWordBits, TgWordBits)),
+  localparam logic [WordBits-1:0]      BadMask           = WordBits'(stream_bad_mask(Method, OffsetBits, GainBits, KneeBits, QuadBits, TcWordBits, TgWordBits)),
+  localparam logic [BaseFrameBits-1:0] NeutralBaseFrame  = BaseFrameBits'(neutral_frame_word(Method, GainIntBits, GainFracBits, GainBits, LevelBits, ReadingBits, WeightBits)),
+  // irnuc-params: end
   localparam int unsigned FrameBits     = (Drift != 0)
                                           ? frame_blind_drift_bits(BaseFrameBits, BlindBits,
                                                                    DriftGainBits)
                                           : BaseFrameBits,
-  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
-  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1),
   // AXI4-Stream data are whole bytes.
   localparam int unsigned VidInBits     = 8 * ((AdcBits + 7) / 8),
   localparam int unsigned VidOutBits    = 8 * ((OutBits + 7) / 8),
@@ -199,25 +213,17 @@ module irnuc_axis_top
   output logic                  irq_o
 );
 
-  // The method's neutral words (NUC off, filler pixels; docs/integration.md), from
-  // irnuc_method_pkg.
-  localparam logic [WordBits-1:0]  NeutralWord  = WordBits'(neutral_stream_word(
-      MethodSel, GainIntBits, GainFracBits, OffsetBits));
-  localparam logic [WordBits-1:0]  BadMask      = WordBits'(stream_bad_mask(
-      MethodSel, GainBits, OffsetBits, KneeIntBits + KneeFracBits));
-  localparam logic [FrameBits-1:0] NeutralFrame = (MethodSel == MethodOnePoint)
-      ? FrameBits'(unity_gain(GainIntBits, GainFracBits)) : '0;
+  // The method's neutral frame word (NUC off; its neutral words are the header's).
+  localparam logic [FrameBits-1:0] NeutralFrame = FrameBits'(NeutralBaseFrame);
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (Method <= 32'(MethodTableInterp))
-      else $fatal(1, "irnuc_axis_top: Method = %0d outside 0..%0d", Method,
-                  32'(MethodTableInterp));
-    assert (Ffc == 0 || (MethodSel != MethodPiecewise && MethodSel != MethodTableInterp))
-      else $fatal(1, "irnuc_axis_top: Ffc = 1 composes one_point, two_point, quadratic or tc_offset, not piecewise");
-    assert (Drift == 0 || (Ffc == 0 && (MethodSel == MethodOnePoint
-                                        || MethodSel == MethodTwoPoint)))
-      else $fatal(1, "irnuc_axis_top: Drift = 1 composes one_point or two_point, without Ffc");
+    assert (!Ffc || ffc_composes(Method))
+      else $fatal(1, "irnuc_axis_top: Ffc = 1 composes the methods of ffc_composes, not %0d",
+                  Method);
+    assert (!Drift || (!Ffc && blind_drift_composes(Method)))
+      else $fatal(1, "irnuc_axis_top: Drift = 1 composes the methods of blind_drift_composes, %s",
+                  "without Ffc");
     assert (MaxWidth >= MaxWidthMin && MaxWidth <= MaxWidthMax)
       else $fatal(1, "irnuc_axis_top: MaxWidth = %0d outside %0d..%0d", MaxWidth, MaxWidthMin,
                   MaxWidthMax);
@@ -286,25 +292,25 @@ module irnuc_axis_top
     .Overflow      (Overflow),
     .MaxWidth      (MaxWidth),
     .MaxHeight     (MaxHeight),
-    .MethodCode    (Method),
-    // The memory image version of irnuc calibrate: 1 two_point, 2 the other methods
-    // (nuc_fixed.memimage; VERSION is checked against it by tb_axis).
-    .CoefLayoutVersion((MethodSel == MethodTwoPoint && Ffc == 0 && Drift == 0) ? 1 : 2),
+    .MethodCode    (32'(Method)),
+    // The memory image version of irnuc calibrate: 1 the plain two_point, 2 the other
+    // methods (nuc_fixed.memimage; VERSION is checked against it by tb_axis).
+    .CoefLayoutVersion((method_plain(Method) && !Ffc && !Drift) ? 1 : 2),
     .CoefWordBits  (WordBits),
-    .GainRegBits   ((MethodSel == MethodOnePoint) ? GainBits : 0),
-    .LevelRegBits  ((MethodSel == MethodPiecewise) ? LevelBits : 0),
-    .ReadingRegBits((MethodSel == MethodTcOffset || MethodSel == MethodTableInterp)
-                    ? ReadingBits : 0),
-    .TRefRegBits   ((MethodSel == MethodTcOffset) ? ReadingBits : 0),
-    .BlindSumRegBits ((Drift != 0) ? BlindBits : 0),
-    .BlindRefRegBits ((Drift != 0) ? BlindBits : 0),
-    .DriftGainRegBits((Drift != 0) ? DriftGainBits : 0),
-    .HasBlindDrift (Drift),
-    .HasFfc        (Ffc),
-    .FfcFrames     (FfcFrames),
-    .FfcTargetRegBits((Ffc != 0) ? OutBits + FfcFracBits : 0),
-    .TableReadings ((MethodSel == MethodTableInterp) ? Tables : 0),
-    .TableReadingBits(ReadingBits)
+    // The method's register slots (the header's, from the registry's RegisterSlot).
+    .GainRegBits     (GainRegBits),
+    .LevelRegBits    (LevelRegBits),
+    .ReadingRegBits  (ReadingRegBits),
+    .TRefRegBits     (TRefRegBits),
+    .BlindSumRegBits (BlindSumRegBits),
+    .BlindRefRegBits (BlindRefRegBits),
+    .DriftGainRegBits(DriftGainRegBits),
+    .HasBlindDrift   (32'(Drift)),
+    .HasFfc          (32'(Ffc)),
+    .FfcFrames       (FfcFrames),
+    .FfcTargetRegBits(FfcTargetRegBits),
+    .TableReadings   (TableReadings),
+    .TableReadingBits(TableReadingBits)
   ) u_regs (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -371,22 +377,18 @@ module irnuc_axis_top
   logic [BaseFrameBits-1:0] base_frame;
   logic [FrameBits-1:0]     pend_frame;
 
-  if (MethodSel == MethodOnePoint) begin : gen_frame_gain
-    assign base_frame = slots[0][BaseFrameBits-1:0];
-  end else if (MethodSel == MethodPiecewise) begin : gen_frame_level
-    assign base_frame = slots[1][BaseFrameBits-1:0];
-  end else if (MethodSel == MethodTcOffset) begin : gen_frame_tc
-    frame_tc_offset#(ReadingBits)::word_t fw;
-    assign fw.reading = slots[2][ReadingBits-1:0];
-    assign fw.t_ref   = slots[3][ReadingBits-1:0];
-    assign base_frame = fw;
-  end else if (MethodSel == MethodTableInterp) begin : gen_frame_table
-    logic [WeightFracBits:0] weight;
+  // table_interp's weight: irnuc_axis_table computes it from READING and TABLE_READING_k
+  // (and holds the frame start while it does), TABLE_SEL.
+  logic [WeightFracBits:0] frame_weight;
+
+  if (Method == MethodTableInterp) begin : gen_table
     irnuc_axis_table #(
-      .ReadingBits   (ReadingBits),
-      .Tables        (Tables),
-      .WeightFracBits(WeightFracBits),
-      .WeightRounding(WeightRounding)
+      // irnuc-params: forward irnuc_axis_table (generated from nuc_fixed.methods; do not edit)
+      .ReadingBits    (ReadingBits),
+      .Tables         (Tables),
+      .WeightFracBits (WeightFracBits),
+      .WeightRounding (WeightRounding)
+      // irnuc-params: end
     ) u_table (
       .clk_i           (clk_i),
       .rst_ni          (rst_ni),
@@ -395,13 +397,33 @@ module irnuc_axis_top
       .table_readings_i(table_readings),
       .hold_o          (frame_hold),
       .start_i         (start),
-      .weight_o        (weight),
+      .weight_o        (frame_weight),
       .table_sel_o     (table_sel)
     );
-    assign base_frame = BaseFrameBits'(weight);
+  end else begin : gen_no_table
+    assign frame_weight = '0;
+    assign frame_hold   = 1'b0;
+    assign table_sel    = '0;
+    logic unused_table_write;
+    assign unused_table_write = ^{table_write, frame_weight};
+  end
+
+  // irnuc-params: frame (generated from nuc_fixed.methods; do not edit)
+  if (Method == MethodOnePoint) begin : gen_frame_one_point
+    assign base_frame = BaseFrameBits'(slots[0][GainBits-1:0]);
+  end else if (Method == MethodPiecewise) begin : gen_frame_piecewise
+    assign base_frame = BaseFrameBits'(slots[1][LevelBits-1:0]);
+  end else if (Method == MethodTcOffset) begin : gen_frame_tc_offset
+    frame_tc_offset#(ReadingBits)::word_t part0;
+    assign part0.reading = slots[2][ReadingBits-1:0];
+    assign part0.t_ref = slots[3][ReadingBits-1:0];
+    assign base_frame = BaseFrameBits'(part0);
+  end else if (Method == MethodTableInterp) begin : gen_frame_table_interp
+    assign base_frame = BaseFrameBits'(frame_weight);
   end else begin : gen_frame_none
     assign base_frame = '0;
   end
+  // irnuc-params: end
 
   if (Drift != 0) begin : gen_frame_drift
     frame_blind_drift#(BaseFrameBits, BlindBits, DriftGainBits)::word_t fw;
@@ -412,12 +434,6 @@ module irnuc_axis_top
     assign pend_frame    = fw;
   end else begin : gen_frame_base
     assign pend_frame = base_frame;
-  end
-  if (MethodSel != MethodTableInterp) begin : gen_no_table
-    assign frame_hold = 1'b0;
-    assign table_sel  = '0;
-    logic unused_table_write;
-    assign unused_table_write = table_write;
   end
 
   // The framer's frame word: the method's, the shutter flag above it with Ffc (FFC_CTRL,
@@ -456,6 +472,8 @@ module irnuc_axis_top
     .coef_ready_o     (coef_ready),
     .coef_data_i      (coef_data),
     .coef_last_i      (coef_last),
+    .coef_in_valid_i  (s_axis_coef_tvalid),
+    .coef_in_ready_i  (s_axis_coef_tready),
     .pend_width_i     (pend_w),
     .pend_height_i    (pend_h),
     .pend_width_m1_i  (pend_wm1),
@@ -501,54 +519,57 @@ module irnuc_axis_top
   logic [OutBits-1:0] core_data;
 
   irnuc_axis_core #(
-    .Method          (Method),
-    .AdcBits         (AdcBits),
-    .GainIntBits     (GainIntBits),
-    .GainFracBits    (GainFracBits),
-    .OffsetIntBits   (OffsetIntBits),
-    .OffsetFracBits  (OffsetFracBits),
-    .OutBits         (OutBits),
-    .Rounding        (Rounding),
-    .Overflow        (Overflow),
-    .MaxWidth        (MaxWidth),
-    .MaxHeight       (MaxHeight),
-    .KneeIntBits     (KneeIntBits),
-    .KneeFracBits    (KneeFracBits),
-    .LevelIntBits    (LevelIntBits),
-    .LevelFracBits   (LevelFracBits),
-    .QuadIntBits     (QuadIntBits),
-    .QuadFracBits    (QuadFracBits),
-    .SquareBits      (SquareBits),
-    .Tc1IntBits      (Tc1IntBits),
-    .Tc1FracBits     (Tc1FracBits),
-    .Tc2IntBits      (Tc2IntBits),
-    .Tc2FracBits     (Tc2FracBits),
-    .Tg1IntBits      (Tg1IntBits),
-    .Tg1FracBits     (Tg1FracBits),
-    .Tg2IntBits      (Tg2IntBits),
-    .Tg2FracBits     (Tg2FracBits),
-    .TcOrder         (TcOrder),
-    .TcGain          (TcGain),
-    .ReadingBits     (ReadingBits),
-    .ReadingRangeBits(ReadingRangeBits),
-    .WeightIntBits   (WeightIntBits),
-    .WeightFracBits  (WeightFracBits),
-    .WeightRounding  (WeightRounding),
-    .Ffc             (Ffc),
-    .FfcFrames       (FfcFrames),
-    .FfcHold         (FfcHold),
-    .FfcIntBits      (FfcIntBits),
-    .FfcFracBits     (FfcFracBits),
-    .FfcRounding     (FfcRounding),
-    .FfcOverflow     (FfcOverflow),
-    .Drift           (Drift),
-    .BlindMax        (BlindMax),
-    .DriftIntBits    (DriftIntBits),
-    .DriftFracBits   (DriftFracBits),
-    .DriftRounding   (DriftRounding),
-    .DriftOverflow   (DriftOverflow),
-    .DriftGainIntBits (DriftGainIntBits),
-    .DriftGainFracBits(DriftGainFracBits)
+
+    // irnuc-params: forward irnuc_axis_core (generated from nuc_fixed.methods; do not edit)
+    .Method            (Method),
+    .AdcBits           (AdcBits),
+    .GainIntBits       (GainIntBits),
+    .GainFracBits      (GainFracBits),
+    .OffsetIntBits     (OffsetIntBits),
+    .OffsetFracBits    (OffsetFracBits),
+    .OutBits           (OutBits),
+    .Rounding          (Rounding),
+    .Overflow          (Overflow),
+    .MaxWidth          (MaxWidth),
+    .MaxHeight         (MaxHeight),
+    .KneeIntBits       (KneeIntBits),
+    .KneeFracBits      (KneeFracBits),
+    .LevelIntBits      (LevelIntBits),
+    .LevelFracBits     (LevelFracBits),
+    .QuadIntBits       (QuadIntBits),
+    .QuadFracBits      (QuadFracBits),
+    .SquareBits        (SquareBits),
+    .ReadingBits       (ReadingBits),
+    .Tc1IntBits        (Tc1IntBits),
+    .Tc1FracBits       (Tc1FracBits),
+    .Tc2IntBits        (Tc2IntBits),
+    .Tc2FracBits       (Tc2FracBits),
+    .Tg1IntBits        (Tg1IntBits),
+    .Tg1FracBits       (Tg1FracBits),
+    .Tg2IntBits        (Tg2IntBits),
+    .Tg2FracBits       (Tg2FracBits),
+    .TcOrder           (TcOrder),
+    .TcGain            (TcGain),
+    .ReadingRangeBits  (ReadingRangeBits),
+    .WeightIntBits     (WeightIntBits),
+    .WeightFracBits    (WeightFracBits),
+    .WeightRounding    (WeightRounding),
+    .DriftIntBits      (DriftIntBits),
+    .DriftFracBits     (DriftFracBits),
+    .DriftRounding     (DriftRounding),
+    .DriftOverflow     (DriftOverflow),
+    .DriftGainIntBits  (DriftGainIntBits),
+    .DriftGainFracBits (DriftGainFracBits),
+    .BlindMax          (BlindMax),
+    .Drift             (Drift),
+    .FfcIntBits        (FfcIntBits),
+    .FfcFracBits       (FfcFracBits),
+    .FfcRounding       (FfcRounding),
+    .FfcOverflow       (FfcOverflow),
+    .FfcFrames         (FfcFrames),
+    .FfcHold           (FfcHold),
+    .Ffc               (Ffc)
+    // irnuc-params: end
   ) u_core (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),

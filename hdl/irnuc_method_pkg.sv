@@ -1,12 +1,13 @@
 // Correction methods of the RTL (docs/datapath.md "Correction methods", docs/rtl.md
-// "Methods"): the signed DSP chunking of the method multipliers, width helpers, and the
-// widths of method_dpc_top's two stream words per method.
+// "Methods"): the signed DSP chunking of the method multipliers, width helpers, the core
+// kinds, and (generated from the method registry, nuc_fixed.methods) per method the widths
+// of the two stream words of method_dpc_top, the neutral words of irnuc_axis_top, its core
+// kind and the stages its tops compose it with.
 //
 // The method encoding (method_e) and every memory word layout (coef_word, coef_one_point,
 // coef_piecewise, quad_word, tc_word1/2, tg_word1/2, frame_tc_offset) are generated into
-// irnuc_pkg from irnuc.nuc_fixed.rtl_spec, whose layouts tests/test_rtl_spec.py checks
-// against PipelineConfig.memories of every method configuration; the stream words below
-// concatenate them in that order (irnuc.cosim.stream is their Python side, and
+// irnuc_pkg from the same registry; the stream words concatenate them in the order of
+// MethodSpec.stream (irnuc.nuc_fixed.streams is their Python side, and
 // cocotb_tests/tb_method.py reads the widths back from every simulated method_dpc_top).
 package irnuc_method_pkg;
 
@@ -42,62 +43,11 @@ package irnuc_method_pkg;
     return max2(max2(a, b), c);
   endfunction
 
-  // ---- coefficient stream word of method_dpc_top, per method ------------------------------
-  // One word per pixel: the method's calibration memories concatenated, the first memory of
-  // PipelineConfig.memories at bit 0; table_interp carries table j at bit 0 and table j + 1
-  // above it (the two tables the frame's weight interpolates):
-  //   one_point     coef_one_point
-  //   two_point     coef_word
-  //   piecewise     coef_piecewise
-  //   quadratic     coef_word | quad_word
-  //   tc_offset     coef_word | tc_word1/2 (tc_order) | tg_word1/2 (with tc_gain)
-  //   table_interp  coef_word (table j) | coef_word (table j + 1)
-  function automatic int unsigned coef_stream_bits(
-    input method_e     method,
-    input int unsigned gain_bits,
-    input int unsigned offset_bits,
-    input int unsigned knee_bits,
-    input int unsigned quad_bits,
-    input int unsigned tc_word_bits,
-    input int unsigned tg_word_bits);
-    unique case (method)
-      MethodOnePoint:  return coef_one_point_bits(offset_bits);
-      MethodTwoPoint:  return coef_word_bits(gain_bits, offset_bits);
-      MethodPiecewise: return coef_piecewise_bits(gain_bits, knee_bits);
-      MethodQuadratic: return coef_word_bits(gain_bits, offset_bits) + quad_word_bits(quad_bits);
-      MethodTcOffset:  return coef_word_bits(gain_bits, offset_bits) + tc_word_bits
-                              + tg_word_bits;
-      default:         return 32'd2 * coef_word_bits(gain_bits, offset_bits);
-    endcase
-  endfunction
-
-  // ---- frame word of method_dpc_top (s_pix_frame_i), per method -------------------------
-  // Sampled with the first pixel of every frame (sof) and used for all of its pixels:
-  //   one_point     the gain register (U Gi.Gf)
-  //   piecewise     the level register (U Li.Lf)
-  //   tc_offset     frame_tc_offset: reading, t_ref
-  //   table_interp  the weight (U Wi.Wf, at most 2^Wf)
-  //   two_point, quadratic: none (one unused bit)
-  function automatic int unsigned frame_word_bits(
-    input method_e     method,
-    input int unsigned gain_bits,
-    input int unsigned level_bits,
-    input int unsigned reading_bits,
-    input int unsigned weight_bits);
-    unique case (method)
-      MethodOnePoint:    return gain_bits;
-      MethodPiecewise:   return level_bits;
-      MethodTcOffset:    return frame_tc_offset_bits(reading_bits);
-      MethodTableInterp: return weight_bits;
-      default:           return 32'd1;
-    endcase
-  endfunction
-
-  // ---- neutral stream word and bad flags, per method (irnuc_axis_top) -------------------
+  // ---- neutral stream word and bad flags (irnuc_axis_top) -----------------------------------
   // NUC off and filler pixels (docs/integration.md "Methods"; Python
-  // irnuc.nuc_fixed.axis.neutral_word, bad_mask): every gain field 1.0 (2^Gf, or the largest
-  // code when the format has no integer bit), every other field 0; the bad flags' bits. In
-  // the low bits of StreamWordMax (the widest stream word, tcgain14's, has 97).
+  // irnuc.nuc_fixed.streams.neutral_word, bad_mask): every gain field 1.0 (2^Gf, or the
+  // largest code when the format has no integer bit), every other field 0; the bad flags'
+  // bits. In the low bits of StreamWordMax (the widest stream word, tcgain14's, has 97).
   localparam int unsigned StreamWordMax = 128;
 
   function automatic logic [StreamWordMax-1:0] unity_gain(input int unsigned gain_int_bits,
@@ -106,38 +56,162 @@ package irnuc_method_pkg;
                                : ((StreamWordMax'(1) << (gain_int_bits + gain_frac_bits)) - 1);
   endfunction
 
+  // ---- the sum of a base method's core (its kind: MethodSpec.core) ----------------------
+  typedef enum logic [1:0] {
+    CoreLin  = 2'd0,  // lin: g*x + o (nuc_core, core_sum)
+    CoreQuad = 2'd1,  // quad: + q*(x/2^A)^2 (quad_core)
+    CorePwl  = 2'd2   // pwl: L + g_sel*(x - k) (pwl_core)
+  } core_kind_e;
+
+  // irnuc-params: begin irnuc_method_pkg (generated from nuc_fixed.methods; do not edit)
+  /* verilator lint_off UNUSEDSIGNAL */  // each method uses some arguments
+
+  // The coefficient stream word of each method (s_coef of method_dpc_top): its
+  // memories' words concatenated, the first at bit 0 (MethodSpec.stream).
+  function automatic int unsigned coef_stream_bits(
+    input method_e     method,
+    input int unsigned offset_bits,
+    input int unsigned gain_bits,
+    input int unsigned knee_bits,
+    input int unsigned quad_bits,
+    input int unsigned tc_word_bits,
+    input int unsigned tg_word_bits);
+    unique case (method)
+      MethodOnePoint:    return coef_one_point_bits(offset_bits);
+      MethodTwoPoint:    return coef_word_bits(gain_bits, offset_bits);
+      MethodPiecewise:   return coef_piecewise_bits(gain_bits, knee_bits);
+      MethodQuadratic:   return coef_word_bits(gain_bits, offset_bits) + quad_word_bits(quad_bits);
+      MethodTcOffset:    return coef_word_bits(gain_bits, offset_bits) + tc_word_bits
+                                + tg_word_bits;
+      default:           return coef_word_bits(gain_bits, offset_bits) + coef_word_bits(gain_bits,
+                                               offset_bits);
+    endcase
+  endfunction
+
+  // The frame word of each method (s_pix_frame_i, read with the frame's first
+  // pixel; MethodSpec.frame_word): one unused bit where it has none.
+  function automatic int unsigned frame_word_bits(
+    input method_e     method,
+    input int unsigned gain_bits,
+    input int unsigned level_bits,
+    input int unsigned reading_bits,
+    input int unsigned weight_bits);
+    unique case (method)
+      MethodOnePoint:    return gain_bits;
+      MethodTwoPoint:    return 32'd1;
+      MethodPiecewise:   return level_bits;
+      MethodQuadratic:   return 32'd1;
+      MethodTcOffset:    return frame_tc_offset_bits(reading_bits);
+      default:           return weight_bits;
+    endcase
+  endfunction
+
+  // The coefficient word of NUC off and of a filler pixel (irnuc_axis_top):
+  // every gain field 1.0 (unity_gain), every other field 0.
   function automatic logic [StreamWordMax-1:0] neutral_stream_word(
     input method_e     method,
     input int unsigned gain_int_bits,
     input int unsigned gain_frac_bits,
-    input int unsigned offset_bits);
+    input int unsigned offset_bits,
+    input int unsigned gain_bits,
+    input int unsigned knee_bits,
+    input int unsigned quad_bits,
+    input int unsigned tc_word_bits,
+    input int unsigned tg_word_bits);
     logic [StreamWordMax-1:0] one;
-    int unsigned              gb;
-    gb  = gain_int_bits + gain_frac_bits;
     one = unity_gain(gain_int_bits, gain_frac_bits);
     unique case (method)
-      MethodOnePoint:    return '0;  // offset 0 (the gain is the frame word's)
-      MethodPiecewise:   return (one << coef_piecewise_gain_lo_lsb())
-                                | (one << coef_piecewise_gain_hi_lsb(gb));
-      MethodTableInterp: return (one << coef_word_gain_lsb())  // tables j and j + 1
-                                | (one << (coef_word_bits(gb, offset_bits) + coef_word_gain_lsb()));
-      default:           return one << coef_word_gain_lsb();  // the two-point word first
+      MethodOnePoint:    return '0;
+      MethodTwoPoint:    return (one << (coef_word_gain_lsb()));
+      MethodPiecewise:   return (one << (coef_piecewise_gain_lo_lsb()))
+                              | (one << (coef_piecewise_gain_hi_lsb(gain_bits)));
+      MethodQuadratic:   return (one << (coef_word_gain_lsb()));
+      MethodTcOffset:    return (one << (coef_word_gain_lsb()));
+      default:           return (one << (coef_word_gain_lsb()))
+                              | (one << (coef_word_bits(gain_bits, offset_bits) + coef_word_gain_lsb()));
     endcase
   endfunction
 
+  // The bits of the coefficient word that are bad flags.
   function automatic logic [StreamWordMax-1:0] stream_bad_mask(
     input method_e     method,
-    input int unsigned gain_bits,
     input int unsigned offset_bits,
-    input int unsigned knee_bits);
-    logic [StreamWordMax-1:0] bad;
-    bad = StreamWordMax'(1) << coef_word_bad_lsb(gain_bits, offset_bits);
+    input int unsigned gain_bits,
+    input int unsigned knee_bits,
+    input int unsigned quad_bits,
+    input int unsigned tc_word_bits,
+    input int unsigned tg_word_bits);
+    logic [StreamWordMax-1:0] bit0;
+    bit0 = StreamWordMax'(1);
     unique case (method)
-      MethodOnePoint:    return StreamWordMax'(1) << coef_one_point_bad_lsb(offset_bits);
-      MethodPiecewise:   return StreamWordMax'(1) << coef_piecewise_bad_lsb(gain_bits, knee_bits);
-      MethodTableInterp: return bad | (bad << coef_word_bits(gain_bits, offset_bits));
-      default:           return bad;
+      MethodOnePoint:    return (bit0 << (coef_one_point_bad_lsb(offset_bits)));
+      MethodTwoPoint:    return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)));
+      MethodPiecewise:   return (bit0 << (coef_piecewise_bad_lsb(gain_bits, knee_bits)));
+      MethodQuadratic:   return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)));
+      MethodTcOffset:    return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)));
+      default:           return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)))
+                              | (bit0 << (coef_word_bits(gain_bits, offset_bits) + coef_word_bad_lsb(gain_bits, offset_bits)));
     endcase
   endfunction
+
+  // The frame word of NUC off: every gain field (one_point's gain) 1.0.
+  function automatic logic [StreamWordMax-1:0] neutral_frame_word(
+    input method_e     method,
+    input int unsigned gain_int_bits,
+    input int unsigned gain_frac_bits,
+    input int unsigned gain_bits,
+    input int unsigned level_bits,
+    input int unsigned reading_bits,
+    input int unsigned weight_bits);
+    logic [StreamWordMax-1:0] one;
+    one = unity_gain(gain_int_bits, gain_frac_bits);
+    unique case (method)
+      MethodOnePoint:    return (one << (32'd0));
+      MethodTwoPoint:    return '0;
+      MethodPiecewise:   return '0;
+      MethodQuadratic:   return '0;
+      MethodTcOffset:    return '0;
+      default:           return '0;
+    endcase
+  endfunction
+
+  // The core kind of each method (MethodSpec.core): the sum core_sum and
+  // method_core form.
+  function automatic core_kind_e core_kind(input method_e method);
+    unique case (method)
+      MethodOnePoint:    return CoreLin;
+      MethodTwoPoint:    return CoreLin;
+      MethodPiecewise:   return CorePwl;
+      MethodQuadratic:   return CoreQuad;
+      MethodTcOffset:    return CoreLin;
+      default:           return CoreLin;
+    endcase
+  endfunction
+
+  // The plain method (MethodSpec.plain): without a stage, irnuc_axis_top builds it
+  // around nuc_dpc_top, the core of memory image version 1.
+  function automatic bit method_plain(input method_e method);
+    return method == MethodTwoPoint;
+  endfunction
+
+  // The methods whose front is a pipeline ending in flops (MethodSpec
+  // .rtl_front_registered: tc_poly, table_interp); the others pass through.
+  function automatic bit front_registered(input method_e method);
+    return method == MethodTcOffset || method == MethodTableInterp;
+  endfunction
+
+  // The base methods method_drift_top composes blind_drift with (StageSpec.rtl_bases).
+  function automatic bit blind_drift_composes(input method_e method);
+    return method == MethodOnePoint || method == MethodTwoPoint;
+  endfunction
+
+  // The base methods method_ffc_top composes ffc with (StageSpec.rtl_bases).
+  function automatic bit ffc_composes(input method_e method);
+    return method == MethodOnePoint || method == MethodTwoPoint || method == MethodQuadratic
+           || method == MethodTcOffset;
+  endfunction
+
+  /* verilator lint_on UNUSEDSIGNAL */
+  // irnuc-params: end
 
 endpackage

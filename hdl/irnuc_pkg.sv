@@ -23,6 +23,8 @@ package irnuc_pkg;
   localparam int unsigned RegMapMajor = 1;  // register map major version
   localparam int unsigned RegMapMinor = 0;  // register map minor version
   localparam int unsigned RegAddrBits = 12;  // AXI4-Lite address bits of the register window
+  // 64-bit slots of the method registers (GAIN .. FFC_TARGET)
+  localparam int unsigned RegSlotCount = 8;
   localparam int unsigned RegIdOffset = 0;  // ID: identifies irnuc_axis_top
   localparam int unsigned RegIdValueLsb = 0;  // ID.value
   localparam int unsigned RegIdValueBits = 32;  // ID.value width
@@ -78,7 +80,7 @@ package irnuc_pkg;
   localparam int unsigned RegFrameSizeWidthBits = 16;  // FRAME_SIZE.width width
   localparam int unsigned RegFrameSizeHeightLsb = 16;  // FRAME_SIZE.height
   localparam int unsigned RegFrameSizeHeightBits = 16;  // FRAME_SIZE.height width
-  localparam int unsigned RegCommandOffset = 40;  // COMMAND: commands
+  localparam int unsigned RegCommandOffset = 40;  // COMMAND: commands (write only)
   localparam int unsigned RegCommandClearCountersLsb = 0;  // COMMAND.clear_counters
   // STATUS: framing errors (sticky until written 1) and the state of the input
   localparam int unsigned RegStatusOffset = 48;
@@ -161,34 +163,34 @@ package irnuc_pkg;
   localparam int unsigned RegFfcStatusOffset = 132;  // FFC_STATUS: flat-field correction state
   localparam int unsigned RegFfcStatusBusyLsb = 0;  // FFC_STATUS.busy
   localparam int unsigned RegFfcStatusDoneLsb = 1;  // FFC_STATUS.done
-  localparam int unsigned RegGainLoOffset = 256;  // GAIN_LO: one_point: the global gain, U Gi.Gf
-  localparam int unsigned RegGainHiOffset = 260;  // GAIN_HI
-  // LEVEL_LO: piecewise: the output at every pixel's knee
+  localparam int unsigned RegGainLoOffset = 256;  // GAIN.LO: one_point: the global gain, U Gi.Gf
+  localparam int unsigned RegGainHiOffset = 260;  // GAIN.HI
+  // LEVEL.LO: piecewise: the output at every pixel's knee
   localparam int unsigned RegLevelLoOffset = 264;
-  localparam int unsigned RegLevelHiOffset = 268;  // LEVEL_HI
-  // READING_LO: the FPA temperature sensor reading for the next frame
+  localparam int unsigned RegLevelHiOffset = 268;  // LEVEL.HI
+  // READING.LO: the FPA temperature sensor reading for the next frame
   localparam int unsigned RegReadingLoOffset = 272;
-  localparam int unsigned RegReadingHiOffset = 276;  // READING_HI
-  // T_REF_LO: tc_offset: the reading at which the polynomials are centred
+  localparam int unsigned RegReadingHiOffset = 276;  // READING.HI
+  // T_REF.LO: tc_offset: the reading at which the polynomials are centred
   localparam int unsigned RegTRefLoOffset = 280;
-  localparam int unsigned RegTRefHiOffset = 284;  // T_REF_HI
-  // BLIND_SUM_LO: blind_drift: the sum of the frame's blind pixel codes
+  localparam int unsigned RegTRefHiOffset = 284;  // T_REF.HI
+  // BLIND_SUM.LO: blind_drift: the sum of the frame's blind pixel codes
   localparam int unsigned RegBlindSumLoOffset = 288;
-  localparam int unsigned RegBlindSumHiOffset = 292;  // BLIND_SUM_HI
-  // BLIND_REF_LO: blind_drift: the blind pixel sum at calibration
+  localparam int unsigned RegBlindSumHiOffset = 292;  // BLIND_SUM.HI
+  // BLIND_REF.LO: blind_drift: the blind pixel sum at calibration
   localparam int unsigned RegBlindRefLoOffset = 296;
-  localparam int unsigned RegBlindRefHiOffset = 300;  // BLIND_REF_HI
-  // DRIFT_GAIN_LO: blind_drift: drift (ADC codes) per code of blind sum change, two's complement
+  localparam int unsigned RegBlindRefHiOffset = 300;  // BLIND_REF.HI
+  // DRIFT_GAIN.LO: blind_drift: drift (ADC codes) per code of blind sum change, two's complement
   localparam int unsigned RegDriftGainLoOffset = 304;
-  localparam int unsigned RegDriftGainHiOffset = 308;  // DRIFT_GAIN_HI
-  // FFC_TARGET_LO: ffc: the output level the FFC flattens the shutter to
+  localparam int unsigned RegDriftGainHiOffset = 308;  // DRIFT_GAIN.HI
+  // FFC_TARGET.LO: ffc: the output level the FFC flattens the shutter to
   localparam int unsigned RegFfcTargetLoOffset = 312;
-  localparam int unsigned RegFfcTargetHiOffset = 316;  // FFC_TARGET_HI
-  // TABLE_READING_0: table_interp: the reading of table k (strictly increasing); entries past the configured tables are reserved
+  localparam int unsigned RegFfcTargetHiOffset = 316;  // FFC_TARGET.HI
+  // TABLE_READING[0]: table_interp: the reading of table k (strictly increasing); entries past the configured tables are reserved
   localparam int unsigned RegTableReadingOffset = 384;
-  localparam int unsigned RegTableReadingStride = 4;  // TABLE_READING_k spacing
-  localparam int unsigned RegTableReadingCount = 16;  // TABLE_READING_k entries
-  // TABLE_SEL: table_interp: the table pair and weight interp_weight computed from the pending READING and TABLE_READING_k (the next frame's; point the coefficient DMA at the pair image of tables j and j + 1)
+  localparam int unsigned RegTableReadingStride = 4;  // TABLE_READING[k] spacing
+  localparam int unsigned RegTableReadingCount = 16;  // TABLE_READING[k] entries
+  // TABLE_SEL: table_interp: the table pair and weight interp_weight computed from the pending READING and TABLE_READING[k] (the next frame's; point the coefficient DMA at the pair image of tables j and j + 1)
   localparam int unsigned RegTableSelOffset = 448;
   localparam int unsigned RegTableSelWeightLsb = 0;  // TABLE_SEL.weight
   localparam int unsigned RegTableSelWeightBits = 24;  // TABLE_SEL.weight width
@@ -226,7 +228,7 @@ package irnuc_pkg;
     OverflowWrap = 1'd1  // keep the low B bits
   } overflow_e;
   localparam int unsigned OverflowCount = 2;
-  // ---- base correction method of method_dpc_top (module parameter Method; the order of nuc_fixed.config.BASE_METHODS)
+  // ---- base correction method (parameter Method of the tops; the order of the registry, nuc_fixed.methods.BASES)
   typedef enum logic [2:0] {
     MethodOnePoint = 3'd0,  // per-pixel offset, global gain register
     MethodTwoPoint = 3'd1,  // per-pixel gain and offset

@@ -16,20 +16,7 @@ package irnuc_stage_pkg;
     return is_signed ? bits : bits + 32'd1;
   endfunction
 
-  // ---- the sum of a base method's core (core_sum's Kind) --------------------------------
-  typedef enum logic [1:0] {
-    CoreLin  = 2'd0,  // lin_core: one_point, two_point, tc_offset, table_interp
-    CoreQuad = 2'd1,  // quad_core: quadratic
-    CorePwl  = 2'd2   // pwl_core: piecewise
-  } core_kind_e;
-
-  function automatic core_kind_e core_kind(input method_e method);
-    unique case (method)
-      MethodQuadratic: return CoreQuad;
-      MethodPiecewise: return CorePwl;
-      default:         return CoreLin;
-    endcase
-  endfunction
+  // The core kinds (core_kind_e, core_kind of a method) are irnuc_method_pkg's.
 
   // D = max(Kf, Xf) of pwl_core: the fraction bits of d = x - k.
   function automatic int unsigned pwl_d_frac(input int unsigned knee_frac,

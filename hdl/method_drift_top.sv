@@ -1,6 +1,7 @@
-// Blind-drift composition top: one_point or two_point with blind_drift, then the DPC
-// (docs/datapath.md "blind_drift", "drift_sub"; docs/rtl.md "Stages"; nuc_fixed.method_top
-// for a method "one_point+blind_drift" / "two_point+blind_drift").
+// Blind-drift composition top: a linear base method (those of blind_drift_composes:
+// one_point, two_point) with blind_drift, then the DPC (docs/datapath.md "blind_drift",
+// "drift_sub"; docs/rtl.md "Stages"; nuc_fixed.method_top for a method
+// "one_point+blind_drift" / "two_point+blind_drift").
 //
 // Streams (valid/ready), each behind its own input register (irnuc_spill_register):
 //   s_pix    raw pixels with sof/eol and the frame word s_pix_frame_i (read at sof:
@@ -12,8 +13,9 @@
 //   m_pix    corrected pixels with sof/eol.
 // blind_drift turns each frame's blind sum into its drift code delta (one sequential
 // multiply); the frame's first active pixel waits for it and latches it for the frame.
-// Per pixel: drift_sub x' = (x << Df) - delta, the linear core on the signed x' (Xf = Df,
-// core_sum), ROUND_F and OUT (core_out), dpc_core. One pixel per clock, no bubbles, as
+// Per pixel: the method's front (frame_coefficients: the pixel's gain and offset of the
+// frame), drift_sub x' = (x << Df) - delta, the linear core on the signed x' (Xf = Df,
+// core_sum), ROUND_F and OUT (core_out), the DPC tail (dpc_tail). One pixel per clock, no bubbles, as
 // long as each frame's blind items are taken before its first pixel arrives.
 // Latency: 2 + core_sum + 2 + dpc_core (drift14: W + 17).
 module method_drift_top
@@ -21,7 +23,9 @@ module method_drift_top
   import irnuc_method_pkg::*;
   import irnuc_stage_pkg::*;
 #(
-  parameter int unsigned Method            = 1,  // irnuc_method_pkg::method_e: 0 or 1
+  // irnuc-params: begin method_drift_top (generated from nuc_fixed.methods; do not edit)
+  // the base method (irnuc_pkg::method_e)
+  parameter method_e     Method            = MethodTwoPoint,
   parameter int unsigned AdcBits           = 14,
   parameter int unsigned GainIntBits       = 2,
   parameter int unsigned GainFracBits      = 14,
@@ -32,25 +36,35 @@ module method_drift_top
   parameter int unsigned Overflow          = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned MaxWidth          = 1024,
   parameter int unsigned MaxHeight         = 1024,
-  parameter int unsigned BlindMax          = 8192,
+  parameter int unsigned KneeIntBits       = 14,
+  parameter int unsigned KneeFracBits      = 2,
+  parameter int unsigned LevelIntBits      = 14,
+  parameter int unsigned LevelFracBits     = 4,
+  parameter int unsigned QuadIntBits       = 10,
+  parameter int unsigned QuadFracBits      = 6,
   parameter int unsigned DriftIntBits      = 14,
   parameter int unsigned DriftFracBits     = 2,
   parameter int unsigned DriftRounding     = 1,  // irnuc_pkg::rounding_e
   parameter int unsigned DriftOverflow     = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned DriftGainIntBits  = 1,
   parameter int unsigned DriftGainFracBits = 24,
+  parameter int unsigned BlindMax          = 8192,  // the most blind pixels a frame has
   // Derived, do not override.
-  localparam method_e     MethodSel        = method_e'(Method),
-  localparam int unsigned GainBits         = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits       = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned CoefBits         = coef_stream_bits(MethodSel, GainBits, OffsetBits,
-                                                              1, 1, 1, 0),
-  localparam int unsigned FrameBits        = frame_word_bits(MethodSel, GainBits, 1, 1, 1),
+  localparam int unsigned GainBits          = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits        = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned KneeBits          = KneeIntBits + KneeFracBits,
+  localparam int unsigned LevelBits         = LevelIntBits + LevelFracBits,
+  localparam int unsigned QuadBits          = QuadIntBits + QuadFracBits,
+  localparam int unsigned CoefBits          = coef_stream_bits(Method, OffsetBits, GainBits,
+                                                               KneeBits, QuadBits, 32'd1, 32'd1),
+  localparam int unsigned FrameBits         = frame_word_bits(Method, GainBits, LevelBits, 32'd1,
+                                                              32'd1),
+  localparam int unsigned WidthBits         = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits        = $clog2(MaxHeight + 1),
+  // irnuc-params: end
   localparam int unsigned BlindBits        = blind_sum_bits(AdcBits, BlindMax),
   localparam int unsigned DriftBits        = DriftIntBits + DriftFracBits,
-  localparam int unsigned DriftGainBits    = DriftGainIntBits + DriftGainFracBits,
-  localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
-  localparam int unsigned HeightBits       = $clog2(MaxHeight + 1)
+  localparam int unsigned DriftGainBits    = DriftGainIntBits + DriftGainFracBits
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -96,9 +110,9 @@ module method_drift_top
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (MethodSel == MethodOnePoint || MethodSel == MethodTwoPoint)
-      else $fatal(1, "method_drift_top: Method = %0d; blind_drift composes with one_point (0) and two_point (1)",
-                  Method);
+    assert (blind_drift_composes(Method))
+      else $fatal(1, "method_drift_top: Method = %0d; blind_drift composes with %s", Method,
+                  "the methods of irnuc_method_pkg::blind_drift_composes");
     assert (MaxWidth >= 1 && MaxWidth <= 65535 && MaxHeight >= 1 && MaxHeight <= 65535)
       else $fatal(1, "method_drift_top: MaxWidth = %0d, MaxHeight = %0d outside 1..65535",
                   MaxWidth, MaxHeight);
@@ -166,14 +180,14 @@ module method_drift_top
   assign unused_drift_busy = drift_busy;
 
   // ---- join: a pixel, its word and (at sof) its frame's drift code move together ----------
-  logic en, need, join_valid, join_take;
+  logic en, need, join_valid, join_ready, join_take;
 
-  assign need       = !pix_sof || drift_valid;
-  assign join_valid = pix_valid && coef_valid && need;
-  assign join_take  = join_valid && en;
-  assign pix_ready  = en && coef_valid && need;
-  assign coef_ready = en && pix_valid && need;
-  assign drift_ready = en && pix_valid && coef_valid && pix_sof;
+  assign need        = !pix_sof || drift_valid;
+  assign join_valid  = pix_valid && coef_valid && need;
+  assign join_take   = join_valid && join_ready;
+  assign pix_ready   = join_ready && coef_valid && need;
+  assign coef_ready  = join_ready && pix_valid && need;
+  assign drift_ready = join_ready && pix_valid && coef_valid && pix_sof;
 
   // The frame word and the drift code: the first pixel's, held for the rest of the frame.
   logic [FrameBits-1:0] frame_q, frame;
@@ -192,27 +206,57 @@ module method_drift_top
   assign frame = pix_sof ? pix_frame : frame_q;
   assign delta = pix_sof ? drift : delta_q;
 
-  logic [GainBits-1:0]   gain;
-  logic [OffsetBits-1:0] offset;
-  logic                  bad;
+  // ---- the method's front: the pixel's gain and offset of the frame ------------------------
+  // The raw code, the frame's drift code and the markers travel as side band.
+  localparam int unsigned PassBits = AdcBits + DriftBits + 2;  // {raw, delta, sof, eol}
 
-  if (MethodSel == MethodOnePoint) begin : gen_one_point
-    // coeffs: offset, bad (the generated word struct); the gain is the frame's register.
-    coef_one_point#(OffsetBits)::word_t w;
-    assign w      = coef;
-    assign gain   = frame[GainBits-1:0];
-    assign offset = w.offset;
-    assign bad    = w.bad;
-  end else begin : gen_two_point
-    // coeffs: gain, offset, bad (the generated word struct).
-    coef_word#(GainBits, OffsetBits)::word_t w;
-    assign w      = coef;
-    assign gain   = w.gain;
-    assign offset = w.offset;
-    assign bad    = w.bad;
-    logic unused_frame;
-    assign unused_frame = ^frame;
-  end
+  logic                  f_valid;
+  logic [GainBits-1:0]   gain, f_gain_hi;
+  logic [OffsetBits-1:0] offset;
+  logic [QuadBits-1:0]   f_quad;
+  logic [KneeBits-1:0]   f_knee;
+  logic [LevelBits-1:0]  f_level;
+  logic [AdcBits-1:0]    f_x;
+  logic [DriftBits-1:0]  f_delta;
+  logic                  f_sof, f_eol, bad;
+
+  frame_coefficients #(
+    // irnuc-params: forward frame_coefficients (generated from nuc_fixed.methods; do not edit)
+    .Method         (Method),
+    .GainIntBits    (GainIntBits),
+    .GainFracBits   (GainFracBits),
+    .OffsetIntBits  (OffsetIntBits),
+    .OffsetFracBits (OffsetFracBits),
+    .KneeIntBits    (KneeIntBits),
+    .KneeFracBits   (KneeFracBits),
+    .LevelIntBits   (LevelIntBits),
+    .LevelFracBits  (LevelFracBits),
+    .QuadIntBits    (QuadIntBits),
+    .QuadFracBits   (QuadFracBits),
+    .Rounding       (Rounding),
+    // irnuc-params: end
+    .UserBits(PassBits)
+  ) u_front (
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .s_valid_i  (join_valid),
+    .s_ready_o  (join_ready),
+    .s_coef_i   (coef),
+    .s_frame_i  (frame),
+    .s_user_i   ({pix_data, delta, pix_sof, pix_eol}),
+    .m_valid_o  (f_valid),
+    .m_ready_i  (en),
+    .m_gain_o   (gain),
+    .m_gain_hi_o(f_gain_hi),
+    .m_offset_o (offset),
+    .m_quad_o   (f_quad),
+    .m_knee_o   (f_knee),
+    .m_level_o  (f_level),
+    .m_user_o   ({f_x, f_delta, f_sof, f_eol, bad})
+  );
+  // blind_drift composes with the linear kind: gain and offset.
+  logic unused_front;
+  assign unused_front = ^{f_gain_hi, f_quad, f_knee, f_level};
 
   // ---- drift_sub, the linear core on x', ROUND and OUT ----------------------------------------
   localparam int unsigned Side = GainBits + OffsetBits + 3;  // {gain, offset, sof, eol, bad}
@@ -230,10 +274,10 @@ module method_drift_top
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .en_i   (en),
-    .valid_i(join_valid),
-    .x_i    (pix_data),
-    .delta_i(delta),
-    .side_i ({gain, offset, pix_sof, pix_eol, bad}),
+    .valid_i(f_valid),
+    .x_i    (f_x),
+    .delta_i(f_delta),
+    .side_i ({gain, offset, f_sof, f_eol, bad}),
     .valid_o(sub_valid),
     .x_o    (sub_x),
     .side_o (sub_side)
@@ -297,15 +341,18 @@ module method_drift_top
   );
 
   // ---- DPC ---------------------------------------------------------------------------------
-  dpc_core #(
-    .OutBits  (OutBits),
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_dpc (
+  dpc_tail #(
+    // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
+    .OutBits   (OutBits),
+    .MaxWidth  (MaxWidth),
+    .MaxHeight (MaxHeight)
+    // irnuc-params: end
+  ) u_tail (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .frame_width_i (frame_width_i),
     .frame_height_i(frame_height_i),
+    .frame_start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
     .s_valid_i     (nuc_valid),
     .s_ready_o     (nuc_ready),
     .s_pix_data_i  (nuc_data),
@@ -320,20 +367,8 @@ module method_drift_top
     .frame_err_o   (frame_err_o)
   );
 
-`ifdef IRNUC_ASSERT
   // Protocol assertions of s_pix_*, s_coef_*, s_blind_* and m_pix_*: in u_pix_in, u_coef_in,
-  // u_drift.u_in and u_dpc.u_out (irnuc_spill_register), whose ports these are; the
-  // frame size at a frame start:
-  irnuc_frame_assert #(
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_assert_frame (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
-    .width_i (frame_width_i),
-    .height_i(frame_height_i)
-  );
-`endif
+  // u_drift.u_in and u_tail.u_dpc.u_out (irnuc_spill_register), whose ports these are; the
+  // frame size at a frame start: in u_tail.
 
 endmodule

@@ -1,6 +1,6 @@
-// FFC composition top: one_point, two_point, quadratic or tc_offset with the shutter offset refresh,
-// then the DPC (docs/datapath.md "ffc"; docs/rtl.md "Stages"; nuc_fixed.method_top for a
-// method "<base>+ffc").
+// FFC composition top: a base method (those of ffc_composes: one_point, two_point, quadratic,
+// tc_offset) with the shutter offset refresh, then the DPC (docs/datapath.md "ffc";
+// docs/rtl.md "Stages"; nuc_fixed.method_top for a method "<base>+ffc").
 //
 // Streams (valid/ready), each input behind its own input register and each output behind
 // its own output register (irnuc_spill_register):
@@ -13,9 +13,11 @@
 //   s_acc    the accumulator (memory ffc_acc: U (A + n).0) of every pixel, in the frames
 //            that add to it (the 2nd..N-th shutter frame of a run) and in the refresh frame;
 //   m_acc    the new accumulator of every pixel, in the 1st..N-th shutter frame of a run;
-//   m_foff   the new FFC offset correction of every pixel, in the refresh frame (the frame
-//            after the N-th shutter frame): written back to ffc_offset, read from the next
-//            frame on (the refresh frame itself uses them already, as the golden model);
+//   m_foff   the FFC offset correction of every pixel in the refresh frame (the frame
+//            after the N-th shutter frame): the new one, or the one read when the mean
+//            frame had no good pixel (no target: ffc_kept_o); written back to ffc_offset,
+//            read from the next frame on (the refresh frame itself uses them already, as
+//            the golden model);
 //   m_pix    corrected pixels with sof/eol, of every frame but a held one (ffc_output
 //            hold: a shutter frame once an open frame was output; the display keeps the
 //            last open frame).
@@ -25,7 +27,8 @@
 //   v  = ROUND_(F' - Cf)(s_acc << (F' - F_acc))                             (ffc_mean)
 //   y  = OUT(ROUND_F(s + (c << (F - Cf)))),  c = dc in a refresh frame, else s_foff
 // and the DPC. The mean frame's v over good pixels give the target T (ffc_mean, one
-// division, before the refresh frame's first pixel is taken; ffc_target_o).
+// division, before the refresh frame's first pixel is taken; ffc_target_o); a mean frame
+// without a good pixel gives none (ffc_kept_o): its refresh frame keeps c = s_foff.
 // One pixel per clock, no bubbles, but for the division: a refresh frame's first pixel
 // waits for the target (NumBits + 3 cycles after the mean frame's last pixel).
 module method_ffc_top
@@ -33,59 +36,68 @@ module method_ffc_top
   import irnuc_method_pkg::*;
   import irnuc_stage_pkg::*;
 #(
-  parameter int unsigned Method         = 1,  // irnuc_pkg::method_e: 0, 1, 3 or 4
-  parameter int unsigned AdcBits        = 14,
-  parameter int unsigned GainIntBits    = 2,
-  parameter int unsigned GainFracBits   = 14,
-  parameter int unsigned OffsetIntBits  = 12,
-  parameter int unsigned OffsetFracBits = 4,
-  parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned MaxWidth       = 1024,
-  parameter int unsigned MaxHeight      = 1024,
-  parameter int unsigned QuadIntBits    = 10,
-  parameter int unsigned QuadFracBits   = 6,
-  parameter int unsigned SquareBits     = 18,
-  parameter int unsigned Tc1IntBits     = 13,
-  parameter int unsigned Tc1FracBits    = 3,
-  parameter int unsigned Tc2IntBits     = 12,
-  parameter int unsigned Tc2FracBits    = 4,
-  parameter int unsigned Tg1IntBits     = 2,
-  parameter int unsigned Tg1FracBits    = 14,
-  parameter int unsigned Tg2IntBits     = 2,
-  parameter int unsigned Tg2FracBits    = 14,
-  parameter int unsigned TcOrder        = 2,
-  parameter int unsigned TcGain         = 0,
-  parameter int unsigned ReadingBits    = 14,
-  parameter int unsigned ReadingRangeBits = 11,
-  parameter int unsigned FfcFrames      = 8,
-  parameter int unsigned FfcHold        = 1,  // ffc_output: 1 hold, 0 pass
-  parameter int unsigned FfcIntBits     = 12,
-  parameter int unsigned FfcFracBits    = 4,
-  parameter int unsigned FfcRounding    = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned FfcOverflow    = 0,  // irnuc_pkg::overflow_e
+  // irnuc-params: begin method_ffc_top (generated from nuc_fixed.methods; do not edit)
+  // the base method (irnuc_pkg::method_e)
+  parameter method_e     Method           = MethodTwoPoint,
+  parameter int unsigned AdcBits          = 14,
+  parameter int unsigned GainIntBits      = 2,
+  parameter int unsigned GainFracBits     = 14,
+  parameter int unsigned OffsetIntBits    = 12,
+  parameter int unsigned OffsetFracBits   = 4,
+  parameter int unsigned OutBits          = 14,
+  parameter int unsigned Rounding         = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow         = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth         = 1024,
+  parameter int unsigned MaxHeight        = 1024,
+  parameter int unsigned KneeIntBits      = 14,
+  parameter int unsigned KneeFracBits     = 2,
+  parameter int unsigned LevelIntBits     = 14,
+  parameter int unsigned LevelFracBits    = 4,
+  parameter int unsigned QuadIntBits      = 10,
+  parameter int unsigned QuadFracBits     = 6,
+  parameter int unsigned SquareBits       = 18,  // bits the square of a raw code is truncated to
+  parameter int unsigned ReadingBits      = 14,  // bits of the FPA sensor's reading
+  parameter int unsigned Tc1IntBits       = 13,
+  parameter int unsigned Tc1FracBits      = 3,
+  parameter int unsigned Tc2IntBits       = 12,
+  parameter int unsigned Tc2FracBits      = 4,
+  parameter int unsigned Tg1IntBits       = 2,
+  parameter int unsigned Tg1FracBits      = 14,
+  parameter int unsigned Tg2IntBits       = 2,
+  parameter int unsigned Tg2FracBits      = 14,
+  parameter int unsigned TcOrder          = 2,  // order of the polynomials
+  parameter bit          TcGain           = 1'b0,  // the gain is a polynomial too
+  parameter int unsigned ReadingRangeBits = 11,  // Ts: v = (t - t_ref) / 2^Ts
+  parameter int unsigned FfcIntBits       = 12,
+  parameter int unsigned FfcFracBits      = 4,
+  parameter int unsigned FfcRounding      = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned FfcOverflow      = 0,  // irnuc_pkg::overflow_e
+  // N, the shutter frames of a refresh (a power of two)
+  parameter int unsigned FfcFrames        = 8,
+  // what the output shows during the shutter frames
+  parameter bit          FfcHold          = 1'b1,
   // Derived, do not override.
-  localparam method_e     MethodSel     = method_e'(Method),
-  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned QuadBits      = QuadIntBits + QuadFracBits,
-  localparam int unsigned TcWordBits    = Tc1IntBits + Tc1FracBits
-                                          + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
-  localparam int unsigned TgWordBits    = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
-                                          + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0)
-                                                        : 0,
-  localparam int unsigned CoefBits      = coef_stream_bits(MethodSel, GainBits, OffsetBits,
-                                                           1, QuadBits, TcWordBits,
-                                                           TgWordBits),
-  localparam int unsigned FrameBits     = frame_word_bits(MethodSel, GainBits, 1, ReadingBits,
-                                                          1),
-  localparam int unsigned NShift        = $clog2(FfcFrames),
-  localparam int unsigned AccBits       = AdcBits + NShift,
-  localparam int unsigned CBits         = FfcIntBits + FfcFracBits,
-  localparam int unsigned TBits         = OutBits + FfcFracBits,
-  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
-  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1)
+  localparam int unsigned GainBits         = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits       = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned KneeBits         = KneeIntBits + KneeFracBits,
+  localparam int unsigned LevelBits        = LevelIntBits + LevelFracBits,
+  localparam int unsigned QuadBits         = QuadIntBits + QuadFracBits,
+  localparam int unsigned TcWordBits       = Tc1IntBits + Tc1FracBits
+                                             + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned TgWordBits       = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
+                                             + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned CoefBits         = coef_stream_bits(Method, OffsetBits, GainBits,
+                                                              KneeBits, QuadBits, TcWordBits,
+                                                              TgWordBits),
+  localparam int unsigned FrameBits        = frame_word_bits(Method, GainBits, LevelBits,
+                                                             ReadingBits, 32'd1),
+  localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
+  // irnuc-params: end
+  localparam int unsigned NShift           = $clog2(FfcFrames),
+  localparam int unsigned AccBits          = AdcBits + NShift,
+  localparam int unsigned CBits            = FfcIntBits + FfcFracBits,
+  localparam int unsigned TBits            = OutBits + FfcFracBits
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
@@ -125,14 +137,17 @@ module method_ffc_top
   output logic [OutBits-1:0]    m_pix_data_o,
   output logic                  m_pix_sof_o,
   output logic                  m_pix_eol_o,
-  // The last FFC target (register ffc_target, U B.Cf) and whether one was taken.
+  // The last FFC target (register ffc_target, U B.Cf) and whether one was taken; kept: its
+  // mean frame had no good pixel, so there is no target (0) and the refresh kept the
+  // offsets (valid with ffc_target_valid_o).
   output logic                  ffc_target_valid_o,
   output logic [TBits-1:0]      ffc_target_o,
+  output logic                  ffc_kept_o,
   // Sticky framing error (see dpc_core).
   output logic                  frame_err_o
 );
 
-  localparam core_kind_e  Kind      = core_kind(MethodSel);
+  localparam core_kind_e  Kind      = core_kind(Method);
   // The pixel's sum (raw x, the FFC term's Cf) and the accumulator's (Xf = n).
   localparam int unsigned FracBits  = core_frac(Kind, 0, GainFracBits, OffsetFracBits, 0, 0,
                                                 FfcFracBits);
@@ -161,15 +176,14 @@ module method_ffc_top
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
-    assert (MethodSel == MethodOnePoint || MethodSel == MethodTwoPoint
-            || MethodSel == MethodQuadratic || MethodSel == MethodTcOffset)
-      else $fatal(1, "method_ffc_top: Method = %0d; the RTL composes ffc with one_point (0), two_point (1), quadratic (3) and tc_offset (4)",
-                  Method);
+    assert (ffc_composes(Method))
+      else $fatal(1, "method_ffc_top: Method = %0d; the RTL composes ffc with %s", Method,
+                  "the methods of irnuc_method_pkg::ffc_composes");
     assert (MaxWidth >= 1 && MaxWidth <= 65535 && MaxHeight >= 1 && MaxHeight <= 65535)
       else $fatal(1, "method_ffc_top: MaxWidth = %0d, MaxHeight = %0d outside 1..65535",
                   MaxWidth, MaxHeight);
-    assert (FfcHold <= 1 && FfcRounding <= 2 && FfcOverflow <= 1 && FfcIntBits >= 1)
-      else $fatal(1, "method_ffc_top: FfcHold, FfcRounding, FfcOverflow or FfcIntBits out of range");
+    assert (FfcRounding <= 2 && FfcOverflow <= 1 && FfcIntBits >= 1)
+      else $fatal(1, "method_ffc_top: FfcRounding, FfcOverflow or FfcIntBits out of range");
     assert (TotBits <= 62)
       else $fatal(1, "method_ffc_top: the sum of %0d bits exceeds the limit", TotBits);
   end
@@ -294,7 +308,7 @@ module method_ffc_top
   // and every pixel of the mean frame has been summed (none in flight between the join and
   // ffc_mean). At most Latency + 4 pixels sit between the join and ffc_mean, and tc_poly's
   // (below 32).
-  logic                    mean_valid, mean_good, target_valid, target_ready;
+  logic                    mean_valid, mean_good, target_valid, target_ready, target_empty;
   logic [TBits-1:0]        target;
   logic signed [VBits-1:0] mean_v;
 
@@ -314,11 +328,13 @@ module method_ffc_top
     .frame_taken_i (join_take && px_sof),
     .ready_o       (target_ready),
     .target_valid_o(target_valid),
-    .target_o      (target)
+    .target_o      (target),
+    .empty_o       (target_empty)
   );
 
   assign ffc_target_valid_o = target_valid;
   assign ffc_target_o       = target;
+  assign ffc_kept_o         = target_empty;
 
   // ---- join: a pixel, its words and (in the frames that read it) its accumulator ----------
   logic need_acc, need_target, join_ready;
@@ -340,51 +356,65 @@ module method_ffc_top
   logic [Pass-1:0]       join_pass;
   logic [Pass:0]         f_pass;
   logic                  f_valid;
-  logic [GainBits-1:0]   f_gain;
+  logic [GainBits-1:0]   f_gain, f_gain_hi;
   logic [OffsetBits-1:0] f_offset;
   logic [QuadBits-1:0]   f_quad;
+  logic [KneeBits-1:0]   f_knee;
+  logic [LevelBits-1:0]  f_level;
 
   assign join_pass = {px_data, acc_in, foff_in, px_mode.acc_first, px_mode.mean,
                       px_mode.refresh, px_mode.acc_first || px_mode.acc_add, px_mode.hold,
                       px_sof, px_eol};
 
   frame_coefficients #(
-    .Method          (Method),
-    .GainIntBits     (GainIntBits),
-    .GainFracBits    (GainFracBits),
-    .OffsetIntBits   (OffsetIntBits),
-    .OffsetFracBits  (OffsetFracBits),
-    .QuadIntBits     (QuadIntBits),
-    .QuadFracBits    (QuadFracBits),
-    .Tc1IntBits      (Tc1IntBits),
-    .Tc1FracBits     (Tc1FracBits),
-    .Tc2IntBits      (Tc2IntBits),
-    .Tc2FracBits     (Tc2FracBits),
-    .Tg1IntBits      (Tg1IntBits),
-    .Tg1FracBits     (Tg1FracBits),
-    .Tg2IntBits      (Tg2IntBits),
-    .Tg2FracBits     (Tg2FracBits),
-    .TcOrder         (TcOrder),
-    .TcGain          (TcGain),
-    .ReadingBits     (ReadingBits),
-    .ReadingRangeBits(ReadingRangeBits),
-    .Rounding        (Rounding),
-    .UserBits        (Pass)
+    // irnuc-params: forward frame_coefficients (generated from nuc_fixed.methods; do not edit)
+    .Method           (Method),
+    .GainIntBits      (GainIntBits),
+    .GainFracBits     (GainFracBits),
+    .OffsetIntBits    (OffsetIntBits),
+    .OffsetFracBits   (OffsetFracBits),
+    .KneeIntBits      (KneeIntBits),
+    .KneeFracBits     (KneeFracBits),
+    .LevelIntBits     (LevelIntBits),
+    .LevelFracBits    (LevelFracBits),
+    .QuadIntBits      (QuadIntBits),
+    .QuadFracBits     (QuadFracBits),
+    .Rounding         (Rounding),
+    .ReadingBits      (ReadingBits),
+    .Tc1IntBits       (Tc1IntBits),
+    .Tc1FracBits      (Tc1FracBits),
+    .Tc2IntBits       (Tc2IntBits),
+    .Tc2FracBits      (Tc2FracBits),
+    .Tg1IntBits       (Tg1IntBits),
+    .Tg1FracBits      (Tg1FracBits),
+    .Tg2IntBits       (Tg2IntBits),
+    .Tg2FracBits      (Tg2FracBits),
+    .TcOrder          (TcOrder),
+    .TcGain           (TcGain),
+    .ReadingRangeBits (ReadingRangeBits),
+    // irnuc-params: end
+    .UserBits(Pass)
   ) u_front (
-    .clk_i     (clk_i),
-    .rst_ni    (rst_ni),
-    .s_valid_i (join_valid),
-    .s_ready_o (join_ready),
-    .s_coef_i  (coef),
-    .s_frame_i (px_frame),
-    .s_user_i  (join_pass),
-    .m_valid_o (f_valid),
-    .m_ready_i (en),
-    .m_gain_o  (f_gain),
-    .m_offset_o(f_offset),
-    .m_quad_o  (f_quad),
-    .m_user_o  (f_pass)
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .s_valid_i  (join_valid),
+    .s_ready_o  (join_ready),
+    .s_coef_i   (coef),
+    .s_frame_i  (px_frame),
+    .s_user_i   (join_pass),
+    .m_valid_o  (f_valid),
+    .m_ready_i  (en),
+    .m_gain_o   (f_gain),
+    .m_gain_hi_o(f_gain_hi),
+    .m_offset_o (f_offset),
+    .m_quad_o   (f_quad),
+    .m_knee_o   (f_knee),
+    .m_level_o  (f_level),
+    .m_user_o   (f_pass)
   );
+  // The sums of the kinds ffc composes with take gain, offset and quad (ffc_sums).
+  logic unused_front;
+  assign unused_front = ^{f_gain_hi, f_knee, f_level};
 
   // ---- stage 1 and the two sums: the pixel's (s) and the accumulator's (sa) ----------------
   // Beside the sums: {mean, refresh, write, hold, the correction read, sof, eol, bad}.
@@ -414,7 +444,7 @@ module method_ffc_top
     .FfcFracBits   (FfcFracBits),
     .Latency       (Latency),
     .SideBits      (Side),
-    .AddBehind     (MethodSel != MethodTcOffset)
+    .AddBehind     (!front_registered(Method))
   ) u_sums (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
@@ -435,13 +465,13 @@ module method_ffc_top
     .side_o   (sum_side)
   );
 
-  // ---- ffc_refresh: dc and the mean's v on sa; the pixel's correction c --------------------
+  // ---- ffc_refresh: dc and the mean's v on sa; the pixel's correction c (written back) ------
   // Beside: {s, mean, write, hold, acc_new, sof, eol, bad}.
   localparam int unsigned RSide = SumBits + AccBits + 6;
 
   logic                 v_valid, c_valid, c_refresh;
   logic [RSide-1:0]     v_side, c_side;
-  logic [CBits-1:0]     c_c, c_dc;
+  logic [CBits-1:0]     c_c;
   logic [SumBits-1:0]   c_sum;
   logic [AccBits-1:0]   c_acc;
   logic                 c_write, c_hold, c_sof, c_eol, c_bad, c_mean;
@@ -463,6 +493,7 @@ module method_ffc_top
     .sum_i    (asum_s),
     .target_i (target),
     .refresh_i(sum_side[Side-2]),
+    .keep_i   (target_empty),
     .c_i      (sum_side[3 +: CBits]),
     .side_i   ({sum_s, sum_side[Side-1], sum_side[Side-3 -: 2], sum_acc_new, sum_side[2:0]}),
     .v_valid_o(v_valid),
@@ -470,7 +501,6 @@ module method_ffc_top
     .v_side_o (v_side),
     .valid_o  (c_valid),
     .refresh_o(c_refresh),
-    .dc_o     (c_dc),
     .c_o      (c_c),
     .side_o   (c_side)
   );
@@ -485,7 +515,7 @@ module method_ffc_top
   // ---- stage T: the FFC term added ---------------------------------------------------------
   logic                t_valid_q;
   logic [TotBits-1:0]  t_sum_q;
-  localparam int unsigned User = 6 + AccBits + CBits;  // {hold, write, acc, refresh, dc, sof, eol, bad}
+  localparam int unsigned User = 6 + AccBits + CBits;  // {hold, write, acc, refresh, c, sof, eol, bad}
   logic [User-1:0]     t_user_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_t_valid
@@ -500,7 +530,7 @@ module method_ffc_top
     if (en) begin
       t_sum_q  <= TotBits'($signed(c_sum))
                   + (TotBits'($signed(c_c)) << (FracBits - FfcFracBits));
-      t_user_q <= {c_hold, c_write, c_acc, c_refresh, c_dc, c_sof, c_eol, c_bad};
+      t_user_q <= {c_hold, c_write, c_acc, c_refresh, c_c, c_sof, c_eol, c_bad};
     end
   end
 
@@ -531,9 +561,9 @@ module method_ffc_top
 
   logic               o_hold, o_write, o_refresh, o_sof, o_eol, o_bad;
   logic [AccBits-1:0] o_acc;
-  logic [CBits-1:0]   o_dc;
+  logic [CBits-1:0]   o_c;
 
-  assign {o_hold, o_write, o_acc, o_refresh, o_dc, o_sof, o_eol, o_bad} = out_user;
+  assign {o_hold, o_write, o_acc, o_refresh, o_c, o_sof, o_eol, o_bad} = out_user;
 
   // A stream fork: the item leaves once every destination it goes to has taken it.
   logic [2:0] need, dest_valid, dest_ready, sent_q;
@@ -568,22 +598,25 @@ module method_ffc_top
     .rst_ni (rst_ni),
     .valid_i(dest_valid[2]),
     .ready_o(dest_ready[2]),
-    .data_i (o_dc),
+    .data_i (o_c),
     .valid_o(m_foff_valid_o),
     .ready_i(m_foff_ready_i),
     .data_o (m_foff_data_o)
   );
 
   // ---- DPC ---------------------------------------------------------------------------------
-  dpc_core #(
-    .OutBits  (OutBits),
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_dpc (
+  dpc_tail #(
+    // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
+    .OutBits   (OutBits),
+    .MaxWidth  (MaxWidth),
+    .MaxHeight (MaxHeight)
+    // irnuc-params: end
+  ) u_tail (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .frame_width_i (frame_width_i),
     .frame_height_i(frame_height_i),
+    .frame_start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
     .s_valid_i     (dest_valid[0]),
     .s_ready_o     (dest_ready[0]),
     .s_pix_data_i  (out_data),
@@ -601,8 +634,8 @@ module method_ffc_top
 `ifdef IRNUC_ASSERT
   // Protocol assertions of every stream port: in the input and output registers
   // (irnuc_spill_register) and u_dpc.u_out, whose ports these are, but s_coef, s_foff and
-  // s_acc (their irnuc_axis_buffer checks its output side only): here. Also the frame size
-  // at a frame start, and no mean pixel lost by the in-flight count.
+  // s_acc (their irnuc_axis_buffer checks its output side only): here (the frame size at a
+  // frame start: in u_tail).
   irnuc_stream_assert #(.DataBits(CoefBits)) u_assert_coef (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
@@ -623,16 +656,6 @@ module method_ffc_top
     .valid_i(s_acc_valid_i),
     .ready_i(s_acc_ready_o),
     .data_i (s_acc_data_i)
-  );
-  irnuc_frame_assert #(
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_assert_frame (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
-    .width_i (frame_width_i),
-    .height_i(frame_height_i)
   );
 `endif
 

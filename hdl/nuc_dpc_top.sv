@@ -13,22 +13,24 @@
 module nuc_dpc_top
   import irnuc_pkg::*;
 #(
-  parameter int unsigned AdcBits        = 14,
-  parameter int unsigned GainIntBits    = 2,
-  parameter int unsigned GainFracBits   = 14,
-  parameter int unsigned OffsetIntBits  = 12,
-  parameter int unsigned OffsetFracBits = 4,
-  parameter int unsigned OutBits        = 14,
-  parameter int unsigned Rounding       = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned Overflow       = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned MaxWidth       = 1024,
-  parameter int unsigned MaxHeight      = 1024,
+  // irnuc-params: begin nuc_dpc_top (generated from nuc_fixed.methods; do not edit)
+  parameter int unsigned AdcBits          = 14,
+  parameter int unsigned GainIntBits      = 2,
+  parameter int unsigned GainFracBits     = 14,
+  parameter int unsigned OffsetIntBits    = 12,
+  parameter int unsigned OffsetFracBits   = 4,
+  parameter int unsigned OutBits          = 14,
+  parameter int unsigned Rounding         = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned Overflow         = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned MaxWidth         = 1024,
+  parameter int unsigned MaxHeight        = 1024,
   // Derived, do not override.
-  localparam int unsigned GainBits      = GainIntBits + GainFracBits,
-  localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned WordBits      = coef_word_bits(GainBits, OffsetBits),
-  localparam int unsigned WidthBits     = $clog2(MaxWidth + 1),
-  localparam int unsigned HeightBits    = $clog2(MaxHeight + 1)
+  localparam int unsigned GainBits         = GainIntBits + GainFracBits,
+  localparam int unsigned OffsetBits       = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
+  localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
+  // irnuc-params: end
+  localparam int unsigned WordBits         = coef_word_bits(GainBits, OffsetBits)
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
@@ -137,15 +139,18 @@ module nuc_dpc_top
   );
 
   // ---- DPC ---------------------------------------------------------------------------
-  dpc_core #(
-    .OutBits  (OutBits),
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_dpc (
+  dpc_tail #(
+    // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
+    .OutBits   (OutBits),
+    .MaxWidth  (MaxWidth),
+    .MaxHeight (MaxHeight)
+    // irnuc-params: end
+  ) u_tail (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .frame_width_i (frame_width_i),
     .frame_height_i(frame_height_i),
+    .frame_start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
     .s_valid_i     (nuc_valid),
     .s_ready_o     (nuc_ready),
     .s_pix_data_i  (nuc_data),
@@ -160,20 +165,8 @@ module nuc_dpc_top
     .frame_err_o   (frame_err_o)
   );
 
-`ifdef IRNUC_ASSERT
   // Protocol assertions of s_pix_*, s_coef_* and m_pix_*: in u_pix_in, u_coef_in and
-  // u_dpc.u_out (irnuc_spill_register), whose ports these are; the frame size at a frame
-  // start:
-  irnuc_frame_assert #(
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_assert_frame (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .start_i (s_pix_valid_i && s_pix_ready_o && s_pix_sof_i),
-    .width_i (frame_width_i),
-    .height_i(frame_height_i)
-  );
-`endif
+  // u_tail.u_dpc.u_out (irnuc_spill_register), whose ports these are; the frame size at a
+  // frame start: in u_tail.
 
 endmodule

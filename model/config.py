@@ -17,7 +17,7 @@ from typing import Any
 
 from irnuc.common import schema
 from irnuc.common.digest import digest
-from irnuc.model.validate import ConfigError
+from irnuc.model.validate import ConfigError, check_frame_period
 
 PRESET_DIR = Path(__file__).with_name("presets")
 
@@ -84,6 +84,11 @@ SCHEMA: dict[str, Field] = {
     "bolometer.rtol": Field("float", 1e-15, 1e-3),
     "bolometer.max_iter": Field("int", 1, 10000),
     "bolometer.runaway_temperature": Field("float", unit="K", **_POS),
+    # How the bias pulse is modelled (docs/model.md, section 5): integrated in time over the
+    # pulse train, its heat carried to the next pulse (default), or the paper's eq. 16 (one
+    # pulse from the unbiased equilibrium, R at the pulse's mean temperature).
+    # (absent: "integrated", or "self_heating" with variant = "paper")
+    "bolometer.pulse": Field("choice", choices=("integrated", "self_heating"), optional=True),
     # environment
     "environment.T_substrate": Field("float", 100.0, 500.0, unit="K"),
     "environment.T_cam": Field("float", 100.0, 500.0, unit="K"),
@@ -94,6 +99,10 @@ SCHEMA: dict[str, Field] = {
     "readout.v_low": Field("float", -100.0, 100.0, unit="V"),
     "readout.v_high": Field("float", -100.0, 100.0, unit="V"),
     "readout.v_skim": Field("float", -1e3, 1e3, unit="V", optional=True),
+    # Frames per second: every pixel is pulsed once per frame period (a drift sequence's
+    # own frame_rate replaces it).
+    "readout.frame_rate": Field("float", 0.0, 1e5, lo_open=True, unit="Hz", optional=True,
+                                default=30.0),
     # The pixels read out beside the image as drift references (``blind_codes``).
     "readout.reference_pixels": Field("choice", choices=("boundary", "blind", "none"),
                                       optional=True, default="boundary"),
@@ -106,7 +115,13 @@ SCHEMA: dict[str, Field] = {
     "noise.enabled": Field("bool"),
     "noise.johnson": Field("bool"),
     "noise.readout_sigma": Field("float", 0.0, 10.0, unit="V"),
-    "noise.flicker_sigma": Field("float", 0.0, 10.0, unit="V"),
+    # 1/f noise of the readout chain at the integrator output (the bolometer's own is
+    # flicker_coefficient's)
+    "noise.flicker_sigma": Field("float", 0.0, 10.0, unit="V", optional=True, default=0.0),
+    # The bolometer's 1/f noise, S_V(f) = k V^2 / f (docs/model.md, section 7)
+    "noise.flicker_coefficient": Field("float", 0.0, 1e-6, optional=True, default=1e-13),
+    # The thermal fluctuation of each pixel's temperature, k T^2 / C
+    "noise.thermal_fluctuation": Field("bool", optional=True, default=True),
     # batching
     "run.chunk_frames": Field("int", 1, 100000),
 }
@@ -193,6 +208,9 @@ def validate(cfg: Mapping[str, Any], source: str = "sensor configuration") -> di
         elif spec.kind == "table":
             value = dict(value)
         out.setdefault(section, {})[key] = value
+    b = out["bolometer"]
+    if b["pulse"] is None:  # the paper's variant is a property of its single-pulse model
+        b["pulse"] = "self_heating" if b["variant"] == "paper" else "integrated"
     _check_relations(out)
     return out
 
@@ -213,6 +231,13 @@ def _check_relations(c: dict[str, dict[str, Any]]) -> None:
         raise ConfigError(
             f"readout.v_reset = {r['v_reset']:g} V is outside the rails "
             f"[{r['v_low']:g}, {r['v_high']:g}] V")
+    b = c["bolometer"]
+    check_frame_period(1.0 / r["frame_rate"], b["t_int"], what=f"readout.frame_rate = "
+                       f"{r['frame_rate']:g} Hz")
+    if b["variant"] == "paper" and b["pulse"] != "self_heating":
+        raise ConfigError("bolometer.variant = 'paper' needs bolometer.pulse = 'self_heating' "
+                          "(the paper's eq. 19 switches the scene on with one bias pulse; the "
+                          "integrated pulse train looks at the scene continuously)")
     blind = c["fpa"]["blind"]
     if r["skimming"] == "row" and blind[2] + blind[3] == 0:
         raise ConfigError("readout.skimming = 'row' needs blind columns: fpa.blind[2] + fpa.blind[3] >= 1")

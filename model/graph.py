@@ -19,8 +19,9 @@ from irnuc.model.scenes import Scene
 from irnuc.model.validate import ConfigError
 
 #: Per-frame environment a run may vary (arrays of one value per frame): substrate and
-#: housing temperature (K), shutter closed (bool) and the shutter's temperature (K).
-ENV_FIELDS = ("T_substrate", "T_cam", "shutter", "T_shutter")
+#: housing temperature (K), shutter closed (bool), the shutter's temperature (K) and the
+#: lens's (K; absent: at the housing).
+ENV_FIELDS = ("T_substrate", "T_cam", "shutter", "T_shutter", "T_lens")
 
 
 @dataclass(frozen=True)
@@ -45,7 +46,7 @@ class RunContext:
     temps: np.ndarray = field(default_factory=lambda: np.empty(0))
     first_frame: int = 0
     counts: Counter = field(default_factory=Counter)
-    flicker: _noise.FlickerState | None = None
+    flicker: _noise.VossState | None = None
     #: ``demand(product)`` computes (once) and returns a product no stage input declared:
     #: for results needed only on a rare path, like the skimming fallback voltage.
     demand: Callable[[str], Any] | None = None

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -99,7 +99,7 @@ class Responsivity:
 def responsivity(cfg: Mapping[str, Any], T_scene: float = 300.0, *, seed: int = 0,
                  T_substrate: float | None = None, T_cam: float | None = None,
                  pipe: _pl.Pipeline | None = None) -> Responsivity:
-    """Closed-form responsivity and white temporal noise of every active pixel, at a
+    """Small-signal responsivity and white temporal noise of every active pixel, at a
     uniform scene of ``T_scene`` (K) and the substrate and housing temperatures (K; default
     the configuration's). See the module docstring for the formulas.
 
@@ -111,32 +111,22 @@ def responsivity(cfg: Mapping[str, Any], T_scene: float = 300.0, *, seed: int = 
     Ts = float(env["T_substrate"] if T_substrate is None else T_substrate)
     Tc = float(env["T_cam"] if T_cam is None else T_cam)
     pipe = pipe if pipe is not None else _pl.Pipeline(cfg, seed)
-    run_env = {"T_substrate": np.array([Ts]), "T_cam": np.array([Tc])}
-    v = pipe.run(np.array([T_scene]), ["v_bolo", "dT", "status", "params", "k_scene",
-                                       "defects", "solve_coef"], env=run_env)
     c = pipe.cfg
-    b, r, a, n = c["bolometer"], c["readout"], c["adc"], c["noise"]
-    act = pipe.layout.active_slice
-    I = b["bias_current"]
-    if not I > 0:
+    b, r, a = c["bolometer"], c["readout"], c["adc"]
+    if not b["bias_current"] > 0:
         raise ConfigError("responsivity: bolometer.bias_current = 0 A reads no signal")
-    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
-    R = v["v_bolo"][0][act] / I
-    T = Ts + v["dT"][0][act]
-    bq = v["solve_coef"]["b"][act]
-    D = bq * R * B / (T * T)
-    g = v["params"]["g"][act]
-    fq = v["solve_coef"]["fq"][act] if v["solve_coef"]["variant"] == 1 else 1.0
+    run_env = {"T_substrate": np.array([Ts]), "T_cam": np.array([Tc])}
+    wanted = ["v_bolo", "dT", "status", "params", "k_scene", "defects", "Q"]
+    wanted += ["pulse_ref"] if b["pulse"] == "integrated" else ["solve_coef"]
+    v = pipe.run(np.array([T_scene]), wanted, env=run_env)
+    act = pipe.layout.active_slice
     defects = v["defects"]
     dQ = v["k_scene"][act] * band_radiance_derivative(T_scene, tuple(c["radiometry"]["band"]))
     dQ = dQ * defects.resp
     per_volt = 2.0 ** a["bits"] / (a["v_high"] - a["v_low"])
-    resp = per_volt * r["gain"] * I * R * B / (T * T) / (1.0 + D) * fq / g * dQ
-    var_v = np.zeros(R.shape)
-    if n["enabled"]:
-        var_v = var_v + n["readout_sigma"] ** 2 + n["flicker_sigma"] ** 2
-        if n["johnson"]:
-            var_v = var_v + (r["gain"] ** 2 * 4.0 * K_BOLTZMANN * T * R / (2.0 * b["t_int"]))
+    point = operating_point(pipe, v, Ts)
+    resp = per_volt * r["gain"] * (-point["dv_dQ"][act]) * dQ
+    var_v = pixel_noise_variance(pipe, point)  # at the integrator output, V^2
     from irnuc.model.defects import noisy_sigma
 
     extra = noisy_sigma(defects, r["v_low"], r["v_high"])
@@ -148,9 +138,125 @@ def responsivity(cfg: Mapping[str, Any], T_scene: float = 300.0, *, seed: int = 
                         {"T_scene": T_scene, "T_substrate": Ts, "T_cam": Tc})
 
 
+def operating_point(pipe: _pl.Pipeline, v: Mapping[str, Any], T_s: float) -> dict[str, np.ndarray]:
+    """Per pixel of the full array at one frame's operating point (``v``: the pipeline's
+    products of that frame): the mean bolometer voltage (V), temperature (K) and resistance
+    (ohm) over the pulse, dv/dQ (V/W, the small-signal derivative of the steady state), and
+    for the integrated pulse the voltage's sensitivity to the pre-pulse temperature S (V/K)
+    with the RMS of that temperature's thermal fluctuation (K)."""
+    c = pipe.cfg
+    b = c["bolometer"]
+    I = b["bias_current"]
+    p = v["params"]
+    vb = v["v_bolo"][0]
+    T = T_s + v["dT"][0]
+    out: dict[str, np.ndarray] = {"v": vb, "T": T, "R": vb / I}
+    if b["pulse"] != "integrated":
+        B = _kb.activation_temperature(b["tcr"], b["T_ref"])
+        R = vb / I
+        D = v["solve_coef"]["b"] * R * B / (T * T)
+        fq = v["solve_coef"]["fq"] if v["solve_coef"]["variant"] == 1 else 1.0
+        out["dv_dQ"] = -I * R * B / (T * T) / (1.0 + D) * fq / p["g"]
+        return out
+    from irnuc.model import stages as st
+
+    ctx = _graph_ctx(pipe)
+    pr = v["pulse_ref"]
+    Q = v["Q"]
+    Tsa = np.array([T_s])
+    # the derivative of the steady state by central differences (of the same solve):
+    # +-1 mK of unbiased equilibrium, truncation error ~(alpha dQ/g)^2 ~ 1e-9
+    dq = 1e-3 * p["g"]
+    hi = st._periodic(ctx, Q + dq, p, pr, Tsa)["v_bolo"][0]
+    lo = st._periodic(ctx, Q - dq, p, pr, Tsa)["v_bolo"][0]
+    out["dv_dQ"] = (hi - lo) / (2.0 * dq)
+    sol = st._periodic(ctx, Q, p, pr, Tsa, keep=4)
+    th0, ym1, sens = sol["theta0"][0], sol["ym1"][0], sol["sens"][0]
+    # the stationary RMS of the pre-pulse temperature (as model.core.pulse._stationary_sd)
+    y = 1.0 + ym1
+    one_d2 = pr["omd"] * (2.0 - pr["omd"])
+    den = one_d2 + (1.0 - pr["omd"]) ** 2 * (1.0 - y) * (1.0 + y)
+    T0 = T_s + th0
+    sig_eq = np.sqrt(K_BOLTZMANN / p["C"])
+    sd = np.where((den > 0) & (T0 > 0),
+                  sig_eq * T0 * np.sqrt(one_d2 / np.where(den > 0, den, 1.0)), 0.0)
+    out["sens"] = sens
+    out["thermal_sd"] = sd if st.thermal_noise_on(c) else np.zeros(th0.shape)
+    return out
+
+
+def _graph_ctx(pipe: _pl.Pipeline) -> Any:
+    from irnuc.model.graph import RunContext
+    from irnuc.model.scenes import Scene
+
+    return RunContext(pipe.cfg, pipe.layout, Scene(), pipe.seed, counts=pipe.counts)
+
+
+def bolometer_variance(pipe: _pl.Pipeline, point: Mapping[str, np.ndarray]) -> np.ndarray:
+    """(rows, cols) variance of each bolometer's own noise in one frame, V^2 (model.noise):
+    Johnson 2 k T R / t_int, the 1/f octaves above and below the frame rate k V^2 (ln(P /
+    t_int) + FLICKER_OCTAVES ln 2), the thermal fluctuation through the pulse (S sd)^2."""
+    from irnuc.model import noise as _noise
+    from irnuc.model import stages as st
+
+    c = pipe.cfg
+    n, b = c["noise"], c["bolometer"]
+    var = np.zeros(point["v"].shape)
+    if not n["enabled"]:
+        return var
+    if n["johnson"]:
+        var = var + 2.0 * K_BOLTZMANN * np.maximum(point["T"], 0.0) * point["R"] / b["t_int"]
+    white, slow = _noise.flicker_variances(n["flicker_coefficient"], st.frame_period(c),
+                                           b["t_int"])
+    var = var + (white + slow) * point["v"] ** 2
+    if "sens" in point:
+        var = var + (point["sens"] * point["thermal_sd"]) ** 2
+    return var
+
+
+def reference_variance(pipe: _pl.Pipeline, bolo_var: np.ndarray) -> np.ndarray:
+    """(H, W) variance of each active pixel's skimming reference, V^2: the mean of its row's
+    (column's) blind pixels carries their noise over their number squared."""
+    from irnuc.model.fpa import BLIND
+
+    mode = pipe.cfg["readout"]["skimming"]
+    lay = pipe.layout
+    rs, cs = lay.active_slice
+    blind = lay.kind_map() == BLIND
+    if mode == "none":
+        return np.zeros(lay.active_shape)
+    axis = 1 if mode == "row" else 0
+    count = blind.sum(axis=axis)
+    total = np.where(blind, bolo_var, 0.0).sum(axis=axis)
+    per_line = total / np.maximum(count, 1) ** 2
+    if mode == "row":
+        return np.broadcast_to(per_line[rs, None], lay.active_shape).copy()
+    return np.broadcast_to(per_line[None, cs], lay.active_shape).copy()
+
+
+def pixel_noise_variance(pipe: _pl.Pipeline, point: Mapping[str, np.ndarray]) -> np.ndarray:
+    """(H, W) white temporal variance of each active pixel at the integrator output, V^2:
+    gain^2 (its bolometer's own + its skimming reference's) + the readout's (white and 1/f)
+    (not the NOISY defects' or the ADC's)."""
+    c = pipe.cfg
+    n, r = c["noise"], c["readout"]
+    act = pipe.layout.active_slice
+    bolo = bolometer_variance(pipe, point)
+    var = r["gain"] ** 2 * (bolo[act] + reference_variance(pipe, bolo))
+    if n["enabled"]:
+        var = var + n["readout_sigma"] ** 2 + n["flicker_sigma"] ** 2
+    return var
+
+
 @dataclass
 class Netd:
-    """A temporal NETD with what it is made of (K and codes)."""
+    """A temporal NETD with what it is made of (K and codes).
+
+    ``uncertainty_K`` is the spread the inputs give it: one standard deviation of the
+    pixels' own NETD (each pixel's R, g, C and operating point its own, fpa.tolerance); for
+    a measured NETD, its standard error. ``conditions``: the scene, substrate and housing
+    temperatures (K), the F-number and the frame rate it holds for.
+    """
 
     netd_K: float
     uncertainty_K: float
@@ -158,6 +264,10 @@ class Netd:
     responsivity_codes_per_K: float
     method: str
     notes: str = ""
+    conditions: dict[str, float] = field(default_factory=dict)
+    percentiles_K: dict[str, float] = field(default_factory=dict)
+    #: RMS analog (pre-ADC) noise, codes: 0 when only the ADC's rounding is left
+    analog_codes: float = math.nan
 
     def __float__(self) -> float:
         """The NETD, K."""
@@ -167,19 +277,31 @@ class Netd:
         return {"netd_mK": self.netd_K * 1e3, "uncertainty_mK": self.uncertainty_K * 1e3,
                 "temporal_noise_codes": self.noise_codes,
                 "responsivity_codes_per_K": self.responsivity_codes_per_K,
-                "method": self.method, "notes": self.notes}
+                "method": self.method, "notes": self.notes, "conditions": dict(self.conditions),
+                "percentiles_mK": {k: v * 1e3 for k, v in self.percentiles_K.items()}}
+
+    def text(self) -> str:
+        """``26.2 +- 0.4 mK (scene 300 K, F/1, 30 Hz)``."""
+        c = self.conditions
+        at = (f" (scene {c['T_scene']:g} K, F/{c['f_number']:g}, {c['frame_rate']:g} Hz)"
+              if {"T_scene", "f_number", "frame_rate"} <= set(c) else "")
+        return f"{self.netd_K * 1e3:.3g} +- {self.uncertainty_K * 1e3:.2g} mK{at}"
 
 
-def netd(cfg: Mapping[str, Any], T_scene: float = 300.0, *, seed: int = 0,
+#: The scene temperature NETD is quoted at (datasheets quote it at about 300 K), K.
+NETD_SCENE_K = 300.0
+
+
+def netd(cfg: Mapping[str, Any], T_scene: float = NETD_SCENE_K, *, seed: int = 0,
          T_substrate: float | None = None, T_cam: float | None = None,
          pipe: _pl.Pipeline | None = None) -> Netd:
-    """Temporal NETD in closed form (K): sqrt(<sigma^2>) / <responsivity> over the
-    defect-free pixels, at the configuration's F-number and a uniform scene (K).
+    """Temporal NETD (K): sqrt(<sigma^2>) / <responsivity> over the defect-free pixels, at
+    the configuration's F-number and frame rate and a uniform scene (K, 300 K by default).
 
-    The stated uncertainty is the quantization model's: treating the rounding as uniform
-    noise, independent of the signal, is exact up to a relative error in the variance of
-    about 2 exp(-2 pi^2 s^2) for an analog noise of s LSB (Widrow's characteristic-function
-    bound for a Gaussian); 0 when there is no analog noise to dither the ADC.
+    The noise is every white temporal source of :func:`pixel_noise_variance` (the pixel's
+    bolometer and its skimming reference: Johnson, 1/f, thermal fluctuation; the readout's)
+    plus the ADC's quantization LSB^2/12. The uncertainty is the spread the inputs give:
+    one standard deviation of the pixels' own NETD sigma_i / responsivity_i.
     """
     rsp = responsivity(cfg, T_scene, seed=seed, T_substrate=T_substrate, T_cam=T_cam,
                        pipe=pipe)
@@ -188,14 +310,17 @@ def netd(cfg: Mapping[str, Any], T_scene: float = 300.0, *, seed: int = 0,
     s_lsb = float(np.sqrt((rsp.sigma_analog_codes[good] ** 2).mean()))
     mean_resp = rsp.mean
     value = math.sqrt(var) / mean_resp
+    own = rsp.sigma_codes[good] / rsp.codes_per_K[good]
     notes = ""
     if s_lsb == 0.0:
-        rel = 0.0
         notes = ("no temporal noise configured: the NETD is the ADC's rounding, LSB/sqrt(12), "
                  "which constant frames do not show")
-    else:
-        rel = 0.5 * 2.0 * math.exp(-2.0 * math.pi**2 * s_lsb**2)  # on the std: half
-    return Netd(value, value * rel, math.sqrt(var), mean_resp, "closed form", notes)
+    c = pipe.cfg if pipe is not None else cfg
+    conditions = {**rsp.conditions, "f_number": float(c["optics"]["f_number"]),
+                  "frame_rate": float(c["readout"]["frame_rate"])}
+    pct = {f"p{q}": float(np.percentile(own, q)) for q in (5, 50, 95)}
+    return Netd(value, float(own.std()), math.sqrt(var), mean_resp, "closed form", notes,
+                conditions, pct, s_lsb)
 
 
 def responsivity_frames(cfg: Mapping[str, Any], scene_K: np.ndarray, fpa_K: np.ndarray,
@@ -305,12 +430,19 @@ def measured_netd(fit: MeasuredNoise, good: np.ndarray,
     one given (closed form). Uncertainty: one standard error, from the chi-square spread of
     the residual variance (2 sigma^4 / dof per pixel) and the responsivity's fit error."""
     s2 = fit.sigma2_codes[good]
+    if s2.size == 0:
+        raise ConfigError("noise: no defect-free pixel to measure the NETD on")
     m = float(s2.mean())
     # Var of the mean of P variance estimates, each 2 sigma^4 / dof.
     rel_noise = math.sqrt(2.0 * float((s2**2).mean()) / fit.dof / s2.size) / (2.0 * m) if m else 0.0
     if fit.responsivity is not None and responsivity_codes_per_K is None:
         r = fit.responsivity[good]
         mean_r = float(r.mean())
+        if not (math.isfinite(mean_r) and mean_r != 0.0):
+            # Codes that do not follow the scene (a stuck, saturated or 1-bit sensor).
+            raise ConfigError(f"noise: the measured responsivity is {mean_r:g} codes/K (the "
+                              "codes do not follow the scene: stuck, saturated or too "
+                              "coarse); the NETD is not defined")
         rel_resp = math.sqrt(float((fit.responsivity_se[good] ** 2).mean()) / r.size) / abs(mean_r)
         method = "measured (noise and responsivity from the frames)"
     else:
@@ -318,6 +450,9 @@ def measured_netd(fit: MeasuredNoise, good: np.ndarray,
             raise ConfigError("noise: the scene does not vary in these frames, so the "
                               "responsivity cannot be measured; give it (closed form)")
         mean_r, rel_resp = float(responsivity_codes_per_K), 0.0
+        if not (math.isfinite(mean_r) and mean_r != 0.0):
+            raise ConfigError(f"noise: the closed-form responsivity is {mean_r:g} codes/K; the "
+                              "NETD is not defined")
         method = "measured noise, closed-form responsivity"
     value = math.sqrt(m) / mean_r
     return Netd(value, value * math.hypot(rel_noise, rel_resp), math.sqrt(m), mean_r, method)

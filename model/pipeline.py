@@ -68,6 +68,7 @@ class GraphKey:
     varying: frozenset[str] = frozenset()  # environment fields that vary per frame
     thermal: str = "steady"  # THERMAL_MODES
     shutter: bool = False  # some frame has its shutter closed
+    lens: bool = False  # the lens is not at the housing temperature in some frame
 
 
 def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Stage]:
@@ -79,6 +80,8 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     power_in = ("L_scene", "k_scene", "q_env", "defect_resp")
     if key.shutter:
         power_in += ("shutter_view", L_key)
+    if key.lens:
+        power_in += ("lens_view", L_key)
     stages = [
         Stage("params", (), ("params",), False, st.stage_params),
         Stage("defects", (), ("defects",), False, st.stage_defects),
@@ -92,12 +95,12 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
         Stage("solve_reference", ("L_env", "k_scene", "seen", "defects", "params", "solve_coef"),
               ("solve_reference",), False, st.stage_reference_solution),
         st.make_skim_stage(cfg["readout"]["skimming"]),
-        Stage("integrator", ("v_bolo", "v_ref", "defect_index", "status"), ("v_int",), True,
+        Stage("integrator", ("v_sense", "v_ref", "defect_index", "status"), ("v_int",), True,
               st.stage_integrator),
         Stage("defect_index", ("defects",), ("defect_index", "defect_resp"), False,
               st.stage_defect_index),
         Stage("reference_layout", (), ("reference_positions",), False, st.stage_reference_layout),
-        Stage("reference_pixels", ("v_bolo", "status", "dT", "reference_positions"),
+        Stage("reference_pixels", ("v_sense", "status", "reference_positions"),
               ("blind_codes",), True, st.stage_reference_pixels),
     ]
     if env_varies:
@@ -109,18 +112,32 @@ def build_stages(cfg: Mapping[str, Any], key: GraphKey = GraphKey()) -> list[Sta
     if key.shutter:
         stages.append(Stage("shutter_view", ("cos4",), ("shutter_view",), False,
                             st.stage_shutter_view))
+    if key.lens:
+        stages.append(Stage("lens_view", ("cos4",), ("lens_view",), False, st.stage_lens_view))
     bolo_out = ("v_bolo", "dT", "status", "iters")
     if key.thermal == "transient":
         stages.append(Stage("bolometer", ("Q", "params"), bolo_out, True,
                             st.stage_bolometer_transient))
+    elif cfg["bolometer"]["pulse"] == "integrated":
+        stages.append(Stage("pulse_reference", ("L_env", "k_scene", "seen", "defects", "params"),
+                            ("pulse_ref",), False, st.stage_pulse_reference))
+        fn = (st.stage_bolometer_train_lagged if key.thermal == "lagged"
+              else st.stage_bolometer_periodic)
+        stages.append(Stage("bolometer", ("Q", "params", "pulse_ref"), bolo_out, True, fn))
     else:
         fn = st.stage_bolometer_lagged if key.thermal == "lagged" else st.stage_bolometer
         stages.append(Stage("bolometer", ("Q", "params", "solve_coef", "solve_reference"),
                             bolo_out, True, fn))
+    if st.bolometer_noise_on(cfg):
+        stages.append(Stage("bolometer_noise", ("v_bolo", "dT", "status"), ("v_sense",), True,
+                            st.stage_bolometer_noise))
+    else:
+        stages.append(Stage("no_bolometer_noise", ("v_bolo",), ("v_sense",), True,
+                            lambda ctx, inp: {"v_sense": inp["v_bolo"]}))
     if st.noise_configured(cfg):
         stages.append(Stage("noisy_pixels", ("defects",), ("noisy_sigma",), False,
                             st.stage_noisy_pixels))
-        stages.append(Stage("noise", ("v_int", "v_bolo", "dT", "noisy_sigma"), ("v_out",), True,
+        stages.append(Stage("noise", ("v_int", "noisy_sigma"), ("v_out",), True,
                             st.stage_noise))
     else:
         stages.append(Stage("no_noise", ("v_int",), ("v_out",), True,
@@ -218,7 +235,9 @@ class Pipeline:
         varying = frozenset(k for k in ("T_substrate", "T_cam")
                             if k in env and np.any(np.asarray(env[k]) != e[k]))
         shutter = bool("shutter" in env and np.any(env["shutter"]))
-        return GraphKey(varying, thermal, shutter)
+        lens = bool("T_lens" in env and np.any(np.asarray(env["T_lens"])
+                                                != np.asarray(env.get("T_cam", e["T_cam"]))))
+        return GraphKey(varying, thermal, shutter, lens)
 
     def iter_chunks(self, temps: np.ndarray, products: Sequence[str], scene: Scene | None = None,
                     *, env: Mapping[str, np.ndarray] | None = None, thermal: str = "steady",
@@ -250,8 +269,11 @@ class Pipeline:
         """
         n = len(temps)
         key = self.graph_key(env, thermal)
-        if key.thermal != "steady" and frame_period is None:
-            raise ConfigError(f"thermal = {thermal!r} needs the frame period (s)")
+        period = st.frame_period(self.cfg)
+        if frame_period is not None and abs(frame_period - period) > 1e-12 * period:
+            raise ConfigError(f"frame_period = {frame_period:g} s differs from the sensor's "
+                              f"1 / readout.frame_rate = {period:g} s; configure the sensor "
+                              "with the run's frame rate")
         if env is not None:
             for k, v in env.items():
                 if np.shape(v) != (n,):
@@ -262,7 +284,7 @@ class Pipeline:
         chunked = [s for s in order if s.per_chunk]
         chunk_outputs = {o for s in stages if s.per_chunk for o in s.outputs}
         ctx = RunContext(self.cfg, self.layout, scene or Scene(), self.seed, counts=self.counts,
-                         frame_period=frame_period, transient=transient)
+                         frame_period=period, transient=transient)
         for stage in order:
             if not stage.per_chunk and not all(o in self._static for o in stage.outputs):
                 self.counts[stage.name] += 1

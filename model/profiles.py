@@ -10,9 +10,10 @@ checked, with its dotted name, before any work (:func:`parse_profile`):
 * ``sine``: ``mean`` (K), ``amplitude`` (K) and ``period`` (s), optionally ``phase`` (deg);
 * ``table``: ``file``, a CSV of ``time,value`` rows (s, K; an optional header line and ``#``
   comments), times strictly increasing, linear between rows, held beyond both ends;
-* ``lag`` (the FPA of a camera without TEC only): the FPA follows the housing through a
-  first-order lag, dT/dt = (T_housing + ``offset`` - T) / ``time_constant`` (s), from
-  ``start`` (K, default the housing's first value).
+* ``lag`` (the FPA or the housing): a first-order lag behind another temperature of the
+  sequence (``follows``: the FPA follows the housing by default, or the ambient; the
+  housing follows the ambient by default, or the FPA), dT/dt = (T_followed + ``offset`` -
+  T) / ``time_constant`` (s), from ``start`` (K, default the followed one's first value).
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from irnuc.common.errors import UserError
 from irnuc.common.schema import nearest
 from irnuc.model.validate import ConfigError, check_scalar
 
@@ -35,7 +37,7 @@ PROFILE_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "step": (("before", "after", "at"), ()),
     "sine": (("mean", "amplitude", "period"), ("phase",)),
     "table": (("file",), ()),
-    "lag": (("time_constant",), ("start", "offset")),
+    "lag": (("time_constant",), ("start", "offset", "follows")),
 }
 
 _T_RANGE = (0.0, 1e5)  # any temperature a profile may state, K (ranges are checked later)
@@ -63,7 +65,7 @@ class Profile:
     def values(self, t: np.ndarray, follow: np.ndarray | None = None) -> np.ndarray:
         """The profile at times ``t`` (s, increasing), K.
 
-        ``follow`` (K at the same times) is the housing a ``lag`` profile follows.
+        ``follow`` (K at the same times) is the temperature a ``lag`` profile follows.
         """
         p = self.params
         t = np.asarray(t, dtype=np.float64)
@@ -85,7 +87,7 @@ class Profile:
             return np.interp(t, p["times"], p["values"])
         assert self.kind == "lag"
         if follow is None:
-            raise ConfigError(f"{self.path}: profile 'lag' needs the housing it follows")
+            raise ConfigError(f"{self.path}: profile 'lag' needs the temperature it follows")
         return first_order_lag(t, np.asarray(follow, dtype=np.float64) + p.get("offset", 0.0),
                                p["time_constant"], p.get("start"))
 
@@ -136,7 +138,7 @@ def parse_profile(table: Any, path: str, base_dir: Path | None = None,
     base_dir : Path, optional
         Folder a ``table`` profile's relative ``file`` is read from (the TOML's).
     allow_lag : bool
-        Whether ``lag`` is allowed here (the FPA only).
+        Whether ``lag`` is allowed here (the FPA and the housing).
     """
     if isinstance(table, (int, float)) and not isinstance(table, bool):
         table = {"profile": "constant", "value": table}
@@ -167,7 +169,12 @@ def parse_profile(table: Any, path: str, base_dir: Path | None = None,
     for key in (*required, *optional):
         if key not in table:
             continue
-        if key in ("period", "time_constant"):
+        if key == "follows":
+            v = table[key]
+            if v not in ("housing", "ambient", "fpa"):
+                raise ConfigError(f"{path}.follows = {v!r} is not one of housing, ambient, fpa")
+            params[key] = v
+        elif key in ("period", "time_constant"):
             params[key] = _number(path, key, table[key], 0.0, _TIME_RANGE[1], "s", lo_open=True)
         elif key in units:
             unit, lo, hi = units[key]
@@ -187,10 +194,14 @@ def _table_profile(file: Any, path: str, base_dir: Path | None) -> Profile:
     where = f"{path}.file = {file!r}"
     if not p.is_file():
         raise ConfigError(f"{where}: no such file ({p})")
-    try:
-        text = p.read_text()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{where}: cannot be read ({exc})") from None
+    from irnuc.common.io import OutputError, read_bytes_capped
+
+    try:  # capped, and refused inside the output folder being replaced
+        text = read_bytes_capped(p, f"{path}.file").decode()
+    except OutputError:
+        raise
+    except (UserError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{where}: {str(exc).removeprefix(f'{path}.file {p}: ')}") from None
     times: list[float] = []
     values: list[float] = []
     for number, raw in enumerate(text.splitlines(), start=1):

@@ -117,6 +117,9 @@ def _load_map(params: Mapping[str, Any]) -> np.ndarray:
     if not path.is_file():
         what = "not a regular file" if path.exists() else "no such file"
         raise ConfigError(f"scene.path = {str(path)!r}: {what} (an .npy map in K or an image)")
+    from irnuc.common.io import guard_input
+
+    guard_input(path, "scene.path")  # not inside the output folder being replaced
     if path.suffix == ".npy":
         return _load_npy_map(path)
     import matplotlib.image as mpimg

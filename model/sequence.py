@@ -39,15 +39,23 @@ from irnuc.common.schema import nearest, read_toml
 from irnuc.model import pipeline as _pl
 from irnuc.model.config import SCHEMA, apply_overrides
 from irnuc.model.core import bolometer as _kb
-from irnuc.model.fpa_sensor import FRAME_FIELDS, FpaSensor, frame_fields
+from irnuc.model.fpa_sensor import FRAME_FIELDS, FpaSensor, HousingSensor, frame_fields
 from irnuc.model.profiles import Profile, check_range, parse_profile
 from irnuc.model.scenes import Scene, check_temps
-from irnuc.model.validate import ConfigError, check_choice, check_int, check_scalar
+from irnuc.model.thermal import ThermalNetwork
+from irnuc.model.validate import (
+    ConfigError,
+    check_choice,
+    check_frame_period,
+    check_int,
+    check_scalar,
+)
 
 #: The thermal models a sequence may ask for (``auto`` chooses one of the first two).
 THERMAL_CHOICES = ("auto", "steady", "lagged", "transient")
 SEQUENCE_KEYS = ("frame_rate", "duration", "thermal", "steady_tolerance", "chunk_frames",
-                 "fpa", "housing", "scene", "shutter", "fpa_sensor", "transient")
+                 "fpa", "housing", "scene", "shutter", "fpa_sensor", "transient", "ambient",
+                 "network", "housing_sensor", "record_every", "description")
 SHUTTER_KEYS = ("every", "frames", "at", "start", "temperature")
 #: The environment's temperature range (the sensor schema's), K.
 ENV_RANGE = (SCHEMA["environment.T_substrate"].lo, SCHEMA["environment.T_substrate"].hi)
@@ -71,12 +79,16 @@ class Shutter:
 
 @dataclass(frozen=True)
 class DriftSequence:
-    """A checked drift sequence (see the module docstring); :func:`load_sequence`."""
+    """A checked drift sequence (see the module docstring); :func:`load_sequence`.
+
+    ``fpa`` and ``housing`` may be None when the ``network`` gives them (driven by the
+    ``ambient``); ``record_every`` keeps one frame in so many (the camera still runs at
+    ``frame_rate``: the steady thermal model only)."""
 
     frame_rate: float
     duration: float
-    fpa: Profile
-    housing: Profile
+    fpa: Profile | None
+    housing: Profile | None
     scene: Profile
     shutter: Shutter | None = None
     fpa_sensor: FpaSensor = field(default_factory=FpaSensor)
@@ -85,36 +97,90 @@ class DriftSequence:
     chunk_frames: int | None = None
     transient: Mapping[str, Any] = field(default_factory=dict)
     source: str = "sequence"
+    ambient: Profile | None = None
+    network: ThermalNetwork | None = None
+    housing_sensor: HousingSensor = field(default_factory=HousingSensor)
+    record_every: int = 1
 
     @property
     def n_frames(self) -> int:
-        """Frames of the sequence: round(duration frame_rate), at least 1."""
-        return max(1, round(self.duration * self.frame_rate))
+        """Frames of the sequence: round(duration frame_rate / record_every), at least 1."""
+        return max(1, round(self.duration * self.frame_rate / self.record_every))
 
     @property
     def frame_period(self) -> float:
+        """The camera's frame period, s (every pixel pulsed once per period)."""
         return 1.0 / self.frame_rate
+
+    @property
+    def record_rate(self) -> float:
+        """Frames per second kept in the file, Hz."""
+        return self.frame_rate / self.record_every
 
     def schedule(self) -> Schedule:
         """The per-frame temperatures and shutter, every range checked (ConfigError)."""
         n = self.n_frames
-        t = np.arange(n) / self.frame_rate
-        housing = self.housing.values(t)
-        check_range(self.housing.path, self.housing, housing, t, *ENV_RANGE,
-                    "environment.T_cam")
-        fpa = self.fpa.values(t, follow=housing)
-        check_range(self.fpa.path, self.fpa, fpa, t, *ENV_RANGE, "environment.T_substrate")
+        t = np.arange(n) / self.record_rate
+        nodes = self._nodes(t)
+        housing, fpa = nodes["housing"], nodes["fpa"]
         scene = self.scene.values(t)
         check_range(self.scene.path, self.scene, scene, t, 1e-300, 1e5, "a scene temperature")
         closed = np.zeros(n, bool)
-        T_sh = housing.copy()
+        T_sh = nodes["shutter"]
         if self.shutter is not None:
-            closed = shutter_frames(self.shutter, self.frame_rate, n)
+            closed = shutter_frames(self.shutter, self.record_rate, n)
             if self.shutter.temperature is not None:
                 T_sh = self.shutter.temperature.values(t)
                 check_range(self.shutter.temperature.path, self.shutter.temperature, T_sh, t,
                             *ENV_RANGE, "the shutter's temperature")
-        return Schedule(t, fpa, housing, scene, closed, T_sh)
+        return Schedule(t, fpa, housing, scene, closed, T_sh, nodes["ambient"], nodes["lens"])
+
+    def _nodes(self, t: np.ndarray) -> dict[str, np.ndarray]:
+        """Ambient, housing, FPA, lens and shutter temperature at the frame times (K): the
+        explicit profiles, the lags in order, then the network's nodes; ranges checked."""
+        vals: dict[str, np.ndarray] = {}
+        where = {"ambient": "the ambient temperature", "housing": "environment.T_cam",
+                 "fpa": "environment.T_substrate"}
+        profiles = {"ambient": self.ambient, "housing": self.housing, "fpa": self.fpa}
+
+        def put(name: str, prof: Profile, v: np.ndarray) -> None:
+            check_range(prof.path, prof, v, t, *ENV_RANGE, where[name])
+            vals[name] = v
+
+        for name, prof in profiles.items():
+            if prof is not None and prof.kind != "lag":
+                put(name, prof, prof.values(t))
+
+        def lags() -> None:
+            for _ in range(2):
+                for name, prof in profiles.items():
+                    if prof is None or prof.kind != "lag" or name in vals:
+                        continue
+                    src = prof.params.get("follows") or LAG_DEFAULT[name]
+                    if src in vals:
+                        put(name, prof, prof.values(t, follow=vals[src]))
+
+        lags()
+        net: dict[str, np.ndarray] = {}
+        if self.network is not None:
+            net = self.network.solve(t, vals["ambient"], vals.get("housing"))
+            for name in ("housing", "fpa"):
+                if name not in vals and profiles[name] is None:
+                    check_range(self.network.path, Profile("network", {}, self.network.path),
+                                net[name], t, *ENV_RANGE, where[name])
+                    vals[name] = net[name]
+            lags()
+        for name in ("housing", "fpa"):
+            if name not in vals:
+                raise ConfigError(f"sequence.{name}: its temperature is not given (a profile, or "
+                                  "[sequence.network] with [sequence.ambient]), or a lag "
+                                  "follows a temperature that is not given")
+        vals.setdefault("ambient", vals["housing"])
+        for k in ("lens", "shutter"):
+            vals[k] = net[k] if net else vals["housing"]
+            check_range(f"sequence.network.{k}_tau", Profile("network", {}, "sequence.network"),
+                        vals[k], t, *ENV_RANGE, f"the {k}'s temperature")
+        return vals
 
     def to_dict(self) -> dict[str, Any]:
         """The sequence as plain data (for a frame file's ``sequence_json``)."""
@@ -126,21 +192,31 @@ class DriftSequence:
 
         sh = self.shutter
         return {"frame_rate": self.frame_rate, "duration": self.duration,
+                "record_every": self.record_every,
                 "frames": self.n_frames, "thermal": self.thermal,
                 "steady_tolerance": self.steady_tolerance, "fpa": prof(self.fpa),
                 "housing": prof(self.housing), "scene": prof(self.scene),
+                "ambient": prof(self.ambient),
+                "network": None if self.network is None else self.network.to_dict(),
                 "shutter": None if sh is None else {
                     "frames": sh.frames, "every": sh.every, "at": list(sh.at),
                     "start": sh.start, "temperature": prof(sh.temperature)},
                 "fpa_sensor": {k: getattr(self.fpa_sensor, k)
                                for k in FpaSensor.__dataclass_fields__},
+                "housing_sensor": {k: getattr(self.housing_sensor, k)
+                                   for k in HousingSensor.__dataclass_fields__},
                 "transient": dict(self.transient), "source": self.source}
+
+
+#: What a ``lag`` profile follows by default: the FPA the housing, the housing the ambient.
+LAG_DEFAULT = {"fpa": "housing", "housing": "ambient", "ambient": ""}
 
 
 @dataclass
 class Schedule:
-    """Per-frame time (s), FPA, housing and scene temperature (K), shutter closed (bool)
-    and the shutter's temperature (K) of a sequence: arrays of one value per frame."""
+    """Per-frame time (s), FPA, housing and scene temperature (K), shutter closed (bool),
+    the shutter's temperature (K), the ambient's and the lens's (K) of a sequence: arrays of
+    one value per frame."""
 
     time_s: np.ndarray
     fpa_K: np.ndarray
@@ -148,22 +224,32 @@ class Schedule:
     scene_K: np.ndarray
     shutter: np.ndarray
     T_shutter_K: np.ndarray
+    ambient_K: np.ndarray | None = None
+    lens_K: np.ndarray | None = None
 
     def env(self) -> dict[str, np.ndarray]:
         """The pipeline's per-frame environment (:data:`model.pipeline.ENV_FIELDS`)."""
-        return {"T_substrate": self.fpa_K, "T_cam": self.T_cam_K, "shutter": self.shutter,
-                "T_shutter": self.T_shutter_K}
+        env = {"T_substrate": self.fpa_K, "T_cam": self.T_cam_K, "shutter": self.shutter,
+               "T_shutter": self.T_shutter_K}
+        if self.lens_K is not None and np.any(self.lens_K != self.T_cam_K):
+            env["T_lens"] = self.lens_K
+        return env
 
-    def fields(self, sensor: FpaSensor, seed: int) -> dict[str, np.ndarray]:
+    def fields(self, sensor: FpaSensor, seed: int,
+               housing_sensor: HousingSensor | None = None) -> dict[str, np.ndarray]:
         """The frame file's per-frame fields (:data:`model.fpa_sensor.FRAME_FIELDS`)."""
         return frame_fields(self.time_s, self.fpa_K, self.T_cam_K, self.scene_K, self.shutter,
-                            sensor, seed)
+                            sensor, seed, ambient_K=self.ambient_K, lens_K=self.lens_K,
+                            shutter_K=self.T_shutter_K, housing_sensor=housing_sensor)
 
     def largest_change(self) -> float:
         """Largest change between two frames of anything a pixel sees, K: the scene (the
-        shutter's temperature while closed), the housing, the FPA."""
+        shutter's temperature while closed), the housing, the lens, the FPA."""
         seen = np.where(self.shutter, self.T_shutter_K, self.scene_K)
-        steps = [np.abs(np.diff(x)).max(initial=0.0) for x in (seen, self.T_cam_K, self.fpa_K)]
+        series = [seen, self.T_cam_K, self.fpa_K]
+        if self.lens_K is not None:
+            series.append(self.lens_K)
+        steps = [np.abs(np.diff(x)).max(initial=0.0) for x in series]
         return float(max(steps))
 
 
@@ -220,6 +306,24 @@ def _shutter(table: Any, frame_rate: float, base_dir: Path | None) -> Shutter:
     return Shutter(frames, every, at_s, start, temp)
 
 
+def _shutter_within(shutter: Shutter, frame_rate: float, duration: float) -> None:
+    """ConfigError naming the key when a closing would come after the last frame (it
+    would never close: the run would hold no shutter frame where one was asked for)."""
+    n = max(1, round(duration * frame_rate))
+
+    def first(t: float) -> int:  # as shutter_frames: the first frame at or after t
+        return math.ceil(t * frame_rate - 1e-9)
+
+    end = f"the last frame ({n} frames: sequence.duration = {duration:g} s at {frame_rate:g} Hz)"
+    for i, t in enumerate(shutter.at):
+        if first(t) >= n:
+            raise ConfigError(f"sequence.shutter.at[{i}] = {t:g} s is after {end}; the shutter "
+                              "would never close there")
+    if shutter.every is not None and first(shutter.start) >= n:
+        raise ConfigError(f"sequence.shutter.start = {shutter.start:g} s is after {end}; the "
+                          "shutter would never close")
+
+
 def sequence_from_dict(data: Mapping[str, Any], source: str = "sequence",
                        base_dir: Path | None = None) -> DriftSequence:
     """A :class:`DriftSequence` from a parsed TOML document holding a ``[sequence]`` table
@@ -234,9 +338,16 @@ def sequence_from_dict(data: Mapping[str, Any], source: str = "sequence",
     if not isinstance(table, Mapping):
         raise ConfigError(f"{source}: sequence must be a table")
     _check_keys(table, "sequence", SEQUENCE_KEYS)
-    for key in ("frame_rate", "duration", "fpa", "housing", "scene"):
+    for key in ("frame_rate", "duration", "scene"):
         if key not in table:
             raise ConfigError(f"sequence.{key} is required")
+    if "network" in table and "ambient" not in table:
+        raise ConfigError("sequence.ambient is required with sequence.network (the network's "
+                          "housing follows the ambient)")
+    for key in ("fpa", "housing"):
+        if key not in table and "network" not in table:
+            raise ConfigError(f"sequence.{key} is required (or [sequence.network] with "
+                              "[sequence.ambient], which gives it)")
     rate = check_scalar("sequence.frame_rate", table["frame_rate"], 0.0, 1e5, lo_open=True,
                         unit="Hz")
     duration = check_scalar("sequence.duration", table["duration"], 0.0, 1e7, lo_open=True,
@@ -244,11 +355,23 @@ def sequence_from_dict(data: Mapping[str, Any], source: str = "sequence",
     if duration * rate > MAX_FRAMES:
         raise ConfigError(f"sequence.duration x sequence.frame_rate = {duration * rate:.3g} "
                           f"frames; at most {MAX_FRAMES}")
-    housing = parse_profile(table["housing"], "sequence.housing", base_dir)
-    fpa = parse_profile(table["fpa"], "sequence.fpa", base_dir, allow_lag=True)
+    every = check_int("sequence.record_every", table.get("record_every", 1), 1, 1_000_000)
+    if not isinstance(table.get("description", ""), str):
+        raise ConfigError("sequence.description must be a string")
+    profiles = {}
+    for key in ("ambient", "housing", "fpa"):
+        profiles[key] = (parse_profile(table[key], f"sequence.{key}", base_dir,
+                                       allow_lag=key != "ambient") if key in table else None)
+    _check_lags(profiles)
+    network = (ThermalNetwork.from_table(table["network"], "sequence.network")
+               if "network" in table else None)
     scene = parse_profile(table["scene"], "sequence.scene", base_dir)
-    shutter = _shutter(table["shutter"], rate, base_dir) if "shutter" in table else None
+    shutter = _shutter(table["shutter"], rate / every, base_dir) if "shutter" in table else None
+    if shutter is not None:
+        _shutter_within(shutter, rate / every, duration)
     sensor = FpaSensor.from_dict(dict(table.get("fpa_sensor", {})), "sequence.fpa_sensor")
+    hsensor = HousingSensor.from_dict(dict(table.get("housing_sensor", {})),
+                                      "sequence.housing_sensor")
     thermal = check_choice("sequence.thermal", table.get("thermal", "auto"), THERMAL_CHOICES)
     tol = check_scalar("sequence.steady_tolerance", table.get("steady_tolerance", 1e-3), 0.0,
                        100.0, unit="K")
@@ -263,15 +386,53 @@ def sequence_from_dict(data: Mapping[str, Any], source: str = "sequence",
     allowed = [k for k in TransientSettings.__dataclass_fields__
                if k not in ("frame_period", "pulse_start")]
     _check_keys(transient, "sequence.transient", allowed)
-    seq = DriftSequence(rate, duration, fpa, housing, scene, shutter, sensor, thermal, tol,
-                        chunk, dict(transient), source)
+    if every > 1 and thermal in ("lagged", "transient"):
+        raise ConfigError(f"sequence.record_every = {every} needs the steady thermal model "
+                          f"(sequence.thermal = {thermal!r} carries every frame's state)")
+    seq = DriftSequence(rate, duration, profiles["fpa"], profiles["housing"], scene, shutter,
+                        sensor, thermal, tol, chunk, dict(transient), source,
+                        profiles["ambient"], network, hsensor, every)
     seq.schedule()  # every range, before any work
     return seq
 
 
+def _check_lags(profiles: Mapping[str, Profile | None]) -> None:
+    """A lag follows a temperature the sequence has, and no two follow each other."""
+    follows = {}
+    for name, prof in profiles.items():
+        if prof is not None and prof.kind == "lag":
+            src = prof.params.get("follows") or LAG_DEFAULT[name]
+            allowed = {"fpa": ("housing", "ambient"), "housing": ("ambient", "fpa")}[name]
+            if src not in allowed:
+                raise ConfigError(f"{prof.path}.follows = {src!r}: a lag of the {name} follows "
+                                  f"one of {', '.join(allowed)}")
+            follows[name] = src
+    if follows.get("fpa") == "housing" and follows.get("housing") == "fpa":
+        raise ConfigError("sequence.fpa and sequence.housing follow each other (two lags): "
+                          "give one of them a profile")
+
+
+#: The named scenarios shipped with irnuc (``model/scenarios/NAME.toml``).
+SCENARIO_DIR = Path(__file__).with_name("scenarios")
+
+
+def scenario_names() -> list[str]:
+    """Names of the shipped scenarios (``irnuc frames --sequence NAME``)."""
+    return sorted(p.stem for p in SCENARIO_DIR.glob("*.toml"))
+
+
 def load_sequence(path: str | Path, flag: str = "") -> DriftSequence:
-    """A drift sequence from a TOML file; a table CSV is read relative to the file."""
+    """A drift sequence from a TOML file, or a shipped scenario by its name (a bare name
+    that is not a file: one of :func:`scenario_names`); a table CSV is read relative to the
+    file."""
     p = Path(path)
+    text = str(path)
+    if not p.exists() and "/" not in text and "\\" not in text and not text.endswith(".toml"):
+        names = scenario_names()
+        if text not in names:
+            raise ConfigError(f"{flag + ' ' if flag else ''}{text}: no such file, and not a "
+                              f"scenario ({', '.join(names)}){nearest(text, names)}")
+        p = SCENARIO_DIR / f"{text}.toml"  # a name from the list, never a path
     data = read_toml(p, flag)
     where = f"{flag} {p}" if flag else str(p)
     try:
@@ -287,12 +448,26 @@ def choose_thermal(cfg: Mapping[str, Any], seq: DriftSequence, sched: Schedule,
     """(thermal model, why) for a sequence; ``tau_max`` the longest pixel C/g, s."""
     period = seq.frame_period
     memory = math.exp(-period / tau_max) if tau_max > 0 else 0.0
-    change = sched.largest_change()
-    err = memory * change
+    # per frame of the camera (a file may keep one in record_every)
+    change = sched.largest_change() / seq.record_every
+    ramp = float(np.abs(np.diff(sched.fpa_K)).max(initial=0.0)) * seq.record_rate
+    err = max(memory * change, tau_max * ramp)
     facts = (f"the pixels' thermal time constant (up to {tau_max * 1e3:.3g} ms) leaves "
              f"{memory:.3g} of a change in the next frame ({period * 1e3:.3g} ms later); the "
-             f"largest change between frames is {change:.3g} K, so a frame remembers up to "
-             f"{err:.3g} K of the one before")
+             f"largest change between frames is {change:.3g} K and the substrate moves at up "
+             f"to {ramp:.3g} K/s (a pixel lags it by tau times that), so a frame remembers up "
+             f"to {err:.3g} K of the ones before")
+    if seq.record_every > 1:
+        # one frame kept in record_every: only a frame with no memory of the ones before
+        # can be made alone
+        if seq.thermal == "auto" and err > seq.steady_tolerance:
+            raise ConfigError(
+                f"sequence.record_every = {seq.record_every}: the frames between those kept "
+                f"carry the pixels' memory ({facts}), more than sequence.steady_tolerance = "
+                f"{seq.steady_tolerance:g} K; record every frame")
+        return "steady", (f"one frame kept in {seq.record_every}, each in the pulse train's "
+                          "periodic state (the camera's own frames remember less than "
+                          f"sequence.steady_tolerance = {seq.steady_tolerance:g} K)")
     if seq.thermal == "lagged" and cfg["bolometer"]["variant"] == "paper":
         raise ConfigError("sequence.thermal = 'lagged' needs bolometer.variant = "
                           "'equilibrium': the paper variant switches the scene on with the bias "
@@ -337,6 +512,11 @@ class SequenceChunk:
 class SequenceRun:
     """What a sequence run needs before its first frame (all checked)."""
 
+    def per_chunk_products(self) -> set[str]:
+        """The products made frame by frame in this run (the others: once per sensor)."""
+        key = self.pipe.graph_key(self.schedule.env(), self.thermal)
+        return {o for s in self.pipe.graph(key) if s.per_chunk for o in s.outputs}
+
     sequence: DriftSequence
     schedule: Schedule
     fields: dict[str, np.ndarray]
@@ -362,6 +542,10 @@ def prepare(cfg: Mapping[str, Any], seq: DriftSequence, scene: str | Scene = "un
     seed = check_int("seed", seed, 0, 2**63 - 1)
     if isinstance(scene, str):
         scene = Scene(scene, dict(scene_params or {}))
+    check_frame_period(seq.frame_period, cfg["bolometer"]["t_int"],
+                       what=f"{seq.source}: sequence.frame_rate = {seq.frame_rate:g} Hz")
+    # the sequence's frame rate is the sensor's (every pixel is pulsed once per frame)
+    cfg = _pl.checked_config(apply_overrides(cfg, {"readout.frame_rate": seq.frame_rate}))
     sched = seq.schedule()
     check_temps(sched.scene_K)
     mid = {"environment.T_substrate": float(0.5 * (sched.fpa_K.min() + sched.fpa_K.max())),
@@ -372,7 +556,8 @@ def prepare(cfg: Mapping[str, Any], seq: DriftSequence, scene: str | Scene = "un
     thermal, why = choose_thermal(cfg, seq, sched, tau_max)
     transient = transient_settings(cfg, seq, tau_max) if thermal == "transient" else None
     chunk = seq.chunk_frames or int(cfg["run"]["chunk_frames"])
-    return SequenceRun(seq, sched, sched.fields(seq.fpa_sensor, seed), pipe, cfg, scene,
+    return SequenceRun(seq, sched, sched.fields(seq.fpa_sensor, seed, seq.housing_sensor), pipe,
+                       cfg, scene,
                        thermal, why, transient, chunk, {"tau_max_s": tau_max})
 
 
@@ -481,13 +666,18 @@ def simulate_sequence(cfg: Mapping[str, Any], seq: DriftSequence, scene: str | S
                                 what=f"{seq.source}: {seq.n_frames} frame(s) in memory")
     before = dict(run.pipe.counts)
     parts: dict[str, list] = {}
+    static: dict[str, Any] = {}
+    per_chunk = run.per_chunk_products()
     diag = Diagnostics(run.pipe.layout, run.cfg["adc"]["bits"])
     for ch in iter_sequence(run, outputs, progress):
         diag.add(ch.codes, ch.outputs["status"], ch.outputs["dT"])
         for key, value in (("codes", ch.codes), ("blind_codes", ch.blind_codes),
                            *((o, ch.outputs[o]) for o in outputs if o != "codes")):
-            parts.setdefault(key, []).append(value)
-    joined = {k: np.concatenate(v) for k, v in parts.items()}
+            if key in ("codes", "blind_codes") or _pl.OUTPUTS[key] in per_chunk:
+                parts.setdefault(key, []).append(value)
+            else:  # a product of the sensor, not of the frames: once (cos4, params, ...)
+                static.setdefault(key, value)
+    joined = {k: np.concatenate(v) for k, v in parts.items()} | static
     counts = {k: v - before.get(k, 0) for k, v in run.pipe.counts.items()
               if v - before.get(k, 0)}
     return _frames(run, joined["codes"], joined["blind_codes"],
@@ -495,8 +685,10 @@ def simulate_sequence(cfg: Mapping[str, Any], seq: DriftSequence, scene: str | S
 
 
 def file_arrays(fr: _pl.Frames, fields: Mapping[str, np.ndarray], sensor: FpaSensor,
-                frame_rate: float, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
-    """Every array of a frame file but the codes (docs/sequences.md, "File format")."""
+                frame_rate: float, extra: Mapping[str, Any] | None = None,
+                housing_sensor: HousingSensor | None = None) -> dict[str, Any]:
+    """Every array of a frame file but the codes (docs/sequences.md, "File format");
+    ``frame_rate``: the frames per second of the file."""
     from irnuc.common.framefile import FORMAT_VERSION
 
     f = fr.config["fpa"]
@@ -509,6 +701,7 @@ def file_arrays(fr: _pl.Frames, fields: Mapping[str, np.ndarray], sensor: FpaSen
         "temps": np.asarray(fields["scene_K"], dtype=np.float64),
         **{k: fields[k] for k in FRAME_FIELDS},
         **sensor.arrays(),
+        **(housing_sensor or HousingSensor()).arrays(),
         "frame_rate": np.float64(frame_rate),
         "blind_codes": fr.blind_codes,
         "blind_positions": fr.blind_positions,
@@ -558,7 +751,8 @@ def write_sequence(run: SequenceRun, path: str | Path, *,
             fr = _frames(run, None, np.concatenate(blind), {}, diag.result(), counts)
             meta = {"sequence_json": np.array(json.dumps(seq.to_dict())),
                     "thermal": np.array(run.thermal), **(extra or {})}
-            fw.close(file_arrays(fr, run.fields, seq.fpa_sensor, seq.frame_rate, meta))
+            fw.close(file_arrays(fr, run.fields, seq.fpa_sensor, seq.record_rate, meta,
+                                 housing_sensor=seq.housing_sensor))
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

@@ -20,6 +20,8 @@ from irnuc.model import adc as _adc
 from irnuc.model import noise as _noise
 from irnuc.model import readout as _readout
 from irnuc.model.core import bolometer as _kb
+from irnuc.model.core import pulse as _kp
+from irnuc.model.core import rng as _rng
 from irnuc.model.core import stream as _ks
 from irnuc.model.core import warmstart as _kw
 from irnuc.model.defects import (
@@ -184,6 +186,40 @@ def stage_shutter_view(ctx: RunContext, inp: dict) -> dict:
     return {"shutter_view": view}
 
 
+def stage_lens_view(ctx: RunContext, inp: dict) -> dict:
+    """The lens's share of each pixel's hemisphere: its emission (1 - tau) fills the optical
+    cone, pi sin^2(theta) cos^4(beta) (no reflection); shielded pixels do not see it."""
+    o = ctx.cfg["optics"]
+    cone = cone_factor(o["cone_method"], f_number=o["f_number"], fov=o["fov"])
+    view = (1.0 - o["transmission"]) * cone * inp["cos4"]
+    view[_shielded(ctx)] = 0.0
+    return {"lens_view": view}
+
+
+def _lens_power(ctx: RunContext, inp: dict, Q: np.ndarray, resp: Any) -> None:
+    """Add, in place, what a lens away from the housing temperature changes: eps A pi
+    (lens view) (L(T_lens) - L(T_cam)) (the housing term assumed the lens at T_cam)."""
+    env = ctx.env
+    if env is None or "T_lens" not in env:
+        return
+    n = Q.shape[0]
+    T_lens = np.asarray(env["T_lens"], dtype=np.float64)
+    T_cam = (np.asarray(env["T_cam"], dtype=np.float64) if "T_cam" in env
+             else np.full(n, float(ctx.cfg["environment"]["T_cam"])))
+    uniq, inv = np.unique(np.concatenate([T_lens, T_cam]), return_inverse=True)
+    L = _radiance(ctx, uniq)[inv]
+    dL = L[:n] - L[n:]
+    view = _base(ctx.cfg) * inp["lens_view"]
+    act = ctx.layout.active_slice
+    for k in range(n):
+        if dL[k] == 0.0:
+            continue
+        add = view * dL[k]
+        if resp is not None:
+            add[act] *= resp
+        Q[k] += add
+
+
 def _nominal_skim(ctx: RunContext, L_cam: Any, L_s: Any) -> Any:
     """Voltage of a nominal blind pixel, its shield as ``fpa.skim_shield`` says, V: a
     number, or one per frame when ``L_cam``, ``L_s`` are given per frame."""
@@ -193,6 +229,11 @@ def _nominal_skim(ctx: RunContext, L_cam: Any, L_s: Any) -> Any:
     q = np.asarray(_base(ctx.cfg) * (shield - net * L_s), dtype=np.float64).reshape(-1, 1, 1)
     params = {k: np.full((1, 1), b[k]) for k in ("R_ref", "g", "C")}
     per_frame = np.ndim(L_s) > 0
+    if b["pulse"] == "integrated":
+        T_s = (ctx.substrate(q.shape[0]) if per_frame
+               else np.array([float(ctx.cfg["environment"]["T_substrate"])]))
+        v = _nominal_periodic(ctx, q[:, 0, 0], T_s)
+        return v if per_frame else float(v[0])
     v = _solve(ctx, q, params, ctx.substrate(q.shape[0]) if per_frame else None)["v_bolo"]
     return v[:, 0, 0] if per_frame else float(v[0, 0, 0])
 
@@ -249,8 +290,10 @@ def stage_power(ctx: RunContext, inp: dict) -> dict:
         _ks.power(inp["k_scene"], L, L.shape[1] == 1, q, per_frame, seen, blind,
                   _base(ctx.cfg), net, ctx.cfg["fpa"]["skim_shield"] == "substrate", L_cam,
                   L_s, resp if resp is not None else none, rs.start, cs.start, Q)
+    if "lens_view" in inp:
+        _lens_power(ctx, inp, Q, resp)
     if "shutter_view" in inp:
-        # the frames it overwrites need the defects' responsivity too
+        # the frames it overwrites need the defects' responsivity too (and hide the lens)
         _shutter_power(ctx, inp, Q, resp)
     return {"Q": Q}
 
@@ -384,6 +427,177 @@ def stage_bolometer(ctx: RunContext, inp: dict) -> dict:
     return _solve_predicted(ctx, inp, inp["Q"], None)
 
 
+# ---- the integrated pulse train (bolometer.pulse = "integrated", docs/model.md 5) ---------
+
+#: Relative error of a pulse's mean voltage that the step count is chosen for, and the
+#: largest step count (beyond it every pixel takes the adaptive integrator).
+PULSE_RTOL = 1e-5
+PULSE_MAX_STEPS = 64
+
+
+def frame_period(cfg: Mapping[str, Any]) -> float:
+    """Time between two bias pulses of a pixel, s (1 / readout.frame_rate)."""
+    return 1.0 / float(cfg["readout"]["frame_rate"])
+
+
+def choose_steps(cfg: Mapping[str, Any], q: float, T_s: float) -> int:
+    """Runge-Kutta steps per pulse: the fewest (1, 2, 4, ...) whose error on the nominal
+    pixel's mean voltage in the periodic state (16/15 of its difference from twice as many
+    steps, RK4 being of order 4) is at most PULSE_RTOL; 0 (the adaptive integrator for every
+    pixel) when PULSE_MAX_STEPS are not enough."""
+    b = cfg["bolometer"]
+    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
+    g, C = float(b["g"]), float(b["C"])
+    x = (frame_period(cfg) - b["t_int"]) * g / C
+    n = 1
+    while n <= PULSE_MAX_STEPS:
+        err = _kp.nominal_steps_error(n, -math.expm1(-x), T_s, q,
+                                      float(b["R_ref"]), g, C, B, b["T_ref"], b["bias_current"],
+                                      b["t_int"], b["runaway_temperature"])
+        if err * 16.0 / 15.0 <= PULSE_RTOL:
+            return n
+        n *= 2
+    return 0
+
+
+def stage_pulse_reference(ctx: RunContext, inp: dict) -> dict:
+    """What the pulse train needs once per sensor: the step count, every pixel's 1 - d, d =
+    exp(-(P - t_int) g / C) its decay between pulses, and the first guess of every periodic
+    solve: its periodic excess theta_0 - Q/g at the sensor's environment looking at a
+    uniform scene at the housing temperature, with its slope (single precision)."""
+    b = ctx.cfg["bolometer"]
+    p = inp["params"]
+    L_cam, L_s = inp["L_env"]
+    Q = inp["k_scene"] * L_cam + housing_power(ctx, inp["seen"], L_cam, L_s)
+    defects: DefectMap = inp["defects"]
+    if (defects.resp != 1.0).any():
+        Q[ctx.layout.active_slice] *= defects.resp
+    T_s = float(ctx.cfg["environment"]["T_substrate"])
+    period = frame_period(ctx.cfg)
+    n = choose_steps(ctx.cfg, float(np.median(Q[::7, ::7])), T_s)
+    x = (period - b["t_int"]) * p["g"] / p["C"]
+    # the nominal pixel's excess first: every pixel then starts a Newton step or two away
+    q_nom = float(np.median(Q[::7, ::7]))
+    nominal = {k: np.full((1, 1), float(b[k])) for k in ("R_ref", "g", "C")}
+    xn = (period - b["t_int"]) * nominal["g"] / nominal["C"]
+    z1 = np.zeros((1, 1), np.float32)
+    nom = _periodic(ctx, np.full((1, 1, 1), q_nom), nominal,
+                    {"n": n, "omd": -np.expm1(-xn), "excess": z1, "slope": z1, "teq": z1},
+                    np.array([T_s]), keep=1)
+    ex_nom = float(nom["theta0"][0, 0, 0] - q_nom / b["g"]) if nom["status"][0, 0, 0] == 0 else 0.0
+    zero = np.zeros(Q.shape, np.float32)
+    pr = {"n": n, "omd": -np.expm1(-x), "excess": np.full(Q.shape, ex_nom, np.float32),
+          "slope": zero, "teq": zero}
+    sol = _periodic(ctx, Q[None], p, pr, np.array([T_s]), keep=2)
+    excess, slope, teq = (np.empty(Q.shape, np.float32) for _ in range(3))
+    _kp.reference_maps(Q, p["g"], sol["theta0"][0], sol["ym1"][0], pr["omd"],
+                       sol["status"][0], T_s, excess, slope, teq)
+    return {"pulse_ref": {**pr, "excess": excess, "slope": slope, "teq": teq,
+                          "period": period}}
+
+
+def _periodic(ctx: RunContext, Q: np.ndarray, p: Mapping[str, np.ndarray], pr: Mapping[str, Any],
+              T_s: np.ndarray, keep: int = 0) -> dict:
+    """The periodic state of the pulse train of (N, rows, cols) frames (no memory); with
+    ``keep`` 1 also theta_0, 2 theta_0 and y - 1, 4 also the pulse's rise and the voltage's
+    sensitivity S."""
+    b = ctx.cfg["bolometer"]
+    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
+    Q = np.ascontiguousarray(Q)
+    shape = Q.shape
+    v, m = np.empty(shape), np.empty(shape)
+    status = np.empty(shape, np.uint8)
+    iters = np.empty(shape, np.int32)
+    aux = np.empty((keep, *shape)) if keep else np.empty((0, 1, 1, 1))
+    with threads_for(Q.size):
+        _kp.periodic_frames(Q, np.ascontiguousarray(T_s, dtype=np.float64), p["R_ref"], p["g"],
+                            p["C"], pr["omd"], pr["excess"], pr["slope"], pr["teq"],
+                            B, b["T_ref"], b["bias_current"], b["t_int"], pr["n"],
+                            b["runaway_temperature"], v, m, status, iters, aux)
+    out = {"v_bolo": v, "dT": m, "status": status, "iters": iters}
+    if keep:
+        out |= {"theta0": aux[0]}
+    if keep == 2:
+        out |= {"ym1": aux[1]}
+    if keep >= 4:
+        out |= {"rise": aux[1], "ym1": aux[2], "sens": aux[3]}
+    return out
+
+
+def thermal_noise_on(cfg: Mapping[str, Any]) -> bool:
+    """True if the pixels' thermal fluctuation is drawn (integrated pulse, noise on)."""
+    n = cfg["noise"]
+    return bool(n["enabled"] and n["thermal_fluctuation"]
+                and cfg["bolometer"]["pulse"] == "integrated")
+
+
+def _thermal_keys(ctx: RunContext, n: int) -> np.ndarray:
+    """(n,) uint64 keys of the thermal fluctuation's draws of this chunk's frames (empty when
+    it is off)."""
+    if not thermal_noise_on(ctx.cfg):
+        return np.empty(0, np.uint64)
+    ctx.counts["thermal_noise_frames"] += n
+    return _noise.keys(ctx.seed, ctx.first_frame, n, _noise.THERMAL_STREAM)
+
+
+def stage_bolometer_periodic(ctx: RunContext, inp: dict) -> dict:
+    """Every frame in the periodic state of its own pulse train (no memory of the frames
+    before), plus the thermal fluctuation before the pulse when noise is on."""
+    Q = inp["Q"]
+    n = Q.shape[0]
+    pr = inp["pulse_ref"]
+    T_s = ctx.substrate(n)
+    keys = _thermal_keys(ctx, n)
+    sol = _periodic(ctx, Q, inp["params"], pr, T_s, keep=4 if keys.size else 0)
+    if keys.size:
+        with threads_for(Q.size):
+            _kp.thermal_noise_steady(sol["v_bolo"], sol["dT"], sol["theta0"], sol["ym1"],
+                                     sol["sens"], inp["params"]["C"], pr["omd"], T_s, keys,
+                                     _rng.ZIG_X, _rng.ZIG_F)
+    return {k: sol[k] for k in ("v_bolo", "dT", "status", "iters")}
+
+
+def stage_bolometer_train_lagged(ctx: RunContext, inp: dict) -> dict:
+    """The pulse train with thermal memory: each pixel's temperature carried from pulse to
+    pulse (the first frame of a run in its periodic state), the substrate linear through
+    every frame; the thermal fluctuation drawn between pulses when noise is on."""
+    b = ctx.cfg["bolometer"]
+    p, pr = inp["params"], inp["pulse_ref"]
+    Q = np.ascontiguousarray(inp["Q"])
+    n = Q.shape[0]
+    T_s = ctx.substrate(n)
+    st = ctx.state.get("train")
+    if st is None:
+        st = {"theta": np.zeros(p["g"].shape), "T_prev": float(T_s[0]), "has": False}
+        ctx.state["train"] = st
+    B = _kb.activation_temperature(b["tcr"], b["T_ref"])
+    v, m = np.empty(Q.shape), np.empty(Q.shape)
+    status = np.empty(Q.shape, np.uint8)
+    iters = np.empty(Q.shape, np.int32)
+    keys = _thermal_keys(ctx, n)
+    with threads_for(Q.size):
+        _kp.lagged_frames(Q, T_s, st["T_prev"], p["R_ref"], p["g"], p["C"], pr["omd"],
+                          pr["excess"], pr["slope"], pr["teq"], st["theta"], st["has"],
+                          pr["period"], b["t_int"], B, b["T_ref"], b["bias_current"], pr["n"],
+                          b["runaway_temperature"], keys, v, m, status, iters,
+                          _rng.ZIG_X, _rng.ZIG_F)
+    st.update(T_prev=float(T_s[-1]), has=True)
+    return {"v_bolo": v, "dT": m, "status": status, "iters": iters}
+
+
+def _nominal_periodic(ctx: RunContext, q: np.ndarray, T_s: np.ndarray) -> np.ndarray:
+    """Voltage of a nominal pixel in the periodic state, for the powers q (N,) W at the
+    substrate temperatures T_s (N,) K."""
+    b = ctx.cfg["bolometer"]
+    nominal = {k: np.full((1, 1), float(b[k])) for k in ("R_ref", "g", "C")}
+    period = frame_period(ctx.cfg)
+    x = (period - b["t_int"]) * nominal["g"] / nominal["C"]
+    zero = np.zeros((1, 1), np.float32)
+    pr = {"n": choose_steps(ctx.cfg, float(np.median(q)), float(np.median(T_s))),
+          "omd": -np.expm1(-x), "excess": zero, "slope": zero, "teq": zero}
+    return _periodic(ctx, q.reshape(-1, 1, 1), nominal, pr, T_s)["v_bolo"][:, 0, 0]
+
+
 def stage_bolometer_lagged(ctx: RunContext, inp: dict) -> dict:
     """The steady pulse with thermal memory between frames: the rise before the pulse
     follows its equilibrium Q/g through exp(-period g/C) per frame (equilibrium variant)."""
@@ -417,24 +631,27 @@ def stage_bolometer_transient(ctx: RunContext, inp: dict) -> dict:
     T_s = ctx.substrate(n)
     st = ctx.state.get("transient")
     settings = ctx.transient
-    theta0 = None
+    theta0 = before = None
     if st is not None:
         settings = _replace_warmup(settings)
-        theta0 = st["theta"] + (st["T_prev"] - T_s[0])
+        theta0, before = st["theta"], st["T_prev"]
     res = _tr.integrate_pixels(Q, T_s, p["R_ref"], p["g"], p["C"], tcr=b["tcr"],
                                T_ref=b["T_ref"], bias_current=b["bias_current"],
                                t_int=b["t_int"], runaway_temperature=b["runaway_temperature"],
-                               settings=settings, theta0=theta0)
+                               settings=settings, theta0=theta0, T_s_before=before)
     status = res.status
     if st is not None and st["failed"].any():
         status[:, st["failed"]] = st["status"][st["failed"]]
     s = _tr.TransientSettings.from_any(settings)
     after = s.frame_period - s.pulse_start - b["t_int"]
+    prev = T_s[-2] if n > 1 else (T_s[0] if before is None else before)
+    rate = float(T_s[-1] - prev) / s.frame_period
     last = status[-1] != _kb.STATUS_OK
     relaxed = np.empty(p["g"].size)
+    end = np.ascontiguousarray(res.dT_end[-1]).ravel() - 0.5 * rate * b["t_int"]
     with threads_for(relaxed.size):
-        _kw.relax_after_pulse(np.ascontiguousarray(res.dT_end[-1]).ravel(), Q[-1].ravel(),
-                              p["g"].ravel(), p["C"].ravel(), after, last.ravel(), relaxed)
+        _kw.relax_after_pulse(end, Q[-1].ravel(), p["g"].ravel(), p["C"].ravel(), after, rate,
+                              last.ravel(), relaxed)
     ctx.state["transient"] = {"theta": relaxed.reshape(p["g"].shape), "T_prev": float(T_s[-1]),
                               "failed": last, "status": status[-1].copy()}
     ctx.counts["transient_pulses"] += int(status.size)
@@ -452,9 +669,9 @@ def make_skim_stage(mode: str) -> Stage:
     fn = _readout.SKIMMING_MODES[mode]
     if mode == "none":
         def run_fixed(ctx: RunContext, inp: dict) -> dict:
-            return {"v_ref": fn(inp["v_bolo"], inp["status"], ctx.layout, inp["v_skim"])}
+            return {"v_ref": fn(inp["v_sense"], inp["status"], ctx.layout, inp["v_skim"])}
 
-        return Stage("skimming_none", ("v_bolo", "status", "v_skim"), ("v_ref",), True,
+        return Stage("skimming_none", ("v_sense", "status", "v_skim"), ("v_ref",), True,
                      run_fixed)
 
     # Row/column skimming needs the nominal reference voltage (a solve) only as the
@@ -462,16 +679,16 @@ def make_skim_stage(mode: str) -> Stage:
     def run(ctx: RunContext, inp: dict) -> dict:
         assert ctx.demand is not None
         demand = ctx.demand
-        return {"v_ref": fn(inp["v_bolo"], inp["status"], ctx.layout,
+        return {"v_ref": fn(inp["v_sense"], inp["status"], ctx.layout,
                             lambda: demand("v_skim"))}
 
-    return Stage(f"skimming_{mode}", ("v_bolo", "status"), ("v_ref",), True, run)
+    return Stage(f"skimming_{mode}", ("v_sense", "status"), ("v_ref",), True, run)
 
 
 def stage_integrator(ctx: RunContext, inp: dict) -> dict:
     r = ctx.cfg["readout"]
     act = (slice(None), *ctx.layout.active_slice)
-    v_bolo = inp["v_bolo"]
+    v_bolo = inp["v_sense"]
     v = np.empty((v_bolo.shape[0], *ctx.layout.active_shape))
     rs, cs = ctx.layout.active_slice
     with threads_for(v.size):
@@ -504,12 +721,51 @@ def stage_noisy_pixels(ctx: RunContext, inp: dict) -> dict:
     return {"noisy_sigma": (sigma, idx, sigma.reshape(-1)[idx])}
 
 
-def stage_noise(ctx: RunContext, inp: dict) -> dict:
+def bolometer_noise_on(cfg: Mapping[str, Any]) -> bool:
+    """True if the bolometers' own noise (Johnson, 1/f) is drawn."""
+    n = cfg["noise"]
+    return bool(n["enabled"] and (n["johnson"] or n["flicker_coefficient"] > 0.0))
+
+
+def stage_bolometer_noise(ctx: RunContext, inp: dict) -> dict:
+    """The bolometers' own noise on the voltage of every pixel of the array (the skimming
+    references included, so a row or column shares its reference's noise): Johnson and
+    the 1/f octaves above the frame rate white, the octaves below from a Voss generator
+    (:mod:`model.noise`)."""
     cfg = ctx.cfg
-    n, r, b = cfg["noise"], cfg["readout"], cfg["bolometer"]
+    nz, b = cfg["noise"], cfg["bolometer"]
+    v = np.ascontiguousarray(inp["v_bolo"])
+    n = v.shape[0]
+    shape = ctx.layout.shape
+    white, slow = _noise.flicker_variances(nz["flicker_coefficient"], frame_period(cfg),
+                                           b["t_int"])
+    if slow > 0.0:
+        st = ctx.state.get("bolometer_flicker")
+        if st is None:
+            st = ctx.state["bolometer_flicker"] = _noise.VossState(shape, _noise.FLICKER_STREAM)
+        octave, kf = st.plan(ctx.seed, ctx.first_frame, n)
+        vals, total = st.arrays()
+    else:
+        octave, kf = np.full(n, -1, np.int64), np.zeros(n, np.uint64)
+        vals, total = np.empty((0, 1, 1)), np.empty((1, 1))
+    out = np.empty(v.shape)
+    ctx.counts["bolometer_noise_frames"] += n
+    with threads_for(v.size):
+        _ks.bolometer_noise(v, inp["dT"], inp["status"], ctx.substrate(n), b["bias_current"],
+                            b["t_int"], bool(nz["johnson"]), white, math.sqrt(slow),
+                            _noise.keys(ctx.seed, ctx.first_frame, n, _noise.BOLOMETER_STREAM),
+                            kf, octave, vals, total, _rng.ZIG_X, _rng.ZIG_F, out)
+    return {"v_sense": out}
+
+
+def stage_noise(ctx: RunContext, inp: dict) -> dict:
+    """Noise at the integrator output of the active pixels: the readout's (white and its
+    1/f, ``noise.readout_sigma``, ``noise.flicker_sigma``) and NOISY defect pixels'."""
+    cfg = ctx.cfg
+    n = cfg["noise"]
     noisy = inp["noisy_sigma"]
     extra = noisy[0] if noisy is not None else None
-    if not n["enabled"]:
+    if not n["enabled"] or (n["readout_sigma"] == 0.0 and n["flicker_sigma"] == 0.0):
         if noisy is None:
             return {"v_out": inp["v_int"]}
         ctx.counts["noise_frames"] += inp["v_int"].shape[0]
@@ -517,17 +773,11 @@ def stage_noise(ctx: RunContext, inp: dict) -> dict:
         return {"v_out": _noise.add_noise_at(inp["v_int"], noisy[1], noisy[2], ctx.seed,
                                              ctx.first_frame, copy=False)}
     sigma2: np.ndarray | float = n["readout_sigma"] ** 2
-    if n["johnson"]:
-        act = (slice(None), *ctx.layout.active_slice)
-        T = ctx.substrate(inp["dT"].shape[0])[:, None, None] + inp["dT"][act]
-        sj = _noise.johnson_sigma(np.abs(inp["v_bolo"][act]), np.maximum(T, 0.0),
-                                  max(b["bias_current"], 1e-30), b["t_int"], r["gain"])
-        sigma2 = sigma2 + np.nan_to_num(sj) ** 2
     if extra is not None:
         sigma2 = sigma2 + extra**2
     flicker = n["flicker_sigma"]
     if flicker > 0.0 and ctx.flicker is None:
-        ctx.flicker = _noise.FlickerState(ctx.layout.active_shape)
+        ctx.flicker = _noise.VossState(ctx.layout.active_shape, _noise.READOUT_FLICKER_STREAM)
     ctx.counts["noise_frames"] += inp["v_int"].shape[0]
     return {"v_out": _noise.add_noise(inp["v_int"], np.sqrt(sigma2), ctx.seed, ctx.first_frame,
                                       flicker, ctx.flicker)}
@@ -540,9 +790,11 @@ def stage_adc(ctx: RunContext, inp: dict) -> dict:
 
 
 def noise_configured(cfg: Mapping[str, Any]) -> bool:
-    """True if some noise source is non-zero: noise enabled with every sigma 0 (and no
-    Johnson noise) adds exactly nothing, so it gets no stage and draws nothing."""
-    if _temporal_noise(cfg):
+    """True if some noise source at the integrator output is non-zero (the readout's, or a
+    NOISY defect's): noise enabled with every sigma 0 adds exactly nothing there, so it gets
+    no stage and draws nothing."""
+    n = cfg["noise"]
+    if n["enabled"] and (n["readout_sigma"] > 0 or n["flicker_sigma"] > 0):
         return True
     spec = _defect_spec(cfg)
     kinds = set(spec.cluster_kinds) | {spec.line_kind} if (spec.clusters or spec.rows or spec.cols) else set()
@@ -555,7 +807,8 @@ def _temporal_noise(cfg: Mapping[str, Any]) -> bool:
     """True if the array's own temporal noise (not a NOISY defect's) is non-zero."""
     n = cfg["noise"]
     return bool(n["enabled"] and (n["johnson"] or n["readout_sigma"] > 0
-                                  or n["flicker_sigma"] > 0))
+                                  or n["flicker_sigma"] > 0 or n["flicker_coefficient"] > 0
+                                  or thermal_noise_on(cfg)))
 
 
 # ---- reference (shielded) pixels read out beside the image ------------------------------
@@ -573,13 +826,14 @@ def stage_reference_layout(ctx: RunContext, _: dict) -> dict:
 
 def stage_reference_pixels(ctx: RunContext, inp: dict) -> dict:
     """ADC codes of the reference pixels, (N, K): each read like an active pixel through
-    the integrator against its own row's (column's) skimming reference, with the array's
-    white temporal noise (Johnson and readout, drawn from their own stream) and the ADC.
-    Pixels whose solve failed read the high rail."""
+    the integrator against its own row's (column's) skimming reference, with its own
+    bolometer noise (in ``v_sense``), the readout's white noise (drawn from a stream of its
+    own, so the image's bits do not depend on it) and the ADC. Pixels whose solve failed
+    read the high rail."""
     cfg = ctx.cfg
     r, a, nz = cfg["readout"], cfg["adc"], cfg["noise"]
     pos = inp["reference_positions"]
-    v_bolo, status = inp["v_bolo"], inp["status"]
+    v_bolo, status = inp["v_sense"], inp["status"]
     n = v_bolo.shape[0]
     if pos.shape[0] == 0:
         return {"blind_codes": np.empty((n, 0), _adc.adc_dtype(a["bits"]))}
@@ -599,18 +853,10 @@ def stage_reference_pixels(ctx: RunContext, inp: dict) -> dict:
     failed = status[:, rows, cols] != _kb.STATUS_OK
     if failed.any():
         v[failed] = r["v_high"]
-    if _temporal_noise(cfg) and (nz["johnson"] or nz["readout_sigma"] > 0):
-        sigma2: Any = nz["readout_sigma"] ** 2
-        if nz["johnson"]:
-            b = cfg["bolometer"]
-            T = ctx.substrate(n)[:, None] + inp["dT"][:, rows, cols]
-            sj = _noise.johnson_sigma(np.abs(vp), np.maximum(T, 0.0), max(b["bias_current"], 1e-30),
-                                      b["t_int"], r["gain"])
-            sigma2 = sigma2 + np.nan_to_num(sj) ** 2
-        sigma = np.broadcast_to(np.sqrt(sigma2), v.shape)
+    if nz["enabled"] and nz["readout_sigma"] > 0:
         for k in range(n):
-            rng = _noise.frame_rng(ctx.seed, ctx.first_frame + k, _noise.REFERENCE_STREAM)
-            v[k] += sigma[k] * rng.standard_normal(v.shape[1])
+            v[k] += nz["readout_sigma"] * _noise.normals(ctx.seed, ctx.first_frame + k,
+                                                         _noise.REFERENCE_STREAM, v.shape[1:])
     codes = _adc.adc_convert(v, a["bits"], a["v_low"], a["v_high"], a["rounding"],
                              rails=(r["v_low"], r["v_high"]))
     return {"blind_codes": codes}

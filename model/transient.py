@@ -33,7 +33,14 @@ from irnuc.model.config import apply_overrides
 from irnuc.model.core import bolometer as _kb
 from irnuc.model.core import transient as _kt
 from irnuc.model.scenes import Scene, check_temps
-from irnuc.model.validate import ConfigError, check_array, check_choice, check_int, check_scalar
+from irnuc.model.validate import (
+    ConfigError,
+    check_array,
+    check_choice,
+    check_frame_period,
+    check_int,
+    check_scalar,
+)
 
 #: Integrators by name (codes of :mod:`model.core.transient`).
 INTEGRATORS: dict[str, int] = {
@@ -123,10 +130,7 @@ class TransientSettings:
         fp = check_scalar(p + "frame_period", self.frame_period, 0.0, 1e3, lo_open=True,
                           unit="s")
         ps = check_scalar(p + "pulse_start", self.pulse_start, 0.0, 1e3, unit="s")
-        if ps + t_int > fp * (1.0 + 1e-12):
-            raise ConfigError(
-                f"transient.frame_period = {fp:g} s is shorter than pulse_start + t_int = "
-                f"{ps + t_int:g} s; allowed range [{ps + t_int:g}, 1000] s")
+        check_frame_period(fp, t_int, ps, what=f"transient.frame_period = {fp:g} s")
         check_choice(p + "initial", self.initial, INITIAL_STATES)
         check_int(p + "warmup_frames", self.warmup_frames, 0, 100_000)
         if self.rtol is not None:
@@ -208,6 +212,7 @@ def integrate_pixels(
     runaway_temperature: float = 1000.0,
     settings: TransientSettings | Mapping[str, Any] | None = None,
     theta0: float | np.ndarray | None = None,
+    T_s_before: float | None = None,
 ) -> TransientResult:
     """Integrate the heat balance of every pixel through a sequence of frames.
 
@@ -231,7 +236,11 @@ def integrate_pixels(
         A pixel hotter than this (K) is a thermal runaway.
     settings : TransientSettings or dict, optional
     theta0 : float or array_like, optional
-        T - T_s[0] at the start of the first frame, K; default from ``settings.initial``.
+        T - T_s at the start of the first frame, K; default from ``settings.initial``.
+    T_s_before : float, optional
+        Substrate temperature at the start of the first frame, K (default T_s[0]): frame n's
+        substrate goes linearly from the previous frame's value to its own (a continued
+        run gives the last frame's).
 
     Returns
     -------
@@ -273,7 +282,9 @@ def integrate_pixels(
     else:
         th0 = np.ascontiguousarray(np.broadcast_to(
             check_array("theta0", theta0, unit="K"), shape), dtype=np.float64).ravel()
-    cold = ~(Ts[0] + th0 > 0.0)
+    before = float(Ts[0]) if T_s_before is None else check_scalar(
+        "T_s_before", T_s_before, 0.0, None, lo_open=True, unit="K")
+    cold = ~(before + th0 > 0.0)
     if cold.any():
         if theta0 is not None:
             raise ConfigError("theta0: the initial pixel temperature T_s + theta0 must be > 0 K")
@@ -293,7 +304,7 @@ def integrate_pixels(
                          s.frame_period, s.pulse_start, s.warmup_frames, method, s.steps,
                          s.max_substeps, T_max, refuse,
                          float(s.rtol) if s.rtol is not None else 0.0, v, dm, de, st, sub,
-                         used)
+                         used, before)
     bad = st == STATUS_STEP_LIMIT
     if bad.any():
         f, p = (int(i) for i in np.argwhere(bad)[0])

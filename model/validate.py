@@ -14,7 +14,8 @@ import numpy as np
 
 from irnuc.common.errors import ConfigError
 
-__all__ = ["ConfigError", "check_array", "check_choice", "check_int", "check_scalar"]
+__all__ = ["ConfigError", "check_array", "check_choice", "check_frame_period", "check_int",
+           "check_scalar"]
 
 def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
     left = "(" if lo_open else "["
@@ -36,10 +37,13 @@ def check_scalar(
 ) -> float:
     """Return ``value`` as a float if it is finite and inside the interval, else raise."""
     unit_s = f" {unit}" if unit else ""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ConfigError(f"{field} = {value!r} is not a number") from None
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    # A number only: true is not 1 and "30" is not 30 (a TOML string is a typo).
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | float | np.integer
+                                                              | np.floating):
+        raise ConfigError(f"{field} = {value!r} is not a number")
+    x = float(value)
     allowed = _interval(lo, hi, lo_open, hi_open)
     if not math.isfinite(x):
         raise ConfigError(f"{field} = {value!r}{unit_s} is not finite; allowed range {allowed}{unit_s}")
@@ -62,6 +66,14 @@ def check_int(field: str, value: Any, lo: int | None = None, hi: int | None = No
     return v
 
 
+def _holds_non_number(value: Any) -> bool:
+    """Whether a (nested) list or tuple holds a boolean, a string or another non-number
+    (numpy would convert a boolean mixed with numbers to 1.0)."""
+    if isinstance(value, list | tuple):
+        return any(_holds_non_number(v) for v in value)
+    return isinstance(value, bool | np.bool_ | str | bytes)
+
+
 def check_array(
     field: str,
     value: Any,
@@ -75,9 +87,13 @@ def check_array(
     """Return ``value`` as a float64 array if every element is finite and in range."""
     unit_s = f" {unit}" if unit else ""
     try:
-        arr = np.asarray(value, dtype=np.float64)
+        raw = np.asarray(value)
     except (TypeError, ValueError):
         raise ConfigError(f"{field} = {value!r} is not numeric") from None
+    # Numbers only: booleans and strings would convert (True to 1, "30" to 30).
+    if raw.dtype.kind not in "iuf" or _holds_non_number(value):
+        raise ConfigError(f"{field} = {value!r} is not numeric")
+    arr = raw.astype(np.float64)
     allowed = _interval(lo, hi, lo_open, hi_open)
     bad = ~np.isfinite(arr)
     if lo is not None:
@@ -100,3 +116,16 @@ def check_choice(field: str, value: Any, choices: dict[str, Any] | tuple[str, ..
     if value not in choices:
         raise ConfigError(f"{field} = {value!r} is not one of {sorted(choices)}")
     return str(value)
+
+
+def check_frame_period(period: float, t_int: float, pulse_start: float = 0.0,
+                       what: str = "the frame period") -> None:
+    """Every thermal model pulses each pixel once per frame period: a period shorter than
+    ``pulse_start + t_int`` (s) is refused, with one message whichever model asks."""
+    need = pulse_start + t_int
+    if period < need * (1.0 - 1e-12):
+        start = "pulse_start + " if pulse_start else ""
+        raise ConfigError(
+            f"{what}: a frame period of {period:.6g} s is shorter than the bias pulse "
+            f"({start}bolometer.t_int = {need:.6g} s); every thermal model (steady, lagged, "
+            f"transient) needs the pulse inside the frame: at most {1.0 / need:.6g} frames/s")

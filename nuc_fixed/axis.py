@@ -33,19 +33,28 @@ words, not cycles (the RTL's cycles do not change what it computes).
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from irnuc.nuc_fixed import rtl_spec
+from irnuc.nuc_fixed import streams
 from irnuc.nuc_fixed.config import PipelineConfig
-from irnuc.nuc_fixed.layout import MemoryLayout, unpack_memory
+from irnuc.nuc_fixed.layout import unpack_memory
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
+from irnuc.nuc_fixed.methods.blind_drift import FRAME_BLIND_DRIFT
 from irnuc.nuc_fixed.regmap import register_map
-from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_coeffs, interp_weight
+from irnuc.nuc_fixed.streams import (  # the stream words, for the framer's users
+    bad_mask,
+    coef_stream_bits,
+    frame_word_bits,
+    neutral_frame,
+    neutral_gain,
+    neutral_word,
+    stream_layouts,
+)
+from irnuc.nuc_fixed.tempcomp import interp_weight
 from irnuc.nuc_fixed.top import nuc_dpc_top
 
 #: The events counted by the register file (STATUS bits and *_ERRORS counters) and the
@@ -89,61 +98,15 @@ class FramerResult:
     words_taken: int = 0
 
 
-def neutral_gain(cfg: PipelineConfig) -> int:
-    """The gain code of the neutral word: 1.0 (2^Gf) when the format holds it, else its
-    largest code (U0.Gf)."""
-    return (1 << cfg.gain_frac_bits) if cfg.gain_int_bits > 0 else (1 << cfg.gain_bits) - 1
-
-
-def stream_layouts(cfg: PipelineConfig) -> list[tuple[MemoryLayout, int]]:
-    """The memories of the coefficient word and the bit each starts at: the base method's
-    calibration memories in order (``PipelineConfig.memories``); table_interp the pair of
-    tables the frame interpolates, ``lower`` (table j) at bit 0 and ``upper`` (table
-    j + 1) above it, each in a table's layout (:func:`table_pair_words`)."""
-    if cfg.base_method == "table_interp":
-        table = cfg.memories["table0"]
-        return [(dataclasses.replace(table, name="lower"), 0),
-                (dataclasses.replace(table, name="upper"), table.word_bits)]
-    out, lsb = [], 0
-    for m in cfg.memories.values():
-        if m.source == "calibration":
-            out.append((m, lsb))
-            lsb += m.word_bits
-    return out
-
-
 def coef_word_bits(cfg: PipelineConfig) -> int:
-    """Bits of one ``s_axis_coef`` word (CONFIG.word_bits)."""
-    return sum(m.word_bits for m, _ in stream_layouts(cfg))
-
-
-def neutral_word(cfg: PipelineConfig) -> int:
-    """The word of a filler pixel, and the value of a word's fields but the bad flags with
-    NUC off: gain fields (``gain``, ``gain_lo``, ``gain_hi``) at :func:`neutral_gain`, every
-    other field 0."""
-    w = 0
-    for m, base in stream_layouts(cfg):
-        for f in m.fields:
-            if f.name in ("gain", "gain_lo", "gain_hi"):
-                w |= neutral_gain(cfg) << (base + f.lsb)
-    return w
-
-
-def bad_mask(cfg: PipelineConfig) -> int:
-    """The bits of the word that are bad flags."""
-    return sum(1 << (base + f.lsb) for m, base in stream_layouts(cfg) for f in m.fields
-               if f.name == "bad")
-
-
-def neutral_frame(cfg: PipelineConfig) -> int:
-    """The frame word with NUC off: one_point's gain 1.0 (:func:`neutral_gain`), else 0
-    (table_interp: weight 0, the lower table's word, neutral as well)."""
-    return neutral_gain(cfg) if cfg.base_method == "one_point" else 0
+    """Bits of one ``s_axis_coef`` word (CONFIG.word_bits): the method's coefficient word
+    (``nuc_fixed.streams.coef_stream_bits``)."""
+    return coef_stream_bits(cfg)
 
 
 @dataclass(frozen=True)
 class TableSel:
-    """table_interp's selection from the pending READING and TABLE_READING_k (the register
+    """table_interp's selection from the pending READING and TABLE_READING[k] (the register
     TABLE_SEL once computed): the lower table ``j``, the ``weight`` of table j + 1 and
     ``error`` (the table readings do not increase strictly: j and weight 0)."""
 
@@ -153,7 +116,7 @@ class TableSel:
 
     def register(self, valid: bool = True) -> int:
         """What TABLE_SEL reads (every field 0 while not ``valid``: being computed, or no
-        READING / TABLE_READING_k written since reset)."""
+        READING / TABLE_READING[k] written since reset)."""
         if not valid:
             return 0
         reg = register_map()["TABLE_SEL"]
@@ -164,7 +127,7 @@ class TableSel:
 
 def table_sel(cfg: PipelineConfig, registers: dict[str, object]) -> TableSel:
     """:class:`TableSel` of the register values ``reading`` and ``table_readings`` (the K
-    values of TABLE_READING_k): ``nuc_fixed.tempcomp.interp_weight``, or the error case."""
+    values of TABLE_READING[k]): ``nuc_fixed.tempcomp.interp_weight``, or the error case."""
     rs = [int(v) for v in registers["table_readings"]]  # type: ignore[union-attr]
     if any(b <= a for a, b in itertools.pairwise(rs)):
         return TableSel(0, 0, True)
@@ -175,7 +138,7 @@ def table_sel(cfg: PipelineConfig, registers: dict[str, object]) -> TableSel:
 def _table_pair(coeffs: MethodCoefficients, j: int) -> tuple[np.ndarray, np.ndarray, int]:
     """Tables j and j + 1's memory words (uint64, (H, W)) and the bits of one."""
     cfg = coeffs.cfg
-    if cfg.base_method != "table_interp" or not 0 <= j <= int(cfg.tables or 0) - 2:
+    if "table0" not in cfg.memories or not 0 <= j <= int(cfg.tables or 0) - 2:
         raise ValueError(f"no table pair j = {j} in pipeline {cfg.name!r}")
     words = coeffs.words()
     return (np.asarray(words[f"table{j}"], np.uint64),
@@ -206,31 +169,20 @@ def table_pair_bin(coeffs: MethodCoefficients, j: int) -> bytes:
 def _blind_layout(cfg: PipelineConfig) -> dict[str, tuple[int, int]]:
     """The spec's frame_blind_drift layout: the base method's frame word (one_point's gain;
     two_point one unused bit), then BLIND_SUM, BLIND_REF and DRIFT_GAIN."""
-    base = cfg.registers["gain"].width if cfg.base_method == "one_point" else 1
-    return rtl_spec.FRAME_BLIND_DRIFT.layout(BaseBits=base, SumBits=cfg.blind_sum_bits,
-                                             DriftGainBits=cfg.registers["drift_gain"].width)
+    return FRAME_BLIND_DRIFT.layout(BaseBits=frame_word_bits(cfg), SumBits=cfg.blind_sum_bits,
+                                    DriftGainBits=cfg.registers["drift_gain"].width)
 
 
 def frame_word(cfg: PipelineConfig, registers: dict[str, object]) -> int:
     """The frame word the framer takes at a frame start, from the method's register values
     by name (``gain``, ``level``, ``reading``, ``t_ref``, ``table_readings``,
     ``blind_sum``, ``blind_ref``, ``drift_gain``; a signed register as its two's complement
-    bits): one_point the gain, piecewise the level, tc_offset the spec's frame_tc_offset
-    (reading, t_ref), table_interp the weight (:func:`table_sel`); else 0. With blind_drift
-    the spec's frame_blind_drift: that word, then the blind sum, the blind reference and
-    the drift gain."""
-    base = cfg.base_method
-    if base == "table_interp":
-        return table_sel(cfg, registers).weight
-    word = 0
-    if base == "one_point":
-        word = int(registers["gain"])
-    elif base == "piecewise":
-        word = int(registers["level"])
-    elif base == "tc_offset":
-        lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
-        word = (int(registers["reading"]) << lay["reading"][0]) | (
-            int(registers["t_ref"]) << lay["t_ref"][0])
+    bits): the base method's (``nuc_fixed.streams.frame_word``: one_point the gain,
+    piecewise the level, tc_offset the spec's frame_tc_offset (reading, t_ref),
+    table_interp the weight (:func:`table_sel`); else 0). With blind_drift the spec's
+    frame_blind_drift: that word, then the blind sum, the blind reference and the drift
+    gain."""
+    word = streams.frame_word(cfg, registers)
     if cfg.has("blind_drift"):
         for name, (lsb, bits) in _blind_layout(cfg).items():
             if name != "base":
@@ -242,60 +194,46 @@ def frame_method_inputs(f: CoreFrame, cfg: PipelineConfig
                         ) -> tuple[MethodCoefficients, FrameInputs]:
     """The calibration and per-frame inputs a frame of a method other than two_point is
     corrected with: its words split into the method's memories and the frame word into
-    the method's registers, the FPA reading and the blind sum."""
+    the method's registers and readings (``MethodSpec.from_frame_word`` where the method
+    computes its frame word), and the blind sum."""
+    from irnuc.nuc_fixed.methods import READINGS
+
     words = np.asarray(f.words, dtype=object)
     fields = {}
     for m, base in stream_layouts(cfg):
         mem = np.array([[(int(v) >> base) & ((1 << m.word_bits) - 1) for v in row]
                         for row in words], dtype=np.uint64).reshape(words.shape)
         fields[m.name] = unpack_memory(mem, m)
-    base = cfg.base_method
+    word = f.frame_word
     regs: dict[str, object] = {}
-    reading = None
-    if base == "table_interp":
-        # Every table holds the interpolated values: any reading selects them.
-        return _interpolated(fields, f.frame_word, cfg), FrameInputs(reading=np.array([0]))
-    if base in ("one_point", "piecewise"):
-        regs["gain" if base == "one_point" else "level"] = f.frame_word
-    elif base == "tc_offset":
-        lay = rtl_spec.FRAME_TC_OFFSET.layout(ReadingBits=cfg.registers["reading"].width)
-        (rl, rb), (tl, tb) = lay["reading"], lay["t_ref"]
-        reading = (f.frame_word >> rl) & ((1 << rb) - 1)
-        regs["t_ref"] = (f.frame_word >> tl) & ((1 << tb) - 1)
     sums = None
     if cfg.has("blind_drift"):
         got = {n: (f.frame_word >> lsb) & ((1 << b) - 1)
                for n, (lsb, b) in _blind_layout(cfg).items()}
-        if base == "one_point":
-            regs["gain"] = got["base"]
+        word = got["base"]
         g = got["drift_gain"]
         gb = cfg.registers["drift_gain"].width
         regs["blind_ref"] = got["blind_ref"]
         regs["drift_gain"] = g - (1 << gb) if g >> (gb - 1) else g  # two's complement
         sums = np.array([got["blind_sum"]])
-    inputs = FrameInputs(reading=None if reading is None else np.array([reading]),
-                         blind_sums=sums)
+    values: dict[str, object] = dict(streams.frame_fields(cfg, word))
+    alt = cfg.base.from_frame_word(cfg, fields, values)
+    if alt is not None:
+        fields, values = alt
+    readings = {}
+    for r in cfg.base.readings:
+        reg = READINGS[r].register
+        if reg is not None and reg(cfg).name in values:
+            readings[READINGS[r].inputs_field] = np.array([values.pop(reg(cfg).name)])
+    regs |= values
+    inputs = FrameInputs(**readings, blind_sums=sums)  # type: ignore[arg-type]
     return MethodCoefficients(cfg=cfg, fields=fields, registers=regs), inputs
-
-
-def _interpolated(fields: dict[str, dict[str, np.ndarray]], weight: int,
-                  cfg: PipelineConfig) -> MethodCoefficients:
-    """table_interp: the frame's pair of tables and weight as a calibration read at reading
-    0 (every table the pair interpolated with the weight, ``interp_coeffs``; table readings
-    0, 1, ...: j = 0, weight 0), so method_top corrects the frame as the core does."""
-    lo, hi = fields["lower"], fields["upper"]
-    g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]),
-                         InterpWeight(0, int(weight)), cfg)
-    table = {"gain": g, "offset": o, "bad": lo["bad"]}
-    k = int(cfg.tables or 2)
-    return MethodCoefficients(cfg=cfg, fields={f"table{i}": dict(table) for i in range(k)},
-                              registers={"table_readings": tuple(range(k))})
 
 
 def core_output(f: CoreFrame, cfg: PipelineConfig) -> np.ndarray:
     """The corrected pixels (H, W) of a frame the framer handed to the core: the two-point
     core (:func:`irnuc.nuc_fixed.nuc_dpc_top`), or the method's (``method_top``)."""
-    if cfg.method == "two_point":
+    if cfg.plain:
         return nuc_dpc_top(f.raw, f.words, cfg)
     coeffs, inputs = frame_method_inputs(f, cfg)
     return method_top(f.raw[None], coeffs, inputs).y[0]

@@ -29,6 +29,13 @@ from irnuc.nuc_fixed.memimage import pack_words
 from irnuc.nuc_fixed.nuc import nuc_core
 from irnuc.nuc_fixed.validate import InputError, as_config, check_frame_shape, int_array
 
+#: Memory of the work on frames besides the frames themselves, per ADC code and per pixel
+#: of a frame, above measured peaks (docs/robustness.md): calibration selects the two
+#: stacks and takes float64 statistics (per code), then some twenty float64 maps (per
+#: pixel); correction makes the output codes and their compressed file.
+CALIBRATE_WORK_BYTES = {"per_code": 12.0, "per_pixel": 1500.0}
+CORRECT_WORK_BYTES = {"per_code": 8.0, "per_pixel": 128.0}
+
 # Reasons that make the float coefficients meaningless (excluded from the needed range).
 _NOT_CALIBRATABLE = (Reason.STUCK | Reason.RAIL | Reason.EQUAL_RESPONSE | Reason.UNRESPONSIVE
                      | Reason.OVER_RESPONSIVE)

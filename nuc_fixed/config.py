@@ -8,13 +8,13 @@ derived from a configuration are properties here and nowhere else; ``docs/datapa
 defines them.
 
 A configuration names its correction ``method`` (``docs/methods.md``): a base method
-(:data:`BASE_METHODS`, default ``two_point``) optionally followed by stages
-(:data:`STAGES`), written ``"two_point+blind_drift"``. The base fields (ADC, gain,
-offset and output widths, rounding, overflow, frame size) are those of the two-point
-datapath; every other coefficient has a named format in ``formats`` (integer and fraction
-bits, signedness, rounding, overflow) and every method parameter is a field of its own.
-The memories of a method and the layout of their words are :attr:`PipelineConfig.memories`,
-its global registers :attr:`PipelineConfig.registers`: written once, here.
+(default ``two_point``) optionally followed by stages, written ``"two_point+blind_drift"``;
+both are things of the method registry (``nuc_fixed.methods``: :attr:`PipelineConfig.base`
+and :attr:`PipelineConfig.parts`), which also gives the schema's method parameters and
+formats, the checks, the memories and the registers. The base fields (ADC, gain, offset and
+output widths, rounding, overflow, frame size) are those of the two-point datapath; every
+other coefficient has a named format in ``formats`` (integer and fraction bits, signedness,
+rounding, overflow) and every method parameter is a field of its own.
 """
 
 from __future__ import annotations
@@ -32,58 +32,23 @@ from irnuc.common.errors import ConfigError
 from irnuc.common.io import PLAIN_NAME
 from irnuc.nuc_fixed import rtl_spec
 from irnuc.nuc_fixed.rtl_spec import OVERFLOW_MODES, ROUNDING_MODES
+from irnuc.nuc_fixed.spec import CoeffFormat, MemoryLayout, Register
 
 PIPELINES_TOML = Path(__file__).with_name("pipelines.toml")
 
 
-#: Base correction methods (one per pixel datapath) and the stages that compose with them.
-BASE_METHODS: tuple[str, ...] = ("one_point", "two_point", "piecewise", "quadratic",
-                                 "tc_offset", "table_interp")
-STAGES: tuple[str, ...] = ("blind_drift", "ffc")
-#: Bases a stage composes with (docs/methods.md says why blind_drift takes only these).
-STAGE_BASES: dict[str, tuple[str, ...]] = {
-    "blind_drift": ("one_point", "two_point"),
-    "ffc": BASE_METHODS,
-}
+
 
 # Legal ranges, checked before any work; the RTL asserts the same ranges (rtl_spec).
 _RANGES: dict[str, tuple[int, int]] = rtl_spec.PIPELINE_RANGES
 
-#: Method parameters: field -> (lo, hi, unit, the method or stage that uses it).
-_PARAM_RANGES: dict[str, tuple[int, int, str, tuple[str, ...]]] = {
-    "square_bits": (1, 24, "bits", ("quadratic",)),
-    "tc_order": (1, 2, "", ("tc_offset",)),
-    "reading_bits": (1, 24, "bits", ("tc_offset", "table_interp")),
-    "reading_range_bits": (1, 20, "bits", ("tc_offset",)),
-    "tables": (2, 16, "tables", ("table_interp",)),
-    "blind_max": (1, 1 << 20, "pixels", ("blind_drift",)),
-    "ffc_frames": (1, 1024, "frames", ("ffc",)),
-}
-_PARAM_OTHER: dict[str, tuple[dict[str, Any], tuple[str, ...]]] = {
-    "tc_gain": ({"type": "boolean"}, ("tc_offset",)),
-    "ffc_output": ({"enum": ["hold", "pass"]}, ("ffc",)),
-}
-PARAMS: tuple[str, ...] = (*_PARAM_RANGES, *_PARAM_OTHER)
 
-#: Coefficient formats by name: (signed, meaning). ``gain`` and ``offset`` are the base
-#: fields (gain_int_bits ...); every other format is a table in ``formats``.
-FORMAT_NAMES: dict[str, tuple[bool, str]] = {
-    "knee": (False, "piecewise breakpoint, ADC codes (per pixel)"),
-    "level": (False, "piecewise output at the breakpoint, output codes (register)"),
-    "quad": (True, "quadratic term at full-scale input, output codes (per pixel)"),
-    "tc1": (True, "offset change per 2^reading_range_bits reading codes, output codes"),
-    "tc2": (True, "offset change per (2^reading_range_bits reading codes)^2, output codes"),
-    "tg1": (True, "gain change per 2^reading_range_bits reading codes"),
-    "tg2": (True, "gain change per (2^reading_range_bits reading codes)^2"),
-    "weight": (False, "table interpolation weight in [0, 1] (per frame)"),
-    "drift": (True, "blind drift subtracted from the raw code, ADC codes (per frame)"),
-    "drift_gain": (True, "ADC codes of drift per code of the blind sum (register)"),
-    "ffc": (True, "FFC offset correction, output codes (per pixel, written by the FFC)"),
-}
+def _registry() -> Any:
+    """The method registry, imported on first use: its methods import this module."""
+    from irnuc.nuc_fixed import methods
 
-#: Formats of values the datapath computes (their rounding and overflow are datapath modes);
-#: the others are stored coefficients, rounded by calibration and always saturated.
-_COMPUTED_FORMATS = ("weight", "drift", "ffc")
+    return methods
+
 
 _FORMAT_SCHEMA = schema.table(
     {
@@ -96,150 +61,60 @@ _FORMAT_SCHEMA = schema.table(
     required=["int_bits", "frac_bits", "signed"],
 )
 
-#: The schema of one pipeline table (docs/datapath.md, "Symbols").
-PIPELINE_SCHEMA: dict[str, Any] = schema.table(
-    {
-        **{k: schema.number(lo, hi, integer=True, unit="bits" if k.endswith("bits") else "pixels")
-           for k, (lo, hi) in _RANGES.items()},
-        "rounding": {"enum": list(ROUNDING_MODES)},
-        "overflow": {"enum": list(OVERFLOW_MODES)},
-        "description": {"type": "string"},
-        # A name labels files and folders (synthesis, builds): never a path.
-        "name": {"type": "string", "minLength": 1, "pattern": PLAIN_NAME,
-                 "x-pattern-text": "a plain name (letters, digits, '_', '.', '-'; no path)"},
-        "method": {"type": "string", "minLength": 1},
-        **{k: schema.number(lo, hi, integer=True, unit=unit)
-           for k, (lo, hi, unit, _) in _PARAM_RANGES.items()},
-        **{k: s for k, (s, _) in _PARAM_OTHER.items()},
-        "formats": {"type": "object", "propertyNames": {"enum": list(FORMAT_NAMES)},
-                    "additionalProperties": _FORMAT_SCHEMA},
-    },
-    required=[*_RANGES, "rounding", "overflow"],
-)
+
+def _pipeline_schema() -> dict[str, Any]:
+    """The schema of one pipeline table (docs/datapath.md, "Symbols"): the base fields and
+    every parameter and format of the registry's methods and stages."""
+    reg = _registry()
+    return _schema_of(tuple(reg.BASES), tuple(reg.STAGES))
+
+
+@cache
+def _schema_of(bases: tuple[str, ...], stages: tuple[str, ...]) -> dict[str, Any]:
+    """:func:`_pipeline_schema` for the registry holding these methods (a test may add one)."""
+    reg = _registry()
+    return schema.table(
+        {
+            **{k: schema.number(lo, hi, integer=True,
+                                unit="bits" if k.endswith("bits") else "pixels")
+               for k, (lo, hi) in _RANGES.items()},
+            "rounding": {"enum": list(ROUNDING_MODES)},
+            "overflow": {"enum": list(OVERFLOW_MODES)},
+            "description": {"type": "string"},
+            # A name labels files and folders (synthesis, builds): never a path.
+            "name": {"type": "string", "minLength": 1, "pattern": PLAIN_NAME,
+                     "x-pattern-text": "a plain name (letters, digits, '_', '.', '-'; no path)"},
+            "method": {"type": "string", "minLength": 1},
+            **{k: dict(p.schema) for k, p in reg.all_params().items()},
+            "formats": {"type": "object", "propertyNames": {"enum": list(reg.all_formats())},
+                        "additionalProperties": _FORMAT_SCHEMA},
+        },
+        required=[*_RANGES, "rounding", "overflow"],
+    )
+
+
+def __getattr__(name: str) -> Any:
+    """The registry's lists under their former names (built on first use)."""
+    reg = _registry()
+    if name == "BASE_METHODS":
+        return tuple(reg.BASES)
+    if name == "STAGES":
+        return tuple(reg.STAGES)
+    if name == "STAGE_BASES":
+        return {s.name: s.bases or tuple(reg.BASES) for s in reg.STAGES.values()}
+    if name == "PARAMS":
+        return tuple(reg.all_params())
+    if name == "FORMAT_NAMES":
+        return {n: (f.signed, f.meaning) for n, f in reg.all_formats().items()}
+    if name == "PIPELINE_SCHEMA":
+        return _pipeline_schema()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def parse_method(text: str, source: str = "method") -> tuple[str, tuple[str, ...]]:
-    """``"two_point+blind_drift"`` -> ``("two_point", ("blind_drift",))``, checked.
-
-    The first name is the base method; the others are stages, each at most once, returned
-    in the canonical order of :data:`STAGES`.
-    """
-    names = [p.strip() for p in str(text).split("+")]
-    base, stages = names[0], names[1:]
-    if base not in BASE_METHODS:
-        hint = " (a stage; put a base method first)" if base in STAGES else ""
-        raise ConfigError(f"{source} = {text!r}: {base!r} is not a base method{hint}; known: "
-                          f"{', '.join(BASE_METHODS)}{schema.nearest(base, list(BASE_METHODS))}")
-    for s in stages:
-        if s not in STAGES:
-            raise ConfigError(f"{source} = {text!r}: {s!r} is not a stage; known: "
-                              f"{', '.join(STAGES)}{schema.nearest(s, list(STAGES))}")
-        if base not in STAGE_BASES[s]:
-            raise ConfigError(f"{source} = {text!r}: {s} composes only with "
-                              f"{', '.join(STAGE_BASES[s])} (docs/methods.md)")
-    if len(set(stages)) != len(stages):
-        raise ConfigError(f"{source} = {text!r}: a stage is named twice")
-    if "blind_drift" in stages and "ffc" in stages:
-        raise ConfigError(f"{source} = {text!r}: blind_drift and ffc together are not "
-                          "supported (docs/methods.md)")
-    return base, tuple(s for s in STAGES if s in stages)
-
-
-@dataclass(frozen=True)
-class CoeffFormat:
-    """The fixed-point format of one coefficient (``docs/datapath.md``, "Formats").
-
-    ``int_bits`` includes the sign bit of a signed format. ``rounding`` is how a value is
-    brought to this format (by calibration for a stored coefficient, by the datapath for
-    a computed one), ``overflow`` what happens outside its range.
-    """
-
-    name: str
-    int_bits: int
-    frac_bits: int
-    signed: bool
-    rounding: str = "half_even"
-    overflow: str = "saturate"
-
-    @property
-    def bits(self) -> int:
-        return self.int_bits + self.frac_bits
-
-    def __str__(self) -> str:
-        return f"{'S' if self.signed else 'U'}{self.int_bits}.{self.frac_bits}"
-
-    def to_dict(self) -> dict[str, object]:
-        return {"int_bits": self.int_bits, "frac_bits": self.frac_bits, "signed": self.signed,
-                "rounding": self.rounding, "overflow": self.overflow}
-
-
-@dataclass(frozen=True)
-class Field:
-    """One field of a memory word: bits ``[lsb + width - 1 : lsb]``."""
-
-    name: str
-    lsb: int
-    width: int
-    signed: bool
-    format: str  # "U2.14", "S12.4", "flag", ...
-
-    @property
-    def msb(self) -> int:
-        return self.lsb + self.width - 1
-
-
-@dataclass(frozen=True)
-class MemoryLayout:
-    """A per-pixel memory: one word per pixel, raster order.
-
-    ``source`` is ``calibration`` (written by ``irnuc calibrate`` into a memory image) or
-    ``runtime`` (written by the hardware, e.g. the FFC accumulator; starts at zero).
-    ``reads`` is how many words per pixel each frame reads from the memories of this kind
-    (table_interp reads two of its K tables), ``writes`` how many it writes in a frame
-    that writes it.
-    """
-
-    name: str
-    fields: tuple[Field, ...]
-    source: str = "calibration"
-    reads_per_frame: int = 1
-
-    @property
-    def word_bits(self) -> int:
-        return sum(f.width for f in self.fields)
-
-    def field(self, name: str) -> Field:
-        for f in self.fields:
-            if f.name == name:
-                return f
-        raise KeyError(name)
-
-    def to_dict(self) -> dict[str, object]:
-        return {"word_bits": self.word_bits, "source": self.source,
-                "fields": {f.name: {"msb": f.msb, "lsb": f.lsb, "width": f.width,
-                                    "signed": f.signed, "format": f.format}
-                           for f in self.fields}}
-
-
-@dataclass(frozen=True)
-class Register:
-    """A global register (one value, or ``count`` values, per camera or per frame)."""
-
-    name: str
-    width: int
-    signed: bool
-    format: str
-    count: int = 1
-    source: str = "calibration"  # or "runtime" (per frame, from the frame's fields)
-    meaning: str = ""
-
-
-def _layout(name: str, spec: list[tuple[str, int, bool, str]], **kw: Any) -> MemoryLayout:
-    out, lsb = [], 0
-    for fname, width, signed, fmt in spec:
-        out.append(Field(fname, lsb, width, signed, fmt))
-        lsb += width
-    return MemoryLayout(name, tuple(out), **kw)
+    """``"two_point+blind_drift"`` -> ``("two_point", ("blind_drift",))``, checked
+    (``nuc_fixed.methods.parse_method``)."""
+    return _registry().parse_method(text, source)
 
 
 @dataclass(frozen=True)
@@ -276,7 +151,7 @@ class PipelineConfig:
             if not all(isinstance(v, Mapping) for v in fm.values()):
                 raise ConfigError(f"pipeline {self.name!r}: formats must map names to tables")
             try:
-                schema.check(dict(fm), PIPELINE_SCHEMA["properties"]["formats"],
+                schema.check(dict(fm), _pipeline_schema()["properties"]["formats"],
                              source=f"pipeline {self.name!r}", prefix="formats")
             except schema.SchemaError as exc:
                 raise ConfigError(str(exc)) from None
@@ -285,7 +160,7 @@ class PipelineConfig:
             raise ConfigError(f"pipeline {self.name!r}: formats must map names to tables")
         object.__setattr__(self, "formats", tuple(sorted(fm, key=lambda f: f.name)))
         try:
-            schema.check(self.to_dict(), PIPELINE_SCHEMA, source=f"pipeline {self.name!r}")
+            schema.check(self.to_dict(), _pipeline_schema(), source=f"pipeline {self.name!r}")
         except schema.SchemaError as exc:
             raise ConfigError(str(exc)) from None
         base, stages = parse_method(self.method, f"pipeline {self.name!r}: method")
@@ -307,74 +182,49 @@ class PipelineConfig:
             )
         for mem in self.memories.values():
             # (A two-point word beyond 64 bits is refused where words are packed, as before.)
-            if mem.word_bits > 64 and self.method != "two_point":
+            if mem.word_bits > 64 and not self.plain:
                 raise ConfigError(
                     f"pipeline {self.name!r}: memory {mem.name!r} has {mem.word_bits}-bit "
                     "words; the golden model's uint64 words hold at most 64")
 
     # ---- method ----------------------------------------------------------------------
     def _check_method(self, base: str, stages: tuple[str, ...]) -> None:
+        reg = _registry()
         src = f"pipeline {self.name!r} (method {self.method!r})"
-        parts = (base, *stages)
-        needed_params = [p for p, (*_, users) in _PARAM_RANGES.items() if set(users) & set(parts)]
-        needed_params += [p for p, (_, users) in _PARAM_OTHER.items() if set(users) & set(parts)]
-        for p in PARAMS:
+        needed_params = reg.used_params(self)
+        for p in reg.all_params():
             v = getattr(self, p)
             if p in needed_params and v is None:
                 raise ConfigError(f"{src}: {p} is required but missing")
             if p not in needed_params and v is not None:
                 raise ConfigError(f"{src}: {p} is not used by this method")
-        want = set(self.format_names_needed(base, stages))
+        want = set(self.format_names_needed())
         have = {f.name for f in self.formats}
         if want - have:
             raise ConfigError(f"{src}: formats.{sorted(want - have)[0]} is required but missing")
         if have - want:
             raise ConfigError(f"{src}: formats.{sorted(have - want)[0]} is not used by this "
                               f"method (it uses {', '.join(sorted(want)) or 'no extra format'})")
+        specs = reg.all_formats()
         for f in self.formats:
-            signed, meaning = FORMAT_NAMES[f.name]
-            if f.signed != signed:
+            spec = specs[f.name]
+            if f.signed != spec.signed:
                 raise ConfigError(f"{src}: formats.{f.name}.signed = {str(f.signed).lower()}; "
-                                  f"{f.name} ({meaning}) must be "
-                                  f"{'signed' if signed else 'unsigned'}")
+                                  f"{f.name} ({spec.meaning}) must be "
+                                  f"{'signed' if spec.signed else 'unsigned'}")
             if f.bits < 1 or (f.signed and f.int_bits < 1):
                 raise ConfigError(f"{src}: formats.{f.name} = {f} needs at least one bit"
                                   + (" of integer (the sign)" if f.signed else ""))
         for f in self.formats:
-            if f.name not in _COMPUTED_FORMATS and f.overflow != "saturate":
+            if not specs[f.name].computed and f.overflow != "saturate":
                 raise ConfigError(f"{src}: formats.{f.name}.overflow = {f.overflow!r}; a stored "
                                   "coefficient saturates (calibration flags the pixel)")
-        if self.ffc_frames is not None and self.ffc_frames & (self.ffc_frames - 1):
-            raise ConfigError(f"{src}: ffc_frames = {self.ffc_frames} must be a power of two "
-                              "(the mean is a shift)")
-        if base == "table_interp" and self.format("weight").int_bits < 1:
-            raise ConfigError(f"{src}: formats.weight = {self.format('weight')} cannot hold "
-                              "1.0; int_bits must be at least 1")
-        if base == "piecewise" and self.format("knee").int_bits < self.adc_bits:
-            raise ConfigError(f"{src}: formats.knee.int_bits = {self.format('knee').int_bits} "
-                              f"must be at least adc_bits = {self.adc_bits} (a knee is an ADC "
-                              "code)")
-        if "blind_drift" in stages:
-            d, m = self.format("drift"), self.format("drift_gain")
-            if m.frac_bits < d.frac_bits:
-                raise ConfigError(f"{src}: formats.drift_gain.frac_bits = {m.frac_bits} must "
-                                  f"be at least formats.drift.frac_bits = {d.frac_bits}")
+        for part in reg.parts(self):
+            part.check(self, src)
 
-    def format_names_needed(self, base: str | None = None,
-                            stages: tuple[str, ...] | None = None) -> tuple[str, ...]:
+    def format_names_needed(self) -> tuple[str, ...]:
         """The names in ``formats`` this configuration's method uses."""
-        if base is None:
-            base, stages = self.base_method, self.stages
-        need: list[str] = {"piecewise": ["knee", "level"], "quadratic": ["quad"],
-                           "table_interp": ["weight"]}.get(base, [])
-        if base == "tc_offset":
-            order = self.tc_order or 1
-            need += ["tc1", "tc2"][:order]
-            if self.tc_gain:
-                need += ["tg1", "tg2"][:order]
-        for s in stages or ():
-            need += {"blind_drift": ["drift", "drift_gain"], "ffc": ["ffc"]}[s]
-        return tuple(need)
+        return _registry().used_formats(self)
 
     @property
     def max_frame_pixels(self) -> int:
@@ -393,6 +243,22 @@ class PipelineConfig:
 
     def has(self, stage: str) -> bool:
         return stage in self.stages
+
+    @property
+    def base(self) -> Any:
+        """The base method (``nuc_fixed.methods``' :class:`~irnuc.nuc_fixed.spec.MethodSpec`)."""
+        return _registry().base(self.base_method)
+
+    @property
+    def parts(self) -> tuple[Any, ...]:
+        """The base method and the stages (:class:`~irnuc.nuc_fixed.spec.StageSpec`), in order."""
+        return _registry().parts(self)
+
+    @property
+    def plain(self) -> bool:
+        """The plain two-point NUC: no stage, the base ``MethodSpec.plain`` (memory image
+        version 1, ``nuc_dpc_top``)."""
+        return not self.stages and bool(self.base.plain)
 
     def format(self, name: str) -> CoeffFormat:
         """The format of a coefficient: ``gain``, ``offset`` or a name in ``formats``."""
@@ -456,88 +322,21 @@ class PipelineConfig:
 
     @property
     def memories(self) -> dict[str, MemoryLayout]:
-        """Every per-pixel memory of the method and its word layout (docs/datapath.md).
+        """Every per-pixel memory of the method and its word layout (docs/datapath.md): the
+        base method's, then the stages' (``MethodSpec.memories``, ``StageSpec.memories``).
 
-        The one place the layouts are written: packing, unpacking, the kernels, the
-        manifest and the generated RTL package (``nuc_fixed.layout.rtl_package``) follow it.
+        Packing, unpacking, the kernels, the manifest and the generated RTL package
+        (``nuc_fixed.layout.rtl_package``) follow it.
         """
-        gw, ow = self.gain_bits, self.offset_bits
-        g = ("gain", gw, False, str(self.format("gain")))
-        o = ("offset", ow, True, str(self.format("offset")))
-        bad = ("bad", 1, False, "flag")
-        base = self.base_method
-
-        def fmt(name: str, field: str | None = None) -> tuple[str, int, bool, str]:
-            f = self.format(name)
-            return (field or name, f.bits, f.signed, str(f))
-
-        mems: list[MemoryLayout] = []
-        if base == "one_point":
-            mems.append(_layout("coeffs", [o, bad]))
-        elif base == "two_point":
-            mems.append(_layout("coeffs", [g, o, bad]))
-        elif base == "piecewise":
-            mems.append(_layout("coeffs", [("gain_lo", gw, False, g[3]),
-                                           ("gain_hi", gw, False, g[3]), fmt("knee"), bad]))
-        elif base == "quadratic":
-            mems += [_layout("coeffs", [g, o, bad]), _layout("quad", [fmt("quad")])]
-        elif base == "tc_offset":
-            order = int(self.tc_order or 1)
-            mems += [_layout("coeffs", [g, o, bad]),
-                     _layout("tc", [fmt(n) for n in ["tc1", "tc2"][:order]])]
-            if self.tc_gain:
-                mems.append(_layout("tg", [fmt(n) for n in ["tg1", "tg2"][:order]]))
-        elif base == "table_interp":
-            mems += [_layout(f"table{k}", [g, o, bad], reads_per_frame=0)
-                     for k in range(self.tables or 0)]
-        if self.has("ffc"):
-            n = (self.ffc_frames or 1).bit_length() - 1
-            acc = self.adc_bits + n
-            mems += [_layout("ffc_offset", [fmt("ffc")], source="runtime"),
-                     _layout("ffc_acc", [("acc", acc, False, f"U{acc}.0")], source="runtime",
-                             reads_per_frame=0)]
-        return {m.name: m for m in mems}
+        return {m.name: m for part in self.parts for m in part.memories(self)}
 
     @property
     def registers(self) -> dict[str, Register]:
-        """Global registers of the method: calibration constants and per-frame inputs."""
-        regs: list[Register] = []
-        base = self.base_method
-        if base == "one_point":
-            gf = self.format("gain")
-            regs.append(Register("gain", gf.bits, False, str(gf),
-                                 meaning="global gain (output codes per ADC code)"))
-        if base == "piecewise":
-            lf = self.format("level")
-            regs.append(Register("level", lf.bits, False, str(lf),
-                                 meaning="output at every pixel's knee, output codes"))
-        if base in ("tc_offset", "table_interp"):
-            r = self.reading_bits or 1
-            regs.append(Register("reading", r, False, f"U{r}.0", source="runtime",
-                                 meaning="FPA sensor reading latched at the frame start"))
-        if base == "tc_offset":
-            r = self.reading_bits or 1
-            regs.append(Register("t_ref", r, False, f"U{r}.0",
-                                 meaning="reading at which the polynomials are centred"))
-        if base == "table_interp":
-            r = self.reading_bits or 1
-            regs.append(Register("table_readings", r, False, f"U{r}.0", count=self.tables or 0,
-                                 meaning="reading of each table, strictly increasing"))
-        if self.has("blind_drift"):
-            sb = self.blind_sum_bits
-            mf = self.format("drift_gain")
-            regs += [Register("blind_sum", sb, False, f"U{sb}.0", source="runtime",
-                              meaning="sum of the frame's blind pixel codes"),
-                     Register("blind_ref", sb, False, f"U{sb}.0",
-                              meaning="blind pixel sum at calibration"),
-                     Register("drift_gain", mf.bits, True, str(mf),
-                              meaning="drift (ADC codes) per code of blind sum change")]
-        if self.has("ffc"):
-            c = self.format("ffc")
-            regs.append(Register("ffc_target", self.out_bits + c.frac_bits, False,
-                                 f"U{self.out_bits}.{c.frac_bits}", source="runtime",
-                                 meaning="output level the FFC flattens the shutter to"))
-        return {r.name: r for r in regs}
+        """Global registers of the method: per part, its readings' runtime registers and its
+        calibration constants and per-frame inputs."""
+        reg = _registry()
+        return {r.name: r for part in self.parts
+                for r in (*reg.reading_registers(self, part), *part.registers(self))}
 
     @property
     def blind_sum_bits(self) -> int:
@@ -570,11 +369,12 @@ class PipelineConfig:
     def to_dict(self) -> dict[str, object]:
         """Every field; the method fields only when set, so that a two-point configuration
         has the same dictionary (and digest) as before methods existed."""
+        params = tuple(_registry().all_params())
         out: dict[str, object] = {f.name: getattr(self, f.name) for f in fields(self)
-                                  if f.name not in ("method", "formats", *PARAMS)}
+                                  if f.name not in ("method", "formats", *params)}
         if self.method != "two_point":
             out["method"] = self.method
-        for p in PARAMS:
+        for p in params:
             if getattr(self, p) is not None:
                 out[p] = getattr(self, p)
         if self.formats:
@@ -647,7 +447,7 @@ def _from_table(name: str, entry: Any, source: str) -> PipelineConfig:
     if not isinstance(entry, dict):
         raise ConfigError(f"{source}: [{name}] must be a table of pipeline fields")
     try:
-        schema.check(entry, PIPELINE_SCHEMA, source=source, prefix=name)
+        schema.check(entry, _pipeline_schema(), source=source, prefix=name)
     except schema.SchemaError as exc:
         raise ConfigError(str(exc)) from None
     known = {f.name for f in fields(PipelineConfig)}

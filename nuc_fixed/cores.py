@@ -1,8 +1,9 @@
 """The per-pixel cores of the correction methods, bit-exact to ``docs/datapath.md``.
 
 One function per RTL module: :func:`drift_sub` (x' = (x << Df) - delta), :func:`lin_core`
-(two_point, one_point, tc_offset and table_interp: g*x + o), :func:`quad_core`
-(quadratic: g*x + o + q*(x/2^A)^2), :func:`pwl_core` (piecewise: level + g_sel*(x - knee)).
+(the ``lin`` kind: g*x + o), :func:`quad_core` (``quad``: g*x + o + q*(x/2^A)^2),
+:func:`pwl_core` (``pwl``: level + g_sel*(x - knee)); :data:`CORES` by kind, the kind of a
+method being ``MethodSpec.core``.
 Every core takes its input with ``xfrac`` fraction bits (0 for raw codes, Df after the
 blind drift, n = log2(ffc_frames) for the FFC accumulator in the refresh pass) and an
 optional FFC offset correction, and returns :class:`CoreResult`: the aligned sum ``s``
@@ -15,7 +16,9 @@ every intermediate within 62 bits); ROUND_F and OUT are the datapath's own kerne
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -193,3 +196,25 @@ def pwl_core(x: object, gain_lo: object, gain_hi: object, knee: object, level: i
     s = ((d * g) << (f - cfg.gain_frac_bits - dd)) + (lvl << (f - cfg.format("level").frac_bits))
     s = s + _ffc_term(ffc, cfg, f, s.shape)
     return _finish(s, f, cfg, sum_only)
+
+
+def _lin(x: object, fc: Mapping[str, Any], cfg: PipelineConfig, *, signed_x: bool = False,
+         **kw: Any) -> CoreResult:
+    return lin_core(x, fc["gain"], fc["offset"], cfg, signed_x=signed_x, **kw)
+
+
+def _quad(x: object, fc: Mapping[str, Any], cfg: PipelineConfig, *, signed_x: bool = False,
+          **kw: Any) -> CoreResult:
+    return quad_core(x, fc["gain"], fc["offset"], fc["quad"], cfg, **kw)
+
+
+def _pwl(x: object, fc: Mapping[str, Any], cfg: PipelineConfig, *, signed_x: bool = False,
+         **kw: Any) -> CoreResult:
+    return pwl_core(x, fc["gain_lo"], fc["gain_hi"], fc["knee"], int(fc["level"]), cfg, **kw)
+
+
+#: The cores by kind (``MethodSpec.core``), each on the frame's coefficients of a method
+#: (``MethodSpec.frame_coefficients``): lin (``lin_core``: gain, offset), quad
+#: (``quad_core``: gain, offset, quad), pwl (``pwl_core``: gain_lo, gain_hi, knee, level).
+#: Only the linear core takes a signed input (x' of blind_drift).
+CORES: dict[str, Callable[..., CoreResult]] = {"lin": _lin, "quad": _quad, "pwl": _pwl}

@@ -75,12 +75,14 @@ def ffc_refresh(s_acc: np.ndarray, sum_frac: int, target: int,
 
 
 def ffc_mean_target(s_acc: np.ndarray, sum_frac: int, good: np.ndarray,
-                    cfg: PipelineConfig | str) -> int:
+                    cfg: PipelineConfig | str) -> int | None:
     """The target that keeps the shutter image's level: the mean over good pixels.
 
     T = CLAMP(RDIV(sum over good pixels of ROUND_(F - Cf)(s), n_good), 0, 2^(B + Cf) - 1),
     rounding half up, ROUND with the ffc format's rounding (a pass over the accumulator
-    before the refresh pass, one division per FFC).
+    before the refresh pass, one division per FFC). None when no pixel is good
+    (n_good = 0): there is no target, and the refresh keeps the previous offsets
+    (docs/datapath.md "ffc"; the RTL's target register then reads 0).
     """
     cfg = as_config(cfg)
     c = cfg.format("ffc")
@@ -90,7 +92,7 @@ def ffc_mean_target(s_acc: np.ndarray, sum_frac: int, good: np.ndarray,
     g = np.asarray(good, bool)
     n = int(g.sum())
     if n == 0:
-        raise InputError("no good pixel to take the FFC target from")
+        return None
     t = round_div(int(v[g].sum()), n, "half_up")
     return min(max(t, 0), (1 << (cfg.out_bits + c.frac_bits)) - 1)
 
@@ -100,9 +102,10 @@ class FfcState:
     """The FFC sequencer: accumulation count, accumulator and the offset correction.
 
     Per frame (:meth:`step`): a shutter frame is accumulated while fewer than N frames of
-    the current shutter run were; after the N-th the refresh runs and the new correction
-    is used from the next frame. A shutter run shorter than N leaves the correction as it
-    was. A frame with the shutter open ends the run.
+    the current shutter run were; after the N-th the refresh pass runs in the next frame,
+    and its new correction corrects that frame and the frames after it. A shutter run
+    shorter than N leaves the correction as it was. A frame with the shutter open ends the
+    run.
     """
 
     cfg: PipelineConfig

@@ -23,7 +23,6 @@ and, for the configuration's method:
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -207,132 +206,43 @@ class _Q:
         return ff.to_value(codes) if np.ndim(value) else float(ff.to_value(codes)[0])
 
 
-def _reading_regressors(cfg: PipelineConfig, readings: list[int], t_ref: int) -> np.ndarray:
-    """[1, v, v2] of each point as the datapath computes them (u clamped, u2 floored)."""
-    ts = int(cfg.reading_range_bits or 1)
-    lim = (1 << ts) - 1
-    rows = []
-    for t in readings:
-        u = t - t_ref
-        if abs(u) > lim:
-            raise FormatRangeError(
-                f"pipeline {cfg.name!r}: an FPA point reads {u:+d} codes from the reference "
-                f"reading {t_ref}; reading_range_bits = {ts} holds +-{lim}: widen it")
-        rows.append([1.0, u / 2.0**ts, ((u * u) >> ts) / 2.0**ts])
-    return np.asarray(rows)[:, : int(cfg.tc_order or 1) + 1]
+def check_readings(cfg: PipelineConfig, readings: list[int], reference: int, source: str,
+                   sensor: str = "the FPA sensor") -> None:
+    """:class:`PlanError` when the FPA readings of the calibration points (one per FPA
+    point, ``reference`` the index of the reference point) cannot calibrate ``cfg``'s
+    method (``MethodSpec.check_readings``: tc_offset needs ``tc_order`` + 1 distinct
+    readings within ``reading_range_bits`` of the reference one, table_interp one distinct
+    reading per table); a reading beyond ``reading_bits`` (:func:`check_reading_codes`).
+
+    Run before the simulation on the readings the plan's temperatures give, and on the
+    frames' readings before the fit.
+    """
+    cfg.base.check_readings(cfg, list(readings), reference, source, sensor)
+
+
+def check_reading_codes(cfg: PipelineConfig, readings: list[int], need: int, what: str,
+                        source: str, sensor: str) -> None:
+    """The readings within ``reading_bits`` (:class:`FormatRangeError`), and at least
+    ``need`` distinct ones (:class:`PlanError` saying ``what`` the method fits)."""
+    top = (1 << int(cfg.reading_bits or 1)) - 1
+    if max(readings) > top or min(readings) < 0:
+        raise FormatRangeError(f"{source}: {sensor} reads {readings} at the FPA points; pipeline "
+                        f"{cfg.name!r} has reading_bits = {cfg.reading_bits} (0..{top}): "
+                        "use a pipeline whose reading_bits holds the sensor's readings")
+    distinct = len(set(readings))
+    if distinct < need:
+        raise PlanError(f"{source}: {sensor} reads {readings} at the FPA points ({distinct} "
+                        f"distinct); {what}: the sensor is too coarse for these temperatures "
+                        "(a smaller fpa_sensor.lsb_K, or FPA points farther apart)")
 
 
 def _fit(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, t: np.ndarray,
          good: np.ndarray, q: _Q) -> None:
-    """Fit and quantize the base method's coefficients (and blind_drift's registers)."""
-    base = cfg.base_method
-    ref = pts.reference
-    x = means[ref]  # (S, H, W) at the reference FPA point
-    scale = 2.0 ** (cfg.out_bits - cfg.adc_bits)
-    if base == "one_point":
-        gv = q.register("gain", "gain", scale)
-        q.field("coeffs.offset", "offset", ls_fixed_gain(x, t, gv))
-    elif base == "two_point":
-        g, _ = ls_line(x, t)
-        gq = q.field("coeffs.gain", "gain", g)
-        q.field("coeffs.offset", "offset", ls_fixed_gain(x, t, gq))
-    elif base == "piecewise":
-        mid = len(t) // 2
-        kq = q.field("coeffs.knee", "knee", x[mid])
-        lv = q.register("level", "level", float(t[mid]))
-        _, _, g_lo, g_hi = piecewise_fit(x, t, knee=kq, level=lv)
-        q.field("coeffs.gain_lo", "gain", g_lo)
-        q.field("coeffs.gain_hi", "gain", g_hi)
-    elif base == "quadratic":
-        qq, _, _ = quadratic_fit(x, t, cfg.adc_bits)
-        qv = q.field("quad.quad", "quad", qq)
-        # The line through what the quantized quadratic term leaves.
-        rest = t.reshape(-1, 1, 1) - qv * (x / float(1 << cfg.adc_bits)) ** 2
-        g, _ = ls_line(x, rest)
-        gq = q.field("coeffs.gain", "gain", g)
-        q.field("coeffs.offset", "offset", ls_fixed_gain(x, rest, gq))
-    elif base in ("tc_offset", "table_interp"):
-        readings = [pts.point_reading(p) for p in range(means.shape[0])]
-        if min(readings) < 0:
-            raise PlanError(f"{pts.source}: method {cfg.method!r} needs the FPA reading of "
-                            "every frame (fpa_reading); the frames lack it")
-        xbar = means.mean(axis=1)  # (P, H, W)
-        tbar = float(np.mean(t))
-        if base == "table_interp":
-            order = np.argsort(readings)
-            rs = [readings[i] for i in order]
-            if len(rs) != cfg.tables:
-                raise PlanError(f"{pts.source}: method table_interp with tables = {cfg.tables} "
-                                f"needs {cfg.tables} FPA temperatures; the plan has {len(rs)}")
-            if any(b <= a for a, b in itertools.pairwise(rs)):
-                raise PlanError(f"{pts.source}: two FPA points give the same reading {rs}; "
-                                "table readings must increase strictly")
-            q.register("table_readings", None, rs, bits=int(cfg.reading_bits or 1))
-            for k, p in enumerate(order):
-                g, _ = ls_line(means[p], t)
-                gq = q.field(f"table{k}.gain", "gain", g)
-                q.field(f"table{k}.offset", "offset", tbar - gq * xbar[p])
-        else:
-            t_ref = readings[ref]
-            q.register("t_ref", None, t_ref, bits=int(cfg.reading_bits or 1))
-            reg = _reading_regressors(cfg, readings, t_ref)
-            order = int(cfg.tc_order or 1)
-            if means.shape[0] < order + 1:
-                raise PlanError(f"{pts.source}: tc_order = {order} needs at least {order + 1} "
-                                f"FPA temperatures; the plan has {means.shape[0]}")
-            if cfg.tc_gain:
-                gp = np.stack([ls_line(means[p], t)[0] for p in range(means.shape[0])])
-                gc = ls_poly(np.asarray(readings), gp, reg)
-                vals = [q.field("coeffs.gain", "gain", gc[0])]
-                vals += [q.field(f"tg.{n}", n, gc[i + 1])
-                         for i, n in enumerate(["tg1", "tg2"][:order])]
-                g_at = np.einsum("pk,khw->phw", reg, np.stack(vals))
-            else:
-                xc = means - means.mean(axis=1, keepdims=True)       # (P, S, H, W)
-                tc = (t - tbar).reshape(1, -1, 1, 1)
-                sxx = (xc * xc).sum(axis=(0, 1))
-                g = np.divide((xc * tc).sum(axis=(0, 1)), sxx, out=np.zeros_like(sxx),
-                              where=sxx > 0)
-                g_at = np.broadcast_to(q.field("coeffs.gain", "gain", g), xbar.shape)
-            oc = ls_poly(np.asarray(readings), tbar - g_at * xbar, reg)
-            q.field("coeffs.offset", "offset", oc[0])
-            for i, n in enumerate(["tc1", "tc2"][:order]):
-                q.field(f"tc.{n}", n, oc[i + 1])
-    if cfg.has("blind_drift"):
-        _fit_drift(cfg, pts, means, good, q)
-
-
-def _fit_drift(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, good: np.ndarray,
-               q: _Q) -> None:
-    """blind_ref (the blind sum at the reference point) and drift_gain = k / K.
-
-    k, how many ADC codes the image moves per code of the blind mean, is measured when the
-    plan changes the housing temperature alone (``drift_cam``): the least-squares slope of
-    the mean active code against the mean blind code over those points and the reference
-    point's middle scene. Without them k = 1, as the paper repository takes it.
-    """
-    if pts.blind_codes is None:
-        raise PlanError(f"{pts.source}: method {cfg.method!r} needs the blind pixel codes of "
-                        "every frame (blind_codes); the frames lack them")
-    b = pts.blind_codes.astype(np.float64)               # (P, S, M, K)
-    kb = b.shape[-1]
-    if kb > int(cfg.blind_max or 0):
-        raise PlanError(f"{pts.source}: {kb} blind pixels per frame; pipeline "
-                        f"{cfg.name!r} has blind_max = {cfg.blind_max}")
-    ref = pts.reference
-    q.register("blind_ref", None, float(b[ref].sum(axis=-1).mean()), bits=cfg.blind_sum_bits)
-    k, source = 1.0, "paper repository (k = 1): the plan has no drift_cam points"
-    if pts.drift_codes is not None and pts.drift_blind is not None:
-        mid = means.shape[1] // 2
-        xs = [means[ref, mid][good].mean()] + [d.mean(axis=0)[good].mean() for d in pts.drift_codes]
-        bs = [b[ref, mid].mean()] + [float(d.mean()) for d in pts.drift_blind]
-        if np.ptp(bs) > 0:
-            k = float(np.polyfit(bs, xs, 1)[0])
-            source = (f"fit over the housing at {', '.join(f'{t:g}' for t in pts.drift_cam_K)} K "
-                      f"(FPA {pts.fpa_K[ref]:g} K)")
-    q.floats["drift_coupling"] = k
-    q.floats["drift_coupling_source"] = source
-    q.register("drift_gain", "drift_gain", k / kb)
+    """Fit and quantize the base method's coefficients (``MethodSpec.fit``), then the
+    stages' registers (``StageSpec.fit``: blind_drift's)."""
+    cfg.base.fit(cfg, pts, means, t, q)
+    for stage in cfg.parts[1:]:
+        stage.fit(cfg, pts, means, good, q)
 
 
 # ---- the float evaluation of a fit (for residuals and studies) ---------------------------
@@ -340,40 +250,15 @@ def _fit_drift(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, good: n
 def float_correct(cal: MethodCalibration, x: np.ndarray, reading: int | None = None,
                   blind_mean_change: float = 0.0) -> np.ndarray:
     """The method's real-valued output (output codes, unrounded, unclipped) for raw ``x``
-    with the unquantized fit: the method's error without fixed point."""
+    with the unquantized fit: the method's error without fixed point
+    (``MethodSpec.float_correct`` on ``x`` less blind_drift's coupling times the change of
+    the blind mean)."""
+    from irnuc.nuc_fixed import methods
+
     cfg, f = cal.cfg, cal.floats
-    base = cfg.base_method
     xf = np.asarray(x, dtype=np.float64) - (f.get("drift_coupling", 0.0) * blind_mean_change
                                             if cfg.has("blind_drift") else 0.0)
-    if base == "one_point":
-        return f["gain"] * xf + f["coeffs.offset"]
-    if base == "two_point":
-        return f["coeffs.gain"] * xf + f["coeffs.offset"]
-    if base == "piecewise":
-        k = f["coeffs.knee"]
-        g = np.where(xf <= k, f["coeffs.gain_lo"], f["coeffs.gain_hi"])
-        return f["level"] + g * (xf - k)
-    if base == "quadratic":
-        return (f["quad.quad"] * (xf / float(1 << cfg.adc_bits)) ** 2 + f["coeffs.gain"] * xf
-                + f["coeffs.offset"])
-    t = int(reading)  # type: ignore[arg-type]
-    if base == "tc_offset":
-        lim = (1 << int(cfg.reading_range_bits or 1)) - 1
-        t_ref = int(f["t_ref"])
-        reg = _reading_regressors(cfg, [min(max(t, t_ref - lim), t_ref + lim)], t_ref)[0]
-        names = ["tc1", "tc2"][: int(cfg.tc_order or 1)]
-        o = f["coeffs.offset"] + sum(r * f[f"tc.{n}"] for r, n in zip(reg[1:], names, strict=False))
-        g = f["coeffs.gain"]
-        if cfg.tc_gain:
-            gn = ["tg1", "tg2"][: int(cfg.tc_order or 1)]
-            g = g + sum(r * f[f"tg.{n}"] for r, n in zip(reg[1:], gn, strict=False))
-        return g * xf + o
-    rs = list(f["table_readings"])
-    j = max([i for i in range(len(rs) - 1) if rs[i] <= t] or [0])
-    w = min(max((t - rs[j]) / (rs[j + 1] - rs[j]), 0.0), 1.0)
-    g = (1 - w) * f[f"table{j}.gain"] + w * f[f"table{j + 1}.gain"]
-    o = (1 - w) * f[f"table{j}.offset"] + w * f[f"table{j + 1}.offset"]
-    return g * xf + o
+    return cfg.base.float_correct(cfg, f, xf, methods.frame(cfg, reading))
 
 
 # ---- the calibration ----------------------------------------------------------------------
@@ -417,12 +302,15 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
     if rounding is not None and rounding not in ROUNDING_MODES:
         raise ConfigError(f"rounding = {rounding!r} is not one of {sorted(ROUNDING_MODES)}")
     th = thresholds if thresholds is not None else load_thresholds()
+    # No method models the housing: it is fitted at the points where the housing is where
+    # it assumes (the reference point's offset from the FPA); the residual covers them all.
+    every_point, points = points, points.fpa_points()
     if points.adc_bits != cfg.adc_bits:
         raise InputError(f"{points.source}: the frames have adc_bits = {points.adc_bits} but "
                          f"pipeline {cfg.name!r} expects {cfg.adc_bits}")
     n_p, n_s, n_m, h, w = points.codes.shape
     check_frame_shape("calibration frames", (h, w), cfg)
-    need_s = 3 if cfg.base_method in ("piecewise", "quadratic") else 2
+    need_s = cfg.base.scenes
     if n_s < need_s:
         raise PlanError(f"{points.source}: method {cfg.method!r} needs at least {need_s} scene "
                         f"temperatures; the plan has {n_s}")
@@ -491,7 +379,7 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
     coeffs = MethodCoefficients(cfg=cfg, fields=fields, registers=dict(q.regs))
     coeffs.check()
     cal = MethodCalibration(coeffs=coeffs, reasons=reasons, floats=q.floats, targets=t)
-    residual = point_residuals(cal, points)
+    residual = point_residuals(cal, every_point)
     counts = {r.name: int(((reasons & int(r)) != 0).sum()) for r in Reason}
     summary: dict[str, Any] = {
         "config": cfg.name,
@@ -499,7 +387,10 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
         "frame": [h, w],
         "points": {"scene_K": points.scene_K.tolist(), "fpa_K": points.fpa_K.tolist(),
                    "frames": int(n_m), "reference_fpa_K": float(points.fpa_K[ref]),
-                   "readings": [points.point_reading(p) for p in range(n_p)]},
+                   "readings": [points.point_reading(p) for p in range(n_p)],
+                   "housing_K": None if points.housing_K is None else points.housing_K.tolist(),
+                   "housing_offset_K": _offsets(every_point),
+                   "all_points": len(every_point.fpa_K)},
         "targets": t.tolist(),
         "rounding": rounding or "per format",
         "thresholds": th.to_dict(),
@@ -548,11 +439,23 @@ def point_residuals(cal: MethodCalibration, points: PointFrames) -> list[dict[st
             e = y[s].astype(np.float64)[good] - cal.targets[s]
             ef = float_correct(cal, means[p, s], reading, bchange)[good] - cal.targets[s]
             out.append({"fpa_K": float(points.fpa_K[p]), "scene_K": float(points.scene_K[s]),
+                        "housing_K": (None if points.housing_K is None
+                                      else float(points.housing_K[p])),
                         "reading": reading, "rms": float(np.sqrt(np.mean(e**2))),
                         "max_abs": float(np.abs(e).max()), "std": float(e.std()),
                         "float_rms": float(np.sqrt(np.mean(ef**2))),
                         "float_std": float(ef.std())})
     return out
+
+
+def _offsets(points: Any) -> list[float] | None:
+    """The plan's housing offsets from the FPA (K, sorted) when it sets the housing at more
+    than one, else None."""
+    if points.housing_K is None:
+        return None
+    off = sorted({round(float(h - f), 9)
+                  for h, f in zip(points.housing_K, points.fpa_K, strict=True)})
+    return off if len(off) > 1 else None
 
 
 def summary_text(cal: MethodCalibration) -> str:
@@ -562,7 +465,9 @@ def summary_text(cal: MethodCalibration) -> str:
     lines = [
         f"irnuc calibration, pipeline {s['config']} (method {s['method']}), frame "
         f"{s['frame'][1]} x {s['frame'][0]} (W x H), scenes {pts['scene_K']} K x FPA "
-        f"{pts['fpa_K']} K x {pts['frames']} frames (reference FPA {pts['reference_fpa_K']:g} K)",
+        f"{pts['fpa_K']} K"
+        + (f" x housing offset {pts['housing_offset_K']} K" if pts.get("housing_offset_K") else "")
+        + f" x {pts['frames']} frames (reference FPA {pts['reference_fpa_K']:g} K)",
         f"targets (output codes): {', '.join(f'{v:.3f}' for v in s['targets'])}",
     ]
     for key, r in s["coefficients"].items():
@@ -581,7 +486,13 @@ def summary_text(cal: MethodCalibration) -> str:
         if n:
             lines.append(f"  {name:16s} {n}")
     worst = max(s["residual"], key=lambda r: r["std"])
+    housing = (f", housing {worst['housing_K']:g} K" if worst.get("housing_K") is not None
+               and worst["housing_K"] != worst["fpa_K"] else "")
     lines.append(f"residual fixed pattern (std over good pixels): worst {worst['std']:.3f} "
-                 f"codes at FPA {worst['fpa_K']:g} K, scene {worst['scene_K']:g} K (float fit "
-                 f"{worst['float_std']:.3f})")
+                 f"codes at FPA {worst['fpa_K']:g} K{housing}, scene {worst['scene_K']:g} K "
+                 f"(float fit {worst['float_std']:.3f})")
+    if s["points"].get("all_points", 0) > len(s["points"]["fpa_K"]):
+        lines.append(f"fitted on the {len(s['points']['fpa_K'])} points with the housing at "
+                     "the reference offset (no method models the housing); the residual covers "
+                     f"all {s['points']['all_points']}")
     return "\n".join(lines) + "\n"

@@ -156,14 +156,76 @@ def _format_sha256(fields: dict[str, object]) -> str:
     return hashlib.sha256(json.dumps(fields, sort_keys=True).encode()).hexdigest()
 
 
+#: The manifest's own integrity field: the SHA-256 of every other field.
+MANIFEST_HASH = "manifest_sha256"
+
+
+def _manifest_sha256(manifest: dict[str, object]) -> str:
+    """SHA-256 of every field of a manifest but :data:`MANIFEST_HASH` (canonical JSON)."""
+    return _format_sha256({k: v for k, v in manifest.items() if k != MANIFEST_HASH})
+
+
+def seal_manifest(manifest: dict[str, object]) -> dict[str, object]:
+    """Set the manifest's two hashes from its fields, in place (and return it): the
+    formats' (``format_sha256``) and every field's (``manifest_sha256``: the registers,
+    the FPA sensor, the file hashes ... any edit of any field is caught)."""
+    manifest["format_sha256"] = _format_sha256(_format_digest_fields(manifest))
+    manifest.pop(MANIFEST_HASH, None)
+    manifest[MANIFEST_HASH] = _manifest_sha256(manifest)
+    return manifest
+
+
+#: The FPA sensor's settings that decide which code a temperature reads (its noise does
+#: not): recorded in the manifest and compared with the frames' by ``irnuc correct`` for
+#: the methods that read the FPA sensor.
+SENSOR_CODE_FIELDS = ("bits", "lsb_K", "zero_K", "offset_K")
+
+
+def sensor_record(sensor: Any) -> dict[str, object] | None:
+    """The manifest's ``fpa_sensor``: every setting of a
+    :class:`~irnuc.model.fpa_sensor.FpaSensor` (None: not known)."""
+    if sensor is None:
+        return None
+    from dataclasses import asdict
+
+    return {k: (int(v) if k == "bits" else float(v)) for k, v in asdict(sensor).items()}
+
+
+def check_sensor(manifest_sensor: object, sensor: Any, cfg: PipelineConfig, where: str,
+                 coeffs: str) -> None:
+    """:class:`MemImageError` when frames read by ``sensor`` would give another FPA reading
+    than the calibration's sensor for the same temperature (``cfg``'s method reads it)."""
+    from irnuc.nuc_fixed.method_top import needs
+
+    if "fpa_reading" not in needs(cfg):
+        return
+    if not isinstance(manifest_sensor, dict):
+        raise MemImageError(f"{coeffs}: the manifest does not record the FPA sensor of the "
+                            f"calibration, which method {cfg.method!r} reads; calibrate again "
+                            "with this irnuc")
+    now = sensor_record(sensor) or {}
+    diff = [k for k in SENSOR_CODE_FIELDS if manifest_sensor.get(k) != now.get(k)]
+    if diff:
+        def show(d: dict) -> str:
+            return ", ".join(f"{k} = {d.get(k)!r}" for k in diff)
+
+        raise MemImageError(
+            f"{where}: the frames' FPA sensor ({show(now)}) is not the calibration's in "
+            f"{coeffs} ({show(manifest_sensor)}): the same temperature reads another code, "
+            f"and method {cfg.method!r} would apply the wrong temperature terms; calibrate "
+            "with this sensor")
+
+
 def write_memimage(directory: str | os.PathLike, words: np.ndarray,
-                   cfg: PipelineConfig | str, extra_files: tuple[str, ...] = ()
-                   ) -> dict[str, object]:
+                   cfg: PipelineConfig | str, extra_files: tuple[str, ...] = (),
+                   fpa_sensor: Any = None) -> dict[str, object]:
     """Write ``coeffs.hex``, ``coeffs.bin`` and ``manifest.json`` into ``directory``.
 
-    The manifest records every format field (and their SHA-256) and the SHA-256 of every
-    file it names: the two memory images and ``extra_files`` (names of files already in
-    ``directory``, e.g. the calibration's ``coeffs.npz``). Returns the manifest.
+    The manifest records every format field (and their SHA-256), the FPA sensor of the
+    calibration (``fpa_sensor``, a :class:`~irnuc.model.fpa_sensor.FpaSensor`), the
+    SHA-256 of every file it names (the two memory images and ``extra_files``, names of
+    files already in ``directory``, e.g. the calibration's ``coeffs.npz``) and the SHA-256
+    of all its other fields (:func:`seal_manifest`). Returns the manifest.
     """
     cfg = as_config(cfg)
     w = check_words(words, cfg)
@@ -192,7 +254,9 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
         "bin_bytes_per_word": word_bytes(cfg),
         "sha256": files[BIN_NAME],
         "files": files,
+        "fpa_sensor": sensor_record(fpa_sensor),
     }
+    seal_manifest(manifest)
     write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
     return manifest
 
@@ -224,6 +288,11 @@ def read_manifest(directory: str | os.PathLike,
         if not isinstance(manifest.get(key), kind) or isinstance(manifest.get(key), bool):
             ver = f"version = {version} but " if i >= 5 else ""
             raise MemImageError(f"{path}: {ver}field {key!r} is missing or not {words[kind]}")
+    from irnuc.nuc_fixed.rtl_spec import FRAME_DIM_MAX
+
+    for key in ("height", "width"):
+        if not 1 <= manifest[key] <= FRAME_DIM_MAX:  # type: ignore[operator]
+            raise MemImageError(f"{path}: {key} = {manifest[key]} is outside 1..{FRAME_DIM_MAX}")
     images = (BIN_NAME, HEX_NAME) if version == MEMIMAGE_VERSION else tuple(
         n for m in manifest["memories"].values() if isinstance(m, dict)  # type: ignore[union-attr]
         for n in (m.get("bin_file"), m.get("hex_file")))
@@ -235,30 +304,85 @@ def read_manifest(directory: str | os.PathLike,
     if _format_sha256(fmt) != manifest["format_sha256"]:
         raise MemImageError(f"{path}: the format fields ({', '.join(fmt)}) do not "
                             "match their recorded SHA-256; the manifest was edited")
+    if not isinstance(manifest.get(MANIFEST_HASH), str):
+        raise MemImageError(f"{path}: no {MANIFEST_HASH} (the SHA-256 of every field); it was "
+                            "written by an older irnuc or edited: run irnuc calibrate again")
+    if _manifest_sha256(manifest) != manifest[MANIFEST_HASH]:
+        raise MemImageError(f"{path}: its fields (registers, FPA sensor, file hashes ...) do "
+                            f"not match their recorded SHA-256 ({MANIFEST_HASH}); the manifest "
+                            "was edited")
     return manifest
 
 
-def check_files(directory: str | os.PathLike, manifest: dict[str, object]) -> dict[str, bytes]:
-    """Every file the manifest names exists and has its recorded SHA-256.
+#: Bytes per pixel a file named by a manifest may hold besides the memory images (the
+#: calibration's arrays, its bad-pixel list, the table pair images), on top of
+#: :data:`~irnuc.common.io.MAX_TEXT_BYTES`: generous (the largest is some 100), and a
+#: bound, so that a damaged or foreign file is refused before it is read.
+EXTRA_BYTES_PER_PIXEL = 512
 
-    Returns the bytes that were checked, by name: a caller parses exactly those, so a folder
-    replaced while it is being read cannot mix two runs.
+
+def check_files(directory: str | os.PathLike, manifest: dict[str, object],
+                limits: dict[str, int] | None = None) -> dict[str, bytes]:
+    """Every file the manifest names exists, is no larger than its limit and has its
+    recorded SHA-256.
+
+    ``limits``: the most bytes of the files to read (the memory images: their size from
+    the frame size and word width); those are returned, by name, so that a caller parses
+    exactly the bytes that were checked (a folder replaced while it is being read cannot
+    mix two runs). Every other file is hashed as it is read, up to
+    ``MAX_TEXT_BYTES + EXTRA_BYTES_PER_PIXEL`` per pixel of the manifest's frame size.
     """
+    import hashlib as _hl
+
+    from irnuc.common.io import MAX_TEXT_BYTES, guard_input, read_bytes_capped
+
     d = Path(directory)
+    pixels = int(manifest["height"]) * int(manifest["width"])  # type: ignore[call-overload]
+    limits = dict(limits or {})
     contents: dict[str, bytes] = {}
     for name, want in manifest["files"].items():  # type: ignore[union-attr]
         f = d / str(name)
-        if Path(str(name)).name != str(name):
+        if Path(str(name)).name != str(name) or str(name) in ("", ".", ".."):
             raise MemImageError(f"{d / MANIFEST_NAME}: file name {name!r} is not a plain name")
         if not f.is_file():
-            raise MemImageError(f"{f}: named by the manifest but missing")
-        data = f.read_bytes()
-        got = hashlib.sha256(data).hexdigest()
+            raise MemImageError(f"{f}: named by the manifest but missing (or not a regular "
+                                "file)")
+        guard_input(f, "--coeffs")
+        limit = limits.get(str(name), MAX_TEXT_BYTES + EXTRA_BYTES_PER_PIXEL * pixels)
+        size = f.stat().st_size
+        if size > limit:
+            raise MemImageError(f"{f}: {size} bytes, more than the {limit} a {manifest['height']}"
+                                f" x {manifest['width']} calibration's file holds; it is not "
+                                "this calibration's")
+        if str(name) in limits:
+            data = read_bytes_capped(f, "", limit)
+            got = _hl.sha256(data).hexdigest()
+            contents[str(name)] = data
+        else:
+            h = _hl.sha256()
+            read = 0
+            with f.open("rb") as fh:
+                while chunk := fh.read(1 << 20):
+                    read += len(chunk)
+                    if read > limit:  # grew while it was read
+                        raise MemImageError(f"{f}: more than {limit} bytes; it is not this "
+                                            "calibration's")
+                    h.update(chunk)
+            got = h.hexdigest()
         if got != want:
             raise MemImageError(f"{f}: SHA-256 {got} does not match the manifest ({want}); "
                                 "the file is corrupt or from another run")
-        contents[str(name)] = data
     return contents
+
+
+def _image_limits(names: dict[str, int], pixels: int) -> dict[str, int]:
+    """The most bytes of each memory image (``{bin or hex file: word bits}``): the binary
+    image's exact size, the hex image's with a two-byte line end."""
+    out = {}
+    for name, bits in names.items():
+        out[name] = (pixels * ((bits + 7) // 8) if name.endswith(".bin")
+                     else pixels * ((bits + 3) // 4 + 2))
+    return out
 
 
 def manifest_config(manifest: dict[str, object]) -> PipelineConfig:
@@ -310,9 +434,10 @@ def read_memimage(directory: str | os.PathLike, cfg: PipelineConfig | str | None
             f"{d / MANIFEST_NAME}: word_bits = {manifest.get('word_bits')!r} but the formats "
             f"give {mcfg.word_bits}"
         )
-    contents = check_files(d, manifest)
     h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
     n = h * w
+    contents = check_files(d, manifest, _image_limits(
+        {BIN_NAME: mcfg.word_bits, HEX_NAME: mcfg.word_bits}, n))
     raw = contents[BIN_NAME]
     if manifest["sha256"] != manifest["files"].get(BIN_NAME):  # type: ignore[union-attr]
         raise MemImageError(f"{d / MANIFEST_NAME}: sha256 and files[{BIN_NAME!r}] disagree")
@@ -384,22 +509,25 @@ def _method_fields(cfg: PipelineConfig) -> dict[str, object]:
 
 
 def write_method_image(directory: str | os.PathLike, coeffs: Any,
-                       extra_files: tuple[str, ...] = ()) -> dict[str, object]:
+                       extra_files: tuple[str, ...] = (), fpa_sensor: Any = None
+                       ) -> dict[str, object]:
     """Write the memory images of a method's coefficients and their manifest.
 
     ``coeffs`` is a :class:`~irnuc.nuc_fixed.method_top.MethodCoefficients`. Plain
     two-point configurations write version 1 (:func:`write_memimage`); every other method
     version 2: ``NAME.hex`` and ``NAME.bin`` per calibration memory and a manifest with
     the method, its formats, every memory's layout and file hashes, the registers' values,
-    width, height and the SHA-256 of every file (the images and ``extra_files``).
+    width, height, the FPA sensor of the calibration (``fpa_sensor``), the SHA-256 of
+    every file (the images and ``extra_files``) and of every other field
+    (:func:`seal_manifest`).
     """
     from irnuc.nuc_fixed.layout import layouts_dict
 
     cfg = coeffs.cfg
     coeffs.check()
     words = coeffs.words()
-    if cfg.method == "two_point":
-        return write_memimage(directory, words["coeffs"], cfg, extra_files)
+    if cfg.plain:
+        return write_memimage(directory, words["coeffs"], cfg, extra_files, fpa_sensor)
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     h, w = coeffs.shape
@@ -439,19 +567,47 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
         "height": h,
         "sha256": files[f"{first}.bin"],
         "files": files,
+        "fpa_sensor": sensor_record(fpa_sensor),
     }
+    seal_manifest(manifest)
     write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
     return manifest
 
 
+def _same_config(mcfg: PipelineConfig, cfg: PipelineConfig | str | None, path: Path) -> None:
+    """:class:`MemImageError` unless ``cfg`` (if given) is the configuration the
+    coefficients were made for: every field (formats, method and stages, their
+    parameters), whatever the names."""
+    if cfg is None:
+        return
+    cfg = as_config(cfg)
+    mine, theirs = mcfg.to_dict(), cfg.to_dict()
+    diff = [k for k in dict.fromkeys([*mine, *theirs])
+            if k not in ("name", "description") and mine.get(k) != theirs.get(k)]
+    if diff:
+        shown = "; ".join(f"{k} = {mine.get(k)!r} here, {theirs.get(k)!r} there"
+                          for k in diff[:3]) + ("; ..." if len(diff) > 3 else "")
+        raise MemImageError(f"{path}: the coefficients were made for pipeline {mcfg.name!r} "
+                            f"(method {mcfg.method!r}), whose fields differ from pipeline "
+                            f"{cfg.name!r} (method {cfg.method!r}): {shown}")
+
+
 def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
                       source: str = "bin") -> Any:
-    """Read a memory image folder of any method back as ``MethodCoefficients``.
+    """Read a memory image folder of any method back as ``MethodCoefficients``
+    (:func:`read_calibration` without the manifest)."""
+    return read_calibration(directory, cfg, source)[0]
 
-    Version 1 folders (two-point) are read by :func:`read_memimage`; version 2 folders get
-    the same checks per memory: the version, the format fields and method against their
-    hash and against ``cfg`` if given, every file against its SHA-256, the sizes, and that
-    every hex word equals the binary one.
+
+def read_calibration(directory: str | os.PathLike, cfg: PipelineConfig | str | None = None,
+                     source: str = "bin") -> tuple[Any, dict[str, object]]:
+    """Read a memory image folder of any method back: ``(MethodCoefficients, manifest)``.
+
+    Both versions get every check: the version; the format fields and every other field
+    against their hashes; the whole configuration (formats, method and stages) against
+    ``cfg`` if given; every file against its size limit and SHA-256; the sizes; and that
+    every hex word equals the binary one. Version 1 folders (two-point) are read by
+    :func:`read_memimage`.
     """
     from irnuc.nuc_fixed.method_top import MethodCoefficients
 
@@ -459,35 +615,40 @@ def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | 
         raise ConfigError(f"source = {source!r} is not one of ['bin', 'hex']")
     d = Path(directory)
     manifest = read_manifest(d, versions=(MEMIMAGE_VERSION, METHOD_IMAGE_VERSION))
-    if manifest["version"] == MEMIMAGE_VERSION:
-        words, mcfg = read_memimage(d, cfg, source)
-        g, o, bad = unpack_words(words, mcfg)
-        return MethodCoefficients(mcfg, {"coeffs": {"gain": g, "offset": o, "bad": bad}})
     try:
         mcfg = manifest_config(manifest)
     except (ConfigError, TypeError) as exc:
         raise MemImageError(f"{d / MANIFEST_NAME}: {exc}") from None
-    if cfg is not None:
-        cfg = as_config(cfg)
-        if cfg.to_dict() | {"name": "", "description": ""} != (
-                mcfg.to_dict() | {"name": "", "description": ""}):
-            raise MemImageError(f"{d / MANIFEST_NAME}: the coefficients were made for method "
-                                f"{mcfg.method!r} with pipeline {mcfg.name!r}, whose formats "
-                                f"differ from pipeline {cfg.name!r} (method {cfg.method!r})")
-    contents = check_files(d, manifest)
+    _same_config(mcfg, cfg, d / MANIFEST_NAME)
+    if manifest["version"] == MEMIMAGE_VERSION:
+        words, mcfg = read_memimage(d, None, source)
+        g, o, bad = unpack_words(words, mcfg)
+        return (MethodCoefficients(mcfg, {"coeffs": {"gain": g, "offset": o, "bad": bad}}),
+                manifest)
     h, w = int(manifest["height"]), int(manifest["width"])  # type: ignore[arg-type]
     mems = manifest["memories"]
     want = [m.name for m in mcfg.memories.values() if m.source == "calibration"]
     if sorted(mems) != sorted(want):  # type: ignore[arg-type]
         raise MemImageError(f"{d / MANIFEST_NAME}: memories {sorted(mems)} but method "  # type: ignore[arg-type]
                             f"{mcfg.method!r} has {want}")
+    names: dict[str, int] = {}
+    for name in want:
+        m = mems[name]  # type: ignore[index]
+        wb = mcfg.memories[name].word_bits
+        if not isinstance(m, dict) or m.get("word_bits") != wb:
+            raise MemImageError(f"{d / MANIFEST_NAME}: memory {name} has word_bits = "
+                                f"{m.get('word_bits') if isinstance(m, dict) else m!r} but the "
+                                f"formats give {wb}")
+        for key in ("bin_file", "hex_file"):
+            if not isinstance(m.get(key), str):
+                raise MemImageError(f"{d / MANIFEST_NAME}: memory {name} has {key} = "
+                                    f"{m.get(key)!r}; a file name is required")
+            names[m[key]] = wb
+    contents = check_files(d, manifest, _image_limits(names, h * w))
     words_by: dict[str, np.ndarray] = {}
     for name in want:
         m = mems[name]  # type: ignore[index]
         wb = mcfg.memories[name].word_bits
-        if m.get("word_bits") != wb:
-            raise MemImageError(f"{d / MANIFEST_NAME}: memory {name} has word_bits = "
-                                f"{m.get('word_bits')!r} but the formats give {wb}")
         nb = (wb + 7) // 8
         raw = contents[m["bin_file"]]
         if len(raw) != h * w * nb:
@@ -502,9 +663,10 @@ def read_method_image(directory: str | os.PathLike, cfg: PipelineConfig | str | 
             raise MemImageError(f"{d / m['hex_file']}: word at (row, col) {idx} = "
                                 f"{int(hw[idx]):x} differs from the binary ({int(bw[idx]):x})")
         words_by[name] = bw if source == "bin" else hw
+    regs = manifest["registers"]
     try:
         return MethodCoefficients.from_words(mcfg, words_by, {
             k: (tuple(v) if isinstance(v, list) else v)
-            for k, v in manifest["registers"].items()})  # type: ignore[union-attr]
-    except UserError as exc:
+            for k, v in regs.items()}), manifest  # type: ignore[union-attr]
+    except (UserError, TypeError) as exc:
         raise MemImageError(f"{d}: {exc}") from None

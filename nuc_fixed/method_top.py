@@ -14,7 +14,10 @@ The composition of the RTL modules per frame (docs/datapath.md, "Method top"):
    shutter frames are held or passed.
 
 :class:`MethodCoefficients` holds a calibration's per-pixel codes and registers (from
-:func:`irnuc.nuc_fixed.methods_cal.calibrate_plan` or read back from a memory image).
+:func:`irnuc.nuc_fixed.fit.calibrate_points` or read back from a memory image). What differs
+between methods is the registry's (``nuc_fixed.methods``): the frame's coefficients
+(``MethodSpec.frame_coefficients``) and the core of the method's kind
+(``nuc_fixed.cores.CORES``).
 """
 
 from __future__ import annotations
@@ -26,13 +29,12 @@ from typing import Any
 import numpy as np
 
 from irnuc.nuc_fixed.config import PipelineConfig
-from irnuc.nuc_fixed.cores import CoreResult, drift_sub, lin_core, pwl_core, quad_core
+from irnuc.nuc_fixed.cores import CORES, CoreResult, drift_sub
 from irnuc.nuc_fixed.dpc import dpc_core
 from irnuc.nuc_fixed.drift import blind_drift, drift_from_sums
 from irnuc.nuc_fixed.ffc import FfcState, ffc_mean_target, ffc_refresh
 from irnuc.nuc_fixed.layout import pack_memory, unpack_memory
 from irnuc.nuc_fixed.nuc import out_dtype
-from irnuc.nuc_fixed.tempcomp import interp_coeffs, interp_weight, tc_coeffs, tc_reading
 from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
 from irnuc.nuc_fixed.widths import ffc_shift
 
@@ -57,8 +59,11 @@ class MethodCoefficients:
 
     @property
     def bad(self) -> np.ndarray:
-        """The defective-pixel map (the ``bad`` field of the first memory)."""
-        return next(iter(self.fields.values()))["bad"]
+        """The defective-pixel map: a pixel flagged in the ``bad`` field of any memory
+        (table_interp: of any table; a frame's DPC replaces those of its two tables,
+        :func:`frame_coefficients`)."""
+        maps = [f["bad"] for f in self.fields.values() if "bad" in f]
+        return maps[0] if len(maps) == 1 else np.logical_or.reduce(maps)
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -97,12 +102,7 @@ class MethodCoefficients:
             if m.name not in self.fields:
                 raise InputError(f"coefficients lack memory {m.name!r} (method {cfg.method!r})")
             pack_memory(self.fields[m.name], m)  # checks every field's range
-        if cfg.base_method == "table_interp":
-            b0 = self.fields["table0"]["bad"]
-            for k in range(1, int(cfg.tables or 0)):
-                if not np.array_equal(self.fields[f"table{k}"]["bad"], b0):
-                    raise InputError(f"table{k}: its bad flags differ from table0's; one "
-                                     "bad-pixel map serves every table")
+        cfg.base.check_coefficients(self)
         for r in cfg.registers.values():
             if r.source != "calibration":
                 continue
@@ -128,6 +128,18 @@ class FrameInputs:
     #: (N,) each frame's blind sum as a register holds it (BLIND_SUM of irnuc_axis_top),
     #: instead of ``blind_codes``
     blind_sums: np.ndarray | None = None
+    #: (N,) the housing temperature sensor's reading of each frame (frame files'
+    #: ``housing_reading``), for the methods that read the housing
+    housing_reading: np.ndarray | None = None
+
+    @classmethod
+    def from_fields(cls, cfg: PipelineConfig, fields: Mapping[str, object]) -> FrameInputs:
+        """The inputs of the readings ``cfg`` takes from a frame file's fields by name
+        (``fpa_reading``, ...; ``ReadingSpec.frame_field`` -> ``inputs_field``)."""
+        from irnuc.nuc_fixed.methods import READINGS
+
+        by_field = {r.frame_field: r.inputs_field for r in READINGS.values()}
+        return cls(**{by_field[k]: np.asarray(v) for k, v in fields.items()})
 
 
 @dataclass(frozen=True)
@@ -148,6 +160,10 @@ class MethodOutput:
         coefficients (``pending`` says so).
     pending : the last accumulation completed with the last frame, so its refresh pass
         (the next frame) was not seen.
+    kept : the refreshes (by the index of their N-th shutter frame, as ``refreshes``) whose
+        mean pass had no good pixel: no target (0 in ``targets``, as the RTL's target
+        register reads), and the refresh pass kept every pixel's previous correction
+        (``offsets`` repeats it).
     """
 
     y: np.ndarray
@@ -158,54 +174,35 @@ class MethodOutput:
     targets: tuple[int, ...] = ()
     offsets: tuple[np.ndarray, ...] = ()
     pending: bool = False
+    kept: tuple[int, ...] = ()
 
 
 def needs(cfg: PipelineConfig) -> tuple[str, ...]:
-    """The per-frame fields the method reads: ``fpa_reading``, ``blind_codes``, ``shutter``."""
-    out = []
-    if cfg.base_method in ("tc_offset", "table_interp"):
-        out.append("fpa_reading")
-    if cfg.has("blind_drift"):
-        out.append("blind_codes")
-    if cfg.has("ffc"):
-        out.append("shutter")
-    return tuple(out)
+    """The per-frame fields the method reads (``fpa_reading``, ``blind_codes``, ``shutter``):
+    those of the readings its base method and stages take (``nuc_fixed.methods.needs``)."""
+    from irnuc.nuc_fixed import methods
+
+    return methods.needs(cfg)
 
 
-def frame_coefficients(c: MethodCoefficients, reading: int | None) -> dict[str, np.ndarray]:
-    """The per-pixel coefficient codes the core uses in a frame with this reading."""
-    cfg = c.cfg
-    base = cfg.base_method
-    if base == "tc_offset":
-        tr = tc_reading(int(reading), int(c.registers["t_ref"]), cfg)  # type: ignore[arg-type]
-        cs = c.fields["coeffs"]
-        g, o = tc_coeffs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
-                         tr, cfg)
-        return {"gain": g, "offset": o}
-    if base == "table_interp":
-        iw = interp_weight(int(reading), c.registers["table_readings"], cfg)  # type: ignore[arg-type]
-        lo, hi = c.fields[f"table{iw.j}"], c.fields[f"table{iw.j + 1}"]
-        g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]), iw, cfg)
-        return {"gain": g, "offset": o}
-    if base == "one_point":
-        return {"gain": np.int64(c.registers["gain"]), "offset": c.fields["coeffs"]["offset"]}
-    return dict(c.fields["coeffs"])
+def frame_coefficients(c: MethodCoefficients, reading: int | Mapping[str, int] | None
+                       ) -> dict[str, Any]:
+    """The per-pixel coefficient codes (and registers) the core uses in a frame with this
+    reading (the FPA reading, or a mapping of the frame's readings by name):
+    ``MethodSpec.frame_coefficients``."""
+    from irnuc.nuc_fixed import methods
+
+    return c.cfg.base.frame_coefficients(c, methods.frame(c.cfg, reading))
 
 
-def base_core(c: MethodCoefficients, fc: Mapping[str, np.ndarray], x: np.ndarray, *,
+def base_core(c: MethodCoefficients, fc: Mapping[str, Any], x: np.ndarray, *,
               xfrac: int = 0, signed_x: bool = False, ffc: np.ndarray | None = None,
               sum_only: bool = False) -> CoreResult:
-    """The base method's core on ``x`` with the frame's coefficients ``fc``."""
+    """The core of the base method's kind (``nuc_fixed.cores.CORES``) on ``x`` with the
+    frame's coefficients ``fc``."""
     cfg = c.cfg
-    base = cfg.base_method
-    if base == "piecewise":
-        return pwl_core(x, fc["gain_lo"], fc["gain_hi"], fc["knee"], int(c.registers["level"]),
-                        cfg, xfrac=xfrac, ffc=ffc, sum_only=sum_only)
-    if base == "quadratic":
-        return quad_core(x, fc["gain"], fc["offset"], c.fields["quad"]["quad"], cfg,
-                         xfrac=xfrac, ffc=ffc, sum_only=sum_only)
-    return lin_core(x, fc["gain"], fc["offset"], cfg, xfrac=xfrac, signed_x=signed_x, ffc=ffc,
-                    sum_only=sum_only)
+    return CORES[cfg.base.core](x, fc, cfg, xfrac=xfrac, signed_x=signed_x, ffc=ffc,
+                                sum_only=sum_only)
 
 
 def _per_frame(name: str, value: object, n: int, cfg: PipelineConfig) -> np.ndarray:
@@ -243,8 +240,11 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     x3 = x.reshape(-1, h, w).astype(np.int64)
     n = x3.shape[0]
     inputs = inputs or FrameInputs()
-    reading = (_per_frame("fpa_reading", inputs.reading, n, cfg)
-               if "fpa_reading" in needs(cfg) else None)
+    from irnuc.nuc_fixed.methods import READINGS
+
+    readings = {r: _per_frame(READINGS[r].frame_field, getattr(inputs, READINGS[r].inputs_field),
+                              n, cfg)
+                for r in cfg.base.readings}
     delta = None
     if cfg.has("blind_drift") and inputs.blind_sums is not None:
         delta = drift_from_sums(_per_frame("blind_sums", inputs.blind_sums, n, cfg),
@@ -262,26 +262,29 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
         state = FfcState(cfg=cfg, offset=np.asarray(start, dtype=np.int64))
     out = np.empty((n, h, w), dtype=out_dtype(cfg))
     held = np.zeros(n, dtype=bool)
-    cache: dict[int | None, dict[str, np.ndarray]] = {}
+    cache: dict[tuple[int, ...], dict[str, np.ndarray]] = {}
     last: np.ndarray | None = None
-    keys = [None] * n if reading is None else [int(v) for v in reading]
+    # A frame's coefficients follow its readings (a reading usually repeats for many frames).
+    keys = [tuple(int(readings[r][i]) for r in readings) for i in range(n)]
     is_shut = np.zeros(n, bool) if shutter is None else shutter
     # A completed accumulation waiting for its refresh pass: (accumulator, target). The
     # pass runs in the next frame with that frame's coefficients (the hardware evaluates
     # the accumulator beside that frame's pixels; docs/datapath.md "ffc").
-    pending: tuple[np.ndarray, int] | None = None
+    pending: tuple[np.ndarray, int | None] | None = None
     targets: list[int] = []
+    kept: list[int] = []
     offsets: list[np.ndarray] = []
     fc: dict[str, np.ndarray] = {}
     i = 0
     while i < n:
         key = keys[i]
         if key not in cache:
-            cache.clear()  # a reading usually repeats for many frames; keep one set
-            cache[key] = frame_coefficients(coeffs, key)
+            cache.clear()  # keep one set
+            cache[key] = cfg.base.frame_coefficients(coeffs, dict(zip(readings, key,
+                                                                      strict=True)))
         fc = cache[key]
         if state is not None and pending is not None:
-            state.offset = _refresh(coeffs, fc, *pending)
+            state.offset = _refresh(coeffs, fc, *pending, state.offset)
             offsets.append(state.offset)
             pending = None
         # Frames i..j-1 share their coefficients and nothing changes state between them
@@ -295,7 +298,7 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             res = base_core(coeffs, fc, xi, xfrac=cfg.format("drift").frac_bits, signed_x=True)
         else:
             res = base_core(coeffs, fc, x3[i:j], ffc=None if state is None else state.offset)
-        yi = dpc_core(res.y, coeffs.bad, cfg)
+        yi = dpc_core(res.y, fc["bad"], cfg)
         if state is not None and shutter is not None and shutter[i]:
             if cfg.ffc_output == "hold" and last is not None:
                 out[i] = last
@@ -307,10 +310,12 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
                 if ffc_target is None:
                     nb = ffc_shift(cfg)
                     ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
-                    tgt = ffc_mean_target(ref.s, ref.frac, ~coeffs.bad, cfg)
+                    tgt = ffc_mean_target(ref.s, ref.frac, ~fc["bad"], cfg)
                 else:
                     tgt = int(ffc_target)
-                targets.append(tgt)
+                if tgt is None:  # no good pixel: the refresh keeps the offsets
+                    kept.append(i)
+                targets.append(0 if tgt is None else tgt)
                 pending = (np.asarray(state.acc), tgt)
                 state.refreshes.append(i)
         else:
@@ -322,18 +327,21 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     if state is not None and pending is not None:
         # The refresh pass would be the next frame: its coefficients are not known here,
         # the last frame's stand in.
-        state.offset = _refresh(coeffs, fc, *pending)
+        state.offset = _refresh(coeffs, fc, *pending, state.offset)
         offsets.append(state.offset)
     return MethodOutput(y=out.reshape(x.shape), delta=delta,
                         ffc_offset=None if state is None else state.offset,
                         refreshes=tuple(state.refreshes) if state else (), held=held,
                         targets=tuple(targets), offsets=tuple(offsets),
-                        pending=pending is not None)
+                        pending=pending is not None, kept=tuple(kept))
 
 
 def _refresh(coeffs: MethodCoefficients, fc: Mapping[str, np.ndarray], acc: np.ndarray,
-             target: int) -> np.ndarray:
+             target: int | None, offset: np.ndarray) -> np.ndarray:
     """The refresh pass: the base core on the accumulator (``fc``: the coefficients of
-    the frame the pass runs in), then ``ffc_refresh`` towards ``target``."""
+    the frame the pass runs in), then ``ffc_refresh`` towards ``target``; without a
+    target (no good pixel) every pixel keeps its correction ``offset``."""
+    if target is None:
+        return np.array(offset)
     ref = base_core(coeffs, fc, acc, xfrac=ffc_shift(coeffs.cfg), sum_only=True)
     return ffc_refresh(ref.s, ref.frac, target, coeffs.cfg)

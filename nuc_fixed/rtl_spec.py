@@ -17,14 +17,16 @@ mode encodings and word layouts, each written here once.
 To add a constant, a range, an enum or a word layout (a per-method coefficient word): add it
 to :data:`CONSTANTS`, :data:`RANGES`, :data:`ENUMS` or :data:`LAYOUTS`, regenerate, and use
 the generated name in the RTL (docs/architecture.md, "Shared constants"). The AXI4-Lite
-register map is written in ``nuc_fixed/registers.toml``; its offsets, field positions and
-resets become :data:`REGISTER_CONSTANTS` (part of :data:`CONSTANTS`).
+register map is written in SystemRDL, ``nuc_fixed/registers.rdl`` (docs/regmap.md); its
+offsets, field positions and resets become :data:`REGISTER_CONSTANTS` (part of
+:data:`CONSTANTS`).
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import Any
 
 from irnuc.nuc_fixed import regmap as _regmap
 
@@ -90,11 +92,14 @@ class Enum:
 @dataclass(frozen=True)
 class Field:
     """A field of a word: its width is a package-function argument named after an RTL
-    parameter (``"GainBits"``) or a number of bits."""
+    parameter (``"GainBits"``) or a number of bits; ``format`` is the coefficient format
+    giving a named width and the field's sign in a configuration (``"gain"``; empty for a
+    flag of a fixed width)."""
 
     name: str
     width: str | int
     doc: str
+    format: str = ""
 
 
 @dataclass(frozen=True)
@@ -151,7 +156,7 @@ DPC_SUM_LEAVES = 9
 #: (irnuc_dsp_mul; ECP5's MULT18X18D is instantiated with both).
 MUL_STAGES = 2
 
-#: The AXI4-Lite register map of irnuc_axis_top (nuc_fixed/registers.toml, read by
+#: The AXI4-Lite register map of irnuc_axis_top (nuc_fixed/registers.rdl, read by
 #: :mod:`irnuc.nuc_fixed.regmap`): its identity, every offset, field position and width and
 #: numeric reset value, as package constants (``RegCtrlOffset``, ``RegCtrlNucEnLsb``, ...).
 REGISTER_CONSTANTS: tuple[Constant, ...] = tuple(
@@ -190,89 +195,55 @@ OVERFLOW = Enum("overflow_e", 1, (
     EnumLiteral("saturate", "OverflowSaturate", 0, "clamp to 0 .. 2^B - 1"),
     EnumLiteral("wrap", "OverflowWrap", 1, "keep the low B bits"),
 ), "overflow of the NUC output (module parameter Overflow)")
-METHOD = Enum("method_e", 3, (
-    EnumLiteral("one_point", "MethodOnePoint", 0, "per-pixel offset, global gain register"),
-    EnumLiteral("two_point", "MethodTwoPoint", 1, "per-pixel gain and offset"),
-    EnumLiteral("piecewise", "MethodPiecewise", 2, "two gains meeting at a per-pixel knee"),
-    EnumLiteral("quadratic", "MethodQuadratic", 3, "gain, offset and a quadratic term"),
-    EnumLiteral("tc_offset", "MethodTcOffset", 4, "coefficients polynomial in the FPA reading"),
-    EnumLiteral("table_interp", "MethodTableInterp", 5, "two tables interpolated by a weight"),
-), "base correction method of method_dpc_top (module parameter Method; the order of "
-   "nuc_fixed.config.BASE_METHODS)")
-ENUMS: tuple[Enum, ...] = (ROUNDING, OVERFLOW, METHOD)
 #: Configuration value -> RTL code.
 ROUNDING_MODES: dict[str, int] = ROUNDING.codes
 OVERFLOW_MODES: dict[str, int] = OVERFLOW.codes
 
 COEF_WORD = WordLayout("coef_word", 1, (
-    Field("gain", "GainBits", "gain code, unsigned"),
-    Field("offset", "OffsetBits", "offset code, two's complement"),
+    Field("gain", "GainBits", "gain code, unsigned", "gain"),
+    Field("offset", "OffsetBits", "offset code, two's complement", "offset"),
     Field("bad", 1, "defective-pixel flag"),
 ), "coefficient word of the two-point NUC, memory image version 1")
-# The calibration memories of the other methods (memory image version 2; the two-point
-# word above serves quadratic, tc_offset and table_interp as their ``coeffs`` / tables) and
-# the frame word of tc_offset. A memory's fields from bit 0 up, as PipelineConfig.memories
-# (tests/test_rtl_spec.py checks every method configuration of pipelines.toml).
-COEF_ONE_POINT = WordLayout("coef_one_point", 2, (
-    Field("offset", "OffsetBits", "offset code, two's complement"),
-    Field("bad", 1, "defective-pixel flag"),
-), "coefficient word of one_point (the gain is a register)")
-COEF_PIECEWISE = WordLayout("coef_piecewise", 2, (
-    Field("gain_lo", "GainBits", "gain at and below the knee, unsigned"),
-    Field("gain_hi", "GainBits", "gain above the knee, unsigned"),
-    Field("knee", "KneeBits", "knee, ADC codes, unsigned"),
-    Field("bad", 1, "defective-pixel flag"),
-), "coefficient word of piecewise")
-QUAD_WORD = WordLayout("quad_word", 2, (
-    Field("quad", "QuadBits", "quadratic term at x = 2^A, two's complement"),
-), "quadratic's second memory")
-TC_WORD_1 = WordLayout("tc_word1", 2, (
-    Field("tc1", "Tc1Bits", "offset change per v, two's complement"),
-), "tc_offset's offset polynomial of order 1")
-TC_WORD_2 = WordLayout("tc_word2", 2, (
-    Field("tc1", "Tc1Bits", "offset change per v, two's complement"),
-    Field("tc2", "Tc2Bits", "offset change per v^2, two's complement"),
-), "tc_offset's offset polynomial of order 2")
-TG_WORD_1 = WordLayout("tg_word1", 2, (
-    Field("tg1", "Tg1Bits", "gain change per v, two's complement"),
-), "tc_offset's gain polynomial of order 1 (tc_gain)")
-TG_WORD_2 = WordLayout("tg_word2", 2, (
-    Field("tg1", "Tg1Bits", "gain change per v, two's complement"),
-    Field("tg2", "Tg2Bits", "gain change per v^2, two's complement"),
-), "tc_offset's gain polynomial of order 2 (tc_gain)")
-FRAME_TC_OFFSET = WordLayout("frame_tc_offset", 2, (
-    Field("reading", "ReadingBits", "the frame's FPA reading, unsigned"),
-    Field("t_ref", "ReadingBits", "the reading the polynomials are centred at, unsigned"),
-), "tc_offset's frame word (method_dpc_top's s_pix_frame_i, read with the frame's first "
-   "pixel)")
-FRAME_BLIND_DRIFT = WordLayout("frame_blind_drift", 1, (
-    Field("base", "BaseBits", "the base method's frame word (one_point's gain; two_point: "
-          "one unused bit)"),
-    Field("blind_sum", "SumBits", "the frame's blind pixel sum, unsigned"),
-    Field("blind_ref", "SumBits", "the blind pixel sum at calibration, unsigned"),
-    Field("drift_gain", "DriftGainBits", "drift per code of blind sum change, two's "
-          "complement"),
-), "blind_drift's frame word in irnuc_axis_top (the framer's, taken at a frame start from "
-   "the shadowed registers)")
-LAYOUTS: tuple[WordLayout, ...] = (COEF_WORD, COEF_ONE_POINT, COEF_PIECEWISE, QUAD_WORD,
-                                   TC_WORD_1, TC_WORD_2, TG_WORD_1, TG_WORD_2, FRAME_TC_OFFSET,
-                                   FRAME_BLIND_DRIFT)
+# The calibration memories of the other methods (memory image version 2) and their frame
+# words are written in their methods (nuc_fixed/methods, ``MethodSpec.layouts``), and so is
+# blind_drift's frame word; LAYOUTS collects them in registry order.
 
 
-def memory_layout(cfg_method: str, memory: str, tc_order: int = 2) -> WordLayout:
-    """The spec's layout of calibration memory ``memory`` of a base method (the two-point
-    word for ``coeffs`` of two_point, quadratic and tc_offset and every table)."""
-    if memory == "coeffs":
-        return {"one_point": COEF_ONE_POINT, "piecewise": COEF_PIECEWISE}.get(cfg_method,
-                                                                             COEF_WORD)
-    if memory.startswith("table"):
-        return COEF_WORD
-    by_order = {"tc": (TC_WORD_1, TC_WORD_2), "tg": (TG_WORD_1, TG_WORD_2)}
-    if memory in by_order:
-        return by_order[memory][tc_order - 1]
-    if memory == "quad":
-        return QUAD_WORD
-    raise KeyError(f"no layout of memory {memory!r} of {cfg_method!r}")
+def _registry_items() -> tuple[Enum, tuple[WordLayout, ...]]:
+    """``method_e`` and every word layout, from the method registry (``nuc_fixed.methods``,
+    imported here on first use: the registry's methods import this module)."""
+    from irnuc.nuc_fixed import methods
+
+    method = Enum("method_e", max(1, (len(methods.BASES) - 1).bit_length()), tuple(
+        EnumLiteral(m.name, f"Method{_camel(m.name)}", code, m.doc)
+        for code, m in enumerate(methods.BASES.values())),
+        "base correction method (parameter Method of the tops; the order of the registry, "
+        "nuc_fixed.methods.BASES)")
+    layouts: dict[str, WordLayout] = {COEF_WORD.name: COEF_WORD}
+    for part in (*methods.BASES.values(), *methods.STAGES.values()):
+        for lay in part.layouts:
+            layouts.setdefault(lay.name, lay)
+    return method, tuple(layouts.values())
+
+
+def _camel(name: str) -> str:
+    return "".join(w[:1].upper() + w[1:] for w in name.split("_"))
+
+
+def _lazy(name: str) -> Any:
+    """A registry-built item inside this module (a global lookup does not reach
+    ``__getattr__``)."""
+    return __getattr__(name)
+
+
+def __getattr__(name: str) -> object:
+    """``METHOD``, ``ENUMS`` and ``LAYOUTS``: built from the method registry on first use."""
+    if name in ("METHOD", "ENUMS", "LAYOUTS"):
+        method, layouts = _registry_items()
+        # Not cached: a method registered later (a test's) is in the next answer.
+        values = {"METHOD": method, "ENUMS": (ROUNDING, OVERFLOW, method), "LAYOUTS": layouts}
+        return values[name]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ---------------------------------------------------------------------------------------
@@ -414,14 +385,14 @@ def sv_package_block() -> str:
     for r in RANGES:
         lines.append(f"  localparam int unsigned {r.name}Min = {r.lo};")
         lines.append(f"  localparam int unsigned {r.name}Max = {r.hi};  // {r.unit}")
-    for e in ENUMS:
+    for e in _lazy("ENUMS"):
         lines += [f"  // ---- {e.doc}", f"  typedef enum logic [{e.bits - 1}:0] {{"]
         for i, lit in enumerate(e.literals):
             sep = "," if i < len(e.literals) - 1 else ""
             lines.append(f"    {lit.name} = {e.bits}'d{lit.code}{sep}  // {lit.doc}")
         lines.append(f"  }} {e.name};")
         lines.append(f"  localparam int unsigned {e.count_name} = {len(e.literals)};")
-    for lay in LAYOUTS:
+    for lay in _lazy("LAYOUTS"):
         lines += _layout_sv(lay)
     lines += ["  /* verilator lint_on UNUSEDPARAM */", f"  {END}"]
     return "\n".join(lines) + "\n"
@@ -477,7 +448,7 @@ def sv_probe() -> str:
         for end in ("min", "max"):
             ports.append(f"  output logic [31:0] {probe_port(end, r.name)},")
             body.append(f"  assign {probe_port(end, r.name)} = 32'({r.name}{end.title()});")
-    for e in ENUMS:
+    for e in _lazy("ENUMS"):
         for lit in e.literals:
             ports.append(f"  output logic [{e.bits - 1}:0] {probe_port('enum', lit.name)},")
             body.append(f"  assign {probe_port('enum', lit.name)} = {lit.name};")
@@ -489,7 +460,7 @@ def sv_probe() -> str:
                  f"  assign {probe_port('count', e.name)} = 8'({e.prefix}_any.num());",
                  f"  logic unused_{e.prefix};",
                  f"  assign unused_{e.prefix} = ^{e.prefix}_any;  // num() is of the type"]
-    for lay in LAYOUTS:
+    for lay in _lazy("LAYOUTS"):
         args = ", ".join(lay.parameters)
         t = f"{lay.name}_t"
         bits = f"{lay.name}_bits({args})"
@@ -545,7 +516,7 @@ def probe_values() -> dict[str, int]:
     for r in RANGES:
         out[probe_port("min", r.name)] = r.lo
         out[probe_port("max", r.name)] = r.hi
-    for e in ENUMS:
+    for e in _lazy("ENUMS"):
         out.update({probe_port("enum", lit.name): lit.code for lit in e.literals})
         out[probe_port("count", e.name)] = len(e.literals)
         out[probe_port("const", e.count_name)] = len(e.literals)
@@ -553,11 +524,10 @@ def probe_values() -> dict[str, int]:
 
 
 __all__ = [
-    "COEF_ONE_POINT", "COEF_PIECEWISE", "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS",
-    "DPC_SUM_LEAVES", "ENUMS", "FRAME_BLIND_DRIFT", "FRAME_DIM_MAX", "FRAME_TC_OFFSET", "LAYOUTS", "METHOD",
-    "MUL_CHUNK_BITS", "MUL_STAGES", "OVERFLOW", "OVERFLOW_MODES", "PIPELINE_RANGES",
-    "QUAD_WORD", "RANGES", "REGISTER_CONSTANTS", "ROUNDING", "ROUNDING_MODES", "SUM_BITS_MAX",
-    "TC_WORD_1", "TC_WORD_2", "TG_WORD_1", "TG_WORD_2", "Constant", "Enum", "EnumLiteral",
-    "Field", "Range", "WordLayout", "clog2", "dpc_recip", "dpc_recip_shift", "memory_layout",
-    "mul_chunks", "mul_parts", "pipeline_stages", "sv_package_block", "sv_probe",
+    "COEF_WORD", "CONSTANTS", "DPC_RECIP_GUARD_BITS", "DPC_SUM_LEAVES", "FRAME_DIM_MAX",
+    "MUL_CHUNK_BITS", "MUL_STAGES", "OVERFLOW", "OVERFLOW_MODES",
+    "PIPELINE_RANGES", "RANGES", "REGISTER_CONSTANTS", "ROUNDING", "ROUNDING_MODES",
+    "SUM_BITS_MAX", "Constant", "Enum", "EnumLiteral", "Field", "Range", "WordLayout", "clog2",
+    "dpc_recip", "dpc_recip_shift", "mul_chunks", "mul_parts", "pipeline_stages",
+    "sv_package_block", "sv_probe",
 ]

@@ -55,6 +55,15 @@ def sub(a: W, b: W) -> W:
     return W(max(a.as_signed(), b.as_signed()) + 1, True)
 
 
+def diff_unsigned(a: W, b: W) -> W:
+    """Width of a - b of two unsigned words: max of both + 1, signed. Exact (|a - b| <=
+    2^max - 1), one bit below :func:`sub`'s rule of sums; the RTL's blind-sum change and
+    table gain difference take it (docs/datapath.md, "Notation")."""
+    if a.signed or b.signed:
+        raise ValueError("diff_unsigned takes two unsigned words")
+    return W(max(a.bits, b.bits) + 1, True)
+
+
 def mul(a: W, b: W) -> W:
     """Width of a * b: the sum of the widths (signed if either is)."""
     return W(a.bits + b.bits, a.signed or b.signed)
@@ -73,15 +82,17 @@ class InputX:
 
 
 def input_x(cfg: PipelineConfig, refresh: bool = False) -> InputX:
-    """The core's input: x (A bits), x' = (x << Df) - delta (blind_drift) or the FFC
-    accumulator (A + n bits, n fraction bits) in the refresh pass."""
+    """The core's input: x (A bits), x' = (x << Df) - delta after a stage acting on the
+    input (blind_drift, ``StageSpec.input_x``) or the FFC accumulator (A + n bits, n
+    fraction bits) in the refresh pass."""
     a = cfg.adc_bits
     if refresh:
         n = ffc_shift(cfg)
         return InputX(W(a + n, False), n)
-    if cfg.has("blind_drift"):
-        d = cfg.format("drift")
-        return InputX(sub(W(a + d.frac_bits, False), W(d.bits, True)), d.frac_bits)
+    for part in cfg.parts[1:]:
+        x = part.input_x(cfg)
+        if x is not None:
+            return x
     return InputX(W(a, False), 0)
 
 
@@ -91,14 +102,11 @@ def ffc_shift(cfg: PipelineConfig) -> int:
 
 
 def core_frac(cfg: PipelineConfig, xfrac: int, with_ffc: bool) -> int:
-    """F: the fraction bits of the method's sum (docs/datapath.md, each core)."""
-    base = cfg.base_method
+    """F: the fraction bits of the method's sum (docs/datapath.md, each core kind)."""
     cf = [cfg.format("ffc").frac_bits] if with_ffc else []
-    if base == "piecewise":
+    if cfg.base.core == "pwl":
         d = max(cfg.format("knee").frac_bits, xfrac)
         return max(cfg.gain_frac_bits + d, cfg.format("level").frac_bits, *cf)
-    if base == "one_point":
-        return max(cfg.gain_frac_bits + xfrac, cfg.offset_frac_bits, *cf)
     return max(cfg.gain_frac_bits + xfrac, cfg.offset_frac_bits, *cf)
 
 
@@ -108,14 +116,15 @@ def square_shift(cfg: PipelineConfig) -> int:
 
 
 def core_widths(cfg: PipelineConfig, x: InputX, with_ffc: bool) -> dict[str, W | int]:
-    """Widths of the base method's core for input ``x`` (the sum, rounded and output)."""
-    base = cfg.base_method
+    """Widths of the base method's core for input ``x`` (the sum, rounded and output), by
+    the core's kind (``MethodSpec.core``)."""
+    kind = cfg.base.core
     f = core_frac(cfg, x.frac, with_ffc)
     out: dict[str, W | int] = {"F": f}
     g = W(cfg.gain_bits, False)
     o = W(cfg.offset_bits, True)
     terms: list[W] = []
-    if base == "piecewise":
+    if kind == "pwl":
         kf = cfg.format("knee")
         d = max(kf.frac_bits, x.frac)
         xa = shl(x.w, d - x.frac)
@@ -129,7 +138,7 @@ def core_widths(cfg: PipelineConfig, x: InputX, with_ffc: bool) -> dict[str, W |
         p = mul(x.w, g)
         out["p"] = p
         terms += [shl(p, f - cfg.gain_frac_bits - x.frac), shl(o, f - cfg.offset_frac_bits)]
-    if base == "quadratic":
+    if kind == "quad":
         q = cfg.format("quad")
         sq = mul(x.w, x.w)
         sq = W(sq.bits, False)
@@ -149,70 +158,22 @@ def core_widths(cfg: PipelineConfig, x: InputX, with_ffc: bool) -> dict[str, W |
 
 
 def method_widths(cfg: PipelineConfig) -> dict[str, W | int]:
-    """Every intermediate width of the configuration's method, by dotted name.
+    """Every intermediate width of the configuration's method, by dotted name: the stages
+    acting on the input, the base method's own (``MethodSpec.widths``), its core, then the
+    stages adding to the sum (``StageSpec.widths``).
 
     Integers are fraction-bit counts (``core.F``) and other constants; :class:`W` are words.
     """
     out: dict[str, W | int] = {}
-    x = input_x(cfg)
-    a = cfg.adc_bits
-    if cfg.has("blind_drift"):
-        d, m = cfg.format("drift"), cfg.format("drift_gain")
-        sb = W(cfg.blind_sum_bits, False)
-        bd = sub(sb, sb)
-        dp = mul(bd, W(m.bits, True))
-        out |= {"drift.bsum": sb, "drift.bd": bd, "drift.dp": dp,
-                "drift.delta": W(d.bits, True), "drift.x": x.w}
-    base = cfg.base_method
-    if base == "tc_offset":
-        ts = int(cfg.reading_range_bits or 1)
-        r = int(cfg.reading_bits or 1)
-        u = W(ts + 1, True)
-        u2 = W(ts, False)
-        out |= {"tc.diff": sub(W(r, False), W(r, False)), "tc.u": u, "tc.u2": u2}
-        for kind, base_fmt, c1, c2 in (("o", cfg.format("offset"), "tc1", "tc2"),
-                                       ("g", cfg.format("gain"), "tg1", "tg2")):
-            if kind == "g" and not cfg.tc_gain:
-                continue
-            names = [c1, c2][: int(cfg.tc_order or 1)]
-            fmts = [cfg.format(n) for n in names]
-            fo = max(base_fmt.frac_bits, *(c.frac_bits + ts for c in fmts))
-            terms = [shl(W(base_fmt.bits, base_fmt.signed), fo - base_fmt.frac_bits)]
-            for c, v in zip(fmts, (u, u2), strict=False):
-                prod = mul(W(c.bits, True), v)
-                out[f"tc.{kind}.{c.name}_prod"] = prod
-                terms.append(shl(prod, fo - c.frac_bits - ts))
-            acc = add(*terms)
-            out |= {f"tc.{kind}.F": fo, f"tc.{kind}.sum": acc,
-                    f"tc.{kind}.rounded": W(acc.bits + 1 - (fo - base_fmt.frac_bits), True)}
-    if base == "table_interp":
-        wf = cfg.format("weight")
-        r = int(cfg.reading_bits or 1)
-        w = W(wf.frac_bits + 1, False)
-        out |= {"interp.num": W(r + wf.frac_bits, False), "interp.span": W(r, False),
-                "interp.w": w}
-        for kind, bits in (("g", cfg.gain_bits), ("o", cfg.offset_bits)):
-            diff = sub(W(bits, kind == "o"), W(bits, kind == "o"))
-            prod = mul(diff, w)
-            out |= {f"interp.{kind}.diff": diff, f"interp.{kind}.prod": prod}
-    out |= {f"core.{k}": v for k, v in core_widths(cfg, x, cfg.has("ffc")).items()}
-    if cfg.has("ffc"):
-        n = ffc_shift(cfg)
-        c = cfg.format("ffc")
-        rx = input_x(cfg, refresh=True)
-        ref = core_widths(cfg, rx, False)
-        fr = max(int(ref["F"]), c.frac_bits)
-        s_ref = ref["s"]
-        assert isinstance(s_ref, W)
-        s_ref = shl(s_ref, fr - int(ref["F"]))
-        tgt = W(cfg.out_bits + c.frac_bits + fr - c.frac_bits, False)
-        dr = sub(tgt, s_ref)
-        out |= {"ffc.acc": W(a + n, False), "ffc.F": fr,
-                **{f"ffc.refresh.{k}": v for k, v in ref.items() if isinstance(v, W)},
-                "ffc.refresh.s_aligned": s_ref, "ffc.target": W(cfg.out_bits + c.frac_bits,
-                                                                 False),
-                "ffc.diff": dr, "ffc.rounded": W(dr.bits + 1 - (fr - c.frac_bits), True),
-                "ffc.delta": W(c.bits, True)}
+    stages = cfg.parts[1:]
+    for s in stages:
+        if s.place == "input":
+            out |= s.widths(cfg)
+    out |= cfg.base.widths(cfg)
+    out |= {f"core.{k}": v for k, v in core_widths(cfg, input_x(cfg), cfg.has("ffc")).items()}
+    for s in stages:
+        if s.place != "input":
+            out |= s.widths(cfg)
     return out
 
 

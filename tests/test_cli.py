@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -26,8 +27,8 @@ def test_frames_npz_contents(tmp_path, capsys):
         assert z["param_R_ref"].shape == (10 + 6, 12 + 6)
     # The result and the marker that lets a later run replace this folder as a whole.
     assert sorted(p.name for p in folder.iterdir()) == [".irnuc-output", "frames.npz"]
-    # Nothing but the result and its lock beside it: no temporary left behind.
-    assert sorted(p.name for p in folder.parent.iterdir()) == [".f.lock", "f"]
+    # Nothing but the result beside it: no temporary folder, no lock file left behind.
+    assert sorted(p.name for p in folder.parent.iterdir()) == ["f"]
     assert "wrote" in capsys.readouterr().out
     assert main(["frames", "-q", *SMALL, "--out", str(folder)]) == 0
     assert capsys.readouterr().out == ""
@@ -102,3 +103,26 @@ def test_out_that_is_a_file_is_refused_before_work(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--out" in err and "not a folder" in err and "Traceback" not in err
     assert target.read_text() == "keep"
+
+
+def test_synth_help_names_every_method_the_axi_top_wraps(capsys):
+    # `irnuc synth --help` once listed five of the methods irnuc_axis_top wraps: its words
+    # must be the method registry's (every base method, each stage's rtl_bases), and every
+    # named configuration that tops_for builds in irnuc_axis_top must be named in it.
+    from irnuc.cli import synth as synth_cli
+    from irnuc.cosim.synth import tops_for
+    from irnuc.nuc_fixed import load_pipeline, methods, pipeline_names
+
+    assert synth_cli.AXIS_WRAPS == tuple(methods.BASES)
+    assert synth_cli.AXIS_STAGES == {s.name: s.rtl_bases for s in methods.STAGES.values()}
+    with pytest.raises(SystemExit):
+        main(["synth", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    wrapped = text.split("irnuc_axis_top (", 1)[1].split("); default", 1)[0]
+    for name in pipeline_names(method=None):
+        cfg = load_pipeline(name)
+        if "irnuc_axis_top" not in tops_for(cfg):
+            continue
+        assert cfg.base_method in wrapped, name
+        for stage in cfg.stages:
+            assert re.search(rf"{stage} with [a-z_, ]*{cfg.base_method}", wrapped), name

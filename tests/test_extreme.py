@@ -341,8 +341,9 @@ def test_g_1e_100_every_output_finite_and_the_biased_equilibrium_right():
     # above 0 K (R grows without bound as T -> 0); it is solved (40-digit mpmath root to
     # 1e-12), and no output holds NaN (temperature_rise and bolometer_voltage were NaN,
     # the pixels reported invalid).
+    # (the self-heating-factor pulse model's solver; the pulse train's: the test below)
     b = _cfg()["bolometer"]
-    cfg = _cfg(**{"bolometer.g": 1e-100})
+    cfg = _cfg(**{"bolometer.g": 1e-100, "bolometer.pulse": "self_heating"})
     fr = _sim(cfg, [300.0], outputs=("codes", "status", "temperature_rise",
                                       "bolometer_voltage", "params", "power"))
     dT, v = fr.outputs["temperature_rise"][0], fr.outputs["bolometer_voltage"][0]
@@ -361,6 +362,29 @@ def test_g_1e_100_every_output_finite_and_the_biased_equilibrium_right():
         ref = _root_mp(a[i, j], I * I * f / p["g"][i, j], p["R_ref"][i, j], B, b["T_ref"], Ts)
         assert abs((dT[i, j] - ref) / ref) < 1e-12
         assert 0 < Ts + dT[i, j] < Ts
+
+
+def test_g_1e_100_pulse_train_runs_away_where_no_periodic_state_exists():
+    # The integrated pulse train at g = 1e-100 W/K: between pulses a pixel loses only what
+    # it absorbs less than it emits, |Q| P per period (Q < 0), while each pulse leaves at
+    # least I^2 R_min t_int (R_min = R_ref exp(-B / T_ref), R of a negative TCR at T -> inf).
+    # Where I^2 R_min t_int > -Q P no periodic state exists: the pixel runs away (counted,
+    # high rail, every output finite).
+    b = _cfg()["bolometer"]
+    cfg = _cfg(**{"bolometer.g": 1e-100})
+    fr = _sim(cfg, [300.0], outputs=("codes", "status", "temperature_rise",
+                                      "bolometer_voltage", "power"))
+    for k in ("temperature_rise", "bolometer_voltage"):
+        assert np.isfinite(fr.outputs[k]).all()
+    B = -b["tcr"] * b["T_ref"] ** 2
+    r_min = b["R_ref"] * math.exp(-B / b["T_ref"])
+    period = 1.0 / cfg["readout"]["frame_rate"]
+    Q = fr.outputs["power"][0]
+    no_state = b["bias_current"] ** 2 * r_min * b["t_int"] > -Q * period
+    s = fr.outputs["status"][0]
+    assert no_state.all() and (s[no_state] == STATUS_RUNAWAY).all()
+    assert fr.diagnostics["solver_failures"]["runaway"] == s.size
+    assert (fr.codes == 2**14 - 1).all()
 
 
 def test_no_equilibrium_above_0K_is_invalid_with_the_values_at_0K():
@@ -407,8 +431,11 @@ def test_positive_tcr_stable_root_past_unit_loop_gain_is_not_a_runaway():
     # The old fixed point called every pixel a runaway. Reference: grid scan + brentq.
     from scipy.optimize import brentq
 
+    # (the self-heating-factor pulse model; the pulse train at a positive TCR:
+    # tests/test_pulse.py against solve_ivp)
     cfg = _cfg(**{"bolometer.tcr": 0.0063, "bolometer.bias_current": 7.5e-5,
-                  "fpa.tolerance": {"R_ref": 0.0, "g": 0.0, "C": 0.0}, "fpa.defects": {}})
+                  "fpa.tolerance": {"R_ref": 0.0, "g": 0.0, "C": 0.0}, "fpa.defects": {},
+                  "bolometer.pulse": "self_heating"})
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         fr = model.simulate(cfg, [300.0], outputs=("codes", "status", "temperature_rise",

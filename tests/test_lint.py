@@ -5,17 +5,20 @@ from __future__ import annotations
 import pytest
 
 from irnuc.cosim import HDL_DIR, MODULE_FILES, SIM_HDL_DIR, lint
-from irnuc.nuc_fixed import load_pipeline, pipeline_names
+from irnuc.nuc_fixed import load_pipeline, methods, pipeline_names
 
 #: Every design module (the building blocks with the sizes they get in nuc_dpc_top, see
 #: irnuc.cosim.top_parameters), the simulation-only package probe and batch transactor.
 MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_register",
            "irnuc_stream_assert", "irnuc_frame_assert", "irnuc_add_tree", "irnuc_mul_parts",
            "irnuc_line_buffer", "irnuc_pkg_probe", "nuc_dpc_batch", "irnuc_dsp_mul",
-           "irnuc_round", "irnuc_clip")
+           "irnuc_round", "irnuc_clip", "dpc_tail")
+#: Each method's front (hdl/<MethodSpec.rtl_module>.sv), with the method it serves.
+FRONTS = {m.rtl_module: (m.name,) for m in methods.BASES.values()}
 #: The modules of the correction methods, linted with every method configuration.
-METHOD_MODULES = ("method_dpc_top", "pwl_core", "quad_core", "tc_poly", "tc_reading",
-                  "table_interp", "interp_weight")
+METHOD_MODULES = ("method_dpc_top", "frame_coefficients", "method_core", "pwl_core",
+                  "quad_core", "tc_poly", "tc_reading", "table_interp", "interp_weight",
+                  *FRONTS)
 #: The AXI wrapper of the two-point core and its parts, linted with every two-point
 #: configuration (their parameters are widths and the frame limit, not the modes); the
 #: protocol checkers take no configuration (once). Its core (AXI_CORE) is linted with every
@@ -24,6 +27,9 @@ AXI_MODULES = ("irnuc_axis_top", "irnuc_axil_regs", "irnuc_axis_framer", "irnuc_
 AXI_CHECKERS = ("irnuc_axis_assert", "irnuc_axil_assert", "irnuc_axil_regs_check",
                 "irnuc_assert_armed")
 AXI_CORE = ("irnuc_axis_core",)
+#: The register block generated from the map (no parameter: once) and the FuseSoC core's
+#: smoke testbench (irnuc_axis_top at its defaults: once).
+AXI_ONCE = ("irnuc_axil_regblock", "irnuc_axis_top_tb")
 #: table_interp's selection in the wrapper, linted with the table_interp configuration.
 AXI_TABLE = ("irnuc_axis_table",)
 #: The modules of the stages (blind_drift, ffc) and the stages each serves, linted with every
@@ -32,12 +38,11 @@ STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_dr
                  "drift_sub": ("blind_drift",), "core_sum": ("blind_drift", "ffc"),
                  "core_out": ("blind_drift", "ffc"), "method_ffc_top": ("ffc",),
                  "ffc_ctrl": ("ffc",), "ffc_mean": ("ffc",), "ffc_refresh": ("ffc",),
-                 "ffc_sums": ("ffc",), "frame_coefficients": ("ffc",),
-                 "irnuc_axis_ffc": ("ffc",)}
+                 "ffc_sums": ("ffc",), "irnuc_axis_ffc": ("ffc",)}
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
               "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
-              "table_interp": ("table_interp",), "interp_weight": ("table_interp",)}
+              "table_interp": ("table_interp",), "interp_weight": ("table_interp",), **FRONTS}
 
 
 def _configs() -> list[tuple[str, dict[str, object]]]:
@@ -74,7 +79,7 @@ def _method_cases() -> list[tuple[str, str, dict[str, object]]]:
     d = load_pipeline("tcgain14").to_dict()
     d["formats"] = {k: v for k, v in d["formats"].items() if k not in ("tc2", "tg2")}
     order1 = PipelineConfig(**{**d, "tc_order": 1, "name": "tcgain14_order1"})
-    for module in ("method_dpc_top", "tc_poly", "tc_reading"):
+    for module in ("method_dpc_top", "tc_poly", "tc_reading", "method_tc_offset"):
         cases.append((module, order1, {}))  # type: ignore[arg-type]
     for module in ("method_dpc_top", "pwl_core", "quad_core"):
         for r in ("truncate", "half_even"):
@@ -95,15 +100,15 @@ def test_lint_clean_methods(module: str, config, changes: dict[str, object]) -> 
 
 
 def _axi_method_configs() -> list[str]:
-    """The method configurations irnuc_axis_top is built around (cosim.sources.AXIS_METHODS,
-    no stage, two_point aside) and those it builds a stage top for (method_ffc_top,
-    method_drift_top)."""
-    from irnuc.cosim.sources import AXIS_METHODS, stage_top
+    """The method configurations irnuc_axis_top is built around (every base method without
+    a stage, the plain two_point aside) and those it builds a stage top for
+    (method_ffc_top, method_drift_top)."""
+    from irnuc.cosim.sources import stage_top
 
     out = []
     for n in pipeline_names(method=None):
         cfg = load_pipeline(n)
-        if (not cfg.stages and cfg.method in AXIS_METHODS and cfg.method != "two_point") \
+        if (not cfg.stages and not cfg.plain) \
                 or stage_top(cfg) in ("method_ffc_top", "method_drift_top"):
             out.append(n)
     return out
@@ -115,7 +120,7 @@ def _axi_method_configs() -> list[str]:
                             for c in _axi_method_configs()]
                          + [(m, "minimal") for m in AXI_CORE]
                          + [(m, "table14") for m in AXI_TABLE]
-                         + [(m, "minimal") for m in AXI_CHECKERS])
+                         + [(m, "minimal") for m in (*AXI_CHECKERS, *AXI_ONCE)])
 def test_lint_clean_axi(module: str, config: str) -> None:
     proc = lint(module, load_pipeline(config))
     report = proc.stdout + proc.stderr
@@ -162,7 +167,7 @@ def test_one_module_per_file() -> None:
         if units[0].startswith("package "):
             continue
         linted = (*MODULES, *METHOD_MODULES, *AXI_MODULES, *AXI_CHECKERS, *AXI_CORE,
-                  *AXI_TABLE, *STAGE_MODULES)
+                  *AXI_TABLE, *AXI_ONCE, *STAGE_MODULES)
         assert path.stem in linted, f"{path.name} is not in the lint list"
         assert path.name in MODULE_FILES[path.stem], f"{path.name} is not in MODULE_FILES"
 

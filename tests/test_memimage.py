@@ -22,6 +22,7 @@ from irnuc.nuc_fixed import (
     unpack_words,
     write_memimage,
 )
+from irnuc.nuc_fixed.memimage import seal_manifest
 
 NAMES = pipeline_names()
 
@@ -111,12 +112,12 @@ def test_hex_corruption_detected(tmp_path: Path) -> None:
     # A hex file that matches its (re-made) hash but not the binary is caught word by word.
     manifest = json.loads((tmp_path / "manifest.json").read_text())
     manifest["files"]["coeffs.hex"] = hashlib.sha256(path.read_bytes()).hexdigest()
-    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    (tmp_path / "manifest.json").write_text(json.dumps(seal_manifest(manifest)))
     with pytest.raises(MemImageError, match=r"\(row, col\) \(1, 1\)"):
         read_memimage(tmp_path, source="hex")
     path.write_text("\n".join(lines[:-1]) + "\n")
     manifest["files"]["coeffs.hex"] = hashlib.sha256(path.read_bytes()).hexdigest()
-    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    (tmp_path / "manifest.json").write_text(json.dumps(seal_manifest(manifest)))
     with pytest.raises(MemImageError, match="15 lines, expected 16"):
         read_memimage(tmp_path, source="hex")
 
@@ -136,7 +137,7 @@ def test_manifest_mismatch_detected(tmp_path: Path) -> None:
         read_memimage(tmp_path, "wide16")
     m = json.loads((tmp_path / "manifest.json").read_text())
     m["version"] = 2
-    (tmp_path / "manifest.json").write_text(json.dumps(m))
+    (tmp_path / "manifest.json").write_text(json.dumps(seal_manifest(m)))
     with pytest.raises(MemImageError, match="version = 2"):
         read_memimage(tmp_path)
 
@@ -152,3 +153,113 @@ def test_pack_errors() -> None:
     too_wide = load_pipeline("wide16").replace(offset_int_bits=32, offset_frac_bits=10)
     with pytest.raises(ConfigError, match="word_bits = 67"):
         pack_words(np.array([0]), np.array([0]), np.array([False]), too_wide)
+
+
+# ---- the manifest's integrity, the FPA sensor, the configuration (issue 42) -----------------
+
+def _leaves(d: object, path: tuple = ()) -> list[tuple]:
+    if isinstance(d, dict):
+        return [p for k, v in d.items() for p in _leaves(v, (*path, k))] or [path]
+    if isinstance(d, list):
+        return [p for i, v in enumerate(d) for p in _leaves(v, (*path, i))] or [path]
+    return [path]
+
+
+def _changed(v: object) -> object:
+    if isinstance(v, bool):
+        return not v
+    if isinstance(v, int | float):
+        return v + 1
+    if isinstance(v, str):
+        return v + "x"
+    return [] if v is None else None
+
+
+@pytest.mark.parametrize("name", ["typical14", "tcoffset14", "table14", "drift14", "ffc14"])
+def test_every_manifest_field_is_covered_by_the_integrity_hash(tmp_path: Path, name: str) -> None:
+    """Any edit of any field of a manifest (a register, the FPA sensor, a file's hash, a
+    layout, the description ...) is refused, and removing any top-level field too: an
+    edited t_ref was taken, changing every temperature term."""
+    from irnuc.cocotb_tests.method_stim import random_coefficients
+    from irnuc.model.fpa_sensor import FpaSensor
+    from irnuc.nuc_fixed.memimage import read_calibration, write_method_image
+
+    cfg = load_pipeline(name)
+    c = random_coefficients(cfg, 3, 4, np.random.default_rng(1))
+    write_method_image(tmp_path, c, fpa_sensor=FpaSensor())
+    text = (tmp_path / "manifest.json").read_text()
+    read_calibration(tmp_path)  # the written folder reads
+    good = json.loads(text)
+    assert "fpa_sensor" in good and good.get("registers", {}) == {
+        k: list(v) if isinstance(v, tuple) else v for k, v in c.registers.items()}
+    leaves = _leaves(good)
+    assert len(leaves) > 20
+    for path, edit in [*((p, "change") for p in leaves), *(((k,), "remove") for k in good)]:
+        m = json.loads(text)
+        node = m
+        for k in path[:-1]:
+            node = node[k]
+        if edit == "change":
+            node[path[-1]] = _changed(node[path[-1]])
+        else:
+            del node[path[-1]]
+        (tmp_path / "manifest.json").write_text(json.dumps(m))
+        with pytest.raises(MemImageError):
+            read_calibration(tmp_path)
+    (tmp_path / "manifest.json").write_text(text)
+    read_calibration(tmp_path)
+
+
+def test_the_sensor_fields_that_change_the_codes_are_compared() -> None:
+    """Every FpaSensor setting that changes the code a temperature reads (its noise does
+    not: it changes frame by frame) is in SENSOR_CODE_FIELDS, and a difference in any is
+    refused for the methods that read the sensor, for no other method."""
+    from dataclasses import asdict, fields, replace
+
+    from irnuc.model.fpa_sensor import FpaSensor
+    from irnuc.nuc_fixed.memimage import SENSOR_CODE_FIELDS, check_sensor, sensor_record
+
+    base = FpaSensor()
+    temps = np.linspace(280.0, 320.0, 41)
+    changes = {"bits": 12, "lsb_K": 0.02, "zero_K": 220.0, "offset_K": 0.5, "noise_K": 0.1}
+    assert set(changes) == {f.name for f in fields(FpaSensor)}
+    moves_codes = {k for k, v in changes.items() if k != "noise_K"
+                   and not np.array_equal(replace(base, **{k: v}).read(temps), base.read(temps))}
+    assert moves_codes == set(SENSOR_CODE_FIELDS)
+    rec = sensor_record(base)
+    assert rec == asdict(base)
+    for k, v in changes.items():
+        other = replace(base, **{k: v})
+        for name in ("tcoffset14", "table14", "tcffc14"):
+            if k in SENSOR_CODE_FIELDS:
+                with pytest.raises(MemImageError, match=f"FPA sensor.*{k}"):
+                    check_sensor(rec, other, load_pipeline(name), "frames", "coeffs")
+            else:
+                check_sensor(rec, other, load_pipeline(name), "frames", "coeffs")
+        for name in ("typical14", "ffc14", "drift14", "quadratic14"):
+            check_sensor(rec, other, load_pipeline(name), "frames", "coeffs")
+    with pytest.raises(MemImageError, match="does not record the FPA sensor"):
+        check_sensor(None, base, load_pipeline("tcoffset14"), "frames", "coeffs")
+
+
+def test_coefficients_are_read_only_for_their_whole_configuration(tmp_path: Path) -> None:
+    """--pipeline is compared on every field (formats, method and stages, parameters), not
+    the formats only: two-point coefficients were taken for ffc14 and its stage silently
+    not applied. The same fields under another name are accepted."""
+    from irnuc.cocotb_tests.method_stim import random_coefficients
+    from irnuc.nuc_fixed.memimage import read_calibration, write_method_image
+
+    for name in ("typical14", "tcoffset14"):
+        cfg = load_pipeline(name)
+        d = tmp_path / name
+        write_method_image(d, random_coefficients(cfg, 3, 4, np.random.default_rng(2)))
+        for other in pipeline_names(method=None):
+            o = load_pipeline(other)
+            same = o.to_dict() | {"name": "", "description": ""} == (
+                cfg.to_dict() | {"name": "", "description": ""})
+            if same:
+                read_calibration(d, o)
+            else:
+                with pytest.raises(MemImageError, match=f"differ from pipeline '{other}'"):
+                    read_calibration(d, o)
+        read_calibration(d, cfg.replace(name="renamed", description="elsewhere"))

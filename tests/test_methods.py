@@ -340,6 +340,63 @@ def test_ffc_refresh_pass_uses_the_next_frame_and_a_pending_one_the_last() -> No
     assert np.array_equal(end.ffc_offset, ffc_refresh(ref.s, ref.frac, tgt, cfg))
 
 
+@pytest.mark.parametrize("name", ["ffc14", "tcffc14", "quadffc14"])
+def test_ffc_without_a_good_pixel_keeps_the_corrections(name: str) -> None:
+    """A mean frame whose every pixel is bad has no target: no error (the sequence goes
+    on), the refresh keeps each pixel's correction (from nonzero ones), ``kept`` names the
+    run, the target reads 0 as the RTL's register does; a good pixel again refreshes."""
+    cfg = load_pipeline(name)
+    rng = np.random.default_rng(5)
+    c = random_coeffs(cfg, rng, (3, 4))
+    bad = np.ones((3, 4), bool)
+    c = MethodCoefficients(cfg, {m: {**v, "bad": bad} if "bad" in v else v
+                                 for m, v in c.fields.items()}, c.registers)
+    n = int(cfg.ffc_frames)
+    lo = -(1 << (cfg.format("ffc").bits - 1))
+    start = rng.integers(lo, -lo, (3, 4))
+    shut = np.r_[np.zeros(1, bool), np.ones(n, bool), np.zeros(2, bool)]
+    x = rng.integers(0, 1 << cfg.adc_bits, (shut.size, 3, 4))
+    reading = np.full(shut.size, int(c.registers.get("t_ref", 0)))
+    res = method_top(x, c, FrameInputs(reading=reading, shutter=shut), ffc_offset=start)
+    assert res.kept == res.refreshes == (n,) and res.targets == (0,)
+    assert np.array_equal(res.offsets[0], start) and np.array_equal(res.ffc_offset, start)
+    # The same frames with one good pixel: a target, new corrections.
+    good = bad.copy()
+    good[1, 2] = False
+    c2 = MethodCoefficients(cfg, {m: {**v, "bad": good} if "bad" in v else v
+                                  for m, v in c.fields.items()}, c.registers)
+    res2 = method_top(x, c2, FrameInputs(reading=reading, shutter=shut), ffc_offset=start)
+    assert res2.kept == () and res2.refreshes == (n,)
+    assert not np.array_equal(res2.ffc_offset, start)
+
+
+def test_table_interp_dpc_replaces_a_pixel_bad_in_either_table_of_the_pair() -> None:
+    """table_interp's DPC: a pixel flagged in table j or j + 1 (the frame's pair) is
+    replaced by the mean of its good neighbours; flagged only in a table the frame does
+    not use, it passes. The neighbours' mean is worked out here from the output."""
+    cfg = load_pipeline("table14")
+    rng = np.random.default_rng(8)
+    c = random_coeffs(cfg, rng, (3, 3))
+    clean = np.zeros((3, 3), bool)
+    fields = {m: {**v, "bad": clean} for m, v in c.fields.items()}
+    only2 = clean.copy()
+    only2[1, 1] = True
+    fields["table2"] = {**fields["table2"], "bad": only2}  # the centre, table 2 only
+    rs = (1000, 2000, 3000)
+    c = MethodCoefficients(cfg, fields, {"table_readings": rs})
+    x = rng.integers(2000, 12000, (2, 3, 3))
+    # Frame 0 reads between tables 0 and 1; frame 1 between tables 1 and 2.
+    res = method_top(x, c, FrameInputs(reading=np.array([1500, 2500])))
+    plain = method_top(x, MethodCoefficients(cfg, {m: {**v, "bad": clean}
+                                                   for m, v in fields.items()}, c.registers),
+                       FrameInputs(reading=np.array([1500, 2500])))
+    assert np.array_equal(res.y[0], plain.y[0])  # table 2 not used: passes
+    nb = np.delete(plain.y[1].ravel(), 4).astype(int)  # the 8 good neighbours
+    assert int(res.y[1, 1, 1]) == (2 * nb.sum() + 8) // 16  # mean, half up
+    assert np.array_equal(np.delete(res.y[1].ravel(), 4), nb)
+    assert c.bad.tolist() == only2.tolist()  # the map of every table's flags
+
+
 @pytest.mark.parametrize("name", pipeline_names())
 def test_lin_core_is_nuc_core(name: str) -> None:
     cfg = load_pipeline(name)
@@ -550,3 +607,29 @@ def test_drift_and_ffc_follow_their_real_valued_formula() -> None:
     # The shutter frames repeat the frame before them (hold).
     assert res.held.tolist() == [False] + [True] * 8 + [False]
     assert (res.y[1:9] == res.y[0]).all()
+
+
+def test_quadratic_term_error_bound_of_the_datapath_doc() -> None:
+    """docs/datapath.md (`quad_core`): qs differs from the exact q (x / 2^A)^2 by less than
+    |q| (2^Sq - 1) 2^-(2A + Qf) + 2^-F (when QPf > F), over every ADC code, at q's extremes
+    and at random q; exact integers (the old bound, 2^-9, failed once the term is floored)."""
+    from irnuc.nuc_fixed.widths import core_frac, square_shift
+
+    cfg = load_pipeline("quadratic14")
+    a, q = cfg.adc_bits, cfg.format("quad")
+    sq, f = square_shift(cfg), core_frac(cfg, 0, False)
+    assert q.frac_bits + 2 * a - sq > f  # the term is floored on this configuration
+    x = np.arange(1 << a, dtype=np.int64).reshape(1, -1)
+    lo, hi = -(1 << (q.bits - 1)), (1 << (q.bits - 1)) - 1
+    rng = np.random.default_rng(2)
+    worst = Fraction(0)
+    for qv in (lo, hi, *rng.integers(lo, hi, 6).tolist()):
+        zero = np.zeros_like(x)
+        res = quad_core(x, zero, zero, np.full_like(x, qv), cfg, sum_only=True)
+        assert res.frac == f
+        scale = 1 << (2 * a + q.frac_bits)  # exact = qv x^2 / scale, qs = s / 2^F
+        err = np.abs(qv * (x * x) * (1 << f) - res.s * scale)  # over scale * 2^F
+        bound = abs(qv) * ((1 << sq) - 1) * (1 << f) + scale
+        assert int(err.max()) < bound, qv
+        worst = max(worst, Fraction(int(err.max()), scale << f))
+    assert 0.00195 < float(worst) < 0.00201  # the figures the document gives

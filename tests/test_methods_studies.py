@@ -12,7 +12,7 @@ import pytest
 from irnuc.cli import main
 from irnuc.nuc_fixed import load_pipeline
 from irnuc.reports.studies import camera_temperature, ffc_interval, method_bits, methods_range
-from irnuc.reports.studies.drift_common import StudySensor, memory_bits, responsivity
+from irnuc.reports.studies.drift_common import StudySensor, memory_bits
 from irnuc.reports.studies.ffc_interval import longest_period
 
 TINY = StudySensor(rows=12, cols=16)
@@ -100,9 +100,46 @@ def test_method_bits_falls_to_the_float_floor() -> None:
     assert method_bits.figure(r).startswith(PNG)
 
 
-def test_responsivity_is_the_targets_slope() -> None:
-    r = responsivity([100.0, 300.0, 700.0], [290.0, 330.0, 370.0])
-    assert r(300.0) == 5.0 and r(350.0) == 10.0 and r(200.0) == 5.0 and r(400.0) == 10.0
+def test_residuals_in_mK_through_the_local_responsivity_and_the_level_error() -> None:
+    """The one conversion (metrics.residuals_mK): synthetic corrected frames with a known
+    local slope, pattern and level offset give them back; the temperature scale is linear
+    in in-band radiance between the calibration scenes (scipy quad of Planck's law, an
+    independent radiance)."""
+    import math
+
+    from scipy.integrate import quad
+
+    from irnuc.reports.studies.metrics import TemperatureScale, residuals_mK, slope_scenes
+
+    band = (8e-6, 14e-6)
+    c1, c2 = 1.191042972e-16, 1.438776877e-2
+
+    def L(T):  # W m^-2 sr^-1, Planck's law integrated over the band
+        return quad(lambda lam: c1 / lam**5 / math.expm1(c2 / (lam * T)), *band,
+                    epsabs=0, epsrel=1e-12)[0]
+
+    sc = TemperatureScale([1000.0, 3000.0, 7000.0], [290.0, 330.0, 370.0], band)
+    assert sc.level(330.0) == pytest.approx(3000.0, rel=1e-12)
+    lev = 1000.0 + 2000.0 * (L(310.0) - L(290.0)) / (L(330.0) - L(290.0))
+    assert sc.level(310.0) == pytest.approx(lev, rel=1e-9)
+    assert sc.temperature(sc.level(351.3)) == pytest.approx(351.3, abs=1e-8)
+    rng = np.random.default_rng(1)
+    pattern = rng.normal(0.0, 2.0, (8, 10))
+    good = np.ones((8, 10), bool)
+    good[0, 0] = False
+    scenes = [300.0, 360.0]
+    slope = {300.0: 45.0, 360.0: 61.0}  # output codes per K, where each scene is
+    frames = []
+    for T in slope_scenes(scenes):
+        s0 = min(scenes, key=lambda x: abs(x - T))
+        frames.append(sc.level(s0) + 7.0 + slope[s0] * (T - s0) + pattern)
+    res = residuals_mK(np.stack(frames), good, scenes, sc)
+    for r, s0 in zip(res, scenes, strict=True):
+        assert r["responsivity_codes_per_K"] == pytest.approx(slope[s0], rel=1e-9)
+        assert r["fpn_mK"] == pytest.approx(1e3 * pattern[good].std() / slope[s0], rel=1e-9)
+        assert r["level_lsb"] == pytest.approx(7.0 + pattern[good].mean(), rel=1e-9)
+        read = sc.temperature(sc.level(s0) + 7.0 + pattern[good].mean())
+        assert r["level_error_mK"] == pytest.approx(1e3 * (read - s0), rel=1e-9)
 
 
 def test_study_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -98,6 +98,10 @@ def test_widths_hold_exact_ranges(name: str) -> None:
         for k, r in (("drift.bsum", sb), ("drift.bd", bd), ("drift.dp", dp), ("drift.x", x)):
             assert fits(r, mw[k]), (k, r, mw[k])
             checked.append(k)
+        # bd, the difference of two unsigned words, is exact (one bit below the rule of
+        # sums, docs/datapath.md "Notation"; the RTL's BdBits): one bit fewer fails.
+        assert not fits(bd, W(mw["drift.bd"].bits - 1, True))
+        assert mw["drift.bd"].bits == cfg.blind_sum_bits + 1
     cr = core_ranges(cfg, x, xf, cfg.has("ffc"))
     assert cr["F"] == mw["core.F"]
     for k, r in cr.items():
@@ -134,6 +138,9 @@ def test_widths_hold_exact_ranges(name: str) -> None:
             lo, hi = rng_of(bits, signed)
             diff = (lo - hi, hi - lo)
             assert fits(diff, mw[f"interp.{kind}.diff"])
+            # dg (unsigned gains) is exact, GW + 1 as the RTL's DgBits; do the rule of sums.
+            assert not fits(diff, W(mw[f"interp.{kind}.diff"].bits - 1, True))
+            assert mw[f"interp.{kind}.diff"].bits == bits + 1
             assert fits(iv_mul(diff, w), mw[f"interp.{kind}.prod"])
             checked.append(f"interp.{kind}.prod")
     if cfg.has("ffc"):

@@ -27,7 +27,8 @@ DESIGN = {f.removesuffix(".sv") for top in ("nuc_dpc_top", "method_dpc_top", "in
           for f in MODULE_FILES[top]} - {"irnuc_stream_assert", "irnuc_frame_assert",
                                           "irnuc_method_pkg", "irnuc_stage_pkg",
                                           "irnuc_axis_assert", "irnuc_axil_assert",
-                                          "irnuc_axil_regs_check", "irnuc_assert_armed"}
+                                          "irnuc_axil_regs_check", "irnuc_assert_armed",
+                                          "irnuc_axil_regblock_pkg"}
 
 
 def test_catalogue_covers_every_design_module() -> None:
@@ -93,23 +94,45 @@ def test_small_campaign_cache_and_cli(tmp_path, own_cache) -> None:
     again = mutate.run_mutants(picked, workers=0)
     assert all(r["cached"] for r in again["mutants"])
     assert baseline_xml.stat().st_mtime_ns == stamp
-    # The command line (its own process: the test layer does not import irnuc.cli):
-    # --out claimed, mutate.json written from the cache; a bad id is one line, exit 2.
+    # The command line exactly as documented, coverage on (its own process: the test layer
+    # does not import irnuc.cli; the coverage run once ended the whole campaign in a
+    # ValueError, a testbench named by string and never imported): --out claimed,
+    # mutate.json written from the cache, coverage.json from the unmutated design's suite
+    # with coverage; a bad id is one line, exit 2.
     irnuc = Path(sys.executable).with_name("irnuc")
     env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache")}
     out = tmp_path / "out"
-    proc = subprocess.run([str(irnuc), "mutate", "--only", "iw_bit_position",
-                           "--no-coverage", "--out", str(out), "-q"],
-                          env=env, capture_output=True, text=True, timeout=600)
+    proc = subprocess.run([str(irnuc), "mutate", "--only", "iw_bit_position", "--out",
+                           str(out), "-q"], env=env, capture_output=True, text=True,
+                          timeout=600)
     assert proc.returncode == 0, proc.stderr
     data = json.loads((out / "mutate.json").read_text())
     assert data["killed"] == 1 and data["total"] == 1
     assert all(r["cached"] for r in data["mutants"])
+    cov = json.loads((out / "coverage.json").read_text())
+    assert set(cov) == {"functional", "code"}
+    code = next(iter(cov["code"].values()))
+    assert "interp_weight" in code and code["interp_weight"]["line"]["hit"] > 0
     bad = subprocess.run([str(irnuc), "mutate", "--only", "nope", "--out",
                           str(tmp_path / "o2")], env=env, capture_output=True, text=True)
     err = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(err) == 1 and "--only nope: no such mutant" in err[0]
     assert not (tmp_path / "o2").exists()
+
+
+def test_every_suite_a_mutant_names_is_imported() -> None:
+    # The coverage run of `irnuc mutate` (and every campaign) reads each mutant's suite
+    # from an imported module: in a fresh interpreter, importing the campaign must be
+    # enough for every suite of the catalogue, the package check's too.
+    code = ("import sys; from irnuc.verif import mutate; from irnuc.cosim import "
+            "cocotb_test_names; mods = {m.suite for m in mutate.CATALOGUE} | "
+            "{mutate.PKG_SUITE}; print(len(mods)); "
+            "print(min(len(cocotb_test_names(m)) for m in mods))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    n_modules, fewest_tests = (int(v) for v in proc.stdout.split())
+    assert n_modules >= 10 and fewest_tests >= 1
 
 
 def test_configs_of_the_per_configuration_run() -> None:

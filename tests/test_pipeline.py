@@ -167,11 +167,13 @@ def test_a_sensor_keeps_its_static_products_and_matches_one_shot_runs(small_cfg)
 
 def test_noise_enabled_with_every_sigma_zero_runs_no_noise_stage(small_cfg):
     quiet = {"noise.enabled": True, "noise.johnson": False, "noise.readout_sigma": 0.0,
-             "noise.flicker_sigma": 0.0, "fpa.defects": {}}
+             "noise.flicker_sigma": 0.0, "noise.flicker_coefficient": 0.0,
+             "noise.thermal_fluctuation": False, "fpa.defects": {}}
     fr = model.simulate(small_cfg(**quiet), [300.0, 350.0], seed=2)
     off = model.simulate(small_cfg(**{**quiet, "noise.enabled": False}), [300.0, 350.0], seed=2)
     assert "noise" not in fr.counts and fr.counts["no_noise"] == 1
-    assert "noise_frames" not in fr.counts
+    assert fr.counts["no_bolometer_noise"] == 1
+    assert not {"noise_frames", "bolometer_noise_frames", "thermal_noise_frames"} & set(fr.counts)
     np.testing.assert_array_equal(fr.codes, off.codes)
 
 

@@ -65,6 +65,6 @@ def test_nuc_dpc_top_flops_without_reset_are_allowed(tmp_path) -> None:
     cfgs = configspace.named() + list(configspace.ci_sample())
     rep = resets.check("nuc_dpc_top", cfgs, tmp_path)
     assert rep.passed, resets.format_report(rep)
-    for reg in ("u_dpc.u_ctrl.state_q", "u_dpc.u_ctrl.geo_w_q", "u_dpc.u_ctrl.row_q",
-                "u_nuc.rnd_valid_q", "u_pix_in.main_valid_q", "u_dpc.u_ctrl.err_q"):
+    for reg in ("u_tail.u_dpc.u_ctrl.state_q", "u_tail.u_dpc.u_ctrl.geo_w_q", "u_tail.u_dpc.u_ctrl.row_q",
+                "u_nuc.rnd_valid_q", "u_pix_in.main_valid_q", "u_tail.u_dpc.u_ctrl.err_q"):
         assert reg in rep.with_reset, reg

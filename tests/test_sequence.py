@@ -171,7 +171,22 @@ BAD = [
     ({"fpa": {"profile": "ramp", "start": 293.0, "rate": 2.0, "slope": 1.0}},
      "sequence.fpa.slope is not a known field of profile 'ramp'"),
     ({"housing": {"profile": "lag", "time_constant": 10.0}},
-     "sequence.housing.profile = 'lag' is not one of"),
+     "a lag follows a temperature that is not given"),
+    ({"housing": {"profile": "lag", "time_constant": 10.0, "follows": "fpa"},
+      "fpa": {"profile": "lag", "time_constant": 10.0}}, "follow each other"),
+    ({"fpa": {"profile": "lag", "time_constant": 10.0, "follows": "fpa"}},
+     "sequence.fpa.follows = 'fpa': a lag of the fpa follows one of housing, ambient"),
+    ({"network": {"housing_tau": 900.0, "fpa_tau": 120.0}},
+     "sequence.ambient is required with sequence.network"),
+    ({"ambient": 298.0, "network": {"housing_tau": 900.0, "fpa_tau": 120.0, "fpa_taus": 1.0}},
+     "sequence.network.fpa_taus is not a known field; did you mean 'fpa_tau'?"),
+    ({"ambient": 298.0, "network": {"housing_tau": 900.0}}, "sequence.network.fpa_tau is required"),
+    ({"ambient": 298.0, "network": {"housing_tau": -1.0, "fpa_tau": 1.0}},
+     "sequence.network.housing_tau = -1 s is outside the allowed range"),
+    ({"record_every": 10, "thermal": "lagged"}, "sequence.record_every = 10 needs the steady"),
+    ({"housing_sensor": {"node": "lid"}}, "housing_sensor.node = 'lid'"),
+    ({"housing_sensor": {"lag": 1.0}}, "sequence.housing_sensor.lag is not a known field; "
+                                       "did you mean 'lag_s'?"),
     ({"scene": {"profile": "rampe", "start": 300.0, "rate": 1.0}}, "did you mean 'ramp'?"),
     ({"scene": {"profile": "step", "before": 300.0, "at": 1.0}},
      "sequence.scene.after is required by profile 'step'"),
@@ -297,9 +312,9 @@ def test_lagged_memory_matches_the_time_domain_model():
 
 
 def test_where_the_time_constant_is_far_below_the_frame_period_steady_is_used_and_equal():
-    """tau = 0.1 ms at 30 Hz: nothing is remembered (exp(-333)); ``auto`` says so and uses
-    the steady model, which gives the time-domain model's codes to the code and the lagged
-    model's bit for bit."""
+    """tau = 0.1 ms at 30 Hz: nothing is remembered (exp(-333)) and the pixel lags the
+    1 K/s substrate ramp by tau r = 0.1 mK; ``auto`` says so and uses the steady model,
+    which gives the time-domain and the lagged models' codes to the code."""
     cfg = _tiny(**LOW_BIAS, **{"bolometer.C": 1e-12})
     auto = simulate_sequence(cfg, _seq(**STEPS), seed=1)
     assert auto.thermal == "steady" and "steady model gives the same frames" in auto.thermal_reason
@@ -307,7 +322,7 @@ def test_where_the_time_constant_is_far_below_the_frame_period_steady_is_used_an
     lagged, _ = _codes(cfg, "lagged")
     transient, _ = _codes(cfg, "transient")
     np.testing.assert_array_equal(auto.codes, steady)
-    np.testing.assert_array_equal(lagged, steady)
+    assert np.abs(lagged - steady).max() <= 1
     assert np.abs(steady - transient).max() <= 1
 
 

@@ -72,3 +72,118 @@ def test_lagged_memory_needs_the_equilibrium_variant(tmp_path, capsys):
     assert main(["frames", "--sequence", toml, *SMALL, "--set", "bolometer.variant=paper",
                  "--out", str(tmp_path / "o")]) == 2
     assert "sequence.thermal = 'lagged' needs bolometer.variant" in capsys.readouterr().err
+
+
+def _numeric_leaves(d, path=()):
+    """Every number of a parsed TOML document, by its path (lists by index)."""
+    if isinstance(d, dict):
+        return [p for k, v in d.items() for p in _numeric_leaves(v, (*path, k))]
+    if isinstance(d, list):
+        return [p for i, v in enumerate(d) for p in _numeric_leaves(v, (*path, i))]
+    return [path] if isinstance(d, int | float) and not isinstance(d, bool) else []
+
+
+def _dotted(path) -> str:
+    out = ""
+    for k in path:
+        out += f"[{k}]" if isinstance(k, int) else (f".{k}" if out else k)
+    return out
+
+
+FULL = {"sequence": {
+    "frame_rate": 30.0, "duration": 2.0, "steady_tolerance": 0.01, "chunk_frames": 8,
+    "fpa": {"profile": "ramp", "start": 300.0, "rate": 1.0, "delay": 0.1, "stop": 301.0},
+    "housing": {"profile": "sine", "mean": 300.0, "amplitude": 0.5, "period": 1.0,
+                "phase": 0.1},
+    "scene": {"profile": "step", "before": 300.0, "after": 310.0, "at": 1.0},
+    "shutter": {"frames": 2, "every": 1.0, "start": 0.2, "at": [0.5],
+                "temperature": {"profile": "constant", "value": 300.0}},
+    "fpa_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.1,
+                   "noise_K": 0.01},
+}}
+
+
+def _refuses_every_number(doc, error, load) -> int:
+    """Load ``doc`` as it is, then with each of its numbers made a boolean and a string (its
+    own value's text): each refused with ``error`` naming the dotted key. The numbers'
+    count."""
+    import copy
+
+    load(doc)  # valid as it is
+    leaves = _numeric_leaves(doc)
+    for path in leaves:
+        for bad in (True, "30"):
+            d = copy.deepcopy(doc)
+            node = d
+            for k in path[:-1]:
+                node = node[k]
+            node[path[-1]] = bad if bad is True else str(node[path[-1]])
+            with pytest.raises(error) as exc:
+                load(d)
+            assert _dotted(path) in str(exc.value), (path, str(exc.value))
+    return len(leaves)
+
+
+def _plan_loader(tmp_path):
+    """load_plan of a document written as a TOML file."""
+    import json
+
+    from irnuc.nuc_fixed.plan import load_plan
+
+    def load(doc):
+        lines = []
+        for table, fields in doc.items():
+            lines.append(f"[{table}]")
+            lines += [f"{k} = {json.dumps(v)}" for k, v in fields.items()]
+        p = tmp_path / "p.toml"
+        p.write_text("\n".join(lines) + "\n")
+        return load_plan(str(p))
+
+    return load
+
+
+def test_every_number_of_a_sequence_refuses_booleans_and_strings() -> None:
+    """`frame_rate = true` was taken as 1 Hz and `"30"` as 30: every number field of a
+    sequence (and of its profiles, shutter and FPA sensor) refuses a boolean and a string,
+    naming its dotted key."""
+    from irnuc.model.sequence import sequence_from_dict
+    from irnuc.model.validate import ConfigError
+
+    assert _refuses_every_number(FULL, ConfigError, sequence_from_dict) == 25
+
+
+def test_every_number_of_a_plan_refuses_booleans_and_strings(tmp_path) -> None:
+    from irnuc.nuc_fixed.plan import PlanError
+
+    plan = {"plan": {"scene": [290.0, 330.0], "fpa": [288.0, 298.0], "frames": 2,
+                     "cam": [290.0, 300.0], "reference_fpa": 288.0, "drift_cam": [295.0]},
+            "fpa_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.0,
+                           "noise_K": 0.0}}
+    assert _refuses_every_number(plan, PlanError, _plan_loader(tmp_path)) == 14
+
+
+WORLD = {"sequence": {
+    "frame_rate": 30.0, "duration": 2.0, "record_every": 2,
+    "ambient": {"profile": "ramp", "start": 290.0, "rate": 1.0},
+    "network": {"start": 290.0, "housing_tau": 900.0, "fpa_tau": 120.0, "lens_tau": 600.0,
+                "shutter_tau": 300.0, "housing_self_heating": 3.0, "fpa_self_heating": 6.0},
+    "scene": {"profile": "constant", "value": 300.0},
+    "fpa_sensor": {"lag_s": 2.0},
+    "housing_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.1,
+                       "noise_K": 0.01, "lag_s": 5.0, "node": "lens"},
+}}
+
+
+def test_every_number_of_the_thermal_world_refuses_booleans_and_strings(tmp_path) -> None:
+    """The same for issue 35's keys: the ambient, the network, the housing sensor, the
+    sensors' lags, record_every, and a plan's housing offsets and housing sensor."""
+    from irnuc.model.sequence import sequence_from_dict
+    from irnuc.model.validate import ConfigError
+    from irnuc.nuc_fixed.plan import PlanError
+
+    assert _refuses_every_number(WORLD, ConfigError, sequence_from_dict) == 20
+    doc = {"plan": {"scene": [290.0, 330.0], "fpa": [288.0, 298.0], "frames": 2,
+                    "housing_offset": [-5.0, 0.0, 5.0]},
+           "housing_sensor": {"bits": 14, "lsb_K": 0.01, "zero_K": 223.15, "offset_K": 0.0,
+                              "noise_K": 0.0, "lag_s": 0.0, "node": "housing"}}
+    assert _refuses_every_number(doc, PlanError, _plan_loader(tmp_path)) == 14

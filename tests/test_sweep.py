@@ -1,7 +1,7 @@
-"""Bit-width sweeps (reports/sweep.py, reports/metrics.py): metrics against plain numpy and
-brute force, quantization against the golden model's calibration, error bounds from the
-datapath's rounding analysis, the paper's halving per bit, and the executors (processes,
-in-process, Dask LocalCluster) giving identical results."""
+"""Bit-width sweeps (reports/studies/sweep.py, reports/studies/metrics.py): metrics against
+plain numpy and brute force, quantization against the golden model's calibration, error
+bounds from the datapath's rounding analysis, the paper's halving per bit, and the executors
+(processes, in-process, Dask LocalCluster) giving identical results."""
 
 from __future__ import annotations
 

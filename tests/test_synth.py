@@ -64,9 +64,8 @@ def test_irnuc_synth_minimal_and_its_cache(tmp_path, monkeypatch, capsys) -> Non
     assert r["out_of_context"] is False
     # The same netlist out of context: no I/O buffer placed (nextpnr's own count), where on
     # pins every port has one.
-    from irnuc.common.cache import cache_dir
-
-    net = cache_dir("synth") / r["source_digest"] / "work" / "ecp5" / f"{r['top']}.json"
+    net, _, _ = synth.synth_netlist(cosim.hdl_sources(r["top"]), r["top"],
+                                    _params(r["top"], "minimal"))  # cached: no synthesis
     ooc = synth.place_route_ecp5(net, tmp_path / "ooc", freq_mhz=150.0, out_of_context=True)
     assert ooc["utilization"].get("TRELLIS_IO", {}).get("used", 0) == 0
     assert r["ecp5_utilization"]["TRELLIS_IO"]["used"] > 20

@@ -13,6 +13,7 @@ import pytest
 from irnuc.cli import main
 from irnuc.reports.report.base import Report
 from irnuc.reports.report.phases import temperature as tp
+from irnuc.reports.report.sections import Section
 from irnuc.reports.report.summary import SCHEMA_PATH, compare_baseline
 from irnuc.reports.studies import signoff as so
 from irnuc.reports.studies.hwcost import coefficient_memory
@@ -261,7 +262,7 @@ def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch) -> None:
     sec = _section()
     sec["recommended"]["cosim"] = c
     rep = Report(config={"name": "x"}, verbose=False)
-    rep.sections["temperature"] = sec
+    rep.sections["temperature"] = Section.of(sec)
     tp.temperature_metrics(rep, sec)
     s = make_summary(rep, [], None, None)
     assert s["status"] == "fail"
@@ -299,7 +300,7 @@ def test_a_sweep_without_a_valid_point_fails_the_report() -> None:
     sec["points"] = [_pt(0, "piecewise14", 1, 1, 0.0, valid=False)]
     sec["recommended"] = None
     rep = Report(config={"name": "x"}, verbose=False)
-    rep.sections["temperature"] = sec
+    rep.sections["temperature"] = Section.of(sec)
     tp.temperature_metrics(rep, sec)
     s = make_summary(rep, [], None, None)
     assert s["status"] == "fail"
@@ -317,13 +318,14 @@ def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch)
                 "ecp5": {"lut4": lut + 10, "ff": ff + 20, "mult18": dsp, "dp16kd": 2},
                 "fmax_mhz": fmax, "device": "LFE5U-85F", "speed": 6, "target_mhz": 150.0}
 
-    tops = []
+    tops, asked = [], []
 
     def fake(cfg, *, top=None, **kw):
         tops.append(top)
+        asked.append(kw)
         return figs(2000, 3000, 8, 140.0) if top == "irnuc_axis_top" else figs(900, 1700, 8, 160.0)
 
-    monkeypatch.setattr(synth, "synth_config", fake)
+    monkeypatch.setattr(synth, "synth_seeds", fake)
     pred = {"source": "model", "xc7.lut": 950.0, "xc7.ff": 1650.0, "xc7.dsp": 8.0,
             "xc7.bram36": 1.0, "ecp5.lut4": 960.0, "ecp5.ff": 1720.0, "ecp5.mult18": 8.0,
             "ecp5.dp16kd": 2.0, "fmax_mhz": 150.0}
@@ -331,6 +333,10 @@ def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch)
     tp._synth_recommended({}, r)
     sy = r["synth"]
     assert tops == ["irnuc_axis_top", "method_dpc_top"]
+    # Both placed at the default seeds on the default workers; {"synth_seeds": 2} asks 2.
+    assert asked == [{"seeds": 4, "workers": 2}] * 2
+    tp._synth_recommended({"synth_seeds": 2, "workers": 1}, {**r})
+    assert asked[2:] == [{"seeds": 2, "workers": 1}] * 2
     assert sy["top"] == "irnuc_axis_top" and sy["core"]["top"] == "method_dpc_top"
     assert sy["prediction_error"]["xc7.lut"] == 50.0 and sy["prediction_error"]["xc7.ff"] == -50.0
     assert sy["prediction_error"]["fmax_mhz"] == -10.0
@@ -339,13 +345,28 @@ def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch)
 
 def test_fmax_note_only_below_the_target() -> None:
     """A recommendation synthesized below its target frequency gets a note naming the top,
-    the figure and the target; at or above it, or without a target, none."""
+    the figure and the target; at or above it, or without a target, none. Over a seed
+    sweep: a note when the best seed misses, or when some seeds do."""
+    from irnuc.cosim.synth import best_of_seeds
     from irnuc.reports.report.phases.temperature import fmax_note
 
     below = {"top": "irnuc_axis_top", "fmax_mhz": 148.04, "target_mhz": 150.0}
     assert fmax_note(below) == (
         "temperature: the recommendation's irnuc_axis_top reaches 148.0 MHz, below the 150 MHz "
-        "target, at this placer seed (irnuc synth --seed N tries others)")
+        "target, at this placer seed (irnuc synth --seeds N tries others)")
     assert fmax_note({**below, "fmax_mhz": 150.0}) is None
     assert fmax_note({**below, "target_mhz": None}) is None
     assert fmax_note({}) is None
+
+    def sweep(*fmax):
+        runs = [{"seed": i + 1, "fmax_mhz": f, "top": "irnuc_axis_top", "xc7": {}, "ecp5": {},
+                 "config_digest": "d", "target_mhz": 150.0} for i, f in enumerate(fmax)]
+        return best_of_seeds(runs)
+
+    assert fmax_note(sweep(151.0, 160.2, 150.0, 155.5)) is None
+    assert fmax_note(sweep(145.0, 148.7, 138.2, 141.0)) == (
+        "temperature: the recommendation's irnuc_axis_top reaches 148.7 MHz at the best of 4 "
+        "placer seeds (seed 2; worst 138.2), below the 150 MHz target")
+    assert fmax_note(sweep(151.0, 160.2, 142.84, 155.5)) == (
+        "temperature: the recommendation's irnuc_axis_top reaches 160.2 MHz at the best of 4 "
+        "placer seeds (seed 2) but 142.8 at seed 3: 3 of 4 placements meet the 150 MHz target")

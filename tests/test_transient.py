@@ -214,12 +214,17 @@ def test_runaway_in_frames_reads_the_high_rail_and_is_counted():
 
 
 def test_frames_like_the_steady_model_at_low_bias():
-    # Small self-heating and a settled pixel: the time average of I R(T(t)) equals the
-    # steady model's I R(T_s + dT) to the curvature of R over the small rise.
+    # Small self-heating and a pixel in the periodic state of its pulse train (the pulse
+    # at the end of the configuration's frame period, warm-up frames to the periodic
+    # state): the time average of I R(T(t)) equals the steady model's (its pulse
+    # integrated by a few Runge-Kutta steps) to 1e-7.
     over = {"fpa.active_rows": 5, "fpa.active_cols": 6, "bolometer.bias_current": 1e-6}
     cfg = model.load_preset("default", over)
+    period = 1.0 / cfg["readout"]["frame_rate"]
     st = model.simulate(cfg, [320.0], outputs=("codes", "bolometer_voltage"))
-    fr = tr.simulate_transient(cfg, [320.0], outputs=("codes", "bolometer_voltage"))
+    fr = tr.simulate_transient(cfg, [320.0], outputs=("codes", "bolometer_voltage"),
+                               settings={"frame_period": period, "warmup_frames": 40,
+                                         "pulse_start": period - T_INT})
     assert fr.codes.shape == st.codes.shape and fr.codes.dtype == st.codes.dtype
     np.testing.assert_allclose(fr.outputs["bolometer_voltage"], st.outputs["bolometer_voltage"],
                                rtol=1e-7)
@@ -227,20 +232,27 @@ def test_frames_like_the_steady_model_at_low_bias():
     np.testing.assert_array_equal(fr.defect_kind, st.defect_kind)
 
 
-def test_substrate_steps_keep_the_temperature_continuous():
-    # No bias: T relaxes linearly towards T_s + Q/g; a substrate step moves the target but
-    # not T (closed form over two frames).
+def test_a_substrate_ramp_through_the_frame_keeps_the_temperature_continuous():
+    # No bias: theta = T - T_s relaxes towards Q/g while the substrate warms linearly through
+    # frame 1 (300 -> 301 K over the frame period), so C theta' = Q - g theta - C r with
+    # r = 1 K / P: theta = (eq - r tau) + (theta_0 - eq + r tau) exp(-t / tau), the exact
+    # solution (independent of the kernel); the kernel holds the substrate at its mid-pulse
+    # value during the pulse, an error below r t_int^2 / tau. T is continuous (no jump at
+    # the frame start: a step would leave theta 1 K low there).
     Q = np.full((2, 1), 2e-9)
     C, g = 1e-10, 1e-8
+    tau, ps = C / g, 1e-3
     r = _integrate(Q, T_s=np.array([300.0, 301.0]), bias_current=0.0, C=C, g=g,
-                   settings={"integrator": "exponential", "pulse_start": 1e-3})
-    th = 2e-9 / g  # equilibrium with frame 0
-    th -= 1.0  # frame 1: T_s one kelvin higher, T unchanged
+                   settings={"integrator": "exponential", "pulse_start": ps})
     eq = 2e-9 / g
-    th = eq + (th - eq) * math.exp(-1e-3 * g / C)  # until the pulse
-    end = eq + (th - eq) * math.exp(-T_INT * g / C)
-    assert r.dT_end[1, 0] == pytest.approx(end, rel=1e-12)
+    rate = 1.0 / FRAME
+    t_end = ps + T_INT
+    exact = (eq - rate * tau) + (eq - eq + rate * tau) * math.exp(-t_end / tau)
+    # dT_end is over the substrate at mid-pulse, half a pulse's ramp below the end's
+    assert r.dT_end[1, 0] == pytest.approx(exact + 0.5 * rate * T_INT,
+                                           abs=rate * T_INT**2 / tau)
     assert r.dT_end[0, 0] == pytest.approx(eq, rel=1e-12)
+    assert abs(r.dT_end[1, 0] - eq) < 0.05  # the substrate's 1 K did not jump into theta
 
 
 def test_deterministic_and_integrators_agree_on_frames():

@@ -13,8 +13,12 @@ from irnuc.model.pipeline import Pipeline
 
 
 def _cfg(**over):
+    # The predicted (warm-started) solve is the self-heating-factor pulse model's
+    # (bolometer.pulse = "self_heating"); the integrated pulse train has its own tests
+    # (tests/test_pulse.py).
     base = {"fpa.active_rows": 16, "fpa.active_cols": 20, "fpa.defects": {},
-            "fpa.tolerance": {"R_ref": 3e-3, "g": 5e-3, "C": 5e-3}}
+            "fpa.tolerance": {"R_ref": 3e-3, "g": 5e-3, "C": 5e-3},
+            "bolometer.pulse": "self_heating"}
     return model.load_preset("default", {**base, **over})
 
 

@@ -34,6 +34,7 @@ module irnuc_pkg_probe
   output logic [31:0] const_reg_map_major_o,
   output logic [31:0] const_reg_map_minor_o,
   output logic [31:0] const_reg_addr_bits_o,
+  output logic [31:0] const_reg_slot_count_o,
   output logic [31:0] const_reg_id_offset_o,
   output logic [31:0] const_reg_id_value_lsb_o,
   output logic [31:0] const_reg_id_value_bits_o,
@@ -325,6 +326,7 @@ module irnuc_pkg_probe
   assign const_reg_map_major_o = 32'(RegMapMajor);
   assign const_reg_map_minor_o = 32'(RegMapMinor);
   assign const_reg_addr_bits_o = 32'(RegAddrBits);
+  assign const_reg_slot_count_o = 32'(RegSlotCount);
   assign const_reg_id_offset_o = 32'(RegIdOffset);
   assign const_reg_id_value_lsb_o = 32'(RegIdValueLsb);
   assign const_reg_id_value_bits_o = 32'(RegIdValueBits);

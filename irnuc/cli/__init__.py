@@ -27,7 +27,7 @@ from irnuc.common.errors import StreamError, ToolError, UserError
 COMMAND_MODULES: tuple[str, ...] = (
     "irnuc.cli.frames", "irnuc.cli.calibrate", "irnuc.cli.sweep", "irnuc.cli.report",
     "irnuc.cli.precision", "irnuc.cli.synth", "irnuc.cli.mutate", "irnuc.cli.formal",
-    "irnuc.cli.traffic", "irnuc.cli.study", "irnuc.cli.noise",
+    "irnuc.cli.traffic", "irnuc.cli.study", "irnuc.cli.noise", "irnuc.cli.regmap",
 )
 
 Command = tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]
@@ -86,10 +86,29 @@ def _one_line(text: object) -> str:
 
 
 def _flush_stdout() -> None:
+    if sys.stdout is None:  # closed when irnuc started (and then refused unless -q)
+        return
     try:
         sys.stdout.flush()
     except OSError as exc:
         raise stdout_error(exc) from None
+
+
+def _closed_standard_streams() -> list[str]:
+    """The standard streams (stdin, stdout, stderr) whose file descriptor is closed, each
+    reopened on /dev/null: a file irnuc opens must never become fd 1 or 2, where a child
+    process (a compiler, a simulator) would write into it."""
+    closed = []
+    for fd, name in ((0, "stdin"), (1, "stdout"), (2, "stderr")):
+        try:
+            os.fstat(fd)
+        except OSError:
+            null = os.open(os.devnull, os.O_RDWR)
+            if null != fd:
+                os.dup2(null, fd)
+                os.close(null)
+            closed.append(name)
+    return closed
 
 
 def _silence_stdout() -> None:
@@ -105,6 +124,7 @@ def _silence_stdout() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    closed = _closed_standard_streams()
     parser, commands = build_parser()
     args, extra = parser.parse_known_args(argv)
     sub = args.__dict__.pop("_parser")
@@ -113,6 +133,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     set_verbosity(getattr(args, "verbosity", 1))
     _, _, run = commands[args.command]
     prefix = f"irnuc {args.command}: error:"
+    if (sys.stdout is None or "stdout" in closed) and getattr(args, "verbosity", 1) >= 1:
+        # Like a stdout that cannot be written (a closed pipe, a full disk), but known now:
+        # refused before any work.
+        print(f"{prefix} stdout: cannot be written (it is closed); give -q to print nothing, "
+              "or redirect it to a file", file=sys.stderr)
+        return 2
     from irnuc.common.io import release_claims
 
     try:

@@ -139,7 +139,12 @@ def parse_floats(text: str, flag: str, unit: str = "") -> list[float]:
 
 
 def flagged(flag: str, value: str, exc: Exception) -> UserError:
-    """``exc`` as a one-line :class:`UserError` that starts with the flag and its value."""
+    """``exc`` as a one-line :class:`UserError` that starts with the flag and its value
+    (an error of the output folder, which names ``--out`` itself, unchanged)."""
+    from irnuc.common.io import OutputError
+
+    if isinstance(exc, OutputError):
+        return exc
     msg = str(exc)
     if msg.startswith(flag):
         return UserError(msg)

@@ -32,11 +32,18 @@ def frames_path(value: str, flag: str = "--frames", name: str = "frames.npz") ->
     return p
 
 
-def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]:
+def npz_headers(path: Path, flag: str, damaged: list[str] | None = None
+                ) -> dict[str, tuple[tuple[int, ...], Any]]:
     """Shape and dtype of every array of an ``.npz`` file, read from the headers only (no
-    data), so that sizes can be checked before anything is loaded."""
+    data), so that sizes can be checked before anything is loaded.
+
+    A member whose header disagrees with the size the archive stores for it is damaged:
+    a one-line error, or, with ``damaged`` given, its description appended there (so that
+    the caller can first judge the sizes the headers claim)."""
     import numpy as np
     from numpy.lib import format as npformat
+
+    from irnuc.common.framefile import check_member_size
 
     if not zipfile.is_zipfile(path):
         raise UserError(f"{flag} {path}: not an .npz file (a zip archive of .npy arrays, as "
@@ -53,7 +60,15 @@ def npz_headers(path: Path, flag: str) -> dict[str, tuple[tuple[int, ...], Any]]
                     read = (npformat.read_array_header_1_0 if version == (1, 0)
                             else npformat.read_array_header_2_0)
                     shape, _, dtype = read(fh)
-                out[info.filename[:-4]] = (tuple(shape), np.dtype(dtype))
+                    header = fh.tell()
+                name = info.filename[:-4]
+                out[name] = (tuple(shape), np.dtype(dtype))
+                try:
+                    check_member_size(info, header, tuple(shape), np.dtype(dtype), name)
+                except ValueError as exc:
+                    if damaged is None:
+                        raise
+                    damaged.append(str(exc))
     except (OSError, EOFError, ValueError, zipfile.BadZipFile, KeyError, zlib.error) as exc:
         raise UserError(f"{flag} {path}: damaged or truncated .npz ({exc})") from None
     return out
@@ -88,9 +103,12 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     """
     import math
 
+    from irnuc.common.io import guard_input
     from irnuc.common.memory import check_memory
 
-    headers = npz_headers(path, flag)
+    guard_input(path, flag)
+    damaged: list[str] = []
+    headers = npz_headers(path, flag, damaged)
     missing = [k for k in required if k not in headers]
     if missing:
         raise UserError(f"{flag} {path}: missing key(s) {', '.join(missing)}; the file "
@@ -104,6 +122,8 @@ def load_npz(path: Path, flag: str, required: tuple[str, ...],
     check_memory(need, f"{flag} {path}" + (f" ({big} {headers[big][0]} {headers[big][1]})"
                                            if big else ""),
                  "give fewer or smaller frames")
+    if damaged:  # after the sizes the headers claim: a header bomb is named as such
+        raise UserError(f"{flag} {path}: damaged or truncated .npz ({damaged[0]})")
     from irnuc.common.framefile import open_member
 
     try:
@@ -122,13 +142,18 @@ def load_frames(value: str, flag: str = "--frames", work_per_code: float = 0.0,
     * ``codes`` (N, H, W) integer ADC codes (memory-mapped from an uncompressed file),
       ``temps`` (N,) scene temperature, K (float64), ``adc_bits`` (int);
     * the per-frame fields of :data:`model.fpa_sensor.FRAME_FIELDS` by their names
-      (``time_s``, ``fpa_K``, ``fpa_reading``, ``T_cam_K``, ``scene_K``, ``shutter``) and
-      ``fpa_sensor`` (:class:`model.fpa_sensor.FpaSensor`, the on-die sensor's bits, LSB,
-      zero and the ground-truth offset and noise), ``frame_rate`` (Hz);
+      (``time_s``, ``fpa_K``, ``fpa_reading``, ``T_cam_K``, ``scene_K``, ``shutter``,
+      ``ambient_K``, ``lens_K``, ``shutter_K``, ``housing_reading``), ``fpa_sensor`` and
+      ``housing_sensor`` (:class:`model.fpa_sensor.FpaSensor`, ``HousingSensor``: bits, LSB,
+      zero, the ground-truth offset, noise and lag, the housing sensor's node),
+      ``frame_rate`` (Hz);
     * ``blind_codes`` (N, K) and ``blind_positions`` (K, 2): the reference pixels read out
       beside the image and their full-array (row, col); ``active_origin`` (2,);
     * ``fields_synthesized``: True for a file of an older irnuc without the fields, which
-      are then made constant from its configuration (K = 0 reference pixels).
+      are then made constant from its configuration (K = 0 reference pixels);
+      ``housing_synthesized``: True when the ambient, lens, shutter temperatures and the
+      housing reading are made up (a file of format 2: the housing's temperature for each,
+      read by the default housing sensor).
 
     The work that follows needs ``work_per_code`` bytes per code and ``work_per_pixel`` per
     pixel of a frame besides the frames (checked against the available memory before
@@ -178,21 +203,47 @@ def _frame_fields(data: dict[str, Any], where: str, n: int) -> None:
 
     import numpy as np
 
-    from irnuc.model.fpa_sensor import FRAME_FIELDS, PLAIN_FRAME_RATE, FpaSensor, constant_fields
+    from irnuc.model.fpa_sensor import (
+        FRAME_FIELDS,
+        PLAIN_FRAME_RATE,
+        SENSOR_NODES,
+        FpaSensor,
+        HousingSensor,
+        constant_fields,
+    )
     from irnuc.model.validate import ConfigError
 
-    sensor_keys = [k for k in data if k.startswith("fpa_sensor_")]
-    try:
-        sensor = FpaSensor(**{k[len("fpa_sensor_"):]: data.pop(k).item() for k in sensor_keys})
-    except (ConfigError, TypeError, ValueError) as exc:
-        raise UserError(f"{where}: bad FPA sensor settings ({exc})") from None
+    def sensor_of(cls: Any, what: str) -> Any:
+        prefix = cls.PREFIX + "_"
+        keys = [k for k in data if k.startswith(prefix)]
+        try:
+            return cls(**{k[len(prefix):]: (str(v) if (v := data.pop(k)).dtype.kind == "U"
+                                            else v.item()) for k in keys})
+        except (ConfigError, TypeError, ValueError) as exc:
+            raise UserError(f"{where}: bad {what} sensor settings ({exc})") from None
+
+    sensor = sensor_of(FpaSensor, "FPA")
     data["fpa_sensor"] = sensor
+    housing_sensor = sensor_of(HousingSensor, "housing")
+    data["housing_sensor"] = housing_sensor
     present = [k for k in FRAME_FIELDS if k in data]
     data["fields_synthesized"] = not present
     if not present:  # an older file: the fields its configuration implies
         env = _file_environment(data, json)
         data.update(constant_fields(data["temps"], env["T_substrate"], env["T_cam"], sensor))
         data["frame_rate"] = np.float64(PLAIN_FRAME_RATE)
+    # a file of format 2: no ambient, lens, shutter temperature nor housing reading; the
+    # camera in equilibrium with its surroundings, the housing read by the default sensor
+    housing_keys = ("ambient_K", "lens_K", "shutter_K", "housing_reading")
+    data["housing_synthesized"] = bool(present) and not any(k in data for k in housing_keys)
+    if data["housing_synthesized"] and "T_cam_K" in data:
+        cam = np.asarray(data["T_cam_K"], dtype=np.float64)
+        for k in ("ambient_K", "lens_K", "shutter_K"):
+            data[k] = cam.copy()
+        if cam.size and np.isfinite(cam).all() and (cam > 0).all():
+            data["housing_reading"] = housing_sensor.read(cam)
+    elif data["fields_synthesized"]:
+        data["housing_synthesized"] = True
     missing = [k for k in FRAME_FIELDS if k not in data]
     if missing:
         raise UserError(f"{where}: missing per-frame field(s) {', '.join(missing)}")
@@ -207,15 +258,19 @@ def _frame_fields(data: dict[str, Any], where: str, n: int) -> None:
         elif dtype == "int64":
             if not np.issubdtype(arr.dtype, np.integer):
                 raise UserError(f"{where}: {key} has dtype {arr.dtype}; integers are required")
-            if arr.size and (arr.min() < 0 or arr.max() > sensor.max_code):
+            sn = housing_sensor if key == "housing_reading" else sensor
+            if arr.size and (arr.min() < 0 or arr.max() > sn.max_code):
                 raise UserError(f"{where}: {key} spans {arr.min()}..{arr.max()}, outside "
-                                f"0..{sensor.max_code} of fpa_sensor_bits = {sensor.bits}")
+                                f"0..{sn.max_code} of {sn.PREFIX}_bits = {sn.bits}")
         else:
             if not np.issubdtype(arr.dtype, np.floating) or not np.isfinite(arr).all():
                 raise UserError(f"{where}: {key} must hold finite numbers ({unit})")
         data[key] = arr.astype(dtype)
-    if (data["fpa_K"] <= 0).any() or (data["T_cam_K"] <= 0).any():
-        raise UserError(f"{where}: fpa_K and T_cam_K must be above 0 K")
+    for key in ("fpa_K", "T_cam_K", "ambient_K", "lens_K", "shutter_K"):
+        if (data[key] <= 0).any():
+            raise UserError(f"{where}: {key} must be above 0 K")
+    if housing_sensor.node not in SENSOR_NODES:  # checked by the sensor; kept for clarity
+        raise UserError(f"{where}: housing_sensor_node = {housing_sensor.node!r}")
     rate = np.asarray(data.get("frame_rate", PLAIN_FRAME_RATE))
     if rate.shape != () or not np.isfinite(rate) or not rate > 0:
         raise UserError(f"{where}: frame_rate = {rate!r} must be one number above 0 Hz")

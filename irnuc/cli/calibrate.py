@@ -3,12 +3,20 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import io
 import json
 from pathlib import Path
 from typing import Any
 
-from irnuc.cli._args import add_out, add_pipeline, load_pipeline_arg, parse_assignments, say
+from irnuc.cli._args import (
+    add_out,
+    add_pipeline,
+    load_pipeline_arg,
+    parse_assignments,
+    say,
+    stderr,
+)
 from irnuc.common.errors import UserError
 
 CORRECTED_NAME = "corrected.npz"
@@ -85,12 +93,13 @@ def _pipeline_file(value: str | None) -> str | None:
     return file if Path(file).exists() else None
 
 
-#: Memory of the work after loading, per ADC code and per pixel of a frame, above measured
-#: peaks (docs/robustness.md): calibrate selects the two stacks and takes float64
-#: statistics (per code), then some twenty float64 maps (per pixel); correct makes the
-#: output codes and their compressed file.
-CALIBRATE_BYTES = {"per_code": 12.0, "per_pixel": 1500.0}
-CORRECT_BYTES = {"per_code": 8.0, "per_pixel": 128.0}
+def _work_bytes(what: str) -> dict[str, float]:
+    """Memory of the work after loading (nuc_fixed.calibrate's CALIBRATE_WORK_BYTES and
+    CORRECT_WORK_BYTES)."""
+    from irnuc.nuc_fixed import calibrate
+
+    return {"calibrate": calibrate.CALIBRATE_WORK_BYTES,
+            "correct": calibrate.CORRECT_WORK_BYTES}[what]
 
 
 def _split_set(items: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -143,7 +152,7 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     if not 0.0 <= args.max_saturated <= 1.0:
         raise UserError(f"--max-saturated {args.max_saturated}: must lie in 0..1")
     th = _load_thresholds(args, th_set)
-    if args.plan is not None or cfg.method != "two_point":
+    if args.plan is not None or not cfg.plain:
         for flag in ("--t-low", "--t-high", "--targets"):
             if getattr(args, flag[2:].replace("-", "_")) is not None:
                 raise UserError(f"{flag}: not with --plan or a method other than two_point "
@@ -165,8 +174,9 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     for flag, v in (("--t-low", args.t_low), ("--t-high", args.t_high)):
         if v is not None and not (np.isfinite(v) and v > 0):
             raise UserError(f"{flag} {v}: must be a finite temperature above 0 K")
-    data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
-                       work_per_pixel=CALIBRATE_BYTES["per_pixel"])
+    work = _work_bytes("calibrate")
+    data = load_frames(args.frames, work_per_code=work["per_code"],
+                       work_per_pixel=work["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     temps = data["temps"]
     sel_lo = _pick(temps, args.t_low, float(np.min(temps)), "--t-low")
@@ -198,7 +208,8 @@ def _run_calibrate(args: argparse.Namespace) -> int:
         write_bytes_atomic(tmp / "summary.txt", text.encode())
         # Last: the manifest names and hashes every file above.
         write_memimage(tmp, words, cfg, extra_files=("coeffs.npz", "badpix.csv",
-                                                     "summary.json", "summary.txt"))
+                                                     "summary.json", "summary.txt"),
+                       fpa_sensor=data["fpa_sensor"])
     say(text.rstrip("\n"))
     say(f"wrote {out}/: coeffs.npz, badpix.csv, coeffs.hex, coeffs.bin, manifest.json, "
         "summary.json, summary.txt")
@@ -235,30 +246,42 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         for k in ("environment.T_substrate", "environment.T_cam"):
             if k in sensor_set:
                 raise UserError(f"--set {k}: the plan sets it at every point (plan.fpa, "
-                                "plan.cam)")
+                                "plan.cam, plan.housing_offset)")
         scfg = load_sensor_arg(args.sensor, sensor_set)
         if int(scfg["adc"]["bits"]) != cfg.adc_bits:
             raise UserError(f"--sensor {args.sensor}: a {scfg['adc']['bits']}-bit ADC but "
                             f"pipeline {cfg.name!r} has adc_bits = {cfg.adc_bits} (use --set "
                             f"adc.bits={cfg.adc_bits} or another pipeline)")
         from irnuc.model.pipeline import check_simulation_memory
+        from irnuc.nuc_fixed.fit import check_readings
 
-        n = len(plan.fpa) * len(plan.scene) * plan.frames
+        # What the plan's FPA sensor reads at its points (without noise): a sensor the
+        # method cannot use is refused before the simulation.
+        quiet = dataclasses.replace(plan.fpa_sensor, noise_K=0.0)
+        check_readings(cfg, quiet.read(np.asarray(plan.fpa)).tolist(), plan.reference_index,
+                       f"--plan {args.plan}", "its fpa_sensor")
+        n_pts = len(plan.points())
+        n = n_pts * len(plan.scene) * plan.frames
+        where = (f"{len(plan.fpa)} FPA x {len(plan.housing_offset)} housing offsets"
+                 if plan.housing_offset else f"{n_pts} FPA")
         check_simulation_memory(scfg, n, ["codes"], what=(
-            f"--plan {args.plan}: {len(plan.fpa)} FPA x {len(plan.scene)} scene temperatures x "
+            f"--plan {args.plan}: {where} x {len(plan.scene)} scene temperatures x "
             f"{plan.frames} frames = {n} frame(s)"))
-        say(f"simulating {n} frame(s): {len(plan.fpa)} FPA x {len(plan.scene)} scene "
-            f"temperatures x {plan.frames} frames", 2)
+        say(f"simulating {n} frame(s): {where} x {len(plan.scene)} scene temperatures x "
+            f"{plan.frames} frames", 2)
         points = run_plan(plan, scfg, seed=args.seed)
         source = {"plan": str(args.plan), "sensor": args.sensor, "seed": args.seed,
                   "set": sensor_set}
+        fpa_sensor = plan.fpa_sensor
     else:
-        data = load_frames(args.frames, work_per_code=CALIBRATE_BYTES["per_code"],
-                           work_per_pixel=CALIBRATE_BYTES["per_pixel"])
+        work = _work_bytes("calibrate")
+        data = load_frames(args.frames, work_per_code=work["per_code"],
+                           work_per_pixel=work["per_pixel"])
         _check_adc(data, cfg, f"--frames {args.frames}")
         _check_fields(data, cfg, f"--frames {args.frames}")
         points = points_from_frames(data, f"--frames {args.frames}")
         source = {"frames_file": str(args.frames)}
+        fpa_sensor = data["fpa_sensor"]
     try:
         cal = calibrate_points(points, cfg, thresholds=th, rounding=args.coeff_rounding,
                                max_saturated=args.max_saturated)
@@ -281,12 +304,12 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         write_bytes_atomic(tmp / "badpix.csv", ("\n".join(rows) + "\n").encode())
         write_bytes_atomic(tmp / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
         write_bytes_atomic(tmp / "summary.txt", text.encode())
-        # table_interp: the pair images a DMA streams into irnuc_axis_top (tables j and
-        # j + 1 in one word, TABLE_SEL.j picks one; docs/integration.md "table_interp").
-        pairs = _table_pair_images(tmp, c) if cfg.base_method == "table_interp" else ()
+        # Images a DMA streams into irnuc_axis_top beyond the memories (table_interp: tables
+        # j and j + 1 in one word, TABLE_SEL.j picks one; docs/integration.md).
+        pairs = _dma_images(tmp, c)
         manifest = write_method_image(tmp, c, extra_files=("coeffs.npz", "badpix.csv",
                                                            "summary.json", "summary.txt",
-                                                           *pairs))
+                                                           *pairs), fpa_sensor=fpa_sensor)
     say(text.rstrip("\n"))
     images = [n for n in manifest["files"] if n.endswith((".hex", ".bin"))]  # type: ignore[union-attr]
     say(f"wrote {out}/: coeffs.npz, badpix.csv, {', '.join(images)}, manifest.json, "
@@ -294,16 +317,15 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
     return 0
 
 
-def _table_pair_images(directory: Path, coeffs: Any) -> tuple[str, ...]:
-    """Write ``table_pair{j}.bin`` for j = 0 .. K - 2 (nuc_fixed.axis.table_pair_bin)."""
+def _dma_images(directory: Path, coeffs: Any) -> tuple[str, ...]:
+    """Write the method's DMA images (``MethodSpec.dma_images``: table_interp's
+    ``table_pair{j}.bin``)."""
     from irnuc.common.io import write_bytes_atomic
-    from irnuc.nuc_fixed.axis import table_pair_bin
 
-    names = []
-    for j in range(int(coeffs.cfg.tables) - 1):
-        names.append(f"table_pair{j}.bin")
-        write_bytes_atomic(directory / names[-1], table_pair_bin(coeffs, j))
-    return tuple(names)
+    images = coeffs.cfg.base.dma_images(coeffs)
+    for name, data in images.items():
+        write_bytes_atomic(directory / name, data)
+    return tuple(images)
 
 
 # ---- correct ---------------------------------------------------------------------------
@@ -361,7 +383,7 @@ def _run_correct(args: argparse.Namespace) -> int:
     from irnuc.cli._args import flagged
     from irnuc.cli._files import load_frames
     from irnuc.common.io import claim_output_folder, output_folder, write_bytes_atomic
-    from irnuc.nuc_fixed.memimage import read_method_image
+    from irnuc.nuc_fixed.memimage import check_sensor, read_calibration
     from irnuc.nuc_fixed.method_top import FrameInputs, method_top, needs
 
     out = claim_output_folder(args.out, kind="correct", inputs={
@@ -375,7 +397,7 @@ def _run_correct(args: argparse.Namespace) -> int:
         raise UserError(f"--coeffs {args.coeffs}: no manifest.json (run irnuc calibrate)")
     want = load_pipeline_arg(args.pipeline) if args.pipeline else None
     try:
-        mc = read_method_image(coeffs, want, source=args.source)
+        mc, manifest = read_calibration(coeffs, want, source=args.source)
     except UserError as exc:
         raise flagged("--coeffs", args.coeffs, exc) from None
     cfg = mc.cfg
@@ -385,8 +407,9 @@ def _run_correct(args: argparse.Namespace) -> int:
         top = (1 << cfg.out_bits) - 1
         if not 0.0 <= args.ffc_target <= top:
             raise UserError(f"--ffc-target {args.ffc_target:g}: must lie in 0..{top} output codes")
-    data = load_frames(args.frames, work_per_code=CORRECT_BYTES["per_code"],
-                       work_per_pixel=CORRECT_BYTES["per_pixel"])
+    work = _work_bytes("correct")
+    data = load_frames(args.frames, work_per_code=work["per_code"],
+                       work_per_pixel=work["per_pixel"])
     _check_adc(data, cfg, f"--frames {args.frames}")
     codes = data["codes"]
     if codes.shape[1:] != mc.shape:
@@ -394,9 +417,14 @@ def _run_correct(args: argparse.Namespace) -> int:
                         f" (H x W) but the coefficients in {args.coeffs} are "
                         f"{mc.shape[0]} x {mc.shape[1]}")
     _check_fields(data, cfg, f"--frames {args.frames}")
+    check_sensor(manifest.get("fpa_sensor"), data["fpa_sensor"], cfg, f"--frames {args.frames}",
+                 f"--coeffs {args.coeffs}")
     fields = {name: np.asarray(data[_FRAME_FIELD_KEYS[name]]) for name in needs(cfg)}
-    inputs = FrameInputs(reading=fields.get("fpa_reading"), blind_codes=fields.get("blind_codes"),
-                         shutter=fields.get("shutter"))
+    # the housing reading goes to the golden model the way the FPA's does (no shipped method
+    # reads it yet); a file of format 2 has none of its own (housing_synthesized)
+    housing = (None if data.get("housing_synthesized") or "housing_reading" not in data
+               else np.asarray(data["housing_reading"]))
+    inputs = dataclasses.replace(FrameInputs.from_fields(cfg, fields), housing_reading=housing)
     target = None
     if args.ffc_target is not None:
         target = int(np.floor(args.ffc_target * 2 ** cfg.format("ffc").frac_bits + 0.5))
@@ -410,7 +438,13 @@ def _run_correct(args: argparse.Namespace) -> int:
         extra["drift_delta"] = res.delta
     if cfg.has("ffc"):
         extra |= {"ffc_refreshes": np.asarray(res.refreshes, dtype=np.int64),
+                  "ffc_kept": np.asarray(res.kept, dtype=np.int64),
                   "held": res.held, "ffc_offset": res.ffc_offset}
+        if res.kept:
+            stderr(f"irnuc correct: warning: {len(res.kept)} FFC refresh(es) kept the previous "
+                   f"offsets (after frame(s) {', '.join(map(str, res.kept[:5]))}"
+                   f"{', ...' if len(res.kept) > 5 else ''}): every pixel of their mean frame "
+                   "is bad, so there is no target (ffc_kept in the output)")
     with output_folder(out, kind="correct") as tmp:
         write_bytes_atomic(tmp / CORRECTED_NAME, _npz_bytes(
             corrected=corrected, temps=data["temps"], out_bits=np.int64(cfg.out_bits),

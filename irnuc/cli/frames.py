@@ -24,6 +24,9 @@ from irnuc.cli._args import (
 )
 
 FRAMES_NAME = "frames.npz"
+#: The shipped scenarios (model/scenarios/, ``model.sequence.scenario_names``; a test
+#: keeps this list equal to it without importing the model when the parser is built).
+SCENARIOS = ("ambient_ramp", "fpa_ramp", "indoor_to_outdoor", "power_on_warmup")
 
 
 def add_frames_arguments(p: argparse.ArgumentParser) -> None:
@@ -35,10 +38,12 @@ def add_frames_arguments(p: argparse.ArgumentParser) -> None:
                    help="scene temperatures in K, comma-separated (default: 300)")
     p.add_argument("--repeats", type=int, default=None,
                    help="frames per temperature (1..100000; default: 1)")
-    p.add_argument("--sequence", default=None, metavar="FILE.toml",
-                   help="a drift sequence (frame rate, duration, FPA / housing / scene "
-                        "profiles, shutter, FPA sensor; docs/sequences.md) instead of "
-                        "--temps: frames in time order, streamed to the file in chunks")
+    p.add_argument("--sequence", default=None, metavar="FILE.toml|SCENARIO",
+                   help="a drift sequence (frame rate, duration, the ambient and the camera's "
+                        "thermal network or FPA / housing profiles, scene, shutter, the "
+                        "temperature sensors; docs/sequences.md) or a shipped scenario by name "
+                        f"({', '.join(SCENARIOS)}), instead of --temps: frames in time "
+                        "order, streamed to the file in chunks")
     p.add_argument("--seed", type=int, default=0, help="seed of every random draw (>= 0)")
     p.add_argument("--params", action="store_true", help="also write the per-pixel parameters")
     add_out(p, "out/frames")
@@ -50,7 +55,7 @@ def run_frames(args: argparse.Namespace) -> int:
     from irnuc import model
     from irnuc.common.errors import UserError
     from irnuc.common.io import claim_output_folder, output_folder
-    from irnuc.model.fpa_sensor import PLAIN_FRAME_RATE, FpaSensor, constant_fields
+    from irnuc.model.fpa_sensor import FpaSensor, constant_fields
     from irnuc.model.pipeline import check_simulation_memory
     from irnuc.model.scenes import check_temps, scene_temperatures
     from irnuc.model.sequence import file_arrays
@@ -58,7 +63,8 @@ def run_frames(args: argparse.Namespace) -> int:
     scene_params = parse_assignments(args.scene_param, "--scene-param")
     out = claim_output_folder(args.out, kind="frames", inputs={
         "--sensor": args.sensor if Path(args.sensor).exists() else None,
-        "--scene-param path": scene_params.get("path"), "--sequence": args.sequence})
+        "--scene-param path": scene_params.get("path"),
+        "--sequence": args.sequence if args.sequence and Path(args.sequence).exists() else None})
     if args.sequence is not None:
         for flag, value in (("--temps", args.temps), ("--repeats", args.repeats)):
             if value is not None:
@@ -108,8 +114,14 @@ def run_frames(args: argparse.Namespace) -> int:
         stderr(f"irnuc frames: warning: {n_failed} of {status.size} pixel solves failed "
                f"({kinds}); those pixels read the high rail")
     env = cfg["environment"]
-    arrays = file_arrays(fr, constant_fields(fr.temps, env["T_substrate"], env["T_cam"],
-                                             seed=args.seed), FpaSensor(), PLAIN_FRAME_RATE)
+    rate = float(cfg["readout"]["frame_rate"])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", RuntimeWarning)
+        fields = constant_fields(fr.temps, env["T_substrate"], env["T_cam"], seed=args.seed,
+                                 frame_rate=rate)
+    for w in caught:
+        stderr(f"irnuc frames: warning: {w.message}")
+    arrays = file_arrays(fr, fields, FpaSensor(), rate)
     if args.params:
         for key, value in fr.outputs["params"].items():
             arrays[f"param_{key}"] = value
@@ -147,7 +159,11 @@ def _run_sequence(args: argparse.Namespace, out: Path, scene_params: dict[str, A
         scene_temperatures(scene, np.asarray([300.0]), (f["active_rows"], f["active_cols"]))
     except model.ConfigError as exc:
         raise UserError(f"--scene {args.scene} --scene-param: {exc}") from None
-    run = prepare(cfg, seq, scene, seed=args.seed)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", RuntimeWarning)
+        run = prepare(cfg, seq, scene, seed=args.seed)
+    for w in caught:  # the temperature sensors' clamped readings
+        stderr(f"irnuc frames: warning: {w.message}")
     outputs = ["codes", "params"] if args.params else ["codes"]
     check_simulation_memory(cfg, run.chunk_frames, outputs, what=(
         f"--sequence: chunks of {run.chunk_frames} frame(s) of fpa.active_rows x "
@@ -159,7 +175,8 @@ def _run_sequence(args: argparse.Namespace, out: Path, scene_params: dict[str, A
     if need > free:
         raise UserError(f"--out {out}: the {seq.n_frames} frames need {format_bytes(need)} on "
                         f"disk, {format_bytes(free)} are free there")
-    say(f"{seq.n_frames} frames at {seq.frame_rate:g} Hz; thermal model {run.thermal}: "
+    kept = f" (one in {seq.record_every} kept)" if seq.record_every > 1 else ""
+    say(f"{seq.n_frames} frames at {seq.frame_rate:g} Hz{kept}; thermal model {run.thermal}: "
         f"{run.thermal_reason}")
     extra: dict[str, Any] = {}
     if args.params:

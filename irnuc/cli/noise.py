@@ -142,8 +142,11 @@ def run(args: argparse.Namespace) -> int:
     if fit.responsivity is None and closed is None:
         raise UserError(f"--frames {args.frames}: the scene does not vary and the file holds no "
                         "sensor configuration: no responsivity to turn codes into kelvin")
-    measured = nm.measured_netd(fit, good, None if fit.responsivity is not None
-                                else closed.responsivity_codes_per_K)
+    try:
+        measured = nm.measured_netd(fit, good, None if fit.responsivity is not None
+                                    else closed.responsivity_codes_per_K)
+    except nm.ConfigError as exc:
+        raise UserError(f"--frames {args.frames}: {exc}") from None
     resp = measured.responsivity_codes_per_K
     bar = progress("3D noise") if cube.shape[0] > 64 else None
     n3 = nm.noise_3d(cube, progress=bar)
@@ -163,13 +166,16 @@ def run(args: argparse.Namespace) -> int:
                      "note": "every pixel of the frames, defective ones included"},
     }
     if closed is not None:
-        both = float(np.hypot(measured.uncertainty_K, closed.uncertainty_K))
+        # The closed form is the same functional of the same pixels: what separates the two
+        # is the measurement's standard error (the closed form's uncertainty is the pixels'
+        # spread, which both share).
+        both = float(measured.uncertainty_K)
         diff = measured.netd_K - closed.netd_K
         result["netd_closed_form"] = closed.as_dict()
         # Without analog noise the ADC's rounding of noiseless frames is deterministic, not
         # the uniform noise of the closed form, and neither side has an uncertainty for
         # that: the comparison is reported, not judged.
-        judged = closed.uncertainty_K > 0.0
+        judged = closed.analog_codes > 0.0
         result["agreement"] = {"difference_mK": diff * 1e3, "combined_uncertainty_mK": both * 1e3,
                                "judged": judged,
                                "within_3_sigma": bool(abs(diff) <= 3.0 * both) if judged else None}
@@ -194,9 +200,10 @@ def _summary(result: dict[str, Any], measured: Any, closed: Any, n3: Any, resp: 
         c = closed.as_dict()
         a = result["agreement"]
         say(f"NETD closed form {c['netd_mK']:.4g} +/- {c['uncertainty_mK']:.2g} mK  "
-            f"(difference {a['difference_mK']:.3g} mK, "
+            f"(+/- the pixels' spread; difference {a['difference_mK']:.3g} mK, "
             + ("not judged" if not a["judged"] else
-               f"{'within' if a['within_3_sigma'] else 'OUTSIDE'} 3 combined standard errors")
+               f"{'within' if a['within_3_sigma'] else 'OUTSIDE'} 3 standard errors of the "
+               "measurement")
             + ")"
             + (f"; {c['notes']}" if c["notes"] else ""))
     say("3D noise        codes        mK")

@@ -9,9 +9,9 @@ from irnuc.cli._args import add_out
 
 def add_report_arguments(p: argparse.ArgumentParser) -> None:
     add_out(p, "out/report")
-    p.add_argument("--config", default="default",
+    p.add_argument("--config", default="default", metavar="NAME|FILE.toml",
                    help="embedded configuration (default, small) or a TOML file (default: %(default)s)")
-    p.add_argument("--baseline", metavar="SUMMARY.json",
+    p.add_argument("--baseline", metavar="FILE.json",
                    help="compare every metric with an earlier summary.json; exit 1 on a regression")
     p.add_argument("--junit", metavar="FILE.xml",
                    help="ingest co-simulation results instead of running them")

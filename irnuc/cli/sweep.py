@@ -164,38 +164,17 @@ def run_sweep_command(args: argparse.Namespace) -> int:
     return 0
 
 
-def sweep_bytes(cfg: dict, n_cal: int, n_eval: int, sets: int, workers: int) -> float:
-    """Estimated peak memory of a sweep (bytes, above measured peaks, docs/robustness.md):
-    the simulation of the calibration frames, then per (ADC, output) set the evaluation
-    codes and float coefficients, and per worker a copy of a set and the float NUC of the
-    evaluation frames."""
-    from irnuc.cli.calibrate import CALIBRATE_BYTES
-    from irnuc.model.pipeline import simulation_bytes
-
-    pixels = cfg["fpa"]["active_rows"] * cfg["fpa"]["active_cols"]
-    calibration = pixels * (CALIBRATE_BYTES["per_pixel"]
-                            + n_cal * (2 + CALIBRATE_BYTES["per_code"]))
-    per_set = pixels * (2 * n_eval + 64)
-    per_worker = per_set + pixels * n_eval * 40
-    return (max(simulation_bytes(cfg, n_cal), calibration) + sets * per_set
-            + max(workers, 1) * per_worker)
-
-
 def _check_sweep_memory(args: argparse.Namespace, sensor, axes) -> None:
-    """Validate the sensor for every ADC width and check, before any work, that the frames
-    of the sweep fit in memory (estimate in the message)."""
-    from irnuc.common.memory import check_memory
+    """Check, before any work, that the frames of the sweep and its workers fit in memory
+    (estimate in the message)."""
+    from irnuc.reports.studies.sweep import check_sweep_memory
 
     n_eval = len(sensor.t_eval)
-    sets = len(dict.fromkeys(axes.out_bits))
-    need = max(sweep_bytes(sensor.model_config(adc), 2 * sensor.repeats, n_eval,
-                           sets * len(dict.fromkeys(axes.adc_bits)), args.workers)
-               for adc in dict.fromkeys(axes.adc_bits))
-    check_memory(need, f"--rows x --cols = {args.rows} x {args.cols} with --repeats "
-                       f"{args.repeats}, {n_eval} --t-eval value(s), "
-                       f"{sets * len(dict.fromkeys(axes.adc_bits))} (ADC, output) width "
-                       f"pair(s) and --workers {args.workers}",
-                 "use a smaller frame, fewer frames or fewer workers")
+    sets = len(dict.fromkeys(axes.out_bits)) * len(dict.fromkeys(axes.adc_bits))
+    check_sweep_memory(sensor, axes, args.workers, (
+        f"--rows x --cols = {args.rows} x {args.cols} with --repeats {args.repeats}, "
+        f"{n_eval} --t-eval value(s), {sets} (ADC, output) width pair(s) and --workers "
+        f"{args.workers}"), "use a smaller frame, fewer frames or fewer workers")
 
 
 COMMANDS = {

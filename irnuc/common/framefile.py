@@ -27,7 +27,7 @@ import numpy as np
 from numpy.lib import format as npformat
 
 #: Version of the frame file's layout of keys (docs/sequences.md, "File format").
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 
 _LOCAL_HEADER = struct.Struct("<4s2B4HL2L2H")  # the ZIP local file header, 30 bytes
 _LOCAL_MAGIC = b"PK\x03\x04"
@@ -131,10 +131,25 @@ def member_data_offset(path: str | Path, info: zipfile.ZipInfo) -> int:
     return info.header_offset + _LOCAL_HEADER.size + name_len + extra_len
 
 
+def check_member_size(info: zipfile.ZipInfo, header_len: int, shape: tuple[int, ...],
+                      dtype: np.dtype, where: str) -> None:
+    """ValueError unless a ``.npy`` member stores exactly the bytes its header declares
+    (``header_len`` bytes of header, then the array): a header that disagrees with the
+    stored size would map other members' bytes as codes, or too few."""
+    import math
+
+    want = math.prod(shape) * dtype.itemsize
+    have = info.file_size - header_len
+    if have != want:
+        raise ValueError(f"{where}: its header declares shape {shape} {dtype} ({want} bytes) "
+                         f"but {have} bytes are stored; the file is damaged")
+
+
 def open_member(path: str | Path, zf: zipfile.ZipFile, name: str,
                 mmap: bool = True) -> np.ndarray:
     """The array ``NAME.npy`` of an open ``.npz``: mapped from the file when it is stored
-    uncompressed (and ``mmap``), else read (a compressed member). No pickles."""
+    uncompressed (and ``mmap``), else read (a compressed member). No pickles; a member
+    whose header disagrees with its stored size is a ValueError."""
     info = zf.getinfo(f"{name}.npy")
     if mmap and info.compress_type == zipfile.ZIP_STORED:
         with zf.open(info) as fh:
@@ -143,6 +158,7 @@ def open_member(path: str | Path, zf: zipfile.ZipFile, name: str,
                     else npformat.read_array_header_2_0)
             shape, fortran, dtype = read(fh)
             header_len = fh.tell()
+        check_member_size(info, header_len, tuple(shape), dtype, name)
         if not dtype.hasobject and int(np.prod(shape)) * dtype.itemsize > 0:
             offset = member_data_offset(path, info) + header_len
             return np.memmap(path, dtype=dtype, mode="r", offset=offset, shape=shape,

@@ -122,6 +122,7 @@ def read_bytes_capped(path: str | Path, what: str = "", limit: int = MAX_TEXT_BY
     """
     path = Path(path)
     name = f"{what} {path}" if what else str(path)
+    guard_input(path, what)
     try:
         with path.open("rb") as fh:
             data = fh.read(limit + 1)
@@ -135,6 +136,24 @@ def read_bytes_capped(path: str | Path, what: str = "", limit: int = MAX_TEXT_BY
         raise UserError(f"{name}: larger than {_size_text(limit)}, the most irnuc reads of such "
                         "a file; is it the right file?")
     return data
+
+
+def guard_input(path: str | Path, what: str = "") -> None:
+    """Refuse to read ``path`` when it lies inside an output folder this process has
+    claimed (:func:`claim_output_folder`): replacing that folder would delete it.
+
+    Every reader of a user's file calls it (:func:`read_bytes_capped` does), so an input
+    named inside another input (a sequence's table CSV, a manifest's files) is refused
+    like one named on the command line, before its content is used.
+    """
+    if not _CLAIMS:
+        return
+    q = Path(os.path.realpath(os.path.abspath(path)))
+    for p, name in _CLAIM_NAMES.items():
+        if p in _CLAIMS and (q == p or q.is_relative_to(p)):
+            shown = f"{what} {path}" if what else str(path)
+            raise OutputError(f"{name}: holds {shown}, which this command reads and would "
+                              "replace; give another output folder")
 
 
 def _size_text(n: int) -> str:
@@ -221,6 +240,8 @@ MARKER_NAME = ".irnuc-output"
 #: Output folders this process has claimed (path -> open lock file), see
 #: :func:`claim_output_folder`.
 _CLAIMS: dict[Path, IO[str]] = {}
+#: How each claimed folder was given (``--out out/cal``), for messages.
+_CLAIM_NAMES: dict[Path, str] = {}
 
 
 def _absolute(path: Path) -> Path:
@@ -333,16 +354,52 @@ def claim_output_folder(path: str | Path, flag: str = "--out", *, kind: str | No
     if p in _CLAIMS:
         return given
     p.parent.mkdir(parents=True, exist_ok=True)
-    fh = (p.parent / f".{p.name}.lock").open("a")
-    try:
-        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        fh.close()
-        raise OutputError(f"{flag} {given}: another irnuc run is writing it; wait for it to "
-                          "finish or choose another output folder") from None
+    fh = _lock_output(p, f"{flag} {given}")
     _CLAIMS[p] = fh
+    _CLAIM_NAMES[p] = f"{flag} {given}"
     _remove_stale(p)
     return given
+
+
+def _lock_path(p: Path) -> Path:
+    return p.parent / f".{p.name}.lock"
+
+
+def _lock_output(p: Path, what: str) -> IO[str]:
+    """Take the lock ``.NAME.lock`` of output folder ``p`` without waiting (an open file
+    holding the flock); :class:`OutputError` naming ``what`` when another run holds it.
+
+    The lock file is removed when the lock is released (:func:`_unlock_output`), so a run
+    leaves nothing beside ``--out``. A run that opened the file just before another
+    removed it holds a lock on a name that is gone: it sees that the path is no longer its
+    file and tries again on the new one.
+    """
+    path = _lock_path(p)
+    for _ in range(100):
+        fh = path.open("a")
+        try:
+            fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            fh.close()
+            raise OutputError(f"{what}: another irnuc run is writing it; wait for it to "
+                              "finish or choose another output folder") from None
+        try:
+            same = os.stat(path).st_ino == os.fstat(fh.fileno()).st_ino
+        except FileNotFoundError:
+            same = False
+        if same:
+            return fh
+        fh.close()  # removed (or replaced) by the run that held it: take the new one
+    raise OutputError(f"{what}: its lock file {path} keeps changing; is another program "
+                      "removing it?")
+
+
+def _unlock_output(p: Path, fh: IO[str]) -> None:
+    """Remove the lock file while holding it, then release it (closing the file)."""
+    with contextlib.suppress(OSError):
+        if os.stat(_lock_path(p)).st_ino == os.fstat(fh.fileno()).st_ino:
+            os.unlink(_lock_path(p))
+    fh.close()
 
 
 def release_claims() -> None:
@@ -354,8 +411,9 @@ def release_claims() -> None:
 
 def _release(p: Path) -> None:
     fh = _CLAIMS.pop(p, None)
+    _CLAIM_NAMES.pop(p, None)
     if fh is not None:
-        fh.close()  # closing the file releases the flock
+        _unlock_output(p, fh)  # closing the file releases the flock
 
 
 def _remove_stale(p: Path) -> None:
@@ -386,37 +444,36 @@ def output_folder(path: str | Path, flag: str = "--out", *, kind: str | None = N
     parent = p.parent
     parent.mkdir(parents=True, exist_ok=True)
     held = p in _CLAIMS
-    lock = (contextlib.nullcontext() if held else
-            file_lock(parent / f".{p.name}.lock", wait=False, what=f"{flag} {given}"))
+    if not held:
+        _CLAIMS[p] = _lock_output(p, f"{flag} {given}")
+        _CLAIM_NAMES[p] = f"{flag} {given}"
     try:
-        with lock:
-            _remove_stale(p)
-            tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
-            os.chmod(tmp, 0o777 & ~_umask())
+        _remove_stale(p)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
+        os.chmod(tmp, 0o777 & ~_umask())
+        try:
             try:
-                try:
-                    yield tmp
-                    (tmp / MARKER_NAME).write_text(_marker_text(kind))
-                except (OSError, WriteError) as exc:  # named by --out, not the hidden folder
-                    if exc.errno not in WRITE_ERRNOS:
-                        raise
-                    raise _folder_write_error(exc, tmp, p, f"{flag} {given}") from None
-                if p.is_dir():
-                    if _exchange(tmp, p):
-                        shutil.rmtree(tmp, ignore_errors=True)  # now the previous result
-                    else:
-                        old = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
-                        os.rename(p, old / "previous")
-                        os.rename(tmp, p)
-                        shutil.rmtree(old, ignore_errors=True)
+                yield tmp
+                (tmp / MARKER_NAME).write_text(_marker_text(kind))
+            except (OSError, WriteError) as exc:  # named by --out, not the hidden folder
+                if exc.errno not in WRITE_ERRNOS:
+                    raise
+                raise _folder_write_error(exc, tmp, p, f"{flag} {given}") from None
+            if p.is_dir():
+                if _exchange(tmp, p):
+                    shutil.rmtree(tmp, ignore_errors=True)  # now the previous result
                 else:
+                    old = Path(tempfile.mkdtemp(prefix=f".{p.name}.tmp-", dir=parent))
+                    os.rename(p, old / "previous")
                     os.rename(tmp, p)
-            except BaseException:
-                shutil.rmtree(tmp, ignore_errors=True)
-                raise
+                    shutil.rmtree(old, ignore_errors=True)
+            else:
+                os.rename(tmp, p)
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)
+            raise
     finally:
-        if held:
-            _release(p)
+        _release(p)
 
 
 def _folder_write_error(exc: OSError | WriteError, tmp: Path, p: Path, name: str) -> WriteError:

@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+from irnuc.cocotb_tests import tb_ffc, tb_interp_weight, tb_method, tb_stage
 from irnuc.common.errors import UserError
 from irnuc.verif.catalogue_axis import AXIS_MUTANTS
 from irnuc.verif.mutant import PKG_FILE, PKG_SUITE, PKG_TOP, SUITE_MODULE, SUITE_TOP, Mutant
@@ -44,8 +45,8 @@ def _m(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mut
     return Mutant(id, file, find, replace, what, **kw)
 
 
-_METHOD = {"top": "method_dpc_top", "suite": "irnuc.cocotb_tests.tb_method"}
-_IW = {"top": "interp_weight", "suite": "irnuc.cocotb_tests.tb_interp_weight",
+_METHOD = {"top": "method_dpc_top", "suite": tb_method.__name__}
+_IW = {"top": "interp_weight", "suite": tb_interp_weight.__name__,
        "config": "table14"}
 
 
@@ -55,9 +56,9 @@ def _mm(id: str, file: str, find: str, replace: str, what: str, config: str, **k
     return Mutant(id, file, find, replace, what, config=config, **{**_METHOD, **kw})
 
 
-_DRIFT = {"top": "method_drift_top", "suite": "irnuc.cocotb_tests.tb_stage",
+_DRIFT = {"top": "method_drift_top", "suite": tb_stage.__name__,
           "config": "drift14"}
-_FFC = {"top": "method_ffc_top", "suite": "irnuc.cocotb_tests.tb_ffc", "config": "ffc14"}
+_FFC = {"top": "method_ffc_top", "suite": tb_ffc.__name__, "config": "ffc14"}
 
 
 def _ms(id: str, file: str, find: str, replace: str, what: str, stage: dict, **kw: Any
@@ -411,21 +412,41 @@ CATALOGUE: tuple[Mutant, ...] = (
     _mm("top_frame_latch_any", "method_dpc_top.sv", "end else if (join_take && pix_sof) begin",
         "end else if (join_take) begin",
         "the held frame word follows every pixel", "piecewise14"),
-    _mm("top_tc_reading_ref_swapped", "method_dpc_top.sv",
-        ".s_reading_i(fw.reading),\n        .s_t_ref_i  (fw.t_ref),",
-        ".s_reading_i(fw.t_ref),\n        .s_t_ref_i  (fw.reading),",
+    # The methods' fronts (hdl/method_<name>.sv), run in method_dpc_top.
+    _mm("top_tc_reading_ref_swapped", "method_tc_offset.sv",
+        ".s_reading_i(fw.reading),\n    .s_t_ref_i  (fw.t_ref),",
+        ".s_reading_i(fw.t_ref),\n    .s_t_ref_i  (fw.reading),",
         "the reading and t_ref swapped", "tcoffset14"),
-    _mm("top_quad_field", "method_dpc_top.sv", ".s_quad_i    (w.quad.quad),",
-        ".s_quad_i    (coef[TwoPointBits - 1 +: QuadBits]),",
+    _mm("top_quad_field", "method_quadratic.sv", "assign m_quad_o    = w.quad.quad;",
+        "assign m_quad_o    = s_coef_i[coef_word_bits(GainBits, OffsetBits) - 1 +: QuadBits];",
         "the quad word read one bit low", "quadratic14"),
-    _mm("top_one_point_bad", "method_dpc_top.sv",
-        "      assign offset = w.offset;\n      assign bad    = w.bad;\n    end else",
-        "      assign offset = w.offset;\n      assign bad    = coef[OffsetBits-1];\n    end else",
-        "one_point's bad flag from the offset's "
-        "sign", "onepoint14"),
-    _mm("top_table_weight_low", "method_dpc_top.sv", ".s_weight_i (frame[WeightFracBits:0]),",
-        ".s_weight_i ({1'b0, frame[WeightFracBits-1:0]}),",
+    _mm("top_one_point_bad", "method_one_point.sv",
+        "assign m_user_o    = {s_user_i, w.bad};",
+        "assign m_user_o    = {s_user_i, s_coef_i[OffsetBits-1]};",
+        "one_point's bad flag from the offset's sign", "onepoint14"),
+    _mm("top_table_weight_low", "method_table_interp.sv",
+        ".s_weight_i (s_frame_i[WeightFracBits:0]),",
+        ".s_weight_i ({1'b0, s_frame_i[WeightFracBits-1:0]}),",
         "w = 2^Wf read as 0", "table14"),
+    _mm("top_table_bad_lower_only", "method_table_interp.sv",
+        ".s_user_i   ({s_user_i, w.lower.bad | w.upper.bad}),",
+        ".s_user_i   ({s_user_i, w.lower.bad}),",
+        "table_interp's DPC takes table j's bad flag only (a pixel bad in table j + 1 is "
+        "interpolated from its coefficients and not replaced)", "table14"),
+    _mm("top_two_point_bad", "method_two_point.sv",
+        "assign m_user_o    = {s_user_i, w.bad};", "assign m_user_o    = {s_user_i, 1'b0};",
+        "two_point's bad flag dropped (no pixel replaced)", "typical14"),
+    _mm("top_pwl_gains_swapped", "method_piecewise.sv",
+        "assign m_gain_o    = w.gain_lo;", "assign m_gain_o    = w.gain_hi;",
+        "piecewise's gain below the knee read from the gain above it", "piecewise14"),
+    # frame_coefficients (the configured method's front) and method_core (its kind's core).
+    _mm("fc_front_of_other_method", "frame_coefficients.sv",
+        "if (Method == MethodOnePoint) begin : gen_one_point",
+        "if (Method == MethodOnePoint || Method == MethodTwoPoint) begin : gen_one_point",
+        "two_point's words read by one_point's front", "typical14"),
+    _mm("mc_pwl_gain_hi_from_lo", "method_core.sv", ".s_gain_hi_i (s_gain_hi_i),",
+        ".s_gain_hi_i (s_gain_i),", "pwl_core's gain above the knee wired to the one below",
+        "piecewise14"),
     _m("dpc_mask_no_enable", "dpc_core.sv",
        "    if (en) begin\n      mask_leaves_q <= nb_leaves;",
        "    if (1'b1) begin\n      mask_leaves_q <= nb_leaves;",
@@ -499,8 +520,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "taken_q       <= 1'b0;",
         "the started flag is never cleared: a later refresh frame takes the old target "
         "without a new division", _FFC),
-    _ms("fr_refresh_uses_old", "ffc_refresh.sv", "c_c_q       <= r_refresh_q ? dc_d : r_c_q;",
+    _ms("fr_refresh_uses_old", "ffc_refresh.sv",
+        "c_c_q       <= (r_refresh_q && !keep_i) ? dc_d : r_c_q;",
         "c_c_q       <= r_c_q;", "the refresh frame corrected with the old words", _FFC),
+    _ms("fr_keep_ignored", "ffc_refresh.sv",
+        "c_c_q       <= (r_refresh_q && !keep_i) ? dc_d : r_c_q;",
+        "c_c_q       <= r_refresh_q ? dc_d : r_c_q;",
+        "a refresh without a target (no good pixel in its mean frame) writes corrections "
+        "towards 0 instead of keeping them", _FFC),
+    _ms("fm_empty_never", "ffc_mean.sv", "none_q  <= n_q == '0;", "none_q  <= 1'b0;",
+        "a mean frame without a good pixel is taken as a target of 0", _FFC),
     _ms("fr_dc_truncated", "ffc_refresh.sv", ".Rounding(FfcRounding)\n  ) u_round_dc (",
         ".Rounding(0)\n  ) u_round_dc (", "the refresh's dc truncated, not rounded", _FFC),
     _ms("fs_first_frame_adds", "ffc_sums.sv",
@@ -521,13 +550,14 @@ CATALOGUE: tuple[Mutant, ...] = (
     _ms("ft_fork_forgets_sent", "method_ffc_top.sv",
         "sent_q <= sent_q | (dest_valid & dest_ready);", "sent_q <= sent_q;",
         "the output fork sends an item again to a stream that took it", _FFC),
-    _ms("fk_quad_dropped", "frame_coefficients.sv", "assign m_quad_o   = w.quad.quad;",
-        "assign m_quad_o   = '0;", "quadratic + ffc without the quadratic term", _FFC,
+    # The fronts in method_ffc_top (frame_coefficients).
+    _ms("fk_quad_dropped", "method_quadratic.sv", "assign m_quad_o    = w.quad.quad;",
+        "assign m_quad_o    = '0;", "quadratic + ffc without the quadratic term", _FFC,
         config="quadffc14"),
-    _ms("fk_tc_reading_ref_swapped", "frame_coefficients.sv",
-        ".s_reading_i(fw.reading),\n      .s_t_ref_i  (fw.t_ref),",
-        ".s_reading_i(fw.t_ref),\n      .s_t_ref_i  (fw.reading),",
-        "tc_offset + ffc: the reading and t_ref swapped", _FFC, config="tcffc14"),
+    _ms("fk_tg_dropped", "method_tc_offset.sv",
+        "assign tg = s_coef_i[TwoPointBits + TcWordBits +: TgWordBits];",
+        "assign tg = '0;", "tc_offset + ffc (tc_gain): the gain polynomial dropped", _FFC,
+        config="tcffc14"),
     # ---- nuc_dpc_top ---------------------------------------------------------------------
     _m("top_coef_without_pixel", "nuc_dpc_top.sv",
        "assign coef_ready = nuc_in_ready && pix_valid;", "assign coef_ready = nuc_in_ready;",
@@ -536,6 +566,11 @@ CATALOGUE: tuple[Mutant, ...] = (
        ".s_sof_i       (nuc_user[2]),\n    .s_eol_i       (nuc_user[1]),",
        ".s_sof_i       (nuc_user[1]),\n    .s_eol_i       (nuc_user[2]),",
        "sof and eol swapped on the way to dpc_core"),
+    # dpc_tail (the DPC and frame check of every top).
+    _m("tail_size_swapped", "dpc_tail.sv",
+       ".frame_width_i (frame_width_i),\n    .frame_height_i(frame_height_i),",
+       ".frame_width_i (frame_height_i),\n    .frame_height_i(frame_width_i),",
+       "the frame's width and height swapped on the way to dpc_core"),
     *AXIS_MUTANTS,
 )
 

@@ -5,15 +5,16 @@ from __future__ import annotations
 
 from typing import Any
 
+from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method, tb_axis_table
 from irnuc.verif.mutant import Mutant
 
-_AXIS = {"top": "irnuc_axis_top", "suite": "irnuc.cocotb_tests.tb_axis"}
+_AXIS = {"top": "irnuc_axis_top", "suite": tb_axis.__name__}
 #: The wrapper around method_dpc_top, with its method testbench.
-_AXM = {"suite": "irnuc.cocotb_tests.tb_axis_method"}
+_AXM = {"suite": tb_axis_method.__name__}
 #: table_interp's selection (irnuc_axis_table, TABLE_SEL), with its testbench.
-_AXT = {"suite": "irnuc.cocotb_tests.tb_axis_table", "config": "table14"}
+_AXT = {"suite": tb_axis_table.__name__, "config": "table14"}
 #: The wrapper around method_ffc_top, with its FFC testbench.
-_AXF = {"suite": "irnuc.cocotb_tests.tb_axis_ffc", "config": "ffc14"}
+_AXF = {"suite": tb_axis_ffc.__name__, "config": "ffc14"}
 
 
 def _ma(id: str, file: str, find: str, replace: str, what: str, **kw: Any) -> Mutant:
@@ -50,6 +51,11 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "out_free_q <= !m_valid_o || m_ready_i || out_free_q;",
         "the decision's copy of the output register's ready misses an item that fills its "
         "skid register (a third item sent over two held)"),
+    _ma("ax_go_ignores_output", "irnuc_axis_framer.sv",
+        "|| (cst_f == CoefFill)) && (!m_valid_o || m_ready_i);",
+        "|| (cst_f == CoefFill));",
+        "the registered decision (go_q) after an item sent ignores the output register's "
+        "ready: an item sent over two held"),
     _ma("ax_line_size_follows_pending", "irnuc_axis_framer.sv",
         "    end else if (s_wait_q) begin\n      lw_m1_q  <= pend_width_m1_i;",
         "    end else begin\n      lw_m1_q  <= pend_width_m1_i;",
@@ -72,43 +78,52 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
     _ma("ax_buffer_head_stale", "irnuc_axis_buffer.sv", "if (!any_q || ready_i) begin",
         "if (!any_q) begin",
         "an input buffer's markers (head register) kept after a pop: the older entry's"),
-    _ma("ax_arready_late", "irnuc_axil_regs.sv", "ar_ready_q <= !ar_busy_d;",
-        "ar_ready_q <= !ar_busy_q;",
-        "arready a cycle behind the read channel (a read address offered while busy is lost)"),
-    _ma("ax_wready_late", "irnuc_axil_regs.sv", "w_ready_q  <= !w_held_d;",
-        "w_ready_q  <= !w_held_q;",
-        "wready a cycle behind the write data register (write data taken while one is held)"),
+    # ---- the register file: irnuc's AXI4-Lite slave and the fields of the generated
+    # register block (irnuc_axil_regblock.sv), the hand-written registers (irnuc_axil_regs.sv)
+    _ma("ax_wready_late", "irnuc_axil_regblock.sv", "axil_w_ready  <= !axil_w_held_d;",
+        "axil_w_ready  <= !axil_w_held;",
+        "wready a cycle behind the write data register (write data taken while one is "
+        "held overwrite it)"),
+    _ma("ax_irq_not_enabled", "irnuc_axil_regblock.sv",
+        "|(field_storage.IRQ_STATUS.frame_done.value & field_storage.IRQ_ENABLE.frame_done.value)",
+        "|(field_storage.IRQ_STATUS.frame_done.value)",
+        "irq_o ignores IRQ_ENABLE.frame_done"),
+    _ma("ax_status_no_w1c", "irnuc_axil_regblock.sv",
+        "next_c = field_storage.STATUS.eol_late.value & ~(decoded_wr_data[3:3] & "
+        "decoded_wr_biten[3:3]);",
+        "next_c = field_storage.STATUS.eol_late.value;",
+        "STATUS.eol_late cannot be cleared (W1C)"),
     _ma("ax_size_write_never", "irnuc_axil_regs.sv",
-        "size_hit_q   <= w_hit[IxFrameSize] && |(axil_byte_mask(w_strb_q) & SizeMask);",
-        "size_hit_q   <= 1'b0;",
-        "a FRAME_SIZE write never raises size_dirty (its decoded hit lost): no drain before "
-        "a new size"),
+        "assign size_write_o = size_wr_q && size_legal && size_touch_q;",
+        "assign size_write_o = 1'b0;",
+        "a FRAME_SIZE write never raises size_dirty: no drain before a new size"),
     _ma("ax_size_not_checked", "irnuc_axil_regs.sv",
-        "assign wr_size  = wr && wsel_q[IxFrameSize] && size_legal;",
-        "assign wr_size  = wr && wsel_q[IxFrameSize];",
+        "    end else if (size_wr_q && size_legal) begin",
+        "    end else if (size_wr_q) begin",
         "an illegal FRAME_SIZE write (SLVERR) still changes the register"),
-    _ma("ax_size_legal_all_lanes", "irnuc_axil_regs.sv",
-        "assign w_legal    = w_legal_c[w_strb_q[WLane +: 2]];",
-        "assign w_legal    = w_legal_c[2'b11];",
-        "a FRAME_SIZE write's width checked as if both its byte lanes were written"),
-    _ma("ax_traffic_counts_idle", "irnuc_axil_regs.sv", "        if (traffic_ev[k]) begin",
-        "        if (1'b1) begin", "the traffic counters count every cycle, not the events"),
+    _ma("ax_size_no_slverr", "irnuc_axil_regs.sv",
+        "assign wr_err       = size_wr_q && !size_legal;",
+        "assign wr_err       = 1'b0;",
+        "an illegal FRAME_SIZE write is answered OKAY (the register keeps its value)"),
+    _ma("ax_size_merge_ignores_strobes", "irnuc_axil_regs.sv",
+        "new_w_q <= (FieldW'(width_q) & ~size_bw_q) | (size_wd_q & size_bw_q);",
+        "new_w_q <= size_wd_q;",
+        "a FRAME_SIZE write's width taken whole (an unwritten byte lane as 0)"),
+    _ma("ax_traffic_counts_idle", "irnuc_axil_regs.sv",
+        "assign hwif_in.PIXELS_IN.count.incr   = beat_i;",
+        "assign hwif_in.PIXELS_IN.count.incr   = 1'b1;",
+        "PIXELS_IN counts every cycle, not the beats"),
     _ma("ax_pending_sticks", "irnuc_axil_regs.sv",
-        "pending_q    <= shadow_touch || (pending_q && !start_i);",
-        "pending_q    <= shadow_touch || pending_q;",
+        "                      || (pending_q && !start_i);",
+        "                      || pending_q;",
         "STATUS.pending stays 1 after the frame start that took the write"),
-    _ma("ax_irq_not_enabled", "irnuc_axil_regs.sv", "irq_q    <= |(irq_st_q & irq_en_q);",
-        "irq_q    <= |irq_st_q;", "irq_o ignores IRQ_ENABLE"),
-    _ma("ax_status_no_w1c", "irnuc_axil_regs.sv",
-        "err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));",
-        "err_q    <= err_ev | err_q;", "the STATUS error bits cannot be cleared (W1C)"),
     _ma("ax_frames_out_every_line", "irnuc_axis_top.sv",
         "frame_out_q <= core_valid && m_axis_video_tready && core_eol && (out_row_q == act_hm1);",
         "frame_out_q <= core_valid && m_axis_video_tready && core_eol;",
         "FRAMES_OUT and IRQ_STATUS.frame_done at every line's end"),
     _ma("ax_reading_from_t_ref", "irnuc_axis_top.sv",
-        "assign fw.reading = slots[2][ReadingBits-1:0];",
-        "assign fw.reading = slots[3][ReadingBits-1:0];",
+        "assign part0.reading = slots[2][ReadingBits-1:0];",
+        "assign part0.reading = slots[3][ReadingBits-1:0];",
         "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
     # ---- the classes issue 39 found escaping, killed by the random register traffic
     #      (cocotb_tests/axil_traffic.py) and ffc_second_run --------------------------------
@@ -261,7 +276,7 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "owe_mode.acc_first || owe_mode.acc_add || owe_mode.refresh",
         "owe_mode.acc_first || owe_mode.acc_add",
         "the refresh frame owes no m_axis_foff words to the drain", **_AXF),
-    # ---- table_interp: the weight and table pair from READING and TABLE_READING_k ------------
+    # ---- table_interp: the weight and table pair from READING and TABLE_READING[k] ------------
     _ma("ax_table_no_hold", "irnuc_axis_table.sv",
         "assign hold_o   = write_i || stale_q || iw_busy;", "assign hold_o   = write_i;",
         "a frame starts while its weight is being computed (the framer is held only in the "
@@ -284,9 +299,9 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "table_interp's weight computed from T_REF's slot (reserved: 0), not READING",
         **_AXM, config="table14"),
     _ma("ax_table_reading_no_restart", "irnuc_axil_regs.sv",
-        "table_hit_q  <= |w_hit[IxSlot + 4 +: 2] || |w_hit[IxTable +: NumTable];",
-        "table_hit_q  <= |w_hit[IxTable +: NumTable];",
-        "a READING write does not restart the weight (only a TABLE_READING_k write does)",
+        "&& (|(slot_req[SlotReading] & slot_req_is_wr[SlotReading])",
+        "&& (1'b0",
+        "a READING write does not restart the weight (only a TABLE_READING[k] write does)",
         **_AXT),
 )
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from irnuc.cocotb_tests import tb_top
+from irnuc.cocotb_tests import tb_pkg, tb_top
 from irnuc.common.errors import UserError
 
 #: The testbench module every mutant runs against.
@@ -14,7 +14,7 @@ SUITE_TOP = "nuc_dpc_top"
 #: A mutant of the package also runs the package check (every constant, width function and
 #: the DPC reciprocal table against the shared-constants spec) after the suite passed.
 PKG_FILE = "irnuc_pkg.sv"
-PKG_TOP, PKG_SUITE = "irnuc_pkg_probe", "irnuc.cocotb_tests.tb_pkg"
+PKG_TOP, PKG_SUITE = "irnuc_pkg_probe", tb_pkg.__name__
 
 
 @dataclass(frozen=True)

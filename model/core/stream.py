@@ -15,9 +15,11 @@ The inner loops run over one row without branches and with IEEE arithmetic
 
 import math
 
+import numpy as np
 from numba import njit, prange
 
-from irnuc.model.core.bolometer import STATUS_INVALID
+from irnuc.model.core.bolometer import STATUS_INVALID, STATUS_OK
+from irnuc.model.core.rng import normal_row
 
 
 @njit(cache=True, error_model="numpy")
@@ -129,3 +131,76 @@ def frame_statistics(dT, status, r0, r1, c0, c1, codes, top):
         n_low += c == 0
         n_high += c == top
     return lo, hi, total, count, n_low, n_high
+
+
+@njit(cache=True, error_model="numpy")
+def _row_draws(key_w, has_slow, vals, total, octave, key_f, base, x_tab, f_tab, w, new_row):
+    """A row's white normals (``w``, of key_w) and, with ``has_slow``, octave ``octave`` of
+    its Voss generator drawn anew (of key_f; the running sum ``total`` kept)."""
+    normal_row(key_w, base, w, x_tab, f_tab)
+    if not has_slow or octave < 0:
+        return
+    normal_row(key_f, base, new_row, x_tab, f_tab)
+    for j in range(new_row.shape[0]):
+        total[j] += new_row[j] - vals[octave, j]
+        vals[octave, j] = new_row[j]
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def bolometer_noise(v, dT, status, T_s, I, t_int, johnson, kf_white, slow_amp, keys_w,
+                    keys_f, octave, vals, total, x_tab, f_tab, out):
+    """The bolometer's own noise added to its voltage, (N, rows, cols), V: white with
+    variance 2 k T R / t_int (Johnson over the bandwidth 1/(2 t_int), ``johnson``) plus
+    kf_white v^2 (the 1/f octaves above the frame rate), from the standard normal of
+    (keys_w[n], i cols + j); plus slow_amp v (sum of the Voss generator's octaves) /
+    sqrt(octaves), the generator ``vals`` (K, rows, cols) with its running sum ``total``
+    (rows, cols) updated in place: octave[n] >= 0 is drawn anew from keys_f[n] first.
+    T = T_s[n] + dT and R = v / I. Pixels whose solve failed keep their voltage (they read
+    the rail)."""
+    n_frames, rows, cols = v.shape
+    two_k_t = 2.0 * 1.380649e-23 / t_int
+    inv_I = 1.0 / I if I > 0.0 else 0.0
+    jf = 1.0 if johnson else 0.0
+    norm = 1.0 / math.sqrt(vals.shape[0]) if vals.shape[0] > 0 else 0.0
+    has_slow = slow_amp > 0.0 and vals.shape[0] > 0
+    for i in prange(rows):
+        w = np.empty(cols)
+        new_row = np.empty(cols)
+        base = np.uint64(i) * np.uint64(cols)
+        for n in range(n_frames):
+            _row_draws(keys_w[n], has_slow, vals[:, i], total[i], octave[n], keys_f[n], base,
+                       x_tab, f_tab, w, new_row)
+            Ts = T_s[n]
+            for j in range(cols):
+                vv = v[n, i, j]
+                T = max(Ts + dT[n, i, j], 0.0)
+                var = kf_white * vv * vv + jf * two_k_t * T * abs(vv) * inv_I
+                o = vv + math.sqrt(var) * w[j]
+                if has_slow:
+                    o += slow_amp * vv * total[i, j] * norm
+                out[n, i, j] = o if status[n, i, j] == STATUS_OK else vv
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def output_noise(v, sigma, keys, flicker_sigma, octave, keys_f, vals, total, x_tab, f_tab,
+                 out):
+    """White noise of standard deviation ``sigma`` ((H, W), or (1, 1) for all) from the
+    normals of (keys[n], i W + j), plus flicker_sigma times a Voss generator (``vals``,
+    ``total`` updated in place as :func:`bolometer_noise`), added to (N, H, W) voltages."""
+    n_frames, rows, cols = v.shape
+    per_pixel = sigma.shape[0] > 1 or sigma.shape[1] > 1
+    norm = 1.0 / math.sqrt(vals.shape[0]) if vals.shape[0] > 0 else 0.0
+    has_slow = flicker_sigma > 0.0 and vals.shape[0] > 0
+    for i in prange(rows):
+        w = np.empty(cols)
+        new_row = np.empty(cols)
+        base = np.uint64(i) * np.uint64(cols)
+        for n in range(n_frames):
+            _row_draws(keys[n], has_slow, vals[:, i], total[i], octave[n], keys_f[n], base,
+                       x_tab, f_tab, w, new_row)
+            for j in range(cols):
+                sg = sigma[i, j] if per_pixel else sigma[0, 0]
+                o = v[n, i, j] + sg * w[j]
+                if has_slow:
+                    o += flicker_sigma * total[i, j] * norm
+                out[n, i, j] = o

@@ -131,6 +131,18 @@ def relax(theta, Q, g, C, dt):
 
 
 @njit(cache=True)
+def relax_ramp(theta, Q, g, C, dt, rate):
+    """theta (K, over the substrate) after dt >= 0 s without bias while the substrate warms
+    at ``rate`` K/s: C theta' = Q - g theta - C rate, exactly (rate 0: :func:`relax`)."""
+    if dt <= 0.0:
+        return theta
+    if rate == 0.0:
+        return relax(theta, Q, g, C, dt)
+    eq = Q / g - rate * (C / g)
+    return eq + (theta - eq) * math.exp(-dt * g / C)
+
+
+@njit(cache=True)
 def _rhs(theta, Ts, Q, I2, R_ref, B, T_ref, g, C):
     """(f, R, dR/dT) at theta: f = (I^2 R + Q - g theta) / C."""
     T = Ts + theta
@@ -462,14 +474,16 @@ def pulse(th, Ts, Q, I, R_ref, B, T_ref, g, C, t_int, method, steps, max_sub, T_
 @njit(cache=True, parallel=True)
 def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_period,
                      pulse_start, warmup, method, steps, max_sub, T_max, refuse_unstable, rtol,
-                     v_out, dT_out, dTend_out, status_out, sub_out, meth_out):
+                     v_out, dT_out, dTend_out, status_out, sub_out, meth_out, Ts_before):
     """A sequence of frames for a flat array of pixels.
 
-    Parameters: Q (N, P) W, Ts (N,) K, R_ref, g, C, theta0 (P,) (theta0 relative to Ts[0],
-    at the start of the first frame, before any warm-up frame). Every frame: relax
-    (no bias) until pulse_start, one bias pulse of t_int, relax until frame_period. The
-    substrate temperature steps at frame starts (T continuous, theta jumps). ``warmup``
-    copies of frame 0 run first without output.
+    Parameters: Q (N, P) W, Ts (N,) K, R_ref, g, C, theta0 (P,) (theta0 relative to the
+    substrate at the start of the first frame, before any warm-up frame). Every frame:
+    relax (no bias) until pulse_start, one bias pulse of t_int, relax until frame_period.
+    Frame n's substrate goes linearly from Ts[n - 1] (``Ts_before`` for frame 0) at its
+    start to Ts[n] at its end (a first-order hold: theta = T - T_s relaxes with the forcing
+    -C dT_s/dt, exactly); during the pulse it is held at its mid-pulse value. ``warmup``
+    copies of frame 0 (the substrate constant at Ts[0]) run first without output.
 
     Writes per frame and pixel: the mean bolometer voltage over the pulse (V), the mean
     rise over the pulse and the rise at its end (K), the status, the substeps used and the
@@ -491,22 +505,29 @@ def integrate_frames(Q, Ts, R_ref, g, C, theta0, B, T_ref, I, t_int, frame_perio
         last_mean = th
         for k in range(warmup + n_frames):
             n = k - warmup if k >= warmup else 0
-            if k > warmup:
-                th += Ts[n - 1] - Ts[n]  # T is continuous across a substrate step
+            if k < warmup:
+                t0 = Ts[0]
+            elif n == 0:
+                t0 = Ts_before
+            else:
+                t0 = Ts[n - 1]
+            rate = (Ts[n] - t0) / frame_period
+            T_pulse = t0 + rate * (pulse_start + 0.5 * t_int)  # the substrate at mid-pulse
+            shift = 0.5 * rate * t_int
             if st == STATUS_OK:
                 q = Q[n, p]
-                th = relax(th, q, gp, Cp, pulse_start)
-                th_end, iV, iT, st_p, nsub, used = pulse(th, Ts[n], q, I, Rp, B, T_ref, gp,
+                th = relax_ramp(th, q, gp, Cp, pulse_start, rate) - shift
+                th_end, iV, iT, st_p, nsub, used = pulse(th, T_pulse, q, I, Rp, B, T_ref, gp,
                                                          Cp, t_int, method, steps, max_sub,
                                                          T_max, refuse_unstable, rtol)
                 if st_p == STATUS_OK:
                     last_v = iV / t_int
                     last_mean = iT / t_int
-                    th = relax(th_end, q, gp, Cp, after)
+                    th = relax_ramp(th_end - shift, q, gp, Cp, after, rate)
                 else:
                     st = st_p
-                    if math.isfinite(th_end) and Ts[n] + th_end > 0.0:
-                        last_v = I * resistance(Ts[n] + th_end, Rp, B, T_ref)
+                    if math.isfinite(th_end) and T_pulse + th_end > 0.0:
+                        last_v = I * resistance(T_pulse + th_end, Rp, B, T_ref)
                         last_mean = th_end
             else:
                 nsub = 0

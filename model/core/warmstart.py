@@ -41,7 +41,7 @@ from irnuc.model.core.bolometer import (
     self_heating_factor,
     solve_delta_t,
 )
-from irnuc.model.core.transient import relax
+from irnuc.model.core.transient import relax_ramp
 
 
 @njit(cache=True)
@@ -135,9 +135,10 @@ def _solve_pixel(a, b, R_ref, B, T_ref, Ts, rtol, max_iter, T_max, I, x0, e_r, i
 POLY_EXP_MAX = 1.0 / 16.0
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", fastmath={"contract"})
 def _exp_poly(z):
-    """e^z by its degree-9 Taylor polynomial (Horner), for |z| <= POLY_EXP_MAX."""
+    """e^z by its degree-9 Taylor polynomial (Horner), for |z| <= POLY_EXP_MAX (a multiply
+    and an add may fuse: ``contract``, no other fast-math liberty)."""
     p = 1.0 / 362880.0
     p = p * z + 1.0 / 40320.0
     p = p * z + 1.0 / 5040.0
@@ -314,15 +315,15 @@ def lagged_rise(Q, g, decay, T_s, T_prev, theta_prev, has_prev, theta_out):
 
 
 @njit(cache=True, parallel=True)
-def relax_after_pulse(theta_end, Q, g, C, after, failed, out):
-    """Rise (K) at the end of a frame from the rise at the end of its pulse: the unbiased
-    relaxation over ``after`` seconds by :func:`model.core.transient.relax`, the operation
-    :func:`model.core.transient.integrate_frames` does between two frames (the substrate
-    step follows at the next frame's start), so a sequence split into chunks gives the same
-    bits. A failed pixel restarts from 0 (its frames are railed; the caller keeps its
-    status)."""
+def relax_after_pulse(theta_end, Q, g, C, after, rate, failed, out):
+    """Rise (K) at the end of a frame from the rise at the end of its pulse (relative to the
+    substrate at mid-pulse): the unbiased relaxation over ``after`` seconds while the
+    substrate warms at ``rate`` K/s (:func:`model.core.transient.relax_ramp`), the operation
+    :func:`model.core.transient.integrate_frames` does at the end of a frame, so a sequence
+    split into chunks gives the same bits. A failed pixel restarts from 0 (its frames are
+    railed; the caller keeps its status)."""
     for p in prange(theta_end.shape[0]):
-        out[p] = 0.0 if failed[p] else relax(theta_end[p], Q[p], g[p], C[p], after)
+        out[p] = 0.0 if failed[p] else relax_ramp(theta_end[p], Q[p], g[p], C[p], after, rate)
 
 
 def empty_solution(shape):

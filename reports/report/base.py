@@ -24,6 +24,8 @@ class Report:
     """Everything a run collects: sections, metrics, figures and phase times."""
 
     config: dict[str, Any]
+    #: Each phase's result, typed and read-only (:mod:`irnuc.reports.report.sections`); a
+    #: later phase adding to one stores a new section
     sections: dict[str, Any] = field(default_factory=dict)
     metrics: dict[str, dict[str, Any]] = field(default_factory=dict)
     figures: dict[str, list[tuple[str, bytes]]] = field(default_factory=dict)

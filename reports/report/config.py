@@ -144,6 +144,7 @@ SCHEMA: dict[str, Any] = table({
         "cosim_seed": number(0, 2**31 - 1, integer=True),
         "ffc_every": number(2, 10_000, integer=True),
         "dsp_lut_equivalent": number(0, 100_000),
+        "synth_seeds": number(1, 64, integer=True),
     }),
     "precision": table({
         "quick": {"type": "boolean"},

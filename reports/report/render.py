@@ -234,7 +234,7 @@ def temperature_headline(t: Mapping[str, Any]) -> tuple[str, str]:
     if not r["meets_tolerance"]:
         text += " — NO POINT MEETS THE TOLERANCE (lowest residual shown)"
     if r.get("synth"):
-        text += f"; {r['synth']['top']} Fmax {r['synth']['fmax_mhz']:.1f} MHz"
+        text += f"; {r['synth']['top']} Fmax {r['synth']['fmax_mhz']:.1f} MHz{seeds_text(r['synth'])}"
     c = r.get("cosim")
     if c and not c.get("not_run"):
         text += (f"; co-simulated on {c['frames']} frames of {c['shape'][1]} × {c['shape'][0]}: "
@@ -303,7 +303,7 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
                      ["xc7", f"{x['lut']} LUT, {x['ff']} FF, {x['dsp']} DSP48E1, {x['bram36']} RAMB36"],
                      ["ECP5", f"{e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, {e['dp16kd']} DP16KD"],
                      ["Fmax (nextpnr-ecp5)", f"{sy['fmax_mhz']:.1f} MHz on {sy['device']} speed "
-                      f"{sy['speed']} (aiming at {sy['target_mhz']:g} MHz)"]]
+                      f"{sy['speed']} (aiming at {sy['target_mhz']:g} MHz){seeds_text(sy, True)}"]]
             if sy.get("wrapper_overhead"):
                 c = sy["core"]
                 cost.append(["the bare core", f"{c['top']}: {c['xc7']['lut']} LUT, "
@@ -377,6 +377,19 @@ def sweep_rows(s: Mapping[str, Any]) -> dict[str, Any]:
 
 def _fits(fits: bool, device: str, blocks: int) -> str:
     return f"fits an {device} ({blocks})" if fits else f"more than an {device} has ({blocks})"
+
+
+def seeds_text(sy: Mapping[str, Any], detail: bool = False) -> str:
+    """What a seed sweep adds to a synthesized Fmax: the best of N placer seeds, the worst
+    (and, in ``detail``, every seed's figure); nothing for one placement."""
+    sd = sy.get("seeds")
+    if not sd:
+        return ""
+    text = (f" (best of {sd['runs']} placer seeds, seed {sd['best_seed']}; worst "
+            f"{sd['worst_mhz']:.1f} MHz, {sd['at_target']} of {sd['runs']} at the target")
+    if detail:
+        text += "; " + ", ".join(f"seed {k}: {v:.1f}" for k, v in sd["fmax_mhz"].items())
+    return text + ")"
 
 
 def synth_rows(sy: Mapping[str, Any]) -> dict[str, Any]:

@@ -55,15 +55,18 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
 
 
 def _recommended_metrics(rep: Report) -> None:
-    r = (rep.sections.get("sweep") or {}).get("recommended")
-    if "sweep" not in rep.sections:
+    from irnuc.reports.report.sections import SweepSection
+
+    sweep = rep.sections.get("sweep")
+    if not isinstance(sweep, SweepSection):
         return
+    r = sweep.recommended
     rep.metric("sweep.recommended.bits_per_pixel", r and r["bits_per_pixel"], "lower", "bit")
     rep.metric("sweep.recommended.err_max_lsb", r and r["err_max_lsb"], "lower", "LSB")
-    if r and r.get("cosim"):
-        rep.metric("sweep.recommended.cosim.failed", r["cosim"]["failed"], "lower")
-        rep.metric("sweep.recommended.cosim.mismatches", r["cosim"]["mismatches"], "lower")
-        rep.metric("sweep.recommended.cosim.pixels", r["cosim"]["pixels"], "info")
+    if r and r.cosim:
+        rep.metric("sweep.recommended.cosim.failed", r.cosim.failed, "lower")
+        rep.metric("sweep.recommended.cosim.mismatches", r.cosim.mismatches, "lower")
+        rep.metric("sweep.recommended.cosim.pixels", r.cosim.pixels, "info")
 
 
 def write_outputs(rep: Report, summary: dict[str, Any], out: Path) -> None:
@@ -103,10 +106,10 @@ def run_report(args: Any) -> int:
     from irnuc.reports.report.summary import load_baseline, make_summary
 
     argv = list(getattr(args, "argv", []) or [])
-    config = load_report_config(args.config, quick=args.quick)
     cfg_file = config_path(args.config)
     out = claim_output_folder(args.out, kind="report", inputs={
         "--config": cfg_file if cfg_file.is_file() else None})
+    config = load_report_config(args.config, quick=args.quick)
     check_runs_something(config, f"--config {args.config}", no_cosim=args.no_cosim,
                          junit=bool(args.junit))
     baseline = load_baseline(args.baseline, config) if args.baseline else None

@@ -19,6 +19,7 @@ import subprocess
 import uuid
 from collections.abc import Mapping
 from pathlib import Path
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -208,6 +209,10 @@ def validate_summary(summary: Mapping[str, Any]) -> str:
 
 
 def _json_default(o: Any) -> Any:
+    from irnuc.reports.report.sections import Record, thaw
+
+    if isinstance(o, Record | MappingProxyType):
+        return thaw(o)
     if isinstance(o, np.integer):
         return int(o)
     if isinstance(o, np.floating):

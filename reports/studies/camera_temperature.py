@@ -5,8 +5,9 @@ at the calibration's reference temperature and the camera looks at a uniform 330
 Every frame is corrected with ``two_point`` alone and with ``two_point + blind_drift``
 (``typical14`` and ``drift14``, calibrated on the same plan; blind_drift's coupling
 measured over housing temperatures at the reference FPA temperature). Per frame: the level
-error of the corrected image (its mean minus the scene's calibrated level) and the fixed
-pattern left, in mK, beside the NETD.
+error of the corrected image (the scene its mean reads on the calibration's scale, minus
+the scene) and the fixed pattern left through the image's local responsivity
+(:func:`metrics.residuals_mK`), in mK, beside the NETD (300 K scene).
 
 test_tcomp.py subtracts the change of the boundary-pixel average from the corrected
 frames; blind_drift subtracts the calibrated multiple of it from the raw codes, before
@@ -24,11 +25,11 @@ from irnuc.reports.studies.drift_common import (
     PLAN,
     StudySensor,
     calibrate_methods,
-    fpn,
-    frames_at,
-    netd_mK,
+    netd,
     pyplot,
-    responsivity,
+    residuals,
+    scale,
+    slope_frames,
 )
 
 NAME = "camera_temperature"
@@ -57,32 +58,35 @@ def run(quick: bool = False, sensor: StudySensor | None = None, scene_K: float =
     cal = calibrate_methods(sensor, METHODS, plan,
                             drift_cam=(fpa_ref - 5.0, fpa_ref + 5.0, fpa_ref + 10.0))
     c2, cd = cal["cal"]["typical14"], cal["cal"]["drift14"]
-    r_out = responsivity(c2.targets, plan["scene"])(scene_K)
-    target = float(np.interp(scene_K, plan["scene"], c2.targets))
+    sc = scale(sensor, c2.targets, plan["scene"])
     good = ~(c2.bad | cd.bad)
     profs = profiles(n, *cam_range)
     temps = sorted({float(t) for p in profs.values() for t in p})
     frames: dict[float, tuple[np.ndarray, np.ndarray]] = {}
     for i, tc in enumerate(temps):
-        frames[tc] = frames_at(sensor, fpa_ref, tc, [scene_K])
+        frames[tc] = slope_frames(sensor, fpa_ref, tc, [scene_K])
         if progress:
             progress(i + 1, len(temps))
     from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 
     out: dict[str, Any] = {}
+    resp: list[float] = []
     for pname, cams in profs.items():
         raw = np.concatenate([frames[float(t)][0] for t in cams])
         blind = np.concatenate([frames[float(t)][1] for t in cams])
         rec: dict[str, Any] = {"T_cam_K": cams.tolist()}
         for label, c in (("two_point", c2), ("two_point+blind_drift", cd)):
-            y = method_top(raw, c.coeffs, FrameInputs(blind_codes=blind)).y.astype(np.float64)
-            level = [(float(f[good].mean()) - target) / r_out * 1e3 for f in y]
-            pattern = [fpn(f, good) / r_out * 1e3 for f in y]
+            y = method_top(raw, c.coeffs, FrameInputs(blind_codes=blind)).y
+            res = [residuals(y[3 * k:3 * k + 3], good, [scene_K], sc)[0] for k in range(len(cams))]
+            level = [r["level_error_mK"] for r in res]
+            pattern = [r["fpn_mK"] for r in res]
+            resp += [r["responsivity_codes_per_K"] for r in res]
             rec[label] = {"level_error_mK": level, "fpn_mK": pattern,
+                          "responsivity_codes_per_K": [r["responsivity_codes_per_K"] for r in res],
                           "worst_level_error_mK": float(np.max(np.abs(level))),
                           "worst_fpn_mK": float(np.max(pattern))}
         out[pname] = rec
-    netd = netd_mK(sensor, fpa_ref, scene_K, r_out, out_per_adc=2.0 ** (c2.cfg.out_bits - c2.cfg.adc_bits))
+    nd = netd(sensor, fpa_ref)
     return {
         "study": NAME, "title": TITLE, "quick": quick,
         "sensor": {"preset": str(sensor.preset), "rows": sensor.rows, "cols": sensor.cols,
@@ -91,7 +95,8 @@ def run(quick: bool = False, sensor: StudySensor | None = None, scene_K: float =
                                                         for k, v in plan.items()},
         "drift_coupling": cd.summary["drift_coupling"],
         "drift_coupling_source": cd.summary["drift_coupling_source"],
-        "responsivity_codes_per_K": r_out, "netd_mK": netd, "profiles": out,
+        "responsivity_codes_per_K": {"min": float(min(resp)), "max": float(max(resp))},
+        "netd_mK": nd.netd_K * 1e3, "netd": nd.as_dict(), "profiles": out,
         "seconds": time.perf_counter() - t0,
     }
 
@@ -108,7 +113,7 @@ def figure(result: dict[str, Any]) -> bytes:
             axes[0].plot(np.abs(d["level_error_mK"]), ls, color=f"C{i}",
                          label=f"{pname} {label}")
             axes[1].plot(d["fpn_mK"], ls, color=f"C{i}")
-    axes[1].axhline(result["netd_mK"], color="k", ls=":", lw=1, label="NETD")
+    axes[1].axhline(result["netd_mK"], color="k", ls=":", lw=1, label="NETD (300 K scene)")
     axes[0].set_ylabel("|level error|, mK")
     axes[1].set_ylabel("residual fixed pattern, mK")
     for ax in axes:

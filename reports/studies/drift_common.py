@@ -3,9 +3,11 @@ given FPA and housing temperatures, responsivity, NETD and the residual metrics.
 
 Units: residuals are the spatial standard deviation of a corrected uniform scene over the
 good pixels (the fixed pattern left), in output codes (LSB) and in millikelvin of scene
-temperature, ``mK = 1000 * LSB / R``, with R the corrected image's responsivity (output
-codes per K) measured from the calibration frames at two scene temperatures. The NETD is
-the temporal noise over the same responsivity (:func:`netd_mK`).
+temperature through the corrected image's own (local) responsivity at that FPA, housing
+and scene, with the level error beside it: :func:`irnuc.reports.studies.metrics.residuals_mK`,
+the one conversion, on frames at each scene and 0.5 K either side (:func:`slope_frames`).
+The NETD beside them is the model's closed form at a 300 K scene, the sensor's F-number and
+frame rate, with the pixels' spread (:func:`netd`).
 
 Frames come from the physics model in its steady state, one configuration per
 (FPA, housing) temperature pair, the same seed (so the same pixels) everywhere. A drift
@@ -15,7 +17,7 @@ sequence of the model (``model.sequence``) gives the same frames when its therma
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -88,35 +90,43 @@ def calibrate_methods(sensor: StudySensor, names: Sequence[str], plan: Mapping[s
     return {"points": pts, "cal": cals, "plan": p}
 
 
-def responsivity(targets: Sequence[float], scenes: Sequence[float]) -> Callable[[float], float]:
-    """R(T), output codes per K of the corrected image: the slope of the calibration
-    targets (the corrected level of each scene) between the two scene temperatures
-    around T (the end pair outside)."""
-    t = np.asarray(targets, dtype=np.float64)
-    s = np.asarray(scenes, dtype=np.float64)
+def slope_frames(sensor: StudySensor, fpa_K: float, cam_K: float, scenes: Sequence[float],
+                 noise: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Raw codes (3 S, H, W) and blind codes of uniform scenes, each scene followed by its
+    neighbours 0.5 K below and above (:func:`metrics.slope_scenes`): what
+    :func:`metrics.residuals_mK` needs to convert to mK at this camera state."""
+    from irnuc.reports.studies.metrics import slope_scenes
 
-    def r(scene_K: float) -> float:
-        i = int(np.clip(np.searchsorted(s, scene_K) - 1, 0, len(s) - 2))
-        return float((t[i + 1] - t[i]) / (s[i + 1] - s[i]))
-
-    return r
+    return frames_at(sensor, fpa_K, cam_K, slope_scenes(scenes), noise=noise)
 
 
-def netd_mK(sensor: StudySensor, fpa_K: float, scene_K: float, resp_out: float,
-            frames: int = 16, out_per_adc: float = 1.0) -> float:
-    """NETD, mK: the median temporal noise of a pixel over ``frames`` frames of a uniform
-    scene (the model's noise switched on), over the responsivity (output codes per K).
+def scale(sensor: StudySensor, targets: Sequence[float], scenes: Sequence[float]) -> Any:
+    """The calibration's temperature scale (:class:`metrics.TemperatureScale`) on the
+    sensor's band."""
+    from irnuc.reports.studies.metrics import TemperatureScale
 
-    The model's own NETD, when it gives one (``model.netd``), is the hook to use instead.
-    """
+    band = sensor.config(300.0, 300.0)["radiometry"]["band"]
+    return TemperatureScale(targets, scenes, band)
+
+
+def residuals(y: np.ndarray, good: np.ndarray, scenes: Sequence[float], sc: Any
+              ) -> list[dict[str, float]]:
+    """:func:`metrics.residuals_mK` (frames of :func:`slope_frames`, corrected)."""
+    from irnuc.reports.studies.metrics import residuals_mK
+
+    return residuals_mK(y, good, scenes, sc)
+
+
+def netd(sensor: StudySensor, fpa_K: float, cam_K: float | None = None) -> Any:
+    """The sensor's closed-form NETD (:func:`model.netd`) at a 300 K scene, its F-number
+    and frame rate, the FPA (and housing, default the FPA's) temperature, every noise
+    source on: a :class:`model.noise_metrics.Netd` (``netd_K``, its pixels' spread)."""
     from irnuc import model
+    from irnuc.model.noise_metrics import NETD_SCENE_K
 
-    hook = getattr(model, "netd", None)
-    if callable(hook):  # the drift-sequence work's figure, once it exists
-        return float(hook(sensor.config(fpa_K, fpa_K, noise=True), scene_K)) * 1000.0
-    codes, _ = frames_at(sensor, fpa_K, fpa_K, [scene_K], repeats=frames, noise=True)
-    sd = float(np.median(codes.astype(np.float64).std(axis=0, ddof=1)))
-    return 1000.0 * sd * out_per_adc / resp_out
+    cam = fpa_K if cam_K is None else cam_K
+    return model.netd(sensor.config(fpa_K, cam, noise=True), NETD_SCENE_K, seed=sensor.seed,
+                      T_substrate=float(fpa_K), T_cam=float(cam))
 
 
 def fpn(y: np.ndarray, good: np.ndarray) -> float:

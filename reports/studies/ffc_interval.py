@@ -54,7 +54,7 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None, scene_K: floa
     changes = np.asarray([d for d in grid if d <= max_change_K])
     cal = dc.calibrate_methods(sensor, (*METHODS, "typical14"), dc.PLAN)
     base = cal["cal"]["ffc14"]
-    r_out = dc.responsivity(base.targets, dc.PLAN["scene"])(scene_K)
+    sc = dc.scale(sensor, base.targets, dc.PLAN["scene"])
     good = ~np.logical_or.reduce([c.bad for c in cal["cal"].values()])
     n_ffc = int(base.cfg.ffc_frames or 1)
     shutter_raw, _ = dc.frames_at(sensor, ffc_fpa, ffc_fpa, [ffc_fpa], repeats=n_ffc)
@@ -62,25 +62,35 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None, scene_K: floa
     scene_raw = []
     readings = []
     for i, d in enumerate(changes):
-        raw, _ = dc.frames_at(sensor, ffc_fpa + d, ffc_fpa + d, [scene_K])
-        scene_raw.append(raw[0])
-        readings.append(int(cal["plan"].fpa_sensor.read(ffc_fpa + d)[0]))
+        raw, _ = dc.slope_frames(sensor, ffc_fpa + d, ffc_fpa + d, [scene_K])
+        scene_raw.append(raw)
+        readings += [int(cal["plan"].fpa_sensor.read(ffc_fpa + d)[0])] * 3
         if progress:
             progress(i + 1, len(changes))
-    scene_raw = np.stack(scene_raw)
+    scene_raw = np.concatenate(scene_raw)
+    n3 = len(readings)
     curves: dict[str, Any] = {}
+    levels: dict[str, Any] = {}
+
+    def per_change(y: np.ndarray) -> list[dict[str, float]]:
+        return [dc.residuals(y[3 * k:3 * k + 3], good, [scene_K], sc)[0]
+                for k in range(len(changes))]
+
     for name in METHODS:
         c = cal["cal"][name]
         ref = method_top(shutter_raw, c.coeffs, FrameInputs(
             reading=np.full(n_ffc, reading0), shutter=np.ones(n_ffc, bool)))
         y = method_top(scene_raw, c.coeffs, FrameInputs(
-            reading=np.asarray(readings), shutter=np.zeros(len(changes), bool)),
+            reading=np.asarray(readings), shutter=np.zeros(n3, bool)),
             ffc_offset=ref.ffc_offset).y
-        curves[c.cfg.method] = [dc.fpn(f, good) / r_out * 1e3 for f in y]
-    y2 = method_top(scene_raw, cal["cal"]["typical14"].coeffs).y
-    curves["two_point (no FFC)"] = [dc.fpn(f, good) / r_out * 1e3 for f in y2]
-    netd = dc.netd_mK(sensor, ffc_fpa, scene_K, r_out,
-                   out_per_adc=2.0 ** (base.cfg.out_bits - base.cfg.adc_bits))
+        res = per_change(y)
+        curves[c.cfg.method] = [r["fpn_mK"] for r in res]
+        levels[c.cfg.method] = [r["level_error_mK"] for r in res]
+    res = per_change(method_top(scene_raw, cal["cal"]["typical14"].coeffs).y)
+    curves["two_point (no FFC)"] = [r["fpn_mK"] for r in res]
+    levels["two_point (no FFC)"] = [r["level_error_mK"] for r in res]
+    nd = dc.netd(sensor, ffc_fpa)
+    netd = nd.netd_K * 1e3
     ramps = {}
     for rate in RATES_K_PER_MIN:
         t_min = changes / rate
@@ -94,8 +104,8 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None, scene_K: floa
         "sensor": {"preset": str(sensor.preset), "rows": sensor.rows, "cols": sensor.cols,
                    "seed": sensor.seed, "overrides": dict(sensor.overrides)},
         "scene_K": scene_K, "ffc_fpa_K": ffc_fpa, "ffc_frames": n_ffc,
-        "fpa_change_K": changes.tolist(), "fpn_mK": curves, "ramps": ramps,
-        "responsivity_codes_per_K": r_out, "netd_mK": netd,
+        "fpa_change_K": changes.tolist(), "fpn_mK": curves, "level_error_mK": levels,
+        "ramps": ramps, "netd_mK": netd, "netd": nd.as_dict(),
         "seconds": time.perf_counter() - t0,
     }
 
@@ -113,7 +123,7 @@ def figure(result: dict[str, Any]) -> bytes:
             tag = "stays below" if lp is None else f"{lp:.2g} min"
             ax.plot(ramp["t_min"], v, "o-", ms=3, color=f"C{i}", label=f"{m}: {tag}")
         ax.axhline(result["netd_mK"], color="k", ls=":", lw=1,
-                   label=f"NETD {result['netd_mK']:.0f} mK")
+                   label=f"NETD {result['netd_mK']:.0f} mK (300 K scene)")
         ax.set_yscale("log")
         ax.set_xscale("symlog", linthresh=0.1)
         ax.set_xlim(0.0, ramp["span_min"])

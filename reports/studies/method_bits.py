@@ -20,10 +20,10 @@ import numpy as np
 from irnuc.reports.studies.drift_common import (
     PLAN,
     StudySensor,
-    fpn,
-    frames_at,
     pyplot,
-    responsivity,
+    residuals,
+    scale,
+    slope_frames,
 )
 
 NAME = "method_bits"
@@ -63,7 +63,7 @@ def run(quick: bool = False, sensor: StudySensor | None = None,
     scenes = (310.0, 350.0)
     evals = []
     for tf in plan.fpa:
-        raw, blind = frames_at(sensor, tf, tf, scenes)
+        raw, blind = slope_frames(sensor, tf, tf, scenes)
         evals.append((tf, raw, blind, int(plan.fpa_sensor.read(tf)[0])))
     table: dict[str, Any] = {}
     total = len(names) * len(bits)
@@ -78,19 +78,19 @@ def run(quick: bool = False, sensor: StudySensor | None = None,
             if cfg is not None:
                 cal = calibrate_points(pts, cfg, max_saturated=1.0)
                 good = ~cal.bad
-                r_of = responsivity(cal.targets, plan.scene)
+                sc = scale(sensor, cal.targets, plan.scene)
                 worst = {"nu": 0.0, "lsb": 0.0, "mk": 0.0, "float": 0.0, "nu_ref": 0.0,
                          "mk_ref": 0.0}
                 for tf, raw, blind, rd in evals:
                     y = method_top(raw, cal.coeffs, FrameInputs(
-                        reading=np.full(len(scenes), rd), blind_codes=blind)).y
-                    for k, s in enumerate(scenes):
-                        v = fpn(y[k], good)
-                        nu = v / float(y[k][good].mean())
-                        mk = v / r_of(s) * 1e3
-                        yf = float_correct(cal, raw[k].astype(np.float64), rd)
-                        vals = {"nu": nu, "lsb": v, "mk": mk,
-                                "float": fpn(yf, good) / r_of(s) * 1e3}
+                        reading=np.full(len(raw), rd), blind_codes=blind)).y
+                    yf = np.stack([float_correct(cal, r.astype(np.float64), rd) for r in raw])
+                    res, resf = residuals(y, good, scenes, sc), residuals(yf, good, scenes, sc)
+                    for k in range(len(scenes)):
+                        v = res[k]["fpn_lsb"]
+                        nu = v / float(y[3 * k][good].mean())
+                        mk = res[k]["fpn_mK"]
+                        vals = {"nu": nu, "lsb": v, "mk": mk, "float": resf[k]["fpn_mK"]}
                         if tf == plan.fpa[plan.reference_index]:
                             vals |= {"nu_ref": nu, "mk_ref": mk}
                         worst = {key: max(worst[key], vals.get(key, 0.0)) for key in worst}

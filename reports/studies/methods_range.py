@@ -3,7 +3,8 @@
 Each method is calibrated on the same plan (scenes 290/330/370 K at FPA 288/298/308 K)
 and corrects uniform scenes over a grid of FPA temperatures (288-308 K) and scene
 temperatures (280-380 K), inside and between the calibration points. Per method: the
-worst residual fixed pattern over the grid (LSB and mK), the coefficient memory (bits per
+worst residual fixed pattern over the grid (LSB and mK through the local responsivity) and
+the worst level error (mK), the coefficient memory (bits per
 pixel) and the memory bandwidth at 60 frames/s for a VGA (640 x 480) array; per FPA
 temperature, the worst over the scenes.
 """
@@ -20,12 +21,12 @@ from irnuc.reports.studies.drift_common import (
     PLAN,
     StudySensor,
     calibrate_methods,
-    fpn,
-    frames_at,
     memory_bits,
-    netd_mK,
+    netd,
     pyplot,
-    responsivity,
+    residuals,
+    scale,
+    slope_frames,
 )
 
 NAME = "methods_range"
@@ -49,12 +50,12 @@ def run(quick: bool = False, sensor: StudySensor | None = None,
     scenes = scene_K or ((280.0, 330.0, 380.0) if quick else (280.0, 305.0, 330.0, 355.0, 380.0))
     cal = calibrate_methods(sensor, names, PLAN)
     first = cal["cal"][names[0]]
-    r_of = responsivity(first.targets, PLAN["scene"])
+    sc = scale(sensor, first.targets, PLAN["scene"])
     good = ~np.logical_or.reduce([c.bad for c in cal["cal"].values()])
     sensor_read = cal["plan"].fpa_sensor
     grid: dict[float, tuple[np.ndarray, np.ndarray, int]] = {}
     for i, tf in enumerate(fpa):
-        raw, blind = frames_at(sensor, tf, tf, scenes)
+        raw, blind = slope_frames(sensor, tf, tf, scenes)
         grid[tf] = (raw, blind, int(sensor_read.read(tf)[0]))
         if progress:
             progress(i + 1, len(fpa))
@@ -62,33 +63,36 @@ def run(quick: bool = False, sensor: StudySensor | None = None,
     for name in names:
         c = cal["cal"][name]
         per_fpa = []
-        worst_lsb, worst_mk = 0.0, 0.0
+        worst_lsb, worst_mk, worst_level = 0.0, 0.0, 0.0
         for tf in fpa:
             raw, blind, rd = grid[tf]
-            y = method_top(raw, c.coeffs, FrameInputs(reading=np.full(len(scenes), rd),
+            y = method_top(raw, c.coeffs, FrameInputs(reading=np.full(len(raw), rd),
                                                       blind_codes=blind)).y
-            lsb = [fpn(f, good) for f in y]
-            mk = [v / r_of(s) * 1e3 for v, s in zip(lsb, scenes, strict=True)]
-            per_fpa.append({"fpa_K": tf, "fpn_lsb": lsb, "fpn_mK": mk})
+            res = residuals(y, good, scenes, sc)
+            lsb = [r["fpn_lsb"] for r in res]
+            mk = [r["fpn_mK"] for r in res]
+            lev = [r["level_error_mK"] for r in res]
+            per_fpa.append({"fpa_K": tf, "fpn_lsb": lsb, "fpn_mK": mk, "level_error_mK": lev,
+                            "responsivity_codes_per_K": [r["responsivity_codes_per_K"]
+                                                         for r in res]})
             worst_lsb, worst_mk = max(worst_lsb, *lsb), max(worst_mk, *mk)
+            worst_level = max(worst_level, *(abs(v) for v in lev))
         mem = memory_bits(c.cfg)
         bw = mem["read_bits_per_frame"] * VGA[0] * VGA[1] * FRAME_RATE / 8e6
         methods[name] = {"method": c.cfg.method, "worst_fpn_lsb": worst_lsb,
-                         "worst_fpn_mK": worst_mk, **mem,
+                         "worst_fpn_mK": worst_mk, "worst_level_error_mK": worst_level, **mem,
                          "bandwidth_MB_per_s_vga60": bw, "per_fpa": per_fpa,
                          "coefficients": {k: v["format"] for k, v in
                                           c.summary["coefficients"].items()}}
-    mid = scenes[len(scenes) // 2]
-    netd = netd_mK(sensor, PLAN["fpa"][1], mid, r_of(mid),
-                   out_per_adc=2.0 ** (first.cfg.out_bits - first.cfg.adc_bits))
+    nd = netd(sensor, PLAN["fpa"][1])
     return {
         "study": NAME, "title": TITLE, "quick": quick,
         "sensor": {"preset": str(sensor.preset), "rows": sensor.rows, "cols": sensor.cols,
                    "seed": sensor.seed, "overrides": dict(sensor.overrides)},
         "plan": {k: list(v) if isinstance(v, tuple) else v for k, v in PLAN.items()},
         "fpa_K": list(fpa), "scene_K": list(scenes), "frame_rate": FRAME_RATE,
-        "bandwidth_frame": list(VGA), "methods": methods, "netd_mK": netd,
-        "seconds": time.perf_counter() - t0,
+        "bandwidth_frame": list(VGA), "methods": methods, "netd_mK": nd.netd_K * 1e3,
+        "netd": nd.as_dict(), "seconds": time.perf_counter() - t0,
     }
 
 
@@ -107,7 +111,7 @@ def figure(result: dict[str, Any]) -> bytes:
                      [max(p["fpn_mK"]) for p in m["per_fpa"]], "o-", ms=3, color=f"C{i}",
                      label=f"{name} ({m['method']})")
     for ax in axes:
-        ax.axhline(result["netd_mK"], color="k", ls=":", lw=1, label="NETD")
+        ax.axhline(result["netd_mK"], color="k", ls=":", lw=1, label="NETD (300 K scene)")
         ax.set_yscale("log")
         ax.grid(alpha=0.3)
         ax.set_ylabel("worst residual fixed pattern, mK")

@@ -148,3 +148,105 @@ def precision_recall(found: np.ndarray, truth: np.ndarray) -> dict[str, float | 
         "precision": tp / (tp + fp) if tp + fp else 1.0,
         "recall": tp / (tp + fn) if tp + fn else 1.0,
     }
+
+
+# ---- residuals in millikelvin of scene temperature (the one home of the conversion) -------
+
+#: The scene step (each side, K) of the local responsivity of a corrected image.
+SLOPE_STEP_K = 0.5
+
+
+class TemperatureScale:
+    """The calibration's map between scene temperature and output level: each calibration
+    scene's target level, linear in the in-band radiance between them (the raw signal is
+    linear in radiance) and beyond the end scenes. ``level(T)`` gives the level of a scene
+    (K -> output codes), ``temperature(level)`` the scene a level reads (output codes -> K).
+
+    Parameters
+    ----------
+    targets : sequence of float
+        Output level of each calibration scene (output codes), increasing.
+    scenes : sequence of float
+        The calibration scenes, K, increasing.
+    band : (float, float)
+        The sensor's band, m (``radiometry.band``).
+    """
+
+    def __init__(self, targets, scenes, band) -> None:
+        from irnuc.model.radiometry import band_radiance
+
+        self._L = lambda T: np.asarray(band_radiance(np.atleast_1d(np.asarray(T, float)),
+                                                     tuple(band)), dtype=np.float64)
+        self.targets = np.asarray(targets, dtype=np.float64)
+        self.scenes = np.asarray(scenes, dtype=np.float64)
+        self.radiance = self._L(self.scenes)
+
+    def _segment(self, x: float, xs: np.ndarray) -> int:
+        return int(np.clip(np.searchsorted(xs, x) - 1, 0, len(xs) - 2))
+
+    def level(self, T: float) -> float:
+        """Output level of a scene at T (K)."""
+        L = float(self._L(T)[0])
+        i = self._segment(L, self.radiance)
+        L0, L1 = self.radiance[i], self.radiance[i + 1]
+        t0, t1 = self.targets[i], self.targets[i + 1]
+        return float(t0 + (t1 - t0) * (L - L0) / (L1 - L0))
+
+    def temperature(self, level: float) -> float:
+        """The scene temperature (K) whose level is ``level`` (output codes)."""
+        from scipy.optimize import brentq
+
+        i = self._segment(level, self.targets)
+        L0, L1 = self.radiance[i], self.radiance[i + 1]
+        t0, t1 = self.targets[i], self.targets[i + 1]
+        L = L0 + (L1 - L0) * (level - t0) / (t1 - t0)
+        if not L > 0:
+            return float("nan")
+        lo, hi = 1.0, 1e4
+        return float(brentq(lambda T: float(self._L(T)[0]) - L, lo, hi, xtol=1e-9, rtol=1e-13))
+
+
+def slope_scenes(scenes, step: float = SLOPE_STEP_K) -> list[float]:
+    """The scene temperatures (K) of the frames :func:`residuals_mK` needs: each scene,
+    then the scene minus and plus ``step``."""
+    return [float(t) for s in scenes for t in (s, s - step, s + step)]
+
+
+def residuals_mK(y: np.ndarray, good: np.ndarray, scenes, scale: TemperatureScale,
+                 step: float = SLOPE_STEP_K) -> list[dict[str, float]]:
+    """The fixed pattern and the level error of corrected uniform scenes, in mK of scene
+    temperature: the one conversion every study and the report use.
+
+    Parameters
+    ----------
+    y : (3 S, H, W) array
+        Corrected frames of the camera in one state (FPA, housing, the same coefficients),
+        three per scene in the order of :func:`slope_scenes`: the scene, minus and plus
+        ``step``.
+    good : (H, W) bool
+        The pixels measured.
+    scenes : sequence of float
+        The S scene temperatures, K.
+    scale : TemperatureScale
+        The calibration's temperature scale (the level error's reference).
+
+    Returns, per scene: ``fpn_lsb`` (spatial std over good pixels, output LSB), the local
+    responsivity ``responsivity_codes_per_K`` (the mean's change between the scene minus
+    and plus ``step``, over 2 step: the corrected image's own slope at this FPA, housing and
+    scene), ``fpn_mK`` = 1000 fpn_lsb / responsivity, ``level_lsb`` (the image's mean
+    minus the scene's calibrated level) and ``level_error_mK`` (the scene the mean reads on
+    the calibration's scale minus the scene).
+    """
+    yf = np.asarray(y, dtype=np.float64)
+    out = []
+    for k, s in enumerate(scenes):
+        f, lo, hi = yf[3 * k], yf[3 * k + 1], yf[3 * k + 2]
+        resp = float(hi[good].mean() - lo[good].mean()) / (2.0 * step)
+        mean = float(f[good].mean())
+        fpn_lsb = float(f[good].std())
+        out.append({"scene_K": float(s), "fpn_lsb": fpn_lsb,
+                    "responsivity_codes_per_K": resp,
+                    "fpn_mK": 1e3 * fpn_lsb / resp if resp > 0 else float("inf"),
+                    "level_lsb": mean - scale.level(float(s)),
+                    "level_error_mK": 1e3 * (scale.temperature(mean) - float(s))})
+    return out

@@ -15,15 +15,17 @@ temperature) and refreshes its offsets; the frames after it, up to and including
 on which the shutter next closes, are corrected with that refresh (the FFC sawtooth).
 
 Per point: the worst residual fixed pattern over the range (spatial std of a corrected
-uniform scene over the good pixels) in output LSB and in mK (``1000 * LSB / R``, R the
-corrected image's responsivity from the calibration targets), the coefficient memory (bits
+uniform scene over the good pixels) in output LSB and in mK through the corrected image's
+local responsivity at each FPA temperature and scene, and the worst level error (mK):
+:func:`metrics.residuals_mK`, the one conversion; the coefficient memory (bits
 per pixel, calibration and runtime), and the external-memory read bandwidth at
 ``frame_rate_hz`` for a ``bandwidth_frame`` array. :func:`recommend` picks the cheapest
 point meeting a tolerance, :func:`grid_edges` says where it sits on the swept grid, and
 :func:`fronts` gives the Pareto fronts per method and overall.
 
 Also measured on the same sensor (for the report's Temperature section): the closed-form
-NETD and the NVESD 3D noise of raw frames at the middle of the range, the raw and corrected
+NETD (a 300 K scene, the sensor's F-number and frame rate, with the pixels' spread) and the
+NVESD 3D noise of raw frames of that scene at the middle of the range, the raw and corrected
 images at both ends, and the camera-temperature test (:mod:`camera_temperature`).
 
 :func:`cached_signoff` keeps the whole result in the irnuc cache
@@ -115,18 +117,21 @@ def sawtooth_segments(grid: Sequence[float], events: Sequence[float], hi: float
 # ---------------------------------------------------------------------------------------
 def _frames(sensor: dc.StudySensor, temps: Sequence[float], scenes: Sequence[float],
             fpa_sensor: Any) -> dict[float, tuple[np.ndarray, np.ndarray, int]]:
+    """FPA temperature -> (raw frames of every scene and 0.5 K either side, blind codes,
+    the FPA reading): what :func:`metrics.residuals_mK` needs."""
     out = {}
     for t in temps:
-        raw, blind = dc.frames_at(sensor, t, t, scenes)
+        raw, blind = dc.slope_frames(sensor, t, t, scenes)
         out[float(t)] = (raw, blind, int(fpa_sensor.read(t)[0]))
     return out
 
 
 def _worst(y: np.ndarray, good: np.ndarray, scenes: Sequence[float],
-           r_of: Callable[[float], float]) -> tuple[float, float]:
-    lsb = [dc.fpn(f, good) for f in y]
-    mk = [v / r_of(s) * 1e3 for v, s in zip(lsb, scenes, strict=True)]
-    return max(lsb), max(mk)
+           sc: Any) -> tuple[float, float, float]:
+    """(worst fixed pattern LSB, mK, worst |level error| mK) over the scenes."""
+    res = dc.residuals(y, good, scenes, sc)
+    return (max(r["fpn_lsb"] for r in res), max(r["fpn_mK"] for r in res),
+            max(abs(r["level_error_mK"]) for r in res))
 
 
 def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
@@ -162,7 +167,7 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
             out.append({**head, "valid": False, "reason": str(exc).splitlines()[0][:200]})
             continue
         good = ~cal.bad
-        r_of = dc.responsivity(cal.targets, pts.scene_K.tolist())
+        sc = dc.scale(spec.sensor(), cal.targets, pts.scene_K.tolist())
         mem = dc.memory_bits(cfg)
         rec0 = {**head, "valid": True, **mem,
                 "memory_bits": mem["calibration_bits"] + mem["runtime_bits"],
@@ -174,12 +179,13 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
             for t in grid:
                 raw, blind, rd = frames[t]
                 y = method_top(raw, cal.coeffs, FrameInputs(
-                    reading=np.full(len(scenes), rd), blind_codes=blind)).y
-                per.append([t, *_worst(y, good, scenes, r_of)])
+                    reading=np.full(len(raw), rd), blind_codes=blind)).y
+                per.append([t, *_worst(y, good, scenes, sc)])
             out.append({**rec0, "ffc_period_min": None, "ffc_events": 0,
                         "per_fpa": [[p[0], p[2]] for p in per],
                         "worst_fpn_lsb": max(p[1] for p in per),
-                        "worst_fpn_mK": max(p[2] for p in per)})
+                        "worst_fpn_mK": max(p[2] for p in per),
+                        "worst_level_error_mK": max(p[3] for p in per)})
             continue
         n_ffc = int(cfg.ffc_frames or 1)
         # Shutter events and the frames after them repeat across the periods (every
@@ -189,23 +195,25 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
         for period in spec.ffc_periods_min:
             events = ffc_events(lo, hi, spec.ramp_K_per_min * period)
             saw = []  # [time min, FPA K, worst mK]
-            worst_lsb = 0.0
+            worst_lsb = worst_level = 0.0
             for k, temps in sawtooth_segments(grid, events, hi):
                 for t in temps:
                     if (events[k], t) not in seen:
                         raw, blind, rd = frames[t]
                         y = method_top(raw, cal.coeffs, FrameInputs(
-                            reading=np.full(len(scenes), rd), blind_codes=blind,
-                            shutter=np.zeros(len(scenes), bool)),
+                            reading=np.full(len(raw), rd), blind_codes=blind,
+                            shutter=np.zeros(len(raw), bool)),
                             ffc_offset=_refresh(refs, events[k], shutter, cal, n_ffc)).y
-                        seen[events[k], t] = _worst(y, good, scenes, r_of)
-                    w_lsb, w_mk = seen[events[k], t]
+                        seen[events[k], t] = _worst(y, good, scenes, sc)
+                    w_lsb, w_mk, w_level = seen[events[k], t]
                     worst_lsb = max(worst_lsb, w_lsb)
+                    worst_level = max(worst_level, w_level)
                     saw.append([(t - lo) / spec.ramp_K_per_min, t, w_mk])
             out.append({**rec0, "ffc_period_min": float(period), "ffc_events": len(events),
                         "sawtooth": saw,
                         "per_fpa": _per_fpa_worst(saw),
-                        "worst_fpn_lsb": worst_lsb, "worst_fpn_mK": max(s[2] for s in saw)})
+                        "worst_fpn_lsb": worst_lsb, "worst_fpn_mK": max(s[2] for s in saw),
+                        "worst_level_error_mK": worst_level})
     return out
 
 
@@ -281,10 +289,12 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
     t_sweep = time.perf_counter() - t0 - t_frames
     mid_fpa = 0.5 * (lo + hi)
     mid_scene = float(np.median(spec.scene_K))
-    ncfg = sensor.config(mid_fpa, mid_fpa, noise=True)
-    netd = model.netd(ncfg, mid_scene, seed=sensor.seed, T_substrate=mid_fpa, T_cam=mid_fpa)
-    cube, _ = dc.frames_at(sensor, mid_fpa, mid_fpa, [mid_scene], repeats=spec.noise_frames,
-                           noise=True)
+    # the sensor's noise where datasheets quote it: a 300 K scene
+    from irnuc.model.noise_metrics import NETD_SCENE_K
+
+    netd = dc.netd(sensor, mid_fpa)
+    cube, _ = dc.frames_at(sensor, mid_fpa, mid_fpa, [NETD_SCENE_K],
+                           repeats=spec.noise_frames, noise=True)
     n3 = model.noise_3d(cube)
     scale = 1e3 / netd.responsivity_codes_per_K
     cam = camera_temperature.run(quick=True, sensor=sensor)
@@ -293,14 +303,15 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
         raw, blind, rd = frames[float(t)]
         k = int(np.argmin(np.abs(np.asarray(spec.scene_K) - mid_scene)))
         ends[f"{t:g}"] = {"fpa_K": float(t), "scene_K": float(spec.scene_K[k]),
-                          "raw": raw[k].tolist(), "blind": blind[k].tolist(), "reading": rd}
+                          "raw": raw[3 * k].tolist(), "blind": blind[3 * k].tolist(),
+                          "reading": rd}
     return {
         "study": NAME, "title": TITLE, "spec": spec_d,
         "plan": {"scene": list(plan.scene), "fpa": list(plan.fpa), "frames": plan.frames},
         "fpa_grid_K": grid, "points": points,
         "netd": netd.as_dict(), "netd_mK": float(netd) * 1e3,
         "noise_3d": {"frame": [spec.noise_frames, spec.rows, spec.cols], "fpa_K": mid_fpa,
-                     "scene_K": mid_scene, "mean_codes": n3.mean,
+                     "scene_K": NETD_SCENE_K, "mean_codes": n3.mean,
                      "components": n3.as_dict(scale=scale, unit="mK")},
         "camera_temperature": cam, "ends": ends,
         "seconds": {"frames": round(t_frames, 3), "sweep": round(t_sweep, 3),

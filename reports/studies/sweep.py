@@ -337,6 +337,40 @@ def simulate_set(sensor: SensorSpec, adc_bits: int | None, out_bits: int | None,
                            (sensor.t_low, sensor.t_high), a, b, cal.defect_kind, pipeline)
 
 
+def sweep_bytes(cfg: Mapping[str, Any], n_cal: int, n_eval: int, sets: int, workers: int
+                ) -> float:
+    """Estimated peak memory of a sweep (bytes, above measured peaks, docs/robustness.md):
+    the simulation of the calibration frames, then per (ADC, output) set the evaluation
+    codes and float coefficients, and per worker process its interpreter
+    (:data:`~irnuc.common.executor.WORKER_PROCESS_BYTES`), a copy of a set and the
+    fixed-point NUC and metrics of the evaluation frames (in-process: one such copy)."""
+    from irnuc.common.executor import WORKER_PROCESS_BYTES
+    from irnuc.model.pipeline import simulation_bytes
+    from irnuc.nuc_fixed.calibrate import CALIBRATE_WORK_BYTES
+
+    pixels = cfg["fpa"]["active_rows"] * cfg["fpa"]["active_cols"]
+    calibration = pixels * (CALIBRATE_WORK_BYTES["per_pixel"]
+                            + n_cal * (2 + CALIBRATE_WORK_BYTES["per_code"]))
+    per_set = pixels * (2 * n_eval + 64)
+    per_worker = per_set + pixels * n_eval * 40
+    processes = workers * WORKER_PROCESS_BYTES
+    return (max(simulation_bytes(cfg, n_cal), calibration) + sets * per_set
+            + max(workers, 1) * per_worker + processes)
+
+
+def check_sweep_memory(sensor: SensorSpec, axes: SweepAxes, workers: int, what: str,
+                       hint: str = "") -> None:
+    """:class:`~irnuc.common.memory.ResourceError` when the sweep's estimated peak
+    (:func:`sweep_bytes`, the largest over its ADC widths) exceeds the memory there is."""
+    from irnuc.common.memory import check_memory
+
+    sets = len(dict.fromkeys(axes.out_bits)) * len(dict.fromkeys(axes.adc_bits))
+    need = max(sweep_bytes(sensor.model_config(adc), 2 * sensor.repeats, len(sensor.t_eval),
+                           sets, workers)
+               for adc in dict.fromkeys(axes.adc_bits))
+    check_memory(need, what, hint)
+
+
 def prepare(sensor: SensorSpec, axes: SweepAxes) -> dict[tuple[int | None, int | None], CalibrationSet]:
     """One calibration set per distinct (ADC bits, output bits) of the axes."""
     sets: dict[tuple[int | None, int | None], CalibrationSet] = {}

@@ -14,6 +14,7 @@ from robustness.harness import (
     ro_parent,
     stale_tmp,
     user_folder,
+    write_file,
 )
 
 
@@ -32,7 +33,9 @@ def _nested_output(w: Path, t: Path) -> None:
     (t / "out" / "corr" / "frames.npz").write_bytes(b"results")
 
 
-K = command("calibrate", (("irnuc.nuc_fixed.calibrate", "calibrate"),))
+K = command("calibrate", (("irnuc.nuc_fixed.calibrate", "calibrate"),
+                         ("irnuc.nuc_fixed.plan", "run_plan"),
+                         ("irnuc.nuc_fixed.fit", "calibrate_points")))
 G = "--frames {w}/good.npz"
 case("calibrate-no-frames", K, "", ("--frames", "required"), "--frames missing")
 case("calibrate-t-low-text", K, f"{G} --t-low warm", ("--t-low", "invalid float"), "--t-low not a number")
@@ -189,3 +192,63 @@ case("calibrate-out-read-only-parent", K, f"{G} --out {{t}}/ro/out", ("--out", "
      "--out inside a read-only folder", setup=ro_parent)
 case("calibrate-stale-tmp-and-bad-frames", K, "--frames {w}/text.npz --out {t}/out", ("--frames",),
      "a killed run's temporary folder beside --out, then a bad input", setup=stale_tmp)
+
+
+# ---- plans, method frames (issue 42) ---------------------------------------------------------
+PLAN = "[plan]\nscene = [290.0, 330.0, 370.0]\nfpa = [288.0, 298.0, 308.0]\nframes = 2\n"
+PL = "--plan p.toml --set fpa.active_rows=6 --set fpa.active_cols=8"
+
+
+def _pipeline(**fields: int) -> str:
+    """tcoffset14 as a pipeline file [p] with these fields changed (as text: an illegal
+    combination cannot be made as a configuration)."""
+    from irnuc.nuc_fixed import load_pipeline
+
+    cfg = load_pipeline("tcoffset14")
+    text = cfg.to_toml().replace("[tcoffset14]", "[p]")
+    for k, v in fields.items():
+        text = text.replace(f"\n{k} = {getattr(cfg, k)}\n", f"\n{k} = {v}\n")
+        assert f"\n{k} = {v}\n" in text, k
+    return text
+
+
+case("calibrate-plan-fpa-model-range", K, f"{PL} --pipeline tcoffset14",
+     ("--plan", "plan.fpa[2] = 900 K", "[100, 500]"),
+     "an FPA temperature the model refuses (accepted by the plan, refused after by the model "
+     "without the plan's key)", setup=write_file("p.toml", PLAN.replace("308.0", "900.0")))
+case("calibrate-plan-cam-model-range", K, f"{PL} --pipeline tcoffset14",
+     ("--plan", "plan.cam[0] = 600 K"), "a housing temperature the model refuses",
+     setup=write_file("p.toml", PLAN + "cam = [600.0, 300.0, 300.0]\n"))
+case("calibrate-plan-sensor-coarse", K, f"{PL} --pipeline tcoffset14",
+     ("--plan", "reads [1, 1, 2]", "too coarse"),
+     "an FPA sensor too coarse for the plan (refused after the simulation: widen tc1 to 23 bits)",
+     setup=write_file("p.toml", PLAN + "[fpa_sensor]\nlsb_K = 50.0\n"))
+case("calibrate-plan-sensor-one-bit", K, f"{PL} --pipeline table14",
+     ("--plan", "reads [1, 1, 1]", "table_interp"), "a 1-bit FPA sensor for table_interp",
+     setup=write_file("p.toml", PLAN + "[fpa_sensor]\nbits = 1\n"))
+case("calibrate-plan-reading-bits", K, f"{PL} --pipeline pipe.toml",
+     ("--plan", "reading_bits = 8", "0..255"),
+     "a pipeline whose readings are narrower than the sensor's (refused after the simulation)",
+     setup=lambda w, t: (write_file("p.toml", PLAN)(w, t), write_file(
+         "pipe.toml", _pipeline(reading_bits=8, reading_range_bits=8))(w, t)))
+case("calibrate-plan-reading-range", K, f"{PL} --pipeline pipe.toml",
+     ("--plan", "reading_range_bits = 8", "-1000 codes"),
+     "FPA points farther from the reference than reading_range_bits holds",
+     setup=lambda w, t: (write_file("p.toml", PLAN)(w, t), write_file(
+         "pipe.toml", _pipeline(reading_range_bits=8))(w, t)))
+case("calibrate-pipeline-reading-range-above", K, f"{PL} --pipeline pipe.toml",
+     ("--pipeline", "reading_range_bits = 15", "at most reading_bits = 14"),
+     "reading_range_bits above reading_bits (refused after the simulation with advice to "
+     "widen tc1)",
+     setup=lambda w, t: (write_file("p.toml", PLAN)(w, t), write_file(
+         "pipe.toml", _pipeline(reading_range_bits=15))(w, t)))
+case("calibrate-frames-header-size", K, "--frames {w}/header_size.npz",
+     ("--frames", "damaged", "declares shape (5, 6, 8)"),
+     "a frame file whose codes header disagrees with its stored size (read anyway)")
+case("calibrate-frames-unequal-points", K, "--frames {w}/unequal_points.npz --pipeline onepoint14",
+     ("--frames", "3 frames at scene 400 K", "the same number of frames"),
+     "calibration points of different frame counts (frames silently dropped)")
+case("calibrate-frames-readings-equal", K, "--frames {w}/readings_equal.npz --pipeline tcoffset14",
+     ("--frames", "reads [1, 1, 1]", "too coarse"),
+     "tc_offset from FPA readings that are all equal (exit 0, temperature terms not fitted)",
+     before_work=False)

@@ -35,14 +35,13 @@ def _set_manifest(folder: Path, m: Any) -> None:
 
 
 def _rehash(folder: Path) -> None:
-    from irnuc.nuc_fixed.memimage import _HASHED_FIELDS, _format_sha256
+    from irnuc.nuc_fixed.memimage import seal_manifest
 
     m = _manifest(folder)
     m["files"] = {n: hashlib.sha256((folder / n).read_bytes()).hexdigest()
                   for n in m["files"] if (folder / n).is_file()}
     m["sha256"] = m["files"].get("coeffs.bin", m.get("sha256"))
-    m["format_sha256"] = _format_sha256({k: m.get(k) for k in _HASHED_FIELDS})
-    _set_manifest(folder, m)
+    _set_manifest(folder, seal_manifest(m))
 
 
 def _edit_manifest(**fields: Any) -> Callable[[Path], None]:
@@ -60,6 +59,17 @@ def _edit_manifest(**fields: Any) -> Callable[[Path], None]:
 _DELETE = object()
 
 
+def _sealed(mutate: Callable[[Path], None]) -> Callable[[Path], None]:
+    """``mutate``, then the manifest's own hashes recomputed (not the files'), so that a
+    forged manifest reaches the checks behind its integrity hash."""
+    def sealed(folder: Path) -> None:
+        from irnuc.nuc_fixed.memimage import seal_manifest
+
+        mutate(folder)
+        _set_manifest(folder, seal_manifest(_manifest(folder)))
+    return sealed
+
+
 def _edit_file(name: str, change: Callable[[bytes], bytes]) -> Callable[[Path], None]:
     def mutate(folder: Path) -> None:
         p = folder / name
@@ -72,7 +82,8 @@ def _flip_first_hex_digit(data: bytes) -> bytes:
     return (b"1" if first != b"1" else b"2") + data[1:]
 
 
-R = command("correct", (("irnuc.nuc_fixed.top", "nuc_dpc_top"),))
+R = command("correct", (("irnuc.nuc_fixed.top", "nuc_dpc_top"),
+                       ("irnuc.nuc_fixed.method_top", "method_top")))
 CF = "--frames {w}/good.npz --coeffs {t}/cal"
 case("correct-no-coeffs", R, "--frames {w}/good.npz", ("--coeffs", "required"), "--coeffs missing")
 case("correct-source-unknown", R, f"{CF} --source rom", ("--source", "invalid choice"), "an unknown --source",
@@ -124,7 +135,7 @@ case("correct-manifest-rounding-unknown-rehashed", R, CF, ("--coeffs", "rounding
      setup=_coeffs_copy(_edit_manifest(rounding="stochastic"), rehash=True))
 case("correct-manifest-word-bits", R, CF, ("--coeffs", "manifest.json", "word_bits = 64"),
      "word_bits that the formats contradict",
-     setup=_coeffs_copy(_edit_manifest(word_bits=64)))
+     setup=_coeffs_copy(_sealed(_edit_manifest(word_bits=64))))
 case("correct-manifest-size-swapped", R, CF, ("--coeffs", "format fields", "height", "width", "edited"),
      "width and height swapped in manifest.json (applied 8 x 6 coefficients to 6 x 8 frames, exit 0)",
      setup=_coeffs_copy(lambda d: _edit_manifest(width=_manifest(d)["height"],
@@ -132,9 +143,10 @@ case("correct-manifest-size-swapped", R, CF, ("--coeffs", "format fields", "heig
 case("correct-manifest-size-rehashed", R, CF, ("--coeffs", "coeffs.bin", "bytes"),
      "height changed, hashes recomputed", setup=_coeffs_copy(_edit_manifest(height=7), rehash=True))
 case("correct-manifest-config-missing", R, CF, ("--coeffs", "manifest.json", "['config']"), "no config name",
-     setup=_coeffs_copy(_edit_manifest(config=_DELETE)))
+     setup=_coeffs_copy(_sealed(_edit_manifest(config=_DELETE))))
 case("correct-manifest-file-path", R, CF, ("--coeffs", "plain name"), "a file name with a path",
-     setup=_coeffs_copy(lambda d: _edit_manifest(files={**_manifest(d)["files"], "../x": "0"})(d)))
+     setup=_coeffs_copy(_sealed(lambda d: _edit_manifest(files={**_manifest(d)["files"],
+                                                                "../x": "0"})(d))))
 case("correct-bin-missing", R, CF, ("--coeffs", "coeffs.bin", "missing"), "coeffs.bin deleted",
      setup=_coeffs_copy(lambda d: (d / "coeffs.bin").unlink()))
 case("correct-bin-changed", R, CF, ("--coeffs", "coeffs.bin", "SHA-256"), "one byte of coeffs.bin changed",
@@ -157,7 +169,8 @@ case("correct-hex-negative-rehashed", R, CF, ("--coeffs", "coeffs.hex", "line 1"
      setup=_coeffs_copy(_edit_file("coeffs.hex", lambda b: b"-" + b[1:]), rehash=True))
 case("correct-hex-binary-rehashed", R, CF, ("--coeffs", "coeffs.hex", "not ASCII"),
      "binary garbage as the hex file, hashes recomputed",
-     setup=_coeffs_copy(_edit_file("coeffs.hex", lambda b: bytes(range(128, 256)) + b), rehash=True))
+     setup=_coeffs_copy(_edit_file("coeffs.hex", lambda b: bytes(range(128, 256)) + b[128:]),
+                        rehash=True))
 case("correct-npz-changed", R, CF, ("--coeffs", "coeffs.npz", "SHA-256"), "coeffs.npz of another run",
      setup=_coeffs_copy(_edit_file("coeffs.npz", lambda b: b + b"\0")))
 case("correct-summary-changed", R, CF, ("--coeffs", "summary.json", "SHA-256"), "summary.json edited",
@@ -192,3 +205,42 @@ case("correct-out-user-folder", R, CF + " --out {t}/out", ("--out", "other conte
      "--out is a user's folder", setup=lambda w, t: (_coeffs_copy()(w, t), user_folder(w, t)))
 case("correct-out-calibration", R, CF + " --out {t}/out", ("--out", "irnuc calibrate"),
      "--out holds a calibration", setup=lambda w, t: (_coeffs_copy()(w, t), other_kind("calibrate")(w, t)))
+
+
+# ---- the manifest's integrity, the FPA sensor, method and stages (issue 42) -------------------
+TC = "--frames {w}/tc_frames.npz --coeffs {t}/tcal"
+
+
+def _tcal_copy(mutate: Callable[[Path], None] | None = None) -> Callable[[Path, Path], None]:
+    def setup(w: Path, t: Path) -> None:
+        shutil.copytree(w / "tcal", t / "tcal")
+        if mutate is not None:
+            mutate(t / "tcal")
+    return setup
+
+
+def _edit_t_ref(folder: Path) -> None:
+    m = _manifest(folder)
+    m["registers"]["t_ref"] += 100
+    _set_manifest(folder, m)
+
+
+def _sparse_badpix(folder: Path) -> None:
+    with (folder / "badpix.csv").open("r+b") as fh:
+        fh.truncate(20 * 2**30)  # 20 GiB, sparse
+
+
+case("correct-manifest-register-edited", R, TC, ("--coeffs", "registers", "manifest was edited"),
+     "the register t_ref edited in manifest.json (taken: every temperature term shifted)",
+     setup=_tcal_copy(_edit_t_ref))
+case("correct-sensor-other", R, "--frames {w}/tc_frames_other.npz --coeffs {t}/tcal",
+     ("--frames", "FPA sensor", "lsb_K = 0.02", "lsb_K = 0.01"),
+     "frames of another FPA sensor than the calibration's (output off by thousands of codes)",
+     setup=_tcal_copy())
+case("correct-pipeline-stage-mismatch", R, f"{CF} --pipeline ffc14",
+     ("--coeffs", "differ from pipeline 'ffc14'", "'two_point+ffc'"),
+     "two-point coefficients for a pipeline with an FFC stage (the stage silently not applied)",
+     setup=_coeffs_copy())
+case("correct-manifest-file-huge", R, CF, ("--coeffs", "badpix.csv", "bytes, more than"),
+     "a 20 GB sparse file named by the manifest (read whole)",
+     setup=_coeffs_copy(_sparse_badpix))

@@ -31,7 +31,7 @@ def _npy_header(path: Path, shape: tuple[int, ...]) -> None:
     path.write_bytes(buf.getvalue() + bytes(64))
 
 
-F = command("frames", (("irnuc.model", "simulate"),))
+F = command("frames", (("irnuc.model", "simulate"), ("irnuc.model.sequence", "prepare")))
 case("frames-unknown-flag", F, "--bogus 1", ("--bogus", "unrecognized"), "an unknown flag")
 case("frames-repeats-text", F, "--repeats x", ("--repeats", "invalid int"), "--repeats not a number")
 case("frames-repeats-float", F, "--repeats 1.5", ("--repeats", "invalid int"), "--repeats not an integer")
@@ -168,3 +168,50 @@ case("frames-out-holds-sensor", F, "--sensor {t}/out/s.toml --out {t}/out",
      setup=_sensor_in_out)
 case("frames-out-read-only-parent", F, "--out {t}/ro/out", ("--out", "no permission"),
      "--out inside a read-only folder", setup=ro_parent)
+
+
+# ---- drift sequences (issue 42) ------------------------------------------------------------
+SEQ = ("[sequence]\nframe_rate = 30.0\nduration = 0.5\nfpa = 300.0\nhousing = 300.0\n"
+       "scene = 300.0\n")
+SQ = "--sequence s.toml --set fpa.active_rows=6 --set fpa.active_cols=8"
+
+
+def _table_inside_out(w: Path, t: Path) -> None:
+    (t / "out").mkdir()
+    (t / "out" / ".irnuc-output").write_text("irnuc frames\n")
+    (t / "out" / "t.csv").write_text("0,300\n1,310\n")
+    (t / "s.toml").write_text(SEQ.replace("scene = 300.0\n", "[sequence.scene]\n"
+                                          'profile = "table"\nfile = "out/t.csv"\n'))
+
+
+def _table_huge(w: Path, t: Path) -> None:
+    with (t / "big.csv").open("wb") as fh:
+        fh.truncate(20 * 2**30)  # sparse: 20 GiB that take no room
+    (t / "s.toml").write_text(SEQ.replace("scene = 300.0\n", "[sequence.scene]\n"
+                                          'profile = "table"\nfile = "big.csv"\n'))
+
+
+case("frames-sequence-table-inside-out", F, SQ, ("--out", "sequence.scene.file", "would replace"),
+     "a sequence's table CSV inside --out (read, then deleted with the folder it replaced)",
+     setup=_table_inside_out)
+case("frames-sequence-table-huge", F, SQ, ("--sequence", "sequence.scene.file", "larger than"),
+     "a 20 GB sparse file as a sequence's table CSV (read whole)", setup=_table_huge)
+case("frames-sequence-rate-bool", F, SQ, ("--sequence", "sequence.frame_rate = True",
+                                          "not a number"),
+     "frame_rate = true (taken as 1 Hz)",
+     setup=write_file("s.toml", SEQ.replace("frame_rate = 30.0", "frame_rate = true")))
+case("frames-sequence-rate-string", F, SQ, ("--sequence", "sequence.frame_rate = '30'",
+                                            "not a number"),
+     'frame_rate = "30" (taken as 30 Hz)',
+     setup=write_file("s.toml", SEQ.replace("frame_rate = 30.0", 'frame_rate = "30"')))
+case("frames-sequence-sensor-bool", F, SQ, ("--sequence", "sequence.fpa_sensor.bits = True"),
+     "fpa_sensor.bits = true (named without its sequence table)",
+     setup=write_file("s.toml", SEQ + "[sequence.fpa_sensor]\nbits = true\n"))
+case("frames-sequence-shutter-after-end", F, SQ,
+     ("--sequence", "sequence.shutter.at[1] = 0.6 s", "after the last frame"),
+     "a shutter closing after the sequence's end (never closed, exit 0)",
+     setup=write_file("s.toml", SEQ + "[sequence.shutter]\nframes = 2\nat = [0.1, 0.6]\n"))
+case("frames-sequence-shutter-start-after-end", F, SQ,
+     ("--sequence", "sequence.shutter.start = 2 s", "after the last frame"),
+     "a periodic shutter starting after the sequence's end",
+     setup=write_file("s.toml", SEQ + "[sequence.shutter]\nframes = 2\nevery = 1.0\nstart = 2.0\n"))

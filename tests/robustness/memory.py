@@ -25,20 +25,20 @@ def _frames_estimate(n: int, h: int, w: int, work: dict[str, float]) -> float:
 
 
 def _calibrate_estimate(n: int, h: int, w: int) -> float:
-    from irnuc.cli.calibrate import CALIBRATE_BYTES
+    from irnuc.nuc_fixed.calibrate import CALIBRATE_WORK_BYTES
 
-    return _frames_estimate(n, h, w, CALIBRATE_BYTES)
+    return _frames_estimate(n, h, w, CALIBRATE_WORK_BYTES)
 
 
 def _correct_estimate(n: int, h: int, w: int) -> float:
-    from irnuc.cli.calibrate import CORRECT_BYTES
+    from irnuc.nuc_fixed.calibrate import CORRECT_WORK_BYTES
 
-    return _frames_estimate(n, h, w, CORRECT_BYTES)
+    return _frames_estimate(n, h, w, CORRECT_WORK_BYTES)
 
 
 def _sweep_estimate(rows: int, cols: int, repeats: int, workers: int) -> float:
     from irnuc import model
-    from irnuc.cli.sweep import sweep_bytes
+    from irnuc.reports.studies.sweep import sweep_bytes
 
     cfg = model.load_preset("default", {"fpa.active_rows": rows, "fpa.active_cols": cols})
     return sweep_bytes(cfg, 2 * repeats, 1, 1, workers)
@@ -64,4 +64,11 @@ MEASURED: list[tuple[str, float, Callable[[], float]]] = [
     ("irnuc correct: 512 x 640, 64 frames", 127, lambda: _correct_estimate(64, 512, 640)),
     ("irnuc sweep, 2 points in-process: 512 x 640, 4 repeats", 371,
      lambda: _sweep_estimate(512, 640, 4, 0)),
+    # The whole process tree (workers and forkserver), sampled every 50 ms: each worker is
+    # an interpreter of its own, which the estimate once left out (--workers 256 reached
+    # the machine's memory).
+    ("irnuc sweep, 55 points on 2 worker processes: 1024 x 1280, 4 repeats", 1983,
+     lambda: _sweep_estimate(1024, 1280, 4, 2)),
+    ("irnuc sweep, 55 points on 8 worker processes: 24 x 32, 4 repeats", 1458,
+     lambda: _sweep_estimate(24, 32, 4, 8)),
 ]

@@ -34,6 +34,16 @@ OUTCOMES: dict[str, tuple[str, str]] = {
         "exit 0, the frames written, and one warning line counting the failed solves and "
         "their kinds (was a raw two-line RuntimeWarning); every pixel failing is the "
         "command-line case `frames-every-solve-fails`"),
+    "stdout_closed_at_start": (
+        "`irnuc calibrate ... >&-`: stdout closed before irnuc starts",
+        "exit 2, one line naming stdout before the work, nothing written; with `-q` exit 0 "
+        "and the result whole (was `AttributeError` in `_flush_stdout` after the work)"),
+    "ffc_without_a_good_pixel": (
+        "`irnuc correct` of an FFC sequence with a calibration whose every pixel is bad: "
+        "the mean frame has no good pixel to take the target from",
+        "exit 0; the refresh keeps the previous offsets (`ffc_kept` names it, the offsets "
+        "are the ones before), one warning line (the golden model raised and the whole "
+        "sequence was refused; the RTL's division would have divided by 2 n = 0)"),
     "report_checks_nothing": (
         "a report whose baseline shares no compared metric with the run (every metric new), "
         "or a run that measured only `info` metrics",

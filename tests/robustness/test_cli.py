@@ -59,6 +59,7 @@ def test_cli_case(c: Case, world: Path, tmp_path: Path, monkeypatch: pytest.Monk
         if out is not None:
             assert snapshot(out) == before, f"{out} was changed"
             assert not list(out.parent.glob(f".{out.name}.tmp-*")), "temporary folder left"
+            assert not (out.parent / f".{out.name}.lock").exists(), "lock file left"
     finally:
         if (t / "ro").exists():
             undo_read_only(t / "ro")

@@ -90,6 +90,52 @@ def baselines() -> dict[str, str]:
     }
 
 
+def _fields_npz(path: Path, codes: np.ndarray, scene_K: np.ndarray, fpa_K: np.ndarray,
+                sensor: Any = None, **extra: Any) -> None:
+    """A frames file with the per-frame fields (and the FPA sensor) of this version."""
+    from irnuc.model.fpa_sensor import FpaSensor, frame_fields
+
+    sensor = sensor or FpaSensor()
+    n = codes.shape[0]
+    fields = frame_fields(np.arange(n) / 30.0, fpa_K, fpa_K, scene_K, np.zeros(n, bool), sensor)
+    _npz(path, codes=codes, temps=scene_K, adc_bits=np.int64(14), **fields,
+         **sensor.arrays(), **extra)
+
+
+def _method_world(w: Path) -> None:
+    """A tc_offset calibration (``tcal``: random codes, the default FPA sensor), frames of
+    that sensor and of another, frames of unequal calibration points, frames whose readings
+    are all equal, and a frames file whose codes header disagrees with its stored size."""
+    from irnuc.cocotb_tests.method_stim import random_coefficients
+    from irnuc.model.fpa_sensor import FpaSensor
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed.memimage import write_method_image
+
+    rng = np.random.default_rng(4)
+    cfg = load_pipeline("tcoffset14")
+    c = random_coefficients(cfg, 6, 8, rng, registers={"t_ref": 7500})
+    write_method_image(w / "tcal", c, fpa_sensor=FpaSensor())
+    codes = rng.integers(3000, 9000, (3, 6, 8)).astype(np.uint16)
+    for name, sensor in (("tc_frames", FpaSensor()), ("tc_frames_other", FpaSensor(lsb_K=0.02))):
+        _fields_npz(w / f"{name}.npz", codes, np.full(3, 320.0), np.full(3, 300.0), sensor)
+    # Two scenes at one FPA temperature: 2 frames at 300 K, 3 at 400 K.
+    x = rng.integers(3000, 9000, (5, 6, 8)).astype(np.uint16)
+    _fields_npz(w / "unequal_points.npz", x, np.array([300.0] * 2 + [400.0] * 3), np.full(5, 300.0))
+    # Three FPA points and three scenes, all read as one code (a 1-bit sensor).
+    scene = np.tile([290.0, 330.0, 370.0], 3)
+    fpa = np.repeat([288.0, 298.0, 308.0], 3)
+    codes9 = (4000 + 40 * (scene - 290) + rng.integers(0, 20, (6, 8, 9))).T.swapaxes(1, 2)
+    _fields_npz(w / "readings_equal.npz", codes9.astype(np.uint16), scene, fpa, FpaSensor(bits=1))
+    # The codes header declares one frame more than the member stores.
+    src = w / "good.npz"
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(w / "header_size.npz", "w") as zout:
+        for info in zin.infolist():
+            data = zin.read(info)
+            if info.filename == "codes.npy":
+                data = data.replace(b"'shape': (4, 6, 8)", b"'shape': (5, 6, 8)")
+            zout.writestr(info.filename, data)
+
+
 def build_world(root: Path) -> Path:
     """Valid and hostile input files shared by the cases (never written by a case)."""
     from irnuc.cli import main
@@ -223,6 +269,7 @@ def build_world(root: Path) -> Path:
     for name, content in files.items():
         (w / name).write_bytes(content if isinstance(content, bytes) else content.encode())
 
+    _method_world(w)
     # A valid calibration (copied by the correct cases) and another run's binary image.
     assert main(["calibrate", "-q", "--frames", str(w / "good.npz"), "--out", str(w / "cal")]) == 0
     assert main(["calibrate", "-q", "--frames", str(w / "good2.npz"), "--out",

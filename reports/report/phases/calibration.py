@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from irnuc.reports.report.base import Report
+from irnuc.reports.report.sections import Section
 
 
 def sensor_overrides(s: Mapping[str, Any]) -> dict[str, Any]:
@@ -57,7 +58,7 @@ def phase_frames_and_calibration(rep: Report) -> None:
                           "residual_nu_good": nonuniformity(out[i], ~cal.bad),
                           "residual_std_dpc_lsb": float(np.asarray(out[i], float)[ok].std())})
     summ = cal.summary
-    rep.sections["calibration"] = {
+    rep.sections["calibration"] = Section.of({
         "sensor_preset": s["preset"], "frame": [int(h), int(w)], "seed": s["seed"],
         "model_config_digest": config_digest(mcfg), "pipeline": pcfg.name,
         "pipeline_digest": pcfg.digest(), "frames_per_temperature": m,
@@ -69,7 +70,7 @@ def phase_frames_and_calibration(rep: Report) -> None:
         "gain_saturated": summ["gain_saturated"], "offset_saturated": summ["offset_saturated"],
         "gain_needed": summ["gain"], "offset_needed": summ["offset"],
         "residual_at_calibration": summ["residual"], "evaluation": evals,
-    }
+    })
     rep.metric("calibration.precision", pr["precision"], "higher")
     rep.metric("calibration.recall", pr["recall"], "higher")
     rep.metric("calibration.false_positives", pr["false_positives"], "lower")

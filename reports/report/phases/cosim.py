@@ -15,6 +15,7 @@ results where measured (:func:`measured_coverage`, :func:`measured_mutation`).
 from __future__ import annotations
 
 import concurrent.futures as cf
+import dataclasses
 import time
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping
@@ -23,6 +24,7 @@ from typing import Any
 
 from irnuc.reports.report.base import Report
 from irnuc.reports.report.config import ReportError, input_file
+from irnuc.reports.report.sections import CosimCheck, CosimSection, SweepSection, thaw
 
 #: Tests that compare against a deliberately wrong golden model (their mismatches are the
 #: checker working, not the RTL failing).
@@ -279,7 +281,7 @@ def _configs(rep: Report, names: list[str]) -> list[Any]:
                 continue
             from irnuc.nuc_fixed import PipelineConfig
 
-            out.append(PipelineConfig(**r["pipeline"]))
+            out.append(PipelineConfig(**thaw(r["pipeline"])))
         else:
             out.append(load_pipeline(name))
     return out
@@ -310,7 +312,7 @@ def phase_cosim(rep: Report, out: Path, junit: dict[str, Any] | None, no_cosim: 
                                "cases": [], "partial": True, "note": str(exc)[:4000]}
     if section is None:
         return
-    rep.sections["cosim"] = section
+    rep.sections["cosim"] = CosimSection.of(section)
     rep.metric("cosim.tests", section["tests"], "info")
     rep.metric("cosim.passed", section["passed"], "info")
     rep.metric("cosim.failed", section["failed"], "lower")
@@ -319,12 +321,15 @@ def phase_cosim(rep: Report, out: Path, junit: dict[str, Any] | None, no_cosim: 
         rep.metric("cosim.pixels", section["pixels"], "info")
         rep.metric("cosim.mismatches", section["mismatches"], "lower")
         rep.metric("cosim.assertion_failures", section["assertion_failures"], "lower")
-    rec = (rep.sections.get("sweep") or {}).get("recommended")
+    sweep = rep.sections.get("sweep")
+    rec = sweep.recommended if isinstance(sweep, SweepSection) else None
     if rec is not None and section.get("cases"):
         mine = [x for x in section["cases"] if x.get("configuration") == "recommended"]
         if mine:
-            rec["cosim"] = {"passed": sum(x["status"] == "passed" for x in mine),
-                            "failed": sum(x["status"] != "passed" for x in mine),
-                            "pixels": sum(x["pixels"] for x in mine),
-                            "mismatches": sum(x["mismatches"] for x in mine),
-                            "tests": [x["name"] for x in mine]}
+            check = CosimCheck(passed=sum(x["status"] == "passed" for x in mine),
+                               failed=sum(x["status"] != "passed" for x in mine),
+                               pixels=sum(x["pixels"] for x in mine),
+                               mismatches=sum(x["mismatches"] for x in mine),
+                               tests=tuple(x["name"] for x in mine))
+            rep.sections["sweep"] = dataclasses.replace(
+                sweep, recommended=dataclasses.replace(rec, cosim=check))

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from irnuc.reports.report.base import Report
+from irnuc.reports.report.sections import Section
 
 # (key, label, model overrides, coefficient rounding, seed offset): the paper preset as
 # shipped, then one change at a time, to show what moves irnuc's numbers.
@@ -110,13 +111,13 @@ def phase_paper(rep: Report, progress: bool) -> None:
         table1 = _paper_table1(rep, p)
     ratio = [a / b for a, b in zip(main["residual_nu"], ref_nu, strict=True)]
     slope = [main["residual_nu"][i] / main["residual_nu"][i + 1] for i in range(len(bits) - 1)]
-    rep.sections["paper"] = {
+    rep.sections["paper"] = Section.of({
         "preset": p["preset"], "frame": [p["rows"], p["cols"]], "seed": p["seed"],
         "frac_bits": bits, "reference_nu": ref_nu, "variants": rows,
         "ratio_to_reference": ratio, "halving_ratio": slope,
         "uniform_rounding_model": [2.0**-b / math.sqrt(12.0) for b in bits],
         "table1": table1,
-    }
+    })
     for b, v in zip(bits, main["residual_nu"], strict=True):
         rep.metric(f"paper.residual_nu.f{b}", v, "lower")
     rep.metric("paper.float_nu", main["float_nu"], "lower")

@@ -14,6 +14,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from irnuc.reports.report.base import Report, progress
+from irnuc.reports.report.sections import Section
 
 
 def _flatten(prefix: str, obj: Any, out: dict[str, float | int]) -> None:
@@ -50,7 +51,7 @@ def phase_precision(rep: Report, show_progress: bool) -> None:
         figs = figures(result)
     for caption, png in figs:
         rep.figure("precision", caption, png)
-    rep.sections["precision"] = data
+    rep.sections["precision"] = Section.of(data)
     flat: dict[str, float | int] = {}
     _flatten("precision", {k: v for k, v in data.items() if k != "details"}, flat)
     for k, v in flat.items():

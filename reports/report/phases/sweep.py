@@ -13,11 +13,13 @@ the cheapest point meeting the tolerance, synthesized, its edges on the swept gr
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from typing import Any
 
 from irnuc.reports.report.base import Report, progress
 from irnuc.reports.report.phases.calibration import sensor_overrides
+from irnuc.reports.report.sections import Recommendation, SweepSection, SynthCheck, thaw
 
 #: LUTs one DSP48E1 counts for on the datapath axis (an 18 x 25 multiplier in fabric).
 DSP_LUT_EQUIVALENT = 200.0
@@ -42,13 +44,16 @@ def sweep_specs(s: Mapping[str, Any]):
 def check_sweep(s: Mapping[str, Any], source: str) -> None:
     """The sweep's specification, before any work (the ADC of the sensor against the
     pipeline's, the axes)."""
-    from irnuc.reports.studies.sweep import check_widths
+    from irnuc.reports.studies.sweep import check_sweep_memory, check_widths
 
     sensor, axes = sweep_specs(s)
     sensor.check()
     axes.check()
     check_widths(sensor, axes, sensor_name=f"{source}: sweep.preset",
                  pipeline_name="sweep.pipeline")
+    workers = int(s.get("workers", 2))
+    check_sweep_memory(sensor, axes, workers, f"{source}: the sweep (sweep.workers = "
+                       f"{workers})", "use a smaller frame, fewer frames or fewer workers")
 
 
 #: The fields of a point's record (``SweepPoint.record``) the recommended entry repeats.
@@ -71,7 +76,7 @@ def recommended_config(point: Any, rows: int, cols: int, recommended: bool = Fal
 
 
 def _recommended_entry(rep: Report, p: Mapping[str, Any], metric: str, frame: tuple[int, int],
-                       axes: Mapping[str, Any], candidates: list[int]) -> dict[str, Any]:
+                       axes: Mapping[str, Any], candidates: list[int]) -> Recommendation:
     from irnuc.reports.studies.hwcost import grid_edges
 
     rows, cols = frame
@@ -81,12 +86,11 @@ def _recommended_entry(rep: Report, p: Mapping[str, Any], metric: str, frame: tu
     for e in edges:
         rep.notes.append(f"the recommended widths lie on the {e['edge']} edge of the swept "
                          f"{e['axis']} ({p[e['axis']]}); widen the sweep: {e['widen']}")
-    return {
+    return Recommendation(data={
         **{k: p[k] for k in _POINT_FIELDS},
         "metric": metric, "error": p[metric], "candidates": candidates, "edges": edges,
         "pipeline": cfg.to_dict(), "pipeline_digest": cfg.digest(), "pipeline_toml": cfg.to_toml(),
-        "cosim": None, "synth": None,
-    }
+    })
 
 
 def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None:
@@ -110,15 +114,16 @@ def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None
             p["datapath_cost"] = None
             p["hw"] = None
         rec = recommend(d["points"], max_error, metric)
-        d["tolerance"] = {"metric": metric, "max_error": max_error}
-        d["recommended"] = None
+        recommended = None
         if rec["found"]:
-            d["recommended"] = _recommended_entry(rep, d["points"][rec["index"]], metric,
-                                                  (rows, cols), d["axes"], rec["candidates"])
+            recommended = _recommended_entry(rep, d["points"][rec["index"]], metric,
+                                             (rows, cols), d["axes"], rec["candidates"])
         else:
             rep.notes.append(f"no swept width meets {metric} <= {max_error:g}: widen the sweep "
                              "(more fraction bits)")
-    rep.sections["sweep"] = d
+    rep.sections["sweep"] = SweepSection.of(d, tolerance={"metric": metric,
+                                                          "max_error": max_error},
+                                            recommended=recommended)
     pts = d["points"]
     sm = d["smallest"]
     rep.metric("sweep.points", len(pts), "info")
@@ -156,11 +161,14 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     from irnuc.reports.studies.metrics import pareto_front
 
     sy = rep.config["synth"]
-    d = rep.sections["sweep"]
-    pts = d["points"]
-    metric = d["tolerance"]["metric"]
-    max_error = d["tolerance"]["max_error"]
-    rows, cols = d["frame"]
+    sweep = rep.sections["sweep"]
+    assert isinstance(sweep, SweepSection)
+    # The points as working copies: their hardware figures are set here, then the sweep's
+    # section is made anew with them.
+    pts: list[dict[str, Any]] = [thaw(p) for p in sweep.points]
+    metric = sweep.tolerance["metric"]
+    max_error = sweep.tolerance["max_error"]
+    rows, cols = sweep["frame"]
     dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
     with rep.phase("synth"):
         fit = fit_indices(pts, int(sy.get("fit_points", 4)))
@@ -206,9 +214,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
         err = [p[metric] if p[metric] is not None else float("inf") for p in pts]
         front_mem = pareto_front([p["bits_per_pixel"] for p in pts], err).tolist()
         front_dp = pareto_front(cost, err).tolist()
-    d["pareto_memory"] = front_mem
-    d["pareto_datapath"] = front_dp
-    d["synth"] = {
+    synth = {
         "frame": [rows, cols], "dsp_lut_equivalent": dsp_w,
         "fit_indices": fit, "synthesized": [
             {"index": i, "label": pts[i]["label"],
@@ -219,32 +225,36 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
         "model": model.to_dict(), "model_error_heldout": heldout, "model_error_all": every,
         "tools": next(iter(synthesized.values())).get("tools") if synthesized else None,
     }
+    recommended = sweep.recommended
     if rec["found"]:
         p = pts[rec["index"]]
-        if d["recommended"] is None or d["recommended"]["index"] != p["index"]:
-            d["recommended"] = _recommended_entry(rep, p, metric, (rows, cols), d["axes"],
-                                                  rec["candidates"])
+        if recommended is None or recommended["index"] != p["index"]:
+            recommended = _recommended_entry(rep, p, metric, (rows, cols), sweep["axes"],
+                                             rec["candidates"])
         r = synthesized[p["index"]]
-        d["recommended"]["synth"] = {"fmax_mhz": r["fmax_mhz"], "xc7": r["xc7"], "ecp5": r["ecp5"],
-                                     "device": r.get("device"), "speed": r.get("speed"),
-                                     "target_mhz": r.get("target_mhz"),
-                                     "critical_path": r.get("critical_path", [])[:12]}
-        d["recommended"]["datapath_cost"] = p["datapath_cost"]
-        rs = d["recommended"]["synth"]
-        rep.metric("synth.recommended.fmax_mhz", rs["fmax_mhz"], "higher", "MHz", rel_tol=0.05)
+        rs = SynthCheck(fmax_mhz=r["fmax_mhz"], xc7=r["xc7"], ecp5=r["ecp5"],
+                        device=r.get("device"), speed=r.get("speed"),
+                        target_mhz=r.get("target_mhz"),
+                        critical_path=tuple(r.get("critical_path", [])[:12]))
+        recommended = dataclasses.replace(recommended, synth=rs,
+                                          datapath_cost=p["datapath_cost"])
+        rep.metric("synth.recommended.fmax_mhz", rs.fmax_mhz, "higher", "MHz", rel_tol=0.05)
         for fam, keys in (("xc7", ("lut", "ff", "dsp", "bram18", "bram36")),
                           ("ecp5", ("lut4", "ff", "mult18", "dp16kd"))):
             for k in keys:
                 rep.metric(f"synth.recommended.{fam}.{k}", rs[fam][k], "lower", rel_tol=0.02)
+    rep.sections["sweep"] = dataclasses.replace(
+        sweep, points=tuple(pts), synth=synth, pareto_memory=tuple(front_mem),
+        pareto_datapath=tuple(front_dp), recommended=recommended)
     for key, e in every.items():
         rep.metric(f"synth.model_error.{key}", e["max_abs"], "info")
-    rec_i = d["recommended"]["index"] if d["recommended"] else None
+    rec_i = recommended["index"] if recommended else None
     rep.figure("sweep", f"Pareto fronts of {metric} against coefficient memory (left) and against "
                f"the datapath cost (right: xc7 LUTs + {dsp_w:g} per DSP48E1, synthesized points "
                "squared, the others from the cost model); the star is the recommendation",
                figures.hardware_fronts(pts, metric, max_error, rec_i, front_mem, front_dp))
-    names = [x["label"] for x in d["synth"]["synthesized"]]
-    used = [x["used_for_fit"] for x in d["synth"]["synthesized"]]
+    names = [x["label"] for x in synth["synthesized"]]
+    used = [x["used_for_fit"] for x in synth["synthesized"]]
     rep.figure("synth", "Cost model against synthesis: xc7 LUTs (fit points and held-out "
                "points; the dotted line is exact)",
                figures.cost_model_check(names, [figs[i]["xc7.lut"] for i in todo],

@@ -1,0 +1,304 @@
+"""The files generated from the register map ``nuc_fixed/registers.rdl`` with PeakRDL.
+
+* the register block ``hdl/irnuc_axil_regblock.sv`` and its package
+  ``hdl/irnuc_axil_regblock_pkg.sv`` (peakrdl-regblock: the AXI4-Lite slave, the address
+  decode, the registers it stores and the read-back; :func:`regblock_texts`), and the block
+  of ``hdl/irnuc_axil_regs.sv`` between the ``irnuc-regmap`` markers that connects the
+  method registers' hardware interface to that module's generic slot logic
+  (:func:`wrapper_block`);
+* the C header ``firmware/irnuc_regs.h`` (peakrdl-cheader, :func:`c_header`);
+* the IP-XACT description ``hdl/irnuc_regs.xml`` (peakrdl-ipxact, :func:`ipxact`);
+* the Python register model of the testbenches (peakrdl-python, :func:`python_model`:
+  generated into the irnuc cache, not into the sources).
+
+The committed ones are those of the map's default parameters (typical14's reset values;
+the register block reads every configuration value from its wrapper's parameters, so one
+block serves every build); ``irnuc regmap --pipeline NAME`` writes the C header, the
+IP-XACT and the Markdown of one configuration. ``python -m irnuc.cosim.spec_files
+--check`` compares the committed files with what the tools make now (the PeakRDL versions
+are pinned in pyproject.toml for that).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import sys
+import tempfile
+from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
+from irnuc.common.errors import ToolError
+from irnuc.cosim.sources import HDL_DIR
+from irnuc.nuc_fixed import regmap
+
+if TYPE_CHECKING:
+    from systemrdl.node import RootNode
+
+#: The generated register block and its package (one module per file).
+REGBLOCK_MODULE = "irnuc_axil_regblock"
+REGBLOCK = HDL_DIR / f"{REGBLOCK_MODULE}.sv"
+REGBLOCK_PKG = HDL_DIR / f"{REGBLOCK_MODULE}_pkg.sv"
+#: The hand-written wrapper whose slot wiring is generated (between the markers).
+WRAPPER = HDL_DIR / "irnuc_axil_regs.sv"
+BEGIN = "  // irnuc-regmap: begin (generated from nuc_fixed/registers.rdl; do not edit)"
+END = "  // irnuc-regmap: end"
+#: The IP-XACT description of the map (installed with the RTL, irnuc.hdl).
+IPXACT = HDL_DIR / "irnuc_regs.xml"
+#: The firmware folder of a checkout: the C header and the driver example.
+FIRMWARE_DIR = HDL_DIR.parent / "firmware"
+C_HEADER = FIRMWARE_DIR / "irnuc_regs.h"
+
+#: peakrdl-regblock's options (docs/regmap.md, "The register block").
+REGBLOCK_OPTIONS: dict[str, Any] = {
+    "module_name": REGBLOCK_MODULE,
+    "package_name": f"{REGBLOCK_MODULE}_pkg",
+    "reuse_hwif_typedefs": False,   # struct names from the paths (readable, stable)
+    "default_reset_activelow": True,  # rst_ni: asynchronous, active low
+    "default_reset_async": True,
+    "err_if_bad_addr": True,        # SLVERR outside the map
+    "err_if_bad_rw": True,          # SLVERR for a write to RO / a read of WO
+    "retime_read_fanin": True,      # a flop inside the read-back fan-in (Fmax)
+    # The external registers' requests stay combinational (from the decode): a retimed
+    # request is a non-blocking write into hwif_out, which Verilator cannot mix with the
+    # struct's continuous assignments (BLKANDNBLK); irnuc_axil_regs registers FRAME_SIZE's.
+    "retime_external_reg": False,
+}
+#: Warnings of Verilator's -Wall that the generated module raises and that are the
+#: generator's style, switched off around it only.
+_LINT_OFF = ("MULTIDRIVEN", "UNUSEDSIGNAL", "UNUSEDPARAM", "GENUNNAMED", "DECLFILENAME",
+             "WIDTHEXPAND", "WIDTHTRUNC", "UNOPTFLAT")
+
+
+def _regblock_cpuif() -> type:
+    """The register block's CPU interface: irnuc's AXI4-Lite slave
+    (``cosim/templates/regblock_axi4lite.sv``, the port names of peakrdl-regblock's
+    flattened AXI4-Lite interface and one more input, ``hwif_wr_err``: a write acknowledged
+    by an external register while it is 1 is answered SLVERR, FRAME_SIZE's value check).
+    regblock's own AXI4-Lite slave reaches the address decode through its request
+    multiplexer and its readies through logic; on ECP5 that read path closed at 108 MHz
+    (docs/regmap.md, "The register block")."""
+    from peakrdl_regblock.cpuif.axi4lite import AXI4Lite_Cpuif_flattened
+
+    class IrnucAxi4Lite(AXI4Lite_Cpuif_flattened):
+        template_path = "templates/regblock_axi4lite.sv"
+
+        @property
+        def port_declaration(self) -> str:
+            return super().port_declaration + ",\ninput wire hwif_wr_err"
+
+    IrnucAxi4Lite.__module__ = __name__  # the template is found beside this file
+    return IrnucAxi4Lite
+
+
+def _regblock_root() -> RootNode:
+    from peakrdl_regblock.udps import ALL_UDPS
+
+    return regmap.elaborate(udps=tuple(ALL_UDPS))
+
+
+def _tool_version(dist: str) -> str:
+    from importlib.metadata import version
+
+    return version(dist)
+
+
+def _sv_head(what: str) -> list[str]:
+    return [f"// {what}: generated from nuc_fixed/registers.rdl by peakrdl-regblock "
+            f"{_tool_version('peakrdl-regblock')}",
+            "// (python -m irnuc.cosim.spec_files --write); do not edit. What it implements "
+            "and why",
+            "// the rest is hand-written in irnuc_axil_regs: docs/regmap.md.",
+            "/* verilator lint_off " + " */\n/* verilator lint_off ".join(_LINT_OFF) + " */"]
+
+
+#: The one line of the generated module irnuc changes (:func:`regblock_texts`): the read
+#: address of an external register's read is held by the CPU interface.
+_RD_MUX = "    assign rd_mux_addr = decoded_req ? decoded_addr : pending_rd_addr;"
+_RD_MUX_HELD = """\
+    // irnuc: its CPU interface holds cpuif_addr from a request until the next one, which
+    // waits for the response: the address held for an external read (pending_rd_addr) is
+    // cpuif_addr, and the multiplexer between them (its select is the request and the
+    // stall logic) is not built (on ECP5 the read path's longest; docs/regmap.md).
+    assign rd_mux_addr = decoded_addr;
+`ifndef SYNTHESIS
+    always_ff @(posedge clk) begin
+        if(external_pending) begin
+            assert_rd_addr_held: assert(pending_rd_addr == decoded_addr)
+                else $error("irnuc: cpuif_addr changed while an external access was pending");
+        end
+    end
+`endif"""
+
+
+def regblock_texts() -> dict[Path, str]:
+    """The register block and its package, as peakrdl-regblock writes them with irnuc's
+    CPU interface (:func:`_regblock_cpuif`), one line changed (the read address
+    multiplexer, :data:`_RD_MUX`), a header naming the source and the generator's
+    Verilator warnings switched off in the file."""
+    from peakrdl_regblock import RegblockExporter
+
+    root = _regblock_root()
+    with tempfile.TemporaryDirectory(prefix="irnuc-regblock-") as tmp:
+        RegblockExporter().export(root, tmp, cpuif_cls=_regblock_cpuif(),
+                                  address_width=regmap.register_map().address_bits,
+                                  **REGBLOCK_OPTIONS)
+        out = {}
+        for path, what in ((REGBLOCK_PKG, "the register block's hardware interface types"),
+                           (REGBLOCK, "the register block of irnuc_axil_regs")):
+            body = (Path(tmp) / path.name).read_text()
+            body = "\n".join(line.rstrip() for line in body.splitlines())
+            if path == REGBLOCK:
+                if body.count(_RD_MUX) != 1:
+                    raise ToolError("peakrdl-regblock's read address multiplexer is not the "
+                                    "line irnuc.cosim.regfiles replaces: update it")
+                body = body.replace(_RD_MUX, _RD_MUX_HELD)
+            tail = "/* verilator lint_on " + " */\n/* verilator lint_on ".join(_LINT_OFF) + " */"
+            out[path] = "\n".join([*_sv_head(what), body.strip("\n"), tail]) + "\n"
+    return out
+
+
+# ---- the wrapper's slot wiring ---------------------------------------------------------
+
+def _sv_name(name: str) -> str:
+    return "".join(w.title() for w in name.lower().split("_") if w)
+
+
+def slot_groups(rmap: regmap.RegisterMap | None = None) -> list[regmap.Group]:
+    """The 64-bit method register slots of the map, in map order (slot k of the wrapper)."""
+    rmap = rmap or regmap.register_map()
+    return [g for g in rmap.groups if g.kind == "slot"]
+
+
+def wrapper_block(rmap: regmap.RegisterMap | None = None) -> str:
+    """The generated block of ``hdl/irnuc_axil_regs.sv``: the slot count, each slot's width
+    parameter and index, and the hardware interface of each slot word wired to the
+    wrapper's arrays (slot k, word 0 = LO, 1 = HI)."""
+    rmap = rmap or regmap.register_map()
+    slots = slot_groups(rmap)
+    widths = [f"{_sv_name(rmap[g.registers[0]].config_register or g.name)}RegBits"
+              for g in slots]
+    lines = [BEGIN,
+             "  // The method registers' 64-bit slots (the map's register files of LO and HI; ",
+             "  // NumSlots = irnuc_pkg::RegSlotCount), their widths (this module's parameters,",
+             "  // 0 = not in this build) and their indices.",
+             "  localparam int unsigned SlotBits [NumSlots] = '{",
+             *(f"    {w}" + ("," if k < len(widths) - 1 else "") for k, w in enumerate(widths)),
+             "  };"]
+    lines.append("  /* verilator lint_off UNUSEDPARAM */  // the indices the module does not name")
+    for k, g in enumerate(slots):
+        lines.append(f"  localparam int unsigned Slot{_sv_name(g.name)} = {k};")
+    lines.append("  /* verilator lint_on UNUSEDPARAM */")
+    lines += ["  logic [NumSlots-1:0][1:0]       slot_req, slot_req_is_wr, slot_rd_ack, "
+              "slot_wr_ack;",
+              "  logic [NumSlots-1:0][1:0][31:0] slot_wr_data, slot_wr_biten, slot_rd_data;"]
+    for k, g in enumerate(slots):
+        for w, reg in enumerate(g.registers):
+            path = f"{g.name}.{reg.split('.')[-1]}"
+            lines += [f"  assign slot_req[{k}][{w}]       = hwif_out.{path}.req;",
+                      f"  assign slot_req_is_wr[{k}][{w}] = hwif_out.{path}.req_is_wr;",
+                      f"  assign slot_wr_data[{k}][{w}]   = hwif_out.{path}.wr_data.value;",
+                      f"  assign slot_wr_biten[{k}][{w}]  = hwif_out.{path}.wr_biten.value;",
+                      f"  assign hwif_in.{path}.rd_ack       = slot_rd_ack[{k}][{w}];",
+                      f"  assign hwif_in.{path}.rd_data.value = slot_rd_data[{k}][{w}];",
+                      f"  assign hwif_in.{path}.wr_ack       = slot_wr_ack[{k}][{w}];"]
+    lines.append(END)
+    return "\n".join(lines) + "\n"
+
+
+def replace_block(text: str, block: str) -> str:
+    """``text`` with its generated block (markers included) replaced by ``block``."""
+    start, end = text.find(BEGIN), text.find(END)
+    if start < 0 or end < start:
+        raise ValueError(f"no irnuc-regmap markers in {WRAPPER.name}")
+    return text[:start] + block + text[end + len(END) + 1:]
+
+
+# ---- firmware and vendor tools ------------------------------------------------------------
+
+def c_header(root: RootNode | None = None) -> str:
+    """The C header of the map (peakrdl-cheader): a struct of the registers, offsets,
+    field positions, masks and reset values."""
+    from peakrdl_cheader.exporter import CHeaderExporter
+
+    root = root or regmap.elaborate()
+    with tempfile.TemporaryDirectory(prefix="irnuc-cheader-") as tmp:
+        path = Path(tmp) / C_HEADER.name
+        # Struct names from the paths (irnuc_regs__GAIN_t): the slots' types differ only by
+        # their properties, and the shared ones would be named by hashes of those.
+        CHeaderExporter().export(root, str(path), generate_bitfields=False,
+                                 reuse_typedefs=False)
+        return path.read_text()
+
+
+def ipxact(root: RootNode | None = None) -> str:
+    """The IP-XACT (IEEE 1685-2014) component of the map (peakrdl-ipxact)."""
+    from peakrdl_ipxact import IPXACTExporter
+
+    root = root or regmap.elaborate()
+    with tempfile.TemporaryDirectory(prefix="irnuc-ipxact-") as tmp:
+        path = Path(tmp) / IPXACT.name
+        IPXACTExporter(vendor="irnuc", library="irnuc", version="1.0").export(
+            root, str(path), component_name="irnuc_regs")
+        return path.read_text()
+
+
+def expected() -> dict[Path, str]:
+    """Each committed file generated from the map and the text it must have."""
+    out = regblock_texts()
+    out[WRAPPER] = replace_block(WRAPPER.read_text(), wrapper_block())
+    out[IPXACT] = ipxact()
+    if FIRMWARE_DIR.is_dir():
+        out[C_HEADER] = c_header()
+    return out
+
+
+# ---- the Python register model of the testbenches -------------------------------------------
+
+_PY_PACKAGE = "irnuc_regs"
+
+
+def python_model() -> ModuleType:
+    """The peakrdl-python register model of the map (``asyncoutput``: each access awaits
+    the bus), imported: the package, with ``reg_model.RegModel`` and
+    ``lib.AsyncCallbackSet``. Generated once per map and generator into the irnuc cache (a
+    folder per digest, written aside and renamed into place)."""
+    from irnuc.common.cache import cache_dir
+    from irnuc.common.digest import digest
+
+    key = digest({"rdl": regmap.REGISTERS_RDL.read_text(),
+                  "peakrdl-python": _tool_version("peakrdl-python")})
+    root = cache_dir("regmodel")
+    folder = root / key
+    if not (folder / _PY_PACKAGE / "reg_model" / "__init__.py").is_file():
+        from peakrdl_python import PythonExporter
+
+        tmp = Path(tempfile.mkdtemp(prefix=f".{key}-", dir=root))
+        PythonExporter().export(regmap.elaborate().top, str(tmp), asyncoutput=True,
+                                skip_test_case_generation=True)
+        try:
+            tmp.rename(folder)
+        except OSError:  # another process put it there first: theirs is the same
+            import shutil
+
+            shutil.rmtree(tmp, ignore_errors=True)
+    loaded = sys.modules.get(_PY_PACKAGE)
+    if loaded is not None and Path(loaded.__file__ or "").is_relative_to(folder):
+        return loaded
+    spec = importlib.util.spec_from_file_location(
+        _PY_PACKAGE, folder / _PY_PACKAGE / "__init__.py",
+        submodule_search_locations=[str(folder / _PY_PACKAGE)])
+    if spec is None or spec.loader is None:
+        raise ToolError(f"cannot import the register model generated in {folder}")
+    pkg = importlib.util.module_from_spec(spec)
+    sys.modules[_PY_PACKAGE] = pkg
+    spec.loader.exec_module(pkg)
+    importlib.import_module(f"{_PY_PACKAGE}.reg_model")
+    importlib.import_module(f"{_PY_PACKAGE}.lib")
+    return pkg
+
+
+__all__ = ["C_HEADER", "IPXACT", "REGBLOCK", "REGBLOCK_OPTIONS", "REGBLOCK_PKG", "WRAPPER",
+           "c_header", "expected", "ipxact", "python_model", "regblock_texts",
+           "slot_groups", "wrapper_block"]
