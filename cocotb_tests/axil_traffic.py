@@ -7,8 +7,12 @@ predicts every response and every read:
 
 * writes with random byte strobes (all sixteen, the empty and the non-contiguous ones), the
   address and the data handshakes in either order and apart, to every register, to read-only
-  ones, to reserved ones (a method's register the configuration lacks) and to offsets
-  outside the map; reads of all of them;
+  ones, to reserved ones (a method's register the configuration lacks; a reserved read-only
+  one answers SLVERR like any read-only one) and to offsets outside the map; reads of all of
+  them (the write-only COMMAND answers SLVERR); the responses by address, access and value
+  as docs/regmap.md says, from the model;
+* a write and a read issued in the same cycle (the register file takes one transaction at a
+  time: the other waits, its handshake held, and both are answered as the model says);
 * BREADY and RREADY held low for random stretches (the response must wait, unchanged: the
   RTL's protocol checker irnuc_axil_assert is on in every build);
 * reads and writes while pixels stream (the registers a frame does not take: W1C clears of
@@ -21,8 +25,8 @@ predicts every response and every read:
 
 The AXI4-Lite channels are cocotbext-axi's (the master's own write and read channels, driven
 at transaction level: its high-level calls cannot make every strobe); a write and a read may
-be open at once. Coverage: the coverpoints of :class:`irnuc.cosim.axis_coverage.
-TrafficCoverageModel`.
+be issued at once (the bench's locks keep one of each). Coverage: the coverpoints of
+:class:`irnuc.cosim.axis_coverage.TrafficCoverageModel`.
 """
 
 from __future__ import annotations
@@ -70,8 +74,8 @@ def _holds(rng: np.random.Generator):
 
 
 class Traffic:
-    """Random register traffic on a :class:`~irnuc.cocotb_tests.tb_axis.Bench` (its model,
-    its AXI4-Lite master's channels, its locks)."""
+    """Random register traffic on a :class:`~irnuc.cocotb_tests.axis_bench.Bench` (its
+    model, its AXI4-Lite master's channels, its locks)."""
 
     def __init__(self, bench) -> None:
         self.bench, self.model, self.rng = bench, bench.model, bench.rng
@@ -132,7 +136,8 @@ class Traffic:
         want = self.model.write(off, data, strb)
         where = self.model.map.at(off)
         kind = ("unmapped_write" if where is None else
-                "reserved_write" if not self.model.present(where) else
+                "reserved_ro_write" if not self.model.present(where) and not where.writable
+                else "reserved_write" if not self.model.present(where) else
                 "ro_write" if not where.writable else "write")
         assert resp == want, (
             f"write 0x{data:08x} (strb {strb:04b}) at 0x{off:03x}: response "
@@ -162,6 +167,7 @@ class Traffic:
                               f"model says {regmap.RESP_NAMES[want]}")
         _sample(self.bench, "axil.traffic.address",
                 "unmapped_read" if where is None else
+                "wo_read" if not where.readable else
                 "reserved_read" if not self.model.present(where) else "read")
         if held:
             _sample(self.bench, "axil.traffic.ready_held", "rready")
@@ -230,6 +236,7 @@ class Traffic:
             await self.write(off, self._value(off), strb)
             _, data = await self.read(off)
             self.check_read(off, data)
+        await self.overlapped(4)
         for _ in range(n):
             off = int(self.rng.choice(self.offsets + self.holes))
             if self.rng.integers(3):
@@ -239,6 +246,25 @@ class Traffic:
             if self.rng.integers(4) == 0:
                 _, data = await self.read(self.model.map["STATUS"].offset)
                 self.check_read(self.model.map["STATUS"].offset, data)
+
+    async def overlapped(self, n: int) -> None:
+        """``n`` times a write and a read issued in the same cycle: the write to IRQ_ENABLE
+        (no other register's read depends on it), the read of any other offset. The register
+        file takes one at a time; each response must be the model's, the read exact."""
+        m = self.model
+        enable = m.map["IRQ_ENABLE"].offset
+        others = [o for o in self.offsets + self.holes if o != enable]
+        for _ in range(n):
+            off = int(self.rng.choice(others))
+            value = self._value(enable)
+            wr = cocotb.start_soon(self.write(enable, value, 0xF))
+            rd = cocotb.start_soon(self.read(off))
+            await wr
+            _, data = await rd
+            self.check_read(off, data)
+            _, data = await self.read(enable)
+            self.check_read(enable, data)
+            _sample(self.bench, "axil.traffic.overlap", "write_and_read")
 
     async def restore(self, h: int | None = None, w: int | None = None) -> None:
         """Every shadowed register back to its reset value (the frame size to h x w when

@@ -72,6 +72,7 @@ from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS, CoverageM
 from irnuc.nuc_fixed.axis import EVENTS, FfcFraming
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.methods.table_interp import TABLE_AXIS_POINTS
+from irnuc.nuc_fixed.regmap import RegisterModel
 
 __all__ = ["AXIS_POINTS", "AXIS_TOPS", "DRIFT_AXIS_POINTS", "FFC_AXIS_POINTS",
            "REGISTER_ACCESS", "RESET_SIZE_PIXELS", "TABLE_AXIS_POINTS", "TRAFFIC_POINTS",
@@ -110,12 +111,17 @@ TRAFFIC_TOP = "irnuc_axil_traffic"
 #: many pixels.
 RESET_SIZE_PIXELS = 4096
 #: Coverpoint -> bins of the random register traffic: every byte-strobe class, every kind
-#: of address written and read, BREADY and RREADY held low under a waiting response, reads,
-#: writes and W1C clears while pixels stream, a frame at the reset size.
+#: of address written and read (a read-only one written and a write-only one read: SLVERR;
+#: a reserved read-only one written: SLVERR on every build), BREADY and RREADY held low
+#: under a waiting response, a write and a read issued at once (the slave takes one
+#: transaction at a time), reads, writes and W1C clears while pixels stream, a frame at the
+#: reset size.
 TRAFFIC_POINTS: dict[str, tuple[str, ...]] = {
     "axil.traffic.strobe": ("full", "partial", "noncontiguous", "none"),
-    "axil.traffic.address": ("write", "read", "ro_write", "reserved_write", "reserved_read",
-                             "unmapped_write", "unmapped_read"),
+    "axil.traffic.address": ("write", "read", "ro_write", "wo_read", "reserved_write",
+                             "reserved_ro_write", "reserved_read", "unmapped_write",
+                             "unmapped_read"),
+    "axil.traffic.overlap": ("write_and_read",),
     "axil.traffic.ready_held": ("bready", "rready"),
     "axil.traffic.streaming": ("read", "write", "w1c_clear"),
     "axil.traffic.reset_size": ("frame",),
@@ -232,7 +238,8 @@ class AxisCoverageModel(CoverageModel):
 
 class TrafficCoverageModel(CoverageModel):
     """The coverpoints of the random register traffic (:data:`TRAFFIC_POINTS`) on one
-    configuration; the reset-size frame removed where it is too large to simulate."""
+    configuration; the reset-size frame removed where it is too large to simulate, the
+    write of a reserved read-only register where the configuration has them all."""
 
     def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
         # Not the base model's points (streams, frames): only the traffic's.
@@ -247,5 +254,11 @@ class TrafficCoverageModel(CoverageModel):
                 "frame": f"the reset size {cfg.max_width} x {cfg.max_height} ({pixels} pixels) "
                          f"is too long a frame to simulate here (at most {RESET_SIZE_PIXELS}); "
                          "irnuc formal's framer proof starts frames at the reset size"}
+        m = RegisterModel(cfg)
+        if not any(not m.present(r) and not r.writable for r in m.map.registers):
+            points["axil.traffic.address"] = tuple(
+                b for b in points["axil.traffic.address"] if b != "reserved_ro_write")
+            self.removed["axil.traffic.address"] = {
+                "reserved_ro_write": f"{cfg.name} has every read-only register of the map"}
         for name, bins in points.items():
             self.add_point(name, bins)

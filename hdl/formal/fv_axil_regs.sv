@@ -3,7 +3,9 @@
 // master's assumed) and the register semantics of irnuc_fv_regs (responses, reset values,
 // strobes, W1C against a simultaneous event, counters, STATUS.pending and the frame start),
 // with every other input free (the framer's events and levels, the FFC unit, TABLE_SEL),
-// and its own checks (irnuc_axil_regs_check with IRNUC_ASSERT). The parameters are the
+// one transaction at a time (a_one_transaction), and its own checks (with IRNUC_ASSERT:
+// irnuc_axil_regs_check's contract of the generated block's external requests, the CPU
+// interface's readies). The parameters are the
 // register file's for one configuration (irnuc.cosim.sources.register_file_parameters), the
 // map package irnuc_fv_map that configuration's (irnuc.verif.formal_regmap).
 module fv_axil_regs
@@ -134,9 +136,16 @@ module fv_axil_regs
       m_pick_constant: assume (pick_i == pick_q);
     end
   end
+  // One AXI4-Lite transaction at a time (docs/regmap.md): never a write and a read
+  // response at once (a request waits while the other channel's is in progress).
+  always_comb begin : p_one
+    if (rst_ni) begin
+      a_one_transaction: assert (!(s_axil_bvalid_o && s_axil_rvalid_o));
+    end
+  end
   always_comb begin : p_cover
     if (rst_ni) begin
-      c_read_wait: cover (s_axil_rvalid_o && !s_axil_rready_i && s_axil_bvalid_o);
+      c_read_wait: cover (s_axil_rvalid_o && !s_axil_rready_i && u_axil.aw_open_q != '0);
       c_two_writes: cover (u_axil.aw_open_q == 2'd2);
       c_picked_read: cover (s_axil_rvalid_o && u_regs.ar_q[0] == pick_i && pick_i == 10'd12
                             && s_axil_rdata_o[0]);

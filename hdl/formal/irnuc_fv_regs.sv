@@ -6,14 +6,19 @@
 //
 // Every response is checked:
 //   a_bresp        BRESP as docs/registers.md says: SLVERR outside the map, for a register
-//                  without a writable field (read-only) and an illegal FRAME_SIZE; OKAY else
-//                  (a reserved register of another method too)
-//   a_rresp        RRESP: SLVERR outside the map, OKAY else
-// and the read data of one register, pick_i (free, constant: the proof covers every
-// register), against its expected value: reset values, writes with their byte strobes, W1C
-// clears (an event in the clear's cycle wins), counters counting their events and cleared by
-// COMMAND.clear_counters, STATUS.pending set by a write to a shadowed register until the
-// next frame start (start_i; a write in that cycle stays pending):
+//                  without a writable field (read-only, on every build: a reserved one too)
+//                  and an illegal FRAME_SIZE; OKAY else (a reserved writable register too)
+//   a_rresp        RRESP: SLVERR outside the map and for a register without a readable
+//                  field (COMMAND, write only), OKAY else
+//   a_rdata_refused  a read answered SLVERR returns 0
+// (the responses by address and access are the map model's, in irnuc_fv_map) and the read
+// data of one register, pick_i (free, constant: the proof covers every register), against
+// its expected value: reset values, writes with their byte strobes, W1C clears (an event in
+// the clear's cycle wins), counters counting their events and cleared by
+// COMMAND.clear_counters (its pulse in the cycle the write's response rises: an event in
+// that cycle is lost, as in the cycle after reset: docs/regmap.md), STATUS.pending set by a
+// write to a shadowed register until the next frame start (start_i; a write in that cycle
+// stays pending), bits outside the fields and above a method register's width 0:
 //   a_reset_value  a read before any write or event that could change the register
 //   a_const        read-only constants and reserved registers (0)
 //   a_rw           RW fields after writes
@@ -103,19 +108,21 @@ module irnuc_fv_regs
   reg_t        bi, pi, ri;
   /* verilator lint_on UNUSEDSIGNAL */
   logic [1:0]  bresp_exp;
-  logic [31:0] fs_q, exp_q, sure_q, prev_q, exp_cur, exp_d, written, wmask;
+  logic [31:0] fs_q, exp_q, sure, prev_q, exp_cur, exp_d, written, wmask;
   logic [NumEvents-1:0] ev_q;
-  logic        start_q, applies, hits, open_pick, in_touch_q;
+  logic        start_q, applies, hits, open_pick, in_touch_q, clr, first_q;
 
   assign bi = info(bw);
   assign pi = info(pick);
+  // Levels are never checked; every other bit is (0 outside the fields).
+  assign sure = ~pi.level;
   always_comb begin : p_bresp
     written = (fs_q & ~(bi.rw & bytes(bstrb))) | (bdata & bi.rw & bytes(bstrb));
     if (!bi.mapped) begin
       bresp_exp = SlvErr;
-    end else if (!bi.present) begin
-      bresp_exp = Okay;
-    end else if (!bi.writable || (bw == FrameSizeWord && !size_legal(written))) begin
+    end else if (bi.wr_err) begin
+      bresp_exp = SlvErr;
+    end else if (bi.present && bw == FrameSizeWord && !size_legal(written)) begin
       bresp_exp = SlvErr;
     end else begin
       bresp_exp = Okay;
@@ -135,7 +142,8 @@ module irnuc_fv_regs
       v = v & ~(bdata & pi.w1c & wmask);
     end
     v = evolve(pick, v, ev_q);
-    if (applies && clears(pick, bw, bdata & bytes(bstrb))) begin
+    clr = applies && clears(pick, bw, bdata & bytes(bstrb));
+    if (clr) begin
       v = '0;
     end
     if (pi.pending != '0) begin
@@ -143,7 +151,8 @@ module irnuc_fv_regs
           | ((applies && info(bw).shadowed && |(info(bw).rw & bytes(bstrb))) ? pi.pending : '0);
     end
     exp_cur = applies ? v : exp_q;
-    exp_d   = evolve(pick, exp_cur, ev_i);
+    // The counters' clear (COMMAND's pulse, the cycle after reset) wins over an event.
+    exp_d   = ((clr || first_q) && pi.kind == KCount) ? exp_cur : evolve(pick, exp_cur, ev_i);
     if (pi.pending != '0 && start_i) begin
       exp_d = exp_d & ~pi.pending;
     end
@@ -170,9 +179,7 @@ module irnuc_fv_regs
       prev_q     <= pi.reset;
       ev_q       <= '0;
       start_q    <= 1'b0;
-      // Levels are never checked; a counter cleared in the cycle of its event is not
-      // either (docs/registers.md leaves that order open).
-      sure_q     <= pi.value & ~pi.level;
+      first_q    <= 1'b1;
       in_touch_q <= 1'b0;
     end else begin
       if (b_fire) begin
@@ -194,10 +201,7 @@ module irnuc_fv_regs
       prev_q  <= exp_cur;
       ev_q    <= ev_i;
       start_q <= start_i;
-      if (applies && pi.kind == KCount && clears(pick, bw, bdata & bytes(bstrb))
-          && ev_q != '0) begin
-        sure_q <= sure_q & ~(evolve(pick, '0, ev_q));
-      end
+      first_q <= 1'b0;
       in_touch_q <= in_touch_q || (exp_d != pi.reset) || open_pick || hits;
     end
   end
@@ -221,7 +225,7 @@ module irnuc_fv_regs
       if (ar_fire) begin
         ar_q[32'(nar_q) - 32'(r_fire)]    <= ar_word;
         rexp_q[32'(nar_q) - 32'(r_fire)]  <= exp_cur;
-        rmask_q[32'(nar_q) - 32'(r_fire)] <= sure_q & ~chg;
+        rmask_q[32'(nar_q) - 32'(r_fire)] <= sure & ~chg;
       end
       nar_q <= nar_q + ar_fire - r_fire;
     end
@@ -250,11 +254,11 @@ module irnuc_fv_regs
         a_bresp: assert (bresp_i == bresp_exp);
       end
       if (r_new && nar_q != '0) begin
-        a_rresp: assert (rresp_i == (ri.mapped ? Okay : SlvErr));
-        if (!ri.mapped) begin
-          a_rdata_unmapped: assert (rdata_i == '0);
+        a_rresp: assert (rresp_i == ((ri.mapped && !ri.rd_err) ? Okay : SlvErr));
+        if (!ri.mapped || ri.rd_err) begin
+          a_rdata_refused: assert (rdata_i == '0);
         end
-        if (ar_q[0] == pick && ri.mapped) begin
+        if (ar_q[0] == pick && ri.mapped && !ri.rd_err) begin
           if (fresh_q && nar_q == 1) begin
             a_reset_value: assert (diff == '0);
           end

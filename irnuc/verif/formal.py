@@ -44,10 +44,12 @@ from irnuc.verif.catalogue import catalogue
 #: its widths and modes, at a maximum frame of 3 x 2 pixels (every counter, the drain and
 #: the line logic at a size a solver goes through; the widths are the configuration's).
 PROOF_SIZE = (3, 2)
-#: The depth of the bounded register-semantics checks: reset, then four AXI4-Lite
-#: transactions or so (a write answered in 4 cycles, a read in 4) with events between; PDR
-#: finds no invariant for the followed register's mirror against 32-bit counters in hours.
-REGMAP_DEPTH = 14
+#: The depth of the bounded register-semantics checks (ABC's bmc3): reset, then a write and
+#: a read of the followed register with events beside them (one transaction at a time: a
+#: write is answered 3 cycles after its request, 5 after its handshakes, a read 4 after, a
+#: write then a read back 11 cycles from reset at the earliest); PDR finds no invariant for
+#: the followed register's mirror against 32-bit counters in hours. minimal: 40 s.
+REGMAP_DEPTH = 16
 #: The depth of the bounded checks of irnuc_axis_top: the first output pixel of minimal
 #: leaves at cycle 24 and its first frame ends at 25 (the covers), the slower methods later.
 TOP_DEPTH = 40
@@ -170,6 +172,8 @@ def _proofs() -> tuple[Proof, ...]:
 
 PROOFS: tuple[Proof, ...] = _proofs()
 
+_BLOCK = "irnuc_axil_regblock.sv"
+_REGS_FILE = "irnuc_axil_regs.sv"
 _REGS = "axil_regs_minimal"
 _REGS_FFC = "axil_regs_ffc14"
 _MAP = "axil_regmap_minimal"
@@ -247,87 +251,110 @@ FAULTS: tuple[Fault, ...] = (
     Fault("ffc_hold_forgets", "ffc_ctrl", "a_hold",
           "hold forgets the open frame after a shutter frame", file="ffc_ctrl.sv",
           find="open_q    <= open_q || !shutter_i;", replace="open_q    <= !shutter_i;"),
-    # ---- AXI4-Lite slave rules (irnuc_fv_axil) on the register file -----------------------
-    Fault("regs_b_at_reset", "axil_regs_minimal", "u_axil.a_reset_idle",
-          "BVALID high out of reset", file="irnuc_axil_regs.sv",
-          find="      b_valid_q  <= 1'b0;\n      b_resp_q   <= AxiOkay;",
-          replace="      b_valid_q  <= 1'b1;\n      b_resp_q   <= AxiOkay;", quick=True),
-    Fault("regs_b_drops", "axil_regs_minimal", "u_axil.a_b_held",
-          "BVALID drops without BREADY", file="irnuc_axil_regs.sv",
-          find="      end else if (s_axil_bready_i) begin\n        b_valid_q <= 1'b0;",
-          replace="      end else if (1'b1) begin\n        b_valid_q <= 1'b0;"),
-    Fault("regs_second_write", "axil_regs_minimal", "u_axil.a_b_stable",
-          "a second write is decoded while its response waits (BRESP changes)",
-          file="irnuc_axil_regs.sv",
-          find="assign decode_now = aw_held_q && w_held_q && !dec_q && !b_valid_q;",
-          replace="assign decode_now = aw_held_q && w_held_q && !dec_q;"),
-    Fault("regs_r_drops", "axil_regs_minimal", "u_axil.a_r_held",
-          "RVALID drops without RREADY", file="irnuc_axil_regs.sv",
-          find="assign r_valid_d = rdec_q || (r_valid_q && !s_axil_rready_i);",
-          replace="assign r_valid_d = rdec_q;"),
-    Fault("regs_rdata_live", "axil_regs_minimal", "u_axil.a_r_stable",
-          "RDATA follows the register while RVALID waits for RREADY (an escaped class)",
-          file="irnuc_axil_regs.sv", find="    if (rdec_q) begin\n      r_data_q <= rd_data;",
-          replace="    if (1'b1) begin\n      r_data_q <= rd_data;", quick=True),
-    Fault("regs_b_without_data", "axil_regs_minimal", "u_axil.a_b_request",
-          "a write is answered before its data was taken", file="irnuc_axil_regs.sv",
-          find="assign decode_now = aw_held_q && w_held_q && !dec_q && !b_valid_q;",
-          replace="assign decode_now = aw_held_q && !dec_q && !b_valid_q;"),
-    Fault("regs_bresp_exokay", "axil_regs_minimal", "u_axil.a_bresp_legal",
-          "a refused write answered EXOKAY", file="irnuc_axil_regs.sv",
-          find="                     ? AxiOkay : AxiSlvErr;",
-          replace="                     ? AxiOkay : AxiExOkay;"),
-    Fault("regs_rresp_exokay", "axil_regs_minimal", "u_axil.a_rresp_legal",
-          "an unmapped read answered EXOKAY", file="irnuc_axil_regs.sv",
-          find="r_resp_q <= (|rsel_q) ? AxiOkay : AxiSlvErr;",
-          replace="r_resp_q <= (|rsel_q) ? AxiOkay : AxiExOkay;"),
-    Fault("regs_r_without_ar", "axil_regs_minimal", "u_axil.a_r_request",
-          "a read starts without a read address", file="irnuc_axil_regs.sv",
-          find="ar_held_q  <= s_axil_arvalid_i && !ar_busy_q;",
-          replace="ar_held_q  <= !ar_busy_q;"),
-    Fault("regs_arready_late", "axil_regs_minimal", "u_axil.a_open",
-          "arready a cycle late: read addresses taken while busy are never answered "
-          "(catalogue)", mutant="ax_arready_late"),
-    Fault("regs_ffc_arready_late", _REGS_FFC, "u_axil.a_open",
-          "the same on the FFC register file (catalogue)", mutant="ax_arready_late"),
-    # ---- register semantics (irnuc_fv_regs): the classes the suite let escape ---------------
-    Fault("regs_ro_write_okay", _MAP, "u_regs.a_bresp",
-          "a write to a read-only register answered OKAY (an escaped class)",
-          file="irnuc_axil_regs.sv",
-          find="b_resp_q  <= (|(wsel_q & ~ReadOnly) && !(wsel_q[IxFrameSize] && !size_legal))",
-          replace="b_resp_q  <= (|wsel_q && !(wsel_q[IxFrameSize] && !size_legal))",
+    # ---- AXI4-Lite slave rules (irnuc_fv_axil) on the register file: its CPU interface is
+    #      the generated irnuc_axil_regblock.sv's (the template cosim/templates/
+    #      regblock_axi4lite.sv), the faults planted in that file -----------------------------
+    Fault("regs_b_at_reset", _REGS, "u_axil.a_reset_idle",
+          "BVALID high out of reset", file=_BLOCK,
+          find="            axil_bvalid    <= '0;", replace="            axil_bvalid    <= '1;",
           quick=True),
+    Fault("regs_b_drops", _REGS, "u_axil.a_b_held",
+          "BVALID drops without BREADY", file=_BLOCK,
+          find="end else if(s_axil_bready) begin\n                axil_bvalid <= '0;",
+          replace="end else if(1'b1) begin\n                axil_bvalid <= '0;"),
+    Fault("regs_second_write", _REGS, "u_axil.a_b_stable",
+          "the next request issued while a response waits: a second write's answer replaces "
+          "the first's BRESP", file=_BLOCK,
+          find="                axil_busy      <= '1;", replace="                axil_busy      <= '0;"),
+    Fault("regs_r_drops", _REGS, "u_axil.a_r_held",
+          "RVALID drops without RREADY", file=_BLOCK,
+          find="end else if(s_axil_rready) begin\n                axil_rvalid <= '0;",
+          replace="end else if(1'b1) begin\n                axil_rvalid <= '0;"),
+    Fault("regs_rdata_live", _REGS, "u_axil.a_r_stable",
+          "RDATA follows the read-back while RVALID waits for RREADY (an escaped class; "
+          "catalogue)", mutant="ax_rdata_live", quick=True),
+    Fault("regs_b_without_data", _REGS, "u_axil.a_b_request",
+          "a write issued with its address only: answered before its data was taken",
+          file=_BLOCK,
+          find="assign axil_issue_wr = !axil_busy && axil_aw_held && axil_w_held && "
+               "!axil_issue_rd;",
+          replace="assign axil_issue_wr = !axil_busy && axil_aw_held && !axil_issue_rd;"),
+    Fault("regs_bresp_exokay", _REGS, "u_axil.a_bresp_legal",
+          "a refused write answered EXOKAY", file=_BLOCK,
+          find="assign s_axil_bresp   = axil_berr ? 2'b10 : 2'b00;",
+          replace="assign s_axil_bresp   = axil_berr ? 2'b01 : 2'b00;"),
+    Fault("regs_rresp_exokay", _REGS, "u_axil.a_rresp_legal",
+          "a refused read answered EXOKAY", file=_BLOCK,
+          find="assign s_axil_rresp   = axil_rerr ? 2'b10 : 2'b00;",
+          replace="assign s_axil_rresp   = axil_rerr ? 2'b01 : 2'b00;"),
+    Fault("regs_r_without_ar", _REGS, "u_axil.a_r_request",
+          "the read address register fills without ARVALID: a read answered with no request",
+          file=_BLOCK,
+          find="assign axil_ar_held_d = axil_ar_held ? !axil_take_rd : s_axil_arvalid;",
+          replace="assign axil_ar_held_d = axil_ar_held ? !axil_take_rd : 1'b1;"),
+    Fault("regs_awready_always", _REGS, "u_axil.a_open",
+          "AWREADY always high: write addresses taken while one is held are lost (never "
+          "answered)", file=_BLOCK,
+          find="axil_aw_ready <= !axil_aw_held_d;", replace="axil_aw_ready <= 1'b1;"),
+    Fault("regs_ffc_awready_always", _REGS_FFC, "u_axil.a_open",
+          "the same on the FFC register file", file=_BLOCK,
+          find="axil_aw_ready <= !axil_aw_held_d;", replace="axil_aw_ready <= 1'b1;"),
+    Fault("regs_two_at_once", _REGS, "a_one_transaction",
+          "a write issued while a read is in progress (two transactions at once)",
+          file=_BLOCK,
+          find="assign axil_issue_wr = !axil_busy && axil_aw_held && axil_w_held && "
+               "!axil_issue_rd;",
+          replace="assign axil_issue_wr = axil_aw_held && axil_w_held && !axil_issue_rd;"),
+    # ---- register semantics (irnuc_fv_regs): the classes the suite let escape, the response
+    #      rules of the generated block (docs/regmap.md) -----------------------------------------
+    Fault("regs_ro_write_okay", _MAP, "u_regs.a_bresp",
+          "a write to a read-only register (VERSION) answered OKAY (an escaped class)",
+          file=_BLOCK,
+          find="is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h4) & !cpuif_req_is_wr;",
+          replace="is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h4);", quick=True),
+    Fault("regs_reserved_ro_okay", _MAP, "u_regs.a_bresp",
+          "a write to FFC_STATUS, reserved and read-only on minimal, answered OKAY (catalogue)",
+          mutant="ax_ffc_status_ro_okay"),
     Fault("regs_ffc_status_ro_okay", _MAP_FFC, "u_regs.a_bresp",
           "FFC_STATUS (read-only) written OKAY on an FFC configuration (catalogue)",
           mutant="ax_ffc_status_ro_okay"),
+    Fault("regs_size_no_slverr", _MAP, "u_regs.a_bresp",
+          "an illegal FRAME_SIZE write answered OKAY (catalogue)", mutant="ax_size_no_slverr"),
     Fault("regs_unmapped_read_okay", _MAP, "u_regs.a_rresp",
-          "a read outside the map answered OKAY", file="irnuc_axil_regs.sv",
-          find="r_resp_q <= (|rsel_q) ? AxiOkay : AxiSlvErr;", replace="r_resp_q <= AxiOkay;"),
-    Fault("regs_unmapped_read_data", _MAP, "u_regs.a_rdata_unmapped",
-          "a read outside the map returns 1, not 0", file="irnuc_axil_regs.sv",
-          find="    rd_data = '0;\n", replace="    rd_data = 32'(~|rsel_q);\n"),
+          "every read answered OKAY (outside the map too)", file=_BLOCK,
+          find="axil_rerr   <= cpuif_rd_err;", replace="axil_rerr   <= 1'b0;"),
+    Fault("regs_command_read_okay", _MAP, "u_regs.a_rresp",
+          "a read of COMMAND (write only) answered OKAY", file=_BLOCK,
+          find="is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h28) & cpuif_req_is_wr;",
+          replace="is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h28);"),
+    Fault("regs_refused_read_data", _MAP, "u_regs.a_rdata_refused",
+          "a read answered SLVERR returns 1, not 0", file=_BLOCK,
+          find="if(cpuif_rd_ack) axil_rdata <= cpuif_rd_data;",
+          replace="if(cpuif_rd_ack) axil_rdata <= cpuif_rd_data | 32'(cpuif_rd_err);"),
     Fault("regs_ctrl_reset", _MAP, "u_regs.a_reset_value",
-          "CTRL.nuc_en resets to 0, not 1 (a reset value: an escaped class)",
-          file="irnuc_axil_regs.sv", find="nuc_en_q     <= 1'(RegCtrlNucEnReset);",
-          replace="nuc_en_q     <= 1'b0;"),
+          "CTRL.nuc_en resets to 0, not 1 (a reset value: an escaped class)", file=_BLOCK,
+          find="field_storage.CTRL.nuc_en.value <= 1'h1;",
+          replace="field_storage.CTRL.nuc_en.value <= 1'h0;"),
     Fault("regs_frame_max", _MAP, "u_regs.a_const",
-          "FRAME_MAX reads a width one short", file="irnuc_axil_regs.sv",
-          find="rvals[IxFrameMax] = (32'(MaxWidth) << RegFrameMaxWidthLsb)",
-          replace="rvals[IxFrameMax] = (32'(MaxWidth - 1) << RegFrameMaxWidthLsb)"),
+          "FRAME_MAX reads a width one short", file=_REGS_FILE,
+          find="assign hwif_in.FRAME_MAX.width.next        = RegFrameMaxWidthBits'(MaxWidth);",
+          replace="assign hwif_in.FRAME_MAX.width.next        = "
+                  "RegFrameMaxWidthBits'(MaxWidth - 1);"),
     Fault("regs_ctrl_strobes", _MAP, "u_regs.a_rw",
-          "CTRL ignores the byte strobes (an unwritten lane's field is cleared: an escaped "
-          "class)", file="irnuc_axil_regs.sv",
-          find="assign ctrl_new = (ctrl_view & ~wmask) | (wdata & CtrlMask);",
-          replace="assign ctrl_new = wdata & CtrlMask;", quick=True),
+          "CTRL.nuc_en ignores the byte strobes (an unwritten lane's field is written: an "
+          "escaped class)", file=_BLOCK,
+          find="next_c = (field_storage.CTRL.nuc_en.value & ~decoded_wr_biten[0:0]) | "
+               "(decoded_wr_data[0:0] & decoded_wr_biten[0:0]);",
+          replace="next_c = decoded_wr_data[0:0];", quick=True),
     Fault("regs_ffc_frames_strobes", _MAP_FFC, "u_regs.a_rw",
           "FFC_CTRL.frames ignores the byte strobes (catalogue)",
           mutant="ax_ffc_frames_strobes"),
     Fault("regs_w1c_clear_wins", _MAP, "u_regs.a_w1c",
-          "a W1C clear wins over an event in the same cycle (an escaped class)",
-          file="irnuc_axil_regs.sv",
-          find="err_q    <= err_ev | (err_q & ~NumErrors'(err_clear >> RegStatusSofEarlyLsb));",
-          replace="err_q    <= (err_ev | err_q) & ~NumErrors'(err_clear >> "
-                  "RegStatusSofEarlyLsb);", quick=True),
+          "a W1C clear wins over an event in the same cycle (an escaped class)", file=_BLOCK,
+          find="if(hwif_in.STATUS.sof_early.hwset) begin // HW Set",
+          replace="if(hwif_in.STATUS.sof_early.hwset && !(decoded_reg_strb.STATUS && "
+                  "decoded_req_is_wr && decoded_wr_data[0] && decoded_wr_biten[0])) begin",
+          quick=True),
     Fault("regs_counts_idle", _MAP, "u_regs.a_count",
           "the traffic counters count every cycle (catalogue)", mutant="ax_traffic_counts_idle"),
     Fault("regs_pending_sticks", _MAP, "u_regs.a_pending",
@@ -460,7 +487,8 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         extra = ([_keep_only(fault.property)] if fault is not None else
                  [_drop(proof.exclude)] if proof.exclude else [])
         models = fv.write_models(srcs, proof.formal_top, params, work / "model",
-                                 aiger=engine == "pdr", extra=extra)
+                                 aiger=engine == "pdr" or (engine == "bmc" and fault is None),
+                                 extra=extra)
         res = fv.check(models, engine, proof.depth, work / "model")
         checks = _check_labels(models["smt2"])
         cover = None

@@ -38,7 +38,7 @@ def _hex(v: int) -> str:
 
 def package(cfg) -> str:
     """The ``irnuc_fv_map`` package of configuration ``cfg``."""
-    from irnuc.nuc_fixed.regmap import RegisterModel
+    from irnuc.nuc_fixed.regmap import OKAY, RegisterModel
 
     m = RegisterModel(cfg)
     rmap = m.map
@@ -71,8 +71,12 @@ def package(cfg) -> str:
             kind = "rw"
         if w1c:
             kind = "w1c"
+        # The responses by address and access, the model's (a fresh one for each: a write
+        # of its reset value, no lane enabled, is legal on FRAME_SIZE too).
+        rd_err = RegisterModel(cfg, rmap).read(r.offset)[0] != OKAY
+        wr_err = RegisterModel(cfg, rmap).write(r.offset, m.reset_value(r), 0) != OKAY
         info.append(f"      {wbits}'d{w}: r = '{{1'b1, 1'b{int(present)}, "
-                    f"1'b{int(present and r.writable)}, 1'b{int(bool(r.shadowed))}, "
+                    f"1'b{int(wr_err)}, 1'b{int(rd_err)}, 1'b{int(bool(r.shadowed))}, "
                     f"2'd{KINDS[kind]}, {_hex(m.reset_value(r))}, {_hex(value)}, {_hex(rw)}, "
                     f"{_hex(w1c)}, {_hex(level)}, {_hex(pending)}}};  // {r.name}")
         if not present:
@@ -112,7 +116,7 @@ def package(cfg) -> str:
         f"  localparam logic [{wbits - 1}:0] StatusWord = {wbits}'d{rmap['STATUS'].offset // 4};",
         "  localparam logic [1:0] KConst = 2'd0, KRw = 2'd1, KW1c = 2'd2, KCount = 2'd3;",
         "  typedef struct packed {",
-        "    logic        mapped, present, writable, shadowed;",
+        "    logic        mapped, present, wr_err, rd_err, shadowed;",
         "    logic [1:0]  kind;",
         "    logic [31:0] reset, value, rw, w1c, level, pending;",
         "  } reg_t;",
