@@ -32,7 +32,7 @@ def test_targets_and_wrapper() -> None:
     text = (HDL_DIR / "irnuc_axis_top.sv").read_text()
     w = netlist.wrapper(text, "irnuc_axis_top", "mut")
     # The top's own parameters and ports, then the netlist by name.
-    assert "parameter int unsigned Method" in w and "output logic                  irq_o" in w
+    assert "parameter method_e                  Method" in w and "output logic                  irq_o" in w
     assert w.rstrip().endswith("irnuc_axis_top__mut u_netlist (.*);\nendmodule")
     assert "always_ff" not in w
 

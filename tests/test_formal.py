@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -128,6 +129,33 @@ def test_quick_campaign(tmp_path, monkeypatch) -> None:
     err = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(err) == 1 and "--only nope" in err[0], bad.stderr
     assert not (tmp_path / "o2").exists()
+
+
+def test_bmc3_bounded_and_replayed(tmp_path) -> None:
+    """A bounded proof by ABC's bmc3: the spill register passes 12 frames; with its output
+    register reloading whatever the ready (planted fault spill_drops_stalled) it fails, and
+    the replay by yosys-smtbmc names the assertion and writes the trace."""
+    from irnuc.cosim.sources import hdl_sources
+
+    proof = next(p for p in formal.PROOFS if p.id == "spill_register")
+    fault = next(f for f in formal.FAULTS if f.id == "spill_drops_stalled")
+    hdl = tmp_path / "hdl"
+    shutil.copytree(HDL_DIR, hdl, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+    for where, tag in ((HDL_DIR, "good"), (hdl, "bad")):
+        if tag == "bad":
+            f = hdl / fault.file
+            f.write_text(f.read_text().replace(fault.find, fault.replace))
+        srcs = fv.formal_sources(hdl_sources(proof.design, where), proof.harness,
+                                 where / "formal")
+        models = fv.write_models(srcs, proof.harness, proof.parameters(), tmp_path / tag)
+        res = fv.check(models, "bmc", 12, tmp_path / tag)
+        if tag == "good":
+            assert res.status == "passed" and res.engine == "bmc", res
+            assert Path(res.log).name == "bmc3.log", res  # ABC's, not yosys-smtbmc
+        else:
+            assert res.status == "failed" and res.step is not None, res
+            assert "u_out.a_valid_held" in res.failed, res
+            assert res.vcd and "$enddefinitions" in Path(res.vcd).read_text()
 
 
 @pytest.mark.parametrize("module", ["irnuc_fv_stream", "irnuc_fv_order", "irnuc_fv_video",

@@ -53,6 +53,8 @@ TARGETS: dict[str, Target] = {t.module: t for t in (
     Target("irnuc_axis_framer", "irnuc_axis_top", tb_axis.__name__, "minimal"),
     Target("irnuc_axis_buffer", "irnuc_axis_top", tb_axis.__name__, "minimal"),
     Target("irnuc_axil_regs", "irnuc_axis_top", tb_axis.__name__, "minimal"),
+    # The register file's generated block (peakrdl-regblock, irnuc's CPU interface).
+    Target("irnuc_axil_regblock", "irnuc_axis_top", tb_axis.__name__, "minimal"),
     Target("irnuc_axis_top", "irnuc_axis_top", tb_axis.__name__, "minimal"),
     Target("irnuc_axis_ffc", "irnuc_axis_top", tb_axis_ffc.__name__, "ffc14"),
     Target("ffc_ctrl", "irnuc_axis_top", tb_axis_ffc.__name__, "ffc14"),
