@@ -33,6 +33,8 @@ CORE = HDL_DIR / "irnuc.core"
 TOP = "irnuc_axis_top"
 TESTBENCH = HDL_DIR / "tb" / "irnuc_axis_top_tb.sv"
 SYNTH_TEMPLATE = HDL_DIR / "irnuc_yosys_slang.tcl"
+#: Verilator's waiver of the integer -GMethod FuseSoC passes to the typed parameter.
+WAIVERS = HDL_DIR / "irnuc_axis_top.vlt"
 #: The core's name (VLNV: vendor, library, name; the version is the package's).
 VLNV = f"irnuc:irnuc:{TOP}"
 
@@ -45,11 +47,21 @@ def core_version() -> str:
 
 
 def top_parameter_defaults(path: Path | None = None) -> dict[str, int]:
-    """The parameters of the top's header (not the localparams) and their defaults."""
+    """The parameters of the top's header (not the localparams) and their defaults as
+    integers: a ``bit`` flag 0 or 1, the typed ``Method`` (``irnuc_pkg::method_e``) its
+    literal's code."""
+    from irnuc.nuc_fixed.rtl_spec import METHOD
+
+    codes = {lit.name: lit.code for lit in METHOD.literals}
     text = (path or HDL_DIR / f"{TOP}.sv").read_text()
     header = text[text.index(f"module {TOP}"):text.index(") (")]
-    return {m[1]: int(m[2]) for m in re.finditer(
-        r"^\s*parameter int unsigned (\w+)\s*=\s*(\d+)", header, re.M)}
+    out: dict[str, int] = {}
+    for m in re.finditer(r"^\s*parameter\s+(?:int\s+unsigned|bit|method_e)\s+(\w+)\s*=\s*"
+                         r"([\w']+)", header, re.M):
+        value = m[2]
+        out[m[1]] = (codes[value] if value in codes else
+                     int(value.split("'b")[1], 2) if "'b" in value else int(value))
+    return out
 
 
 def core_text() -> str:
@@ -73,6 +85,9 @@ def core_text() -> str:
         "    file_type: systemVerilogSource",
         "    files:",
         *(f"      - {name}" for name in rtl),
+        "  waivers:",
+        "    files:",
+        f"      - {WAIVERS.name}: {{file_type: vlt}}",
         "  regmap:",
         "    files:",
         f"      - {Path('irnuc_regs.xml')}: {{file_type: IP-XACT}}",
@@ -94,6 +109,7 @@ def core_text() -> str:
         "    <<: *default",
         "    description: Verilator --lint-only -Wall with the protocol assertions",
         "    default_tool: verilator",
+        "    filesets: [rtl, waivers, regmap]",
         "    tools:",
         "      verilator:",
         "        mode: lint-only",
@@ -102,7 +118,7 @@ def core_text() -> str:
         "  sim:",
         "    description: the smoke testbench (registers) on Verilator --binary --timing",
         "    default_tool: verilator",
-        "    filesets: [rtl, tb]",
+        "    filesets: [rtl, waivers, tb]",
         f"    toplevel: {TESTBENCH.stem}",
         "    tools:",
         "      verilator:",

@@ -358,7 +358,8 @@ class MethodSpec(PartSpec):
     def frame_coefficients(self, c: MethodCoefficients, frame: Frame) -> dict[str, Any]:
         """The per-pixel coefficient codes (and the registers) the core of its kind takes
         in a frame with these readings (lin: gain, offset; quad: + quad; pwl: gain_lo,
-        gain_hi, knee, level)."""
+        gain_hi, knee, level), and every method the frame's bad flags ``bad`` (the DPC's;
+        table_interp: the OR of the pair's)."""
         raise NotImplementedError
 
     # ---- calibration -------------------------------------------------------------------

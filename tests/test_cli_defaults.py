@@ -33,6 +33,7 @@ DEFAULT_PATH_TESTS: dict[str, tuple[str, str]] = {
     "synth": ("test_synth.py", "test_irnuc_synth_minimal_and_its_cache"),
     "mutate": ("test_mutate.py", "test_small_campaign_cache_and_cli"),
     "study": ("test_methods_studies.py", "test_study_cli"),
+    "regmap": ("test_registers.py", "test_regmap_command_writes_one_build"),
 }
 
 #: Flags that skip a phase of a command (its default path runs it).

@@ -221,7 +221,8 @@ def test_the_sensor_fields_that_change_the_codes_are_compared() -> None:
 
     base = FpaSensor()
     temps = np.linspace(280.0, 320.0, 41)
-    changes = {"bits": 12, "lsb_K": 0.02, "zero_K": 220.0, "offset_K": 0.5, "noise_K": 0.1}
+    changes = {"bits": 12, "lsb_K": 0.02, "zero_K": 220.0, "offset_K": 0.5, "noise_K": 0.1,
+               "lag_s": 5.0}
     assert set(changes) == {f.name for f in fields(FpaSensor)}
     moves_codes = {k for k, v in changes.items() if k != "noise_K"
                    and not np.array_equal(replace(base, **{k: v}).read(temps), base.read(temps))}

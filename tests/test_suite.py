@@ -27,7 +27,7 @@ TB_TOP = tb_top.__name__
 #: coverage build (builds are cached by name, parameters and options); any configuration
 #: would check the same. test_report_e2e checks that it is still the recommendation.
 TINY_RECOMMENDED = load_pipeline("minimal").replace(
-    name="recommended", gain_int_bits=0, gain_frac_bits=8, offset_int_bits=4, offset_frac_bits=1,
+    name="recommended", gain_int_bits=0, gain_frac_bits=8, offset_int_bits=3, offset_frac_bits=0,
     max_width=16, max_height=12)
 
 

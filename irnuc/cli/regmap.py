@@ -27,8 +27,9 @@ def run(args: argparse.Namespace) -> int:
     from irnuc.cosim import regfiles
     from irnuc.nuc_fixed import regmap
 
-    cfg = load_pipeline_arg(args.pipeline)
+    # --out first: a --pipeline file inside it is refused before it is read
     out = claim_output_folder(args.out, kind="regmap")
+    cfg = load_pipeline_arg(args.pipeline)
     root = regmap.elaborate_for(cfg)
     texts = {"irnuc_regs.h": regfiles.c_header(root), "irnuc_regs.xml": regfiles.ipxact(root),
              "registers.md": regmap.markdown(build=cfg)}

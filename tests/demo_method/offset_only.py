@@ -40,7 +40,7 @@ class OffsetOnly(MethodSpec):
 
     def frame_coefficients(self, c: MethodCoefficients, frame: Frame) -> dict[str, Any]:
         return {"gain": np.int64(1 << c.cfg.gain_frac_bits),
-                "offset": c.fields["coeffs"]["offset"]}
+                "offset": c.fields["coeffs"]["offset"], "bad": c.fields["coeffs"]["bad"]}
 
     def fit(self, cfg: PipelineConfig, pts: Any, means: np.ndarray, t: np.ndarray,
             q: Any) -> None:

@@ -37,6 +37,7 @@ ROWS: dict[tuple[str, str], tuple[str, list[str]]] = {
     ("report", "--baseline"): ("b.json", ["--config", "small", "--no-cosim"]),
     ("report", "--junit"): ("j.xml", ["--config", "small"]),
     ("synth", "--pipeline"): ("p.toml", []),
+    ("regmap", "--pipeline"): ("p.toml", []),
     ("study", "--sensor"): ("s.toml", ["ffc_interval", "--quick"]),
     ("noise", "--frames"): ("f.npz", []),
 }
