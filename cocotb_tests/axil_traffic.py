@@ -46,7 +46,7 @@ from irnuc.nuc_fixed import regmap
 
 #: Registers whose fields the hardware drives (read-back checked against bounds while
 #: pixels stream, exactly once they are quiet).
-COUNTERS = regmap.COUNTERS
+COUNTERS = regmap.register_map().counters
 _LEVELS = ("TABLE_SEL",)  # computed from other registers by the core: not modelled here
 
 
