@@ -92,6 +92,7 @@ class Traffic:
         self.bounds: dict[tuple[str, str], int] = {}  # a counter field's most while streaming
         self.causes: set[str] = set()  # error causes the streamed frames have
         self.frames_possible = False
+        self.paused = False  # stream_ops waits (a sequence's access that must land in time)
 
     # ---- the channels --------------------------------------------------------------------
     def hold_readies(self, on: bool = True) -> None:
@@ -291,6 +292,9 @@ class Traffic:
         _, data = await self.read(status)
         self.check_read(status, data)
         while not stop[0]:
+            if self.paused:
+                await RisingEdge(self.bench.dut.clk_i)
+                continue
             if self.rng.integers(2):
                 off = int(self.rng.choice(writes))
                 await self.write(off, self._value(off), int(self.rng.integers(0, 16)))

@@ -158,9 +158,9 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     back (its last shutter frame, or with N shutter frames its refresh frame); the open
     frames after it have that size, and the run's write-back frames must still end (tlast)
     at the old size: the drain before the new size waits for their words.
-    ``second_run``: after the first run and an open frame, FFC_CTRL written again (start,
-    this many shutter frames) in the middle of that open frame: a second run, checked like
-    the first (FFC_STATUS busy after its start, done at its end). ``traffic``: random
+    ``second_run``: after the first run and an open frame, IRQ_STATUS.ffc_done cleared and
+    FFC_CTRL written again (start, this many shutter frames) early in that open frame: a
+    second run, checked like the first (FFC_STATUS busy after its start, done at its end). ``traffic``: random
     register traffic (cocotb_tests.axil_traffic) before the sequence and while it streams
     (W1C clears of STATUS, read-only, reserved and unmapped offsets, reads anywhere).
     ``firmware``: the register accesses are the firmware driver's (irnuc.cosim.driver:
@@ -263,12 +263,28 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     seen: dict[str, int] = {}
 
     async def write_ffc(frames: int = count, again: bool = False) -> None:
+        # The random traffic waits while the run is started: FFC_CTRL must land before the
+        # next frame start (the register file takes one transaction at a time).
+        if t is not None:
+            t.paused = True
+        if again:
+            # The first run finished (done): its IRQ_STATUS.ffc_done cleared before the
+            # second starts (a clear after a short second run's end would clear its done).
+            await bench.write("IRQ_STATUS", done_bit.mask)
+            await ClockCycles(dut.clk_i, 2)
+            assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+            sample("axis.ffc.runs", "second")
         if regs is not None and info is not None:
             assert await driver.ffc_start(regs, info, frames) == driver.OK
         else:
             await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
                               | (frames << ctrl.field("frames").lsb))
+        if t is not None:
+            t.paused = False
         seen["write_beat" if not again else "second_beat"] = bench.beats_in
+        begin = start_frame if not again else after + 1
+        assert bench.beats_in < starts[begin], (
+            f"FFC_CTRL written after frame {begin} started ({bench.beats_in} beats taken)")
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
         m.set_live("FFC_STATUS", "done", 0)  # a start clears done
@@ -276,10 +292,6 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         sample("axis.ffc.status", "busy")
         if not again:
             assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
-        else:
-            # The first run finished: done then, IRQ_STATUS.ffc_done cleared for the second.
-            await bench.write("IRQ_STATUS", done_bit.mask)
-            sample("axis.ffc.runs", "second")
 
     async def write_ffc_again() -> None:
         await write_ffc(second_run, again=True)
@@ -298,7 +310,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     stall_task = cocotb.start_soon(_stall_log(bench, stalls))
     acts = [cocotb.start_soon(bench._act(fh * fw + fh * fw // 2, write_ffc))]
     if second_run is not None:
-        acts.append(cocotb.start_soon(bench._act(starts[after] + fh * fw // 2,
+        acts.append(cocotb.start_soon(bench._act(starts[after] + fh * fw // 4,
                                                  write_ffc_again)))
     stop = [False]
     if t is not None:
