@@ -95,6 +95,13 @@ class Traffic:
         self.paused = False  # stream_ops waits (a sequence's access that must land in time)
 
     # ---- the channels --------------------------------------------------------------------
+    def pause(self, on: bool = True) -> None:
+        """Hold the random accesses of :meth:`stream_ops` (and BREADY / RREADY high) while
+        a sequence makes an access that must land in time (the register file takes one
+        transaction at a time), or resume them."""
+        self.paused = on
+        self.hold_readies(not on)
+
     def hold_readies(self, on: bool = True) -> None:
         """BREADY and RREADY low for random stretches (or always high)."""
         for ch in (self.b, self.r):

@@ -263,10 +263,6 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     seen: dict[str, int] = {}
 
     async def write_ffc(frames: int = count, again: bool = False) -> None:
-        # The random traffic waits while the run is started: FFC_CTRL must land before the
-        # next frame start (the register file takes one transaction at a time).
-        if t is not None:
-            t.paused = True
         if again:
             # The first run finished (done): its IRQ_STATUS.ffc_done cleared before the
             # second starts (a clear after a short second run's end would clear its done).
@@ -280,7 +276,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
             await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
                               | (frames << ctrl.field("frames").lsb))
         if t is not None:
-            t.paused = False
+            t.pause(False)
         seen["write_beat" if not again else "second_beat"] = bench.beats_in
         begin = start_frame if not again else after + 1
         assert bench.beats_in < starts[begin], (
@@ -312,6 +308,15 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     if second_run is not None:
         acts.append(cocotb.start_soon(bench._act(starts[after] + fh * fw // 4,
                                                  write_ffc_again)))
+    if t is not None:
+        # The random traffic paused from the frame before each run's start until the run is
+        # written: FFC_CTRL (and the clear before a second run) must land before the next
+        # frame start, and the register file takes one transaction at a time.
+        async def quiet() -> None:
+            t.pause(True)
+
+        acts += [cocotb.start_soon(bench._act(beat, quiet)) for beat in
+                 (fh * fw, *((starts[after],) if second_run is not None else ()))]
     stop = [False]
     if t is not None:
         t.expect_stream([fr])
