@@ -80,6 +80,8 @@ class Proof:
     regmap: bool = False
     #: assertions left out of this proof (a Yosys name pattern; another proof has them)
     exclude: str = ""
+    #: more files of hdl/ the harness instantiates (after the design's)
+    files: tuple[str, ...] = ()
 
     @property
     def formal_top(self) -> str:
@@ -139,7 +141,8 @@ def _proofs() -> tuple[Proof, ...]:
               "irnuc_axis_buffer without head bits", params=(("DataBits", 5), ("HeadBits", 0))),
         Proof("axis_framer", "fv_axis_framer", "irnuc_axis_framer",
               "irnuc_axis_framer at 3 x 2: AXI4-Stream rules and video framing of the items "
-              "to the core for any input video, its own checks", cover=20, quick=True),
+              "to the core for any input video, its own checks", cover=20, quick=True,
+              files=("irnuc_axis_buffer.sv",)),
         Proof("ffc_ctrl", "fv_ffc_ctrl", "ffc_ctrl",
               "ffc_ctrl, 4 frames with hold: every frame's mode as the reference's",
               params=(("FfcFrames", 4), ("Hold", 1)), cover=24, quick=True),
@@ -208,12 +211,6 @@ FAULTS: tuple[Fault, ...] = (
           "the head register keeps the older entry's markers after a pop (catalogue)",
           mutant="ax_buffer_head_stale"),
     # ---- video framing (irnuc_fv_video) on the framer's items ------------------------------
-    Fault("framer_reset_position", "axis_framer", "u_video.a_eol",
-          "the position registers' former reset values (0, last): a frame starting in the "
-          "first cycle after reset marks its first pixel end of line (found by this proof)",
-          file="irnuc_axis_framer.sv",
-          find="      xl_q        <= (MaxWidth == 1);",
-          replace="      xl_q        <= 1'b1;", quick=True),
     Fault("framer_no_sof", "axis_framer", "u_video.a_sof",
           "the items to the core never carry the start of frame",
           file="irnuc_axis_framer.sv",
@@ -473,7 +470,9 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
                                                       max_height=PROOF_SIZE[1])
             generated.append(work / "irnuc_fv_map.sv")
             generated[0].write_text(package(cfg))
-        srcs = fv.formal_sources(hdl_sources(proof.design, hdl), proof.harness,
+        design = [*hdl_sources(proof.design, hdl),
+                  *((hdl or HDL_DIR) / f for f in proof.files)]
+        srcs = fv.formal_sources(design, proof.harness,
                                  (hdl / "formal") if hdl else None, generated)
         key = _key(proof, fault, params, srcs)
         name = (fault or proof).id
@@ -540,7 +539,8 @@ def _check_labels(smt2: Path) -> dict[str, list[str]]:
 
 
 def _job(kind: str, proof: dict, fault: dict | None, use_cache: bool) -> dict:
-    p = Proof(**{**proof, "params": tuple(tuple(x) for x in proof["params"])})
+    p = Proof(**{**proof, "params": tuple(tuple(x) for x in proof["params"]),
+                 "files": tuple(proof["files"])})
     return run_proof(p, Fault(**fault) if fault else None, use_cache=use_cache)
 
 
