@@ -31,7 +31,7 @@ from pathlib import Path
 
 from irnuc.common.errors import ToolError
 from irnuc.common.process import ChildTimeout, run_child
-from irnuc.cosim.sources import HDL_DIR
+from irnuc.cosim.sources import HDL_DIR, tool_parameters
 from irnuc.cosim.synth import _run_yosys, _tail
 
 #: The property modules and proof harnesses (compiled with FORMAL only).
@@ -97,7 +97,9 @@ def formal_sources(design: Sequence[str | os.PathLike], harness: str,
 def _read(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
           defines: Sequence[str]) -> str:
     files = " ".join(str(Path(s).resolve()) for s in sources)
-    gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
+    # A typed enum parameter (irnuc_axis_top's Method) by its literal: slang converts no
+    # integer to an enum.
+    gens = " ".join(f"-G {k}={v}" for k, v in tool_parameters(params, "slang").items())
     defs = " ".join(f"-D {d}" for d in defines)
     # No implicit SYNTHESIS: the design's checks (`ifndef SYNTHESIS) are read.
     return f"read_slang --no-synthesis-define {defs} --top {top} {gens} {files}"
@@ -119,7 +121,9 @@ def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping
         # an initial value free at the start), memories and cells mapped to gates.
         passes += ["chformal -cover -remove", "formalff -clk2ff -ff2anyinit",
                    "setundef -undriven -anyseq", "memory_map", "opt -fast", "techmap",
-                   "opt -fast", "aigmap", "write_aiger -I -B -zinit -map model.aim model.aig"]
+                   # opt merges enables and resets into the flops again: unmapped for AIGER
+                   "opt -fast", "dffunmap", "aigmap",
+                   "write_aiger -I -B -zinit -map model.aim model.aig"]
     try:
         _run_yosys(wd, "model", passes)
     except ToolError as exc:
