@@ -39,9 +39,10 @@ FORMAL_DIR = HDL_DIR / "formal"
 #: The defines of a formal model: the properties and the design's own checks
 #: (IRNUC_ASSERT: the simulation assertions become proof obligations too).
 DEFINES = ("FORMAL", "IRNUC_ASSERT")
-#: The engines: bounded model checking to a depth, k-induction (base case and step at
-#: depth k), property-directed reachability (unbounded, no depth), cover traces to a depth.
-ENGINES = ("bmc", "kind", "pdr", "cover")
+#: The engines: bounded model checking to a depth (yosys-smtbmc; ``bmc3``: ABC's), k-induction
+#: (base case and step at depth k), property-directed reachability (unbounded, no depth),
+#: cover traces to a depth.
+ENGINES = ("bmc", "bmc3", "kind", "pdr", "cover")
 #: Wall-time limit of one solver run.
 TIMEOUT = 1800.0
 
@@ -296,17 +297,17 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
                          single_process=True)
     except ChildTimeout:
-        return Check("bmc", "timeout", depth, round(time.perf_counter() - t0, 2), log=str(log),
-                     message=f"no result in {timeout:g} s")
+        return Check("bmc3", "timeout", depth, round(time.perf_counter() - t0, 2),
+                     log=str(log), message=f"no result in {timeout:g} s")
     seconds = round(time.perf_counter() - t0, 2)
     text = log.read_text(errors="replace")
     m = _BMC3_FAIL.search(text)
     if m:
-        return Check("bmc", "failed", depth, seconds, step=int(m.group(1)), log=str(log))
+        return Check("bmc3", "failed", depth, seconds, step=int(m.group(1)), log=str(log))
     m = _BMC3_PASS.search(text)
     if m and int(m.group(1)) >= depth:
-        return Check("bmc", "passed", depth, seconds, log=str(log))
-    return Check("bmc", "error", depth, seconds, log=str(log),
+        return Check("bmc3", "passed", depth, seconds, log=str(log))
+    return Check("bmc3", "error", depth, seconds, log=str(log),
                  message=f"yosys-abc bmc3 ended without a verdict (exit {proc.returncode}): "
                          + _tail(log, 8))
 
@@ -315,16 +316,20 @@ def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os
           timeout: float = TIMEOUT) -> Check:
     """Run ``engine`` on the models of :func:`write_models`: ``bmc`` (depth steps),
     ``kind`` (the base case to depth, then the induction step at depth), ``pdr`` (a failure
-    is replayed by bmc to its frame for the labels and the VCD), ``cover``. With an AIGER
-    model ``bmc`` is ABC's bmc3 (a failure replayed the same way), else yosys-smtbmc."""
+    is replayed by bmc to its frame for the labels and the VCD), ``bmc3`` (ABC's bounded
+    check on the AIGER model, a failure replayed the same way), ``cover``."""
     wd = Path(workdir)
     wd.mkdir(parents=True, exist_ok=True)
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r}: one of {', '.join(ENGINES)}")
-    if engine == "bmc" and "aig" in models:
+    if engine == "bmc3":
         res = bmc3(models["aig"], depth, wd, timeout=timeout)
-        return (_replay(models, res, (res.step or depth) + 2, wd, timeout)
-                if res.status == "failed" else res)
+        if res.status != "failed":
+            return res
+        res = _replay(models, res, min(depth, (res.step or 0) + 2), wd, timeout)
+        if not res.failed:  # the AIGER model's counterexample is not the SMT-LIB model's
+            res.status = "error"
+        return res
     if engine in ("bmc", "cover"):
         return smtbmc(models["smt2"], engine, depth, wd, timeout=timeout)
     if engine == "kind":

@@ -148,9 +148,9 @@ def test_bmc3_bounded_and_replayed(tmp_path) -> None:
         srcs = fv.formal_sources(hdl_sources(proof.design, where), proof.harness,
                                  where / "formal")
         models = fv.write_models(srcs, proof.harness, proof.parameters(), tmp_path / tag)
-        res = fv.check(models, "bmc", 12, tmp_path / tag)
+        res = fv.check(models, "bmc3", 12, tmp_path / tag)
         if tag == "good":
-            assert res.status == "passed" and res.engine == "bmc", res
+            assert res.status == "passed" and res.engine == "bmc3", res
             assert Path(res.log).name == "bmc3.log", res  # ABC's, not yosys-smtbmc
         else:
             assert res.status == "failed" and res.step is not None, res

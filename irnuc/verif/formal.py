@@ -161,7 +161,7 @@ def _proofs() -> tuple[Proof, ...]:
                          f"irnuc_axil_regs of {name}: the register semantics of "
                          f"docs/registers.md (responses, reset values, strobes, W1C against "
                          f"an event, counters, STATUS.pending), for {REGMAP_DEPTH} cycles from "
-                         f"reset", engine="bmc", depth=REGMAP_DEPTH, cover=0, config=name,
+                         f"reset", engine="bmc3", depth=REGMAP_DEPTH, cover=0, config=name,
                          regmap=True))
     for name in _configs():
         out.append(Proof(f"axis_top_{name}", "fv_axis_top", "irnuc_axis_top",
@@ -486,8 +486,7 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         extra = ([_keep_only(fault.property)] if fault is not None else
                  [_drop(proof.exclude)] if proof.exclude else [])
         models = fv.write_models(srcs, proof.formal_top, params, work / "model",
-                                 aiger=engine == "pdr" or (engine == "bmc" and fault is None),
-                                 extra=extra)
+                                 aiger=engine in ("pdr", "bmc3"), extra=extra)
         res = fv.check(models, engine, proof.depth, work / "model")
         checks = _check_labels(models["smt2"])
         cover = None
