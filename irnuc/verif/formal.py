@@ -215,7 +215,7 @@ FAULTS: tuple[Fault, ...] = (
           "the items to the core never carry the start of frame",
           file="irnuc_axis_framer.sv",
           find=".data_i ({frame, starting, xl_q, nuc_off, dpc_off, raw, word_in}),",
-          replace=".data_i ({frame, 1'b0, xl_q, nuc_off, dpc_off, raw, word_in}),"),
+          replace=".data_i ({frame, 1'b0, xl_q, nuc_off, dpc_off, raw, word_in}),", quick=True),
     Fault("framer_zero_size", "axis_framer", "u_video.a_size",
           "a frame start takes a width of 0 as the active width",
           file="irnuc_axis_framer.sv", find="      act_w_q     <= pend_width_i;",
