@@ -65,7 +65,9 @@ def write_netlist(sources: Sequence[Path], top: str, params: Mapping[str, int], 
     passes = [*_read(sources, top, params), "flatten"]
     if mutation:
         passes.append(mutation)
-    passes += ["opt_clean", "setundef -zero -init", f"rename {top} {top}__{tag}",
+    # bwmuxmap: the register block's masked writes become $bwmux cells, which Verilog
+    # cannot name (Verilator refused the netlist of irnuc_axis_top with them).
+    passes += ["opt_clean", "bwmuxmap", "setundef -zero -init", f"rename {top} {top}__{tag}",
                f"write_verilog -noattr -norename {out}",
                f"write_json {out.with_suffix('.json')}"]
     _run_yosys(wd, out.stem, passes)
