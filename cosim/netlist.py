@@ -55,6 +55,10 @@ def draw(sources: Sequence[Path], top: str, params: Mapping[str, int], file: str
     return out
 
 
+#: Bumped when :func:`write_netlist`'s passes change (the cached netlists' key has it).
+NETLIST_VERSION = 2
+
+
 def write_netlist(sources: Sequence[Path], top: str, params: Mapping[str, int], out: Path,
                   tag: str, mutation: str | None = None) -> Path:
     """The flat netlist of ``top`` (module ``<top>__<tag>``) with ``mutation`` (a
@@ -104,4 +108,4 @@ def install(hdl: Path, top: str, netlist: Path, tag: str) -> None:
     f.write_text(wrapper(f.read_text(), top, tag) + "\n" + Path(netlist).read_text())
 
 
-__all__ = ["draw", "header", "install", "ports", "wrapper", "write_netlist"]
+__all__ = ["NETLIST_VERSION", "draw", "header", "install", "ports", "wrapper", "write_netlist"]

@@ -195,7 +195,8 @@ def _netlists(m: Mutant, cfg, work: Path) -> tuple[Path, Path, list]:
     srcs = hdl_sources(m.top)
     params = top_parameters(m.top, cfg)
     gold_dir = cache_dir("mutate", "netlists") / digest({"rtl": rtl_digest(), "top": m.top,
-                                                        "params": params})
+                                                        "params": params,
+                                                        "passes": netlist.NETLIST_VERSION})
     gold = gold_dir / "gold.v"
     if not gold.is_file():
         tmp = Path(tempfile.mkdtemp(prefix="gold.", dir=cache_dir("mutate", "work")))
