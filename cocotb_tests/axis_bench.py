@@ -15,7 +15,13 @@ warnings.filterwarnings("ignore", message="The data field will be removed",
 
 import cocotb  # noqa: E402
 import numpy as np  # noqa: E402
-from cocotb.triggers import ClockCycles, RisingEdge, SimTimeoutError, with_timeout  # noqa: E402
+from cocotb.triggers import (  # noqa: E402
+    ClockCycles,
+    Lock,
+    RisingEdge,
+    SimTimeoutError,
+    with_timeout,
+)
 from cocotbext.axi import (  # noqa: E402
     AxiLiteBus,
     AxiLiteMaster,
@@ -76,6 +82,10 @@ class Bench:
         for drv in (self.vid, self.coef, self.out, self.axil.write_if, self.axil.read_if):
             drv.log.setLevel(logging.WARNING)
         self.model = regmap.RegisterModel(env.cfg)
+        # One write and one read issued at a time per channel, whoever issues them (the
+        # random traffic of axil_traffic drives the master's channels itself); the slave
+        # takes one transaction at a time and must hold the other channel's request.
+        self.wlock, self.rlock = Lock(), Lock()
         self.cycle = 0
         self.beats_in = 0
         self.out_cycles: list[int] = []
@@ -101,7 +111,8 @@ class Bench:
         lanes = [i for i in range(4) if strb >> i & 1]
         assert lanes == list(range(lanes[0], lanes[-1] + 1)), f"strobes {strb:04b}"
         data = int(value).to_bytes(4, "little")[lanes[0]:lanes[-1] + 1]
-        resp = await self.axil.write(off + lanes[0], data)
+        async with self.wlock:
+            resp = await self.axil.write(off + lanes[0], data)
         want = self.model.write(off, int(value), strb)
         kind = ("write_reserved" if want == regmap.OKAY and self.model.map.at(off) is not None
                 and not self.model.present(self.model.map.at(off)) else
@@ -116,7 +127,8 @@ class Bench:
     async def read(self, reg: str | int) -> int:
         """Read a register; the response must be the model's. The data read."""
         off = self.model.map[reg].offset if isinstance(reg, str) else int(reg)
-        r = await self.axil.read(off, 4)
+        async with self.rlock:
+            r = await self.axil.read(off, 4)
         want, _ = self.model.read(off)
         reg_def = self.model.map.at(off)
         sample("axis.register_access",

@@ -112,6 +112,25 @@ async def register_read_write(dut) -> None:
     export()
 
 
+@cocotb.test()
+async def register_traffic(dut) -> None:
+    """Constrained-random register traffic (cocotb_tests.axil_traffic): random strobes,
+    BREADY / RREADY held low, read-only, reserved and unmapped offsets, reads and writes
+    while pixels stream (W1C clears racing the stream's framing errors, counters read mid
+    frame), a frame at the reset size where it is small: every response and read as the
+    register model says."""
+    from irnuc.cocotb_tests.axil_traffic import register_traffic as traffic
+
+    bench = await make_bench(dut, 10)
+
+    def frames(b: Bench, h: int, w: int):
+        raws, words = _frames(b, 1, h, w)
+        return video_beats(raws), coef_beats(words)
+
+    await traffic(bench, frames)
+    export()
+
+
 # ---- frames ---------------------------------------------------------------------------------------
 
 @cocotb.test()

@@ -143,6 +143,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                            ffc_bp: str | None = None, resize_after_run: bool = False,
                            size: tuple[int, int] = (H, W),
                            resize_in_run: tuple[int, int] | None = None,
+                           second_run: int | None = None, traffic: bool = False,
                            firmware: bool = False) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
@@ -156,9 +157,14 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     FRAME_SIZE written to this other size in the middle of the run's last frame that writes
     back (its last shutter frame, or with N shutter frames its refresh frame); the open
     frames after it have that size, and the run's write-back frames must still end (tlast)
-    at the old size: the drain before the new size waits for their words. ``firmware``:
-    the register accesses are the firmware driver's (irnuc.cosim.driver: probe,
-    configure, load_calibration, set_reading, enable_irq, ffc_start, ffc_wait,
+    at the old size: the drain before the new size waits for their words.
+    ``second_run``: after the first run and an open frame, IRQ_STATUS.ffc_done cleared and
+    FFC_CTRL written again (start, this many shutter frames) early in that open frame: a
+    second run, checked like the first (FFC_STATUS busy after its start, done at its end). ``traffic``: random
+    register traffic (cocotb_tests.axil_traffic) before the sequence and while it streams
+    (W1C clears of STATUS, read-only, reserved and unmapped offsets, reads anywhere).
+    ``firmware``: the register accesses are the firmware driver's (irnuc.cosim.driver:
+    probe, configure, load_calibration, set_reading, enable_irq, ffc_start, ffc_wait,
     read_status), through the generated register model."""
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
@@ -166,6 +172,14 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     bench = await make_bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
+    t = None
+    if traffic:
+        from irnuc.cocotb_tests.axil_traffic import Traffic
+
+        t = Traffic(bench)
+        t.hold_readies(True)
+        await t.quiet_ops(40)
+        await t.restore()
     regs = bench.registers() if firmware else None
     info = None
     if regs is not None:
@@ -180,8 +194,14 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     n = int(cfg.ffc_frames or 1)
     count = n if frames is None else frames
     start_frame = 2
-    shutter = ffc_shutter_flags(start_frame + count + 3, {start_frame: count})
-    framing = ffc_framing(cfg, shutter, start=start_frame)
+    runs = {start_frame: count}
+    # The first frame after the run (after its refresh frame with N shutter frames).
+    after = start_frame + count + int(count == n)
+    if second_run is not None:  # an open frame, then the second run
+        runs[after + 1] = second_run
+    last_start, last_count = max(runs.items())
+    shutter = ffc_shutter_flags(last_start + last_count + 3, runs)
+    framing = ffc_framing(cfg, shutter, start=last_start)
     c = ffc_calibration(cfg, fh, fw, rng, "camera")
     if regs is not None:
         await driver.load_calibration(regs, driver.Calibration(**{
@@ -190,8 +210,6 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         for name, value in c.registers.items():  # tc_offset: T_REF
             await bench.write_method_register(name, int(value))
     readings = [random_reading(cfg, c, rng) for _ in shutter]
-    # The first frame after the run (after its refresh frame with N shutter frames).
-    after = start_frame + count + int(count == n)
     sizes = [(fh, fw)] * after + [resize_in_run or (fh, fw)] * (len(shutter) - after)
     golden = bench.env.golden
     if resize_in_run is None:
@@ -244,18 +262,35 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     m = bench.model
     seen: dict[str, int] = {}
 
-    async def write_ffc() -> None:
+    async def write_ffc(frames: int = count, again: bool = False) -> None:
+        if again:
+            # The first run finished (done): its IRQ_STATUS.ffc_done cleared before the
+            # second starts (a clear after a short second run's end would clear its done).
+            await bench.write("IRQ_STATUS", done_bit.mask)
+            await ClockCycles(dut.clk_i, 2)
+            assert int(dut.irq_o.value) == 0, "irq_o stays 1 after the W1C of ffc_done"
+            sample("axis.ffc.runs", "second")
         if regs is not None and info is not None:
-            assert await driver.ffc_start(regs, info, count) == driver.OK
+            assert await driver.ffc_start(regs, info, frames) == driver.OK
         else:
             await bench.write("FFC_CTRL", (1 << ctrl.field("start").lsb)
-                              | (count << ctrl.field("frames").lsb))
-        seen["write_beat"] = bench.beats_in
+                              | (frames << ctrl.field("frames").lsb))
+        if t is not None:
+            t.pause(False)
+        seen["write_beat" if not again else "second_beat"] = bench.beats_in
+        begin = start_frame if not again else after + 1
+        assert bench.beats_in < starts[begin], (
+            f"FFC_CTRL written after frame {begin} started ({bench.beats_in} beats taken)")
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
+        m.set_live("FFC_STATUS", "done", 0)  # a start clears done
         await bench.check("FFC_STATUS")
         sample("axis.ffc.status", "busy")
-        assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
+        if not again:
+            assert int(dut.irq_o.value) == 0, "irq_o (IRQ_ENABLE.ffc_done) before the FFC ran"
+
+    async def write_ffc_again() -> None:
+        await write_ffc(second_run, again=True)
 
     def write_reading(k: int):
         """READING of frame k + 1, written while frame k streams (it must land before
@@ -270,6 +305,23 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     stalls: dict[str, list[int]] = {}
     stall_task = cocotb.start_soon(_stall_log(bench, stalls))
     acts = [cocotb.start_soon(bench._act(fh * fw + fh * fw // 2, write_ffc))]
+    if second_run is not None:
+        acts.append(cocotb.start_soon(bench._act(starts[after] + fh * fw // 4,
+                                                 write_ffc_again)))
+    if t is not None:
+        # The random traffic paused from the frame before each run's start until the run is
+        # written: FFC_CTRL (and the clear before a second run) must land before the next
+        # frame start, and the register file takes one transaction at a time.
+        async def quiet() -> None:
+            t.pause(True)
+
+        acts += [cocotb.start_soon(bench._act(beat, quiet)) for beat in
+                 (fh * fw, *((starts[after],) if second_run is not None else ()))]
+    stop = [False]
+    if t is not None:
+        t.expect_stream([fr])
+        t.streaming = True
+        traffic_task = cocotb.start_soon(t.stream_ops(("STATUS",), stop))
     if resize_after_run:
         async def resize() -> None:
             await bench.frame_size(fh, fw)
@@ -303,6 +355,11 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         await act
     got_acc, got_foff = await acc_task, await foff_task
     stall_task.cancel()
+    if t is not None:  # the counters are the sequence's to check (held frames not out)
+        stop[0] = True
+        await traffic_task
+        t.streaming = False
+        t.hold_readies(False)
     await ClockCycles(dut.clk_i, 40)
     assert s.acc_out.empty() and s.foff_out.empty(), "write-back words after the sequence"
 
@@ -425,6 +482,15 @@ async def ffc_resize_in_refresh(dut) -> None:
     old size (the drain waits for its last new offset, not only for the frame's pixels)."""
     await refresh_sequence(dut, 45, None, "none", "none", "ffc resize in refresh",
                            ffc_idle="none", ffc_bp="bursty", resize_in_run=(H + 1, W))
+
+
+@cocotb.test()
+async def ffc_second_run(dut) -> None:
+    """A second FFC run after the first (a short one, FFC_CTRL.frames 1, written while an
+    open frame streams after the first run's refresh): busy again, done at its end; with
+    random register traffic before the sequence and while it streams."""
+    await refresh_sequence(dut, 46, None, "random", "random", "ffc second run",
+                           second_run=1, traffic=True)
 
 
 @cocotb.test()

@@ -91,6 +91,26 @@ async def method_registers(dut) -> None:
 
 
 @cocotb.test()
+async def method_register_traffic(dut) -> None:
+    """Constrained-random register traffic on the method's wrapper
+    (cocotb_tests.axil_traffic): the method's registers among the shadowed ones, the other
+    methods' reserved; frames of a random calibration streamed with traffic."""
+    from irnuc.cocotb_tests.axil_traffic import register_traffic as traffic
+
+    bench = await make_bench(dut, 25)
+
+    def frames(b: Bench, h: int, w: int):
+        c = random_coefficients(b.cfg, h, w, b.rng, bad_fraction=0.2)
+        raw = random_raw(b.cfg, h, w, b.rng)
+        # The READING the frame takes (its register as the model holds it).
+        reading = b.method_registers().get("reading")
+        return video_beats([raw]), coef_beats([frame_drive(c, reading).words])
+
+    await traffic(bench, frames)
+    export()
+
+
+@cocotb.test()
 async def method_frames_between(dut) -> None:
     """Frames one after the other, each with its own FPA reading written through AXI4-Lite
     between frames (tc_offset; the other methods their registers), under idle and

@@ -76,9 +76,11 @@ from irnuc.cosim.coverage import BACKPRESSURE_PATTERNS, IDLE_PATTERNS, CoverageM
 from irnuc.nuc_fixed.axis import EVENTS, FfcFraming
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.methods.table_interp import TABLE_AXIS_POINTS
+from irnuc.nuc_fixed.regmap import RegisterModel
 
 __all__ = ["AXIS_POINTS", "AXIS_TOPS", "DRIFT_AXIS_POINTS", "FFC_AXIS_POINTS",
-           "REGISTER_ACCESS", "TABLE_AXIS_POINTS", "AxisCoverageModel", "drift_delta_class",
+           "REGISTER_ACCESS", "RESET_SIZE_PIXELS", "TABLE_AXIS_POINTS", "TRAFFIC_POINTS",
+           "TRAFFIC_TOP", "AxisCoverageModel", "TrafficCoverageModel", "drift_delta_class",
            "ffc_axis_classes"]
 
 #: The tops whose coverage model is :class:`AxisCoverageModel`.
@@ -106,6 +108,29 @@ AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.reset": ("mid_frame",),
 }
 
+#: The random register traffic of cocotb_tests/axil_traffic.py has a model of its own (the
+#: "top" key of its samples; every testbench that runs the traffic closes it).
+TRAFFIC_TOP = "irnuc_axil_traffic"
+#: A frame at the reset size (MaxWidth x MaxHeight) is simulated when it has at most this
+#: many pixels.
+RESET_SIZE_PIXELS = 4096
+#: Coverpoint -> bins of the random register traffic: every byte-strobe class, every kind
+#: of address written and read (a read-only one written and a write-only one read: SLVERR;
+#: a reserved read-only one written: SLVERR on every build), BREADY and RREADY held low
+#: under a waiting response, a write and a read issued at once (the slave takes one
+#: transaction at a time), reads, writes and W1C clears while pixels stream, a frame at the
+#: reset size.
+TRAFFIC_POINTS: dict[str, tuple[str, ...]] = {
+    "axil.traffic.strobe": ("full", "partial", "noncontiguous", "none"),
+    "axil.traffic.address": ("write", "read", "ro_write", "wo_read", "reserved_write",
+                             "reserved_ro_write", "reserved_read", "unmapped_write",
+                             "unmapped_read"),
+    "axil.traffic.overlap": ("write_and_read",),
+    "axil.traffic.ready_held": ("bready", "rready"),
+    "axil.traffic.streaming": ("read", "write", "w1c_clear"),
+    "axil.traffic.reset_size": ("frame",),
+}
+
 #: Coverpoint -> bins of the FFC sequence through the registers (a configuration with ffc).
 FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.start": ("mid_frame",),
@@ -118,6 +143,7 @@ FFC_AXIS_POINTS: dict[str, tuple[str, ...]] = {
     "axis.ffc.refresh": ("next_frame_start",),
     "axis.ffc.drain": ("after_held", "new_size_in_run", "new_size_in_refresh"),
     "axis.ffc.request": ("period", "threshold", "both", "disabled", "cleared", "rearmed"),
+    "axis.ffc.runs": ("second",),
 }
 
 
@@ -221,3 +247,31 @@ class AxisCoverageModel(CoverageModel):
         for name, labels in classes.items():
             for b in sorted(labels):
                 self.sample(name, b)
+
+
+class TrafficCoverageModel(CoverageModel):
+    """The coverpoints of the random register traffic (:data:`TRAFFIC_POINTS`) on one
+    configuration; the reset-size frame removed where it is too large to simulate, the
+    write of a reserved read-only register where the configuration has them all."""
+
+    def __init__(self, top: str, cfg: PipelineConfig, prefix: str = "irnuc") -> None:
+        # Not the base model's points (streams, frames): only the traffic's.
+        self.top, self.cfg, self.prefix = top, cfg, prefix
+        self.removed: dict[str, dict[str, str]] = {}
+        self._samplers = {}
+        points = dict(TRAFFIC_POINTS)
+        pixels = cfg.max_width * cfg.max_height
+        if pixels > RESET_SIZE_PIXELS:
+            del points["axil.traffic.reset_size"]
+            self.removed["axil.traffic.reset_size"] = {
+                "frame": f"the reset size {cfg.max_width} x {cfg.max_height} ({pixels} pixels) "
+                         f"is too long a frame to simulate here (at most {RESET_SIZE_PIXELS}); "
+                         "irnuc formal's framer proof starts frames at the reset size"}
+        m = RegisterModel(cfg)
+        if not any(not m.present(r) and not r.writable for r in m.map.registers):
+            points["axil.traffic.address"] = tuple(
+                b for b in points["axil.traffic.address"] if b != "reserved_ro_write")
+            self.removed["axil.traffic.address"] = {
+                "reserved_ro_write": f"{cfg.name} has every read-only register of the map"}
+        for name, bins in points.items():
+            self.add_point(name, bins)

@@ -615,7 +615,12 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
     """The process's coverage model of ``top`` on ``cfg`` (made once)."""
     key = (top, cfg.digest())
     if key not in _MODELS:
-        from irnuc.cosim.axis_coverage import AXIS_TOPS, AxisCoverageModel
+        from irnuc.cosim.axis_coverage import (
+            AXIS_TOPS,
+            TRAFFIC_TOP,
+            AxisCoverageModel,
+            TrafficCoverageModel,
+        )
         from irnuc.cosim.method_coverage import METHOD_TOPS, MethodCoverageModel
         from irnuc.cosim.stage_coverage import (
             DRIFT_TOPS,
@@ -624,7 +629,8 @@ def model(top: str, cfg: PipelineConfig) -> CoverageModel:
             FfcCoverageModel,
         )
 
-        cls = (MethodCoverageModel if top in METHOD_TOPS else
+        cls = (TrafficCoverageModel if top == TRAFFIC_TOP else
+               MethodCoverageModel if top in METHOD_TOPS else
                AxisCoverageModel if top in AXIS_TOPS else
                FfcCoverageModel if top in FFC_TOPS else
                DriftCoverageModel if top in DRIFT_TOPS else CoverageModel)

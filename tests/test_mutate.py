@@ -54,15 +54,9 @@ def test_a_stale_mutant_is_a_clear_error() -> None:
 
 @pytest.mark.cosim
 @pytest.mark.slow
-def test_small_campaign_cache_and_cli(tmp_path, monkeypatch) -> None:
+def test_small_campaign_cache_and_cli(tmp_path, own_cache) -> None:
     # The verdicts in a cache of their own; the Verilator builds (the baseline's, the
-    # runtime objects) shared with the session.
-    from irnuc.common.cache import cache_dir
-
-    builds = cache_dir("sim_build")
-    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
-    (tmp_path / "cache").mkdir()
-    (tmp_path / "cache" / "sim_build").symlink_to(builds, target_is_directory=True)
+    # runtime objects) shared with the session (own_cache).
     assert mutate.cached_summary() is None
     # All three in the small interp_weight suite, whose builds and runs take seconds where
     # the two-point suite takes tens (its mutants share the code path: the suite is a

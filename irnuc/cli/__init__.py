@@ -26,8 +26,8 @@ from irnuc.common.errors import StreamError, ToolError, UserError
 
 COMMAND_MODULES: tuple[str, ...] = (
     "irnuc.cli.frames", "irnuc.cli.calibrate", "irnuc.cli.sweep", "irnuc.cli.report",
-    "irnuc.cli.precision", "irnuc.cli.synth", "irnuc.cli.mutate", "irnuc.cli.study",
-    "irnuc.cli.noise", "irnuc.cli.regmap",
+    "irnuc.cli.precision", "irnuc.cli.synth", "irnuc.cli.mutate", "irnuc.cli.formal",
+    "irnuc.cli.traffic", "irnuc.cli.study", "irnuc.cli.noise", "irnuc.cli.regmap",
 )
 
 Command = tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]

@@ -18,6 +18,16 @@ def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
                         "configurations, and named configurations, e.g. sample,minimal) "
                         "where its code elaborates differently, one at a time, and print "
                         "the score per configuration (no coverage run)")
+    p.add_argument("--auto", type=int, metavar="N",
+                   help="mutants nobody chose: N mutations per module drawn by Yosys "
+                        "(mutate -list N, --seed), run in the module's top with its suite; "
+                        "each survivor decided equivalent or not by a miter (no coverage "
+                        "run); see --modules")
+    p.add_argument("--seed", type=int, default=1,
+                   help="the seed of --auto's draw (default: %(default)s)")
+    p.add_argument("--modules", metavar="LIST",
+                   help="--auto: these modules only (comma-separated; default: every module "
+                        "of irnuc.verif.automut.TARGETS)")
     p.epilog = ("exit status: 0 when every non-equivalent mutant was killed, 1 when one "
                 "survived, 2 for bad input, 3 when a tool failed")
     add_executor(p, "run the mutants", workers=1, cache="a mutant's result")
@@ -40,6 +50,8 @@ def run_mutate(args: argparse.Namespace) -> int:
         return 0
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
+    if args.auto is not None or args.modules is not None:
+        return _run_auto(args)
     mutants = mutate.catalogue(args.only)  # an unknown id is a one-line error, before work
     if args.configs is not None:
         return _run_per_configuration(args, mutants)
@@ -72,6 +84,45 @@ def run_mutate(args: argparse.Namespace) -> int:
     say(f"wrote {out / 'mutate.json'}")
     # A surviving non-equivalent mutant is a bug the suite would miss: fail like a test.
     return 1 if summary["survived"] else 0
+
+
+def _run_auto(args: argparse.Namespace) -> int:
+    """``--auto N``: the automatic mutants; mutate.json holds the summary, with each
+    survivor's formal verdict (different, with its trace; undecided)."""
+    import json
+
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
+    from irnuc.verif import automut
+
+    if args.auto is None:
+        raise UserError("--modules needs --auto N (the mutants per module)")
+    if not 1 <= args.auto <= 1000:
+        raise UserError(f"--auto {args.auto} is outside the allowed range 1..1000")
+    if args.only or args.configs is not None:
+        raise UserError("--auto draws its own mutants: it takes neither --only nor --configs")
+    if not 0 <= args.seed < 2**31:
+        raise UserError(f"--seed {args.seed} is outside the allowed range 0..2147483647")
+    tgts = automut.targets(args.modules)
+    out = claim_output_folder(args.out, kind="mutate")
+    s = automut.run_auto(tgts, args.auto, seed=args.seed, workers=args.workers,
+                         scheduler=args.scheduler, use_cache=not args.no_cache,
+                         progress=progress("mutate"))
+    with output_folder(out, kind="mutate") as tmp:
+        write_text_atomic(tmp / "mutate.json", json.dumps(s, indent=1) + "\n")
+    for r in s["mutants"]:
+        say(f"{r['id']:34s} {r['status']:10s} "
+            + (f"by {r['killed_by']}" if r["killed_by"] else (r["equivalent"] or r["message"])[:70]),
+            level=2)
+    for mod, row in s["per_module"].items():
+        score = "-" if row["score"] is None else f"{100 * row['score']:.1f} %"
+        say(f"{mod:22s} {row['killed']} killed, {row['survived']} survived, "
+            f"{row['equivalent']} proved equivalent: score {score}")
+    say(f"{s['killed']} killed, {s['survived']} survived, {s['equivalent']} proved equivalent of "
+        f"{s['total']} automatic mutants (score {100 * s['score']:.1f} %)"
+        + (f"; survivors: {', '.join(s['survivors'])}" if s["survivors"] else ""))
+    say(f"wrote {out / 'mutate.json'}")
+    return 1 if s["survived"] else 0
 
 
 def _run_per_configuration(args: argparse.Namespace, mutants: list) -> int:

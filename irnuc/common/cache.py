@@ -7,8 +7,10 @@ checkouts and runs and to delete at any time (docs/architecture.md).
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
+from typing import Any
 
 
 def cache_dir(*parts: str) -> Path:
@@ -22,3 +24,14 @@ def cache_dir(*parts: str) -> Path:
     path = base.joinpath(*parts)
     path.mkdir(parents=True, exist_ok=True)
     return path
+
+
+def read_cached_json(path: Path) -> Any:
+    """A JSON file of the cache, or None when it is missing or unreadable (a result that is
+    not there is to be made again, not an error)."""
+    if not path.is_file():
+        return None
+    try:
+        return json.loads(path.read_text())
+    except (OSError, json.JSONDecodeError):
+        return None

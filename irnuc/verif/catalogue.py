@@ -575,6 +575,23 @@ CATALOGUE: tuple[Mutant, ...] = (
 )
 
 
+def _through_wrapper(stage: tuple[Mutant, ...]) -> tuple[Mutant, ...]:
+    """The stage tops' mutants again through irnuc_axis_top (``<id>_axis``: method_ffc_top's
+    with tb_axis_ffc, method_drift_top's with tb_axis_method, on the same configuration):
+    the wrapper's suites must notice a wrong stage too, not only the stage's own suite. An
+    equivalent mutant stays equivalent (the wrapper sees the stage top only at its ports)."""
+    from dataclasses import replace
+
+    suites = {"method_ffc_top": "irnuc.cocotb_tests.tb_axis_ffc",
+              "method_drift_top": "irnuc.cocotb_tests.tb_axis_method"}
+    return tuple(replace(m, id=f"{m.id}_axis", top="irnuc_axis_top", suite=suites[m.top],
+                         what=f"{m.what} (through irnuc_axis_top)")
+                 for m in stage if m.top in suites)
+
+
+CATALOGUE = (*CATALOGUE, *_through_wrapper(CATALOGUE))
+
+
 def catalogue(only: Sequence[str] | None = None) -> list[Mutant]:
     """The catalogue, or the mutants named in ``only`` (in that order)."""
     if not only:

@@ -125,6 +125,43 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "assign part0.reading = slots[2][ReadingBits-1:0];",
         "assign part0.reading = slots[3][ReadingBits-1:0];",
         "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
+    # ---- the classes issue 39 found escaping, killed by the random register traffic
+    #      (cocotb_tests/axil_traffic.py) and ffc_second_run --------------------------------
+    _ma("ax_rdata_live", "irnuc_axil_regblock.sv",
+        "if(cpuif_rd_ack) axil_rdata <= cpuif_rd_data;",
+        "if(1'b1) axil_rdata <= cpuif_rd_data;",
+        "RDATA follows the register block's read-back while RVALID waits for RREADY (a "
+        "counter read mid frame changes under a held RREADY)"),
+    _ma("ax_reset_size_m1", "irnuc_axil_regs.sv",
+        "      width_m1_q   <= WidthBits'(MaxWidth - 1);",
+        "      width_m1_q   <= WidthBits'(MaxWidth - 2);",
+        "the reset frame size's width - 1 one short: a frame at the reset size (no FRAME_SIZE "
+        "written) has lines a pixel short"),
+    _ma("ax_ffc_status_ro_okay", "irnuc_axil_regblock.sv",
+        "is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h84) & !cpuif_req_is_wr;",
+        "is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h84);",
+        "a write to FFC_STATUS (read-only) answered OKAY", **_AXF),
+    _ma("ax_ffc_frames_strobes", "irnuc_axil_regs.sv",
+        "ffc_frames_q <= (ffc_frames_q & ~hwif_out.FFC_CTRL.wr_biten.frames)\n"
+        "                          | (hwif_out.FFC_CTRL.wr_data.frames & "
+        "hwif_out.FFC_CTRL.wr_biten.frames);",
+        "ffc_frames_q <= hwif_out.FFC_CTRL.wr_data.frames;",
+        "FFC_CTRL.frames ignores the byte strobes: a lane not written is cleared", **_AXF),
+    _ma("ax_table_reading_strobes", "irnuc_axil_regs.sv",
+        "value_q <= TableReadingBits'((32'(value_q) & ~biten)\n"
+        "                                       | (hwif_out.TABLE_READING[k].wr_data.value & "
+        "biten));",
+        "value_q <= TableReadingBits'(hwif_out.TABLE_READING[k].wr_data.value);",
+        "TABLE_READING[k] ignores the byte strobes: a lane not written is cleared", **_AXM,
+        config="table14"),
+    _ma("ax_table_no_pending", "irnuc_axil_regs.sv",
+        "assign table_touch[k] = |(biten & Mask);", "assign table_touch[k] = 1'b0;",
+        "a TABLE_READING[k] write does not raise STATUS.pending", **_AXM, config="table14"),
+    _ma("ax_ffc_second_run_ended", "irnuc_axis_ffc.sv",
+        "        begun_q <= 1'b0;\n        ended_q <= 1'b0;",
+        "        begun_q <= 1'b0;\n        ended_q <= ended_q;",
+        "a second FFC run keeps the first run's end: a short second run is never done",
+        **_AXF),
     # ---- irnuc_axis_core: the core of the method -------------------------------------------
     _ma("ax_core_eol_from_sof", "irnuc_axis_core.sv",
         ".s_pix_eol_i   (item_eol_i),\n      .s_coef_valid_i(item_valid_i),",

@@ -40,6 +40,10 @@ class Mutant:
     #: equivalent on some configurations only: (pipeline field, largest value, why), the
     #: mutant is equivalent on a configuration whose field is at most that value
     equivalent_when: tuple[tuple[str, int, str], ...] = ()
+    #: an automatic mutant (irnuc.verif.automut): the Yosys ``mutate -mode ...`` command
+    #: applied to the netlist of ``top`` on the mutant's configuration, which replaces the
+    #: top's RTL (``find`` / ``replace`` unused); "" is the unmutated netlist
+    yosys: str | None = None
 
     def equivalence(self, cfg=None) -> str | None:
         """Why no test can kill the mutant on ``cfg`` (a pipeline configuration; None: on

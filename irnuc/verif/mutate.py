@@ -35,9 +35,9 @@ import irnuc.cocotb_tests
 import irnuc.cosim
 import irnuc.nuc_fixed
 from irnuc.cocotb_tests import tb_top
-from irnuc.common.cache import cache_dir
+from irnuc.common.cache import cache_dir, read_cached_json
 from irnuc.common.digest import digest, files_digest
-from irnuc.common.errors import UserError
+from irnuc.common.errors import ToolError, UserError
 from irnuc.common.io import write_text_atomic
 from irnuc.cosim.sources import HDL_DIR, SIM_HDL_DIR
 from irnuc.verif.catalogue import (
@@ -77,6 +77,8 @@ def _mutant_key(m: Mutant) -> str:
         del d["also"]  # keys of one-site mutants as before the field existed
     if not d["equivalent_when"]:
         del d["equivalent_when"]  # and of mutants equivalent nowhere or everywhere
+    if d["yosys"] is None:
+        del d["yosys"]  # and of the catalogue's (text) mutants
     if (d["top"], d["suite"]) == (SUITE_TOP, SUITE_MODULE):
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
         if d["file"] == PKG_FILE:
@@ -131,12 +133,15 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
     try:
         hdl = work / "hdl"
         shutil.copytree(HDL_DIR, hdl, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
-        f = hdl / m.file
-        f.write_text(m.apply(f.read_text()))
         killed_by, message, invalid = None, "", False
         try:
+            if m.yosys is not None:  # an automatic mutant: the top's mutated netlist
+                _install_netlist(m, cfg, hdl, work)
+            else:
+                f = hdl / m.file
+                f.write_text(m.apply(f.read_text()))
             bld = cosim.build(m.top, cfg, hdl_dir=hdl)
-        except cosim.RtlError as exc:
+        except (cosim.RtlError, ToolError) as exc:  # ToolError: a netlist Yosys refused
             invalid, message = True, str(exc)[:600]
             _remove_failed_builds(hdl)
         if bld is not None:
@@ -159,16 +164,72 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
         why = m.equivalence(cfg)
         status = ("invalid" if invalid else "killed" if killed_by else
                   "equivalent" if why else "survived")
+        decided = None
+        if status == "survived" and m.yosys:
+            # A survivor of the automatic mutants: equivalent or not, decided by a miter.
+            decided = _decide(m, cfg, work)
+            if decided["verdict"] == "equivalent":
+                status, why = "equivalent", f"proved ({decided['engine']}): {decided['message']}"
+            else:
+                message = f"{decided['verdict']} ({decided['engine']}): {decided['message']}"
         out = asdict(MutantResult(id=m.id, file=m.file, what=m.what, config=config_label(cfg),
                                   status=status, killed_by=killed_by, message=message,
                                   equivalent=why,
                                   seconds=round(time.perf_counter() - t0, 2)))
+        if decided is not None:
+            out["decided"] = decided
     finally:
         shutil.rmtree(work, ignore_errors=True)
         if bld is not None:
             shutil.rmtree(bld.build_dir, ignore_errors=True)
     write_text_atomic(cache, json.dumps(out, indent=1))
     return out
+
+
+def _netlists(m: Mutant, cfg, work: Path) -> tuple[Path, Path, list]:
+    """The original (``<top>__gold``, cached per RTL and configuration) and mutated
+    (``<top>__mut``) netlists of an automatic mutant, and the top's ports."""
+    from irnuc.cosim import netlist
+    from irnuc.cosim.sources import hdl_sources, top_parameters
+
+    srcs = hdl_sources(m.top)
+    params = top_parameters(m.top, cfg)
+    gold_dir = cache_dir("mutate", "netlists") / digest({"rtl": rtl_digest(), "top": m.top,
+                                                        "params": params,
+                                                        "passes": netlist.NETLIST_VERSION})
+    gold = gold_dir / "gold.v"
+    if not gold.is_file():
+        tmp = Path(tempfile.mkdtemp(prefix="gold.", dir=cache_dir("mutate", "work")))
+        netlist.write_netlist(srcs, m.top, params, tmp / "gold.v", "gold")
+        gold_dir.mkdir(parents=True, exist_ok=True)
+        for name in ("gold.json", "gold.v"):  # gold.v last: it marks the pair complete
+            write_text_atomic(gold_dir / name, (tmp / name).read_text())
+        shutil.rmtree(tmp, ignore_errors=True)
+    mut = work / "netlist" / "mut.v"
+    if not mut.is_file():
+        netlist.write_netlist(srcs, m.top, params, mut, "mut", mutation=m.yosys or None)
+    return gold, mut, netlist.ports(gold)
+
+
+def _install_netlist(m: Mutant, cfg, hdl: Path, work: Path) -> None:
+    from irnuc.cosim import netlist
+
+    _, mut, _ = _netlists(m, cfg, work)
+    netlist.install(hdl, m.top, mut, "mut")
+
+
+def _decide(m: Mutant, cfg, work: Path) -> dict:
+    """Whether a surviving automatic mutant is equivalent to the design (a miter of the
+    two netlists: irnuc.cosim.formal.equivalence); its trace kept in the cache."""
+    from irnuc.cosim import formal
+
+    gold, mut, ports = _netlists(m, cfg, work)
+    res = formal.equivalence(gold, mut, m.top, ports, work / "equiv")
+    if res.get("vcd") and Path(res["vcd"]).is_file():
+        dest = cache_dir("mutate", "traces") / f"{m.id}-{_mutant_key(m)[:16]}.vcd"
+        shutil.copyfile(res["vcd"], dest)
+        res["vcd"] = str(dest)
+    return res
 
 
 def _package_check(m: Mutant, cfg, hdl: Path, work: Path, timeout: float
@@ -294,13 +355,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
 def cached_summary() -> dict | None:
     """The latest mutation campaign for the current RTL sources (killed, survived,
     equivalent with reasons, total, score, killing test per mutant), or None."""
-    path = cache_dir("mutate") / f"summary-{rtl_digest()}.json"
-    if not path.is_file():
-        return None
-    try:
-        return json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError):
-        return None
+    return read_cached_json(cache_dir("mutate") / f"summary-{rtl_digest()}.json")
 
 
 # ---- several configurations ---------------------------------------------------------------

@@ -168,6 +168,20 @@ def headline(rep: Report, summary: Mapping[str, Any]) -> list[tuple[str, str]]:
                      f"(score {100 * mut['score']:.1f} %), {mut['equivalent']} equivalent, "
                      f"{mut['survived']} survived"
                      + ("" if mut.get("complete", True) else " (partial campaign)")))
+    auto = (s.get("cosim") or {}).get("mutation_auto")
+    if auto:
+        rows.append(("automatic RTL mutants killed (irnuc mutate --auto)",
+                     f"{auto['killed']} of {auto['killed'] + auto['survived']} not proved "
+                     f"equivalent (score {100 * auto['score']:.1f} %), {auto['equivalent']} "
+                     f"proved equivalent, {auto['survived']} survived"
+                     + ("" if auto.get("complete", True) else " (partial campaign)")))
+    fv = (s.get("cosim") or {}).get("formal")
+    if fv:
+        rows.append(("formal proofs (irnuc formal)",
+                     f"{fv['proved']} proved, {fv['bounded']} bounded, {len(fv['not_ok'])} "
+                     f"not holding; {fv['detected']} of {fv['detected'] + len(fv['missed'])} "
+                     "planted faults detected"
+                     + ("" if fv.get("complete", True) else " (partial campaign)")))
     if "precision" in s:
         pr = s["precision"]
         rows.append(("work-precision defaults on the Pareto front",
@@ -194,8 +208,9 @@ def render_report(rep: Report, summary: Mapping[str, Any]) -> str:
         "prov_rows": provenance_rows(summary["provenance"], summary, bool(rep.config.get("quick"))),
         "bl": baseline_rows(summary["baseline"]) if "baseline" in summary else None,
         "nav": [k for k in ("calibration", "sweep", "synth", "paper", "temperature", "cosim",
-                            "precision")
-                if k in sections or (k == "synth" and (sections.get("sweep") or {}).get("synth"))]
+                            "formal", "precision")
+                if k in sections or (k == "synth" and (sections.get("sweep") or {}).get("synth"))
+                or (k == "formal" and (sections.get("cosim") or {}).get("formal"))]
         + (["baseline"] if "baseline" in summary else []),
     }
     return environment().get_template("report.html.j2").render(**ctx)
@@ -419,7 +434,8 @@ def cosim_rows(c: Mapping[str, Any]) -> dict[str, Any]:
     bad = [x for x in c["cases"] if x["status"] != "passed"]
     triage = [x for x in c["cases"] if x.get("triage")]
     return {"cases": cases, "configs": cfgs, "bad": bad, "triage": triage,
-            **coverage_rows(c.get("coverage")), **mutation_rows(c.get("mutation"))}
+            **coverage_rows(c.get("coverage")), **mutation_rows(c.get("mutation")),
+            **auto_mutation_rows(c.get("mutation_auto")), **formal_rows(c.get("formal"))}
 
 
 def coverage_rows(cov: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -454,6 +470,30 @@ def mutation_rows(mut: Mapping[str, Any] | None) -> dict[str, Any]:
     rows = [[m["id"], m["file"], m["what"], m["config"], m["status"], m.get("killed_by") or ""]
             for m in mut.get("mutants", [])]
     return {"mutants": rows, "equivalents": list((mut.get("equivalents") or {}).items())}
+
+
+def auto_mutation_rows(auto: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The automatic mutants: per module, and one row per mutant with its formal verdict."""
+    if not auto:
+        return {"auto_modules": [], "auto_mutants": []}
+    mods = [[mod, r["killed"], r["survived"], r["equivalent"],
+             "-" if r["score"] is None else f"{100 * r['score']:.1f} %"]
+            for mod, r in (auto.get("per_module") or {}).items()]
+    rows = [[m["id"], m["what"], m["config"], m["status"], m.get("killed_by") or "",
+             m.get("verdict") or "", m.get("note") or ""] for m in auto.get("mutants", [])]
+    return {"auto_modules": mods, "auto_mutants": rows}
+
+
+def formal_rows(fv: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The formal campaign: one row per proof and per planted fault."""
+    if not fv:
+        return {"proofs": [], "faults": []}
+    proofs = [[p["id"], p["what"], p["engine"], "unbounded" if p["depth"] is None
+               else f"{p['depth']} cycles", p["status"], p.get("cover") or "",
+               p.get("asserts"), f"{p['seconds']:.1f}"] for p in fv.get("proofs", [])]
+    faults = [[f["id"], f["what"], f["property"], "detected" if f["detected"] else "MISSED",
+               "" if f.get("step") is None else f["step"]] for f in fv.get("faults", [])]
+    return {"proofs": proofs, "faults": faults}
 
 
 def precision_rows(pr: Mapping[str, Any]) -> dict[str, Any]:

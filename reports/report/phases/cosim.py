@@ -129,6 +129,51 @@ def measured_mutation() -> dict[str, Any] | None:
     return out
 
 
+def measured_auto_mutation() -> dict[str, Any] | None:
+    """The latest ``irnuc mutate --auto`` campaign of the current RTL sources
+    (:func:`irnuc.verif.automut.cached_summary`), condensed: counts, score, per module, and
+    per mutant its status, killing test or formal verdict. None when none ran."""
+    from irnuc.verif import automut
+
+    s = automut.cached_summary()
+    if not isinstance(s, Mapping) or not s:
+        return None
+    keys = ("rtl_digest", "total", "killed", "survived", "equivalent", "score", "complete",
+            "survivors", "n", "seed", "modules", "per_module", "decided")
+    out = {k: s[k] for k in keys if k in s}
+    out["mutants"] = [{"id": m.get("id"), "file": m.get("file"), "what": m.get("what"),
+                       "config": m.get("config"), "status": m.get("status"),
+                       "killed_by": m.get("killed_by"),
+                       "verdict": (m.get("decided") or {}).get("verdict"),
+                       "note": m.get("equivalent") or (m.get("message") or "")[:200]}
+                      for m in s.get("mutants", [])]
+    return out
+
+
+def measured_formal() -> dict[str, Any] | None:
+    """The latest ``irnuc formal`` campaign of the current RTL and formal sources
+    (:func:`irnuc.verif.formal.cached_summary`), condensed: proofs (engine, depth, status,
+    time, cover), planted faults (the property each must fail and whether it did). None
+    when none ran."""
+    from irnuc.verif import formal
+
+    s = formal.cached_summary()
+    if not isinstance(s, Mapping) or not s:
+        return None
+    out = {k: s[k] for k in ("digest", "proved", "bounded", "not_ok", "detected", "missed",
+                             "unplanted", "ok", "complete", "seconds") if k in s}
+    out["proofs"] = [{"id": r["id"], "what": r.get("what", ""), "engine": r["engine"],
+                      "depth": r.get("depth"), "status": r["status"],
+                      "seconds": r.get("seconds", 0.0), "asserts": r.get("asserts"),
+                      "cover": (r.get("cover") or {}).get("status"),
+                      "message": r.get("message", "")}
+                     for r in s.get("proofs", [])]
+    out["faults"] = [{"id": r["id"], "property": r.get("property"), "what": r.get("what", ""),
+                      "detected": r.get("detected"), "step": r.get("step")}
+                     for r in s.get("faults", [])]
+    return out
+
+
 # ---- running the suite --------------------------------------------------------------------
 def _relative(path: Path | None, root: Path) -> str | None:
     if path is None:
@@ -217,6 +262,8 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
         "coverage": measured_coverage(merged),
         "coverage_file": "coverage.json" if merged.coverage is not None else None,
         "mutation": measured_mutation(),
+        "mutation_auto": measured_auto_mutation(),
+        "formal": measured_formal(),
     }
     return section
 

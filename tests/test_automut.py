@@ -1,0 +1,82 @@
+"""Mutants nobody chose (``irnuc mutate --auto``, ``irnuc.verif.automut``): Yosys's draw
+with a fixed seed, the netlist behind the top's header, the mutation machinery's verdicts
+and the formal decision on a survivor (a miter of the two netlists).
+
+A small campaign runs here, in the ``interp_weight`` suite (builds and runs of seconds),
+its verdicts in a cache of its own; the full one is ``irnuc mutate --auto N``
+(docs/mutation.md).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from irnuc.cosim import netlist
+from irnuc.cosim.sources import HDL_DIR, MODULE_FILES
+from irnuc.verif import automut, mutate
+
+
+def test_targets_and_wrapper() -> None:
+    for t in automut.TARGETS.values():
+        assert f"{t.module}.sv" in MODULE_FILES[t.top], t
+        assert (HDL_DIR / f"{t.module}.sv").is_file()
+    with pytest.raises(ValueError, match="--modules nope: no such module"):
+        automut.targets("nope")
+    text = (HDL_DIR / "irnuc_axis_top.sv").read_text()
+    w = netlist.wrapper(text, "irnuc_axis_top", "mut")
+    # The top's own parameters and ports, then the netlist by name.
+    assert "parameter method_e                  Method" in w and "output logic                  irq_o" in w
+    assert w.rstrip().endswith("irnuc_axis_top__mut u_netlist (.*);\nendmodule")
+    assert "always_ff" not in w
+
+
+@pytest.mark.cosim
+@pytest.mark.slow
+def test_small_automatic_campaign(tmp_path, own_cache) -> None:
+    from irnuc.cosim import formal
+
+    t = automut.TARGETS["interp_weight"]
+    drawn = automut.draw(t, 3)
+    # A fixed seed draws the same mutations; another seed others.
+    assert [m.yosys for m in drawn] == [m.yosys for m in automut.draw(t, 3)]
+    assert [m.yosys for m in drawn] != [m.yosys for m in automut.draw(t, 3, seed=2)]
+    assert all(m.yosys.startswith("mutate -mode ") and "-src" not in m.yosys for m in drawn)
+    assert all("interp_weight.sv:" in m.what for m in drawn)
+    s = automut.run_auto([t], 2, workers=0)
+    assert s["total"] == 2 and s["n"] == 2 and not s["complete"]
+    for r in s["mutants"]:
+        assert r["status"] in ("killed", "survived", "equivalent"), r
+        if r["status"] != "killed":  # a survivor is decided, not argued
+            assert r["decided"]["verdict"] in ("equivalent", "different", "undecided"), r
+    assert s["per_module"]["interp_weight"]["killed"] == s["killed"] >= 1
+    # The decision: the unmutated netlist is proved equivalent to itself; a killed mutant's
+    # netlist differs, with a trace from reset.
+    cfg = drawn[0].pipeline()
+    killed = next(m for m in drawn if m.id in s["killing_tests"])
+    gold, mut, ports = mutate._netlists(killed, cfg, tmp_path / "k")
+    unmutated = dataclasses.replace(killed, yosys="")
+    _, copy, _ = mutate._netlists(unmutated, cfg, tmp_path / "u")
+    same = formal.equivalence(gold, copy, "interp_weight", ports, tmp_path / "same")
+    assert same["verdict"] == "equivalent" and same["engine"] == "equiv_induct"
+    diff = formal.equivalence(gold, mut, "interp_weight", ports, tmp_path / "diff")
+    assert diff["verdict"] == "different" and Path(diff["vcd"]).is_file()
+    assert diff["step"] is not None and diff["step"] > 0
+    # The command line from the cache: mutate.json, per module.
+    irnuc = Path(sys.executable).with_name("irnuc")
+    env = {**os.environ, "IRNUC_CACHE_DIR": str(tmp_path / "cache")}
+    proc = subprocess.run([str(irnuc), "mutate", "--auto", "2", "--modules", "interp_weight",
+                           "--workers", "0", "--out", str(tmp_path / "out"), "-q"], env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode in (0, 1), proc.stderr
+    data = json.loads((tmp_path / "out" / "mutate.json").read_text())
+    assert all(r["cached"] for r in data["mutants"]) and data["killed"] == s["killed"]
+    bad = subprocess.run([str(irnuc), "mutate", "--auto", "2", "--only", "x", "--out",
+                          str(tmp_path / "o2")], env=env, capture_output=True, text=True)
+    assert bad.returncode == 2 and "--auto draws its own mutants" in bad.stderr
