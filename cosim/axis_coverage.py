@@ -162,14 +162,12 @@ def drift_delta_class(delta: int, lo: int, hi: int) -> str:
     return "negative" if delta < 0 else "positive" if delta > 0 else "zero"
 
 
-
-
 def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
                      write_beat: int, frame_pixels: int, idle: str, bp: str,
                      resize_beat: int | None = None, resized: bool = False
                      ) -> dict[str, set[str]]:
-    """The bins of :data:`FFC_AXIS_POINTS` (but status, irq and request, read on the DUT) one
-    sequence hits: ``framing`` is the wrapper's golden framing of its shutter flags
+    """The bins of :data:`FFC_AXIS_POINTS` (but status, irq, request and runs, read on the
+    DUT) one sequence hits: ``framing`` is the wrapper's golden framing of its shutter flags
     (:func:`irnuc.nuc_fixed.axis.ffc_framing`), ``count`` FFC_CTRL.frames of a start that
     the framing applies from frame ``start_frame`` on, ``n`` the configured N;
     ``write_beat`` the video beats taken (frames of ``frame_pixels`` beats, back to back)
@@ -179,7 +177,7 @@ def ffc_axis_classes(framing: FfcFraming, n: int, count: int, start_frame: int,
     another size."""
     out: dict[str, set[str]] = {k: set() for k in FFC_AXIS_POINTS
                                 if k not in ("axis.ffc.status", "axis.ffc.irq",
-                                             "axis.ffc.request")}
+                                             "axis.ffc.request", "axis.ffc.runs")}
     frame_of_write, into = divmod(int(write_beat), int(frame_pixels))
     mid = into > 0 and frame_of_write + 1 == start_frame
     if mid:
