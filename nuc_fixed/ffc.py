@@ -14,6 +14,7 @@ passed, as ``ffc_output`` says (:class:`FfcState` models the sequencing).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -113,6 +114,9 @@ class FfcState:
     count: int = 0
     acc: np.ndarray | None = None
     refreshes: list[int] = field(default_factory=list)
+    #: How a frame is added (:func:`ffc_accumulate`; the fused path's adds in place).
+    add: Callable[[np.ndarray | None, np.ndarray, PipelineConfig], np.ndarray] = \
+        field(default=lambda acc, x, cfg: ffc_accumulate(acc, x, cfg))
 
     def step(self, x: np.ndarray, shutter: bool) -> bool:
         """Take one raw frame; True when the accumulator is complete (refresh now)."""
@@ -123,6 +127,6 @@ class FfcState:
         n = int(self.cfg.ffc_frames or 1)
         if self.count >= n:
             return False
-        self.acc = ffc_accumulate(self.acc if self.count else None, x, self.cfg)
+        self.acc = self.add(self.acc if self.count else None, x, self.cfg)
         self.count += 1
         return self.count == n
