@@ -205,3 +205,17 @@ def accumulate(acc, x):
     b = x.reshape(-1)
     for i in range(a.shape[0]):
         a[i] += b[i]
+
+
+@njit(cache=True)
+def good_rounded_sum(s, lsh, k, mode, bad):
+    """Sum and count over the good pixels of ROUND_k(s << lsh) (``s``, ``bad`` flat): the
+    FFC mean pass's target before its division."""
+    add, odd = round_consts(k, mode)
+    total = np.int64(0)
+    n = np.int64(0)
+    for i in range(s.shape[0]):
+        if not bad[i]:
+            total += round_with(s[i] << lsh, k, add, odd)
+            n += 1
+    return total, n

@@ -92,10 +92,16 @@ def ffc_mean_target(s_acc: np.ndarray, sum_frac: int, good: np.ndarray,
     v = np.asarray(round_shift(np.ascontiguousarray(s), fr - c.frac_bits, c.rounding))
     g = np.asarray(good, bool)
     n = int(g.sum())
-    if n == 0:
+    return mean_from_sum(int(v[g].sum()) if n else 0, n, cfg)
+
+
+def mean_from_sum(total: int, n_good: int, cfg: PipelineConfig) -> int | None:
+    """The last step of :func:`ffc_mean_target`: T = CLAMP(RDIV(total, n_good)) from the sum
+    of the good pixels' rounded values (None without a good pixel)."""
+    if n_good == 0:
         return None
-    t = round_div(int(v[g].sum()), n, "half_up")
-    return min(max(t, 0), (1 << (cfg.out_bits + c.frac_bits)) - 1)
+    t = round_div(total, n_good, "half_up")
+    return min(max(t, 0), (1 << (cfg.out_bits + cfg.format("ffc").frac_bits)) - 1)
 
 
 @dataclass

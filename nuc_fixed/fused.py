@@ -23,6 +23,7 @@ import numpy as np
 from irnuc.nuc_fixed import _fused_kernels
 from irnuc.nuc_fixed.config import ROUNDING_MODES
 from irnuc.nuc_fixed.cores import CORE_INPUTS, KIND_CODES, code_range, kernel_shifts
+from irnuc.nuc_fixed.ffc import mean_from_sum, refresh_frac
 from irnuc.nuc_fixed.spec import CoefExpr, FrameExpressions, Term
 from irnuc.nuc_fixed.validate import InputError, bool_array, int_array
 
@@ -80,6 +81,7 @@ class FusedMethod:
         self._checked: dict[int, object] = {}  # id -> checked array (kept alive)
         self._stack: tuple[tuple[int, ...], np.ndarray] | None = None
         self._tables: dict[tuple[tuple[str, int], ...], _Tables] = {}
+        self._sums: tuple[np.ndarray, int, _Tables, tuple[np.ndarray, int]] | None = None
         self._bad: tuple[tuple[int, ...], tuple[np.ndarray, ...],
                          tuple[np.ndarray, np.ndarray, np.ndarray]] | None = None
 
@@ -172,9 +174,16 @@ class FusedMethod:
             self._bad = (key, maps, (b, flat, np.flatnonzero(flat)))
         return self._bad[2]
 
-    def bad_map(self, frame: Mapping[str, int]) -> np.ndarray:
-        """The frame's bad flags (H, W)."""
-        return self.tables(frame).bad
+    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
+        """``ffc_mean_target`` of the core's sums on ``acc`` in a frame with these readings
+        over its good pixels (the mean pass), the sum in one kernel."""
+        s, frac = self.sums(acc, xfrac, frame)
+        c = self.cfg.format("ffc")
+        fr = refresh_frac(self.cfg, frac)
+        total, n = _fused_kernels.good_rounded_sum(
+            s.reshape(-1), fr - frac, fr - c.frac_bits, ROUNDING_MODES[c.rounding],
+            self.tables(frame).bad_flat)
+        return mean_from_sum(int(total), int(n), self.cfg)
 
     # ---- the passes -------------------------------------------------------------------------
     def correct(self, x: np.ndarray, out: np.ndarray, frames: list[dict[str, int]], *,
@@ -223,12 +232,20 @@ class FusedMethod:
         the FFC accumulator) with the coefficients of a frame with these readings, and
         their fraction bits F."""
         t = self.tables(frame)
+        last = self._sums
+        # The refresh pass after the mean pass on the same accumulator: the same sums when
+        # the two frames' coefficients are (a method without readings, a repeated one).
+        if (last is not None and last[0] is acc and last[1] == xfrac
+                and (last[2] is t or (last[2].shares(t)
+                                      and np.array_equal(last[2].terms, t.terms)))):
+            return last[3]
         f, k, _ = kernel_shifts(self.cfg, xfrac, False)
         a = np.ascontiguousarray(acc, np.int64).reshape(-1)
         s = np.empty(a.shape, np.int64)
         _fused_kernels.method_sums(a, t.fields, t.terms, np.ascontiguousarray(t.terms[:, 1]),
                                    t.coefs, t.direct, self.kind, _shifts(k), self.w, s)
-        return s.reshape(self.h, self.w), f
+        self._sums = (acc, xfrac, t, (s.reshape(self.h, self.w), f))
+        return self._sums[3]
 
 
 def accumulate(acc: np.ndarray | None, x: np.ndarray, cfg: object) -> np.ndarray:

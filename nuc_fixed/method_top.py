@@ -313,8 +313,7 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             # The mean pass: the target from the coefficients of the N-th shutter frame.
             k = j - 1
             if ffc_target is None:
-                s, frac = path.sums(state.acc, ffc_shift(cfg), frames[k])  # type: ignore[arg-type]
-                tgt = ffc_mean_target(s, frac, ~path.bad_map(frames[k]), cfg)
+                tgt = path.mean_target(state.acc, ffc_shift(cfg), frames[k])  # type: ignore[arg-type]
             else:
                 tgt = int(ffc_target)
             if tgt is None:  # no good pixel: the refresh keeps the offsets
@@ -351,9 +350,6 @@ class _Reference:
             self._key = key
         return self.fc
 
-    def bad_map(self, frame: Mapping[str, int]) -> np.ndarray:
-        return self._frame(frame)["bad"]
-
     def correct(self, x: np.ndarray, out: np.ndarray, frames: list[dict[str, int]], *,
                 delta: np.ndarray | None = None, ffc: np.ndarray | None = None) -> None:
         cfg = self.c.cfg
@@ -377,6 +373,10 @@ class _Reference:
              ) -> tuple[np.ndarray, int]:
         ref = base_core(self.c, self._frame(frame), acc, xfrac=xfrac, sum_only=True)
         return ref.s, ref.frac
+
+    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
+        s, frac = self.sums(acc, xfrac, frame)
+        return ffc_mean_target(s, frac, ~self._frame(frame)["bad"], self.c.cfg)
 
 
 def _refresh(path: _Reference | FusedMethod, frame: Mapping[str, int], acc: np.ndarray,
