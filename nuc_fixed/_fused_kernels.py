@@ -165,8 +165,16 @@ def method_frames(x, fields, terms, muls, new, coefs, direct, kind, k, delta, xs
             else:
                 _row_out(2, xrow, orow, frow, rowc, xsh, delta[f], k0, k1, k2, k3, k4, csh,
                          frac, add, odd, mask, ymax)
+    _dpc(out, bad, bad_idx, height, width)
+
+
+@njit(cache=True)
+def _dpc(out, bad, bad_idx, height, width):
+    # DPC of the bad pixels (a few per cent of a frame: one thread, no second parallel
+    # region to wait for).
+    n = out.shape[0]
     bad2 = bad.reshape(height, width)
-    for b in prange(bad_idx.shape[0]):
+    for b in range(bad_idx.shape[0]):
         p = bad_idx[b]
         row = p // width
         col = p - row * width
@@ -176,16 +184,16 @@ def method_frames(x, fields, terms, muls, new, coefs, direct, kind, k, delta, xs
                 out[f, p] = (2 * acc + cnt) // (2 * cnt)
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def method_sums(x, fields, terms, muls, coefs, direct, kind, k, width, s_out):
     """The core's aligned sum of every pixel of ``x`` (n_pix,) int64 into ``s_out`` with
     the terms' factors ``muls`` (n_terms,) (the FFC mean and refresh passes on the
-    accumulator: no FFC term, no drift)."""
+    accumulator: no FFC term, no drift; once per refresh, on one thread)."""
     k0, k1, k2, k3, k4 = k[0], k[1], k[2], k[3], k[4]
-    for row in prange(x.shape[0] // width):
+    rowc = np.zeros((4, width), np.int64)
+    for row in range(x.shape[0] // width):
         p0 = row * width
         p1 = p0 + width
-        rowc = np.zeros((4, width), np.int64)
         _direct_row(fields, p0, p1, direct, rowc)
         coefs_row(fields, p0, p1, terms, muls, coefs, direct, rowc)
         xrow = x[p0:p1]
