@@ -227,3 +227,17 @@ def good_rounded_sum(s, lsh, k, mode, bad):
             total += round_with(s[i] << lsh, k, add, odd)
             n += 1
     return total, n
+
+
+@njit(cache=True)
+def ffc_refresh_codes(s, t_sh, s_sh, k, mode, lo, hi, wrap, out):
+    """``ffc_refresh`` of the sums ``s`` (flat): OVF_C(ROUND_k(t_sh - (s << s_sh))) into
+    ``out``, with ``t_sh`` the target already shifted (saturate to [lo, hi] or wrap)."""
+    add, odd = round_consts(k, mode)
+    span = hi - lo + 1
+    for i in range(s.shape[0]):
+        r = round_with(t_sh - (s[i] << s_sh), k, add, odd)
+        if wrap:
+            out[i] = ((r - lo) & (span - 1)) + lo
+        else:
+            out[i] = min(max(r, lo), hi)

@@ -174,6 +174,21 @@ class FusedMethod:
             self._bad = (key, maps, (b, flat, np.flatnonzero(flat)))
         return self._bad[2]
 
+    def refresh(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int], target: int
+                ) -> np.ndarray:
+        """``ffc_refresh`` of the core's sums on ``acc`` in a frame with these readings
+        towards ``target`` (the refresh pass): the new FFC correction (H, W) int64."""
+        s, frac = self.sums(acc, xfrac, frame)
+        c = self.cfg.format("ffc")
+        lo, hi = code_range(self.cfg, "ffc")
+        t = int(int_array("target", target, 0, (1 << (self.cfg.out_bits + c.frac_bits)) - 1))
+        fr = refresh_frac(self.cfg, frac)
+        out = np.empty(self.h * self.w, np.int64)
+        _fused_kernels.ffc_refresh_codes(s.reshape(-1), t << (fr - c.frac_bits), fr - frac,
+                                         fr - c.frac_bits, ROUNDING_MODES[c.rounding], lo, hi,
+                                         c.overflow == "wrap", out)
+        return out.reshape(self.h, self.w)
+
     def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
         """``ffc_mean_target`` of the core's sums on ``acc`` in a frame with these readings
         over its good pixels (the mean pass), the sum in one kernel."""

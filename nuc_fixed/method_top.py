@@ -374,6 +374,11 @@ class _Reference:
         ref = base_core(self.c, self._frame(frame), acc, xfrac=xfrac, sum_only=True)
         return ref.s, ref.frac
 
+    def refresh(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int], target: int
+                ) -> np.ndarray:
+        s, frac = self.sums(acc, xfrac, frame)
+        return ffc_refresh(s, frac, target, self.c.cfg)
+
     def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
         s, frac = self.sums(acc, xfrac, frame)
         return ffc_mean_target(s, frac, ~self._frame(frame)["bad"], self.c.cfg)
@@ -386,5 +391,4 @@ def _refresh(path: _Reference | FusedMethod, frame: Mapping[str, int], acc: np.n
     good pixel) every pixel keeps its correction ``offset``."""
     if target is None:
         return np.array(offset)
-    s, frac = path.sums(acc, ffc_shift(cfg), frame)
-    return ffc_refresh(s, frac, target, cfg)
+    return path.refresh(acc, ffc_shift(cfg), frame, target)
