@@ -184,16 +184,16 @@ def _dpc(out, bad, bad_idx, height, width):
                 out[f, p] = (2 * acc + cnt) // (2 * cnt)
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def method_sums(x, fields, terms, muls, coefs, direct, kind, k, width, s_out):
     """The core's aligned sum of every pixel of ``x`` (n_pix,) int64 into ``s_out`` with
     the terms' factors ``muls`` (n_terms,) (the FFC mean and refresh passes on the
-    accumulator: no FFC term, no drift; once per refresh, on one thread)."""
+    accumulator: no FFC term, no drift)."""
     k0, k1, k2, k3, k4 = k[0], k[1], k[2], k[3], k[4]
-    rowc = np.zeros((4, width), np.int64)
-    for row in range(x.shape[0] // width):
+    for row in prange(x.shape[0] // width):
         p0 = row * width
         p1 = p0 + width
+        rowc = np.zeros((4, width), np.int64)
         _direct_row(fields, p0, p1, direct, rowc)
         coefs_row(fields, p0, p1, terms, muls, coefs, direct, rowc)
         xrow = x[p0:p1]
