@@ -1,7 +1,8 @@
 """numba kernels of the NUC and DPC datapaths (docs/datapath.md); no input checks here.
 
 Every formula of the datapath is written once, as a scalar kernel:
-:func:`round_code` (ROUND_F), :func:`out_code` (OUT, saturate or wrap), :func:`nuc_pixel`
+:func:`round_code` (ROUND_F; :func:`round_with` with the constants of :func:`round_consts`
+in a loop), :func:`out_code` (OUT, saturate or wrap; :func:`out_with`), :func:`nuc_pixel`
 (the whole NUC of one pixel), :func:`field` (a coefficient-word field) and
 :func:`good_neighbours` (the DPC neighbourhood). The array kernels loop over them; the
 exact-arithmetic tests check these same functions. All arithmetic is int64. The API layer
@@ -15,29 +16,55 @@ from numba import njit, prange
 
 
 @njit(cache=True, inline="always")
+def round_consts(frac, mode):
+    """(add, odd) of ROUND_F with ``frac`` fraction bits in mode ``mode`` (0 floor, 1 half
+    up, 2 half even): ROUND_F(s) = (s + add + ((s >> frac) & odd)) >> frac
+    (:func:`round_with`). Floor adds nothing; half up adds half an LSB; half even adds
+    half an LSB less one, plus one when the quotient is odd (a tie goes up to the even
+    neighbour, any other fraction as half up). ``frac = 0`` is the identity in every mode.
+    """
+    if frac == 0 or mode == 0:
+        return np.int64(0), np.int64(0)
+    half = np.int64(1) << (frac - 1)
+    if mode == 1:
+        return half, np.int64(0)
+    return half - 1, np.int64(1)
+
+
+@njit(cache=True, inline="always")
+def round_with(s, frac, add, odd):
+    """ROUND_F(s) with the constants of :func:`round_consts` (no branch: a loop over
+    pixels vectorizes)."""
+    return (s + add + ((s >> frac) & odd)) >> frac
+
+
+@njit(cache=True, inline="always")
 def round_code(s, frac, mode):
     """ROUND_F(s): remove ``frac`` fraction bits; mode 0 floor, 1 half up, 2 half even.
 
     ``frac = 0`` is the identity in every mode.
     """
-    if frac == 0 or mode == 0:
-        return s >> frac
-    half = np.int64(1) << (frac - 1)
-    if mode == 1:
-        return (s + half) >> frac
-    return (s + half - 1 + ((s >> frac) & 1)) >> frac
+    add, odd = round_consts(frac, mode)
+    return round_with(s, frac, add, odd)
+
+
+@njit(cache=True, inline="always")
+def out_mask(wrap, ymax):
+    """The mask of :func:`out_with`: ymax = 2^B - 1 to wrap, all ones to saturate."""
+    return ymax if wrap else np.int64(-1)
+
+
+@njit(cache=True, inline="always")
+def out_with(r, mask, ymax):
+    """OUT(r) with the mask of :func:`out_mask`: the low B bits (wrap: then in range), then
+    saturated to [0, ymax] (no branch)."""
+    return min(max(r & mask, np.int64(0)), ymax)
 
 
 @njit(cache=True, inline="always")
 def out_code(r, wrap, ymax):
     """OUT(r): saturate to [0, ymax] or keep the low bits (ymax = 2^B - 1)."""
-    if wrap:
-        return r & ymax
-    if r < 0:
-        return np.int64(0)
-    if r > ymax:
-        return ymax
-    return r
+    return out_with(r, out_mask(wrap, ymax), ymax)
 
 
 @njit(cache=True, inline="always")

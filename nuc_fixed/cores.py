@@ -213,6 +213,39 @@ def _pwl(x: object, fc: Mapping[str, Any], cfg: PipelineConfig, *, signed_x: boo
     return pwl_core(x, fc["gain_lo"], fc["gain_hi"], fc["knee"], int(fc["level"]), cfg, **kw)
 
 
+#: The inputs of each core kind, in the order the fused kernels take them: (name in the
+#: frame's coefficients, its format).
+CORE_INPUTS: dict[str, tuple[tuple[str, str], ...]] = {
+    "lin": (("gain", "gain"), ("offset", "offset")),
+    "quad": (("gain", "gain"), ("offset", "offset"), ("quad", "quad")),
+    "pwl": (("gain_lo", "gain"), ("gain_hi", "gain"), ("knee", "knee"), ("level", "level")),
+}
+#: The kind codes of the fused kernels (``_fused_kernels.core_sum``).
+KIND_CODES = {"lin": 0, "quad": 1, "pwl": 2}
+
+
+def kernel_shifts(cfg: PipelineConfig, xfrac: int, with_ffc: bool
+                  ) -> tuple[int, list[int], int]:
+    """(F, the shifts of the core of ``cfg``'s kind as the fused kernel takes them
+    (``_fused_kernels.core_sum``), the FFC term's shift F - Cf (0 without it)) for an input
+    with ``xfrac`` fraction bits: the alignments of :func:`lin_core`, :func:`quad_core` and
+    :func:`pwl_core`."""
+    kind = cfg.base.core
+    f = core_frac(cfg, xfrac, with_ffc)
+    csh = f - cfg.format("ffc").frac_bits if with_ffc else 0
+    if kind == "pwl":
+        kf = cfg.format("knee").frac_bits
+        dd = max(kf, xfrac)
+        return f, [dd - xfrac, dd - kf, f - cfg.gain_frac_bits - dd,
+                   f - cfg.format("level").frac_bits], csh
+    out = [f - cfg.gain_frac_bits - xfrac, f - cfg.offset_frac_bits]
+    if kind == "quad":
+        sq = square_shift(cfg)
+        qpf = cfg.format("quad").frac_bits + 2 * cfg.adc_bits - sq
+        out += [2 * xfrac + sq, max(0, f - qpf), max(0, qpf - f)]
+    return f, out, csh
+
+
 #: The cores by kind (``MethodSpec.core``), each on the frame's coefficients of a method
 #: (``MethodSpec.frame_coefficients``): lin (``lin_core``: gain, offset), quad
 #: (``quad_core``: gain, offset, quad), pwl (``pwl_core``: gain_lo, gain_hi, knee, level).

@@ -14,6 +14,7 @@ passed, as ``ffc_output`` says (:class:`FfcState` models the sequencing).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -91,10 +92,16 @@ def ffc_mean_target(s_acc: np.ndarray, sum_frac: int, good: np.ndarray,
     v = np.asarray(round_shift(np.ascontiguousarray(s), fr - c.frac_bits, c.rounding))
     g = np.asarray(good, bool)
     n = int(g.sum())
-    if n == 0:
+    return mean_from_sum(int(v[g].sum()) if n else 0, n, cfg)
+
+
+def mean_from_sum(total: int, n_good: int, cfg: PipelineConfig) -> int | None:
+    """The last step of :func:`ffc_mean_target`: T = CLAMP(RDIV(total, n_good)) from the sum
+    of the good pixels' rounded values (None without a good pixel)."""
+    if n_good == 0:
         return None
-    t = round_div(int(v[g].sum()), n, "half_up")
-    return min(max(t, 0), (1 << (cfg.out_bits + c.frac_bits)) - 1)
+    t = round_div(total, n_good, "half_up")
+    return min(max(t, 0), (1 << (cfg.out_bits + cfg.format("ffc").frac_bits)) - 1)
 
 
 @dataclass
@@ -113,6 +120,9 @@ class FfcState:
     count: int = 0
     acc: np.ndarray | None = None
     refreshes: list[int] = field(default_factory=list)
+    #: How a frame is added (:func:`ffc_accumulate`; the fused path's adds in place).
+    add: Callable[[np.ndarray | None, np.ndarray, PipelineConfig], np.ndarray] = \
+        field(default=lambda acc, x, cfg: ffc_accumulate(acc, x, cfg))
 
     def step(self, x: np.ndarray, shutter: bool) -> bool:
         """Take one raw frame; True when the accumulator is complete (refresh now)."""
@@ -123,6 +133,6 @@ class FfcState:
         n = int(self.cfg.ffc_frames or 1)
         if self.count >= n:
             return False
-        self.acc = ffc_accumulate(self.acc if self.count else None, x, self.cfg)
+        self.acc = self.add(self.acc if self.count else None, x, self.cfg)
         self.count += 1
         return self.count == n

@@ -33,6 +33,7 @@ from irnuc.nuc_fixed.cores import CORES, CoreResult, drift_sub
 from irnuc.nuc_fixed.dpc import dpc_core
 from irnuc.nuc_fixed.drift import blind_drift, drift_from_sums
 from irnuc.nuc_fixed.ffc import FfcState, ffc_mean_target, ffc_refresh
+from irnuc.nuc_fixed.fused import FusedMethod, accumulate, input_dtype
 from irnuc.nuc_fixed.layout import pack_memory, unpack_memory
 from irnuc.nuc_fixed.nuc import out_dtype
 from irnuc.nuc_fixed.validate import InputError, as_config, bool_array, check_frame_shape, int_array
@@ -216,7 +217,8 @@ def _per_frame(name: str, value: object, n: int, cfg: PipelineConfig) -> np.ndar
 
 
 def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | None = None, *,
-               ffc_target: int | None = None, ffc_offset: object | None = None) -> MethodOutput:
+               ffc_target: int | None = None, ffc_offset: object | None = None,
+               reference: bool = False) -> MethodOutput:
     """Correct a sequence of frames with the configuration's method, then DPC.
 
     Parameters
@@ -231,13 +233,22 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
         (:func:`irnuc.nuc_fixed.ffc.ffc_mean_target`).
     ffc_offset : integer array_like (H, W), optional
         FFC correction at the start (default 0: none yet).
+    reference : bool
+        Run the reference functions, one per RTL module (``MethodSpec.frame_coefficients``,
+        the cores of ``nuc_fixed.cores``, ``dpc_core``), instead of the fused kernels
+        (``nuc_fixed.fused``: the same bits, one pass per frame; docs/golden_model.md).
     """
     cfg = coeffs.cfg
     x = int_array("raw", raw, 0, (1 << cfg.adc_bits) - 1)
     h, w = check_frame_shape("raw", x.shape, cfg)
     if (h, w) != coeffs.shape:
         raise InputError(f"raw frames are {(h, w)} but the coefficients are {coeffs.shape}")
-    x3 = x.reshape(-1, h, w).astype(np.int64)
+    if reference:
+        x3 = x.reshape(-1, h, w).astype(np.int64)
+        path: _Reference | FusedMethod = _Reference(coeffs)
+    else:
+        x3 = np.ascontiguousarray(x.reshape(-1, h, w), dtype=input_dtype(cfg.adc_bits))
+        path = FusedMethod(coeffs)
     n = x3.shape[0]
     inputs = inputs or FrameInputs()
     from irnuc.nuc_fixed.methods import READINGS
@@ -260,13 +271,13 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
         shutter = bool_array("shutter", _per_frame("shutter", inputs.shutter, n, cfg))
         start = np.zeros((h, w), np.int64) if ffc_offset is None else np.asarray(ffc_offset)
         state = FfcState(cfg=cfg, offset=np.asarray(start, dtype=np.int64))
+        if not reference:
+            state.add = accumulate
     out = np.empty((n, h, w), dtype=out_dtype(cfg))
     held = np.zeros(n, dtype=bool)
-    cache: dict[tuple[int, ...], dict[str, np.ndarray]] = {}
     last: np.ndarray | None = None
-    # A frame's coefficients follow its readings (a reading usually repeats for many frames).
-    keys = [tuple(int(readings[r][i]) for r in readings) for i in range(n)]
-    is_shut = np.zeros(n, bool) if shutter is None else shutter
+    # Each frame's readings (its coefficients follow them).
+    frames = [{r: int(readings[r][i]) for r in readings} for i in range(n)]
     # A completed accumulation waiting for its refresh pass: (accumulator, target). The
     # pass runs in the next frame with that frame's coefficients (the hardware evaluates
     # the accumulator beside that frame's pixels; docs/datapath.md "ffc").
@@ -274,60 +285,47 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
     targets: list[int] = []
     kept: list[int] = []
     offsets: list[np.ndarray] = []
-    fc: dict[str, np.ndarray] = {}
     i = 0
     while i < n:
-        key = keys[i]
-        if key not in cache:
-            cache.clear()  # keep one set
-            cache[key] = cfg.base.frame_coefficients(coeffs, dict(zip(readings, key,
-                                                                      strict=True)))
-        fc = cache[key]
         if state is not None and pending is not None:
-            state.offset = _refresh(coeffs, fc, *pending, state.offset)
+            state.offset = _refresh(path, frames[i], *pending, state.offset, cfg)
             offsets.append(state.offset)
             pending = None
-        # Frames i..j-1 share their coefficients and nothing changes state between them
-        # (an open shutter): one pass over the stack, as the per-frame pass would give.
-        j = i + 1
-        if not is_shut[i]:
-            while j < n and keys[j] == key and not is_shut[j]:
-                j += 1
-        if delta is not None:
-            xi = drift_sub(x3[i:j], delta[i:j], cfg)
-            res = base_core(coeffs, fc, xi, xfrac=cfg.format("drift").frac_bits, signed_x=True)
-        else:
-            res = base_core(coeffs, fc, x3[i:j], ffc=None if state is None else state.offset)
-        yi = dpc_core(res.y, fc["bad"], cfg)
-        if state is not None and shutter is not None and shutter[i]:
-            if cfg.ffc_output == "hold" and last is not None:
-                out[i] = last
-                held[i] = True
+        # Frames i..j-1: the FFC correction is the same for each (a refresh pass starts a
+        # run; a completed accumulation ends one); the sequencer takes their raw codes.
+        j = i
+        done = False
+        while j < n and not done:
+            if state is not None and shutter is not None:
+                done = state.step(x3[j], bool(shutter[j]))
+            j += 1
+        path.correct(x3[i:j], out[i:j], frames[i:j],
+                     delta=None if delta is None else delta[i:j],
+                     ffc=None if state is None else state.offset)
+        for k in range(i, j):
+            if shutter is not None and shutter[k]:
+                if cfg.ffc_output == "hold" and last is not None:
+                    out[k] = last
+                    held[k] = True
             else:
-                out[i] = yi[0]
-            if state.step(x3[i], True):
-                # The mean pass: the target from this frame's coefficients.
-                if ffc_target is None:
-                    nb = ffc_shift(cfg)
-                    ref = base_core(coeffs, fc, state.acc, xfrac=nb, sum_only=True)  # type: ignore[arg-type]
-                    tgt = ffc_mean_target(ref.s, ref.frac, ~fc["bad"], cfg)
-                else:
-                    tgt = int(ffc_target)
-                if tgt is None:  # no good pixel: the refresh keeps the offsets
-                    kept.append(i)
-                targets.append(0 if tgt is None else tgt)
-                pending = (np.asarray(state.acc), tgt)
-                state.refreshes.append(i)
-        else:
-            if state is not None:
-                state.step(x3[i], False)
-            out[i:j] = yi
-            last = out[j - 1]
+                last = out[k]
+        if done and state is not None:
+            # The mean pass: the target from the coefficients of the N-th shutter frame.
+            k = j - 1
+            if ffc_target is None:
+                tgt = path.mean_target(state.acc, ffc_shift(cfg), frames[k])  # type: ignore[arg-type]
+            else:
+                tgt = int(ffc_target)
+            if tgt is None:  # no good pixel: the refresh keeps the offsets
+                kept.append(k)
+            targets.append(0 if tgt is None else tgt)
+            pending = (np.asarray(state.acc), tgt)
+            state.refreshes.append(k)
         i = j
     if state is not None and pending is not None:
         # The refresh pass would be the next frame: its coefficients are not known here,
         # the last frame's stand in.
-        state.offset = _refresh(coeffs, fc, *pending, state.offset)
+        state.offset = _refresh(path, frames[-1], *pending, state.offset, cfg)
         offsets.append(state.offset)
     return MethodOutput(y=out.reshape(x.shape), delta=delta,
                         ffc_offset=None if state is None else state.offset,
@@ -336,12 +334,61 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
                         pending=pending is not None, kept=tuple(kept))
 
 
-def _refresh(coeffs: MethodCoefficients, fc: Mapping[str, np.ndarray], acc: np.ndarray,
-             target: int | None, offset: np.ndarray) -> np.ndarray:
-    """The refresh pass: the base core on the accumulator (``fc``: the coefficients of
-    the frame the pass runs in), then ``ffc_refresh`` towards ``target``; without a
-    target (no good pixel) every pixel keeps its correction ``offset``."""
+class _Reference:
+    """The reference path: one function per RTL module, used as :class:`FusedMethod` is
+    (frames with their readings corrected, DPC included; the core's sums in a frame)."""
+
+    def __init__(self, c: MethodCoefficients) -> None:
+        self.c = c
+        self._key: tuple[tuple[str, int], ...] | None = None
+        self.fc: dict[str, Any] = {}
+
+    def _frame(self, frame: Mapping[str, int]) -> dict[str, Any]:
+        key = tuple(frame.items())
+        if key != self._key:  # a reading usually repeats for many frames: keep one set
+            self.fc = self.c.cfg.base.frame_coefficients(self.c, frame)
+            self._key = key
+        return self.fc
+
+    def correct(self, x: np.ndarray, out: np.ndarray, frames: list[dict[str, int]], *,
+                delta: np.ndarray | None = None, ffc: np.ndarray | None = None) -> None:
+        cfg = self.c.cfg
+        i = 0
+        while i < len(frames):
+            # Frames i..j-1 share their coefficients: one pass over the stack.
+            j = i + 1
+            while j < len(frames) and frames[j] == frames[i]:
+                j += 1
+            fc = self._frame(frames[i])
+            if delta is not None:
+                xi = drift_sub(x[i:j], delta[i:j], cfg)
+                res = base_core(self.c, fc, xi, xfrac=cfg.format("drift").frac_bits,
+                                signed_x=True)
+            else:
+                res = base_core(self.c, fc, x[i:j], ffc=ffc)
+            out[i:j] = dpc_core(res.y, fc["bad"], cfg)
+            i = j
+
+    def sums(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]
+             ) -> tuple[np.ndarray, int]:
+        ref = base_core(self.c, self._frame(frame), acc, xfrac=xfrac, sum_only=True)
+        return ref.s, ref.frac
+
+    def refresh(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int], target: int
+                ) -> np.ndarray:
+        s, frac = self.sums(acc, xfrac, frame)
+        return ffc_refresh(s, frac, target, self.c.cfg)
+
+    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
+        s, frac = self.sums(acc, xfrac, frame)
+        return ffc_mean_target(s, frac, ~self._frame(frame)["bad"], self.c.cfg)
+
+
+def _refresh(path: _Reference | FusedMethod, frame: Mapping[str, int], acc: np.ndarray,
+             target: int | None, offset: np.ndarray, cfg: PipelineConfig) -> np.ndarray:
+    """The refresh pass: the base core on the accumulator (with the coefficients of the
+    frame the pass runs in), then ``ffc_refresh`` towards ``target``; without a target (no
+    good pixel) every pixel keeps its correction ``offset``."""
     if target is None:
         return np.array(offset)
-    ref = base_core(coeffs, fc, acc, xfrac=ffc_shift(coeffs.cfg), sum_only=True)
-    return ffc_refresh(ref.s, ref.frac, target, coeffs.cfg)
+    return path.refresh(acc, ffc_shift(cfg), frame, target)

@@ -318,6 +318,59 @@ class PartSpec:
         return {}
 
 
+# ---- a frame's coefficients as expressions (the fused golden path) ------------------------
+
+@dataclass(frozen=True)
+class Term:
+    """One term of a :class:`CoefExpr`: ``field * mul << shift``.
+
+    ``field``: per-pixel codes (H, W), or None for the constant 1 (a register, a frame's
+    value); ``fmt``: the format whose code range the field's codes (or, without a field,
+    ``mul``) must lie in (checked before any work), None: unchecked (a frame's factor).
+    """
+
+    field: np.ndarray | None
+    mul: int = 1
+    shift: int = 0
+    fmt: str | None = None
+
+
+@dataclass(frozen=True)
+class CoefExpr:
+    """One per-pixel coefficient of a frame, as the fused kernels compute it:
+    ``c = CLAMP(base + ROUND_k(sum of terms), lo, hi)`` (``k = round_bits``, ROUND by
+    ``rounding``; no ``base``: 0; ``lo``/``hi`` None: no clamp). A stored code is one term
+    (:meth:`of`); tc_offset's polynomial is three terms, rounded and saturated;
+    table_interp's interpolation two, rounded, plus the lower table as ``base``."""
+
+    terms: tuple[Term, ...]
+    round_bits: int = 0
+    rounding: str = "truncate"
+    base: Term | None = None
+    lo: int | None = None
+    hi: int | None = None
+
+    @classmethod
+    def of(cls, value: Any, fmt: str) -> CoefExpr:
+        """The codes ``value`` as they are: per-pixel codes (H, W), or one value."""
+        a = np.asarray(value)
+        if a.ndim:
+            return cls((Term(a, fmt=fmt),))
+        if not np.issubdtype(a.dtype, np.integer):
+            raise TypeError(f"coefficient {fmt!r} is {value!r}; integer codes are required")
+        return cls((Term(None, int(a), fmt=fmt),))
+
+
+@dataclass(frozen=True)
+class FrameExpressions:
+    """A frame's coefficients for the fused path: the core's inputs by name (those of
+    :meth:`MethodSpec.frame_coefficients`) as :class:`CoefExpr`, and the frame's bad
+    flags (the DPC's): a map, or maps whose OR it is (table_interp's pair)."""
+
+    coefs: dict[str, CoefExpr]
+    bad: np.ndarray | tuple[np.ndarray, ...]
+
+
 # ---- the base method ----------------------------------------------------------------------
 
 @dataclass(frozen=True)
@@ -361,6 +414,18 @@ class MethodSpec(PartSpec):
         gain_hi, knee, level), and every method the frame's bad flags ``bad`` (the DPC's;
         table_interp: the OR of the pair's)."""
         raise NotImplementedError
+
+    def frame_expressions(self, c: MethodCoefficients, frame: Frame) -> FrameExpressions:
+        """The same coefficients as expressions the fused kernels evaluate per pixel in
+        the pass that corrects the frame (``nuc_fixed.fused``). By default the codes of
+        :meth:`frame_coefficients` as they are; a method computing them per frame
+        (tc_offset, table_interp) gives its formula, which must equal
+        :meth:`frame_coefficients` bit for bit (tests/test_fused.py)."""
+        from irnuc.nuc_fixed.cores import CORE_INPUTS
+
+        fc = self.frame_coefficients(c, frame)
+        return FrameExpressions({n: CoefExpr.of(fc[n], fmt) for n, fmt in CORE_INPUTS[self.core]},
+                                fc["bad"])
 
     # ---- calibration -------------------------------------------------------------------
     def fit(self, cfg: PipelineConfig, pts: Any, means: np.ndarray, t: np.ndarray,

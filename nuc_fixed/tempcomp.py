@@ -17,6 +17,7 @@ import numpy as np
 from irnuc.nuc_fixed.config import ConfigError, PipelineConfig
 from irnuc.nuc_fixed.cores import code_range, coeff
 from irnuc.nuc_fixed.fixed import apply_overflow, round_div, round_shift
+from irnuc.nuc_fixed.spec import CoefExpr, Term
 from irnuc.nuc_fixed.validate import InputError, as_config
 
 
@@ -55,18 +56,50 @@ def tc_reading(reading: int, t_ref: int, cfg: PipelineConfig | str) -> TcReading
     return TcReading(u=u, u2=(u * u) >> ts)
 
 
+def _poly_frac(base: str, names: list[str], cfg: PipelineConfig) -> int:
+    """Fo = max(base frac, T1f + Ts, T2f + Ts): the fraction bits of a polynomial's sum."""
+    ts = int(cfg.reading_range_bits or 1)
+    return max(cfg.format(base).frac_bits, *(cfg.format(n).frac_bits + ts for n in names))
+
+
 def _poly(c0: np.ndarray, base: str, terms: list[tuple[np.ndarray, str]], tr: TcReading,
           cfg: PipelineConfig) -> np.ndarray:
     """ROUND then SAT of c0 + c1*u + c2*u2 into the format ``base`` (gain or offset)."""
     ts = int(cfg.reading_range_bits or 1)
     bf = cfg.format(base)
-    fo = max(bf.frac_bits, *(cfg.format(n).frac_bits + ts for _, n in terms))
+    fo = _poly_frac(base, [n for _, n in terms], cfg)
     acc = c0 << (fo - bf.frac_bits)
     for (c, n), v in zip(terms, (tr.u, tr.u2), strict=False):
         acc = acc + ((c * np.int64(v)) << (fo - cfg.format(n).frac_bits - ts))
     r = np.asarray(round_shift(np.ascontiguousarray(acc), fo - bf.frac_bits, cfg.rounding))
     lo, hi = code_range(cfg, base)
     return np.asarray(apply_overflow(r, lo, hi, "saturate"), dtype=np.int64)
+
+
+def _poly_expr(c0: object, base: str, terms: list[tuple[object, str]], tr: TcReading,
+               cfg: PipelineConfig) -> CoefExpr:
+    """:func:`_poly` as an expression of the fused path (``MethodSpec.frame_expressions``)."""
+    ts = int(cfg.reading_range_bits or 1)
+    bf = cfg.format(base)
+    fo = _poly_frac(base, [n for _, n in terms], cfg)
+    ts_ = [Term(np.asarray(c0), 1, fo - bf.frac_bits, base)]
+    ts_ += [Term(np.asarray(c), int(v), fo - cfg.format(n).frac_bits - ts, n)
+            for (c, n), v in zip(terms, (tr.u, tr.u2), strict=False)]
+    lo, hi = code_range(cfg, base)
+    return CoefExpr(tuple(ts_), fo - bf.frac_bits, cfg.rounding, lo=lo, hi=hi)
+
+
+def _tc_names(tc: dict[str, object], cfg: PipelineConfig) -> tuple[list[str], list[str]]:
+    """The offset's and the gain's polynomial coefficients (the gain's: [] without
+    tc_gain); InputError naming those ``tc`` lacks."""
+    order = int(cfg.tc_order or 1)
+    names = ["tc1", "tc2"][:order]
+    gnames = ["tg1", "tg2"][:order] if cfg.tc_gain else []
+    missing = [n for n in names + gnames if n not in tc]
+    if missing:
+        raise InputError(f"tc is missing {', '.join(missing)} (method {cfg.method!r}, "
+                         f"tc_order = {order})")
+    return names, gnames
 
 
 def tc_coeffs(gain: object, offset: object, tc: dict[str, object], tr: TcReading,
@@ -89,20 +122,26 @@ def tc_coeffs(gain: object, offset: object, tc: dict[str, object], tr: TcReading
     cfg = as_config(cfg)
     g = coeff(cfg, "gain", gain)
     o = coeff(cfg, "offset", offset)
-    order = int(cfg.tc_order or 1)
-    names = ["tc1", "tc2"][:order]
-    missing = [n for n in names if n not in tc]
-    if cfg.tc_gain:
-        missing += [n for n in ["tg1", "tg2"][:order] if n not in tc]
-    if missing:
-        raise InputError(f"tc is missing {', '.join(missing)} (method {cfg.method!r}, "
-                         f"tc_order = {order})")
+    names, gnames = _tc_names(tc, cfg)
     oterms = [(coeff(cfg, n, tc[n]), n) for n in names]
     o_t = _poly(o, "offset", oterms, tr, cfg)
-    if cfg.tc_gain:
-        gterms = [(coeff(cfg, n, tc[n]), n) for n in ["tg1", "tg2"][:order]]
+    if gnames:
+        gterms = [(coeff(cfg, n, tc[n]), n) for n in gnames]
         g = _poly(g, "gain", gterms, tr, cfg)
     return g, o_t
+
+
+def tc_exprs(gain: object, offset: object, tc: dict[str, object], tr: TcReading,
+             cfg: PipelineConfig | str) -> tuple[CoefExpr, CoefExpr]:
+    """:func:`tc_coeffs` as the fused path's expressions of the gain and the offset (the
+    same terms, shifts, rounding and saturation; the fields' ranges are checked where the
+    fused path compiles them)."""
+    cfg = as_config(cfg)
+    names, gnames = _tc_names(tc, cfg)
+    o = _poly_expr(offset, "offset", [(tc[n], n) for n in names], tr, cfg)
+    g = (_poly_expr(gain, "gain", [(tc[n], n) for n in gnames], tr, cfg) if gnames
+         else CoefExpr.of(gain, "gain"))
+    return g, o
 
 
 @dataclass(frozen=True)
@@ -165,3 +204,20 @@ def interp_coeffs(lower: tuple[object, object], upper: tuple[object, object],
     if not 0 <= iw.w <= (1 << wf.frac_bits):
         raise InputError(f"weight = {iw.w} is outside [0, {1 << wf.frac_bits}]")
     return _lerp(g0, g1, iw.w, cfg), _lerp(o0, o1, iw.w, cfg)
+
+
+def interp_exprs(lower: tuple[object, object], upper: tuple[object, object],
+                 iw: InterpWeight, cfg: PipelineConfig | str) -> tuple[CoefExpr, CoefExpr]:
+    """:func:`interp_coeffs` as the fused path's expressions: c_j + ROUND_Wf(w*c_(j+1) -
+    w*c_j), the lower table the base (no clamp: the result lies between the two codes)."""
+    cfg = as_config(cfg)
+    wf = cfg.format("weight")
+    if not 0 <= iw.w <= (1 << wf.frac_bits):
+        raise InputError(f"weight = {iw.w} is outside [0, {1 << wf.frac_bits}]")
+
+    def lerp(a: object, b: object, fmt: str) -> CoefExpr:
+        a_, b_ = np.asarray(a), np.asarray(b)
+        return CoefExpr((Term(b_, iw.w, 0, fmt), Term(a_, -iw.w, 0, fmt)), wf.frac_bits,
+                        wf.rounding, base=Term(a_, fmt=fmt))
+
+    return lerp(lower[0], upper[0], "gain"), lerp(lower[1], upper[1], "offset")

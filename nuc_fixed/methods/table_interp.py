@@ -30,6 +30,7 @@ from irnuc.nuc_fixed.spec import (
     Classes,
     FormatSpec,
     Frame,
+    FrameExpressions,
     MemoryLayout,
     MethodSpec,
     ParamSpec,
@@ -39,7 +40,7 @@ from irnuc.nuc_fixed.spec import (
     Word,
     word_memory,
 )
-from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_coeffs, interp_weight
+from irnuc.nuc_fixed.tempcomp import InterpWeight, interp_coeffs, interp_exprs, interp_weight
 from irnuc.nuc_fixed.widths import W, diff_unsigned, mul, sub
 
 if TYPE_CHECKING:
@@ -88,6 +89,13 @@ class TableInterp(MethodSpec):
         g, o = interp_coeffs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]), iw, c.cfg)
         # Its DPC replaces a pixel flagged in table j or j + 1 (docs/datapath.md).
         return {"gain": g, "offset": o, "bad": lo["bad"] | hi["bad"]}
+
+    def frame_expressions(self, c: MethodCoefficients, frame: Frame) -> FrameExpressions:
+        # The interpolation of frame_coefficients, evaluated per pixel in the fused pass.
+        iw = self.weight(c, frame)
+        lo, hi = c.fields[f"table{iw.j}"], c.fields[f"table{iw.j + 1}"]
+        g, o = interp_exprs((lo["gain"], lo["offset"]), (hi["gain"], hi["offset"]), iw, c.cfg)
+        return FrameExpressions({"gain": g, "offset": o}, (lo["bad"], hi["bad"]))
 
     def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
         wf = cfg.format("weight")

@@ -27,6 +27,7 @@ from irnuc.nuc_fixed.spec import (
     Classes,
     FormatSpec,
     Frame,
+    FrameExpressions,
     MemoryLayout,
     MethodSpec,
     ParamSpec,
@@ -36,7 +37,7 @@ from irnuc.nuc_fixed.spec import (
     Word,
     word_memory,
 )
-from irnuc.nuc_fixed.tempcomp import tc_coeffs, tc_reading
+from irnuc.nuc_fixed.tempcomp import tc_coeffs, tc_exprs, tc_reading
 from irnuc.nuc_fixed.widths import W, add, mul, shl, sub
 
 if TYPE_CHECKING:
@@ -110,6 +111,15 @@ class TcOffset(MethodSpec):
         g, o = tc_coeffs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
                          tr, cfg)
         return {"gain": g, "offset": o, "bad": cs["bad"]}
+
+    def frame_expressions(self, c: MethodCoefficients, frame: Frame) -> FrameExpressions:
+        # The polynomials of frame_coefficients, evaluated per pixel in the fused pass.
+        cfg = c.cfg
+        tr = tc_reading(int(frame["fpa"]), int(c.registers["t_ref"]), cfg)
+        cs = c.fields["coeffs"]
+        g, o = tc_exprs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
+                        tr, cfg)
+        return FrameExpressions({"gain": g, "offset": o}, cs["bad"])
 
     def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
         ts = int(cfg.reading_range_bits or 1)
