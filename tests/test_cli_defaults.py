@@ -34,6 +34,8 @@ DEFAULT_PATH_TESTS: dict[str, tuple[str, str]] = {
     "mutate": ("test_mutate.py", "test_small_campaign_cache_and_cli"),
     "study": ("test_methods_studies.py", "test_study_cli"),
     "regmap": ("test_registers.py", "test_regmap_command_writes_one_build"),
+    "formal": ("test_formal.py", "test_quick_campaign"),
+    "traffic": ("test_traffic.py", "test_command_line_runs_the_traffic_and_closes_its_bins"),
 }
 
 #: study name -> (test file, the test function or fixture that runs ``irnuc study NAME``
@@ -50,6 +52,8 @@ OFF_PATH = {
     "report": ("--no-cosim", "--junit"),
     "sweep": ("--no-figures",),
     "calibrate": ("--plan",),
+    "formal": ("--list", "--no-faults"),
+    "traffic": ("--no-coverage",),
 }
 
 
