@@ -23,7 +23,6 @@ of a pipeline configuration are ``irnuc.cosim.top_parameters("irnuc_axis_top", c
 
 from __future__ import annotations
 
-import re
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -46,21 +45,19 @@ def core_version() -> str:
         return "0.0.0"
 
 
-def top_parameter_defaults(path: Path | None = None) -> dict[str, int]:
-    """The parameters of the top's header (not the localparams) and their defaults as
-    integers: a ``bit`` flag 0 or 1, the typed ``Method`` (``irnuc_pkg::method_e``) its
-    literal's code."""
+def top_parameter_defaults() -> dict[str, int]:
+    """The top's parameters (its generated header, from the method registry) and their
+    defaults as integers: a ``bit`` flag 0 or 1, the typed ``Method``
+    (``irnuc_pkg::method_e``) its literal's code."""
+    from irnuc.nuc_fixed.methods import rtl as methods_rtl
     from irnuc.nuc_fixed.rtl_spec import METHOD
 
     codes = {lit.name: lit.code for lit in METHOD.literals}
-    text = (path or HDL_DIR / f"{TOP}.sv").read_text()
-    header = text[text.index(f"module {TOP}"):text.index(") (")]
     out: dict[str, int] = {}
-    for m in re.finditer(r"^\s*parameter\s+(?:int\s+unsigned|bit|method_e)\s+(\w+)\s*=\s*"
-                         r"([\w']+)", header, re.M):
-        value = m[2]
-        out[m[1]] = (codes[value] if value in codes else
-                     int(value.split("'b")[1], 2) if "'b" in value else int(value))
+    for p in methods_rtl.top_params(methods_rtl.modules()[TOP]):
+        value = p.default
+        out[p.name] = (codes[value] if value in codes else
+                       int(value.split("'b")[1], 2) if "'b" in value else int(value))
     return out
 
 
