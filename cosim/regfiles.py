@@ -92,6 +92,54 @@ def _regblock_cpuif() -> type:
     return IrnucAxi4Lite
 
 
+def _readback_split(span: int, data_bytes: int) -> int:
+    """The low address bits (byte address) the retimed read-back's first stage decodes.
+
+    peakrdl-regblock splits the word-address bits of the whole window
+    (``address_width``, 12 bits: 10 word bits) in the middle, so its first stage chose
+    among the 32 words of each 128-byte bank (a 5-bit compare, then a 32-way fan-in before
+    the retiming flop: the wrapper's longest path on ECP5, docs/rtl.md) and the second among
+    32 banks of which the map fills four. irnuc splits the word bits of the map's span
+    instead (``0x1c4`` bytes: 7 word bits), so the first stage chooses among the 8 words of a
+    32-byte bank and the second among 16 banks (the window's bits above the span select
+    banks that are always 0). Both stages keep every address bit: no aliasing."""
+    unused = max(data_bytes.bit_length() - 1, 0)
+    relevant = max((span - 1).bit_length() - unused, 2)
+    return relevant // 2 + unused
+
+
+def _regblock_readback() -> type:
+    """peakrdl-regblock's read-back generator with irnuc's split of the retimed fan-in
+    (:func:`_readback_split`); everything else, the templates and the multiplexer
+    generator included, is regblock's."""
+    from peakrdl_regblock.readback import Readback
+    from peakrdl_regblock.readback.readback_mux_generator import RetimedReadbackMuxGenerator
+
+    class IrnucReadback(Readback):
+        def get_2stage_implementation(self) -> str:
+            if self.ds.has_external_block:
+                raise ToolError("the register map has an external block: irnuc's read-back "
+                                "split (irnuc.cosim.regfiles) does not handle one")
+            low = _readback_split(self.ds.top_node.size, self.exp.cpuif.data_width_bytes)
+            mux = RetimedReadbackMuxGenerator(self.exp).get_content(self.ds.top_node)
+            if not mux:
+                return self.get_empty_implementation()
+            context = {
+                "readback_mux": mux,
+                "ext_block_readback_mux": None,
+                "cpuif": self.exp.cpuif,
+                "ds": self.ds,
+                "low_addr_width": low,
+                "high_addr_width": self.ds.addr_width - low,
+                "get_always_ff_event": self.exp.dereferencer.get_always_ff_event,
+                "get_resetsignal": self.exp.dereferencer.get_resetsignal,
+            }
+            template = self.exp.jj_env.get_template("readback/templates/readback_with_rt.sv")
+            return template.render(context)
+
+    return IrnucReadback
+
+
 def _regblock_root() -> RootNode:
     from peakrdl_regblock.udps import ALL_UDPS
 
@@ -137,13 +185,20 @@ def regblock_texts() -> dict[Path, str]:
     CPU interface (:func:`_regblock_cpuif`), one line changed (the read address
     multiplexer, :data:`_RD_MUX`), a header naming the source and the generator's
     Verilator warnings switched off in the file."""
-    from peakrdl_regblock import RegblockExporter
+    from peakrdl_regblock import RegblockExporter, exporter
 
     root = _regblock_root()
     with tempfile.TemporaryDirectory(prefix="irnuc-regblock-") as tmp:
-        RegblockExporter().export(root, tmp, cpuif_cls=_regblock_cpuif(),
-                                  address_width=regmap.register_map().address_bits,
-                                  **REGBLOCK_OPTIONS)
+        # The exporter builds its read-back generator by this module-level name (regblock
+        # 1.3 has no option for the split of the retimed fan-in): irnuc's for this export.
+        regblock_readback = exporter.Readback
+        exporter.Readback = _regblock_readback()
+        try:
+            RegblockExporter().export(root, tmp, cpuif_cls=_regblock_cpuif(),
+                                      address_width=regmap.register_map().address_bits,
+                                      **REGBLOCK_OPTIONS)
+        finally:
+            exporter.Readback = regblock_readback
         out = {}
         for path, what in ((REGBLOCK_PKG, "the register block's hardware interface types"),
                            (REGBLOCK, "the register block of irnuc_axil_regs")):

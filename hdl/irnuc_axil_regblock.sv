@@ -1776,18 +1776,18 @@ module irnuc_axil_regblock (
     logic readback_err;
     logic readback_done;
     logic [31:0] readback_data;
-    function automatic bit [6:0] ad_low(bit [11:0] addr);
-        return addr[6:0];
+    function automatic bit [4:0] ad_low(bit [11:0] addr);
+        return addr[4:0];
     endfunction
-    function automatic bit [4:0] ad_hi(bit [11:0] addr);
-        return addr[11:7];
+    function automatic bit [6:0] ad_hi(bit [11:0] addr);
+        return addr[11:5];
     endfunction
 
     // readback stage 1
-    logic [31:0] readback_data_rt_c[32];
+    logic [31:0] readback_data_rt_c[128];
     always_comb begin
-        automatic logic [31:0] readback_data_var[32];
-        for(int i=0; i<32; i++) readback_data_var[i] = '0;
+        automatic logic [31:0] readback_data_var[128];
+        for(int i=0; i<128; i++) readback_data_var[i] = '0;
         if(ad_low(rd_mux_addr) == ad_low(12'h0)) begin
             readback_data_var[ad_hi(12'h0)][31:0] = 32'h49524e43;
         end
@@ -1960,13 +1960,13 @@ module irnuc_axil_regblock (
         readback_data_rt_c = readback_data_var;
     end
 
-    logic [31:0] readback_data_rt[32];
+    logic [31:0] readback_data_rt[128];
     logic readback_done_rt;
     logic readback_err_rt;
     logic [11:0] readback_addr_rt;
     always_ff @(posedge clk or negedge arst_n) begin
         if(~arst_n) begin
-            for(int i=0; i<32; i++) readback_data_rt[i] <= '0;
+            for(int i=0; i<128; i++) readback_data_rt[i] <= '0;
             readback_done_rt <= '0;
             readback_err_rt <= '0;
             readback_addr_rt <= '0;
@@ -1982,7 +1982,7 @@ module irnuc_axil_regblock (
 
     // readback stage 2
     always_comb begin
-        readback_data = readback_data_rt[readback_addr_rt[11:7]];
+        readback_data = readback_data_rt[readback_addr_rt[11:5]];
         readback_done = readback_done_rt;
         readback_err = readback_err_rt;
     end

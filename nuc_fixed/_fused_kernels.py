@@ -186,24 +186,27 @@ def _dpc(out, bad, bad_idx, height, width):
 
 @njit(cache=True, parallel=True)
 def method_sums(x, fields, terms, muls, coefs, direct, kind, k, width, s_out):
-    """The core's aligned sum of every pixel of ``x`` (n_pix,) int64 into ``s_out`` with
-    the terms' factors ``muls`` (n_terms,) (the FFC mean and refresh passes on the
-    accumulator: no FFC term, no drift)."""
+    """The core's aligned sum of every pixel of ``x`` (n_pix,) int64 into ``s_out[m]``
+    (m, n_pix) with the terms' factors ``muls[m]`` (m, n_terms): the FFC mean and refresh
+    passes on the accumulator (no FFC term, no drift), both in one parallel pass when
+    their frames share the tables but for the factors (tc_offset's u, u²)."""
     k0, k1, k2, k3, k4 = k[0], k[1], k[2], k[3], k[4]
     for row in prange(x.shape[0] // width):
         p0 = row * width
         p1 = p0 + width
         rowc = np.zeros((4, width), np.int64)
         _direct_row(fields, p0, p1, direct, rowc)
-        coefs_row(fields, p0, p1, terms, muls, coefs, direct, rowc)
         xrow = x[p0:p1]
-        srow = s_out[p0:p1]
-        if kind == 0:
-            _row_sum(0, xrow, srow, rowc, k0, k1, k2, k3, k4)
-        elif kind == 1:
-            _row_sum(1, xrow, srow, rowc, k0, k1, k2, k3, k4)
-        else:
-            _row_sum(2, xrow, srow, rowc, k0, k1, k2, k3, k4)
+        for m in range(muls.shape[0]):
+            if m == 0 or (muls[m] != muls[m - 1]).any():
+                coefs_row(fields, p0, p1, terms, muls[m], coefs, direct, rowc)
+            srow = s_out[m, p0:p1]
+            if kind == 0:
+                _row_sum(0, xrow, srow, rowc, k0, k1, k2, k3, k4)
+            elif kind == 1:
+                _row_sum(1, xrow, srow, rowc, k0, k1, k2, k3, k4)
+            else:
+                _row_sum(2, xrow, srow, rowc, k0, k1, k2, k3, k4)
 
 
 @njit(cache=True)

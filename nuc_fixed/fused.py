@@ -81,7 +81,8 @@ class FusedMethod:
         self._checked: dict[int, object] = {}  # id -> checked array (kept alive)
         self._stack: tuple[tuple[int, ...], np.ndarray] | None = None
         self._tables: dict[tuple[tuple[str, int], ...], _Tables] = {}
-        self._sums: tuple[np.ndarray, int, _Tables, tuple[np.ndarray, int]] | None = None
+        # The last sums on the FFC accumulator: (accumulator, xfrac, tables, (sums, F)).
+        self._sums: list[tuple[np.ndarray, int, _Tables, tuple[np.ndarray, int]]] = []
         self._bad: tuple[tuple[int, ...], tuple[np.ndarray, ...],
                          tuple[np.ndarray, np.ndarray, np.ndarray]] | None = None
 
@@ -189,10 +190,12 @@ class FusedMethod:
                                          c.overflow == "wrap", out)
         return out.reshape(self.h, self.w)
 
-    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
+    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int],
+                    then: Mapping[str, int] | None = None) -> int | None:
         """``ffc_mean_target`` of the core's sums on ``acc`` in a frame with these readings
-        over its good pixels (the mean pass), the sum in one kernel."""
-        s, frac = self.sums(acc, xfrac, frame)
+        over its good pixels (the mean pass), the sum in one kernel; ``then``: the readings
+        of the refresh pass's frame, whose sums come out of the same parallel pass."""
+        s, frac = self.sums(acc, xfrac, frame, then)
         c = self.cfg.format("ffc")
         fr = refresh_frac(self.cfg, frac)
         total, n = _fused_kernels.good_rounded_sum(
@@ -241,26 +244,33 @@ class FusedMethod:
             self._checked[id(ffc)] = ffc
         return ffc
 
-    def sums(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]
-             ) -> tuple[np.ndarray, int]:
+    def sums(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int],
+             then: Mapping[str, int] | None = None) -> tuple[np.ndarray, int]:
         """The core's aligned sums (H, W) on ``acc`` (codes with ``xfrac`` fraction bits:
         the FFC accumulator) with the coefficients of a frame with these readings, and
-        their fraction bits F."""
+        their fraction bits F. With ``then`` (the readings of the refresh pass's frame) its
+        sums are made in the same pass and kept for :meth:`refresh`."""
         t = self.tables(frame)
-        last = self._sums
-        # The refresh pass after the mean pass on the same accumulator: the same sums when
-        # the two frames' coefficients are (a method without readings, a repeated one).
-        if (last is not None and last[0] is acc and last[1] == xfrac
-                and (last[2] is t or (last[2].shares(t)
-                                      and np.array_equal(last[2].terms, t.terms)))):
-            return last[3]
+        # The refresh pass after the mean pass on the same accumulator: the sums made
+        # beside the mean pass's, or the same sums when the two frames' coefficients are.
+        for a, xf, u, res in self._sums:
+            if a is acc and xf == xfrac and (u is t or (u.shares(t)
+                                                        and np.array_equal(u.terms, t.terms))):
+                return res
+        tabs = [t]
+        if then is not None:
+            u = self.tables(then)
+            if u is not t and u.shares(t) and not np.array_equal(u.terms, t.terms):
+                tabs.append(u)
         f, k, _ = kernel_shifts(self.cfg, xfrac, False)
         a = np.ascontiguousarray(acc, np.int64).reshape(-1)
-        s = np.empty(a.shape, np.int64)
-        _fused_kernels.method_sums(a, t.fields, t.terms, np.ascontiguousarray(t.terms[:, 1]),
-                                   t.coefs, t.direct, self.kind, _shifts(k), self.w, s)
-        self._sums = (acc, xfrac, t, (s.reshape(self.h, self.w), f))
-        return self._sums[3]
+        s = np.empty((len(tabs), a.shape[0]), np.int64)
+        muls = np.ascontiguousarray(np.stack([tb.terms[:, 1] for tb in tabs]))
+        _fused_kernels.method_sums(a, t.fields, t.terms, muls, t.coefs, t.direct, self.kind,
+                                   _shifts(k), self.w, s)
+        self._sums = [(acc, xfrac, tb, (s[m].reshape(self.h, self.w), f))
+                      for m, tb in enumerate(tabs)]
+        return self._sums[0][3]
 
 
 def accumulate(acc: np.ndarray | None, x: np.ndarray, cfg: object) -> np.ndarray:

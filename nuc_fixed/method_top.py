@@ -313,7 +313,9 @@ def method_top(raw: object, coeffs: MethodCoefficients, inputs: FrameInputs | No
             # The mean pass: the target from the coefficients of the N-th shutter frame.
             k = j - 1
             if ffc_target is None:
-                tgt = path.mean_target(state.acc, ffc_shift(cfg), frames[k])  # type: ignore[arg-type]
+                # The refresh pass's frame (the next; the last when none follows) beside it.
+                tgt = path.mean_target(state.acc, ffc_shift(cfg), frames[k],  # type: ignore[arg-type]
+                                       frames[min(j, n - 1)])
             else:
                 tgt = int(ffc_target)
             if tgt is None:  # no good pixel: the refresh keeps the offsets
@@ -379,7 +381,8 @@ class _Reference:
         s, frac = self.sums(acc, xfrac, frame)
         return ffc_refresh(s, frac, target, self.c.cfg)
 
-    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int]) -> int | None:
+    def mean_target(self, acc: np.ndarray, xfrac: int, frame: Mapping[str, int],
+                    then: Mapping[str, int] | None = None) -> int | None:
         s, frac = self.sums(acc, xfrac, frame)
         return ffc_mean_target(s, frac, ~self._frame(frame)["bad"], self.c.cfg)
 
