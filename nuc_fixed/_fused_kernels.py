@@ -11,7 +11,9 @@ int64, as the reference functions' numpy int64.
 
 Tables:
 
-* ``fields`` (n_fields, n_pix) int64: the per-pixel codes the expressions read;
+* ``fields``: a tuple of ``fused.FIELD_SLOTS`` flat int64 arrays (n_pix,), the per-pixel
+  codes the expressions read (the callers' arrays themselves where they are int64 and
+  contiguous: no copy per call), padded with a one-element array;
 * ``terms`` (n_terms, 3): field row (-1: the constant 1), factor, left shift (the
   factors of each frame in ``muls``, the rest shared by the frames of a call);
 * ``coefs`` (n_coefs, 7): first term, end term, base field row (-1: none), round bits,
@@ -69,7 +71,7 @@ def coefs_row(fields, p0, p1, terms, muls, coefs, direct, rowc):
                 cst += muls[t] << terms[t, 2]
             else:
                 nf += 1
-        base = fields[max(coefs[j, 2], 0), p0:p1]
+        base = fields[max(coefs[j, 2], 0)][p0:p1]
         bm = np.int64(1) if coefs[j, 2] >= 0 else np.int64(0)
         if nf <= 3:
             rows = np.zeros(3, np.int64)
@@ -80,9 +82,9 @@ def coefs_row(fields, p0, p1, terms, muls, coefs, direct, rowc):
                 if terms[t, 0] >= 0:
                     rows[q], ms[q], ss[q] = terms[t, 0], muls[t], terms[t, 2]
                     q += 1
-            a0 = fields[rows[0], p0:p1]
-            a1 = fields[rows[1], p0:p1]
-            a2 = fields[rows[2], p0:p1]
+            a0 = fields[rows[0]][p0:p1]
+            a1 = fields[rows[1]][p0:p1]
+            a2 = fields[rows[2]][p0:p1]
             m0, m1, m2, s0, s1, s2 = ms[0], ms[1], ms[2], ss[0], ss[1], ss[2]
             for i in range(rc.shape[0]):
                 acc = (((a0[i] * m0) << s0) + ((a1[i] * m1) << s1) + ((a2[i] * m2) << s2)
@@ -93,7 +95,7 @@ def coefs_row(fields, p0, p1, terms, muls, coefs, direct, rowc):
         for t in range(t0, t1):
             row, mul, sh = terms[t, 0], muls[t], terms[t, 2]
             if row >= 0:
-                src = fields[row, p0:p1]
+                src = fields[row][p0:p1]
                 for i in range(rc.shape[0]):
                     rc[i] += (src[i] * mul) << sh
         for i in range(rc.shape[0]):
@@ -121,7 +123,7 @@ def _row_sum(kind, xrow, srow, rowc, k0, k1, k2, k3, k4):
 def _direct_row(fields, p0, p1, direct, rowc):
     for j in range(4):
         if direct[j] >= 0:
-            rowc[j, :] = fields[direct[j], p0:p1]
+            rowc[j, :] = fields[direct[j]][p0:p1]
 
 
 @njit(cache=True, parallel=True)

@@ -31,6 +31,10 @@ if TYPE_CHECKING:
     from irnuc.nuc_fixed.method_top import MethodCoefficients
 
 _I64 = np.iinfo(np.int64)
+#: The kernels' field arguments: a tuple of this many flat int64 arrays (one numba
+#: signature for every method; the unused ones a one-element pad).
+FIELD_SLOTS = 8
+_PAD = np.zeros(1, np.int64)
 
 
 def input_dtype(adc_bits: int) -> type[np.unsignedinteger]:
@@ -53,8 +57,8 @@ def _is_direct(e: CoefExpr) -> bool:
 class _Tables:
     """A frame's compiled expressions: what the kernel reads (``_fused_kernels``)."""
 
-    rows: tuple[int, ...]  # ids of the field arrays, in the order of ``fields``' rows
-    fields: np.ndarray
+    rows: tuple[int, ...]  # ids of the field arrays, in the order of ``fields``
+    fields: tuple[np.ndarray, ...]  # FIELD_SLOTS flat int64 arrays
     terms: np.ndarray  # (n_terms, 3)
     coefs: np.ndarray  # (n_coefs, 7)
     direct: np.ndarray  # (4,)
@@ -79,7 +83,7 @@ class FusedMethod:
         self.h, self.w = c.shape
         self.kind = KIND_CODES[self.cfg.base.core]
         self._checked: dict[int, object] = {}  # id -> checked array (kept alive)
-        self._stack: tuple[tuple[int, ...], np.ndarray] | None = None
+        self._stack: tuple[tuple[int, ...], tuple[np.ndarray, ...]] | None = None
         self._tables: dict[tuple[tuple[str, int], ...], _Tables] = {}
         # The last sums on the FFC accumulator: (accumulator, xfrac, tables, (sums, F)).
         self._sums: list[tuple[np.ndarray, int, _Tables, tuple[np.ndarray, int]]] = []
@@ -150,10 +154,13 @@ class FusedMethod:
                 direct[j] = terms[start][0]
         key = tuple(rows)
         if self._stack is None or self._stack[0] != key:
-            stack = np.empty((max(1, len(arrays)), self.h * self.w), np.int64)
-            for i, a in enumerate(arrays):
-                stack[i] = np.asarray(a).reshape(-1)
-            self._stack = (key, stack)
+            if len(arrays) > FIELD_SLOTS:
+                raise InputError(f"method {self.cfg.method!r}: a frame's coefficients read "
+                                 f"{len(arrays)} fields; the fused kernels take at most "
+                                 f"{FIELD_SLOTS}")
+            # int64 contiguous fields are passed as they are (views); others converted.
+            flat = tuple(np.ascontiguousarray(a, np.int64).reshape(-1) for a in arrays)
+            self._stack = (key, flat + (_PAD,) * (FIELD_SLOTS - len(flat)))
         b, flat, idx = self._bad_map(fx.bad)
         return _Tables(key, self._stack[1], np.array(terms, np.int64).reshape(-1, 3),
                        np.array(coefs, np.int64).reshape(-1, 7), np.array(direct, np.int64),
