@@ -60,9 +60,9 @@ REGBLOCK_OPTIONS: dict[str, Any] = {
     "err_if_bad_addr": True,        # SLVERR outside the map
     "err_if_bad_rw": True,          # SLVERR for a write to RO / a read of WO
     "retime_read_fanin": True,      # a flop inside the read-back fan-in (Fmax)
-    # Not regblock's retimed external requests: a retimed request is a non-blocking write
-    # into hwif_out, which Verilator cannot mix with the struct's continuous assignments
-    # (BLKANDNBLK); irnuc_axil_regs registers hwif_out instead (ext_q, docs/regmap.md).
+    # The external registers' requests stay combinational (from the decode): a retimed
+    # request is a non-blocking write into hwif_out, which Verilator cannot mix with the
+    # struct's continuous assignments (BLKANDNBLK); irnuc_axil_regs registers FRAME_SIZE's.
     "retime_external_reg": False,
 }
 #: Warnings of Verilator's -Wall that the generated module raises and that are the
@@ -251,10 +251,10 @@ def wrapper_block(rmap: regmap.RegisterMap | None = None) -> str:
     for k, g in enumerate(slots):
         for w, reg in enumerate(g.registers):
             path = f"{g.name}.{reg.split('.')[-1]}"
-            lines += [f"  assign slot_req[{k}][{w}]       = ext_q.{path}.req;",
-                      f"  assign slot_req_is_wr[{k}][{w}] = ext_q.{path}.req_is_wr;",
-                      f"  assign slot_wr_data[{k}][{w}]   = ext_q.{path}.wr_data.value;",
-                      f"  assign slot_wr_biten[{k}][{w}]  = ext_q.{path}.wr_biten.value;",
+            lines += [f"  assign slot_req[{k}][{w}]       = hwif_out.{path}.req;",
+                      f"  assign slot_req_is_wr[{k}][{w}] = hwif_out.{path}.req_is_wr;",
+                      f"  assign slot_wr_data[{k}][{w}]   = hwif_out.{path}.wr_data.value;",
+                      f"  assign slot_wr_biten[{k}][{w}]  = hwif_out.{path}.wr_biten.value;",
                       f"  assign hwif_in.{path}.rd_ack       = slot_rd_ack[{k}][{w}];",
                       f"  assign hwif_in.{path}.rd_data.value = slot_rd_data[{k}][{w}];",
                       f"  assign hwif_in.{path}.wr_ack       = slot_wr_ack[{k}][{w}];"]

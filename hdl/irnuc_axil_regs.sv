@@ -12,8 +12,8 @@
 //     name), the events and levels (STATUS, IRQ_STATUS, the counters' increments, FFC_STATUS,
 //     TABLE_SEL); irq_o is a flop of the block's interrupt;
 //   * the settings it stores (CTRL; STATUS.pending from its software-modified strobes);
-// and implements the registers the map marks `external`, each from the block's request
-// registered (ext_q: a cycle after the block's, which waits for the acknowledge):
+// and implements the registers the map marks `external`, each answered a cycle after the
+// block's (registered) request:
 //   * FRAME_SIZE: a size of 0 or above FRAME_MAX is refused with SLVERR (hwif_wr_err: an
 //     answer that depends on the value written) and the register keeps its value; the
 //     size, the size minus one and the size-is-one flags are flops for the framer; a new
@@ -164,24 +164,6 @@ module irnuc_axil_regs
     .hwif_out      (hwif_out)
   );
 
-  // ---- the external registers' requests, a cycle after the block's ------------------------
-  // Every external register (FRAME_SIZE, FFC_CTRL, FFC_PERIOD, FFC_THRESHOLD, the method
-  // registers) sees the block's request registered: ext_q is hwif_out a cycle late (only
-  // its external registers' requests are read; the rest has no load and is not built).
-  // The block's decode of the request's address then ends at these flops instead of
-  // running on into the registers' write logic, their acknowledges and the response (on
-  // ECP5 the wrapper's longest paths; docs/regmap.md). The block waits for an external
-  // register's acknowledge (its external_pending), so each answers a cycle later.
-  irnuc_axil_regblock_pkg::irnuc_regs__out_t ext_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_ext_req
-    if (!rst_ni) begin
-      ext_q <= '{default: '0};
-    end else begin
-      ext_q <= hwif_out;
-    end
-  end
-
   // ---- the build's constants (fields reset to a parameter of the map) ----------------------
   assign hwif_in.VERSION.coef_layout.next    = RegVersionCoefLayoutBits'(CoefLayoutVersion);
   assign hwif_in.CONFIG.adc_bits.next        = RegConfigAdcBitsBits'(AdcBits);
@@ -209,7 +191,7 @@ module irnuc_axil_regs
                        || hwif_out.CTRL.coef_sync.swmod;
 
   // ---- FRAME_SIZE (external, shadowed) ------------------------------------------------------
-  // A write is answered three cycles after its request (ext_q), each step from flops: the
+  // A write is answered three cycles after the block's request, each step from flops: the
   // request is registered (cycle 1), the size it would make (the written byte lanes over
   // the register) registered (cycle 2), its width's and its height's legality registered
   // (cycle 3), then wr_ack with wr_err and the register written.
@@ -239,7 +221,7 @@ module irnuc_axil_regs
       h_legal_q    <= 1'b0;
       size_touch_q <= 1'b0;
     end else begin
-      size_req_q   <= ext_q.FRAME_SIZE.req && ext_q.FRAME_SIZE.req_is_wr;
+      size_req_q   <= hwif_out.FRAME_SIZE.req && hwif_out.FRAME_SIZE.req_is_wr;
       size_new_q   <= size_req_q;
       size_wr_q    <= size_new_q;
       w_legal_q    <= (new_w_q != '0) && (new_w_q <= FieldW'(MaxWidth));
@@ -249,11 +231,11 @@ module irnuc_axil_regs
   end
 
   always_ff @(posedge clk_i) begin : p_size_bus
-    if (ext_q.FRAME_SIZE.req) begin
-      size_wd_q <= ext_q.FRAME_SIZE.wr_data.width;
-      size_bw_q <= ext_q.FRAME_SIZE.wr_biten.width;
-      size_hd_q <= ext_q.FRAME_SIZE.wr_data.height;
-      size_bh_q <= ext_q.FRAME_SIZE.wr_biten.height;
+    if (hwif_out.FRAME_SIZE.req) begin
+      size_wd_q <= hwif_out.FRAME_SIZE.wr_data.width;
+      size_bw_q <= hwif_out.FRAME_SIZE.wr_biten.width;
+      size_hd_q <= hwif_out.FRAME_SIZE.wr_data.height;
+      size_bh_q <= hwif_out.FRAME_SIZE.wr_biten.height;
     end
     if (size_req_q) begin
       new_w_q <= (FieldW'(width_q) & ~size_bw_q) | (size_wd_q & size_bw_q);
@@ -288,8 +270,8 @@ module irnuc_axil_regs
     end
   end
 
-  assign hwif_in.FRAME_SIZE.rd_ack       = ext_q.FRAME_SIZE.req
-                                           && !ext_q.FRAME_SIZE.req_is_wr;
+  assign hwif_in.FRAME_SIZE.rd_ack       = hwif_out.FRAME_SIZE.req
+                                           && !hwif_out.FRAME_SIZE.req_is_wr;
   assign hwif_in.FRAME_SIZE.wr_ack       = size_wr_q;
   assign hwif_in.FRAME_SIZE.rd_data.width  = FieldW'(width_q);
   assign hwif_in.FRAME_SIZE.rd_data.height = FieldH'(height_q);
@@ -328,115 +310,115 @@ module irnuc_axil_regs
   /* verilator lint_on UNUSEDPARAM */
   logic [NumSlots-1:0][1:0]       slot_req, slot_req_is_wr, slot_rd_ack, slot_wr_ack;
   logic [NumSlots-1:0][1:0][31:0] slot_wr_data, slot_wr_biten, slot_rd_data;
-  assign slot_req[0][0]       = ext_q.GAIN.LO.req;
-  assign slot_req_is_wr[0][0] = ext_q.GAIN.LO.req_is_wr;
-  assign slot_wr_data[0][0]   = ext_q.GAIN.LO.wr_data.value;
-  assign slot_wr_biten[0][0]  = ext_q.GAIN.LO.wr_biten.value;
+  assign slot_req[0][0]       = hwif_out.GAIN.LO.req;
+  assign slot_req_is_wr[0][0] = hwif_out.GAIN.LO.req_is_wr;
+  assign slot_wr_data[0][0]   = hwif_out.GAIN.LO.wr_data.value;
+  assign slot_wr_biten[0][0]  = hwif_out.GAIN.LO.wr_biten.value;
   assign hwif_in.GAIN.LO.rd_ack       = slot_rd_ack[0][0];
   assign hwif_in.GAIN.LO.rd_data.value = slot_rd_data[0][0];
   assign hwif_in.GAIN.LO.wr_ack       = slot_wr_ack[0][0];
-  assign slot_req[0][1]       = ext_q.GAIN.HI.req;
-  assign slot_req_is_wr[0][1] = ext_q.GAIN.HI.req_is_wr;
-  assign slot_wr_data[0][1]   = ext_q.GAIN.HI.wr_data.value;
-  assign slot_wr_biten[0][1]  = ext_q.GAIN.HI.wr_biten.value;
+  assign slot_req[0][1]       = hwif_out.GAIN.HI.req;
+  assign slot_req_is_wr[0][1] = hwif_out.GAIN.HI.req_is_wr;
+  assign slot_wr_data[0][1]   = hwif_out.GAIN.HI.wr_data.value;
+  assign slot_wr_biten[0][1]  = hwif_out.GAIN.HI.wr_biten.value;
   assign hwif_in.GAIN.HI.rd_ack       = slot_rd_ack[0][1];
   assign hwif_in.GAIN.HI.rd_data.value = slot_rd_data[0][1];
   assign hwif_in.GAIN.HI.wr_ack       = slot_wr_ack[0][1];
-  assign slot_req[1][0]       = ext_q.LEVEL.LO.req;
-  assign slot_req_is_wr[1][0] = ext_q.LEVEL.LO.req_is_wr;
-  assign slot_wr_data[1][0]   = ext_q.LEVEL.LO.wr_data.value;
-  assign slot_wr_biten[1][0]  = ext_q.LEVEL.LO.wr_biten.value;
+  assign slot_req[1][0]       = hwif_out.LEVEL.LO.req;
+  assign slot_req_is_wr[1][0] = hwif_out.LEVEL.LO.req_is_wr;
+  assign slot_wr_data[1][0]   = hwif_out.LEVEL.LO.wr_data.value;
+  assign slot_wr_biten[1][0]  = hwif_out.LEVEL.LO.wr_biten.value;
   assign hwif_in.LEVEL.LO.rd_ack       = slot_rd_ack[1][0];
   assign hwif_in.LEVEL.LO.rd_data.value = slot_rd_data[1][0];
   assign hwif_in.LEVEL.LO.wr_ack       = slot_wr_ack[1][0];
-  assign slot_req[1][1]       = ext_q.LEVEL.HI.req;
-  assign slot_req_is_wr[1][1] = ext_q.LEVEL.HI.req_is_wr;
-  assign slot_wr_data[1][1]   = ext_q.LEVEL.HI.wr_data.value;
-  assign slot_wr_biten[1][1]  = ext_q.LEVEL.HI.wr_biten.value;
+  assign slot_req[1][1]       = hwif_out.LEVEL.HI.req;
+  assign slot_req_is_wr[1][1] = hwif_out.LEVEL.HI.req_is_wr;
+  assign slot_wr_data[1][1]   = hwif_out.LEVEL.HI.wr_data.value;
+  assign slot_wr_biten[1][1]  = hwif_out.LEVEL.HI.wr_biten.value;
   assign hwif_in.LEVEL.HI.rd_ack       = slot_rd_ack[1][1];
   assign hwif_in.LEVEL.HI.rd_data.value = slot_rd_data[1][1];
   assign hwif_in.LEVEL.HI.wr_ack       = slot_wr_ack[1][1];
-  assign slot_req[2][0]       = ext_q.READING.LO.req;
-  assign slot_req_is_wr[2][0] = ext_q.READING.LO.req_is_wr;
-  assign slot_wr_data[2][0]   = ext_q.READING.LO.wr_data.value;
-  assign slot_wr_biten[2][0]  = ext_q.READING.LO.wr_biten.value;
+  assign slot_req[2][0]       = hwif_out.READING.LO.req;
+  assign slot_req_is_wr[2][0] = hwif_out.READING.LO.req_is_wr;
+  assign slot_wr_data[2][0]   = hwif_out.READING.LO.wr_data.value;
+  assign slot_wr_biten[2][0]  = hwif_out.READING.LO.wr_biten.value;
   assign hwif_in.READING.LO.rd_ack       = slot_rd_ack[2][0];
   assign hwif_in.READING.LO.rd_data.value = slot_rd_data[2][0];
   assign hwif_in.READING.LO.wr_ack       = slot_wr_ack[2][0];
-  assign slot_req[2][1]       = ext_q.READING.HI.req;
-  assign slot_req_is_wr[2][1] = ext_q.READING.HI.req_is_wr;
-  assign slot_wr_data[2][1]   = ext_q.READING.HI.wr_data.value;
-  assign slot_wr_biten[2][1]  = ext_q.READING.HI.wr_biten.value;
+  assign slot_req[2][1]       = hwif_out.READING.HI.req;
+  assign slot_req_is_wr[2][1] = hwif_out.READING.HI.req_is_wr;
+  assign slot_wr_data[2][1]   = hwif_out.READING.HI.wr_data.value;
+  assign slot_wr_biten[2][1]  = hwif_out.READING.HI.wr_biten.value;
   assign hwif_in.READING.HI.rd_ack       = slot_rd_ack[2][1];
   assign hwif_in.READING.HI.rd_data.value = slot_rd_data[2][1];
   assign hwif_in.READING.HI.wr_ack       = slot_wr_ack[2][1];
-  assign slot_req[3][0]       = ext_q.T_REF.LO.req;
-  assign slot_req_is_wr[3][0] = ext_q.T_REF.LO.req_is_wr;
-  assign slot_wr_data[3][0]   = ext_q.T_REF.LO.wr_data.value;
-  assign slot_wr_biten[3][0]  = ext_q.T_REF.LO.wr_biten.value;
+  assign slot_req[3][0]       = hwif_out.T_REF.LO.req;
+  assign slot_req_is_wr[3][0] = hwif_out.T_REF.LO.req_is_wr;
+  assign slot_wr_data[3][0]   = hwif_out.T_REF.LO.wr_data.value;
+  assign slot_wr_biten[3][0]  = hwif_out.T_REF.LO.wr_biten.value;
   assign hwif_in.T_REF.LO.rd_ack       = slot_rd_ack[3][0];
   assign hwif_in.T_REF.LO.rd_data.value = slot_rd_data[3][0];
   assign hwif_in.T_REF.LO.wr_ack       = slot_wr_ack[3][0];
-  assign slot_req[3][1]       = ext_q.T_REF.HI.req;
-  assign slot_req_is_wr[3][1] = ext_q.T_REF.HI.req_is_wr;
-  assign slot_wr_data[3][1]   = ext_q.T_REF.HI.wr_data.value;
-  assign slot_wr_biten[3][1]  = ext_q.T_REF.HI.wr_biten.value;
+  assign slot_req[3][1]       = hwif_out.T_REF.HI.req;
+  assign slot_req_is_wr[3][1] = hwif_out.T_REF.HI.req_is_wr;
+  assign slot_wr_data[3][1]   = hwif_out.T_REF.HI.wr_data.value;
+  assign slot_wr_biten[3][1]  = hwif_out.T_REF.HI.wr_biten.value;
   assign hwif_in.T_REF.HI.rd_ack       = slot_rd_ack[3][1];
   assign hwif_in.T_REF.HI.rd_data.value = slot_rd_data[3][1];
   assign hwif_in.T_REF.HI.wr_ack       = slot_wr_ack[3][1];
-  assign slot_req[4][0]       = ext_q.BLIND_SUM.LO.req;
-  assign slot_req_is_wr[4][0] = ext_q.BLIND_SUM.LO.req_is_wr;
-  assign slot_wr_data[4][0]   = ext_q.BLIND_SUM.LO.wr_data.value;
-  assign slot_wr_biten[4][0]  = ext_q.BLIND_SUM.LO.wr_biten.value;
+  assign slot_req[4][0]       = hwif_out.BLIND_SUM.LO.req;
+  assign slot_req_is_wr[4][0] = hwif_out.BLIND_SUM.LO.req_is_wr;
+  assign slot_wr_data[4][0]   = hwif_out.BLIND_SUM.LO.wr_data.value;
+  assign slot_wr_biten[4][0]  = hwif_out.BLIND_SUM.LO.wr_biten.value;
   assign hwif_in.BLIND_SUM.LO.rd_ack       = slot_rd_ack[4][0];
   assign hwif_in.BLIND_SUM.LO.rd_data.value = slot_rd_data[4][0];
   assign hwif_in.BLIND_SUM.LO.wr_ack       = slot_wr_ack[4][0];
-  assign slot_req[4][1]       = ext_q.BLIND_SUM.HI.req;
-  assign slot_req_is_wr[4][1] = ext_q.BLIND_SUM.HI.req_is_wr;
-  assign slot_wr_data[4][1]   = ext_q.BLIND_SUM.HI.wr_data.value;
-  assign slot_wr_biten[4][1]  = ext_q.BLIND_SUM.HI.wr_biten.value;
+  assign slot_req[4][1]       = hwif_out.BLIND_SUM.HI.req;
+  assign slot_req_is_wr[4][1] = hwif_out.BLIND_SUM.HI.req_is_wr;
+  assign slot_wr_data[4][1]   = hwif_out.BLIND_SUM.HI.wr_data.value;
+  assign slot_wr_biten[4][1]  = hwif_out.BLIND_SUM.HI.wr_biten.value;
   assign hwif_in.BLIND_SUM.HI.rd_ack       = slot_rd_ack[4][1];
   assign hwif_in.BLIND_SUM.HI.rd_data.value = slot_rd_data[4][1];
   assign hwif_in.BLIND_SUM.HI.wr_ack       = slot_wr_ack[4][1];
-  assign slot_req[5][0]       = ext_q.BLIND_REF.LO.req;
-  assign slot_req_is_wr[5][0] = ext_q.BLIND_REF.LO.req_is_wr;
-  assign slot_wr_data[5][0]   = ext_q.BLIND_REF.LO.wr_data.value;
-  assign slot_wr_biten[5][0]  = ext_q.BLIND_REF.LO.wr_biten.value;
+  assign slot_req[5][0]       = hwif_out.BLIND_REF.LO.req;
+  assign slot_req_is_wr[5][0] = hwif_out.BLIND_REF.LO.req_is_wr;
+  assign slot_wr_data[5][0]   = hwif_out.BLIND_REF.LO.wr_data.value;
+  assign slot_wr_biten[5][0]  = hwif_out.BLIND_REF.LO.wr_biten.value;
   assign hwif_in.BLIND_REF.LO.rd_ack       = slot_rd_ack[5][0];
   assign hwif_in.BLIND_REF.LO.rd_data.value = slot_rd_data[5][0];
   assign hwif_in.BLIND_REF.LO.wr_ack       = slot_wr_ack[5][0];
-  assign slot_req[5][1]       = ext_q.BLIND_REF.HI.req;
-  assign slot_req_is_wr[5][1] = ext_q.BLIND_REF.HI.req_is_wr;
-  assign slot_wr_data[5][1]   = ext_q.BLIND_REF.HI.wr_data.value;
-  assign slot_wr_biten[5][1]  = ext_q.BLIND_REF.HI.wr_biten.value;
+  assign slot_req[5][1]       = hwif_out.BLIND_REF.HI.req;
+  assign slot_req_is_wr[5][1] = hwif_out.BLIND_REF.HI.req_is_wr;
+  assign slot_wr_data[5][1]   = hwif_out.BLIND_REF.HI.wr_data.value;
+  assign slot_wr_biten[5][1]  = hwif_out.BLIND_REF.HI.wr_biten.value;
   assign hwif_in.BLIND_REF.HI.rd_ack       = slot_rd_ack[5][1];
   assign hwif_in.BLIND_REF.HI.rd_data.value = slot_rd_data[5][1];
   assign hwif_in.BLIND_REF.HI.wr_ack       = slot_wr_ack[5][1];
-  assign slot_req[6][0]       = ext_q.DRIFT_GAIN.LO.req;
-  assign slot_req_is_wr[6][0] = ext_q.DRIFT_GAIN.LO.req_is_wr;
-  assign slot_wr_data[6][0]   = ext_q.DRIFT_GAIN.LO.wr_data.value;
-  assign slot_wr_biten[6][0]  = ext_q.DRIFT_GAIN.LO.wr_biten.value;
+  assign slot_req[6][0]       = hwif_out.DRIFT_GAIN.LO.req;
+  assign slot_req_is_wr[6][0] = hwif_out.DRIFT_GAIN.LO.req_is_wr;
+  assign slot_wr_data[6][0]   = hwif_out.DRIFT_GAIN.LO.wr_data.value;
+  assign slot_wr_biten[6][0]  = hwif_out.DRIFT_GAIN.LO.wr_biten.value;
   assign hwif_in.DRIFT_GAIN.LO.rd_ack       = slot_rd_ack[6][0];
   assign hwif_in.DRIFT_GAIN.LO.rd_data.value = slot_rd_data[6][0];
   assign hwif_in.DRIFT_GAIN.LO.wr_ack       = slot_wr_ack[6][0];
-  assign slot_req[6][1]       = ext_q.DRIFT_GAIN.HI.req;
-  assign slot_req_is_wr[6][1] = ext_q.DRIFT_GAIN.HI.req_is_wr;
-  assign slot_wr_data[6][1]   = ext_q.DRIFT_GAIN.HI.wr_data.value;
-  assign slot_wr_biten[6][1]  = ext_q.DRIFT_GAIN.HI.wr_biten.value;
+  assign slot_req[6][1]       = hwif_out.DRIFT_GAIN.HI.req;
+  assign slot_req_is_wr[6][1] = hwif_out.DRIFT_GAIN.HI.req_is_wr;
+  assign slot_wr_data[6][1]   = hwif_out.DRIFT_GAIN.HI.wr_data.value;
+  assign slot_wr_biten[6][1]  = hwif_out.DRIFT_GAIN.HI.wr_biten.value;
   assign hwif_in.DRIFT_GAIN.HI.rd_ack       = slot_rd_ack[6][1];
   assign hwif_in.DRIFT_GAIN.HI.rd_data.value = slot_rd_data[6][1];
   assign hwif_in.DRIFT_GAIN.HI.wr_ack       = slot_wr_ack[6][1];
-  assign slot_req[7][0]       = ext_q.FFC_TARGET.LO.req;
-  assign slot_req_is_wr[7][0] = ext_q.FFC_TARGET.LO.req_is_wr;
-  assign slot_wr_data[7][0]   = ext_q.FFC_TARGET.LO.wr_data.value;
-  assign slot_wr_biten[7][0]  = ext_q.FFC_TARGET.LO.wr_biten.value;
+  assign slot_req[7][0]       = hwif_out.FFC_TARGET.LO.req;
+  assign slot_req_is_wr[7][0] = hwif_out.FFC_TARGET.LO.req_is_wr;
+  assign slot_wr_data[7][0]   = hwif_out.FFC_TARGET.LO.wr_data.value;
+  assign slot_wr_biten[7][0]  = hwif_out.FFC_TARGET.LO.wr_biten.value;
   assign hwif_in.FFC_TARGET.LO.rd_ack       = slot_rd_ack[7][0];
   assign hwif_in.FFC_TARGET.LO.rd_data.value = slot_rd_data[7][0];
   assign hwif_in.FFC_TARGET.LO.wr_ack       = slot_wr_ack[7][0];
-  assign slot_req[7][1]       = ext_q.FFC_TARGET.HI.req;
-  assign slot_req_is_wr[7][1] = ext_q.FFC_TARGET.HI.req_is_wr;
-  assign slot_wr_data[7][1]   = ext_q.FFC_TARGET.HI.wr_data.value;
-  assign slot_wr_biten[7][1]  = ext_q.FFC_TARGET.HI.wr_biten.value;
+  assign slot_req[7][1]       = hwif_out.FFC_TARGET.HI.req;
+  assign slot_req_is_wr[7][1] = hwif_out.FFC_TARGET.HI.req_is_wr;
+  assign slot_wr_data[7][1]   = hwif_out.FFC_TARGET.HI.wr_data.value;
+  assign slot_wr_biten[7][1]  = hwif_out.FFC_TARGET.HI.wr_biten.value;
   assign hwif_in.FFC_TARGET.HI.rd_ack       = slot_rd_ack[7][1];
   assign hwif_in.FFC_TARGET.HI.rd_data.value = slot_rd_data[7][1];
   assign hwif_in.FFC_TARGET.HI.wr_ack       = slot_wr_ack[7][1];
@@ -483,16 +465,16 @@ module irnuc_axil_regs
   end
 
   for (genvar k = 0; k < NumTable; k++) begin : gen_table
-    assign table_wr[k] = ext_q.TABLE_READING[k].req && ext_q.TABLE_READING[k].req_is_wr;
-    assign hwif_in.TABLE_READING[k].rd_ack = ext_q.TABLE_READING[k].req
-                                             && !ext_q.TABLE_READING[k].req_is_wr;
+    assign table_wr[k] = hwif_out.TABLE_READING[k].req && hwif_out.TABLE_READING[k].req_is_wr;
+    assign hwif_in.TABLE_READING[k].rd_ack = hwif_out.TABLE_READING[k].req
+                                             && !hwif_out.TABLE_READING[k].req_is_wr;
     assign hwif_in.TABLE_READING[k].wr_ack = table_wr[k];
     if (k < TableReadings) begin : gen_on
       localparam logic [31:0] Mask = axil_value_mask(TableReadingBits, 0);
       logic [TableReadingBits-1:0] value_q;
       logic [31:0]                 biten;
 
-      assign biten          = ext_q.TABLE_READING[k].wr_biten.value & {32{table_wr[k]}};
+      assign biten          = hwif_out.TABLE_READING[k].wr_biten.value & {32{table_wr[k]}};
       assign table_touch[k] = |(biten & Mask);
 
       always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
@@ -500,7 +482,7 @@ module irnuc_axil_regs
           value_q <= '0;
         end else if (table_wr[k]) begin
           value_q <= TableReadingBits'((32'(value_q) & ~biten)
-                                       | (ext_q.TABLE_READING[k].wr_data.value & biten));
+                                       | (hwif_out.TABLE_READING[k].wr_data.value & biten));
         end
       end
       assign table_o[k] = 32'(value_q);
@@ -508,8 +490,8 @@ module irnuc_axil_regs
       assign table_touch[k] = 1'b0;
       assign table_o[k]     = '0;
       logic unused_table;
-      assign unused_table = ^{ext_q.TABLE_READING[k].wr_data.value,
-                              ext_q.TABLE_READING[k].wr_biten.value};
+      assign unused_table = ^{hwif_out.TABLE_READING[k].wr_data.value,
+                              hwif_out.TABLE_READING[k].wr_biten.value};
     end
     assign hwif_in.TABLE_READING[k].rd_data.value = table_o[k];
   end
@@ -593,8 +575,8 @@ module irnuc_axil_regs
   logic [RegFfcCtrlFramesBits-1:0] ffc_frames_q;
   logic                            ffc_start_q, ffc_done_q, ffc_wr;
 
-  assign ffc_wr = ext_q.FFC_CTRL.req && ext_q.FFC_CTRL.req_is_wr;
-  assign hwif_in.FFC_CTRL.rd_ack = ext_q.FFC_CTRL.req && !ext_q.FFC_CTRL.req_is_wr;
+  assign ffc_wr = hwif_out.FFC_CTRL.req && hwif_out.FFC_CTRL.req_is_wr;
+  assign hwif_in.FFC_CTRL.rd_ack = hwif_out.FFC_CTRL.req && !hwif_out.FFC_CTRL.req_is_wr;
   assign hwif_in.FFC_CTRL.wr_ack = ffc_wr;
 
   if (HasFfc != 0) begin : gen_ffc
@@ -604,11 +586,11 @@ module irnuc_axil_regs
         ffc_start_q  <= 1'b0;
         ffc_done_q   <= 1'b0;
       end else begin
-        ffc_start_q <= ffc_wr && ext_q.FFC_CTRL.wr_data.start
-                       && ext_q.FFC_CTRL.wr_biten.start;
+        ffc_start_q <= ffc_wr && hwif_out.FFC_CTRL.wr_data.start
+                       && hwif_out.FFC_CTRL.wr_biten.start;
         if (ffc_wr) begin
-          ffc_frames_q <= (ffc_frames_q & ~ext_q.FFC_CTRL.wr_biten.frames)
-                          | (ext_q.FFC_CTRL.wr_data.frames & ext_q.FFC_CTRL.wr_biten.frames);
+          ffc_frames_q <= (ffc_frames_q & ~hwif_out.FFC_CTRL.wr_biten.frames)
+                          | (hwif_out.FFC_CTRL.wr_data.frames & hwif_out.FFC_CTRL.wr_biten.frames);
         end
         if (ffc_done_i) begin
           ffc_done_q <= 1'b1;
@@ -638,13 +620,13 @@ module irnuc_axil_regs
   logic [TrigRdBits-1:0] trig_ref;
   logic                  period_wr, thr_wr, trig_period, trig_thr, trig_request;
 
-  assign period_wr = ext_q.FFC_PERIOD.req && ext_q.FFC_PERIOD.req_is_wr;
-  assign thr_wr    = ext_q.FFC_THRESHOLD.req && ext_q.FFC_THRESHOLD.req_is_wr;
-  assign hwif_in.FFC_PERIOD.rd_ack    = ext_q.FFC_PERIOD.req
-                                        && !ext_q.FFC_PERIOD.req_is_wr;
+  assign period_wr = hwif_out.FFC_PERIOD.req && hwif_out.FFC_PERIOD.req_is_wr;
+  assign thr_wr    = hwif_out.FFC_THRESHOLD.req && hwif_out.FFC_THRESHOLD.req_is_wr;
+  assign hwif_in.FFC_PERIOD.rd_ack    = hwif_out.FFC_PERIOD.req
+                                        && !hwif_out.FFC_PERIOD.req_is_wr;
   assign hwif_in.FFC_PERIOD.wr_ack    = period_wr;
-  assign hwif_in.FFC_THRESHOLD.rd_ack = ext_q.FFC_THRESHOLD.req
-                                        && !ext_q.FFC_THRESHOLD.req_is_wr;
+  assign hwif_in.FFC_THRESHOLD.rd_ack = hwif_out.FFC_THRESHOLD.req
+                                        && !hwif_out.FFC_THRESHOLD.req_is_wr;
   assign hwif_in.FFC_THRESHOLD.wr_ack = thr_wr;
 
   if (HasFfc != 0) begin : gen_ffc_trigger
@@ -654,12 +636,12 @@ module irnuc_axil_regs
         thr_q    <= ThrBits'(RegFfcThresholdCodesReset);
       end else begin
         if (period_wr) begin
-          period_q <= (period_q & ~ext_q.FFC_PERIOD.wr_biten.frames)
-                      | (ext_q.FFC_PERIOD.wr_data.frames & ext_q.FFC_PERIOD.wr_biten.frames);
+          period_q <= (period_q & ~hwif_out.FFC_PERIOD.wr_biten.frames)
+                      | (hwif_out.FFC_PERIOD.wr_data.frames & hwif_out.FFC_PERIOD.wr_biten.frames);
         end
         if (thr_wr) begin
-          thr_q <= (thr_q & ~ext_q.FFC_THRESHOLD.wr_biten.codes)
-                   | (ext_q.FFC_THRESHOLD.wr_data.codes & ext_q.FFC_THRESHOLD.wr_biten.codes);
+          thr_q <= (thr_q & ~hwif_out.FFC_THRESHOLD.wr_biten.codes)
+                   | (hwif_out.FFC_THRESHOLD.wr_data.codes & hwif_out.FFC_THRESHOLD.wr_biten.codes);
         end
       end
     end
@@ -716,17 +698,17 @@ module irnuc_axil_regs
 
   // Not used: the FFC_CTRL word's bits outside its fields; table_sel's bits outside TABLE_SEL.
   logic unused_bits;
-  assign unused_bits = ^{ext_q.FFC_CTRL.wr_data, ext_q.FFC_CTRL.wr_biten, table_sel,
-                         ext_q.FFC_PERIOD.wr_data._reserved_31_24,
-                         ext_q.FFC_PERIOD.wr_biten._reserved_31_24,
-                         ext_q.FFC_THRESHOLD.wr_data._reserved_31_24,
-                         ext_q.FFC_THRESHOLD.wr_biten._reserved_31_24};
+  assign unused_bits = ^{hwif_out.FFC_CTRL.wr_data, hwif_out.FFC_CTRL.wr_biten, table_sel,
+                         hwif_out.FFC_PERIOD.wr_data._reserved_31_24,
+                         hwif_out.FFC_PERIOD.wr_biten._reserved_31_24,
+                         hwif_out.FFC_THRESHOLD.wr_data._reserved_31_24,
+                         hwif_out.FFC_THRESHOLD.wr_biten._reserved_31_24};
 
 `ifndef SYNTHESIS
   // The parameters' ranges and (IRNUC_ASSERT) the external requests: irnuc_axil_regs_check.
   logic [NumTable-1:0] table_req, table_ack;
   for (genvar k = 0; k < NumTable; k++) begin : gen_table_check
-    assign table_req[k] = ext_q.TABLE_READING[k].req;
+    assign table_req[k] = hwif_out.TABLE_READING[k].req;
     assign table_ack[k] = hwif_in.TABLE_READING[k].rd_ack || hwif_in.TABLE_READING[k].wr_ack;
   end
   irnuc_axil_regs_check #(
@@ -736,8 +718,8 @@ module irnuc_axil_regs
   ) u_check (
     .clk_i,
     .rst_ni,
-    .ext_req_i ({ext_q.FRAME_SIZE.req, ext_q.FFC_CTRL.req, ext_q.FFC_PERIOD.req,
-                 ext_q.FFC_THRESHOLD.req, slot_req, table_req}),
+    .ext_req_i ({hwif_out.FRAME_SIZE.req, hwif_out.FFC_CTRL.req, hwif_out.FFC_PERIOD.req,
+                 hwif_out.FFC_THRESHOLD.req, slot_req, table_req}),
     .ext_ack_i (hwif_in.FRAME_SIZE.rd_ack || hwif_in.FRAME_SIZE.wr_ack
                 || hwif_in.FFC_CTRL.rd_ack || hwif_in.FFC_CTRL.wr_ack
                 || hwif_in.FFC_PERIOD.rd_ack || hwif_in.FFC_PERIOD.wr_ack
