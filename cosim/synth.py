@@ -779,7 +779,13 @@ def synth_configs(cfgs: Sequence, *, workers: int = 2, scheduler: str | None = N
     if seeds == 1:
         return runs
     n = len(chosen)
-    return [best_of_seeds(runs[i * n:(i + 1) * n]) for i in range(len(cfgs))]
+    try:
+        return [best_of_seeds(runs[i * n:(i + 1) * n]) for i in range(len(cfgs))]
+    except ValueError as e:
+        # Each placement job reads the RTL when it starts: an edit of hdl/ during the run
+        # gives one configuration's seeds different netlists.
+        raise ToolError(f"{e}: the RTL changed while the seeds were placed; run irnuc "
+                        "synth again") from e
 
 
 def synth_seeds(cfg, *, seeds: int = 4, workers: int = 2, scheduler: str | None = None,

@@ -9,6 +9,7 @@ import json
 import pytest
 
 from irnuc.cli import main
+from irnuc.common.errors import ToolError
 from irnuc.cosim import synth
 from irnuc.nuc_fixed import load_pipeline
 
@@ -98,6 +99,16 @@ def test_synth_configs_places_every_seed(monkeypatch) -> None:
     synth.synth_configs(cfgs[:1], workers=0, seeds=2, use_cache=False)
     assert nets[0][1]["use_cache"] is False
     assert calls == [("minimal", 1, True), ("minimal", 2, True)]
+
+
+def test_synth_configs_rtl_changed_between_seeds(monkeypatch) -> None:
+    """A seed whose netlist differs (hdl/ edited during the run): one line, not a
+    traceback."""
+    monkeypatch.setattr(synth, "_netlist_job", lambda d, o: None)
+    monkeypatch.setattr(synth, "synth_config", lambda cfg, **kw: _run(
+        kw["seed"], 150.0, xc7={"lut": 10 + (kw["seed"] > 1)}, config_digest=cfg.digest()))
+    with pytest.raises(ToolError, match="RTL changed while the seeds were placed"):
+        synth.synth_configs([load_pipeline("minimal")], workers=0, seeds=2)
 
 
 def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch) -> None:
