@@ -158,8 +158,10 @@ class FusedMethod:
                 raise InputError(f"method {self.cfg.method!r}: a frame's coefficients read "
                                  f"{len(arrays)} fields; the fused kernels take at most "
                                  f"{FIELD_SLOTS}")
-            # int64 contiguous fields are passed as they are (views); others converted.
-            flat = tuple(np.ascontiguousarray(a, np.int64).reshape(-1) for a in arrays)
+            # int64 contiguous writeable fields are passed as they are (views); others are
+            # converted (one numba type for the tuple: a read-only array would be another).
+            flat = tuple(f if f.flags.writeable else f.copy() for f in
+                         (np.ascontiguousarray(a, np.int64).reshape(-1) for a in arrays))
             self._stack = (key, flat + (_PAD,) * (FIELD_SLOTS - len(flat)))
         b, flat, idx = self._bad_map(fx.bad)
         return _Tables(key, self._stack[1], np.array(terms, np.int64).reshape(-1, 3),

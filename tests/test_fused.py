@@ -167,3 +167,17 @@ def test_fused_groups_frames_and_keeps_their_order() -> None:
     rev = method_top(raw[::-1], c, FrameInputs(reading=inputs.reading[::-1])).y
     np.testing.assert_array_equal(fwd, rev[::-1])
     assert len({int(v) for v in inputs.reading}) > 3
+
+
+@pytest.mark.parametrize("name", ["tcffc14", "table14"])
+def test_fused_takes_read_only_and_narrow_fields(name: str) -> None:
+    """The kernels read the calibration's own arrays where they can: read-only (a
+    memory-mapped image) and non-int64 fields are taken too, with the reference's bits."""
+    cfg = load_pipeline(name)
+    c, raw, inputs, _ = _stimulus(cfg, 5)
+    for i, m in enumerate(c.fields.values()):
+        for k, v in m.items():
+            if v.dtype != bool:
+                m[k] = v.astype(np.int32) if i % 2 else v
+                m[k].setflags(write=False)
+    _same(method_top(raw, c, inputs), method_top(raw, c, inputs, reference=True))
