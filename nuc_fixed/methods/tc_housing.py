@@ -59,7 +59,7 @@ if TYPE_CHECKING:
     from irnuc.nuc_fixed.cores import CoreResult
     from irnuc.nuc_fixed.method_top import MethodCoefficients
 
-TH_WORD = WordLayout("th_word", 2, (
+TH_WORD = WordLayout("housing_word", 2, (
     Field("th1", "Th1Bits", "offset change per w', two's complement", "th1"),
     Field("thx", "ThxBits", "offset change per v·w', two's complement", "thx"),
     Field("th2", "Th2Bits", "offset change per w'^2, two's complement", "th2"),
