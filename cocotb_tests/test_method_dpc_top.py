@@ -23,7 +23,7 @@ def _order1(name: str) -> PipelineConfig:
 #: label -> configuration: one per base method, then the variants.
 CONFIGS: dict[str, PipelineConfig] = {
     **{n: load_pipeline(n) for n in ("onepoint14", "typical14", "piecewise14", "quadratic14",
-                                     "tcoffset14", "tcgain14", "table14")},
+                                     "tcoffset14", "tcgain14", "table14", "tchousing14")},
     "tcgain14_order1": _order1("tcgain14"),
     "piecewise14+truncate+wrap": load_pipeline("piecewise14").replace(
         rounding="truncate", overflow="wrap"),

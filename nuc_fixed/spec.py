@@ -503,6 +503,11 @@ class MethodSpec(PartSpec):
         """The readings where its per-frame values change behaviour (stimulus)."""
         return []
 
+    def housing_marks(self, c: MethodCoefficients) -> list[int]:
+        """The housing readings where its per-frame values change behaviour (stimulus; a
+        method that takes the ``housing`` reading)."""
+        return []
+
     def draw_register(self, r: Register, rng: np.random.Generator, lo: int, hi: int
                       ) -> object | None:
         """A random value of a calibration register with a shape of its own (None: any
