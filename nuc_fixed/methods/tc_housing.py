@@ -146,7 +146,8 @@ class TcHousing(TcOffset):
                             "the housing reading: the plan needs at least 3 housing "
                             "temperatures per FPA temperature (plan.housing_offset, e.g. "
                             f"[-5, 0, 5]); the points read {sorted(set(housing), key=str)}")
-        check_readings(cfg, sorted(set(readings)), 0, pts.source)
+        distinct = sorted(set(readings))
+        check_readings(cfg, distinct, distinct.index(readings[pts.reference]), pts.source)
         order = _order(cfg)
         if len(set(readings)) < order + 1:
             raise PlanError(f"{pts.source}: tc_order = {order} needs at least {order + 1} "
