@@ -520,6 +520,11 @@ class MethodSpec(PartSpec):
         calibrate from (``nuc_fixed.fit.check_readings``); a method without a reading
         takes any."""
 
+    def check_plan(self, cfg: PipelineConfig, plan: Any, source: str) -> None:
+        """Refuse a calibration plan (``nuc_fixed.plan.CalibrationPlan``) it cannot
+        calibrate from, before the simulation (tc_housing: without housing offsets); any
+        plan by default."""
+
     def corner(self, c: MethodCoefficients, raw: np.ndarray, rng: np.random.Generator,
                index: int) -> None:
         """Put some pixels of corner frame ``index`` on its breakpoints (in place)."""

@@ -149,3 +149,60 @@ def test_a_plan_without_the_housing_is_refused() -> None:
     with pytest.raises(PlanError, match=r"plan.toml: .*tc_housing.*housing_offset"):
         calibrate_points(pts, load_pipeline(CFG).replace(reading_range_bits=12,
                                                          housing_range_bits=12))
+
+
+def test_a_plan_whose_housing_follows_the_fpa_is_refused() -> None:
+    # Three housing readings, but each with its FPA's: w' and v cannot be told apart.
+    pts, _ = _exact_points()
+    keep = [0, 4, 8]  # (t0 - 1024, h0 - 1024), (t0, h0), (t0 + 1024, h0 + 1024)
+    pts = PointFrames(codes=pts.codes[keep], scene_K=pts.scene_K, fpa_K=pts.fpa_K[keep],
+                      reading=pts.reading[keep], adc_bits=14, reference=1, source="plan.toml",
+                      housing_K=pts.housing_K[keep], housing_reading=pts.housing_reading[keep])
+    with pytest.raises(PlanError, match=r"plan.toml: .*do not separate them.*housing_offset"):
+        calibrate_points(pts, load_pipeline(CFG).replace(reading_range_bits=12,
+                                                         housing_range_bits=12))
+
+
+def test_the_command_line_refuses_a_plan_without_housing_offsets(
+        tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    from irnuc.cli import main
+
+    plan = tmp_path / "plan.toml"
+    plan.write_text('[plan]\nscene = [290.0, 330.0, 370.0]\nfpa = [288.0, 298.0, 308.0]\n'
+                    'frames = 2\n')
+    out = tmp_path / "cal"
+    assert main(["calibrate", "--plan", str(plan), "--pipeline", CFG, "--out", str(out),
+                 "--set", "fpa.active_rows=8", "--set", "fpa.active_cols=8"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "housing_offset" in err and str(plan) in err, err
+    assert not out.exists()
+
+
+def test_calibrate_then_correct_through_the_command_line(tmp_path) -> None:
+    # The housing reading of the frame file reaches the golden model: the corrected frames
+    # of a housing 3 K off the FPA are those of method_top with the file's two readings,
+    # and differ from those with the housing reading at the FPA's.
+    from irnuc.cli import main
+    from irnuc.nuc_fixed.memimage import read_calibration
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+
+    plan = tmp_path / "plan.toml"
+    plan.write_text('[plan]\nscene = [290.0, 330.0, 370.0]\nfpa = [288.0, 298.0, 308.0]\n'
+                    'housing_offset = [-5.0, 0.0, 5.0]\nframes = 1\n')
+    small = ["--set", "fpa.active_rows=8", "--set", "fpa.active_cols=8"]
+    assert main(["calibrate", "--plan", str(plan), "--pipeline", CFG, "--out",
+                 str(tmp_path / "cal"), "-q", *small]) == 0
+    assert main(["frames", *small, "--set", "environment.T_cam=301", "--temps", "300,330",
+                 "--out", str(tmp_path / "fr"), "-q"]) == 0
+    assert main(["correct", "--frames", str(tmp_path / "fr"), "--coeffs", str(tmp_path / "cal"),
+                 "--out", str(tmp_path / "cor"), "-q"]) == 0
+    fr = np.load(tmp_path / "fr" / "frames.npz")
+    got = np.load(tmp_path / "cor" / "corrected.npz")["corrected"]
+    mc, _ = read_calibration(tmp_path / "cal")
+    want = method_top(fr["codes"], mc, FrameInputs(reading=fr["fpa_reading"],
+                                                   housing_reading=fr["housing_reading"])).y
+    np.testing.assert_array_equal(got, want)
+    assert int(fr["housing_reading"][0]) - int(fr["fpa_reading"][0]) == 100  # 1 K, 0.01 K/code
+    at_fpa = method_top(fr["codes"], mc, FrameInputs(reading=fr["fpa_reading"],
+                                                     housing_reading=fr["fpa_reading"])).y
+    assert not np.array_equal(got, at_fpa)

@@ -131,6 +131,13 @@ class TcHousing(TcOffset):
                               f"at most housing_bits = {cfg.housing_bits} (a reading differs "
                               "from h_ref by less than 2^housing_bits)")
 
+    def check_plan(self, cfg: PipelineConfig, plan: Any, source: str) -> None:
+        if len(set(plan.housing_offset)) < 3:
+            raise PlanError(f"{source}: method {cfg.method!r} fits w', v·w' and w'^2 in the "
+                            "housing reading: the plan needs at least 3 housing temperatures "
+                            "per FPA temperature (plan.housing_offset, e.g. [-5, 0, 5]); it "
+                            f"has {len(set(plan.housing_offset))}")
+
     def fit(self, cfg: PipelineConfig, pts: Any, means: np.ndarray, t: np.ndarray,
             q: Any) -> None:
         # Every (FPA, housing) point: the gain as tc_offset's, the offset per point and its
@@ -157,6 +164,12 @@ class TcHousing(TcOffset):
         q.register("t_ref", None, t_ref, bits=int(cfg.reading_bits or 1))
         q.register("h_ref", None, h_ref, bits=int(cfg.housing_bits or 1))
         reg = housing_regressors(cfg, readings, [int(h) for h in housing], t_ref, h_ref)
+        if np.linalg.matrix_rank(reg) < reg.shape[1]:
+            raise PlanError(f"{pts.source}: method {cfg.method!r} fits {reg.shape[1]} terms in "
+                            "the FPA and the housing readings but the plan's points do not "
+                            "separate them (the housing follows the FPA): image every FPA "
+                            "temperature at 3 housing temperatures (plan.housing_offset, e.g. "
+                            "[-5, 0, 5])")
         fit_polynomials(cfg, means, t, q, reg, list(HOUSING_TERMS))
 
     def float_correct(self, cfg: PipelineConfig, f: Mapping[str, Any], x: np.ndarray,
