@@ -21,15 +21,18 @@ from irnuc.nuc_fixed.spec import CoefExpr, Term
 from irnuc.nuc_fixed.validate import InputError, as_config
 
 
-def _reading(name: str, value: object, cfg: PipelineConfig) -> int:
-    hi = (1 << int(cfg.reading_bits or 1)) - 1
+def _reading(name: str, value: object, cfg: PipelineConfig, bits: str = "reading_bits") -> int:
+    """A reading code checked against the configuration's width ``bits`` (the FPA's
+    ``reading_bits`` or the housing's ``housing_bits``)."""
+    width = getattr(cfg, bits)
+    hi = (1 << int(width or 1)) - 1
     try:
         v = int(value)  # type: ignore[call-overload]
     except (TypeError, ValueError):
         raise InputError(f"{name} = {value!r} is not an integer reading code") from None
     if isinstance(value, bool) or v != value or not 0 <= v <= hi:
         raise InputError(f"{name} = {value!r} is outside the allowed range [0, {hi}] "
-                         f"(reading_bits = {cfg.reading_bits})")
+                         f"({bits} = {width})")
     return v
 
 
@@ -44,18 +47,6 @@ class TcReading:
     w: int = 0
     uw: int = 0
     w2: int = 0
-
-
-def _housing_code(name: str, value: object, cfg: PipelineConfig) -> int:
-    hi = (1 << int(cfg.housing_bits or 1)) - 1
-    try:
-        v = int(value)  # type: ignore[call-overload]
-    except (TypeError, ValueError):
-        raise InputError(f"{name} = {value!r} is not an integer reading code") from None
-    if isinstance(value, bool) or v != value or not 0 <= v <= hi:
-        raise InputError(f"{name} = {value!r} is outside the allowed range [0, {hi}] "
-                         f"(housing_bits = {cfg.housing_bits})")
-    return v
 
 
 def tc_reading(reading: int, t_ref: int, cfg: PipelineConfig | str,
@@ -76,8 +67,8 @@ def tc_reading(reading: int, t_ref: int, cfg: PipelineConfig | str,
     u = min(max(t - r, -lim), lim)
     if housing is None:
         return TcReading(u=u, u2=(u * u) >> ts)
-    h = _housing_code("housing_reading", housing, cfg)
-    hr = _housing_code("h_ref", h_ref, cfg)
+    h = _reading("housing_reading", housing, cfg, "housing_bits")
+    hr = _reading("h_ref", h_ref, cfg, "housing_bits")
     hs = int(cfg.housing_range_bits or 1)
     hlim = (1 << hs) - 1
     w = min(max(h - hr, -hlim), hlim)
