@@ -24,8 +24,9 @@
 //               clog2(leaves) stages
 //   round       both ROUND, registered
 //   u_out       SAT into the output register (irnuc_spill_register)
-// Latency 8 + clog2(reading parts) + clog2(leaves) (tcoffset14 and tcgain14: 10); one pixel
-// per clock. UserBits of side band (raw code, markers, bad flag) pass unchanged.
+// Latency 8 + clog2(reading parts) + clog2(leaves) (tcoffset14 and tcgain14: 10, tchousing14:
+// 11); one pixel per clock. UserBits of side band (raw code, markers, bad flag) pass
+// unchanged.
 module tc_poly
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
