@@ -44,13 +44,17 @@ def _readings(coeffs: MethodCoefficients, n: int, readings: object | None
               ) -> list[Any]:
     """One FPA reading per frame for a method that takes it (``MethodSpec.readings``); for
     one that also takes the housing reading, ``readings`` is ``{"fpa": (N,), "housing":
-    (N,)}`` and each frame's is a mapping of both."""
+    (N,)}`` (or one such mapping per frame) and each frame's is a mapping of both."""
     cfg = coeffs.cfg
     if "fpa" not in cfg.base.readings:
         return [None] * n
     if readings is None:
         raise InputError(f"method {cfg.method!r} needs one FPA reading per frame")
     named = ("housing" in cfg.base.readings)
+    if named and isinstance(readings, list | tuple) and readings \
+            and all(isinstance(r, Mapping) for r in readings):
+        # one mapping per frame (method_stim.random_reading's): by reading
+        readings = {k: [r[k] for r in readings] for k in ("fpa", "housing")}
     if named and not isinstance(readings, Mapping):
         raise InputError(f"method {cfg.method!r} needs readings = {{'fpa': ..., 'housing': "
                          "...}, one of each per frame")
