@@ -45,6 +45,9 @@ DEFINES = ("FORMAL", "IRNUC_ASSERT")
 ENGINES = ("bmc", "bmc3", "kind", "pdr", "cover")
 #: Wall-time limit of one solver run.
 TIMEOUT = 1800.0
+#: The define that turns a harness's covers into assertions failing where they are reached
+#: (its cover model for ABC: :func:`write_models` with ``covers=True``, :func:`bmc3_covers`).
+COVER_DEFINE = "IRNUC_FV_COVER_BMC"
 
 
 class FormalError(ToolError):
@@ -108,23 +111,33 @@ def _read(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, i
 
 def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
                  workdir: str | os.PathLike, *, aiger: bool = True,
-                 defines: Sequence[str] = DEFINES, extra: Sequence[str] = ()) -> dict[str, Path]:
+                 defines: Sequence[str] = DEFINES, extra: Sequence[str] = (),
+                 covers: bool = False) -> dict[str, Path]:
     """Read the design and harness ``top`` with pyosys and write ``model.smt2`` (and, with
-    ``aiger``, ``model.aig`` for ABC; covers removed, uninitialised flops free at the
-    start). ``extra``: Yosys commands run after reading (e.g. a ``mutate``). Raises
+    ``aiger``, ``model.aig`` for ABC, ``model.ywmap`` naming its bad states; covers
+    removed, uninitialised flops free at the start). ``extra``: Yosys commands run after
+    reading (e.g. a ``mutate``). ``covers``: the cover model instead (the harness read
+    with :data:`COVER_DEFINE`, its ``c_*`` covers the only assertions left). Raises
     :class:`FormalError` when the design does not read."""
     wd = Path(workdir)
     wd.mkdir(parents=True, exist_ok=True)
+    if covers:
+        defines = (*defines, COVER_DEFINE)
+        extra = (*extra, "delete t:$check r:FLAVOR=assert %i n:c_* n:*.c_* %u %d")
     passes = [_read(sources, top, params, defines), f"prep -top {top}", *extra, "async2sync",
               "dffunmap", "write_smt2 -wires model.smt2"]
     if aiger:
         # ABC reads bit-level AIGER: covers out, flops on the global clock (those without
         # an initial value free at the start), memories and cells mapped to gates.
-        passes += ["chformal -cover -remove", "formalff -clk2ff -ff2anyinit",
+        # The top's ports are no AIGER outputs: ABC takes every output for a property (a
+        # design under proof with ports of its own, irnuc_axis_top, "failed" at frame 0
+        # on an output that was merely 1).
+        passes += ["chformal -cover -remove", f"delete -output {top}/o:*",
+                   "formalff -clk2ff -ff2anyinit",
                    "setundef -undriven -anyseq", "memory_map", "opt -fast", "techmap",
                    # opt merges enables and resets into the flops again: unmapped for AIGER
                    "opt -fast", "dffunmap", "aigmap",
-                   "write_aiger -I -B -zinit -map model.aim model.aig"]
+                   "write_aiger -I -B -zinit -map model.aim -ywmap model.ywmap model.aig"]
     try:
         _run_yosys(wd, "model", passes)
     except ToolError as exc:
@@ -281,6 +294,19 @@ def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = 
 
 _BMC3_PASS = re.compile(r"No output asserted in (\d+) frames")
 _BMC3_FAIL = re.compile(r"was asserted in frame (\d+)")
+_BMC3_OUTPUT = re.compile(r"Output (\d+)(?: of miter \"[^\"]*\")? was asserted in frame\s+(\d+)")
+
+
+def aiger_labels(aig: str | os.PathLike) -> list[str]:
+    """The labels of an AIGER model's bad states in ABC's output order (its ``.ywmap``
+    from :func:`write_models`; empty without one)."""
+    ywmap = Path(aig).with_suffix(".ywmap")
+    if not ywmap.is_file():
+        return []
+    import json
+
+    return [_label(".".join(str(p).lstrip("\\") for p in path))
+            for path in json.loads(ywmap.read_text()).get("asserts", [])]
 
 
 def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
@@ -303,13 +329,51 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
     text = log.read_text(errors="replace")
     m = _BMC3_FAIL.search(text)
     if m:
-        return Check("bmc3", "failed", depth, seconds, step=int(m.group(1)), log=str(log))
+        # The failed output by its label (the model's ywmap): no replay needed for it.
+        labels = aiger_labels(aig)
+        out = _BMC3_OUTPUT.search(text)
+        failed = ([labels[int(out.group(1))]] if out and int(out.group(1)) < len(labels)
+                  else [])
+        return Check("bmc3", "failed", depth, seconds, step=int(m.group(1)), log=str(log),
+                     failed=failed, message=", ".join(failed))
     m = _BMC3_PASS.search(text)
     if m and int(m.group(1)) >= depth:
         return Check("bmc3", "passed", depth, seconds, log=str(log))
     return Check("bmc3", "error", depth, seconds, log=str(log),
                  message=f"yosys-abc bmc3 ended without a verdict (exit {proc.returncode}): "
                          + _tail(log, 8))
+
+
+def bmc3_covers(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
+                timeout: float = TIMEOUT) -> Check:
+    """The covers of a cover model (:func:`write_models` with ``covers=True``) by ABC's
+    ``bmc3 -a`` (every output solved, frames 0..depth-1): ``covered`` when each is reached
+    (``covers``: label -> its first step), else ``uncovered``. One run for all covers;
+    minimal's top reaches its five in about a second where yosys-smtbmc takes minutes."""
+    wd = Path(workdir)
+    wd.mkdir(parents=True, exist_ok=True)
+    log = wd / "cover3.log"
+    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -a -F {int(depth)}; "
+              f"print_status")
+    t0 = time.perf_counter()
+    try:
+        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
+                         single_process=True)
+    except ChildTimeout:
+        return Check("cover", "timeout", depth, round(time.perf_counter() - t0, 2),
+                     log=str(log), message=f"no result in {timeout:g} s")
+    seconds = round(time.perf_counter() - t0, 2)
+    text = log.read_text(errors="replace")
+    labels = aiger_labels(aig)
+    if not labels:
+        return Check("cover", "error", depth, seconds, log=str(log),
+                     message=f"the cover model has no covers (exit {proc.returncode})")
+    covers = {labels[int(i)]: int(f) for i, f in _BMC3_OUTPUT.findall(text)
+              if int(i) < len(labels)}
+    missing = [lb for lb in labels if lb not in covers]
+    return Check("cover", "uncovered" if missing else "covered", depth, seconds,
+                 log=str(log), covers=covers,
+                 message=f"not reached in {depth} steps: {', '.join(missing)}" if missing else "")
 
 
 def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os.PathLike, *,
@@ -326,9 +390,12 @@ def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os
         res = bmc3(models["aig"], depth, wd, timeout=timeout)
         if res.status != "failed":
             return res
+        named = list(res.failed)
         res = _replay(models, res, min(depth, (res.step or 0) + 2), wd, timeout)
         if not res.failed:  # the AIGER model's counterexample is not the SMT-LIB model's
             res.status = "error"
+            res.message = (f"bmc3: {', '.join(named) or 'an assertion'} at step {res.step}; "
+                           f"{res.message}")
         return res
     if engine in ("bmc", "cover"):
         return smtbmc(models["smt2"], engine, depth, wd, timeout=timeout)
@@ -370,8 +437,9 @@ def tool_versions() -> dict[str, str]:
     return out
 
 
-__all__ = ["DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError", "bmc3", "check",
-           "formal_sources", "pdr", "smtbmc", "tool_versions", "write_models"]
+__all__ = ["COVER_DEFINE", "DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError",
+           "aiger_labels", "bmc3", "bmc3_covers", "check", "formal_sources", "pdr", "smtbmc",
+           "tool_versions", "write_models"]
 
 
 # ---- equivalence of two netlists (a mutant and its original) -------------------------------
