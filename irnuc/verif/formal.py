@@ -502,16 +502,16 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         extra = ([_keep_only(fault.property)] if fault is not None else
                  [_drop(proof.exclude)] if proof.exclude else [])
         cover, depth = None, proof.depth
-        if _measured_bound(proof):
+        if _measured_bound(proof) and fault is not None:
+            engine = "bmc3"  # to TOP_DEPTH: it stops at the first failure
+        elif _measured_bound(proof):
             # The covers first, by bmc3 on the cover model: the bound is the step of the
-            # last one (and a fault is checked to the same bound as its proof).
+            # last one.
             cmodels = fv.write_models(srcs, proof.formal_top, params, work / "cover",
                                       covers=True)
             cover = fv.bmc3_covers(cmodels["aig"], proof.cover, work / "cover")
             if cover.status == "covered":
                 depth = max(cover.covers.values()) + 1
-            if fault is not None:
-                engine, cover = "bmc3", None
         models = fv.write_models(srcs, proof.formal_top, params, work / "model",
                                  aiger=engine in ("pdr", "bmc3"), extra=extra)
         res = fv.check(models, engine, depth, work / "model")
