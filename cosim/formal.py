@@ -124,10 +124,12 @@ def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping
     if covers:
         defines = (*defines, COVER_DEFINE)
         extra = (*extra, "delete t:$check r:FLAVOR=assert %i n:c_* n:*.c_* %u %d")
-    # memory_map for both models: the AIGER model's flops and the SMT-LIB model's then have
-    # the same names, so ABC's counterexample replays on the SMT-LIB model (_witness).
+    # memory_map and the undriven wires' free values for both models: the AIGER model's
+    # flops and inputs and the SMT-LIB model's then have the same names, so ABC's
+    # counterexample replays on the SMT-LIB model (_witness).
     passes = [_read(sources, top, params, defines), f"prep -top {top}", "memory_map", *extra,
-              "async2sync", "dffunmap", "write_smt2 -wires model.smt2"]
+              "setundef -undriven -anyseq", "async2sync", "dffunmap",
+              "write_smt2 -wires model.smt2"]
     if aiger:
         # ABC reads bit-level AIGER: covers out, flops on the global clock (those without
         # an initial value free at the start), memories and cells mapped to gates.
@@ -136,7 +138,7 @@ def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping
         # on an output that was merely 1).
         passes += ["chformal -cover -remove", f"delete -output {top}/o:*",
                    "formalff -clk2ff -ff2anyinit",
-                   "setundef -undriven -anyseq", "opt -fast", "techmap",
+                   "opt -fast", "techmap",
                    # opt merges enables and resets into the flops again: unmapped for AIGER
                    "opt -fast", "dffunmap", "aigmap",
                    "write_aiger -I -B -zinit -map model.aim -ywmap model.ywmap model.aig"]
