@@ -522,7 +522,7 @@ def _miter_harness(top: str, gold: str, gate: str, ports: Sequence[tuple[str, st
 
 
 def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str, int]],
-                workdir: str | os.PathLike, *, timeout: float = 600.0, depth: int = 30
+                workdir: str | os.PathLike, *, timeout: float = 300.0, depth: int = 30
                 ) -> dict:
     """Decide whether two netlists of ``top`` (modules ``<top>__gold``, ``<top>__mut``,
     every flop of both starting at 0) are equivalent at their ports from reset:
@@ -533,7 +533,7 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     2. else a miter of the two (the outputs compared at every cycle out of reset) by PDR:
        proved (equivalent) or a counterexample (not equivalent: a distinguishing input
        sequence, written as a VCD);
-    3. else (PDR ran out of time) the miter bounded to ``depth`` cycles: a counterexample,
+    3. else (PDR ran out of time) the miter bounded to ``depth`` cycles (ABC's bmc3): a counterexample,
        or undecided.
 
     Returns ``{"verdict": "equivalent" | "different" | "undecided", "engine", "seconds",
@@ -570,7 +570,7 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
                 "seconds": round(time.perf_counter() - t0, 2), "step": None, "vcd": None,
                 "message": "the miter's outputs proved equal in every reachable state"}
     if res.status != "failed":
-        res = check(models, "bmc", depth, wd / "miter", timeout=timeout)
+        res = check(models, "bmc3", depth, wd / "miter", timeout=timeout)
     seconds = round(time.perf_counter() - t0, 2)
     if res.status == "failed":
         return {"verdict": "different", "engine": res.engine, "seconds": seconds,
