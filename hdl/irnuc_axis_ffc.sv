@@ -372,8 +372,11 @@ module irnuc_axis_ffc
   end
   // done is registered (done_q: the event of the cycle before), so that the run's state
   // reaches the register file's flops from a flop; busy clears with it. A start in the
-  // cycle of done_q begins a new run instead (as a start in the event's cycle does).
-  assign done_e = busy_q && !ffc_start_i && (refreshed || short_end || none);
+  // cycle of done_q begins a new run instead (as a start in the event's cycle does). No
+  // second event while done_q ends the run: with frames of one pixel and FFC_CTRL.frames =
+  // 0 the "no frames" end came at two frame starts in a row (irnuc formal, axis_top_ffc14:
+  // a_done_once); busy_q already gated the second, so the ports are unchanged.
+  assign done_e = busy_q && !done_q && !ffc_start_i && (refreshed || short_end || none);
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_done
     if (!rst_ni) begin
       done_q <= 1'b0;
