@@ -502,9 +502,9 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         extra = ([_keep_only(fault.property)] if fault is not None else
                  [_drop(proof.exclude)] if proof.exclude else [])
         cover, depth = None, proof.depth
-        if _measured_bound(proof) and fault is not None:
+        if measured_bound(proof) and fault is not None:
             engine = "bmc3"  # to TOP_DEPTH: it stops at the first failure
-        elif _measured_bound(proof):
+        elif measured_bound(proof):
             # The covers first, by bmc3 on the cover model: the bound is the step of the
             # last one.
             cmodels = fv.write_models(srcs, proof.formal_top, params, work / "cover",
@@ -545,7 +545,7 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         shutil.rmtree(work, ignore_errors=True)
 
 
-def _measured_bound(proof: Proof) -> bool:
+def measured_bound(proof: Proof) -> bool:
     """A bmc3 proof with covers (its harness's cover model, fv.COVER_DEFINE): its bound is
     measured from the covers' steps (:data:`TOP_DEPTH`)."""
     return proof.engine == "bmc3" and proof.cover > 0
@@ -651,5 +651,5 @@ def _case(cls: str, r: dict, ok: bool, message: str) -> str:
 
 __all__ = ["FAULTS", "PROOFS", "PROOF_SIZE", "REGMAP_DEPTH", "TOP_DEPTH",
            "TOP_REGFILE_CHECKS", "Fault", "Proof", "cached_summary",
-           "formal_digest", "junit", "properties", "run_campaign", "run_proof", "select",
+           "formal_digest", "junit", "measured_bound", "properties", "run_campaign", "run_proof", "select",
            "summarize", "unplanted_properties"]
