@@ -577,5 +577,6 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
                 "step": res.step, "vcd": res.vcd,
                 "message": f"the outputs differ {res.step} cycles after reset"}
     return {"verdict": "undecided", "engine": res.engine, "seconds": seconds, "step": None,
-            "vcd": None, "message": f"PDR gave no verdict in {timeout:g} s and the outputs "
-                                    f"agree for {depth} cycles ({res.status})"}
+            "vcd": None, "message": f"PDR gave no verdict in {timeout:g} s; " + (
+                f"the outputs agree for {depth} cycles" if res.status == "passed" else
+                f"the {depth}-cycle bound neither ({res.status})")}
