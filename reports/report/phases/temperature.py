@@ -31,6 +31,9 @@ DEFAULTS: dict[str, Any] = {
     "preset": "default", "seed": 4, "rows": 24, "cols": 32, "fpa_K": [288.0, 308.0],
     "fpa_step_K": 1.0, "scene_K": [280.0, 330.0, 380.0], "ramp_K_per_min": 2.0,
     "frac_bits": [6, 8, 10, 12, 14], "ffc_periods_min": [0.25, 0.5, 1.0, 2.0],
+    "ffc_changes_K": [0.1, 0.5, 1.5], "ffc_either": [[3.0, 1.5]], "node_K": 0.5,
+    "node_max_s": 120.0, "max_peaks": 24, "housing_offset_K": [-5.0, 0.0, 5.0],
+    "cosim_scenario": "power_on_warmup", "cosim_min_pixels": 1_000_000,
     "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
     "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
     "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
@@ -44,7 +47,7 @@ def setting(t: Mapping[str, Any], key: str) -> Any:
 
 def spec_of(t: Mapping[str, Any]):
     """The study specification of a ``[temperature]`` section."""
-    from irnuc.reports.studies.signoff import METHODS, SignoffSpec
+    from irnuc.reports.studies.signoff import SignoffSpec, registry_methods, scenario_default
 
     return SignoffSpec(
         preset=setting(t, "preset"), seed=int(setting(t, "seed")), rows=int(setting(t, "rows")),
@@ -52,9 +55,15 @@ def spec_of(t: Mapping[str, Any]):
         fpa_step_K=float(setting(t, "fpa_step_K")),
         scene_K=tuple(float(x) for x in setting(t, "scene_K")),
         ramp_K_per_min=float(setting(t, "ramp_K_per_min")),
-        methods=tuple(t.get("methods", METHODS)),
+        methods=tuple(t.get("methods") or registry_methods()),
         frac_bits=tuple(int(x) for x in setting(t, "frac_bits")),
         ffc_periods_min=tuple(float(x) for x in setting(t, "ffc_periods_min")),
+        ffc_changes_K=tuple(float(x) for x in setting(t, "ffc_changes_K")),
+        ffc_either=tuple((float(a), float(b)) for a, b in setting(t, "ffc_either")),
+        scenarios=tuple(t.get("scenarios") or scenario_default()),
+        node_K=float(setting(t, "node_K")), node_max_s=float(setting(t, "node_max_s")),
+        max_peaks=int(setting(t, "max_peaks")),
+        housing_offset_K=tuple(float(x) for x in setting(t, "housing_offset_K")),
         frame_rate_hz=float(setting(t, "frame_rate_hz")),
         bandwidth_frame=tuple(int(x) for x in setting(t, "bandwidth_frame")),
         noise_frames=int(setting(t, "noise_frames")), overrides=dict(t.get("overrides") or {}))
@@ -274,9 +283,11 @@ def tolerance_mK(t: Mapping[str, Any], netd_mK: float) -> tuple[float, str]:
 
 
 def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[str, Any]:
-    """The recommendation: the cheapest point meeting ``tol``; else the lowest residual,
-    flagged ``meets_tolerance: false``."""
-    from irnuc.reports.studies.signoff import grid_edges, recommend
+    """The recommendation: the cheapest point meeting ``tol`` on every scenario; else the
+    lowest residual, flagged ``meets_tolerance: false``, with each configuration's best
+    point and the scenarios that break it (``breaking``)."""
+    from irnuc.reports.studies.scenarios import breaking
+    from irnuc.reports.studies.signoff import grid_edges, recommend, representative
 
     dp = {p["index"]: p["datapath_cost"] for p in pts if p.get("datapath_cost") is not None}
     rec = recommend(pts, tol, dp)
@@ -287,12 +298,21 @@ def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[
         p, meets = min(valid, key=lambda q: (q["worst_fpn_mK"], q["memory_bits"], q["index"])), False
     else:
         return {"found": False, "point": None, "candidates": []}
+    rows = [{"key": q["key"], "worst_fpn_mK": q["worst_fpn_mK"], "breaks": breaking(q, tol)}
+            for q in representative(valid, tol)]
     return {"found": True, "meets": meets, "point": p, "candidates": rec["candidates"],
-            "edges": grid_edges(p, pts, periods, meets)}
+            "edges": grid_edges(p, pts, periods, meets), "breaking": rows}
 
 
 def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -> None:
-    from irnuc.reports.studies.signoff import bandwidth_MBps, cached_signoff, figures, fronts
+    from irnuc.reports.studies.scenarios import breaking
+    from irnuc.reports.studies.signoff import (
+        bandwidth_MBps,
+        cached_signoff,
+        figures,
+        fronts,
+        representative,
+    )
 
     t = rep.config["temperature"]
     t0 = time.perf_counter()
@@ -310,8 +330,10 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 p["bandwidth_MBps"] = bandwidth_MBps(p["read_bits_per_frame"], spec.bandwidth_frame,
                                                      spec.frame_rate_hz)
                 p["meets_tolerance"] = p["worst_fpn_mK"] <= tol
-        d: dict[str, Any] = {k: res[k] for k in ("spec", "plan", "fpa_grid_K", "netd", "netd_mK",
-                                                 "noise_3d", "camera_temperature")}
+                p["breaks"] = breaking(p, tol)
+        d: dict[str, Any] = {k: res[k] for k in ("spec", "plan", "netd", "netd_mK",
+                                                 "noise_3d", "camera_temperature", "scenarios",
+                                                 "policies")}
         d |= {"points": pts, "tolerance_mK": tol, "tolerance": tol_text, "cached": res["cached"],
               "study_seconds": res["seconds"]}
         t1 = time.perf_counter()
@@ -319,7 +341,8 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         times["anchors"] = round(time.perf_counter() - t1, 3)
         d["fronts"] = {"memory_bits": fronts(pts, "memory_bits"),
                        "datapath_cost": fronts(pts, "datapath_cost") if d.get("cost") else None,
-                       "bandwidth_MBps": fronts(pts, "bandwidth_MBps")}
+                       "bandwidth_MBps": fronts(pts, "bandwidth_MBps"),
+                       "dead_time_pct": fronts(pts, "dead_time_pct")}
         ch = choose(pts, tol, list(spec.ffc_periods_min))
         d["recommended"] = None
         if ch["found"]:
@@ -329,8 +352,10 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 rep.notes.append(f"temperature: the recommendation lies on the {e['edge']} edge of "
                                  f"the swept {e['axis']}: {e['widen']}")
             if not r["meets_tolerance"]:
-                rep.notes.append(f"temperature: no swept point meets {tol_text}; the recommendation "
-                                 f"is the lowest residual, {r['worst_fpn_mK']:.3g} mK ({r['key']})")
+                rep.notes.append(f"temperature: no swept point meets {tol_text} on every scenario; "
+                                 f"the recommendation is the lowest residual, "
+                                 f"{r['worst_fpn_mK']:.3g} mK ({r['key']}), broken by "
+                                 f"{', '.join(r['breaks'])}")
             if setting(t, "synth"):
                 t1 = time.perf_counter()
                 _synth_recommended(t, r)
@@ -340,17 +365,25 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                     rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
-                r["cosim"] = _cosim(t, r, spec.fpa_K)
+                r["cosim"] = _cosim(t, r, spec)
                 times["cosim"] = round(time.perf_counter() - t1, 3)
                 if r["cosim"].get("not_run"):
                     rep.notes.append(f"temperature: not co-simulated: {r['cosim']['not_run']}")
         else:
             rep.notes.append("temperature: no valid point in the sweep")
-        d["images"] = _end_images(res, d["recommended"])
         t1 = time.perf_counter()
+        d["images"] = _worst_images(res, d["recommended"])
+        # The traces of the points a figure draws (each configuration's representative and
+        # the recommendation) stay; the others' are in the study's cache only.
+        shown = {p["key"] for p in representative([p for p in pts if p.get("valid")], tol)}
+        if d["recommended"]:
+            shown.add(d["recommended"]["key"])
         res_fig = {**res, "points": pts, "tolerance_mK": tol, "fronts": d["fronts"]}
         for cap, png in figures(res_fig, d["recommended"], d["images"]):
             rep.figure("temperature", cap, png)
+        for p in pts:
+            if p.get("key") not in shown:
+                p.pop("traces", None)
         _camera_figure(rep, res)
         times["figures"] = round(time.perf_counter() - t1, 3)
         d["seconds"] = times
@@ -365,12 +398,16 @@ NOT_RUN = Verdict("not run", "no [temperature] section in the configuration: no 
 def _residual_check(d: Mapping[str, Any], r: Mapping[str, Any]) -> SignoffCheck:
     w, tol = float(r["worst_fpn_mK"]), float(d["tolerance_mK"])
     basis = str(d.get("tolerance", "")).split(" = ")[0]  # "0.5 x NETD" or "15 mK (tolerance_mK)"
+    n = len(r.get("scenarios") or {})
+    over = f" on every one of {n} scenarios" if n else ""
     if r["meets_tolerance"]:
         return SignoffCheck("residual", "met", f"{r['key']}: {w:.3g} mK <= tolerance {tol:.3g} mK "
-                                               f"({basis})")
+                                               f"({basis}){over}")
+    breaks = r.get("breaks") or []
+    by = f", broken by {', '.join(breaks)}" if breaks else ""
     return SignoffCheck("residual", "not met",
                         f"{r['key']}: {w:.3g} mK > tolerance {tol:.3g} mK ({basis}), the lowest "
-                        "residual of the sweep")
+                        f"residual of the sweep{by}")
 
 
 def _fmax_check(sy: Mapping[str, Any] | None) -> SignoffCheck:
@@ -431,13 +468,16 @@ def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> d
 
     p = ch["point"]
     cfg = point_config(p)
-    keep = ("index", "key", "config", "method", "frac_bits", "ffc_period_min", "ffc_events",
-            "worst_fpn_mK", "worst_fpn_lsb", "memory_bits", "calibration_bits", "runtime_bits",
+    keep = ("index", "key", "config", "method", "frac_bits", "ffc_period_min", "ffc_change_K",
+            "ffc_policy", "ffc_policy_text", "ffc_per_hour", "dead_time_pct",
+            "worst_fpn_mK", "worst_fpn_lsb", "worst_level_error_mK", "worst_scenario",
+            "scenarios", "breaks", "traces", "memory_bits", "calibration_bits", "runtime_bits",
             "read_bits_per_frame", "bandwidth_MBps", "gain_bits", "offset_bits", "formats",
             "hw", "datapath_cost", "bad_fraction")
     r = {k: p.get(k) for k in keep}
     r |= {"meets_tolerance": ch["meets"], "tolerance_mK": tol, "netd_mK": netd,
           "margin_mK": tol - p["worst_fpn_mK"], "candidates": ch["candidates"][:20],
+          "breaking": ch.get("breaking") or [],
           "edges": ch["edges"], "widths": {"gain": f"{cfg.gain_bits} bits", "offset":
                                            f"{cfg.offset_bits} bits", **p["formats"]},
           "memory": coefficient_memory(p["memory_bits"], *spec.bandwidth_frame, spec.frame_rate_hz),
@@ -446,43 +486,57 @@ def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> d
     return r
 
 
-def _end_images(res: Mapping[str, Any], r: Mapping[str, Any] | None) -> dict[str, Any] | None:
-    """Raw and corrected (the recommendation, golden model) images at both ends."""
-    if not r:
+def _worst_images(res: Mapping[str, Any], r: Mapping[str, Any] | None) -> dict[str, Any] | None:
+    """Raw and corrected (the recommendation, golden model) images of the middle scene at
+    the recommendation's worst frame: its worst scenario, at that frame's FPA, housing and
+    readings, with the refresh of the FFC before it (made exactly, not interpolated)."""
+    if not r or not r.get("worst_scenario"):
         return None
+    import dataclasses
+
     import numpy as np
 
+    from irnuc.model.sequence import load_sequence
     from irnuc.nuc_fixed.fit import calibrate_points
     from irnuc.nuc_fixed.method_top import FrameInputs, method_top
-    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+    from irnuc.nuc_fixed.plan import run_plan
+    from irnuc.reports.studies import drift_common as dc
     from irnuc.reports.studies.signoff import spec_from_dict
 
     spec = spec_from_dict(res["spec"])
     sensor = spec.sensor()
-    plan = CalibrationPlan(scene=tuple(res["plan"]["scene"]), fpa=tuple(res["plan"]["fpa"]),
-                           frames=int(res["plan"]["frames"]))
-    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    name = r["worst_scenario"]
+    per = r["scenarios"][name]
+    seq = load_sequence(name)
+    sched = dataclasses.replace(seq, record_every=1).schedule()
+    fields = sched.fields(seq.fpa_sensor, sensor.seed, seq.housing_sensor)
+    pts = run_plan(spec.plan(), sensor.preset, sensor.base_overrides(), seed=sensor.seed)
     cal = calibrate_points(pts, point_config(r))
-    out = {}
-    n = int(cal.cfg.ffc_frames or 1)
-    first = None
-    for key, e in res["ends"].items():
-        raw = np.asarray(e["raw"])[None]
-        blind = np.asarray(e["blind"])[None]
-        ffc = None
-        if cal.cfg.has("ffc"):  # a shutter event at the start of the drift
-            if first is None:
-                first = e
-            ref = method_top(np.repeat(raw, n, axis=0), cal.coeffs, FrameInputs(
-                reading=np.full(n, first["reading"]), blind_codes=np.repeat(blind, n, axis=0),
-                shutter=np.ones(n, bool)))
-            ffc = ref.ffc_offset
-        y = method_top(raw, cal.coeffs, FrameInputs(reading=np.array([e["reading"]]),
-                                                    blind_codes=blind, shutter=np.zeros(1, bool)),
-                       ffc_offset=ffc).y[0]
-        out[key] = {"fpa_K": e["fpa_K"], "scene_K": e["scene_K"], "raw": e["raw"],
-                    "corrected": y.tolist(), "good": (~cal.bad).tolist()}
-    return out
+    ffc = cal.cfg.has("ffc")
+    i = int(per["worst_frame"])
+    scene = float(np.median(spec.scene_K))
+
+    def inputs(idx: list[int], blind: np.ndarray, shutter: bool) -> FrameInputs:
+        return FrameInputs(reading=np.asarray(fields["fpa_reading"])[idx],
+                           housing_reading=np.asarray(fields["housing_reading"])[idx],
+                           blind_codes=blind, shutter=np.full(len(idx), shutter) if ffc else None)
+
+    offset = None
+    sref = per.get("worst_refresh_frame")
+    if ffc and sref is not None:
+        n = int(cal.cfg.ffc_frames or 1)
+        sraw, sblind = dc.frames_at(sensor, float(sched.fpa_K[sref]), float(sched.T_cam_K[sref]),
+                                    [float(sched.T_shutter_K[sref])], repeats=n)
+        idx = [min(sref + k, len(sched.fpa_K) - 1) for k in range(n)]
+        offset = method_top(sraw, cal.coeffs, inputs(idx, sblind, True)).ffc_offset
+    raw, blind = dc.frames_at(sensor, float(sched.fpa_K[i]), float(sched.T_cam_K[i]), [scene])
+    y = method_top(raw, cal.coeffs, inputs([i], blind, False), ffc_offset=offset).y[0]
+    return {"worst": {"scenario": name, "time_s": float(sched.time_s[i]),
+                      "fpa_K": float(sched.fpa_K[i]), "housing_K": float(sched.T_cam_K[i]),
+                      "scene_K": scene, "refresh_s": (None if sref is None
+                                                      else float(sched.time_s[sref])),
+                      "raw": raw[0].tolist(), "corrected": y.tolist(),
+                      "good": (~cal.bad).tolist()}}
 
 
 def _camera_figure(rep: Report, res: Mapping[str, Any]) -> None:
