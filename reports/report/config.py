@@ -142,6 +142,7 @@ SCHEMA: dict[str, Any] = table({
         "housing_offset_K": {"type": "array", "items": number(-50.0, 50.0, unit="K"),
                              "minItems": 1, "maxItems": 16},
         "cosim_scenario": {"type": "string", "minLength": 1},
+        "cosim_min_pixels": number(1, 10**9, integer=True),
         "tolerance_netd": number(0.0, 1e3, lo_open=True),
         "tolerance_mK": number(0.0, 1e6, lo_open=True, unit="mK"),
         "frame_rate_hz": number(0.0, 1e5, lo_open=True, unit="Hz"),
