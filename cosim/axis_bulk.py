@@ -262,8 +262,12 @@ def run_axis(bld: Build, st: AxisStimulus, *, seed: int = 1, stall_percent: int 
         lines = proc.stdout.strip().splitlines()
         info = json.loads(lines[-1]) if lines else {"error": proc.stderr[-400:]}
         if proc.returncode != 0 or "error" in info:
-            return {"passed": False, "mismatches": None, "pixels_compared": 0,
-                    "error": str(info.get("error", proc.stderr[-400:])),
+            # A run that stops (a timeout: outputs the golden model expects never came)
+            # counts every expected word as missing.
+            err = str(info.get("error", proc.stderr[-400:]))
+            return {"passed": False, "pixels_compared": 0, "error": err,
+                    "mismatches": int(st.want_video.size + st.want_acc.size + st.want_foff.size),
+                    "lines": [f"the harness stopped: {err} ({info})"],
                     "harness_seconds": round(sim_s, 3), "stderr": proc.stderr[-2000:]}
         got_v = np.fromfile(d / "out_video.bin", "<u4")
         got_a = np.fromfile(d / "out_acc.bin", "<u8")

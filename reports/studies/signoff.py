@@ -11,8 +11,8 @@ dead time and a trace). The FFC policies: every period of ``ffc_periods_min``, e
 change of ``ffc_changes_K`` and every (period, change) pair of ``ffc_either`` (the Lepton's
 3 min or 1.5 K); a change trigger needs the FPA reading, so a configuration whose build has
 none (ffc14, quadffc14: READING reserved) gets no change-triggered point. The methods: every
-14-bit configuration of the registry (``pipelines.toml``, one per method), so a method added
-there joins the sweep. The calibration plan covers FPA ``fpa_K`` (its ends and middle) and
+14-bit configuration of the registry (``pipelines.toml``), so a method added there joins the
+sweep. The calibration plan covers FPA ``fpa_K`` (its ends and middle) and
 the housing offsets ``housing_offset_K`` (the methods that read the housing fit over them).
 
 Below: the pre-issue-37 description of the FPA-ramp grid, kept for the functions that
@@ -77,17 +77,12 @@ SIGNOFF_ADC_BITS = 14
 
 def registry_methods(adc_bits: int = SIGNOFF_ADC_BITS) -> tuple[str, ...]:
     """Every configuration of the registry's ``pipelines.toml`` for an ``adc_bits`` camera,
-    the first of each method (base + stages), in file order: a method added to the
-    registry with its configuration joins the sign-off without an edit here."""
+    in file order: a method added to the registry with its configuration joins the
+    sign-off without an edit here."""
     from irnuc.nuc_fixed import load_pipeline
     from irnuc.nuc_fixed.config import pipeline_names
 
-    out: dict[str, str] = {}
-    for name in pipeline_names(method=None):
-        cfg = load_pipeline(name)
-        if cfg.adc_bits == adc_bits and cfg.method not in out:
-            out[cfg.method] = name
-    return tuple(out.values())
+    return tuple(n for n in pipeline_names(method=None) if load_pipeline(n).adc_bits == adc_bits)
 
 
 def scenario_default() -> tuple[str, ...]:
