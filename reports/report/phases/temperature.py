@@ -634,6 +634,9 @@ def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
             rep.metric(f"temperature.point.{p['key']}.worst_fpn_mK", p["worst_fpn_mK"], "lower", "mK")
             rep.metric(f"temperature.point.{p['key']}.worst_fpn_lsb", p["worst_fpn_lsb"], "lower",
                        "LSB")
+            if p.get("worst_level_error_mK") is not None:
+                rep.metric(f"temperature.point.{p['key']}.worst_level_error_mK",
+                           p["worst_level_error_mK"], "info", "mK")
     r = d.get("recommended")
     rep.metric("temperature.recommended.meets_tolerance",
                None if r is None else int(r["meets_tolerance"]), "higher")
@@ -642,6 +645,12 @@ def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
     rep.metric("temperature.recommended.worst_fpn_mK", r["worst_fpn_mK"], "lower", "mK")
     rep.metric("temperature.recommended.memory_bits", r["memory_bits"], "lower", "bit")
     rep.metric("temperature.recommended.bandwidth_MBps", r["bandwidth_MBps"], "lower", "MB/s")
+    if r.get("dead_time_pct") is not None:
+        rep.metric("temperature.recommended.dead_time_pct", r["dead_time_pct"], "lower", "%")
+        rep.metric("temperature.recommended.ffc_per_hour", r["ffc_per_hour"], "lower", "1/h")
+    for name, sc in (r.get("scenarios") or {}).items():
+        rep.metric(f"temperature.recommended.scenario.{name}.worst_fpn_mK", sc["worst_fpn_mK"],
+                   "lower", "mK")
     if r.get("synth"):
         s = r["synth"]
         rep.metric("temperature.recommended.synth.fmax_mhz", s["fmax_mhz"], "higher", "MHz",
