@@ -159,3 +159,22 @@ def test_tiny_sweep_residual_against_the_golden_model_by_hand(tiny_sweep) -> Non
     last = trace[-1]
     assert last[0] == pytest.approx(float(sched.time_s[i]), abs=0.01)  # 4 digits kept
     assert last[1] == pytest.approx(worst, rel=1e-3)
+
+
+def test_lepton_shaped_preset_and_its_report_configuration() -> None:
+    """The outside check's camera: the Lepton's published figures (80 x 60, 17 um, f/1.1,
+    27 Hz inside the core), its NETD under the datasheet's 50 mK, and the report
+    configuration that compares policies around the Lepton's own (3 min or 1.5 C)."""
+    from irnuc import model
+    from irnuc.reports.report.config import load_report_config
+    from irnuc.reports.studies import drift_common as dc
+
+    c = model.load_preset("lepton")
+    assert (c["fpa"]["active_cols"], c["fpa"]["active_rows"]) == (80, 60)
+    assert c["fpa"]["pitch"] == 17e-6 and c["optics"]["f_number"] == 1.1
+    assert c["readout"]["frame_rate"] == 27.0
+    netd = dc.netd(dc.StudySensor(preset="lepton", rows=12, cols=16, seed=4), 298.0)
+    assert 20.0 < netd.netd_K * 1e3 < 50.0
+    t = load_report_config("lepton")["temperature"]
+    assert t["preset"] == "lepton" and (t["rows"], t["cols"]) == (60, 80)
+    assert [3.0, 1.5] in t["ffc_either"] and 1.5 in t["ffc_changes_K"]
