@@ -245,7 +245,9 @@ def temperature_headline(t: Mapping[str, Any]) -> tuple[str, str]:
     if not r["meets_tolerance"]:
         text += " — NO POINT MEETS THE TOLERANCE (lowest residual shown"
         text += f"; broken by {', '.join(r['breaks'])})" if r.get("breaks") else ")"
-    if r.get("synth"):
+    if r.get("synth") and r["synth"].get("error"):
+        text += f"; {r['synth']['top']} not placed and routed"
+    elif r.get("synth"):
         text += f"; {r['synth']['top']} Fmax {r['synth']['fmax_mhz']:.1f} MHz{seeds_text(r['synth'])}"
     c = r.get("cosim")
     if c and not c.get("not_run"):
@@ -313,7 +315,9 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
                 ["external memory", f"{r['read_bits_per_frame']} bits read per pixel per frame: "
                  f"{r['bandwidth_MBps']:.1f} MB/s at {m['frame_rate_hz']:g} frames/s; the RTL's "
                  f"coefficient stream {r['stream']['stream_bits_per_pixel']} bits per pixel"]]
-        if r.get("synth"):
+        if r.get("synth") and r["synth"].get("error"):
+            cost.append(["synthesized top", f"{r['synth']['top']}: {r['synth']['error']}"])
+        elif r.get("synth"):
             sy = r["synth"]
             x, e = sy["xc7"], sy["ecp5"]
             cost += [["synthesized top", f"{sy['top']}: {sy['why']}"],

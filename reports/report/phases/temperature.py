@@ -219,19 +219,40 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     top, why = synth_top(cfg)
     # Placed at `synth_seeds` placer seeds (in parallel, each cached): the best placement's
     # figures, with the worst and the spread beside them.
-    kw = {"seeds": int(setting(t, "synth_seeds")), "workers": int(setting(t, "workers"))}
-    s = synth_seeds(cfg, top=top, **kw)
+    kw: dict[str, Any] = {"seeds": int(setting(t, "synth_seeds")),
+                          "workers": int(setting(t, "workers"))}
+    from irnuc.cosim.synth import SynthError
+
+    try:
+        s = synth_seeds(cfg, top=top, **kw)
+    except SynthError as exc:
+        if "TRELLIS_IO" not in str(exc):
+            r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
+            return
+        # The wrapper's ports do not fit the package's pins (wide coefficient and FFC
+        # words): placed as the IP block it is, its ports meeting on-chip logic
+        # (nextpnr --out-of-context, docs/synthesis.md), and said.
+        kw["out_of_context"] = True
+        why += ("; its ports need more I/O than the package has pins: placed out of context "
+                "(nextpnr --out-of-context, the ports on on-chip logic)")
+        s = synth_seeds(cfg, top=top, **kw)
     fig = _flat(s)
     pred = r.get("hw")
     # The cost model moves bare cores (the anchors): its error is judged on the bare core
     # at these widths, and what the wrapper adds is stated beside it (best against best).
     core_top = default_top(cfg)
-    core = s if core_top == top else synth_seeds(cfg, top=core_top, **kw)
+    try:
+        core = s if core_top == top else synth_seeds(cfg, top=core_top, **kw)
+    except SynthError as exc:
+        if "TRELLIS_IO" not in str(exc):
+            raise
+        core = synth_seeds(cfg, top=core_top, **{**kw, "out_of_context": True})
     core_fig = _flat(core)
     r["synth"] = {"top": top, "why": why, "fmax_mhz": s["fmax_mhz"], "seeds": s.get("seeds"),
                   "xc7": s["xc7"],
                   "ecp5": s["ecp5"], "device": s.get("device"), "speed": s.get("speed"),
                   "target_mhz": s.get("target_mhz"), "cached": bool(s.get("cached")),
+                  "out_of_context": bool(kw.get("out_of_context")),
                   "frame": [cfg.max_height, cfg.max_width],
                   "critical_path": (s.get("critical_path") or [])[:8],
                   "predicted": ({k: pred[k] for k in HW_KEYS} if pred else None),
@@ -437,6 +458,8 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
                 note = fmax_note(r.get("synth") or {})
+                if (r.get("synth") or {}).get("error"):
+                    note = f"temperature: the recommendation was not placed: {r['synth']['error']}"
                 if note:
                     rep.notes.append(note)
             if setting(t, "cosim"):
@@ -491,6 +514,8 @@ def _fmax_check(sy: Mapping[str, Any] | None) -> SignoffCheck:
         return SignoffCheck("fmax", "not run", "not synthesized ([temperature] synth = false)")
     from irnuc.cosim.synth import TARGET_MHZ
 
+    if sy.get("error"):
+        return SignoffCheck("fmax", "not met", f"{sy['top']}: not placed and routed: {sy['error']}")
     target = float(sy.get("target_mhz") or TARGET_MHZ)
     sd = sy.get("seeds")
     best = float(sd["best_mhz"] if sd else sy["fmax_mhz"])
@@ -651,7 +676,7 @@ def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
     for name, sc in (r.get("scenarios") or {}).items():
         rep.metric(f"temperature.recommended.scenario.{name}.worst_fpn_mK", sc["worst_fpn_mK"],
                    "lower", "mK")
-    if r.get("synth"):
+    if r.get("synth") and not r["synth"].get("error"):
         s = r["synth"]
         rep.metric("temperature.recommended.synth.fmax_mhz", s["fmax_mhz"], "higher", "MHz",
                    rel_tol=0.05)
