@@ -179,13 +179,24 @@ def trajectory(name: str, sensor: dc.StudySensor, scenes: Sequence[float], node_
         sraw.append(r[-1])
         sblind.append(b[-1])
     return Trajectory(
-        name=name, description=str(getattr(seq, "description", "") or name),
+        name=name, description=_description(name),
         frame_rate=float(seq.frame_rate), time_s=np.asarray(sched.time_s, np.float64),
         fpa_K=np.asarray(sched.fpa_K, np.float64), housing_K=np.asarray(sched.T_cam_K, np.float64),
         fpa_reading=np.asarray(fields["fpa_reading"], np.int64),
         housing_reading=np.asarray(fields["housing_reading"], np.int64),
         lsb_K=float(seq.fpa_sensor.lsb_K), nodes=nodes, raw=np.stack(raw), blind=np.stack(blind),
         shutter_raw=np.stack(sraw), shutter_blind=np.stack(sblind))
+
+
+def _description(name: str) -> str:
+    """The scenario file's ``description`` (the name when it has none)."""
+    from irnuc.common.schema import read_toml
+    from irnuc.model.sequence import SCENARIO_DIR, scenario_names
+
+    if name not in scenario_names():  # a name from the list, never a path
+        return name
+    return str((read_toml(SCENARIO_DIR / f"{name}.toml").get("sequence") or {}).get(
+        "description") or name)
 
 
 def ffc_starts(traj: Trajectory, pol: Policy, ffc_frames: int) -> list[int]:
