@@ -562,7 +562,7 @@ def figures(result: Mapping[str, Any], rec: Mapping[str, Any] | None,
                 png(fig)))
     if images:
         keys = list(images)
-        fig, axes = plt.subplots(1, 2 * len(keys), figsize=(9 * len(keys), 3.8), squeeze=False)
+        fig, axes = plt.subplots(1, 2 * len(keys), figsize=(12 * len(keys), 4.4), squeeze=False)
         for j, k in enumerate(keys):
             im = images[k]
             for i, (what, arr) in enumerate((("raw", im["raw"]), ("corrected", im["corrected"]))):
