@@ -24,17 +24,22 @@ pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
 @functools.cache
 def _setup():
+    from irnuc import model
     from irnuc.nuc_fixed.fit import calibrate_points
-    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
-    from irnuc.reports.studies import drift_common as dc
+    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan, sensor_config
 
-    s = dc.StudySensor(rows=6, cols=8, seed=4)
+    size = {"fpa.active_rows": 6, "fpa.active_cols": 8}
     pts = run_plan(CalibrationPlan(scene=(290.0, 330.0, 370.0), fpa=(288.0, 298.0, 308.0),
-                                   frames=2), s.preset, s.base_overrides(), seed=4)
+                                   frames=2), "default", size, seed=4)
     cfg = load_pipeline("tcffc14").replace(max_width=64, max_height=64)
     cal = calibrate_points(pts, cfg).coeffs
-    raws = [dc.frames_at(s, 295.0 + 0.5 * k, 293.0, [300.0 + 7 * k], noise=True)[0][0]
-            for k in range(14)]
+
+    def frame(k: int) -> np.ndarray:
+        c = sensor_config("default", {**size, "environment.T_substrate": 295.0 + 0.5 * k,
+                                      "environment.T_cam": 293.0, "noise.enabled": True})
+        return model.simulate(c, [300.0 + 7 * k], seed=4, outputs=["codes"]).codes[0]
+
+    raws = [frame(k) for k in range(14)]
     fields = {"fpa_reading": 6500 + 40 * np.arange(14), "housing_reading": np.full(14, 5000)}
     return cfg, cal, raws, fields, ab.build_axis(cfg)
 
