@@ -37,6 +37,7 @@ figures.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -244,8 +245,11 @@ def evaluate(cal: Any, traj: Trajectory, scenes: Sequence[float], sc: Any, good:
         out = []
         for k in range(len(idx)):
             res = dc.residuals(y[k * s3:(k + 1) * s3], good, scenes, sc)
-            out.append((max(r["fpn_lsb"] for r in res), max(r["fpn_mK"] for r in res),
-                        max((r["level_error_mK"] for r in res), key=abs)))
+            # a NaN (a level off the temperature scale) counts as infinite: never hidden by max
+            mk = [r["fpn_mK"] if math.isfinite(r["fpn_mK"]) else math.inf for r in res]
+            lv = [r["level_error_mK"] if math.isfinite(r["level_error_mK"]) else math.inf
+                  for r in res]
+            out.append((max(r["fpn_lsb"] for r in res), max(mk), max(lv, key=abs)))
         return out
 
     out: dict[str, Any] = {}

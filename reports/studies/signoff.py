@@ -230,6 +230,19 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any, trajs: Mapping
                    "ffc_period_min": None if pol is None else pol.period_min,
                    "ffc_change_K": None if pol is None else pol.change_K,
                    **scn.worst_over(per)}
+            lost = [k for k, v in per.items()
+                    if not (math.isfinite(v["worst_fpn_mK"])
+                            and math.isfinite(v["worst_level_error_mK"]))]
+            if lost:
+                # The corrected image stops answering the scene (saturated: no local
+                # responsivity, or a level off the temperature scale): no residual in mK.
+                v = per[lost[0]]
+                out.append({**head, "ffc_policy": rec["ffc_policy"], "valid": False,
+                            "ffc_period_min": rec["ffc_period_min"],
+                            "reason": f"the corrected image loses its response on {lost[0]} "
+                                      f"(at {v['worst_at_s']:.0f} s: no finite residual in mK; "
+                                      "saturated output)"})
+                continue
             rec["traces"] = {k: {"trace": v.pop("trace"), "ffc_s": v.pop("ffc_s")}
                              for k, v in per.items()}
             rec["scenarios"] = per
