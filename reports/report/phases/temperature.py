@@ -354,6 +354,7 @@ def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
         if shown * px >= int(setting(t, "cosim_min_pixels")):
             break
         n += math.ceil((int(setting(t, "cosim_min_pixels")) - shown * px) / px) + nf
+    n = int(idx.size)  # the frames made (the last round's, if the rounds ran out)
     scenes = np.linspace(280.0, 380.0, n)
     raws = []
     for k, i in enumerate(idx):
@@ -364,7 +365,8 @@ def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
                                           if k.endswith("_reading")}, starts)
     bld = build_axis(cfg)
     res = run_axis(bld, st, seed=seed, stall_percent=10, idle_percent=5)
-    return {"frames": n, "ffc_events": st.ffc_events, "ffc_starts": [int(s) for s in starts],
+    return {"frames": n, "min_pixels": int(setting(t, "cosim_min_pixels")),
+            "ffc_events": st.ffc_events, "ffc_starts": [int(s) for s in starts],
             "registers_written": len(st.writes), "frame_times_s": [
                 float(sched.time_s[i]) for i in idx],
             "housing_minus_fpa_K": [float(sched.T_cam_K[i] - sched.fpa_K[i]) for i in idx],
@@ -532,6 +534,10 @@ def _cosim_check(c: Mapping[str, Any] | None) -> SignoffCheck:
     if c.get("not_run") or c.get("passed") is None:
         return SignoffCheck("cosim", "not run", f"not co-simulated: {c.get('not_run')}")
     top = c.get("top") or "the bulk harness"
+    if c["passed"] and not c["mismatches"] and c["pixels_compared"] < int(c.get("min_pixels") or 0):
+        return SignoffCheck("cosim", "not met",
+                            f"co-simulated through {top}: {c['pixels_compared']} pixels "
+                            f"bit-exact, fewer than the {c['min_pixels']} asked")
     if c["passed"] and not c["mismatches"]:
         return SignoffCheck("cosim", "met", f"co-simulated through {top}: {c['pixels_compared']} "
                                             "pixels bit-exact")
