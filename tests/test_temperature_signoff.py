@@ -345,3 +345,11 @@ def test_fmax_note_only_below_the_target() -> None:
     assert fmax_note(sweep(151.0, 160.2, 142.84, 155.5)) == (
         "temperature: the recommendation's irnuc_axis_top reaches 160.2 MHz at the best of 4 "
         "placer seeds (seed 2) but 142.8 at seed 3: 3 of 4 placements meet the 150 MHz target")
+
+
+def test_too_few_cosimulated_pixels_do_not_meet_the_sign_off() -> None:
+    c = {"passed": True, "mismatches": 0, "pixels_compared": 999_999, "min_pixels": 1_000_000,
+         "top": "irnuc_axis_top"}
+    chk = tp._cosim_check(c)
+    assert chk.status == "not met" and "fewer than the 1000000" in chk.detail
+    assert tp._cosim_check({**c, "pixels_compared": 1_000_000}).status == "met"
