@@ -320,6 +320,7 @@ def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
 
     from irnuc.cosim.axis_bulk import axis_stimulus, build_axis, run_axis
     from irnuc.model.sequence import load_sequence
+    from irnuc.nuc_fixed.axis import ffc_framing, ffc_shutter_flags
     from irnuc.nuc_fixed.ffc_policy import FfcPolicy, closed_loop
     from irnuc.nuc_fixed.fit import calibrate_points
     from irnuc.nuc_fixed.methods import READINGS
@@ -346,14 +347,18 @@ def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
                                       seq.fpa_sensor.lsb_K).threshold
     every = int(setting(t, "ffc_every"))
     n = max(int(setting(t, "cosim_frames")), math.ceil(int(setting(t, "cosim_min_pixels")) / px))
-    for _ in range(4):  # held shutter frames show nothing: add frames until enough are shown
+    want = int(setting(t, "cosim_min_pixels"))
+    for _ in range(30):  # held shutter frames show nothing: more frames until enough are shown
         idx = np.round(np.linspace(0, sched.fpa_K.size - 1, n)).astype(np.int64)
         rd = np.asarray(fields["fpa_reading"])[idx]
         starts = closed_loop(rd, FfcPolicy(period=every, threshold=thr), nf) if ffc else []
-        shown = n - (nf * len(starts) if cfg.ffc_output == "hold" else 0)
-        if shown * px >= int(setting(t, "cosim_min_pixels")):
+        # the frames shown: the wrapper's framing of these shutter runs (held frames none)
+        shown = (sum(ffc_framing(cfg, ffc_shutter_flags(n, {s: nf for s in starts})).shown)
+                 if ffc else n)
+        if shown * px >= want:
             break
-        n += math.ceil((int(setting(t, "cosim_min_pixels")) - shown * px) / px) + nf
+        # the shown share stays about the same as frames are added: scale by it
+        n = max(n + 1, math.ceil(n * want / max(shown * px, 1)))
     n = int(idx.size)  # the frames made (the last round's, if the rounds ran out)
     scenes = np.linspace(280.0, 380.0, n)
     raws = []
