@@ -323,7 +323,10 @@ class Bench:
         sb = MethodScoreboard(golden)
         for f in fr.frames:
             coeffs, inputs = frame_method_inputs(f, self.cfg)
-            reading = None if inputs.reading is None else int(inputs.reading[0])
+            reading: int | dict[str, int] | None = (None if inputs.reading is None
+                                                    else int(inputs.reading[0]))
+            if inputs.housing_reading is not None and reading is not None:
+                reading = {"fpa": reading, "housing": int(inputs.housing_reading[0])}
             for mf in golden_frames(coeffs, [f.raw], [reading], golden=golden):
                 sb.expect_frame(mf)
         return sb

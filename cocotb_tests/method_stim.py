@@ -26,7 +26,7 @@ class FramePlan:
 
     coeffs: MethodCoefficients
     raw: np.ndarray
-    reading: int | None
+    reading: int | dict[str, int] | None
 
 
 def _codes(rng: np.random.Generator, lo: int, hi: int, shape: tuple[int, ...],
@@ -93,15 +93,7 @@ def reading_marks(cfg: PipelineConfig, coeffs: MethodCoefficients) -> list[int]:
     return cfg.base.reading_marks(coeffs)
 
 
-def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
-                   rng: np.random.Generator, mark: int | None = None) -> int | None:
-    """An FPA reading for a frame (None for methods without one): anywhere, or near the
-    method's breakpoints (:func:`reading_marks`); ``mark`` picks breakpoint ``mark``
-    exactly (cyclically)."""
-    if "fpa" not in cfg.base.readings:
-        return None
-    hi = (1 << int(cfg.reading_bits or 1)) - 1
-    marks = reading_marks(cfg, coeffs)
+def _draw(rng: np.random.Generator, marks: list[int], hi: int, mark: int | None) -> int:
     if mark is not None:
         return int(np.clip(marks[mark % len(marks)], 0, hi))
     kind = int(rng.integers(0, 4))
@@ -109,6 +101,25 @@ def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
         return int(rng.integers(0, hi + 1))
     base = marks[int(rng.integers(0, len(marks)))]
     return int(np.clip(base + rng.integers(-3, 4) * (kind - 1), 0, hi))
+
+
+def random_reading(cfg: PipelineConfig, coeffs: MethodCoefficients,
+                   rng: np.random.Generator, mark: int | None = None
+                   ) -> int | dict[str, int] | None:
+    """An FPA reading for a frame (None for methods without one): anywhere, or near the
+    method's breakpoints (:func:`reading_marks`); ``mark`` picks breakpoint ``mark``
+    exactly (cyclically). A method that also takes the housing reading gets both,
+    ``{"fpa": t, "housing": h}``, each drawn on its own (``MethodSpec.housing_marks``)."""
+    if "fpa" not in cfg.base.readings:
+        return None
+    hi = (1 << int(cfg.reading_bits or 1)) - 1
+    t = _draw(rng, reading_marks(cfg, coeffs), hi, mark)
+    if "housing" not in cfg.base.readings:
+        return t
+    hhi = (1 << int(cfg.housing_bits or 1)) - 1
+    hmarks = cfg.base.housing_marks(coeffs)
+    h = _draw(rng, hmarks, hhi, None if mark is None else mark // 2 + mark % 2 * 3)
+    return {"fpa": t, "housing": h}
 
 
 def random_raw(cfg: PipelineConfig, h: int, w: int, rng: np.random.Generator,

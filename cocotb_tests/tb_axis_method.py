@@ -35,8 +35,17 @@ async def _calibration(bench: Bench, h: int = H, w: int = W) -> MethodCoefficien
     return c
 
 
-def _reading(bench: Bench, c: MethodCoefficients) -> int | None:
+def _reading(bench: Bench, c: MethodCoefficients) -> int | dict[str, int] | None:
+    """The frame's readings: the FPA's (tc_offset, table_interp), or the FPA's and the
+    housing's, each drawn on its own (tc_housing: the housing moves apart from the FPA)."""
     return random_reading(bench.cfg, c, bench.rng)
+
+
+def _registers_reading(regs: dict[str, object]) -> int | dict[str, int] | None:
+    """The readings a frame takes from the method's registers (READING, HOUSING_READING)."""
+    if "housing_reading" in regs:
+        return {"fpa": int(regs["reading"]), "housing": int(regs["housing_reading"])}  # type: ignore[call-overload]
+    return regs.get("reading")  # type: ignore[return-value]
 
 
 def _blind_sum(bench: Bench, c: MethodCoefficients) -> int:
@@ -52,15 +61,24 @@ def _blind_sum(bench: Bench, c: MethodCoefficients) -> int:
     return min(max(ref + step, 0), top)
 
 
-async def _set_frame_registers(bench: Bench, reading: int | None,
+async def _set_frame_registers(bench: Bench, reading: int | dict[str, int] | None,
                        c: MethodCoefficients | None = None) -> None:
-    """The per-frame registers: READING (tc_offset), and with blind_drift a new BLIND_SUM
-    (of ``c``'s calibration) for the next frame."""
-    if reading is not None:
+    """The per-frame registers: READING (tc_offset; with tc_housing also HOUSING_READING,
+    the host's write of each frame), and with blind_drift a new BLIND_SUM (of ``c``'s
+    calibration) for the next frame."""
+    if isinstance(reading, dict):
+        await bench.write_method_register("reading", reading["fpa"])
+        await bench.write_method_register("housing_reading", reading["housing"])
+        sample("axis.housing.reading", "between_frames")
+    elif reading is not None:
         await bench.write_method_register("reading", reading)
     if c is not None and bench.cfg.has("blind_drift"):
         await bench.write_method_register("blind_sum", _blind_sum(bench, c))
         sample("axis.drift.blind_sum", "between_frames")
+
+
+def _as_registers(reading: dict[str, int]) -> dict[str, int]:
+    return {"reading": reading["fpa"], "housing_reading": reading["housing"]}
 
 
 @cocotb.test()
@@ -103,7 +121,7 @@ async def method_register_traffic(dut) -> None:
         c = random_coefficients(b.cfg, h, w, b.rng, bad_fraction=0.2)
         raw = random_raw(b.cfg, h, w, b.rng)
         # The READING the frame takes (its register as the model holds it).
-        reading = b.method_registers().get("reading")
+        reading = _registers_reading(b.method_registers())
         return video_beats([raw]), coef_beats([frame_drive(c, reading).words])
 
     await traffic(bench, frames)
@@ -157,7 +175,8 @@ async def method_reading_mid_frame(dut) -> None:
     new = [{n: int(bench.rng.integers(0, 1 << cfg.registers[n].width)) for n in names}
            for _ in range(2)]
     # Each frame's words for the reading it takes (table_interp: its pair of tables).
-    readings[1:] = [v.get("reading", r) for v, r in zip(new, readings[1:], strict=True)]
+    readings[1:] = [_registers_reading({**_as_registers(r), **v}) if isinstance(r, dict)
+                    else v.get("reading", r) for v, r in zip(new, readings[1:], strict=True)]
     words = [frame_drive(c, r).words for r in readings]
     settings = [s0]
     regs = dict(bench.method_registers())
@@ -171,6 +190,8 @@ async def method_reading_mid_frame(dut) -> None:
                 await bench.write_method_register(n, value)
             if "blind_sum" in v:
                 sample("axis.drift.blind_sum", "mid_frame")
+            if "housing_reading" in v:
+                sample("axis.housing.reading", "mid_frame")
         return write
 
     res = await bench.run(video_beats(raws), coef_beats(words), settings,

@@ -27,7 +27,7 @@ CONFIGS = ("minimal", "typical14")
 #: tc_offset: the FPA reading written through AXI4-Lite between frames and mid frame;
 #: two_point + blind_drift: the blind sum (BLIND_SUM) likewise, method_drift_top the core;
 #: table_interp: the same, each frame's weight computed from READING and TABLE_READING[k].
-METHOD_CONFIGS = ("tcoffset14", "drift14", "table14")
+METHOD_CONFIGS = ("tcoffset14", "drift14", "table14", "tchousing14")
 #: table_interp: TABLE_SEL and the frame start held while the weight is computed.
 TABLE_CONFIGS = ("table14",)
 #: base method + ffc (N = 8): FFC_CTRL, the four FFC streams; two_point and tc_offset hold
@@ -113,3 +113,10 @@ def test_irnuc_axis_top_drift_coverage() -> None:
     frames and mid frame, NUC off) and of the stream points is hit by the one run of
     tb_axis_method on drift14."""
     _assert_axis_closed("drift14", tb_axis_method, "axis.drift.")
+
+
+def test_irnuc_axis_top_housing_coverage() -> None:
+    """Every bin of the housing reading through the registers (cosim.axis_coverage's
+    axis.housing point: HOUSING_READING written between frames and mid frame) and of the
+    stream points is hit by the one run of tb_axis_method on tchousing14."""
+    _assert_axis_closed("tchousing14", tb_axis_method, "axis.housing.")

@@ -1,6 +1,6 @@
 """Co-simulation of ``method_dpc_top`` against ``nuc_fixed.method_top``: every base method's
 named configuration, and variants that reach the other generate branches (tc_offset of
-order 1, other rounding and overflow modes)."""
+order 1, tc_housing with tc_gain, other rounding and overflow modes)."""
 
 from __future__ import annotations
 
@@ -23,8 +23,12 @@ def _order1(name: str) -> PipelineConfig:
 #: label -> configuration: one per base method, then the variants.
 CONFIGS: dict[str, PipelineConfig] = {
     **{n: load_pipeline(n) for n in ("onepoint14", "typical14", "piecewise14", "quadratic14",
-                                     "tcoffset14", "tcgain14", "table14")},
+                                     "tcoffset14", "tcgain14", "table14", "tchousing14")},
     "tcgain14_order1": _order1("tcgain14"),
+    # tc_housing with its gain a polynomial too (tc_poly's Housing with TcGain).
+    "tchousing14+tc_gain": load_pipeline("tchousing14").replace(
+        tc_gain=True, formats={n: load_pipeline("tcgain14").to_dict()["formats"][n]
+                               for n in ("tg1", "tg2")}),
     "piecewise14+truncate+wrap": load_pipeline("piecewise14").replace(
         rounding="truncate", overflow="wrap"),
     "quadratic14+half_even": load_pipeline("quadratic14").replace(rounding="half_even"),

@@ -52,6 +52,11 @@ sampled by ``cocotb_tests/tb_axis_method.py``) the model holds the stream points
 ``axis.drift.nuc_off``    a frame with CTRL.nuc_en 0 (the neutral frame word: drift code 0)
 ========================= =========================================================================
 
+On a configuration that reads the housing (tc_housing, sampled by
+``cocotb_tests/tb_axis_method.py``) the model holds the stream points and
+:data:`HOUSING_AXIS_POINTS`: ``axis.housing.reading``, HOUSING_READING written between
+frames and in the middle of a frame (the frame after the write takes it).
+
 On a table_interp configuration (sampled by ``cocotb_tests/tb_axis_table.py``) the model
 holds the stream points and table_interp's selection (:data:`TABLE_AXIS_POINTS`, the method's
 ``MethodSpec.axis_points``):
@@ -79,6 +84,7 @@ from irnuc.nuc_fixed.methods.table_interp import TABLE_AXIS_POINTS
 from irnuc.nuc_fixed.regmap import RegisterModel
 
 __all__ = ["AXIS_POINTS", "AXIS_TOPS", "DRIFT_AXIS_POINTS", "FFC_AXIS_POINTS",
+           "HOUSING_AXIS_POINTS",
            "REGISTER_ACCESS", "RESET_SIZE_PIXELS", "TABLE_AXIS_POINTS", "TRAFFIC_POINTS",
            "TRAFFIC_TOP", "AxisCoverageModel", "TrafficCoverageModel", "drift_delta_class",
            "ffc_axis_classes"]
@@ -155,6 +161,15 @@ DRIFT_AXIS_POINTS: dict[str, tuple[str, ...]] = {
 }
 
 
+#: Coverpoint -> bins of the housing reading through the registers (a method that reads it,
+#: tc_housing, without a stage): HOUSING_READING written between frames (the host's write
+#: of each frame, docs/integration.md) and in the middle of a frame (the next frame takes
+#: it, the running one keeps its own).
+HOUSING_AXIS_POINTS: dict[str, tuple[str, ...]] = {
+    "axis.housing.reading": ("between_frames", "mid_frame"),
+}
+
+
 def drift_delta_class(delta: int, lo: int, hi: int) -> str:
     """The ``axis.drift.delta`` bin of a frame's drift code in a format of codes lo..hi."""
     if delta in (lo, hi):
@@ -221,7 +236,8 @@ class AxisCoverageModel(CoverageModel):
         super().__init__(top, cfg, prefix)
         point = self.add_point
         points = dict(FFC_AXIS_POINTS if cfg.has("ffc") else
-                      DRIFT_AXIS_POINTS if cfg.has("blind_drift") else AXIS_POINTS)
+                      DRIFT_AXIS_POINTS if cfg.has("blind_drift") else
+                      HOUSING_AXIS_POINTS if "housing" in cfg.base.readings else AXIS_POINTS)
         own = cfg.base.axis_points(cfg)  # a method's own part of the wrapper
         if own and not cfg.stages:
             points = dict(own)

@@ -21,7 +21,8 @@ from irnuc.cosim.regfiles import python_model
 
 #: The base methods by CONFIG.method code (``enum irnuc_method`` of the C driver,
 #: ``irnuc_pkg::method_e``).
-METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset", "table_interp")
+METHODS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset", "table_interp",
+           "tc_housing")
 #: The C driver's return codes.
 OK, ERR_ID, ERR_VERSION, ERR_METHOD, ERR_SIZE, ERR_NO_FFC, ERR_TIMEOUT = 0, -1, -2, -3, -4, -5, -6
 
@@ -66,6 +67,7 @@ class Calibration:
     blind_ref: int | None = None
     drift_gain: int | None = None
     ffc_target: int | None = None
+    h_ref: int | None = None
     table_readings: tuple[int, ...] = ()
 
 
@@ -164,7 +166,7 @@ async def write64(slot: Any, value: int) -> None:
 
 async def load_calibration(regs: Any, cal: Calibration) -> None:
     """The calibration's registers, in map order."""
-    for name in ("gain", "level", "t_ref", "blind_ref", "drift_gain", "ffc_target"):
+    for name in ("gain", "level", "t_ref", "blind_ref", "drift_gain", "ffc_target", "h_ref"):
         value = getattr(cal, name)
         if value is not None:
             await write64(getattr(regs, name.upper()), value)
@@ -175,6 +177,11 @@ async def load_calibration(regs: Any, cal: Calibration) -> None:
 async def set_reading(regs: Any, reading: int) -> None:
     """The FPA reading of the next frame (shadowed)."""
     await write64(regs.READING, reading)
+
+
+async def set_housing_reading(regs: Any, reading: int) -> None:
+    """The housing sensor's reading of the next frame (tc_housing; shadowed)."""
+    await write64(regs.HOUSING_READING, reading)
 
 
 async def enable_irq(regs: Any, **causes: int) -> None:
@@ -253,4 +260,4 @@ __all__ = ["ERR_ID", "ERR_METHOD", "ERR_NO_FFC", "ERR_SIZE", "ERR_TIMEOUT", "ERR
            "METHODS", "OK", "Calibration", "Example", "Info", "Status", "configure",
            "ctrl_default", "enable_irq", "example", "ffc_policy", "ffc_start", "ffc_wait", "info_has_ffc",
            "info_method", "load_calibration", "probe", "read_status", "registers",
-           "set_reading", "write64"]
+           "set_housing_reading", "set_reading", "write64"]

@@ -18,7 +18,9 @@ back and reads them in, as the camera's external memory would).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -38,18 +40,36 @@ __all__ = ["check_drift_bulk", "check_ffc_bulk", "check_method_bulk", "ffc_sched
            "method_stimulus", "run_drift_bulk", "run_ffc_bulk", "run_method_bulk"]
 
 
-def _readings(coeffs: MethodCoefficients, n: int, readings: object | None) -> list[int | None]:
-    """One FPA reading per frame for a method that takes it (``MethodSpec.readings``)."""
+def _readings(coeffs: MethodCoefficients, n: int, readings: object | None
+              ) -> list[Any]:
+    """One FPA reading per frame for a method that takes it (``MethodSpec.readings``); for
+    one that also takes the housing reading, ``readings`` is ``{"fpa": (N,), "housing":
+    (N,)}`` (or one such mapping per frame) and each frame's is a mapping of both."""
     cfg = coeffs.cfg
     if "fpa" not in cfg.base.readings:
         return [None] * n
     if readings is None:
         raise InputError(f"method {cfg.method!r} needs one FPA reading per frame")
-    hi = (1 << int(cfg.reading_bits or 1)) - 1
-    r = int_array("readings", readings, 0, hi).ravel()
-    if r.size != n:
-        raise InputError(f"readings holds {r.size} values for {n} frames")
-    return [int(v) for v in r]
+    named = ("housing" in cfg.base.readings)
+    if named and isinstance(readings, list | tuple) and readings \
+            and all(isinstance(r, Mapping) for r in readings):
+        # one mapping per frame (method_stim.random_reading's): by reading
+        readings = {k: [r[k] for r in readings] for k in ("fpa", "housing")}
+    if named and not isinstance(readings, Mapping):
+        raise InputError(f"method {cfg.method!r} needs readings = {{'fpa': ..., 'housing': "
+                         "...}, one of each per frame")
+    src = readings if isinstance(readings, Mapping) else {"fpa": readings}
+    cols = {}
+    for name in ("fpa", "housing") if named else ("fpa",):
+        bits = cfg.reading_bits if name == "fpa" else cfg.housing_bits
+        label = f"readings[{name!r}]" if named else "readings"
+        r = int_array(label, src[name], 0, (1 << int(bits or 1)) - 1).ravel()
+        if r.size != n:
+            raise InputError(f"{label} holds {r.size} values for {n} frames")
+        cols[name] = [int(v) for v in r]
+    if not named:
+        return cols["fpa"]
+    return [{"fpa": t, "housing": h} for t, h in zip(cols["fpa"], cols["housing"], strict=True)]
 
 
 def method_stimulus(coeffs: MethodCoefficients, readings: list[int | None]
@@ -111,7 +131,7 @@ def check_method_bulk(res: BulkResult, coeffs: MethodCoefficients, raw: object,
     g = coeffs if golden is None else MethodCoefficients(golden, coeffs.fields,
                                                          coeffs.registers)
     if expected is None:
-        inputs = FrameInputs(reading=None if rds[0] is None else np.asarray(rds))
+        inputs = FrameInputs.of_frames(rds)
         expected = method_top(frames, g, inputs).y
     exp = np.asarray(expected, dtype=np.int64).ravel()
     if exact_stream(res, exp):

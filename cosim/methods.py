@@ -56,7 +56,7 @@ def golden_frames(coeffs: MethodCoefficients, raws: list[np.ndarray] | np.ndarra
                                                          coeffs.registers)
     out = []
     for raw, rd in zip(raws, readings, strict=True):
-        inputs = FrameInputs(reading=None if rd is None else np.array([rd]))
+        inputs = FrameInputs.of_frames([rd])
         y = method_top(raw[None], g, inputs).y[0]
         out.append(MethodFrame(raw=raw, coeffs=coeffs, reading=rd,
                                drive=frame_drive(coeffs, rd), expected=y.astype(np.int64)))

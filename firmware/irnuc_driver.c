@@ -66,6 +66,8 @@ void irnuc_load_calibration(volatile irnuc_regs_t *regs, const irnuc_calibration
         irnuc_write64(IRNUC_REG(regs, DRIFT_GAIN.LO), IRNUC_REG(regs, DRIFT_GAIN.HI), cal->drift_gain);
     if (cal->set & IRNUC_CAL_FFC_TARGET)
         irnuc_write64(IRNUC_REG(regs, FFC_TARGET.LO), IRNUC_REG(regs, FFC_TARGET.HI), cal->ffc_target);
+    if (cal->set & IRNUC_CAL_H_REF)
+        irnuc_write64(IRNUC_REG(regs, H_REF.LO), IRNUC_REG(regs, H_REF.HI), cal->h_ref);
     if (cal->set & IRNUC_CAL_TABLES)
         for (unsigned k = 0; k < cal->tables && k < 16; k++)
             IRNUC_WRITE32(IRNUC_REG(regs, TABLE_READING) + k, cal->table_readings[k]);
@@ -74,6 +76,12 @@ void irnuc_load_calibration(volatile irnuc_regs_t *regs, const irnuc_calibration
 void irnuc_set_reading(volatile irnuc_regs_t *regs, uint64_t reading)
 {
     irnuc_write64(IRNUC_REG(regs, READING.LO), IRNUC_REG(regs, READING.HI), reading);
+}
+
+void irnuc_set_housing_reading(volatile irnuc_regs_t *regs, uint64_t reading)
+{
+    irnuc_write64(IRNUC_REG(regs, HOUSING_READING.LO), IRNUC_REG(regs, HOUSING_READING.HI),
+                  reading);
 }
 
 void irnuc_enable_irq(volatile irnuc_regs_t *regs, uint32_t mask)

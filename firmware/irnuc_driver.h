@@ -54,7 +54,8 @@ enum irnuc_method {
     IRNUC_PIECEWISE = 2,
     IRNUC_QUADRATIC = 3,
     IRNUC_TC_OFFSET = 4,
-    IRNUC_TABLE_INTERP = 5
+    IRNUC_TABLE_INTERP = 5,
+    IRNUC_TC_HOUSING = 6
 };
 
 /* What the core was built with (read once by irnuc_probe). */
@@ -71,16 +72,17 @@ typedef struct {
 enum {
     IRNUC_CAL_GAIN = 1u << 0,        /* one_point */
     IRNUC_CAL_LEVEL = 1u << 1,       /* piecewise */
-    IRNUC_CAL_T_REF = 1u << 2,       /* tc_offset */
+    IRNUC_CAL_T_REF = 1u << 2,       /* tc_offset, tc_housing */
     IRNUC_CAL_BLIND_REF = 1u << 3,   /* blind_drift */
     IRNUC_CAL_DRIFT_GAIN = 1u << 4,  /* blind_drift */
     IRNUC_CAL_FFC_TARGET = 1u << 5,  /* ffc */
-    IRNUC_CAL_TABLES = 1u << 6       /* table_interp: TABLE_READING[0 .. tables - 1] */
+    IRNUC_CAL_TABLES = 1u << 6,      /* table_interp: TABLE_READING[0 .. tables - 1] */
+    IRNUC_CAL_H_REF = 1u << 7        /* tc_housing */
 };
 
 typedef struct {
     uint32_t set;
-    uint64_t gain, level, t_ref, blind_ref, drift_gain, ffc_target;
+    uint64_t gain, level, t_ref, blind_ref, drift_gain, ffc_target, h_ref;
     unsigned tables;
     uint32_t table_readings[16];
 } irnuc_calibration_t;
@@ -113,8 +115,12 @@ void irnuc_write64(volatile uint32_t *lo, volatile uint32_t *hi, uint64_t value)
 /* The calibration's registers, in map order. */
 void irnuc_load_calibration(volatile irnuc_regs_t *regs, const irnuc_calibration_t *cal);
 
-/* The FPA reading of the next frame (tc_offset, table_interp; shadowed). */
+/* The FPA reading of the next frame (tc_offset, table_interp, tc_housing; shadowed). */
 void irnuc_set_reading(volatile irnuc_regs_t *regs, uint64_t reading);
+
+/* The housing sensor's reading of the next frame (tc_housing; shadowed): written each
+ * frame beside the FPA reading. */
+void irnuc_set_housing_reading(volatile irnuc_regs_t *regs, uint64_t reading);
 
 /* IRQ_ENABLE: IRNUC_REGS__IRQ_ENABLE__*_bm bits. */
 void irnuc_enable_irq(volatile irnuc_regs_t *regs, uint32_t mask);

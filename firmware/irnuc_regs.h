@@ -20,7 +20,7 @@ extern "C" {
 #define IRNUC_REGS__VERSION__MINOR_bm 0xff
 #define IRNUC_REGS__VERSION__MINOR_bp 0
 #define IRNUC_REGS__VERSION__MINOR_bw 8
-#define IRNUC_REGS__VERSION__MINOR_reset 0x1
+#define IRNUC_REGS__VERSION__MINOR_reset 0x2
 #define IRNUC_REGS__VERSION__MAJOR_bm 0xff00
 #define IRNUC_REGS__VERSION__MAJOR_bp 8
 #define IRNUC_REGS__VERSION__MAJOR_bw 8
@@ -458,6 +458,42 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t HI;
 } irnuc_regs__FFC_TARGET_t;
 
+// reg - irnuc_regs.HOUSING_READING.LO
+#define IRNUC_REGS__HOUSING_READING__LO__VALUE_bm 0xffffffff
+#define IRNUC_REGS__HOUSING_READING__LO__VALUE_bp 0
+#define IRNUC_REGS__HOUSING_READING__LO__VALUE_bw 32
+#define IRNUC_REGS__HOUSING_READING__LO__VALUE_reset 0x0
+
+// reg - irnuc_regs.HOUSING_READING.HI
+#define IRNUC_REGS__HOUSING_READING__HI__VALUE_bm 0xffffffff
+#define IRNUC_REGS__HOUSING_READING__HI__VALUE_bp 0
+#define IRNUC_REGS__HOUSING_READING__HI__VALUE_bw 32
+#define IRNUC_REGS__HOUSING_READING__HI__VALUE_reset 0x0
+
+// regfile - irnuc_regs.HOUSING_READING
+typedef struct __attribute__ ((__packed__)) {
+    uint32_t LO;
+    uint32_t HI;
+} irnuc_regs__HOUSING_READING_t;
+
+// reg - irnuc_regs.H_REF.LO
+#define IRNUC_REGS__H_REF__LO__VALUE_bm 0xffffffff
+#define IRNUC_REGS__H_REF__LO__VALUE_bp 0
+#define IRNUC_REGS__H_REF__LO__VALUE_bw 32
+#define IRNUC_REGS__H_REF__LO__VALUE_reset 0x0
+
+// reg - irnuc_regs.H_REF.HI
+#define IRNUC_REGS__H_REF__HI__VALUE_bm 0xffffffff
+#define IRNUC_REGS__H_REF__HI__VALUE_bp 0
+#define IRNUC_REGS__H_REF__HI__VALUE_bw 32
+#define IRNUC_REGS__H_REF__HI__VALUE_reset 0x0
+
+// regfile - irnuc_regs.H_REF
+typedef struct __attribute__ ((__packed__)) {
+    uint32_t LO;
+    uint32_t HI;
+} irnuc_regs__H_REF_t;
+
 // reg - irnuc_regs.TABLE_READING[]
 #define IRNUC_REGS__TABLE_READINGX__VALUE_bm 0xffffffff
 #define IRNUC_REGS__TABLE_READINGX__VALUE_bp 0
@@ -523,7 +559,9 @@ typedef struct __attribute__ ((__packed__)) {
     irnuc_regs__BLIND_REF_t BLIND_REF;
     irnuc_regs__DRIFT_GAIN_t DRIFT_GAIN;
     irnuc_regs__FFC_TARGET_t FFC_TARGET;
-    uint8_t RESERVED_140_17f[0x40];
+    irnuc_regs__HOUSING_READING_t HOUSING_READING;
+    irnuc_regs__H_REF_t H_REF;
+    uint8_t RESERVED_150_17f[0x30];
     uint32_t TABLE_READING[16];
     uint32_t TABLE_SEL;
 } irnuc_regs_t;

@@ -40,6 +40,14 @@ module frame_coefficients
   parameter int unsigned WeightIntBits    = 1,
   parameter int unsigned WeightFracBits   = 15,
   parameter int unsigned WeightRounding   = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned HousingBits      = 14,  // bits of the housing sensor's reading
+  parameter int unsigned Th1IntBits       = 15,
+  parameter int unsigned Th1FracBits      = 3,
+  parameter int unsigned ThxIntBits       = 14,
+  parameter int unsigned ThxFracBits      = 4,
+  parameter int unsigned Th2IntBits       = 12,
+  parameter int unsigned Th2FracBits      = 4,
+  parameter int unsigned HousingRangeBits = 11,  // Hs: w' = (h - h_ref) / 2^Hs
   parameter int unsigned UserBits         = 1,  // side band passed with the pixel
   // Derived, do not override.
   localparam int unsigned GainBits         = GainIntBits + GainFracBits,
@@ -51,12 +59,14 @@ module frame_coefficients
                                              + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
   localparam int unsigned TgWordBits       = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
                                              + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned ThWordBits       = Th1IntBits + Th1FracBits + ThxIntBits + ThxFracBits
+                                             + Th2IntBits + Th2FracBits,
   localparam int unsigned WeightBits       = WeightIntBits + WeightFracBits,
   localparam int unsigned CoefBits         = coef_stream_bits(Method, OffsetBits, GainBits,
                                                               KneeBits, QuadBits, TcWordBits,
-                                                              TgWordBits),
+                                                              TgWordBits, ThWordBits),
   localparam int unsigned FrameBits        = frame_word_bits(Method, GainBits, LevelBits,
-                                                             ReadingBits, WeightBits)
+                                                             ReadingBits, WeightBits, HousingBits)
 ) (
   // irnuc-params: ports (generated from nuc_fixed.methods; do not edit)
   input  logic                  clk_i,
@@ -256,7 +266,7 @@ module frame_coefficients
       .m_level_o   (m_level_o),
       .m_user_o    (m_user_o)
     );
-  end else begin : gen_table_interp
+  end else if (Method == MethodTableInterp) begin : gen_table_interp
     method_table_interp #(
       .GainIntBits    (GainIntBits),
       .GainFracBits   (GainFracBits),
@@ -272,6 +282,58 @@ module frame_coefficients
       .WeightFracBits (WeightFracBits),
       .WeightRounding (WeightRounding),
       .UserBits       (UserBits)
+    ) u_front (
+      .clk_i       (clk_i),
+      .rst_ni      (rst_ni),
+      .s_valid_i   (s_valid_i),
+      .s_ready_o   (s_ready_o),
+      .s_coef_i    (s_coef_i),
+      .s_frame_i   (s_frame_i),
+      .s_user_i    (s_user_i),
+      .m_valid_o   (m_valid_o),
+      .m_ready_i   (m_ready_i),
+      .m_gain_o    (m_gain_o),
+      .m_gain_hi_o (m_gain_hi_o),
+      .m_offset_o  (m_offset_o),
+      .m_quad_o    (m_quad_o),
+      .m_knee_o    (m_knee_o),
+      .m_level_o   (m_level_o),
+      .m_user_o    (m_user_o)
+    );
+  end else begin : gen_tc_housing
+    method_tc_housing #(
+      .GainIntBits      (GainIntBits),
+      .GainFracBits     (GainFracBits),
+      .OffsetIntBits    (OffsetIntBits),
+      .OffsetFracBits   (OffsetFracBits),
+      .KneeIntBits      (KneeIntBits),
+      .KneeFracBits     (KneeFracBits),
+      .LevelIntBits     (LevelIntBits),
+      .LevelFracBits    (LevelFracBits),
+      .QuadIntBits      (QuadIntBits),
+      .QuadFracBits     (QuadFracBits),
+      .Rounding         (Rounding),
+      .ReadingBits      (ReadingBits),
+      .HousingBits      (HousingBits),
+      .Tc1IntBits       (Tc1IntBits),
+      .Tc1FracBits      (Tc1FracBits),
+      .Tc2IntBits       (Tc2IntBits),
+      .Tc2FracBits      (Tc2FracBits),
+      .Tg1IntBits       (Tg1IntBits),
+      .Tg1FracBits      (Tg1FracBits),
+      .Tg2IntBits       (Tg2IntBits),
+      .Tg2FracBits      (Tg2FracBits),
+      .Th1IntBits       (Th1IntBits),
+      .Th1FracBits      (Th1FracBits),
+      .ThxIntBits       (ThxIntBits),
+      .ThxFracBits      (ThxFracBits),
+      .Th2IntBits       (Th2IntBits),
+      .Th2FracBits      (Th2FracBits),
+      .TcOrder          (TcOrder),
+      .TcGain           (TcGain),
+      .ReadingRangeBits (ReadingRangeBits),
+      .HousingRangeBits (HousingRangeBits),
+      .UserBits         (UserBits)
     ) u_front (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),

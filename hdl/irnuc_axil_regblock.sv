@@ -296,6 +296,14 @@ module irnuc_axil_regblock (
             logic LO;
             logic HI;
         } FFC_TARGET;
+        struct {
+            logic LO;
+            logic HI;
+        } HOUSING_READING;
+        struct {
+            logic LO;
+            logic HI;
+        } H_REF;
         logic TABLE_READING[16];
         logic TABLE_SEL;
     } decoded_reg_strb_t;
@@ -462,6 +470,22 @@ module irnuc_axil_regblock (
         is_external |= cpuif_req_masked & (cpuif_addr == 12'h13c);
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h13c);
         is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h13c);
+        decoded_reg_strb.HOUSING_READING.LO = cpuif_req_masked & (cpuif_addr == 12'h140);
+        is_external |= cpuif_req_masked & (cpuif_addr == 12'h140);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h140);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h140);
+        decoded_reg_strb.HOUSING_READING.HI = cpuif_req_masked & (cpuif_addr == 12'h144);
+        is_external |= cpuif_req_masked & (cpuif_addr == 12'h144);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h144);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h144);
+        decoded_reg_strb.H_REF.LO = cpuif_req_masked & (cpuif_addr == 12'h148);
+        is_external |= cpuif_req_masked & (cpuif_addr == 12'h148);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h148);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h148);
+        decoded_reg_strb.H_REF.HI = cpuif_req_masked & (cpuif_addr == 12'h14c);
+        is_external |= cpuif_req_masked & (cpuif_addr == 12'h14c);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 12'h14c);
+        is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h14c);
         for(int i0=0; i0<16; i0++) begin
             decoded_reg_strb.TABLE_READING[i0] = cpuif_req_masked & (cpuif_addr == 12'h180 + (12)'(i0) * 12'h4);
             is_external |= cpuif_req_masked & (cpuif_addr == 12'h180 + (12)'(i0) * 12'h4);
@@ -1664,6 +1688,26 @@ module irnuc_axil_regblock (
     assign hwif_out.FFC_TARGET.HI.req_is_wr = decoded_req_is_wr;
     assign hwif_out.FFC_TARGET.HI.wr_data = decoded_wr_data;
     assign hwif_out.FFC_TARGET.HI.wr_biten = decoded_wr_biten;
+    // External register: irnuc_regs.HOUSING_READING.LO
+    assign hwif_out.HOUSING_READING.LO.req = decoded_reg_strb.HOUSING_READING.LO;
+    assign hwif_out.HOUSING_READING.LO.req_is_wr = decoded_req_is_wr;
+    assign hwif_out.HOUSING_READING.LO.wr_data = decoded_wr_data;
+    assign hwif_out.HOUSING_READING.LO.wr_biten = decoded_wr_biten;
+    // External register: irnuc_regs.HOUSING_READING.HI
+    assign hwif_out.HOUSING_READING.HI.req = decoded_reg_strb.HOUSING_READING.HI;
+    assign hwif_out.HOUSING_READING.HI.req_is_wr = decoded_req_is_wr;
+    assign hwif_out.HOUSING_READING.HI.wr_data = decoded_wr_data;
+    assign hwif_out.HOUSING_READING.HI.wr_biten = decoded_wr_biten;
+    // External register: irnuc_regs.H_REF.LO
+    assign hwif_out.H_REF.LO.req = decoded_reg_strb.H_REF.LO;
+    assign hwif_out.H_REF.LO.req_is_wr = decoded_req_is_wr;
+    assign hwif_out.H_REF.LO.wr_data = decoded_wr_data;
+    assign hwif_out.H_REF.LO.wr_biten = decoded_wr_biten;
+    // External register: irnuc_regs.H_REF.HI
+    assign hwif_out.H_REF.HI.req = decoded_reg_strb.H_REF.HI;
+    assign hwif_out.H_REF.HI.req_is_wr = decoded_req_is_wr;
+    assign hwif_out.H_REF.HI.wr_data = decoded_wr_data;
+    assign hwif_out.H_REF.HI.wr_biten = decoded_wr_biten;
     for(genvar i0=0; i0<16; i0++) begin
         // External register: irnuc_regs.TABLE_READING[]
         assign hwif_out.TABLE_READING[i0].req = decoded_reg_strb.TABLE_READING[i0];
@@ -1698,6 +1742,10 @@ module irnuc_axil_regblock (
         wr_ack |= hwif_in.DRIFT_GAIN.HI.wr_ack;
         wr_ack |= hwif_in.FFC_TARGET.LO.wr_ack;
         wr_ack |= hwif_in.FFC_TARGET.HI.wr_ack;
+        wr_ack |= hwif_in.HOUSING_READING.LO.wr_ack;
+        wr_ack |= hwif_in.HOUSING_READING.HI.wr_ack;
+        wr_ack |= hwif_in.H_REF.LO.wr_ack;
+        wr_ack |= hwif_in.H_REF.HI.wr_ack;
         for(int i0=0; i0<16; i0++) begin
             wr_ack |= hwif_in.TABLE_READING[i0].wr_ack;
         end
@@ -1734,6 +1782,10 @@ module irnuc_axil_regblock (
         rd_ack |= hwif_in.DRIFT_GAIN.HI.rd_ack;
         rd_ack |= hwif_in.FFC_TARGET.LO.rd_ack;
         rd_ack |= hwif_in.FFC_TARGET.HI.rd_ack;
+        rd_ack |= hwif_in.HOUSING_READING.LO.rd_ack;
+        rd_ack |= hwif_in.HOUSING_READING.HI.rd_ack;
+        rd_ack |= hwif_in.H_REF.LO.rd_ack;
+        rd_ack |= hwif_in.H_REF.HI.rd_ack;
         for(int i0=0; i0<16; i0++) begin
             rd_ack |= hwif_in.TABLE_READING[i0].rd_ack;
         end
@@ -1792,7 +1844,7 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h0)][31:0] = 32'h49524e43;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h4)) begin
-            readback_data_var[ad_hi(12'h4)][7:0] = 8'h1;
+            readback_data_var[ad_hi(12'h4)][7:0] = 8'h2;
             readback_data_var[ad_hi(12'h4)][15:8] = 8'h1;
             readback_data_var[ad_hi(12'h4)][23:16] = hwif_in.VERSION.coef_layout.next;
         end
@@ -1945,6 +1997,18 @@ module irnuc_axil_regblock (
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h13c)) begin
             readback_data_var[ad_hi(12'h13c)] = hwif_in.FFC_TARGET.HI.rd_data;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h140)) begin
+            readback_data_var[ad_hi(12'h140)] = hwif_in.HOUSING_READING.LO.rd_data;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h144)) begin
+            readback_data_var[ad_hi(12'h144)] = hwif_in.HOUSING_READING.HI.rd_data;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h148)) begin
+            readback_data_var[ad_hi(12'h148)] = hwif_in.H_REF.LO.rd_data;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(12'h14c)) begin
+            readback_data_var[ad_hi(12'h14c)] = hwif_in.H_REF.HI.rd_data;
         end
         for(int i0=0; i0<16; i0++) begin
             if(ad_low(rd_mux_addr) == ad_low(12'h180 + (12)'(i0) * 12'h4)) begin

@@ -565,6 +565,56 @@ package irnuc_axil_regblock_pkg;
 
     typedef struct packed {
         logic [31:0] value;
+    } irnuc_regs__HOUSING_READING__LO__fields__in_t;
+
+    typedef struct {
+        logic rd_ack;
+        irnuc_regs__HOUSING_READING__LO__fields__in_t rd_data;
+        logic wr_ack;
+    } irnuc_regs__HOUSING_READING__LO__in_t;
+
+    typedef struct packed {
+        logic [31:0] value;
+    } irnuc_regs__HOUSING_READING__HI__fields__in_t;
+
+    typedef struct {
+        logic rd_ack;
+        irnuc_regs__HOUSING_READING__HI__fields__in_t rd_data;
+        logic wr_ack;
+    } irnuc_regs__HOUSING_READING__HI__in_t;
+
+    typedef struct {
+        irnuc_regs__HOUSING_READING__LO__in_t LO;
+        irnuc_regs__HOUSING_READING__HI__in_t HI;
+    } irnuc_regs__HOUSING_READING__in_t;
+
+    typedef struct packed {
+        logic [31:0] value;
+    } irnuc_regs__H_REF__LO__fields__in_t;
+
+    typedef struct {
+        logic rd_ack;
+        irnuc_regs__H_REF__LO__fields__in_t rd_data;
+        logic wr_ack;
+    } irnuc_regs__H_REF__LO__in_t;
+
+    typedef struct packed {
+        logic [31:0] value;
+    } irnuc_regs__H_REF__HI__fields__in_t;
+
+    typedef struct {
+        logic rd_ack;
+        irnuc_regs__H_REF__HI__fields__in_t rd_data;
+        logic wr_ack;
+    } irnuc_regs__H_REF__HI__in_t;
+
+    typedef struct {
+        irnuc_regs__H_REF__LO__in_t LO;
+        irnuc_regs__H_REF__HI__in_t HI;
+    } irnuc_regs__H_REF__in_t;
+
+    typedef struct packed {
+        logic [31:0] value;
     } irnuc_regs__TABLE_READINGx__fields__in_t;
 
     typedef struct {
@@ -628,6 +678,8 @@ package irnuc_axil_regblock_pkg;
         irnuc_regs__BLIND_REF__in_t BLIND_REF;
         irnuc_regs__DRIFT_GAIN__in_t DRIFT_GAIN;
         irnuc_regs__FFC_TARGET__in_t FFC_TARGET;
+        irnuc_regs__HOUSING_READING__in_t HOUSING_READING;
+        irnuc_regs__H_REF__in_t H_REF;
         irnuc_regs__TABLE_READINGx__in_t TABLE_READING[16];
         irnuc_regs__TABLE_SEL__in_t TABLE_SEL;
     } irnuc_regs__in_t;
@@ -933,6 +985,60 @@ package irnuc_axil_regblock_pkg;
 
     typedef struct packed {
         logic [31:0] value;
+    } irnuc_regs__HOUSING_READING__LO__fields__out_t;
+
+    typedef struct {
+        logic req;
+        logic req_is_wr;
+        irnuc_regs__HOUSING_READING__LO__fields__out_t wr_data;
+        irnuc_regs__HOUSING_READING__LO__fields__out_t wr_biten;
+    } irnuc_regs__HOUSING_READING__LO__out_t;
+
+    typedef struct packed {
+        logic [31:0] value;
+    } irnuc_regs__HOUSING_READING__HI__fields__out_t;
+
+    typedef struct {
+        logic req;
+        logic req_is_wr;
+        irnuc_regs__HOUSING_READING__HI__fields__out_t wr_data;
+        irnuc_regs__HOUSING_READING__HI__fields__out_t wr_biten;
+    } irnuc_regs__HOUSING_READING__HI__out_t;
+
+    typedef struct {
+        irnuc_regs__HOUSING_READING__LO__out_t LO;
+        irnuc_regs__HOUSING_READING__HI__out_t HI;
+    } irnuc_regs__HOUSING_READING__out_t;
+
+    typedef struct packed {
+        logic [31:0] value;
+    } irnuc_regs__H_REF__LO__fields__out_t;
+
+    typedef struct {
+        logic req;
+        logic req_is_wr;
+        irnuc_regs__H_REF__LO__fields__out_t wr_data;
+        irnuc_regs__H_REF__LO__fields__out_t wr_biten;
+    } irnuc_regs__H_REF__LO__out_t;
+
+    typedef struct packed {
+        logic [31:0] value;
+    } irnuc_regs__H_REF__HI__fields__out_t;
+
+    typedef struct {
+        logic req;
+        logic req_is_wr;
+        irnuc_regs__H_REF__HI__fields__out_t wr_data;
+        irnuc_regs__H_REF__HI__fields__out_t wr_biten;
+    } irnuc_regs__H_REF__HI__out_t;
+
+    typedef struct {
+        irnuc_regs__H_REF__LO__out_t LO;
+        irnuc_regs__H_REF__HI__out_t HI;
+    } irnuc_regs__H_REF__out_t;
+
+    typedef struct packed {
+        logic [31:0] value;
     } irnuc_regs__TABLE_READINGx__fields__out_t;
 
     typedef struct {
@@ -958,6 +1064,8 @@ package irnuc_axil_regblock_pkg;
         irnuc_regs__BLIND_REF__out_t BLIND_REF;
         irnuc_regs__DRIFT_GAIN__out_t DRIFT_GAIN;
         irnuc_regs__FFC_TARGET__out_t FFC_TARGET;
+        irnuc_regs__HOUSING_READING__out_t HOUSING_READING;
+        irnuc_regs__H_REF__out_t H_REF;
         irnuc_regs__TABLE_READINGx__out_t TABLE_READING[16];
     } irnuc_regs__out_t;
 endpackage

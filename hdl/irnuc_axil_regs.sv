@@ -57,6 +57,8 @@ module irnuc_axil_regs
   parameter int unsigned BlindRefRegBits   = 0,
   parameter int unsigned DriftGainRegBits  = 0,
   parameter int unsigned FfcTargetRegBits  = 0,
+  parameter int unsigned HousingReadingRegBits = 0,
+  parameter int unsigned HRefRegBits       = 0,
   parameter int unsigned TableReadings     = 0,
   parameter int unsigned TableReadingBits  = 1,
   // Derived, do not override.
@@ -296,7 +298,9 @@ module irnuc_axil_regs
     BlindSumRegBits,
     BlindRefRegBits,
     DriftGainRegBits,
-    FfcTargetRegBits
+    FfcTargetRegBits,
+    HousingReadingRegBits,
+    HRefRegBits
   };
   /* verilator lint_off UNUSEDPARAM */  // the indices the module does not name
   localparam int unsigned SlotGain = 0;
@@ -307,6 +311,8 @@ module irnuc_axil_regs
   localparam int unsigned SlotBlindRef = 5;
   localparam int unsigned SlotDriftGain = 6;
   localparam int unsigned SlotFfcTarget = 7;
+  localparam int unsigned SlotHousingReading = 8;
+  localparam int unsigned SlotHRef = 9;
   /* verilator lint_on UNUSEDPARAM */
   logic [NumSlots-1:0][1:0]       slot_req, slot_req_is_wr, slot_rd_ack, slot_wr_ack;
   logic [NumSlots-1:0][1:0][31:0] slot_wr_data, slot_wr_biten, slot_rd_data;
@@ -422,6 +428,34 @@ module irnuc_axil_regs
   assign hwif_in.FFC_TARGET.HI.rd_ack       = slot_rd_ack[7][1];
   assign hwif_in.FFC_TARGET.HI.rd_data.value = slot_rd_data[7][1];
   assign hwif_in.FFC_TARGET.HI.wr_ack       = slot_wr_ack[7][1];
+  assign slot_req[8][0]       = hwif_out.HOUSING_READING.LO.req;
+  assign slot_req_is_wr[8][0] = hwif_out.HOUSING_READING.LO.req_is_wr;
+  assign slot_wr_data[8][0]   = hwif_out.HOUSING_READING.LO.wr_data.value;
+  assign slot_wr_biten[8][0]  = hwif_out.HOUSING_READING.LO.wr_biten.value;
+  assign hwif_in.HOUSING_READING.LO.rd_ack       = slot_rd_ack[8][0];
+  assign hwif_in.HOUSING_READING.LO.rd_data.value = slot_rd_data[8][0];
+  assign hwif_in.HOUSING_READING.LO.wr_ack       = slot_wr_ack[8][0];
+  assign slot_req[8][1]       = hwif_out.HOUSING_READING.HI.req;
+  assign slot_req_is_wr[8][1] = hwif_out.HOUSING_READING.HI.req_is_wr;
+  assign slot_wr_data[8][1]   = hwif_out.HOUSING_READING.HI.wr_data.value;
+  assign slot_wr_biten[8][1]  = hwif_out.HOUSING_READING.HI.wr_biten.value;
+  assign hwif_in.HOUSING_READING.HI.rd_ack       = slot_rd_ack[8][1];
+  assign hwif_in.HOUSING_READING.HI.rd_data.value = slot_rd_data[8][1];
+  assign hwif_in.HOUSING_READING.HI.wr_ack       = slot_wr_ack[8][1];
+  assign slot_req[9][0]       = hwif_out.H_REF.LO.req;
+  assign slot_req_is_wr[9][0] = hwif_out.H_REF.LO.req_is_wr;
+  assign slot_wr_data[9][0]   = hwif_out.H_REF.LO.wr_data.value;
+  assign slot_wr_biten[9][0]  = hwif_out.H_REF.LO.wr_biten.value;
+  assign hwif_in.H_REF.LO.rd_ack       = slot_rd_ack[9][0];
+  assign hwif_in.H_REF.LO.rd_data.value = slot_rd_data[9][0];
+  assign hwif_in.H_REF.LO.wr_ack       = slot_wr_ack[9][0];
+  assign slot_req[9][1]       = hwif_out.H_REF.HI.req;
+  assign slot_req_is_wr[9][1] = hwif_out.H_REF.HI.req_is_wr;
+  assign slot_wr_data[9][1]   = hwif_out.H_REF.HI.wr_data.value;
+  assign slot_wr_biten[9][1]  = hwif_out.H_REF.HI.wr_biten.value;
+  assign hwif_in.H_REF.HI.rd_ack       = slot_rd_ack[9][1];
+  assign hwif_in.H_REF.HI.rd_data.value = slot_rd_data[9][1];
+  assign hwif_in.H_REF.HI.wr_ack       = slot_wr_ack[9][1];
   // irnuc-regmap: end
 
   logic [NumSlots-1:0] slot_touch;

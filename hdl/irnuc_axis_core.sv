@@ -44,6 +44,14 @@ module irnuc_axis_core
   parameter int unsigned WeightIntBits     = 1,
   parameter int unsigned WeightFracBits    = 15,
   parameter int unsigned WeightRounding    = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned HousingBits       = 14,  // bits of the housing sensor's reading
+  parameter int unsigned Th1IntBits        = 15,
+  parameter int unsigned Th1FracBits       = 3,
+  parameter int unsigned ThxIntBits        = 14,
+  parameter int unsigned ThxFracBits       = 4,
+  parameter int unsigned Th2IntBits        = 12,
+  parameter int unsigned Th2FracBits       = 4,
+  parameter int unsigned HousingRangeBits  = 11,  // Hs: w' = (h - h_ref) / 2^Hs
   parameter int unsigned DriftIntBits      = 14,
   parameter int unsigned DriftFracBits     = 2,
   parameter int unsigned DriftRounding     = 1,  // irnuc_pkg::rounding_e
@@ -71,12 +79,14 @@ module irnuc_axis_core
                                               + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
   localparam int unsigned TgWordBits        = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
                                               + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned ThWordBits        = Th1IntBits + Th1FracBits + ThxIntBits + ThxFracBits
+                                              + Th2IntBits + Th2FracBits,
   localparam int unsigned WeightBits        = WeightIntBits + WeightFracBits,
   localparam int unsigned WordBits          = coef_stream_bits(Method, OffsetBits, GainBits,
                                                                KneeBits, QuadBits, TcWordBits,
-                                                               TgWordBits),
+                                                               TgWordBits, ThWordBits),
   localparam int unsigned BaseFrameBits     = frame_word_bits(Method, GainBits, LevelBits,
-                                                              ReadingBits, WeightBits),
+                                                              ReadingBits, WeightBits, HousingBits),
   localparam int unsigned WidthBits         = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits        = $clog2(MaxHeight + 1),
   // irnuc-params: end
@@ -404,7 +414,15 @@ module irnuc_axis_core
       .ReadingRangeBits (ReadingRangeBits),
       .WeightIntBits    (WeightIntBits),
       .WeightFracBits   (WeightFracBits),
-      .WeightRounding   (WeightRounding)
+      .WeightRounding   (WeightRounding),
+      .HousingBits      (HousingBits),
+      .Th1IntBits       (Th1IntBits),
+      .Th1FracBits      (Th1FracBits),
+      .ThxIntBits       (ThxIntBits),
+      .ThxFracBits      (ThxFracBits),
+      .Th2IntBits       (Th2IntBits),
+      .Th2FracBits      (Th2FracBits),
+      .HousingRangeBits (HousingRangeBits)
       // irnuc-params: end
     ) u_core (
       .clk_i         (clk_i),

@@ -42,94 +42,116 @@ module irnuc_axis_top
 #(
   // irnuc-params: begin irnuc_axis_top (generated from nuc_fixed.methods; do not edit)
   // the base method (irnuc_pkg::method_e)
-  parameter method_e                  Method            = MethodTwoPoint,
-  parameter int unsigned              AdcBits           = 14,
-  parameter int unsigned              GainIntBits       = 2,
-  parameter int unsigned              GainFracBits      = 14,
-  parameter int unsigned              OffsetIntBits     = 12,
-  parameter int unsigned              OffsetFracBits    = 4,
-  parameter int unsigned              OutBits           = 14,
-  parameter int unsigned              Rounding          = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned              Overflow          = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned              MaxWidth          = 1024,
-  parameter int unsigned              MaxHeight         = 1024,
-  parameter int unsigned              KneeIntBits       = 14,
-  parameter int unsigned              KneeFracBits      = 2,
-  parameter int unsigned              LevelIntBits      = 14,
-  parameter int unsigned              LevelFracBits     = 4,
-  parameter int unsigned              QuadIntBits       = 10,
-  parameter int unsigned              QuadFracBits      = 6,
+  parameter method_e                  Method                = MethodTwoPoint,
+  parameter int unsigned              AdcBits               = 14,
+  parameter int unsigned              GainIntBits           = 2,
+  parameter int unsigned              GainFracBits          = 14,
+  parameter int unsigned              OffsetIntBits         = 12,
+  parameter int unsigned              OffsetFracBits        = 4,
+  parameter int unsigned              OutBits               = 14,
+  parameter int unsigned              Rounding              = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              Overflow              = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned              MaxWidth              = 1024,
+  parameter int unsigned              MaxHeight             = 1024,
+  parameter int unsigned              KneeIntBits           = 14,
+  parameter int unsigned              KneeFracBits          = 2,
+  parameter int unsigned              LevelIntBits          = 14,
+  parameter int unsigned              LevelFracBits         = 4,
+  parameter int unsigned              QuadIntBits           = 10,
+  parameter int unsigned              QuadFracBits          = 6,
   // bits the square of a raw code is truncated to
-  parameter int unsigned              SquareBits        = 18,
-  parameter int unsigned              ReadingBits       = 14,  // bits of the FPA sensor's reading
-  parameter int unsigned              Tc1IntBits        = 13,
-  parameter int unsigned              Tc1FracBits       = 3,
-  parameter int unsigned              Tc2IntBits        = 12,
-  parameter int unsigned              Tc2FracBits       = 4,
-  parameter int unsigned              Tg1IntBits        = 2,
-  parameter int unsigned              Tg1FracBits       = 14,
-  parameter int unsigned              Tg2IntBits        = 2,
-  parameter int unsigned              Tg2FracBits       = 14,
-  parameter int unsigned              TcOrder           = 2,  // order of the polynomials
-  parameter bit                       TcGain            = 1'b0,  // the gain is a polynomial too
-  parameter int unsigned              ReadingRangeBits  = 11,  // Ts: v = (t - t_ref) / 2^Ts
-  parameter int unsigned              WeightIntBits     = 1,
-  parameter int unsigned              WeightFracBits    = 15,
-  parameter int unsigned              WeightRounding    = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned              Tables            = 3,  // K, the tables
-  parameter int unsigned              DriftIntBits      = 14,
-  parameter int unsigned              DriftFracBits     = 2,
-  parameter int unsigned              DriftRounding     = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned              DriftOverflow     = 0,  // irnuc_pkg::overflow_e
-  parameter int unsigned              DriftGainIntBits  = 1,
-  parameter int unsigned              DriftGainFracBits = 24,
+  parameter int unsigned              SquareBits            = 18,
+  // bits of the FPA sensor's reading
+  parameter int unsigned              ReadingBits           = 14,
+  parameter int unsigned              Tc1IntBits            = 13,
+  parameter int unsigned              Tc1FracBits           = 3,
+  parameter int unsigned              Tc2IntBits            = 12,
+  parameter int unsigned              Tc2FracBits           = 4,
+  parameter int unsigned              Tg1IntBits            = 2,
+  parameter int unsigned              Tg1FracBits           = 14,
+  parameter int unsigned              Tg2IntBits            = 2,
+  parameter int unsigned              Tg2FracBits           = 14,
+  parameter int unsigned              TcOrder               = 2,  // order of the polynomials
+  parameter bit                       TcGain                = 1'b0,  // the gain is a polynomial too
+  parameter int unsigned              ReadingRangeBits      = 11,  // Ts: v = (t - t_ref) / 2^Ts
+  parameter int unsigned              WeightIntBits         = 1,
+  parameter int unsigned              WeightFracBits        = 15,
+  parameter int unsigned              WeightRounding        = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              Tables                = 3,  // K, the tables
+  // bits of the housing sensor's reading
+  parameter int unsigned              HousingBits           = 14,
+  parameter int unsigned              Th1IntBits            = 15,
+  parameter int unsigned              Th1FracBits           = 3,
+  parameter int unsigned              ThxIntBits            = 14,
+  parameter int unsigned              ThxFracBits           = 4,
+  parameter int unsigned              Th2IntBits            = 12,
+  parameter int unsigned              Th2FracBits           = 4,
+  parameter int unsigned              HousingRangeBits      = 11,  // Hs: w' = (h - h_ref) / 2^Hs
+  parameter int unsigned              DriftIntBits          = 14,
+  parameter int unsigned              DriftFracBits         = 2,
+  parameter int unsigned              DriftRounding         = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              DriftOverflow         = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned              DriftGainIntBits      = 1,
+  parameter int unsigned              DriftGainFracBits     = 24,
   // the most blind pixels a frame has
-  parameter int unsigned              BlindMax          = 8192,
-  parameter bit                       Drift             = 1'b0,  // 1: the core is method_drift_top
-  parameter int unsigned              FfcIntBits        = 12,
-  parameter int unsigned              FfcFracBits       = 4,
-  parameter int unsigned              FfcRounding       = 1,  // irnuc_pkg::rounding_e
-  parameter int unsigned              FfcOverflow       = 0,  // irnuc_pkg::overflow_e
+  parameter int unsigned              BlindMax              = 8192,
+  // 1: the core is method_drift_top
+  parameter bit                       Drift                 = 1'b0,
+  parameter int unsigned              FfcIntBits            = 12,
+  parameter int unsigned              FfcFracBits           = 4,
+  parameter int unsigned              FfcRounding           = 1,  // irnuc_pkg::rounding_e
+  parameter int unsigned              FfcOverflow           = 0,  // irnuc_pkg::overflow_e
   // N, the shutter frames of a refresh (a power of two)
-  parameter int unsigned              FfcFrames         = 8,
+  parameter int unsigned              FfcFrames             = 8,
   // what the output shows during the shutter frames
-  parameter bit                       FfcHold           = 1'b1,
-  parameter bit                       Ffc               = 1'b0,  // 1: the core is method_ffc_top
+  parameter bit                       FfcHold               = 1'b1,
+  // 1: the core is method_ffc_top
+  parameter bit                       Ffc                   = 1'b0,
   // Derived, do not override.
-  localparam int unsigned              GainBits          = GainIntBits + GainFracBits,
-  localparam int unsigned              OffsetBits        = OffsetIntBits + OffsetFracBits,
-  localparam int unsigned              KneeBits          = KneeIntBits + KneeFracBits,
-  localparam int unsigned              LevelBits         = LevelIntBits + LevelFracBits,
-  localparam int unsigned              QuadBits          = QuadIntBits + QuadFracBits,
-  localparam int unsigned              TcWordBits        = Tc1IntBits + Tc1FracBits
-                                                           + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
-  localparam int unsigned              TgWordBits        = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
-                                                           + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
-  localparam int unsigned              WeightBits        = WeightIntBits + WeightFracBits,
-  localparam int unsigned              WordBits          = coef_stream_bits(Method, OffsetBits,
-                                                                            GainBits, KneeBits,
-                                                                            QuadBits, TcWordBits,
-                                                                            TgWordBits),
-  localparam int unsigned              BaseFrameBits     = frame_word_bits(Method, GainBits,
-                                                                           LevelBits, ReadingBits,
-                                                                           WeightBits),
-  localparam int unsigned              WidthBits         = $clog2(MaxWidth + 1),
-  localparam int unsigned              HeightBits        = $clog2(MaxHeight + 1),
-  localparam int unsigned              BlindBits         = blind_sum_bits(AdcBits, BlindMax),
-  localparam int unsigned              DriftGainBits     = DriftGainIntBits + DriftGainFracBits,
-  localparam int unsigned              ReadingRegBits    = (Method == MethodTcOffset || Method == MethodTableInterp) ? ReadingBits : 0,
-  localparam int unsigned              GainRegBits       = (Method == MethodOnePoint) ? GainBits : 0,
-  localparam int unsigned              LevelRegBits      = (Method == MethodPiecewise) ? LevelBits : 0,
-  localparam int unsigned              TRefRegBits       = (Method == MethodTcOffset) ? ReadingBits : 0,
-  localparam int unsigned              TableReadingBits  = (Method == MethodTableInterp) ? ReadingBits : 1,
-  localparam int unsigned              TableReadings     = (Method == MethodTableInterp) ? Tables : 0,
-  localparam int unsigned              BlindSumRegBits   = (Drift) ? BlindBits : 0,
-  localparam int unsigned              BlindRefRegBits   = (Drift) ? BlindBits : 0,
-  localparam int unsigned              DriftGainRegBits  = (Drift) ? DriftGainBits : 0,
-  localparam int unsigned              FfcTargetRegBits  = (Ffc) ? OutBits + FfcFracBits : 0,
-  localparam logic [WordBits-1:0]      NeutralWord       = WordBits'(neutral_stream_word(Method, GainIntBits, GainFracBits, OffsetBits, GainBits, KneeBits, QuadBits, TcWordBits, TgWordBits)),
-  localparam logic [WordBits-1:0]      BadMask           = WordBits'(stream_bad_mask(Method, OffsetBits, GainBits, KneeBits, QuadBits, TcWordBits, TgWordBits)),
-  localparam logic [BaseFrameBits-1:0] NeutralBaseFrame  = BaseFrameBits'(neutral_frame_word(Method, GainIntBits, GainFracBits, GainBits, LevelBits, ReadingBits, WeightBits)),
+  localparam int unsigned              GainBits              = GainIntBits + GainFracBits,
+  localparam int unsigned              OffsetBits            = OffsetIntBits + OffsetFracBits,
+  localparam int unsigned              KneeBits              = KneeIntBits + KneeFracBits,
+  localparam int unsigned              LevelBits             = LevelIntBits + LevelFracBits,
+  localparam int unsigned              QuadBits              = QuadIntBits + QuadFracBits,
+  localparam int unsigned              TcWordBits            = Tc1IntBits + Tc1FracBits
+                                                               + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
+  localparam int unsigned              TgWordBits            = (TcGain != 0) ? Tg1IntBits
+                                                               + Tg1FracBits
+                                                               + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
+  localparam int unsigned              ThWordBits            = Th1IntBits + Th1FracBits + ThxIntBits
+                                                               + ThxFracBits + Th2IntBits
+                                                               + Th2FracBits,
+  localparam int unsigned              WeightBits            = WeightIntBits + WeightFracBits,
+  localparam int unsigned              WordBits              = coef_stream_bits(Method, OffsetBits,
+                                                                                GainBits, KneeBits,
+                                                                                QuadBits,
+                                                                                TcWordBits,
+                                                                                TgWordBits,
+                                                                                ThWordBits),
+  localparam int unsigned              BaseFrameBits         = frame_word_bits(Method, GainBits,
+                                                                               LevelBits,
+                                                                               ReadingBits,
+                                                                               WeightBits,
+                                                                               HousingBits),
+  localparam int unsigned              WidthBits             = $clog2(MaxWidth + 1),
+  localparam int unsigned              HeightBits            = $clog2(MaxHeight + 1),
+  localparam int unsigned              BlindBits             = blind_sum_bits(AdcBits, BlindMax),
+  localparam int unsigned              DriftGainBits         = DriftGainIntBits + DriftGainFracBits,
+  localparam int unsigned              ReadingRegBits        = (Method == MethodTcOffset || Method == MethodTableInterp || Method == MethodTcHousing) ? ReadingBits : 0,
+  localparam int unsigned              HousingReadingRegBits = (Method == MethodTcHousing) ? HousingBits : 0,
+  localparam int unsigned              GainRegBits           = (Method == MethodOnePoint) ? GainBits : 0,
+  localparam int unsigned              LevelRegBits          = (Method == MethodPiecewise) ? LevelBits : 0,
+  localparam int unsigned              TRefRegBits           = (Method == MethodTcOffset || Method == MethodTcHousing) ? ReadingBits : 0,
+  localparam int unsigned              TableReadingBits      = (Method == MethodTableInterp) ? ReadingBits : 1,
+  localparam int unsigned              TableReadings         = (Method == MethodTableInterp) ? Tables : 0,
+  localparam int unsigned              HRefRegBits           = (Method == MethodTcHousing) ? HousingBits : 0,
+  localparam int unsigned              BlindSumRegBits       = (Drift) ? BlindBits : 0,
+  localparam int unsigned              BlindRefRegBits       = (Drift) ? BlindBits : 0,
+  localparam int unsigned              DriftGainRegBits      = (Drift) ? DriftGainBits : 0,
+  localparam int unsigned              FfcTargetRegBits      = (Ffc) ? OutBits + FfcFracBits : 0,
+  localparam logic [WordBits-1:0]      NeutralWord           = WordBits'(neutral_stream_word(Method, GainIntBits, GainFracBits, OffsetBits, GainBits, KneeBits, QuadBits, TcWordBits, TgWordBits, ThWordBits)),
+  localparam logic [WordBits-1:0]      BadMask               = WordBits'(stream_bad_mask(Method, OffsetBits, GainBits, KneeBits, QuadBits, TcWordBits, TgWordBits, ThWordBits)),
+  localparam logic [BaseFrameBits-1:0] NeutralBaseFrame      = BaseFrameBits'(neutral_frame_word(Method, GainIntBits, GainFracBits, GainBits, LevelBits, ReadingBits, WeightBits, HousingBits)),
   // irnuc-params: end
   localparam int unsigned FrameBits     = (Drift != 0)
                                           ? frame_blind_drift_bits(BaseFrameBits, BlindBits,
@@ -269,7 +291,7 @@ module irnuc_axis_top
   logic [HeightBits-1:0] pend_h, pend_hm1, act_h, act_hm1;
   logic                  pend_w_is1, pend_h_is1, size_dirty, size_write, pend_nuc, pend_dpc;
   logic                  pend_sync;
-  logic [7:0][63:0]      slots;
+  logic [RegSlotCount-1:0][63:0] slots;
   logic [RegTableReadingCount-1:0][31:0] table_readings;
   logic                  table_write, frame_hold;  // table_interp: irnuc_axis_table
   logic [31:0]           table_sel;
@@ -309,6 +331,8 @@ module irnuc_axis_top
     .HasFfc          (32'(Ffc)),
     .FfcFrames       (FfcFrames),
     .FfcTargetRegBits(FfcTargetRegBits),
+    .HousingReadingRegBits(HousingReadingRegBits),
+    .HRefRegBits     (HRefRegBits),
     .TableReadings   (TableReadings),
     .TableReadingBits(TableReadingBits)
   ) u_regs (
@@ -420,6 +444,13 @@ module irnuc_axis_top
     assign base_frame = BaseFrameBits'(part0);
   end else if (Method == MethodTableInterp) begin : gen_frame_table_interp
     assign base_frame = BaseFrameBits'(frame_weight);
+  end else if (Method == MethodTcHousing) begin : gen_frame_tc_housing
+    frame_tc_housing#(ReadingBits, HousingBits)::word_t part0;
+    assign part0.reading = slots[2][ReadingBits-1:0];
+    assign part0.t_ref = slots[3][ReadingBits-1:0];
+    assign part0.housing_reading = slots[8][HousingBits-1:0];
+    assign part0.h_ref = slots[9][HousingBits-1:0];
+    assign base_frame = BaseFrameBits'(part0);
   end else begin : gen_frame_none
     assign base_frame = '0;
   end
@@ -554,6 +585,14 @@ module irnuc_axis_top
     .WeightIntBits     (WeightIntBits),
     .WeightFracBits    (WeightFracBits),
     .WeightRounding    (WeightRounding),
+    .HousingBits       (HousingBits),
+    .Th1IntBits        (Th1IntBits),
+    .Th1FracBits       (Th1FracBits),
+    .ThxIntBits        (ThxIntBits),
+    .ThxFracBits       (ThxFracBits),
+    .Th2IntBits        (Th2IntBits),
+    .Th2FracBits       (Th2FracBits),
+    .HousingRangeBits  (HousingRangeBits),
     .DriftIntBits      (DriftIntBits),
     .DriftFracBits     (DriftFracBits),
     .DriftRounding     (DriftRounding),

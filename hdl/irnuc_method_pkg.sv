@@ -75,7 +75,8 @@ package irnuc_method_pkg;
     input int unsigned knee_bits,
     input int unsigned quad_bits,
     input int unsigned tc_word_bits,
-    input int unsigned tg_word_bits);
+    input int unsigned tg_word_bits,
+    input int unsigned th_word_bits);
     unique case (method)
       MethodOnePoint:    return coef_one_point_bits(offset_bits);
       MethodTwoPoint:    return coef_word_bits(gain_bits, offset_bits);
@@ -83,8 +84,10 @@ package irnuc_method_pkg;
       MethodQuadratic:   return coef_word_bits(gain_bits, offset_bits) + quad_word_bits(quad_bits);
       MethodTcOffset:    return coef_word_bits(gain_bits, offset_bits) + tc_word_bits
                                 + tg_word_bits;
-      default:           return coef_word_bits(gain_bits, offset_bits) + coef_word_bits(gain_bits,
+      MethodTableInterp: return coef_word_bits(gain_bits, offset_bits) + coef_word_bits(gain_bits,
                                                offset_bits);
+      default:           return coef_word_bits(gain_bits, offset_bits) + tc_word_bits + th_word_bits
+                                + tg_word_bits;
     endcase
   endfunction
 
@@ -95,14 +98,16 @@ package irnuc_method_pkg;
     input int unsigned gain_bits,
     input int unsigned level_bits,
     input int unsigned reading_bits,
-    input int unsigned weight_bits);
+    input int unsigned weight_bits,
+    input int unsigned housing_bits);
     unique case (method)
       MethodOnePoint:    return gain_bits;
       MethodTwoPoint:    return 32'd1;
       MethodPiecewise:   return level_bits;
       MethodQuadratic:   return 32'd1;
       MethodTcOffset:    return frame_tc_offset_bits(reading_bits);
-      default:           return weight_bits;
+      MethodTableInterp: return weight_bits;
+      default:           return frame_tc_housing_bits(reading_bits, housing_bits);
     endcase
   endfunction
 
@@ -117,7 +122,8 @@ package irnuc_method_pkg;
     input int unsigned knee_bits,
     input int unsigned quad_bits,
     input int unsigned tc_word_bits,
-    input int unsigned tg_word_bits);
+    input int unsigned tg_word_bits,
+    input int unsigned th_word_bits);
     logic [StreamWordMax-1:0] one;
     one = unity_gain(gain_int_bits, gain_frac_bits);
     unique case (method)
@@ -127,8 +133,9 @@ package irnuc_method_pkg;
                               | (one << (coef_piecewise_gain_hi_lsb(gain_bits)));
       MethodQuadratic:   return (one << (coef_word_gain_lsb()));
       MethodTcOffset:    return (one << (coef_word_gain_lsb()));
-      default:           return (one << (coef_word_gain_lsb()))
+      MethodTableInterp: return (one << (coef_word_gain_lsb()))
                               | (one << (coef_word_bits(gain_bits, offset_bits) + coef_word_gain_lsb()));
+      default:           return (one << (coef_word_gain_lsb()));
     endcase
   endfunction
 
@@ -140,7 +147,8 @@ package irnuc_method_pkg;
     input int unsigned knee_bits,
     input int unsigned quad_bits,
     input int unsigned tc_word_bits,
-    input int unsigned tg_word_bits);
+    input int unsigned tg_word_bits,
+    input int unsigned th_word_bits);
     logic [StreamWordMax-1:0] bit0;
     bit0 = StreamWordMax'(1);
     unique case (method)
@@ -149,8 +157,9 @@ package irnuc_method_pkg;
       MethodPiecewise:   return (bit0 << (coef_piecewise_bad_lsb(gain_bits, knee_bits)));
       MethodQuadratic:   return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)));
       MethodTcOffset:    return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)));
-      default:           return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)))
+      MethodTableInterp: return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)))
                               | (bit0 << (coef_word_bits(gain_bits, offset_bits) + coef_word_bad_lsb(gain_bits, offset_bits)));
+      default:           return (bit0 << (coef_word_bad_lsb(gain_bits, offset_bits)));
     endcase
   endfunction
 
@@ -162,7 +171,8 @@ package irnuc_method_pkg;
     input int unsigned gain_bits,
     input int unsigned level_bits,
     input int unsigned reading_bits,
-    input int unsigned weight_bits);
+    input int unsigned weight_bits,
+    input int unsigned housing_bits);
     logic [StreamWordMax-1:0] one;
     one = unity_gain(gain_int_bits, gain_frac_bits);
     unique case (method)
@@ -171,6 +181,7 @@ package irnuc_method_pkg;
       MethodPiecewise:   return '0;
       MethodQuadratic:   return '0;
       MethodTcOffset:    return '0;
+      MethodTableInterp: return '0;
       default:           return '0;
     endcase
   endfunction
@@ -184,6 +195,7 @@ package irnuc_method_pkg;
       MethodPiecewise:   return CorePwl;
       MethodQuadratic:   return CoreQuad;
       MethodTcOffset:    return CoreLin;
+      MethodTableInterp: return CoreLin;
       default:           return CoreLin;
     endcase
   endfunction
@@ -197,7 +209,7 @@ package irnuc_method_pkg;
   // The methods whose front is a pipeline ending in flops (MethodSpec
   // .rtl_front_registered: tc_poly, table_interp); the others pass through.
   function automatic bit front_registered(input method_e method);
-    return method == MethodTcOffset || method == MethodTableInterp;
+    return method == MethodTcOffset || method == MethodTableInterp || method == MethodTcHousing;
   endfunction
 
   // The base methods method_drift_top composes blind_drift with (StageSpec.rtl_bases).

@@ -21,10 +21,10 @@ package irnuc_pkg;
   localparam int unsigned SumBitsMax = 62;  // widest NUC sum (int64 golden model, one spare bit)
   localparam int unsigned RegMapId = 1230130755;  // ID register value
   localparam int unsigned RegMapMajor = 1;  // register map major version
-  localparam int unsigned RegMapMinor = 1;  // register map minor version
+  localparam int unsigned RegMapMinor = 2;  // register map minor version
   localparam int unsigned RegAddrBits = 12;  // AXI4-Lite address bits of the register window
   // 64-bit slots of the method registers (GAIN .. FFC_TARGET)
-  localparam int unsigned RegSlotCount = 8;
+  localparam int unsigned RegSlotCount = 10;
   localparam int unsigned RegIdOffset = 0;  // ID: identifies irnuc_axis_top
   localparam int unsigned RegIdValueLsb = 0;  // ID.value
   localparam int unsigned RegIdValueBits = 32;  // ID.value width
@@ -195,7 +195,7 @@ package irnuc_pkg;
   // READING.LO: the FPA temperature sensor reading for the next frame
   localparam int unsigned RegReadingLoOffset = 272;
   localparam int unsigned RegReadingHiOffset = 276;  // READING.HI
-  // T_REF.LO: tc_offset: the reading at which the polynomials are centred
+  // T_REF.LO: tc_offset, tc_housing: the FPA reading at which the polynomials are centred
   localparam int unsigned RegTRefLoOffset = 280;
   localparam int unsigned RegTRefHiOffset = 284;  // T_REF.HI
   // BLIND_SUM.LO: blind_drift: the sum of the frame's blind pixel codes
@@ -210,6 +210,12 @@ package irnuc_pkg;
   // FFC_TARGET.LO: ffc: the output level the FFC flattens the shutter to
   localparam int unsigned RegFfcTargetLoOffset = 312;
   localparam int unsigned RegFfcTargetHiOffset = 316;  // FFC_TARGET.HI
+  // HOUSING_READING.LO: the housing temperature sensor reading for the next frame
+  localparam int unsigned RegHousingReadingLoOffset = 320;
+  localparam int unsigned RegHousingReadingHiOffset = 324;  // HOUSING_READING.HI
+  // H_REF.LO: tc_housing: the housing reading at which the polynomials are centred
+  localparam int unsigned RegHRefLoOffset = 328;
+  localparam int unsigned RegHRefHiOffset = 332;  // H_REF.HI
   // TABLE_READING[0]: table_interp: the reading of table k (strictly increasing); entries past the configured tables are reserved
   localparam int unsigned RegTableReadingOffset = 384;
   localparam int unsigned RegTableReadingStride = 4;  // TABLE_READING[k] spacing
@@ -259,9 +265,10 @@ package irnuc_pkg;
     MethodPiecewise = 3'd2,  // two gains meeting at a per-pixel knee
     MethodQuadratic = 3'd3,  // gain, offset and a quadratic term
     MethodTcOffset = 3'd4,  // coefficients polynomial in the FPA reading
-    MethodTableInterp = 3'd5  // two tables interpolated by a weight
+    MethodTableInterp = 3'd5,  // two tables interpolated by a weight
+    MethodTcHousing = 3'd6  // offset polynomial in the FPA and the housing readings
   } method_e;
-  localparam int unsigned MethodCount = 6;
+  localparam int unsigned MethodCount = 7;
   // ---- coef_word, version 1: coefficient word of the two-point NUC, memory image version 1
   // (fields from bit 0 up: gain [GainBits], offset [OffsetBits], bad [1])
   function automatic int unsigned coef_word_bits(
@@ -463,6 +470,73 @@ package irnuc_pkg;
   );
     typedef struct packed {
       logic [ReadingBits-1:0] t_ref;  // the reading the polynomials are centred at, unsigned
+      logic [ReadingBits-1:0] reading;  // the frame's FPA reading, unsigned
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- housing_word, version 2: tc_housing's housing terms of the offset polynomial
+  // (fields from bit 0 up: th1 [Th1Bits], thx [ThxBits], th2 [Th2Bits])
+  function automatic int unsigned housing_word_bits(
+    input int unsigned th1_bits,
+    input int unsigned thx_bits,
+    input int unsigned th2_bits);
+    return th1_bits + thx_bits + th2_bits;
+  endfunction
+  function automatic int unsigned housing_word_th1_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned housing_word_thx_lsb(input int unsigned th1_bits);
+    return th1_bits;
+  endfunction
+  function automatic int unsigned housing_word_th2_lsb(
+    input int unsigned th1_bits,
+    input int unsigned thx_bits);
+    return th1_bits + thx_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class housing_word #(
+    parameter int unsigned Th1Bits = 1,
+    parameter int unsigned ThxBits = 1,
+    parameter int unsigned Th2Bits = 1
+  );
+    typedef struct packed {
+      logic [Th2Bits-1:0] th2;  // offset change per w'^2, two's complement
+      logic [ThxBits-1:0] thx;  // offset change per v·w', two's complement
+      logic [Th1Bits-1:0] th1;  // offset change per w', two's complement
+    } word_t;
+  endclass
+  /* verilator lint_on DECLFILENAME */
+  // ---- frame_tc_housing, version 2: tc_housing's frame word (method_dpc_top's s_pix_frame_i, read with the frame's first pixel)
+  // (fields from bit 0 up: reading [ReadingBits], t_ref [ReadingBits], housing_reading [HousingBits], h_ref [HousingBits])
+  function automatic int unsigned frame_tc_housing_bits(
+    input int unsigned reading_bits,
+    input int unsigned housing_bits);
+    return reading_bits + reading_bits + housing_bits + housing_bits;
+  endfunction
+  function automatic int unsigned frame_tc_housing_reading_lsb();
+    return 32'd0;
+  endfunction
+  function automatic int unsigned frame_tc_housing_t_ref_lsb(input int unsigned reading_bits);
+    return reading_bits;
+  endfunction
+  function automatic int unsigned frame_tc_housing_housing_reading_lsb(
+    input int unsigned reading_bits);
+    return reading_bits + reading_bits;
+  endfunction
+  function automatic int unsigned frame_tc_housing_h_ref_lsb(
+    input int unsigned reading_bits,
+    input int unsigned housing_bits);
+    return reading_bits + reading_bits + housing_bits;
+  endfunction
+  /* verilator lint_off DECLFILENAME */  // a class in the package
+  virtual class frame_tc_housing #(
+    parameter int unsigned ReadingBits = 1,
+    parameter int unsigned HousingBits = 1
+  );
+    typedef struct packed {
+      logic [HousingBits-1:0] h_ref;  // the housing reading the polynomials are centred at, unsigned
+      logic [HousingBits-1:0] housing_reading;  // the frame's housing reading, unsigned
+      logic [ReadingBits-1:0] t_ref;  // the FPA reading the polynomials are centred at, unsigned
       logic [ReadingBits-1:0] reading;  // the frame's FPA reading, unsigned
     } word_t;
   endclass

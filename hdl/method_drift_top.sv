@@ -56,9 +56,10 @@ module method_drift_top
   localparam int unsigned LevelBits         = LevelIntBits + LevelFracBits,
   localparam int unsigned QuadBits          = QuadIntBits + QuadFracBits,
   localparam int unsigned CoefBits          = coef_stream_bits(Method, OffsetBits, GainBits,
-                                                               KneeBits, QuadBits, 32'd1, 32'd1),
+                                                               KneeBits, QuadBits, 32'd1, 32'd1,
+                                                               32'd1),
   localparam int unsigned FrameBits         = frame_word_bits(Method, GainBits, LevelBits, 32'd1,
-                                                              32'd1),
+                                                              32'd1, 32'd1),
   localparam int unsigned WidthBits         = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits        = $clog2(MaxHeight + 1),
   // irnuc-params: end

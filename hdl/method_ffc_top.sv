@@ -88,9 +88,9 @@ module method_ffc_top
                                              + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
   localparam int unsigned CoefBits         = coef_stream_bits(Method, OffsetBits, GainBits,
                                                               KneeBits, QuadBits, TcWordBits,
-                                                              TgWordBits),
+                                                              TgWordBits, 32'd1),
   localparam int unsigned FrameBits        = frame_word_bits(Method, GainBits, LevelBits,
-                                                             ReadingBits, 32'd1),
+                                                             ReadingBits, 32'd1, 32'd1),
   localparam int unsigned WidthBits        = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits       = $clog2(MaxHeight + 1),
   // irnuc-params: end

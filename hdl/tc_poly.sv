@@ -7,8 +7,14 @@
 // without it the stored gain passes. u and u2 come from tc_reading (the reading and t_ref
 // travel with the pixel: method_dpc_top holds the frame's values).
 //
+// With Housing (tc_housing) the offset has three more terms in the housing reading h
+// (h_ref and the housing's clamp as the FPA's, tc_reading's w, uw, w2):
+//   + (h1*w) << (Fo-H1f-Hs) + (hx*uw) << (Fo-Hxf-Ts) + (h2*w2) << (Fo-H2f-Hs),
+//   Fo the largest fraction bits of all the terms.
+//
 // Coefficient words as in the memory image (fields from bit 0 up): tc = {tc2, tc1} (tc1 at
-// bit 0; tc2 only with TcOrder 2), tg = {tg2, tg1} (with TcGain; else one unused bit).
+// bit 0; tc2 only with TcOrder 2), tg = {tg2, tg1} (with TcGain; else one unused bit),
+// th = {th2, thx, th1} (with Housing; else one unused bit).
 //
 // Pipeline (one enable, en = "the output register can take an item", a flop; see nuc_core):
 //   u_in        input register (irnuc_spill_register)
@@ -18,8 +24,9 @@
 //               clog2(leaves) stages
 //   round       both ROUND, registered
 //   u_out       SAT into the output register (irnuc_spill_register)
-// Latency 8 + clog2(reading parts) + clog2(leaves) (tcoffset14 and tcgain14: 10); one pixel
-// per clock. UserBits of side band (raw code, markers, bad flag) pass unchanged.
+// Latency 8 + clog2(reading parts) + clog2(leaves) (tcoffset14 and tcgain14: 10, tchousing14:
+// 11); one pixel per clock. UserBits of side band (raw code, markers, bad flag) pass
+// unchanged.
 module tc_poly
   import irnuc_pkg::*;
   import irnuc_method_pkg::*;
@@ -36,10 +43,19 @@ module tc_poly
   parameter int unsigned Tg1FracBits      = 14,
   parameter int unsigned Tg2IntBits       = 2,
   parameter int unsigned Tg2FracBits      = 14,
+  parameter int unsigned Th1IntBits       = 15,
+  parameter int unsigned Th1FracBits      = 3,
+  parameter int unsigned ThxIntBits       = 14,
+  parameter int unsigned ThxFracBits      = 4,
+  parameter int unsigned Th2IntBits       = 12,
+  parameter int unsigned Th2FracBits      = 4,
   parameter int unsigned TcOrder          = 2,
   parameter bit          TcGain           = 1'b0,
+  parameter bit          Housing          = 1'b0,
   parameter int unsigned ReadingBits      = 14,
   parameter int unsigned ReadingRangeBits = 11,
+  parameter int unsigned HousingBits      = 14,
+  parameter int unsigned HousingRangeBits = 11,
   parameter int unsigned Rounding         = 1,  // irnuc_pkg::rounding_e
   parameter int unsigned UserBits         = 1,
   // Derived, do not override.
@@ -51,7 +67,11 @@ module tc_poly
   localparam int unsigned Tg2Bits         = Tg2IntBits + Tg2FracBits,
   localparam int unsigned TcWordBits      = Tc1Bits + ((TcOrder == 2) ? Tc2Bits : 0),
   localparam int unsigned TgWordBits      = TcGain ? Tg1Bits + ((TcOrder == 2) ? Tg2Bits : 0)
-                                                   : 1
+                                                   : 1,
+  localparam int unsigned Th1Bits         = Th1IntBits + Th1FracBits,
+  localparam int unsigned ThxBits         = ThxIntBits + ThxFracBits,
+  localparam int unsigned Th2Bits         = Th2IntBits + Th2FracBits,
+  localparam int unsigned ThWordBits      = Housing ? Th1Bits + ThxBits + Th2Bits : 1
 ) (
   input  logic                   clk_i,
   input  logic                   rst_ni,
@@ -60,10 +80,13 @@ module tc_poly
   output logic                   s_ready_o,
   input  logic [ReadingBits-1:0] s_reading_i,
   input  logic [ReadingBits-1:0] s_t_ref_i,
+  input  logic [HousingBits-1:0] s_housing_i,
+  input  logic [HousingBits-1:0] s_h_ref_i,
   input  logic [GainBits-1:0]    s_gain_i,
   input  logic [OffsetBits-1:0]  s_offset_i,
   input  logic [TcWordBits-1:0]  s_tc_i,
   input  logic [TgWordBits-1:0]  s_tg_i,
+  input  logic [ThWordBits-1:0]  s_th_i,
   input  logic [UserBits-1:0]    s_user_i,
   // Output stream: the pixel's gain and offset for this frame, the same side band.
   output logic                   m_valid_o,
@@ -78,15 +101,27 @@ module tc_poly
   localparam int unsigned Ts      = ReadingRangeBits;
   localparam int unsigned UBits   = Ts + 1;  // u, signed
   localparam int unsigned U2Bits  = Ts;      // u2, unsigned
+  localparam int unsigned Hs      = HousingRangeBits;
+  localparam int unsigned WBits   = Hs + 1;  // w, signed
+  localparam int unsigned W2Bits  = Hs;      // w2, unsigned
   // Offset: Fo, the terms' widths at Fo fraction bits (as signed words), the sum.
-  localparam int unsigned OFrac   = max3(OffsetFracBits, Tc1FracBits + Ts,
-                                         Order2 ? Tc2FracBits + Ts : 0);
+  localparam int unsigned OFrac   = max2(max3(OffsetFracBits, Tc1FracBits + Ts,
+                                              Order2 ? Tc2FracBits + Ts : 0),
+                                         Housing ? max3(Th1FracBits + Hs, ThxFracBits + Ts,
+                                                        Th2FracBits + Hs) : 0);
   localparam int unsigned O0Shift = OFrac - OffsetFracBits;
   localparam int unsigned O1Shift = OFrac - Tc1FracBits - Ts;
   localparam int unsigned O2Shift = Order2 ? OFrac - Tc2FracBits - Ts : 0;
-  localparam int unsigned OSumBits = max3(OffsetBits + O0Shift, Tc1Bits + UBits + O1Shift,
-                                          Order2 ? Tc2Bits + U2Bits + O2Shift : 0)
-                                     + (Order2 ? 2 : 1);
+  localparam int unsigned H1Shift = Housing ? OFrac - Th1FracBits - Hs : 0;
+  localparam int unsigned HxShift = Housing ? OFrac - ThxFracBits - Ts : 0;
+  localparam int unsigned H2Shift = Housing ? OFrac - Th2FracBits - Hs : 0;
+  localparam int unsigned OTerms  = 2 + (Order2 ? 1 : 0) + (Housing ? 3 : 0);
+  localparam int unsigned OSumBits = max2(max3(OffsetBits + O0Shift, Tc1Bits + UBits + O1Shift,
+                                               Order2 ? Tc2Bits + U2Bits + O2Shift : 0),
+                                          Housing ? max3(Th1Bits + WBits + H1Shift,
+                                                         ThxBits + UBits + HxShift,
+                                                         Th2Bits + W2Bits + H2Shift) : 0)
+                                     + $clog2(OTerms);
   localparam int unsigned ORndBits = OSumBits + 1 - O0Shift;
   // Gain (TcGain): Fg likewise; g0 is unsigned (one more bit as a signed word).
   localparam int unsigned GFrac   = max3(GainFracBits, Tg1FracBits + Ts,
@@ -105,11 +140,15 @@ module tc_poly
   localparam int unsigned PG1     = TcGain ? smul_parts(Tg1Bits, 1'b1, UBits, 1'b1) : 0;
   localparam int unsigned PG2     = (TcGain && Order2) ? smul_parts(Tg2Bits, 1'b1, U2Bits, 1'b0)
                                                        : 0;
-  localparam int unsigned OLeaves = 1 + P1 + P2;
+  localparam int unsigned PH1     = Housing ? smul_parts(Th1Bits, 1'b1, WBits, 1'b1) : 0;
+  localparam int unsigned PHx     = Housing ? smul_parts(ThxBits, 1'b1, UBits, 1'b1) : 0;
+  localparam int unsigned PH2     = Housing ? smul_parts(Th2Bits, 1'b1, W2Bits, 1'b0) : 0;
+  localparam int unsigned OLeaves = 1 + P1 + P2 + PH1 + PHx + PH2;
   localparam int unsigned GLeaves = 1 + PG1 + PG2;
   localparam int unsigned Leaves  = TcGain ? max2(OLeaves, GLeaves) : OLeaves;
-  localparam int unsigned CoefBits = TgWordBits + TcWordBits + OffsetBits + GainBits;
-  localparam int unsigned InBits  = UserBits + CoefBits + 2 * ReadingBits;
+  localparam int unsigned CoefBits = ThWordBits + TgWordBits + TcWordBits + OffsetBits
+                                     + GainBits;
+  localparam int unsigned InBits  = UserBits + CoefBits + 2 * ReadingBits + 2 * HousingBits;
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
@@ -119,8 +158,9 @@ module tc_poly
     assert (OffsetIntBits >= 1 && OffsetIntBits <= 32 && OffsetFracBits <= 32)
       else $fatal(1, "tc_poly: offset S%0d.%0d outside S1..32.0..32", OffsetIntBits,
                   OffsetFracBits);
-    assert (Tc1IntBits >= 1 && Tc2IntBits >= 1 && Tg1IntBits >= 1 && Tg2IntBits >= 1)
-      else $fatal(1, "tc_poly: every tc/tg format is signed: at least one integer bit");
+    assert (Tc1IntBits >= 1 && Tc2IntBits >= 1 && Tg1IntBits >= 1 && Tg2IntBits >= 1
+            && Th1IntBits >= 1 && ThxIntBits >= 1 && Th2IntBits >= 1)
+      else $fatal(1, "tc_poly: every tc/tg/th format is signed: at least one integer bit");
     assert (TcOrder == 1 || TcOrder == 2)
       else $fatal(1, "tc_poly: TcOrder = %0d outside 1..2", TcOrder);
     assert (Rounding <= 2)
@@ -138,6 +178,7 @@ module tc_poly
   // ---- input register ----------------------------------------------------------------------
   logic                   in_valid;
   logic [ReadingBits-1:0] in_reading, in_t_ref;
+  logic [HousingBits-1:0] in_housing, in_h_ref;
   logic [CoefBits-1:0]    in_coef;
   logic [UserBits-1:0]    in_user;
 
@@ -146,10 +187,11 @@ module tc_poly
     .rst_ni (rst_ni),
     .valid_i(s_valid_i),
     .ready_o(s_ready_o),
-    .data_i ({s_user_i, s_tg_i, s_tc_i, s_offset_i, s_gain_i, s_t_ref_i, s_reading_i}),
+    .data_i ({s_user_i, s_th_i, s_tg_i, s_tc_i, s_offset_i, s_gain_i, s_h_ref_i, s_housing_i,
+              s_t_ref_i, s_reading_i}),
     .valid_o(in_valid),
     .ready_i(en),
-    .data_o ({in_user, in_coef, in_t_ref, in_reading})
+    .data_o ({in_user, in_coef, in_h_ref, in_housing, in_t_ref, in_reading})
   );
 
   // ---- u and u2 --------------------------------------------------------------------------
@@ -161,11 +203,18 @@ module tc_poly
   logic [OffsetBits-1:0] rd_c0;
   logic [TcWordBits-1:0] rd_tc;
   logic [TgWordBits-1:0] rd_tg;
+  logic [ThWordBits-1:0] rd_th;
+  logic [WBits-1:0]      rd_w;
+  logic [UBits-1:0]      rd_uw;
+  logic [W2Bits-1:0]     rd_w2;
 
   tc_reading #(
     .ReadingBits     (ReadingBits),
     .ReadingRangeBits(ReadingRangeBits),
     .Square          (Order2),
+    .Housing         (Housing),
+    .HousingBits     (HousingBits),
+    .HousingRangeBits(HousingRangeBits),
     .SideBits        (UserBits + CoefBits)
   ) u_reading (
     .clk_i    (clk_i),
@@ -174,11 +223,16 @@ module tc_poly
     .valid_i  (in_valid),
     .reading_i(in_reading),
     .t_ref_i  (in_t_ref),
+    .housing_i(in_housing),
+    .h_ref_i  (in_h_ref),
     .side_i   ({in_user, in_coef}),
     .valid_o  (rd_valid),
     .u_o      (rd_u),
     .u2_o     (rd_u2),
-    .side_o   ({rd_user, rd_tg, rd_tc, rd_c0, rd_g0})
+    .w_o      (rd_w),
+    .uw_o     (rd_uw),
+    .w2_o     (rd_w2),
+    .side_o   ({rd_user, rd_th, rd_tg, rd_tc, rd_c0, rd_g0})
   );
 
   // ---- the tc and tg words (irnuc_pkg::tc_word1/2, tg_word1/2) ----------------------------
@@ -258,6 +312,88 @@ module tc_poly
   end else begin : gen_no_c2
     logic unused_u2;
     assign unused_u2 = ^rd_u2;
+  end
+
+  // ---- housing terms (tc_housing): h1*w, hx*uw, h2*w2 ------------------------------------
+  if (Housing) begin : gen_th
+    housing_word#(Th1Bits, ThxBits, Th2Bits)::word_t w;
+    assign w = rd_th;
+    logic [PH1-1:0][OSumBits-1:0] h1_parts;
+    logic [PHx-1:0][OSumBits-1:0] hx_parts;
+    logic [PH2-1:0][OSumBits-1:0] h2_parts;
+    logic                         h1_valid, h1_side, hx_valid, hx_side, h2_valid, h2_side;
+    irnuc_mul_parts #(
+      .ABits   (Th1Bits),
+      .BBits   (WBits),
+      .ASigned (1'b1),
+      .BSigned (1'b1),
+      .PartBits(OSumBits),
+      .SideBits(1)
+    ) u_h1 (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .en_i   (en),
+      .valid_i(rd_valid),
+      .a_i    (w.th1),
+      .b_i    (rd_w),
+      .side_i (1'b0),
+      .valid_o(h1_valid),
+      .parts_o(h1_parts),
+      .side_o (h1_side)
+    );
+    irnuc_mul_parts #(
+      .ABits   (ThxBits),
+      .BBits   (UBits),
+      .ASigned (1'b1),
+      .BSigned (1'b1),
+      .PartBits(OSumBits),
+      .SideBits(1)
+    ) u_hx (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .en_i   (en),
+      .valid_i(rd_valid),
+      .a_i    (w.thx),
+      .b_i    (rd_uw),
+      .side_i (1'b0),
+      .valid_o(hx_valid),
+      .parts_o(hx_parts),
+      .side_o (hx_side)
+    );
+    irnuc_mul_parts #(
+      .ABits   (Th2Bits),
+      .BBits   (W2Bits),
+      .ASigned (1'b1),
+      .BSigned (1'b0),
+      .PartBits(OSumBits),
+      .SideBits(1)
+    ) u_h2 (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .en_i   (en),
+      .valid_i(rd_valid),
+      .a_i    (w.th2),
+      .b_i    (rd_w2),
+      .side_i (1'b0),
+      .valid_o(h2_valid),
+      .parts_o(h2_parts),
+      .side_o (h2_side)
+    );
+    for (genvar k = 0; k < PH1; k++) begin : gen_h1_leaf
+      assign o_leaves[1 + P1 + P2 + k] = h1_parts[k] << H1Shift;
+    end
+    for (genvar k = 0; k < PHx; k++) begin : gen_hx_leaf
+      assign o_leaves[1 + P1 + P2 + PH1 + k] = hx_parts[k] << HxShift;
+    end
+    for (genvar k = 0; k < PH2; k++) begin : gen_h2_leaf
+      assign o_leaves[1 + P1 + P2 + PH1 + PHx + k] = h2_parts[k] << H2Shift;
+    end
+    // Same enable and valid as u_c1.
+    logic unused_th;
+    assign unused_th = ^{h1_valid, h1_side, hx_valid, hx_side, h2_valid, h2_side};
+  end else begin : gen_no_th
+    logic unused_th;
+    assign unused_th = ^{rd_th, rd_w, rd_uw, rd_w2};
   end
 
   for (genvar k = OLeaves; k < Leaves; k++) begin : gen_o_pad

@@ -139,6 +139,8 @@ class PipelineConfig:
     tc_gain: bool | None = None
     reading_bits: int | None = None
     reading_range_bits: int | None = None
+    housing_bits: int | None = None
+    housing_range_bits: int | None = None
     tables: int | None = None
     blind_max: int | None = None
     ffc_frames: int | None = None

@@ -23,6 +23,7 @@ and, for the configuration's method:
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -247,7 +248,8 @@ def _fit(cfg: PipelineConfig, pts: PointFrames, means: np.ndarray, t: np.ndarray
 
 # ---- the float evaluation of a fit (for residuals and studies) ---------------------------
 
-def float_correct(cal: MethodCalibration, x: np.ndarray, reading: int | None = None,
+def float_correct(cal: MethodCalibration, x: np.ndarray,
+                  reading: int | Mapping[str, int] | None = None,
                   blind_mean_change: float = 0.0) -> np.ndarray:
     """The method's real-valued output (output codes, unrounded, unclipped) for raw ``x``
     with the unquantized fit: the method's error without fixed point
@@ -302,9 +304,12 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
     if rounding is not None and rounding not in ROUNDING_MODES:
         raise ConfigError(f"rounding = {rounding!r} is not one of {sorted(ROUNDING_MODES)}")
     th = thresholds if thresholds is not None else load_thresholds()
-    # No method models the housing: it is fitted at the points where the housing is where
-    # it assumes (the reference point's offset from the FPA); the residual covers them all.
-    every_point, points = points, points.fpa_points()
+    # A method that does not read the housing is fitted at the points where the housing is
+    # where it assumes (the reference point's offset from the FPA); the residual covers
+    # them all. One that reads it (tc_housing) is fitted on every point.
+    every_point = points
+    if "housing" not in cfg.base.readings:
+        points = points.fpa_points()
     if points.adc_bits != cfg.adc_bits:
         raise InputError(f"{points.source}: the frames have adc_bits = {points.adc_bits} but "
                          f"pipeline {cfg.name!r} expects {cfg.adc_bits}")
@@ -384,6 +389,7 @@ def calibrate_points(points: PointFrames, cfg: PipelineConfig | str,
     summary: dict[str, Any] = {
         "config": cfg.name,
         "method": cfg.method,
+        "reads_housing": "housing" in cfg.base.readings,
         "frame": [h, w],
         "points": {"scene_K": points.scene_K.tolist(), "fpa_K": points.fpa_K.tolist(),
                    "frames": int(n_m), "reference_fpa_K": float(points.fpa_K[ref]),
@@ -426,8 +432,14 @@ def point_residuals(cal: MethodCalibration, points: PointFrames) -> list[dict[st
     top = (1 << cfg.adc_bits) - 1
     for p in range(n_p):
         reading = points.point_reading(p) if points.reading.min() >= 0 else None
+        hreading = points.point_housing_reading(p)
         xs = np.clip(np.floor(means[p] + 0.5), 0, top).astype(np.int64)
+        frame: int | dict[str, int] | None = reading
+        if "housing" in cfg.base.readings and reading is not None and hreading is not None:
+            frame = {"fpa": reading, "housing": hreading}
         inputs = FrameInputs(reading=np.full(n_s, reading if reading is not None else 0),
+                             housing_reading=(None if hreading is None
+                                              else np.full(n_s, hreading)),
                              blind_codes=None if points.blind_codes is None else
                              np.floor(points.blind_codes[p].mean(axis=1) + 0.5).astype(np.int64),
                              shutter=np.zeros(n_s, bool))
@@ -437,7 +449,7 @@ def point_residuals(cal: MethodCalibration, points: PointFrames) -> list[dict[st
             bchange = float(points.blind_codes[p].mean() - points.blind_codes[points.reference].mean())
         for s in range(n_s):
             e = y[s].astype(np.float64)[good] - cal.targets[s]
-            ef = float_correct(cal, means[p, s], reading, bchange)[good] - cal.targets[s]
+            ef = float_correct(cal, means[p, s], frame, bchange)[good] - cal.targets[s]
             out.append({"fpa_K": float(points.fpa_K[p]), "scene_K": float(points.scene_K[s]),
                         "housing_K": (None if points.housing_K is None
                                       else float(points.housing_K[p])),
@@ -491,7 +503,8 @@ def summary_text(cal: MethodCalibration) -> str:
     lines.append(f"residual fixed pattern (std over good pixels): worst {worst['std']:.3f} "
                  f"codes at FPA {worst['fpa_K']:g} K{housing}, scene {worst['scene_K']:g} K "
                  f"(float fit {worst['float_std']:.3f})")
-    if s["points"].get("all_points", 0) > len(s["points"]["fpa_K"]):
+    if (s["points"].get("all_points", 0) > len(s["points"]["fpa_K"])
+            and not s.get("reads_housing")):
         lines.append(f"fitted on the {len(s['points']['fpa_K'])} points with the housing at "
                      "the reference offset (no method models the housing); the residual covers "
                      f"all {s['points']['all_points']}")

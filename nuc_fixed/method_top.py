@@ -134,6 +134,19 @@ class FrameInputs:
     housing_reading: np.ndarray | None = None
 
     @classmethod
+    def of_frames(cls, readings: list[Any]) -> FrameInputs:
+        """The inputs of frames each with one reading: an FPA reading (an int), a mapping
+        of readings by name (``{"fpa": t, "housing": h}``), or None (no reading)."""
+        from irnuc.nuc_fixed.methods import READINGS
+
+        if not readings or readings[0] is None:
+            return cls()
+        if isinstance(readings[0], Mapping):
+            return cls(**{READINGS[k].inputs_field: np.asarray([int(r[k]) for r in readings])
+                          for k in readings[0]})
+        return cls(reading=np.asarray([int(r) for r in readings]))
+
+    @classmethod
     def from_fields(cls, cfg: PipelineConfig, fields: Mapping[str, object]) -> FrameInputs:
         """The inputs of the readings ``cfg`` takes from a frame file's fields by name
         (``fpa_reading``, ...; ``ReadingSpec.frame_field`` -> ``inputs_field``)."""

@@ -410,6 +410,8 @@ def replace_block(text: str, block: str) -> str:
 #: Parameters of the probe (a subset of the pipeline's): the widths the layouts need.
 PROBE_PARAMETERS: dict[str, int] = {"KneeBits": 16, "QuadBits": 16, "Tc1Bits": 16, "Tc2Bits": 16,
                                     "Tg1Bits": 16, "Tg2Bits": 16, "ReadingBits": 14,
+                                    "Th1Bits": 18, "ThxBits": 18, "Th2Bits": 16,
+                                    "HousingBits": 14,
                                     "GainIntBits": 2, "GainFracBits": 14, "OffsetIntBits": 12,
                                     "OffsetFracBits": 4, "OutBits": 14, "BaseBits": 16,
                                     "SumBits": 28, "DriftGainBits": 25}

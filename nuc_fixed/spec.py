@@ -503,6 +503,11 @@ class MethodSpec(PartSpec):
         """The readings where its per-frame values change behaviour (stimulus)."""
         return []
 
+    def housing_marks(self, c: MethodCoefficients) -> list[int]:
+        """The housing readings where its per-frame values change behaviour (stimulus; a
+        method that takes the ``housing`` reading)."""
+        return []
+
     def draw_register(self, r: Register, rng: np.random.Generator, lo: int, hi: int
                       ) -> object | None:
         """A random value of a calibration register with a shape of its own (None: any
@@ -514,6 +519,11 @@ class MethodSpec(PartSpec):
         """Refuse FPA readings of the calibration points (one per FPA point) it cannot
         calibrate from (``nuc_fixed.fit.check_readings``); a method without a reading
         takes any."""
+
+    def check_plan(self, cfg: PipelineConfig, plan: Any, source: str) -> None:
+        """Refuse a calibration plan (``nuc_fixed.plan.CalibrationPlan``) it cannot
+        calibrate from, before the simulation (tc_housing: without housing offsets); any
+        plan by default."""
 
     def corner(self, c: MethodCoefficients, raw: np.ndarray, rng: np.random.Generator,
                index: int) -> None:

@@ -21,31 +21,43 @@ from irnuc.nuc_fixed.spec import CoefExpr, Term
 from irnuc.nuc_fixed.validate import InputError, as_config
 
 
-def _reading(name: str, value: object, cfg: PipelineConfig) -> int:
-    hi = (1 << int(cfg.reading_bits or 1)) - 1
+def _reading(name: str, value: object, cfg: PipelineConfig, bits: str = "reading_bits") -> int:
+    """A reading code checked against the configuration's width ``bits`` (the FPA's
+    ``reading_bits`` or the housing's ``housing_bits``)."""
+    width = getattr(cfg, bits)
+    hi = (1 << int(width or 1)) - 1
     try:
         v = int(value)  # type: ignore[call-overload]
     except (TypeError, ValueError):
         raise InputError(f"{name} = {value!r} is not an integer reading code") from None
     if isinstance(value, bool) or v != value or not 0 <= v <= hi:
         raise InputError(f"{name} = {value!r} is outside the allowed range [0, {hi}] "
-                         f"(reading_bits = {cfg.reading_bits})")
+                         f"({bits} = {width})")
     return v
 
 
 @dataclass(frozen=True)
 class TcReading:
-    """Per-frame values of ``tc_reading``: u (signed Ts + 1 bits), u2 (unsigned Ts bits)."""
+    """Per-frame values of ``tc_reading``: u (signed Ts + 1 bits), u2 (unsigned Ts bits);
+    with the housing reading (tc_housing) also w (signed Hs + 1 bits), uw (signed Ts + 1
+    bits, v·w at Ts fraction bits) and w2 (unsigned Hs bits); 0 without it."""
 
     u: int
     u2: int
+    w: int = 0
+    uw: int = 0
+    w2: int = 0
 
 
-def tc_reading(reading: int, t_ref: int, cfg: PipelineConfig | str) -> TcReading:
+def tc_reading(reading: int, t_ref: int, cfg: PipelineConfig | str,
+               housing: int | None = None, h_ref: int | None = None) -> TcReading:
     """``tc_reading``: u = CLAMP(t - t_ref, +-(2^Ts - 1)), u2 = (u*u) >> Ts (floor).
 
     u is the reading's distance from the calibration centre with Ts = reading_range_bits
     fraction bits, so v = u / 2^Ts lies in (-1, 1); u2 is v^2 at Ts fraction bits.
+    With the housing reading h and its centre h_ref (tc_housing, Hs = housing_range_bits):
+    w = CLAMP(h - h_ref, +-(2^Hs - 1)) (w' = w / 2^Hs), uw = (u*w) >> Hs (v·w' at Ts
+    fraction bits, floor), w2 = (w*w) >> Hs (w'^2 at Hs fraction bits, floor).
     """
     cfg = as_config(cfg)
     t = _reading("reading", reading, cfg)
@@ -53,24 +65,49 @@ def tc_reading(reading: int, t_ref: int, cfg: PipelineConfig | str) -> TcReading
     ts = int(cfg.reading_range_bits or 1)
     lim = (1 << ts) - 1
     u = min(max(t - r, -lim), lim)
-    return TcReading(u=u, u2=(u * u) >> ts)
+    if housing is None:
+        return TcReading(u=u, u2=(u * u) >> ts)
+    h = _reading("housing_reading", housing, cfg, "housing_bits")
+    hr = _reading("h_ref", h_ref, cfg, "housing_bits")
+    hs = int(cfg.housing_range_bits or 1)
+    hlim = (1 << hs) - 1
+    w = min(max(h - hr, -hlim), hlim)
+    return TcReading(u=u, u2=(u * u) >> ts, w=w, uw=(u * w) >> hs, w2=(w * w) >> hs)
+
+
+#: The variable each polynomial coefficient multiplies (a TcReading field) and whose
+#: fraction bits it has (``ts``: reading_range_bits, ``hs``: housing_range_bits).
+VARIABLES = {"tc1": ("u", "ts"), "tc2": ("u2", "ts"), "tg1": ("u", "ts"), "tg2": ("u2", "ts"),
+             "th1": ("w", "hs"), "thx": ("uw", "ts"), "th2": ("w2", "hs")}
+
+
+def term_shift(name: str, cfg: PipelineConfig) -> int:
+    """Fraction bits of coefficient ``name`` times its variable: Tf + Ts (or + Hs)."""
+    frac = VARIABLES[name][1]
+    vf = int((cfg.reading_range_bits if frac == "ts" else cfg.housing_range_bits) or 1)
+    return cfg.format(name).frac_bits + vf
+
+
+def variable(name: str, tr: TcReading) -> int:
+    """The value of the variable coefficient ``name`` multiplies in this frame."""
+    return int(getattr(tr, VARIABLES[name][0]))
 
 
 def _poly_frac(base: str, names: list[str], cfg: PipelineConfig) -> int:
-    """Fo = max(base frac, T1f + Ts, T2f + Ts): the fraction bits of a polynomial's sum."""
-    ts = int(cfg.reading_range_bits or 1)
-    return max(cfg.format(base).frac_bits, *(cfg.format(n).frac_bits + ts for n in names))
+    """Fo = max(base frac, T1f + Ts, T2f + Ts, ...): the fraction bits of a polynomial's
+    sum."""
+    return max(cfg.format(base).frac_bits, *(term_shift(n, cfg) for n in names))
 
 
 def _poly(c0: np.ndarray, base: str, terms: list[tuple[np.ndarray, str]], tr: TcReading,
           cfg: PipelineConfig) -> np.ndarray:
-    """ROUND then SAT of c0 + c1*u + c2*u2 into the format ``base`` (gain or offset)."""
-    ts = int(cfg.reading_range_bits or 1)
+    """ROUND then SAT of c0 + c1*u + c2*u2 (+ h1*w + hx*uw + h2*w2) into the format
+    ``base`` (gain or offset)."""
     bf = cfg.format(base)
     fo = _poly_frac(base, [n for _, n in terms], cfg)
     acc = c0 << (fo - bf.frac_bits)
-    for (c, n), v in zip(terms, (tr.u, tr.u2), strict=False):
-        acc = acc + ((c * np.int64(v)) << (fo - cfg.format(n).frac_bits - ts))
+    for c, n in terms:
+        acc = acc + ((c * np.int64(variable(n, tr))) << (fo - term_shift(n, cfg)))
     r = np.asarray(round_shift(np.ascontiguousarray(acc), fo - bf.frac_bits, cfg.rounding))
     lo, hi = code_range(cfg, base)
     return np.asarray(apply_overflow(r, lo, hi, "saturate"), dtype=np.int64)
@@ -79,21 +116,27 @@ def _poly(c0: np.ndarray, base: str, terms: list[tuple[np.ndarray, str]], tr: Tc
 def _poly_expr(c0: object, base: str, terms: list[tuple[object, str]], tr: TcReading,
                cfg: PipelineConfig) -> CoefExpr:
     """:func:`_poly` as an expression of the fused path (``MethodSpec.frame_expressions``)."""
-    ts = int(cfg.reading_range_bits or 1)
     bf = cfg.format(base)
     fo = _poly_frac(base, [n for _, n in terms], cfg)
     ts_ = [Term(np.asarray(c0), 1, fo - bf.frac_bits, base)]
-    ts_ += [Term(np.asarray(c), int(v), fo - cfg.format(n).frac_bits - ts, n)
-            for (c, n), v in zip(terms, (tr.u, tr.u2), strict=False)]
+    ts_ += [Term(np.asarray(c), variable(n, tr), fo - term_shift(n, cfg), n)
+            for c, n in terms]
     lo, hi = code_range(cfg, base)
     return CoefExpr(tuple(ts_), fo - bf.frac_bits, cfg.rounding, lo=lo, hi=hi)
 
 
+#: The housing terms of the offset polynomial (tc_housing): w, v·w, w^2.
+HOUSING_TERMS = ("th1", "thx", "th2")
+
+
 def _tc_names(tc: dict[str, object], cfg: PipelineConfig) -> tuple[list[str], list[str]]:
     """The offset's and the gain's polynomial coefficients (the gain's: [] without
-    tc_gain); InputError naming those ``tc`` lacks."""
+    tc_gain; the offset's with the housing terms when the method reads the housing);
+    InputError naming those ``tc`` lacks."""
     order = int(cfg.tc_order or 1)
     names = ["tc1", "tc2"][:order]
+    if "housing" in cfg.base.readings:
+        names += list(HOUSING_TERMS)
     gnames = ["tg1", "tg2"][:order] if cfg.tc_gain else []
     missing = [n for n in names + gnames if n not in tc]
     if missing:
@@ -108,14 +151,17 @@ def tc_coeffs(gain: object, offset: object, tc: dict[str, object], tr: TcReading
 
     o = SAT_O(ROUND(c0 << (Fo - Of) + (c1*u) << (Fo - T1f - Ts) [+ (c2*u2) << (Fo - T2f - Ts)]
     >> (Fo - Of))), Fo = max(Of, T1f + Ts, T2f + Ts); the gain likewise with tg1, tg2 when
-    ``tc_gain`` (else the stored gain). ROUND is the pipeline's rounding mode.
+    ``tc_gain`` (else the stored gain). ROUND is the pipeline's rounding mode. tc_housing's
+    offset has three more terms, (h1*w) << (Fo - H1f - Hs), (hx*uw) << (Fo - Hxf - Ts),
+    (h2*w2) << (Fo - H2f - Hs), Fo the largest of all the terms' fraction bits.
 
     Parameters
     ----------
     gain, offset : integer array_like (H, W)
         The stored gain (U Gi.Gf) and offset c0 (S Oi.Of) codes.
     tc : dict
-        ``tc1`` (and ``tc2``; ``tg1``, ``tg2`` with tc_gain) codes, each (H, W).
+        ``tc1`` (and ``tc2``; ``tg1``, ``tg2`` with tc_gain; ``th1``, ``thx``, ``th2`` of
+        tc_housing) codes, each (H, W).
     tr : TcReading
         The frame's :func:`tc_reading`.
     """

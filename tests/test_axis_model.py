@@ -180,7 +180,7 @@ def test_the_configurations_the_wrapper_is_built_around() -> None:
     wrapped = {n for n in pipeline_names(method=None)
                if "irnuc_axis_top" in tops_for(load_pipeline(n))}
     assert wrapped == {"typical14", "wide16", "minimal", "onepoint14", "piecewise14",
-                       "quadratic14", "tcoffset14", "tcgain14", "table14", "ffc14",
+                       "quadratic14", "tcoffset14", "tcgain14", "table14", "tchousing14", "ffc14",
                        "quadffc14", "tcffc14", "drift14"}
     p = top_parameters("irnuc_axis_top", load_pipeline("drift14"))
     assert (p["Drift"], p["Method"], p["BlindMax"], p["DriftGainFracBits"]) == (1, 1, 8192, 24)

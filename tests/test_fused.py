@@ -72,11 +72,16 @@ def _stimulus(cfg: PipelineConfig, seed: int, h: int = 6, w: int = 7):
     n = max(26, 2 * k + 14)  # with ffc: a complete run, an incomplete one, a pending one
     raw = rng.integers(0, 1 << cfg.adc_bits, (n, h, w))
     raw[0].flat[:4] = [0, (1 << cfg.adc_bits) - 1, 0, (1 << cfg.adc_bits) - 1]
-    reading = None
+    reading = housing = None
     if "fpa" in cfg.base.readings:
         # Runs of one reading (frames share their coefficients) and single frames around
-        # the method's breakpoints.
-        reading = np.array([random_reading(cfg, c, rng, mark=k // 3) for k in range(n)])
+        # the method's breakpoints (tc_housing: the housing reading drawn apart).
+        drawn = [random_reading(cfg, c, rng, mark=k // 3) for k in range(n)]
+        if isinstance(drawn[0], dict):
+            housing = np.array([d["housing"] for d in drawn])
+            housing[10:14] = housing[9]
+            drawn = [d["fpa"] for d in drawn]
+        reading = np.array(drawn)
         reading[10:14] = reading[9]
     blind = rng.integers(0, 1 << cfg.adc_bits, (n, 5))
     blind[1] = 0
@@ -86,7 +91,8 @@ def _stimulus(cfg: PipelineConfig, seed: int, h: int = 6, w: int = 7):
         shutter[2:2 + k] = True           # a complete run: refresh in frame 2 + k
         shutter[12:12 + max(1, k - 1)] = True  # an incomplete run: no refresh
         shutter[n - k:] = True            # completes with the last frame: pending
-    inputs = FrameInputs(reading=reading, blind_codes=blind, shutter=shutter)
+    inputs = FrameInputs(reading=reading, blind_codes=blind, shutter=shutter,
+                         housing_reading=housing)
     return c, raw, inputs, rng
 
 
@@ -143,6 +149,8 @@ def test_fused_sums_equal_the_cores_sums(name: str) -> None:
     fm = FusedMethod(c)
     for k in range(4):
         fr = {} if inputs.reading is None else {"fpa": int(inputs.reading[k * 5])}
+        if inputs.housing_reading is not None:
+            fr["housing"] = int(inputs.housing_reading[k * 5])
         s, f = fm.sums(acc, xfrac, fr)
         ref = base_core(c, frame_coefficients(c, fr or None), acc, xfrac=xfrac, sum_only=True)
         assert f == ref.frac

@@ -53,15 +53,33 @@ def test_the_study_writes_every_method_both_calibrations(housing_run: dict) -> N
     assert all(x["config"] in r["_text"] for x in r["rows"]) and "+5K" in r["_text"]
 
 
-def test_no_shipped_method_reads_the_housing(housing_run: dict) -> None:
+def test_no_method_but_tc_housing_reads_the_housing(housing_run: dict) -> None:
     # The registry fits at the reference offset: the plan over the housing gives the same
-    # coefficients, codes for codes, but blind_drift's coupling, which it measures.
+    # coefficients, codes for codes, but blind_drift's coupling, which it measures, and
+    # tc_housing, fitted on every (FPA, housing) point and only over the housing.
+    keys = {(x["config"], x["calibration"]) for x in housing_run["rows"]}
+    assert ("tchousing14", "over_housing") in keys
+    assert ("tchousing14", "housing_at_fpa") not in keys
     for x in housing_run["rows"]:
+        if x["config"] == "tchousing14":
+            assert x["same_coefficients"] is None
+            continue
         assert x["same_coefficients"] == (x["config"] != "drift14" or
                                           x["calibration"] == "housing_at_fpa"), x["config"]
         if x["same_coefficients"] and x["calibration"] == "over_housing":
             twin = _row(housing_run, x["config"], "housing_at_fpa", x["variant"])
             assert x["worst_fpn_mK"] == twin["worst_fpn_mK"]
+
+
+def test_tc_housing_follows_the_housing(housing_run: dict) -> None:
+    # Calibrated over FPA x housing (-5/0/5 K), the housing-aware offset keeps the pattern
+    # near its level at housing = FPA at every offset, where tc_offset's grows past 20 NETD.
+    r = housing_run
+    o = np.asarray(r["offset_K"])
+    th = np.asarray(_row(r, "tchousing14", "over_housing")["worst_fpn_mK"])
+    tc = np.asarray(_row(r, "tcoffset14", "over_housing")["worst_fpn_mK"])
+    assert th.max() < r["netd_mK"], th
+    assert (th[o != 0] < tc[o != 0] / 20).all(), (th, tc)
 
 
 def test_the_residual_grows_with_the_housing_offset(housing_run: dict) -> None:

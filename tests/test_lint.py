@@ -42,7 +42,7 @@ STAGE_MODULES = {"method_drift_top": ("blind_drift",), "blind_drift": ("blind_dr
                  "ffc_sums": ("ffc",), "irnuc_axis_ffc": ("ffc",)}
 #: Each method module and the methods it serves (method_dpc_top: every one).
 _METHOD_OF = {"pwl_core": ("piecewise",), "quad_core": ("quadratic",),
-              "tc_poly": ("tc_offset",), "tc_reading": ("tc_offset",),
+              "tc_poly": ("tc_offset", "tc_housing"), "tc_reading": ("tc_offset", "tc_housing"),
               "table_interp": ("table_interp",), "interp_weight": ("table_interp",), **FRONTS}
 
 
@@ -82,6 +82,13 @@ def _method_cases() -> list[tuple[str, str, dict[str, object]]]:
     order1 = PipelineConfig(**{**d, "tc_order": 1, "name": "tcgain14_order1"})
     for module in ("method_dpc_top", "tc_poly", "tc_reading", "method_tc_offset"):
         cases.append((module, order1, {}))  # type: ignore[arg-type]
+    # tc_housing of order 1 with tc_gain (u2 not formed: the housing's products alone).
+    d = load_pipeline("tchousing14").to_dict()
+    d["formats"] = {k: v for k, v in d["formats"].items() if k != "tc2"}
+    d["formats"]["tg1"] = load_pipeline("tcgain14").to_dict()["formats"]["tg1"]
+    h1 = PipelineConfig(**{**d, "tc_order": 1, "tc_gain": True, "name": "tchousing14_order1"})
+    for module in ("method_dpc_top", "tc_poly", "tc_reading", "method_tc_housing"):
+        cases.append((module, h1, {}))  # type: ignore[arg-type]
     for module in ("method_dpc_top", "pwl_core", "quad_core"):
         for r in ("truncate", "half_even"):
             cases.append((module, "piecewise14" if module != "quad_core" else "quadratic14",

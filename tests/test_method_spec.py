@@ -49,6 +49,10 @@ _WORDS: dict[str, dict[str, list[tuple[str, str | int]]]] = {
                   "tc": [("tc1", "Tc1Bits"), ("tc2", "Tc2Bits")],
                   "tg": [("tg1", "Tg1Bits"), ("tg2", "Tg2Bits")]},
     "table_interp": {"table": [("gain", "GainBits"), ("offset", "OffsetBits"), ("bad", 1)]},
+    "tc_housing": {"coeffs": [("gain", "GainBits"), ("offset", "OffsetBits"), ("bad", 1)],
+                   "tc": [("tc1", "Tc1Bits"), ("tc2", "Tc2Bits")],
+                   "th": [("th1", "Th1Bits"), ("thx", "ThxBits"), ("th2", "Th2Bits")],
+                   "tg": [("tg1", "Tg1Bits"), ("tg2", "Tg2Bits")]},
 }
 
 
@@ -99,6 +103,9 @@ def test_stream_words_concatenate_the_memories(cfg: PipelineConfig) -> None:
         assert frame == want[cfg.base_method].width
     elif cfg.base_method == "tc_offset":
         assert frame == regs["reading"].width + regs["t_ref"].width
+    elif cfg.base_method == "tc_housing":
+        assert frame == (regs["reading"].width + regs["t_ref"].width
+                         + regs["housing_reading"].width + regs["h_ref"].width)
     elif cfg.base_method == "table_interp":
         assert frame == cfg.format("weight").bits
     else:

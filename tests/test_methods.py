@@ -122,23 +122,32 @@ def ref_core(cfg, x: int, xf: int, c: dict, ffc: int | None) -> tuple[int, int]:
     return s, f
 
 
-def ref_tc(cfg, t: int, t_ref: int, c: dict) -> tuple[int, int]:
+def ref_tc(cfg, t: int, t_ref: int, c: dict, h: int | None = None) -> tuple[int, int]:
     ts = cfg.reading_range_bits
     lim = 2**ts - 1
     u = min(max(t - t_ref, -lim), lim)
     u2 = (u * u) // 2**ts
+    terms = {"tc1": (u, ts), "tc2": (u2, ts), "tg1": (u, ts), "tg2": (u2, ts)}
+    extra: tuple[str, ...] = ()
+    if h is not None:  # tc_housing: w, v·w', w'^2 of the housing reading
+        hs = cfg.housing_range_bits
+        hl = 2**hs - 1
+        w = min(max(h - c["h_ref"], -hl), hl)
+        terms |= {"th1": (w, hs), "thx": ((u * w) // 2**hs, ts), "th2": ((w * w) // 2**hs, hs)}
+        extra = ("th1", "thx", "th2")
     res = {}
     for kind, base, names in (("offset", "offset", ("tc1", "tc2")), ("gain", "gain", ("tg1", "tg2"))):
-        names = names[: cfg.tc_order]
+        names = names[: cfg.tc_order] + (extra if kind == "offset" else ())
         if kind == "gain" and not cfg.tc_gain:
             res[kind] = c["gain"]
             continue
         bi, bf, bs, *_ = (cfg.format(base).int_bits, cfg.format(base).frac_bits,
                           cfg.format(base).signed)
-        fo = max(bf, *(cfg.format(n).frac_bits + ts for n in names))
+        fo = max(bf, *(cfg.format(n).frac_bits + terms[n][1] for n in names))
         acc = c[kind] * 2 ** (fo - bf)
-        for n, v in zip(names, (u, u2), strict=False):
-            acc += c[n] * v * 2 ** (fo - cfg.format(n).frac_bits - ts)
+        for n in names:
+            v, vf = terms[n]
+            acc += c[n] * v * 2 ** (fo - cfg.format(n).frac_bits - vf)
         res[kind] = sat(rnd(acc, fo - bf, cfg.rounding), bi + bf, bs)
     return res["gain"], res["offset"]
 
@@ -222,8 +231,11 @@ def test_every_method_matches_the_exact_reference(name: str) -> None:
     shutter = np.zeros(n, bool)
     if cfg.has("ffc"):
         shutter[3:3 + cfg.ffc_frames + 1] = True
-    inputs = FrameInputs(reading=reading, blind_codes=blind, shutter=shutter)
+    housing = rng.integers(0, 1 << (cfg.housing_bits or 14), n)
+    inputs = FrameInputs(reading=reading, blind_codes=blind, shutter=shutter,
+                         housing_reading=housing)
     res = method_top(x, c, inputs)
+    hk = (lambda k: int(housing[k])) if cfg.base_method == "tc_housing" else (lambda k: None)
     # DPC is the unchanged dpc_core: check the NUC output before it, frame by frame.
     good = ~c.bad
     ffc = np.zeros((h, w), np.int64) if cfg.has("ffc") else None
@@ -238,8 +250,8 @@ def test_every_method_matches_the_exact_reference(name: str) -> None:
         sums, fr_list = [], []
         for i in range(h * w):
             p = _pix(c, i)
-            if cfg.base_method == "tc_offset":
-                p["gain"], p["offset"] = ref_tc(cfg, int(reading[k]), p["t_ref"], p)
+            if cfg.base_method in ("tc_offset", "tc_housing"):
+                p["gain"], p["offset"] = ref_tc(cfg, int(reading[k]), p["t_ref"], p, hk(k))
             s, f = ref_core(cfg, int(acc.flat[i]), nbits, p, None)
             sums.append(s)
             fr_list.append(f)
@@ -260,8 +272,8 @@ def test_every_method_matches_the_exact_reference(name: str) -> None:
             p = _pix(c, i)
             xi = int(x[k].flat[i])
             xf = 0
-            if cfg.base_method == "tc_offset":
-                p["gain"], p["offset"] = ref_tc(cfg, int(reading[k]), p["t_ref"], p)
+            if cfg.base_method in ("tc_offset", "tc_housing"):
+                p["gain"], p["offset"] = ref_tc(cfg, int(reading[k]), p["t_ref"], p, hk(k))
             if cfg.base_method == "table_interp":
                 j, wgt, wf, wr = ref_interp(cfg, int(reading[k]), list(p["table_readings"]), {}, {})
                 for q in ("gain", "offset"):

@@ -23,7 +23,10 @@ from irnuc.nuc_fixed.memimage import read_method_image, write_method_image
 from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 from irnuc.nuc_fixed.plan import CalibrationPlan, PlanError, PointFrames, load_plan, run_plan
 
-METHOD_CONFIGS = [n for n in pipeline_names(method=None) if n not in ("wide16", "minimal")]
+#: The configurations a plan at housing = FPA calibrates (tc_housing needs a plan over the
+#: housing: tests/test_tc_housing.py).
+METHOD_CONFIGS = [n for n in pipeline_names(method=None) if n not in ("wide16", "minimal")
+                  and "housing" not in load_pipeline(n).base.readings]
 
 PLAN_TEXT = """[plan]
 scene = [290.0, 330.0, 370.0]     # K, blackbody temperatures

@@ -13,6 +13,10 @@ module irnuc_pkg_probe
   parameter int unsigned Tg1Bits = 16,
   parameter int unsigned Tg2Bits = 16,
   parameter int unsigned ReadingBits = 14,
+  parameter int unsigned Th1Bits = 18,
+  parameter int unsigned ThxBits = 18,
+  parameter int unsigned Th2Bits = 16,
+  parameter int unsigned HousingBits = 14,
   parameter int unsigned GainIntBits = 2,
   parameter int unsigned GainFracBits = 14,
   parameter int unsigned OffsetIntBits = 12,
@@ -193,6 +197,10 @@ module irnuc_pkg_probe
   output logic [31:0] const_reg_drift_gain_hi_offset_o,
   output logic [31:0] const_reg_ffc_target_lo_offset_o,
   output logic [31:0] const_reg_ffc_target_hi_offset_o,
+  output logic [31:0] const_reg_housing_reading_lo_offset_o,
+  output logic [31:0] const_reg_housing_reading_hi_offset_o,
+  output logic [31:0] const_reg_h_ref_lo_offset_o,
+  output logic [31:0] const_reg_h_ref_hi_offset_o,
   output logic [31:0] const_reg_table_reading_offset_o,
   output logic [31:0] const_reg_table_reading_stride_o,
   output logic [31:0] const_reg_table_reading_count_o,
@@ -234,6 +242,7 @@ module irnuc_pkg_probe
   output logic [2:0] enum_methodquadratic_o,
   output logic [2:0] enum_methodtcoffset_o,
   output logic [2:0] enum_methodtableinterp_o,
+  output logic [2:0] enum_methodtchousing_o,
   output logic [7:0] count_method_e_o,
   output logic [31:0] const_method_count_o,
   input  logic [coef_word_bits(GainBits, OffsetBits)-1:0] coef_word_word_i,
@@ -317,6 +326,33 @@ module irnuc_pkg_probe
   input  logic [ReadingBits-1:0] frame_tc_offset_t_ref_i,
   output logic [ReadingBits-1:0] frame_tc_offset_t_ref_o,
   output logic [7:0] frame_tc_offset_t_ref_lsb_o,
+  input  logic [housing_word_bits(Th1Bits, ThxBits, Th2Bits)-1:0] housing_word_word_i,
+  output logic [housing_word_bits(Th1Bits, ThxBits, Th2Bits)-1:0] housing_word_word_o,
+  output logic [7:0] housing_word_bits_o,
+  input  logic [Th1Bits-1:0] housing_word_th1_i,
+  output logic [Th1Bits-1:0] housing_word_th1_o,
+  output logic [7:0] housing_word_th1_lsb_o,
+  input  logic [ThxBits-1:0] housing_word_thx_i,
+  output logic [ThxBits-1:0] housing_word_thx_o,
+  output logic [7:0] housing_word_thx_lsb_o,
+  input  logic [Th2Bits-1:0] housing_word_th2_i,
+  output logic [Th2Bits-1:0] housing_word_th2_o,
+  output logic [7:0] housing_word_th2_lsb_o,
+  input  logic [frame_tc_housing_bits(ReadingBits, HousingBits)-1:0] frame_tc_housing_word_i,
+  output logic [frame_tc_housing_bits(ReadingBits, HousingBits)-1:0] frame_tc_housing_word_o,
+  output logic [7:0] frame_tc_housing_bits_o,
+  input  logic [ReadingBits-1:0] frame_tc_housing_reading_i,
+  output logic [ReadingBits-1:0] frame_tc_housing_reading_o,
+  output logic [7:0] frame_tc_housing_reading_lsb_o,
+  input  logic [ReadingBits-1:0] frame_tc_housing_t_ref_i,
+  output logic [ReadingBits-1:0] frame_tc_housing_t_ref_o,
+  output logic [7:0] frame_tc_housing_t_ref_lsb_o,
+  input  logic [HousingBits-1:0] frame_tc_housing_housing_reading_i,
+  output logic [HousingBits-1:0] frame_tc_housing_housing_reading_o,
+  output logic [7:0] frame_tc_housing_housing_reading_lsb_o,
+  input  logic [HousingBits-1:0] frame_tc_housing_h_ref_i,
+  output logic [HousingBits-1:0] frame_tc_housing_h_ref_o,
+  output logic [7:0] frame_tc_housing_h_ref_lsb_o,
   input  logic [frame_blind_drift_bits(BaseBits, SumBits, DriftGainBits)-1:0] frame_blind_drift_word_i,
   output logic [frame_blind_drift_bits(BaseBits, SumBits, DriftGainBits)-1:0] frame_blind_drift_word_o,
   output logic [7:0] frame_blind_drift_bits_o,
@@ -505,6 +541,10 @@ module irnuc_pkg_probe
   assign const_reg_drift_gain_hi_offset_o = 32'(RegDriftGainHiOffset);
   assign const_reg_ffc_target_lo_offset_o = 32'(RegFfcTargetLoOffset);
   assign const_reg_ffc_target_hi_offset_o = 32'(RegFfcTargetHiOffset);
+  assign const_reg_housing_reading_lo_offset_o = 32'(RegHousingReadingLoOffset);
+  assign const_reg_housing_reading_hi_offset_o = 32'(RegHousingReadingHiOffset);
+  assign const_reg_h_ref_lo_offset_o = 32'(RegHRefLoOffset);
+  assign const_reg_h_ref_hi_offset_o = 32'(RegHRefHiOffset);
   assign const_reg_table_reading_offset_o = 32'(RegTableReadingOffset);
   assign const_reg_table_reading_stride_o = 32'(RegTableReadingStride);
   assign const_reg_table_reading_count_o = 32'(RegTableReadingCount);
@@ -554,6 +594,7 @@ module irnuc_pkg_probe
   assign enum_methodquadratic_o = MethodQuadratic;
   assign enum_methodtcoffset_o = MethodTcOffset;
   assign enum_methodtableinterp_o = MethodTableInterp;
+  assign enum_methodtchousing_o = MethodTcHousing;
   assign const_method_count_o = 32'(MethodCount);
   method_e method_any;
   assign method_any = MethodOnePoint;
@@ -685,6 +726,43 @@ module irnuc_pkg_probe
     frame_tc_offset_packed = '0;
     frame_tc_offset_packed.reading = frame_tc_offset_reading_i;
     frame_tc_offset_packed.t_ref = frame_tc_offset_t_ref_i;
+  end
+  typedef housing_word#(Th1Bits, ThxBits, Th2Bits)::word_t housing_word_t;
+  housing_word_t housing_word_packed, housing_word_unpacked;
+  assign housing_word_word_o = housing_word_packed;
+  assign housing_word_unpacked = housing_word_t'(housing_word_word_i);
+  assign housing_word_bits_o = 8'($bits(housing_word_t));
+  assign housing_word_th1_o = housing_word_unpacked.th1;
+  assign housing_word_th1_lsb_o = 8'(housing_word_th1_lsb());
+  assign housing_word_thx_o = housing_word_unpacked.thx;
+  assign housing_word_thx_lsb_o = 8'(housing_word_thx_lsb(Th1Bits));
+  assign housing_word_th2_o = housing_word_unpacked.th2;
+  assign housing_word_th2_lsb_o = 8'(housing_word_th2_lsb(Th1Bits, ThxBits));
+  always_comb begin : p_pack_housing_word
+    housing_word_packed = '0;
+    housing_word_packed.th1 = housing_word_th1_i;
+    housing_word_packed.thx = housing_word_thx_i;
+    housing_word_packed.th2 = housing_word_th2_i;
+  end
+  typedef frame_tc_housing#(ReadingBits, HousingBits)::word_t frame_tc_housing_t;
+  frame_tc_housing_t frame_tc_housing_packed, frame_tc_housing_unpacked;
+  assign frame_tc_housing_word_o = frame_tc_housing_packed;
+  assign frame_tc_housing_unpacked = frame_tc_housing_t'(frame_tc_housing_word_i);
+  assign frame_tc_housing_bits_o = 8'($bits(frame_tc_housing_t));
+  assign frame_tc_housing_reading_o = frame_tc_housing_unpacked.reading;
+  assign frame_tc_housing_reading_lsb_o = 8'(frame_tc_housing_reading_lsb());
+  assign frame_tc_housing_t_ref_o = frame_tc_housing_unpacked.t_ref;
+  assign frame_tc_housing_t_ref_lsb_o = 8'(frame_tc_housing_t_ref_lsb(ReadingBits));
+  assign frame_tc_housing_housing_reading_o = frame_tc_housing_unpacked.housing_reading;
+  assign frame_tc_housing_housing_reading_lsb_o = 8'(frame_tc_housing_housing_reading_lsb(ReadingBits));
+  assign frame_tc_housing_h_ref_o = frame_tc_housing_unpacked.h_ref;
+  assign frame_tc_housing_h_ref_lsb_o = 8'(frame_tc_housing_h_ref_lsb(ReadingBits, HousingBits));
+  always_comb begin : p_pack_frame_tc_housing
+    frame_tc_housing_packed = '0;
+    frame_tc_housing_packed.reading = frame_tc_housing_reading_i;
+    frame_tc_housing_packed.t_ref = frame_tc_housing_t_ref_i;
+    frame_tc_housing_packed.housing_reading = frame_tc_housing_housing_reading_i;
+    frame_tc_housing_packed.h_ref = frame_tc_housing_h_ref_i;
   end
   typedef frame_blind_drift#(BaseBits, SumBits, DriftGainBits)::word_t frame_blind_drift_t;
   frame_blind_drift_t frame_blind_drift_packed, frame_blind_drift_unpacked;

@@ -260,6 +260,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         quiet = dataclasses.replace(plan.fpa_sensor, noise_K=0.0)
         check_readings(cfg, quiet.read(np.asarray(plan.fpa)).tolist(), plan.reference_index,
                        f"--plan {args.plan}", "its fpa_sensor")
+        cfg.base.check_plan(cfg, plan, f"--plan {args.plan}")
         n_pts = len(plan.points())
         n = n_pts * len(plan.scene) * plan.frames
         where = (f"{len(plan.fpa)} FPA x {len(plan.housing_offset)} housing offsets"
@@ -352,7 +353,7 @@ def _add_correct(p: argparse.ArgumentParser) -> None:
 #: Per-frame fields of a frames file a method reads (model.fpa_sensor.FRAME_FIELDS and the
 #: model's blind pixel codes), by the name method_top.needs gives.
 _FRAME_FIELD_KEYS = {"fpa_reading": "fpa_reading", "blind_codes": "blind_codes",
-                     "shutter": "shutter"}
+                     "shutter": "shutter", "housing_reading": "housing_reading"}
 
 
 def _check_fields(data: dict[str, Any], cfg: Any, where: str) -> None:
@@ -368,6 +369,8 @@ def _check_fields(data: dict[str, Any], cfg: Any, where: str) -> None:
         key = _FRAME_FIELD_KEYS[name]
         absent = key not in data
         if name == "fpa_reading" and data.get("fields_synthesized", False):
+            absent = True
+        if name == "housing_reading" and data.get("housing_synthesized", False):
             absent = True
         if name == "blind_codes" and not absent and data[key].shape[-1] == 0:
             absent = True
@@ -420,8 +423,9 @@ def _run_correct(args: argparse.Namespace) -> int:
     check_sensor(manifest.get("fpa_sensor"), data["fpa_sensor"], cfg, f"--frames {args.frames}",
                  f"--coeffs {args.coeffs}")
     fields = {name: np.asarray(data[_FRAME_FIELD_KEYS[name]]) for name in needs(cfg)}
-    # the housing reading goes to the golden model the way the FPA's does (no shipped method
-    # reads it yet); a file of format 2 has none of its own (housing_synthesized)
+    # the housing reading goes to the golden model the way the FPA's does (tc_housing reads
+    # it: _check_fields refused a file without one); a file of format 2 has none of its own
+    # (housing_synthesized)
     housing = (None if data.get("housing_synthesized") or "housing_reading" not in data
                else np.asarray(data["housing_reading"]))
     inputs = dataclasses.replace(FrameInputs.from_fields(cfg, fields), housing_reading=housing)

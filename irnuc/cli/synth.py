@@ -11,7 +11,8 @@ from irnuc.cli._args import add_executor, add_out, load_pipeline_arg, progress, 
 #: method registry, nuc_fixed.methods: BASES and each StageSpec's rtl_bases, not imported
 #: here so that ``irnuc --help`` stays fast): every base method, and per stage the bases
 #: its top composes.
-AXIS_WRAPS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset", "table_interp")
+AXIS_WRAPS = ("one_point", "two_point", "piecewise", "quadratic", "tc_offset", "table_interp",
+              "tc_housing")
 AXIS_STAGES = {"blind_drift": ("one_point", "two_point"),
                "ffc": ("one_point", "two_point", "quadratic", "tc_offset")}
 

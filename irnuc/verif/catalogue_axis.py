@@ -122,9 +122,20 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "frame_out_q <= core_valid && m_axis_video_tready && core_eol;",
         "FRAMES_OUT and IRQ_STATUS.frame_done at every line's end"),
     _ma("ax_reading_from_t_ref", "irnuc_axis_top.sv",
-        "assign part0.reading = slots[2][ReadingBits-1:0];",
-        "assign part0.reading = slots[3][ReadingBits-1:0];",
+        "frame_tc_offset#(ReadingBits)::word_t part0;\n"
+        "    assign part0.reading = slots[2][ReadingBits-1:0];",
+        "frame_tc_offset#(ReadingBits)::word_t part0;\n"
+        "    assign part0.reading = slots[3][ReadingBits-1:0];",
         "tc_offset: the frame word's reading taken from T_REF", **_AXM, config="tcoffset14"),
+    _ma("ax_housing_from_reading", "irnuc_axis_top.sv",
+        "assign part0.housing_reading = slots[8][HousingBits-1:0];",
+        "assign part0.housing_reading = slots[2][HousingBits-1:0];",
+        "tc_housing: the frame word's housing reading taken from READING (the FPA's)",
+        **_AXM, config="tchousing14"),
+    _ma("ax_h_ref_from_t_ref", "irnuc_axis_top.sv",
+        "assign part0.h_ref = slots[9][HousingBits-1:0];",
+        "assign part0.h_ref = slots[3][HousingBits-1:0];",
+        "tc_housing: the frame word's H_REF taken from T_REF", **_AXM, config="tchousing14"),
     # ---- the classes issue 39 found escaping, killed by the random register traffic
     #      (cocotb_tests/axil_traffic.py) and ffc_second_run --------------------------------
     _ma("ax_rdata_live", "irnuc_axil_regblock.sv",

@@ -23,6 +23,7 @@ from irnuc.nuc_fixed.methods import (
     piecewise,
     quadratic,
     table_interp,
+    tc_housing,
     tc_offset,
     two_point,
 )
@@ -42,7 +43,7 @@ if TYPE_CHECKING:
 #: The base methods by name, in the order of ``method_e`` (one list of methods).
 BASES: dict[str, MethodSpec] = {m.name: m for m in (
     one_point.METHOD, two_point.METHOD, piecewise.METHOD, quadratic.METHOD, tc_offset.METHOD,
-    table_interp.METHOD)}
+    table_interp.METHOD, tc_housing.METHOD)}
 #: The stages by name, in their canonical order in a method (``two_point+blind_drift``).
 STAGES: dict[str, StageSpec] = {s.name: s for s in (blind_drift.STAGE, ffc.STAGE)}
 

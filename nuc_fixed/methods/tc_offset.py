@@ -37,7 +37,15 @@ from irnuc.nuc_fixed.spec import (
     Word,
     word_memory,
 )
-from irnuc.nuc_fixed.tempcomp import tc_coeffs, tc_exprs, tc_reading
+from irnuc.nuc_fixed.tempcomp import (
+    VARIABLES,
+    TcReading,
+    tc_coeffs,
+    tc_exprs,
+    tc_reading,
+    term_shift,
+    variable,
+)
 from irnuc.nuc_fixed.widths import W, add, mul, shl, sub
 
 if TYPE_CHECKING:
@@ -85,6 +93,42 @@ def reading_regressors(cfg: PipelineConfig, readings: list[int], t_ref: int) -> 
     return np.asarray(rows)[:, : _order(cfg) + 1]
 
 
+def fit_polynomials(cfg: PipelineConfig, means: np.ndarray, t: np.ndarray, q: Any,
+                    reg: np.ndarray, extra: list[str]) -> None:
+    """Fit and quantize the gain and the offset polynomials on every point (means
+    (P, S, H, W), targets t (S,)). ``reg`` (P, 1 + order + len(extra)): the regressors as
+    the datapath computes them, [1, v(, v2)] then one column per ``extra`` offset term.
+
+    The common gain over all points (or the gain per point, then its polynomial in the
+    FPA's columns only), then the offset per point and its polynomial.
+    """
+    order = _order(cfg)
+    readings = np.arange(means.shape[0])
+    xbar = means.mean(axis=1)  # (P, H, W)
+    tbar = float(np.mean(t))
+    freg = reg[:, : order + 1]
+    if cfg.tc_gain:
+        gp = np.stack([ls_line(means[p], t)[0] for p in range(means.shape[0])])
+        gc = ls_poly(readings, gp, freg)
+        vals = [q.field("coeffs.gain", "gain", gc[0])]
+        vals += [q.field(f"tg.{n}", n, gc[i + 1])
+                 for i, n in enumerate(["tg1", "tg2"][:order])]
+        g_at = np.einsum("pk,khw->phw", freg, np.stack(vals))
+    else:
+        xc = means - means.mean(axis=1, keepdims=True)       # (P, S, H, W)
+        tc = (t - tbar).reshape(1, -1, 1, 1)
+        sxx = (xc * xc).sum(axis=(0, 1))
+        g = np.divide((xc * tc).sum(axis=(0, 1)), sxx, out=np.zeros_like(sxx),
+                      where=sxx > 0)
+        g_at = np.broadcast_to(q.field("coeffs.gain", "gain", g), xbar.shape)
+    oc = ls_poly(readings, tbar - g_at * xbar, reg)
+    q.field("coeffs.offset", "offset", oc[0])
+    for i, n in enumerate(["tc1", "tc2"][:order]):
+        q.field(f"tc.{n}", n, oc[i + 1])
+    for i, n in enumerate(extra):
+        q.field(f"th.{n}", n, oc[order + 1 + i])
+
+
 @dataclass(frozen=True)
 class TcOffset(MethodSpec):
     def used_formats(self, cfg: PipelineConfig) -> tuple[str, ...]:
@@ -104,41 +148,51 @@ class TcOffset(MethodSpec):
         return [Register("t_ref", r, False, f"U{r}.0",
                          meaning="reading at which the polynomials are centred")]
 
+    def offset_names(self, cfg: PipelineConfig) -> list[str]:
+        """The offset polynomial's coefficients (formats), in the datapath's order."""
+        return ["tc1", "tc2"][:_order(cfg)]
+
+    def frame_reading(self, c: MethodCoefficients, frame: Frame) -> TcReading:
+        """The frame's ``tc_reading``."""
+        return tc_reading(int(frame["fpa"]), int(c.registers["t_ref"]), c.cfg)
+
+    def _polys(self, c: MethodCoefficients) -> dict[str, Any]:
+        return {**c.fields["tc"], **c.fields.get("tg", {}), **c.fields.get("th", {})}
+
     def frame_coefficients(self, c: MethodCoefficients, frame: Frame) -> dict[str, Any]:
-        cfg = c.cfg
-        tr = tc_reading(int(frame["fpa"]), int(c.registers["t_ref"]), cfg)
         cs = c.fields["coeffs"]
-        g, o = tc_coeffs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
-                         tr, cfg)
+        g, o = tc_coeffs(cs["gain"], cs["offset"], self._polys(c), self.frame_reading(c, frame),
+                         c.cfg)
         return {"gain": g, "offset": o, "bad": cs["bad"]}
 
     def frame_expressions(self, c: MethodCoefficients, frame: Frame) -> FrameExpressions:
         # The polynomials of frame_coefficients, evaluated per pixel in the fused pass.
-        cfg = c.cfg
-        tr = tc_reading(int(frame["fpa"]), int(c.registers["t_ref"]), cfg)
         cs = c.fields["coeffs"]
-        g, o = tc_exprs(cs["gain"], cs["offset"], {**c.fields["tc"], **c.fields.get("tg", {})},
-                        tr, cfg)
+        g, o = tc_exprs(cs["gain"], cs["offset"], self._polys(c), self.frame_reading(c, frame),
+                        c.cfg)
         return FrameExpressions({"gain": g, "offset": o}, cs["bad"])
 
-    def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
+    def variable_widths(self, cfg: PipelineConfig) -> dict[str, W]:
+        """The widths of the polynomials' variables (tc_reading's outputs)."""
         ts = int(cfg.reading_range_bits or 1)
+        return {"u": W(ts + 1, True), "u2": W(ts, False)}
+
+    def widths(self, cfg: PipelineConfig) -> dict[str, W | int]:
         r = int(cfg.reading_bits or 1)
-        u = W(ts + 1, True)
-        u2 = W(ts, False)
-        out: dict[str, W | int] = {"tc.diff": sub(W(r, False), W(r, False)), "tc.u": u,
-                                   "tc.u2": u2}
-        for kind, base_fmt, c1, c2 in (("o", cfg.format("offset"), "tc1", "tc2"),
-                                       ("g", cfg.format("gain"), "tg1", "tg2")):
+        var = self.variable_widths(cfg)
+        out: dict[str, W | int] = {"tc.diff": sub(W(r, False), W(r, False))}
+        out |= {f"tc.{k}": v for k, v in var.items()}
+        for kind, base_fmt, names in (("o", cfg.format("offset"), self.offset_names(cfg)),
+                                      ("g", cfg.format("gain"), ["tg1", "tg2"][: _order(cfg)])):
             if kind == "g" and not cfg.tc_gain:
                 continue
-            fmts = [cfg.format(n) for n in [c1, c2][: _order(cfg)]]
-            fo = max(base_fmt.frac_bits, *(c.frac_bits + ts for c in fmts))
+            fo = max(base_fmt.frac_bits, *(term_shift(n, cfg) for n in names))
             terms = [shl(W(base_fmt.bits, base_fmt.signed), fo - base_fmt.frac_bits)]
-            for c, v in zip(fmts, (u, u2), strict=False):
-                prod = mul(W(c.bits, True), v)
+            for n in names:
+                c = cfg.format(n)
+                prod = mul(W(c.bits, True), var[VARIABLES[n][0]])
                 out[f"tc.{kind}.{c.name}_prod"] = prod
-                terms.append(shl(prod, fo - c.frac_bits - ts))
+                terms.append(shl(prod, fo - term_shift(n, cfg)))
             acc = add(*terms)
             out |= {f"tc.{kind}.F": fo, f"tc.{kind}.sum": acc,
                     f"tc.{kind}.rounded": W(acc.bits + 1 - (fo - base_fmt.frac_bits), True)}
@@ -179,33 +233,13 @@ class TcOffset(MethodSpec):
             raise PlanError(f"{pts.source}: method {cfg.method!r} needs the FPA reading of "
                             "every frame (fpa_reading); the frames lack it")
         check_readings(cfg, readings, pts.reference, pts.source)
-        xbar = means.mean(axis=1)  # (P, H, W)
-        tbar = float(np.mean(t))
         t_ref = readings[pts.reference]
         q.register("t_ref", None, t_ref, bits=int(cfg.reading_bits or 1))
-        reg = reading_regressors(cfg, readings, t_ref)
         order = _order(cfg)
         if means.shape[0] < order + 1:
             raise PlanError(f"{pts.source}: tc_order = {order} needs at least {order + 1} "
                             f"FPA temperatures; the plan has {means.shape[0]}")
-        if cfg.tc_gain:
-            gp = np.stack([ls_line(means[p], t)[0] for p in range(means.shape[0])])
-            gc = ls_poly(np.asarray(readings), gp, reg)
-            vals = [q.field("coeffs.gain", "gain", gc[0])]
-            vals += [q.field(f"tg.{n}", n, gc[i + 1])
-                     for i, n in enumerate(["tg1", "tg2"][:order])]
-            g_at = np.einsum("pk,khw->phw", reg, np.stack(vals))
-        else:
-            xc = means - means.mean(axis=1, keepdims=True)       # (P, S, H, W)
-            tc = (t - tbar).reshape(1, -1, 1, 1)
-            sxx = (xc * xc).sum(axis=(0, 1))
-            g = np.divide((xc * tc).sum(axis=(0, 1)), sxx, out=np.zeros_like(sxx),
-                          where=sxx > 0)
-            g_at = np.broadcast_to(q.field("coeffs.gain", "gain", g), xbar.shape)
-        oc = ls_poly(np.asarray(readings), tbar - g_at * xbar, reg)
-        q.field("coeffs.offset", "offset", oc[0])
-        for i, n in enumerate(["tc1", "tc2"][:order]):
-            q.field(f"tc.{n}", n, oc[i + 1])
+        fit_polynomials(cfg, means, t, q, reading_regressors(cfg, readings, t_ref), [])
 
     def float_correct(self, cfg: PipelineConfig, f: Mapping[str, Any], x: np.ndarray,
                       frame: Frame) -> np.ndarray:
@@ -226,9 +260,8 @@ class TcOffset(MethodSpec):
         points: dict[str, tuple[str, ...]] = {"tc.u": U_BINS, "tc.offset": SAT_BINS}
         if cfg.tc_gain:
             points["tc.gain"] = SAT_BINS
-        ts = int(cfg.reading_range_bits or 1)
-        names = ["tc1", "tc2"][: _order(cfg)]
-        if max(cfg.offset_frac_bits, *(cfg.format(n).frac_bits + ts for n in names)) \
+        names = self.offset_names(cfg)
+        if max(cfg.offset_frac_bits, *(term_shift(n, cfg) for n in names)) \
                 > cfg.offset_frac_bits:
             points["tc.round"] = HALF_BINS
         return points, {}
@@ -245,21 +278,21 @@ class TcOffset(MethodSpec):
         u_bin = (0 if diff < -lim else 4 if diff > lim else 1 if diff < 0 else 3 if diff > 0
                  else 2)
         out["tc.u"] = {U_BINS[u_bin]}
-        tr = tc_reading(reading, t_ref, cfg)
+        tr = self.frame_reading(c, frame)
         cs = c.fields["coeffs"]
-        tc = {**c.fields["tc"], **c.fields.get("tg", {})}
+        tc = {**c.fields["tc"], **c.fields.get("tg", {}), **c.fields.get("th", {})}
 
         def poly(c0: np.ndarray, base: str, names: list[str]) -> tuple[np.ndarray, int]:
             # The polynomial before its rounding, at Fo fraction bits (docs/datapath.md
             # "tc_poly"), and Fo - base fraction bits.
-            fo = max(cfg.format(base).frac_bits, *(cfg.format(n).frac_bits + ts for n in names))
+            fo = max(cfg.format(base).frac_bits, *(term_shift(n, cfg) for n in names))
             acc = c0 << (fo - cfg.format(base).frac_bits)
-            for n, v in zip(names, (tr.u, tr.u2), strict=False):
-                acc = acc + ((tc[n] * v) << (fo - cfg.format(n).frac_bits - ts))
+            for n in names:
+                acc = acc + ((tc[n] * variable(n, tr)) << (fo - term_shift(n, cfg)))
             return acc, fo - cfg.format(base).frac_bits
 
         order = _order(cfg)
-        so, k = poly(cs["offset"], "offset", ["tc1", "tc2"][:order])
+        so, k = poly(cs["offset"], "offset", self.offset_names(cfg))
         ro = np.asarray(round_shift(np.ascontiguousarray(so), k, cfg.rounding))
         half = 1 << (cfg.offset_bits - 1)
         hit(out, "tc.offset", SAT_BINS, three(ro, -half, half - 1))

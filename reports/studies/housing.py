@@ -9,10 +9,12 @@ each of several temperatures and the housing at each offset from it (default -5.
   takes the paper repository's coupling k = 1;
 * ``over_housing``: the same plan over FPA x housing (``housing_offset = [-5, 0, 5]``, 9
   points) with blind_drift's ``drift_cam`` points at the reference FPA and the same
-  offsets. **No shipped method reads the housing**: the registry fits every method on the
-  points at the reference offset (0 K), so the coefficients are those of ``housing_at_fpa``
+  offsets. The registry fits every method that does not read the housing on the points
+  at the reference offset (0 K), so their coefficients are those of ``housing_at_fpa``
   bit for bit (the study checks it: ``same_coefficients``), except blind_drift's coupling,
   which the housing points measure (k = the image's drift per code of the blind mean).
+  tc_housing (tchousing14), which reads the housing sensor, is fitted on all 9 points and
+  only here (``same_coefficients`` null).
 
 Per configuration, calibration and housing offset: the worst residual fixed pattern over
 the FPA temperatures and scenes (mK through the corrected image's local responsivity) and
@@ -38,7 +40,8 @@ from irnuc.reports.studies import drift_common as dc
 NAME = "housing"
 TITLE = "Residual against the housing-FPA difference: every temperature method, two calibrations"
 #: The temperature-relevant 14-bit configurations (two_point as the baseline).
-METHODS = ("typical14", "drift14", "tcoffset14", "tcgain14", "table14", "ffc14", "tcffc14")
+METHODS = ("typical14", "drift14", "tcoffset14", "tcgain14", "table14", "ffc14", "tcffc14",
+           "tchousing14")
 #: The housing offsets of the ``over_housing`` plan, K.
 PLAN_OFFSETS = (-5.0, 0.0, 5.0)
 CALIBRATIONS = {
@@ -99,10 +102,16 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None,
     if 0.0 not in offs or fpa_ref not in fpa:
         raise ValueError(f"the offsets must include 0 K and the FPA temperatures "
                          f"{fpa_ref:g} K (the reference): {offs}, {fpa}")
+    from irnuc.nuc_fixed import load_pipeline
+
     cal_names = tuple(dict.fromkeys((*names, "typical14")))
+    # A method that reads the housing (tc_housing) is fitted over FPA x housing only: the
+    # plan at housing = FPA has one housing reading per FPA point, nothing to fit w' on.
+    reads = {n for n in cal_names if "housing" in load_pipeline(n).base.readings}
     cals = {}
     for key, (plan, drift_cam) in _plans(PLAN_OFFSETS).items():
-        cals[key] = dc.calibrate_methods(sensor, cal_names, plan, drift_cam=drift_cam)
+        these = tuple(n for n in cal_names if key == "over_housing" or n not in reads)
+        cals[key] = dc.calibrate_methods(sensor, these, plan, drift_cam=drift_cam)
     plan0 = cals["housing_at_fpa"]["plan"]
     good = ~np.logical_or.reduce([c.bad for k in cals for c in cals[k]["cal"].values()])
     states = [(f, o) for f in fpa for o in offs]
@@ -137,6 +146,8 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None,
     rows: list[dict[str, Any]] = []
     for name in names:
         for key, cal in cals.items():
+            if name not in cal["cal"]:
+                continue
             c = cal["cal"][name]
             sc = dc.scale(sensor, c.targets, dc.PLAN["scene"])
             variants: list[tuple[str, float | None]] = (
@@ -155,7 +166,8 @@ def run(quick: bool = False, sensor: dc.StudySensor | None = None,
                 rows.append({
                     "config": name, "method": c.cfg.method, "variant": variant,
                     "calibration": key,
-                    "same_coefficients": _same(c, cals["housing_at_fpa"]["cal"][name]),
+                    "same_coefficients": (_same(c, cals["housing_at_fpa"]["cal"][name])
+                                          if name in cals["housing_at_fpa"]["cal"] else None),
                     "drift_coupling": c.summary.get("drift_coupling"),
                     "worst_fpn_mK": [max(v for p in po for v in p["fpn_mK"]) for po in per_off],
                     "worst_level_error_mK": [max(abs(v) for p in po for v in p["level_error_mK"])

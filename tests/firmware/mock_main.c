@@ -77,8 +77,8 @@ int main(int argc, char **argv)
             ex.cal.table_readings[ex.cal.tables++] = (uint32_t)v;
         }
         else if (!strcmp(key, "enum")) {  /* print the driver's method codes */
-            printf("ENUM %d %d %d %d %d %d\n", IRNUC_ONE_POINT, IRNUC_TWO_POINT, IRNUC_PIECEWISE,
-                   IRNUC_QUADRATIC, IRNUC_TC_OFFSET, IRNUC_TABLE_INTERP);
+            printf("ENUM %d %d %d %d %d %d %d\n", IRNUC_ONE_POINT, IRNUC_TWO_POINT, IRNUC_PIECEWISE,
+                   IRNUC_QUADRATIC, IRNUC_TC_OFFSET, IRNUC_TABLE_INTERP, IRNUC_TC_HOUSING);
             return 0;
         }
         else return 2;
