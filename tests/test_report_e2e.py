@@ -99,9 +99,19 @@ def test_temperature_section_in_summary_and_html(tiny_run) -> None:
     assert t["tolerance_mK"] == 0.5 * t["netd_mK"]
     assert s["metrics"]["temperature.recommended.worst_fpn_mK"]["value"] == r["worst_fpn_mK"]
     h = (out / "index.html").read_text()
-    for text in ("id='temperature'", "FFC sawtooth", "3D noise", "Camera-temperature test",
-                 "Residual against fraction bits per method"):
+    for text in ("id='temperature'", "against time on each thermal scenario", "housing-FPA",
+                 "3D noise", "Camera-temperature test", "Residual against fraction bits per method",
+                 "fpa_ramp"):
         assert text in h, text
+    # every point judged on the configuration's scenarios, worst over them (issue 37)
+    assert list(t["scenarios"]) == ["fpa_ramp"]
+    for p in t["points"]:
+        assert set(p["scenarios"]) == {"fpa_ramp"} and p["worst_scenario"] == "fpa_ramp"
+        assert p["worst_fpn_mK"] == p["scenarios"]["fpa_ramp"]["worst_fpn_mK"]
+        assert (p["dead_time_pct"] > 0) == (p["config"] == "ffc14")
+    if not r["meets_tolerance"]:
+        assert r["breaks"] and r["breaks"][0].startswith("fpa_ramp (")
+        assert "fpa_ramp (" in s["signoff"]["reason"]
     # The sign-off verdict apart from the regression status (issue 37): judged on the
     # residual against the tolerance (the tiny configuration neither synthesizes nor
     # co-simulates its recommendation: those checks did not run).

@@ -20,10 +20,12 @@ from irnuc.reports.studies.hwcost import coefficient_memory
 
 
 def _pt(i, config, mem, read, mk, period=None, frac=8, valid=True):
+    # dead time as a shutter of 9 frames at 30 Hz every `period` minutes would cost
+    dead = 0.0 if period is None else 100.0 * 9 / (period * 60 * 30)
     return {"index": i, "key": f"{config}_{i}", "config": config, "method": config, "frac_bits": frac,
             "valid": valid, "memory_bits": mem, "read_bits_per_frame": read, "worst_fpn_mK": mk,
             "worst_fpn_lsb": mk / 10, "ffc_period_min": period, "calibration_bits": mem,
-            "runtime_bits": 0}
+            "runtime_bits": 0, "dead_time_pct": dead, "ffc_per_hour": 0 if period is None else 60 / period}
 
 
 # ---- recommendation ---------------------------------------------------------------------------
@@ -37,7 +39,7 @@ def test_recommend_cheapest_memory_then_bandwidth_then_datapath_then_period() ->
     pts2 = [_pt(0, "a", 32, 40, 9.0), _pt(1, "b", 32, 40, 2.0)]
     assert so.recommend(pts2, 10.0)["index"] == 1  # lower residual without datapath
     assert so.recommend(pts2, 10.0, {0: 100.0, 1: 300.0})["index"] == 0
-    # the longest FFC period among equals; no shutter beats any period
+    # the least dead time among equals (here the longest FFC period); no shutter beats any
     pts3 = [_pt(0, "f", 64, 64, 3.0, 0.5), _pt(1, "f", 64, 64, 6.0, 2.0), _pt(2, "f", 64, 64, 5.0, 1.0)]
     assert so.recommend(pts3, 10.0)["candidates"] == [1, 2, 0]
     assert so.recommend([*pts3, _pt(3, "g", 64, 64, 9.0)], 10.0)["index"] == 3
@@ -208,58 +210,34 @@ def test_default_and_quick_temperature_sections() -> None:
     assert quick["cosim_frames"] >= 20
 
 
-# ---- one method on a tiny sensor --------------------------------------------------------------
-def test_method_points_on_a_tiny_sensor() -> None:
-    import numpy as np
-
-    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
-
-    spec = so.SignoffSpec(rows=6, cols=8, fpa_K=(288.0, 292.0), fpa_step_K=2.0,
-                          scene_K=(300.0, 340.0), frac_bits=(10,), ffc_periods_min=(0.5, 2.0))
-    sensor = spec.sensor()
-    plan = CalibrationPlan(scene=(290.0, 330.0, 370.0), fpa=(288.0, 298.0, 308.0), frames=1)
-    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
-    temps = [288.0, 289.0, 290.0, 291.0, 292.0]
-    frames = so._frames(sensor, temps, spec.scene_K, plan.fpa_sensor)
-    shutter = {t: (*so.dc.frames_at(sensor, t, t, [t]), int(plan.fpa_sensor.read(t)[0]))
-               for t in temps}
-    two = so.method_points(spec.to_dict(), "typical14", pts, frames, shutter)
-    assert len(two) == 1 and two[0]["ffc_period_min"] is None
-    assert [p[0] for p in two[0]["per_fpa"]] == [288.0, 290.0, 292.0]
-    assert two[0]["worst_fpn_mK"] == max(p[1] for p in two[0]["per_fpa"])
-    # a two-point correction drifts with the FPA: worst at an end of the range, not the middle
-    ends = max(two[0]["per_fpa"][0][1], two[0]["per_fpa"][-1][1])
-    assert ends > two[0]["per_fpa"][1][1]
-    ffc = so.method_points(spec.to_dict(), "ffc14", pts, frames, shutter)
-    assert [p["ffc_period_min"] for p in ffc] == [0.5, 2.0]
-    assert [p["ffc_events"] for p in ffc] == [5, 2]  # every 1 K, every 4 K from 288 K
-    short, long_ = ffc
-    # a refresh right at each frame's temperature beats one 4 K away at the range's end
-    at_end = {p[0]: p[1] for p in long_["per_fpa"]}
-    assert short["worst_fpn_mK"] <= long_["worst_fpn_mK"]
-    assert at_end[292.0] >= min(p[1] for p in short["per_fpa"])
-    assert np.isfinite(short["worst_fpn_lsb"]) and short["memory_bits"] > two[0]["memory_bits"]
-
-
 # ---- co-simulation of the recommendation -----------------------------------------------------
-def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch) -> None:
-    from irnuc.cosim import sequence_bulk
+def _spec():
+    return so.SignoffSpec(rows=6, cols=8, scenarios=("fpa_ramp",), methods=("typical14",))
+
+
+def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch, tmp_path) -> None:
     from irnuc.reports.report.summary import make_summary
 
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path))
     seen = {}
 
-    def fake(cfg, *, frames, shape, seed, ffc_every, fpa_K):
+    def fake(t, r, spec, cfg, shape, seed, scenario):
         seen.update(name=cfg.name, w=cfg.max_width, h=cfg.max_height, f=cfg.gain_frac_bits,
-                    frames=frames, shape=shape, ffc_every=ffc_every, fpa_K=fpa_K)
-        return {"pixels_compared": frames * shape[0] * shape[1], "mismatches": 2, "passed": False,
-                "ffc_events": 0, "top": "method_dpc_top", "seconds": 0.5, "lines": ["frame 0 ..."]}
+                    shape=shape, scenario=scenario)
+        return {"frames": 20, "pixels_compared": 20 * shape[0] * shape[1], "mismatches": 2,
+                "passed": False, "ffc_events": 0, "lines": ["m_axis_video: 2 of ... differ"]}
 
-    monkeypatch.setattr(sequence_bulk, "cosim_sequence", fake)
+    monkeypatch.setattr(tp, "_cosim_run", fake)
     t = {"cosim_frames": 20, "cosim_rows": 12, "cosim_cols": 16, "cosim_seed": 3}
-    c = tp._cosim(t, {"config": "typical14", "frac_bits": 9}, (288.0, 308.0))
-    assert seen == {"name": "recommended_temperature", "w": 16, "h": 12, "f": 9, "frames": 20,
-                    "shape": (12, 16), "ffc_every": None, "fpa_K": (288.0, 308.0)}
+    c = tp._cosim(t, {"config": "typical14", "frac_bits": 9}, _spec())
+    assert seen == {"name": "recommended_temperature", "w": 16, "h": 12, "f": 9,
+                    "shape": (12, 16), "scenario": "power_on_warmup"}
     assert (c["pixels_compared"], c["mismatches"], c["passed"]) == (20 * 12 * 16, 2, False)
+    assert c["top"] == "irnuc_axis_top" and not c["cached"]
+    # the same run again comes from the cache (keyed by digest), not from the harness
+    seen.clear()
+    again = tp._cosim(t, {"config": "typical14", "frac_bits": 9}, _spec())
+    assert again["cached"] and again["mismatches"] == 2 and seen == {}
     sec = _section()
     sec["recommended"]["cosim"] = c
     rep = Report(config={"name": "x"}, verbose=False)
@@ -270,28 +248,24 @@ def test_cosim_result_and_a_mismatch_fails_the_report(monkeypatch) -> None:
     assert any("temperature co-simulation: 2 pixel mismatch" in r for r in s["status_reasons"])
 
 
-def test_stage_method_not_in_the_bulk_harness_is_not_a_pass(monkeypatch) -> None:
-    from irnuc.common.errors import UserError
-    from irnuc.cosim import sequence_bulk
+def test_method_the_axis_harness_cannot_drive_is_not_a_pass(monkeypatch, tmp_path) -> None:
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path))
 
-    def refuse(cfg, **kw):
-        raise UserError(f"pipeline {cfg.name!r}: the stage tops are not in the bulk harness")
+    def never(*a, **kw):
+        raise AssertionError("the harness must not run")
 
-    monkeypatch.setattr(sequence_bulk, "cosim_sequence", refuse)
+    monkeypatch.setattr(tp, "_cosim_run", never)
     t = {"cosim_frames": 2, "cosim_rows": 4, "cosim_cols": 4}
-    c = tp._cosim(t, {"config": "ffc14", "frac_bits": 8}, (288.0, 308.0))
-    assert c["ffc_every"] == 10  # a shutter method gets its shutter runs
+    c = tp._cosim(t, {"config": "drift14", "frac_bits": 8}, _spec())
     assert c["passed"] is None and c["mismatches"] is None and c["pixels_compared"] == 0
-    assert "stage tops" in c["not_run"]
+    assert "blind_drift" in c["not_run"]
+    assert tp._cosim_check(c).status == "not run"
     rep = Report(config={}, verbose=False)
     sec = _section()
     sec["recommended"]["cosim"] = c
     _validator().validate(sec)
     tp.temperature_metrics(rep, sec)
     assert "temperature.recommended.cosim.mismatches" not in rep.metrics
-    # a base method's refusal is an error, never skipped
-    with pytest.raises(UserError):
-        tp._cosim(t, {"config": "typical14", "frac_bits": 8}, (288.0, 308.0))
 
 
 def test_a_sweep_without_a_valid_point_fails_the_report() -> None:
@@ -371,3 +345,11 @@ def test_fmax_note_only_below_the_target() -> None:
     assert fmax_note(sweep(151.0, 160.2, 142.84, 155.5)) == (
         "temperature: the recommendation's irnuc_axis_top reaches 160.2 MHz at the best of 4 "
         "placer seeds (seed 2) but 142.8 at seed 3: 3 of 4 placements meet the 150 MHz target")
+
+
+def test_too_few_cosimulated_pixels_do_not_meet_the_sign_off() -> None:
+    c = {"passed": True, "mismatches": 0, "pixels_compared": 999_999, "min_pixels": 1_000_000,
+         "top": "irnuc_axis_top"}
+    chk = tp._cosim_check(c)
+    assert chk.status == "not met" and "fewer than the 1000000" in chk.detail
+    assert tp._cosim_check({**c, "pixels_compared": 1_000_000}).status == "met"

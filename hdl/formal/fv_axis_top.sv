@@ -112,15 +112,37 @@ module fv_axis_top_props #(
     .rready_i(s_axil_rready));
 
 `ifdef FORMAL
-  // Reachable within the bound: a whole frame out.
-  always_comb begin : p_cover
-    if (rst_ni) begin
-      c_video_in: cover (s_axis_video_tvalid && s_axis_video_tready && s_axis_video_tuser[0]);
-      c_coef_in: cover (s_axis_coef_tvalid && s_axis_coef_tready);
-      c_video_out: cover (m_axis_video_tvalid && m_axis_video_tready);
-      c_frame_out: cover (m_axis_video_tvalid && m_axis_video_tready && u_video.frame_end);
+  // A frame has left whole (the next start of frame is then a frame after a finished one).
+  logic frame_done_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_frame_done
+    if (!rst_ni) begin
+      frame_done_q <= 1'b0;
+    end else if (m_axis_video_tvalid && m_axis_video_tready && u_video.frame_end) begin
+      frame_done_q <= 1'b1;
     end
   end
+
+  // Reachable within the bound: a whole frame out and the next one's first pixel. With
+  // IRNUC_FV_COVER_BMC (irnuc formal's cover model for ABC) each cover is an assertion that
+  // fails where it is reached: bmc3 finds the step of every cover in one run.
+`ifdef IRNUC_FV_COVER_BMC
+  `define IRNUC_FV_COVER(label, cond) label: assert (!(cond));
+`else
+  `define IRNUC_FV_COVER(label, cond) label: cover (cond);
+`endif
+  always_comb begin : p_cover
+    if (rst_ni) begin
+      `IRNUC_FV_COVER(c_video_in, s_axis_video_tvalid && s_axis_video_tready
+                                  && s_axis_video_tuser[0])
+      `IRNUC_FV_COVER(c_coef_in, s_axis_coef_tvalid && s_axis_coef_tready)
+      `IRNUC_FV_COVER(c_video_out, m_axis_video_tvalid && m_axis_video_tready)
+      `IRNUC_FV_COVER(c_frame_out, m_axis_video_tvalid && m_axis_video_tready
+                                   && u_video.frame_end)
+      `IRNUC_FV_COVER(c_next_sof, m_axis_video_tvalid && m_axis_video_tready
+                                  && m_axis_video_tuser[0] && frame_done_q)
+    end
+  end
+`undef IRNUC_FV_COVER
 `endif
 
 endmodule

@@ -39,7 +39,8 @@ def run_formal(args: argparse.Namespace) -> int:
 
     if args.list:
         for p in formal.PROOFS:
-            depth = "unbounded" if p.engine == "pdr" else f"depth {p.depth}"
+            depth = ("unbounded" if p.engine == "pdr" else
+                     f"covers<={p.depth}" if formal.measured_bound(p) else f"depth {p.depth}")
             say(f"{p.id:24s} {p.engine:4s} {depth:10s} {p.what}", level=0)
         for f in formal.FAULTS:
             say(f"{f.id:24s} fault of {f.proof}: {f.property} must fail ({f.what})", level=0)

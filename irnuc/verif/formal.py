@@ -50,9 +50,18 @@ PROOF_SIZE = (3, 2)
 #: write then a read back 11 cycles from reset at the earliest); PDR finds no invariant for
 #: the followed register's mirror against 32-bit counters in hours. minimal: 40 s.
 REGMAP_DEPTH = 16
-#: The depth of the bounded checks of irnuc_axis_top: the first output pixel of minimal
-#: leaves at cycle 24 and its first frame ends at 25 (the covers), the slower methods later.
-TOP_DEPTH = 40
+#: The bound of irnuc_axis_top's checks is measured, not chosen: its covers are reached
+#: first (ABC's bmc3 on the cover model, up to TOP_DEPTH steps), and the assertions are
+#: checked through the step of the last one, the first pixel of the second frame out
+#: (``c_next_sof``: a start of frame right after a finished frame). minimal: its first
+#: pixel out at step 24, the frame's last at 29, the next frame's first at 30, so 31 steps;
+#: drift14 (the slowest start) its first pixel at 54.
+TOP_DEPTH = 64
+#: The register file's assertions inside irnuc_axis_top (its own checks, the top's AXI4-Lite
+#: checker on s_axil and the harness's slave rules): s_axil is the register file's port,
+#: and axil_regs_<config> proves these rules by PDR for any hardware-side inputs (so for
+#: the top's); left out of the top's bounded check, they made it 4 times slower.
+TOP_REGFILE_CHECKS = "u_regs.* u_assert_axil.* u_fv.u_axil.*"
 
 
 @dataclass(frozen=True)
@@ -65,7 +74,8 @@ class Proof:
     design: str
     what: str
     engine: str = "pdr"
-    #: bounded depth (bmc) or k (kind); for pdr the depth of a counterexample's replay
+    #: bounded depth (bmc) or k (kind); for pdr the depth of a counterexample's replay; for
+    #: bmc3 with covers the most steps the covers may take (the bound is measured from them)
     depth: int = 20
     #: depth of the cover run (0: none)
     cover: int = 20
@@ -78,7 +88,8 @@ class Proof:
     quick: bool = False
     #: the harness imports the configuration's register map (irnuc_fv_map)
     regmap: bool = False
-    #: assertions left out of this proof (a Yosys name pattern; another proof has them)
+    #: assertions left out of this proof (Yosys name patterns, space-separated; another
+    #: proof has them)
     exclude: str = ""
     #: more files of hdl/ the harness instantiates (after the design's)
     files: tuple[str, ...] = ()
@@ -166,10 +177,12 @@ def _proofs() -> tuple[Proof, ...]:
     for name in _configs():
         out.append(Proof(f"axis_top_{name}", "fv_axis_top", "irnuc_axis_top",
                          f"irnuc_axis_top of {name} at {PROOF_SIZE[0]} x {PROOF_SIZE[1]}: "
-                         f"every stream port's and s_axil's rules, video framing out, the "
-                         f"design's checks, for {TOP_DEPTH} cycles from reset",
-                         engine="bmc", depth=TOP_DEPTH, cover=TOP_DEPTH, config=name,
-                         top="irnuc_axis_top"))
+                         f"every stream port's rules, video framing out, the design's checks "
+                         f"(s_axil's and the register file's: axil_regs_{name}), from reset "
+                         f"through the first pixel of the second frame out (the covers' last "
+                         f"step)",
+                         engine="bmc3", depth=TOP_DEPTH, cover=TOP_DEPTH, config=name,
+                         top="irnuc_axis_top", exclude=TOP_REGFILE_CHECKS))
     return tuple(out)
 
 
@@ -435,9 +448,12 @@ def _keep_only(label: str) -> str:
     return f"delete t:$check r:FLAVOR=assert %i n:{glob} n:*.{glob} %u %d"
 
 
-def _drop(pattern: str) -> str:
-    """The Yosys command that deletes the assertions whose name matches ``pattern``."""
-    return f"delete t:$check r:FLAVOR=assert %i n:{pattern} %i"
+def _drop(patterns: str) -> str:
+    """The Yosys command that deletes the assertions whose name matches one of
+    ``patterns`` (space-separated)."""
+    names = patterns.split()
+    sel = " ".join(f"n:{p}" for p in names) + " %u" * (len(names) - 1)
+    return f"delete t:$check r:FLAVOR=assert %i {sel} %i"
 
 
 def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = True) -> dict:
@@ -485,16 +501,26 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         engine = "bmc" if fault is not None else proof.engine
         extra = ([_keep_only(fault.property)] if fault is not None else
                  [_drop(proof.exclude)] if proof.exclude else [])
+        cover, depth = None, proof.depth
+        if measured_bound(proof) and fault is not None:
+            engine = "bmc3"  # to TOP_DEPTH: it stops at the first failure
+        elif measured_bound(proof):
+            # The covers first, by bmc3 on the cover model: the bound is the step of the
+            # last one.
+            cmodels = fv.write_models(srcs, proof.formal_top, params, work / "cover",
+                                      covers=True)
+            cover = fv.bmc3_covers(cmodels["aig"], proof.cover, work / "cover")
+            if cover.status == "covered":
+                depth = max(cover.covers.values()) + 1
         models = fv.write_models(srcs, proof.formal_top, params, work / "model",
                                  aiger=engine in ("pdr", "bmc3"), extra=extra)
-        res = fv.check(models, engine, proof.depth, work / "model")
+        res = fv.check(models, engine, depth, work / "model")
         checks = _check_labels(models["smt2"])
-        cover = None
-        if fault is None and proof.cover:
+        if fault is None and proof.cover and cover is None:
             cover = fv.check(models, "cover", proof.cover, work / "cover")
         out = {"id": name, "proof": proof.id, "harness": proof.harness, "top": proof.formal_top,
                "config": proof.config, "params": params, "engine": engine,
-               "depth": None if engine == "pdr" else proof.depth,
+               "depth": None if engine == "pdr" else depth,
                "status": res.status, "failed": res.failed, "step": res.step,
                "message": res.message, "seconds": round(time.perf_counter() - t0, 2),
                "solver_seconds": res.seconds, "asserts": len(checks["assert"]),
@@ -517,6 +543,12 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
         return out
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+def measured_bound(proof: Proof) -> bool:
+    """A bmc3 proof with covers (its harness's cover model, fv.COVER_DEFINE): its bound is
+    measured from the covers' steps (:data:`TOP_DEPTH`)."""
+    return proof.engine == "bmc3" and proof.cover > 0
 
 
 def _matches(label: str, failed: Sequence[str]) -> bool:
@@ -617,6 +649,7 @@ def _case(cls: str, r: dict, ok: bool, message: str) -> str:
             + escape(message + trace) + "</failure>\n  </testcase>\n")
 
 
-__all__ = ["FAULTS", "PROOFS", "PROOF_SIZE", "REGMAP_DEPTH", "TOP_DEPTH", "Fault", "Proof", "cached_summary",
-           "formal_digest", "junit", "properties", "run_campaign", "run_proof", "select",
+__all__ = ["FAULTS", "PROOFS", "PROOF_SIZE", "REGMAP_DEPTH", "TOP_DEPTH",
+           "TOP_REGFILE_CHECKS", "Fault", "Proof", "cached_summary",
+           "formal_digest", "junit", "measured_bound", "properties", "run_campaign", "run_proof", "select",
            "summarize", "unplanted_properties"]

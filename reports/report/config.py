@@ -128,7 +128,21 @@ SCHEMA: dict[str, Any] = table({
                     "items": {"type": "string", "minLength": 1}},
         "frac_bits": _ints(0, 24),
         "ffc_periods_min": {"type": "array", "items": number(0.0, 1e4, lo_open=True, unit="min"),
-                            "minItems": 1, "maxItems": 16},
+                            "minItems": 0, "maxItems": 16},
+        "ffc_changes_K": {"type": "array", "items": number(0.0, 100.0, lo_open=True, unit="K"),
+                          "minItems": 0, "maxItems": 16},
+        "ffc_either": {"type": "array", "minItems": 0, "maxItems": 16,
+                       "items": {"type": "array", "minItems": 2, "maxItems": 2,
+                                 "items": number(0.0, 1e4, lo_open=True)}},
+        "scenarios": {"type": "array", "minItems": 1, "maxItems": 16,
+                      "items": {"type": "string", "minLength": 1}},
+        "node_K": number(0.01, 10.0, unit="K"),
+        "node_max_s": number(1.0, 1e5, unit="s"),
+        "max_peaks": number(1, 10_000, integer=True),
+        "housing_offset_K": {"type": "array", "items": number(-50.0, 50.0, unit="K"),
+                             "minItems": 1, "maxItems": 16},
+        "cosim_scenario": {"type": "string", "minLength": 1},
+        "cosim_min_pixels": number(1, 10**9, integer=True),
         "tolerance_netd": number(0.0, 1e3, lo_open=True),
         "tolerance_mK": number(0.0, 1e6, lo_open=True, unit="mK"),
         "frame_rate_hz": number(0.0, 1e5, lo_open=True, unit="Hz"),
@@ -279,6 +293,14 @@ def _check_temperature(cfg: Mapping[str, Any], source: str) -> None:
             load_pipeline(name)
         except (ValueError, UserError) as exc:
             raise ReportError(f"{source}: temperature.methods: {exc}") from None
+    if "scenarios" in t or "cosim_scenario" in t:
+        from irnuc.model.sequence import scenario_names
+
+        names = scenario_names()
+        for name in [*t.get("scenarios", ()), *([t["cosim_scenario"]] if "cosim_scenario" in t else [])]:
+            if name not in names:
+                raise ReportError(f"{source}: temperature.scenarios: {name!r} is not a shipped "
+                                  f"scenario{nearest(name, names)} (known: {', '.join(names)})")
     if "tolerance_mK" in t and "tolerance_netd" in t:
         raise ReportError(f"{source}: temperature.tolerance_mK and temperature.tolerance_netd "
                           "both given: set the tolerance one way")

@@ -231,16 +231,23 @@ def render_precision_page(result: Mapping[str, Any]) -> str:
 def temperature_headline(t: Mapping[str, Any]) -> tuple[str, str]:
     """The headline row of the Temperature section."""
     r = t.get("recommended")
-    title = f"drifting camera: method, widths, FFC period (residual ≤ {t['tolerance']})"
+    title = (f"drifting camera: method, widths, FFC policy on {len(t.get('scenarios') or {})} "
+             f"thermal scenarios (residual ≤ {t['tolerance']})")
     if not r:
         return title, "no valid point in the sweep"
     text = (f"{r['config']} ({r['method']}), {r['frac_bits']} fraction bits"
-            + (f", FFC every {r['ffc_period_min']:g} min" if r["ffc_period_min"] else "")
-            + f": {r['worst_fpn_mK']:.3g} mK worst residual, {r['memory_bits']} bit/pixel, "
-            f"{r['bandwidth_MBps']:.0f} MB/s")
+            + (f", FFC {r['ffc_policy_text']}" if r.get("ffc_policy") else "")
+            + f": {r['worst_fpn_mK']:.3g} mK worst residual"
+            + (f" (on {r['worst_scenario']})" if r.get("worst_scenario") else "")
+            + f", {r['memory_bits']} bit/pixel, {r['bandwidth_MBps']:.0f} MB/s"
+            + (f", {r['dead_time_pct']:.2g} % dead time, {r['ffc_per_hour']:.3g} FFC/h"
+               if r.get("ffc_policy") else ""))
     if not r["meets_tolerance"]:
-        text += " — NO POINT MEETS THE TOLERANCE (lowest residual shown)"
-    if r.get("synth"):
+        text += " — NO POINT MEETS THE TOLERANCE (lowest residual shown"
+        text += f"; broken by {', '.join(r['breaks'])})" if r.get("breaks") else ")"
+    if r.get("synth") and r["synth"].get("error"):
+        text += f"; {r['synth']['top']} not placed and routed"
+    elif r.get("synth"):
         text += f"; {r['synth']['top']} Fmax {r['synth']['fmax_mhz']:.1f} MHz{seeds_text(r['synth'])}"
     c = r.get("cosim")
     if c and not c.get("not_run"):
@@ -260,17 +267,21 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
     on_m = set(fr["memory_bits"]["overall"])
     on_d = set((fr.get("datapath_cost") or {}).get("overall") or [])
     on_own = {i for ids in fr["memory_bits"]["per_method"].values() for i in ids}
-    head = ["point", "method", "f", "FFC min", "worst mK", "worst LSB", "bit/px", "read bit/px",
-            "MB/s", "xc7 LUT", "DSP", "Fmax MHz", "cost from", "LUT+DSP", "meets", "front"]
+    head = ["point", "method", "f", "FFC policy", "worst mK", "level mK", "worst on", "FFC/h",
+            "dead %", "worst LSB", "bit/px", "read bit/px", "MB/s", "xc7 LUT", "DSP", "Fmax MHz",
+            "cost from", "LUT+DSP", "meets", "front"]
     rows = []
     for p in t["points"]:
         if not p.get("valid"):
-            rows.append([p["key"], p["method"], p["frac_bits"], None, None, None, None, None, None,
-                         None, None, None, p.get("reason", "invalid"), None, None, ""])
+            rows.append([p["key"], p["method"], p["frac_bits"], None, None, None, None, None,
+                         None, None, None, None, None, None, None, None,
+                         p.get("reason", "invalid"), None, None, ""])
             continue
         hw = p.get("hw") or {}
-        rows.append([p["key"], p["method"], p["frac_bits"], p.get("ffc_period_min"),
-                     p["worst_fpn_mK"], p["worst_fpn_lsb"], p["memory_bits"],
+        rows.append([p["key"], p["method"], p["frac_bits"], p.get("ffc_policy_text"),
+                     p["worst_fpn_mK"], p.get("worst_level_error_mK"), p.get("worst_scenario"),
+                     p.get("ffc_per_hour"), p.get("dead_time_pct"), p["worst_fpn_lsb"],
+                     p["memory_bits"],
                      p["read_bits_per_frame"], p.get("bandwidth_MBps"), hw.get("xc7.lut"),
                      hw.get("xc7.dsp"), hw.get("fmax_mhz"), hw.get("source"),
                      p.get("datapath_cost"), p.get("meets_tolerance"),
@@ -279,7 +290,8 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
     bits = sorted({p["frac_bits"] for p in t["points"]})
     table: dict[str, dict[int, float | None]] = {}
     for p in t["points"]:
-        name = p["config"] + (f" (FFC {p['ffc_period_min']:g} min)"
+        name = p["config"] + (f" (FFC {p['ffc_policy_text']})" if p.get("ffc_policy")
+                              else f" (FFC {p['ffc_period_min']:g} min)"
                               if p.get("ffc_period_min") is not None else "")
         table.setdefault(name, {})[p["frac_bits"]] = p["worst_fpn_mK"] if p.get("valid") else None
     bit_rows = [[n, *[v.get(b) for b in bits]] for n, v in table.items()]
@@ -303,7 +315,9 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
                 ["external memory", f"{r['read_bits_per_frame']} bits read per pixel per frame: "
                  f"{r['bandwidth_MBps']:.1f} MB/s at {m['frame_rate_hz']:g} frames/s; the RTL's "
                  f"coefficient stream {r['stream']['stream_bits_per_pixel']} bits per pixel"]]
-        if r.get("synth"):
+        if r.get("synth") and r["synth"].get("error"):
+            cost.append(["synthesized top", f"{r['synth']['top']}: {r['synth']['error']}"])
+        elif r.get("synth"):
             sy = r["synth"]
             x, e = sy["xc7"], sy["ecp5"]
             cost += [["synthesized top", f"{sy['top']}: {sy['why']}"],
@@ -322,7 +336,14 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
                 cost.append(["cost model at this point", "predicted − synthesized "
                              f"({sy.get('core', {}).get('top', sy['top'])}): "
                              + ", ".join(f"{k} {fmt(v)}" for k, v in pe.items())])
-    return {"head": head, "rows": rows, "bits_head": ["configuration", *[f"f = {b}" for b in bits]],
+    scen = [[n, sc.get("description", ""), f"{sc['duration_s']:g} s at {sc['frame_rate']:g} Hz",
+             f"{sc['fpa_span_K'][0]:g}–{sc['fpa_span_K'][1]:g}",
+             f"{sc['housing_minus_fpa_K'][0]:g}–{sc['housing_minus_fpa_K'][1]:g}", sc["nodes"]]
+            for n, sc in (t.get("scenarios") or {}).items()]
+    breaking = [[b["key"], b["worst_fpn_mK"], ", ".join(b["breaks"]) or "meets on every scenario"]
+                for b in (r or {}).get("breaking", [])]
+    return {"scenarios": scen, "breaking": breaking,
+            "head": head, "rows": rows, "bits_head": ["configuration", *[f"f = {b}" for b in bits]],
             "bits": bit_rows, "noise3d": n3, "cam": cam, "cost": cost}
 
 

@@ -1,5 +1,22 @@
 """Study: the sign-off sweep of a drifting camera: correction method x coefficient widths x
-FFC period over an FPA temperature range, against memory and bandwidth.
+FFC policy, each point judged on the shipped thermal scenarios (issue 37), against memory,
+bandwidth, datapath, dead time and FFCs per hour.
+
+The scenarios (``scenarios``, default every scenario of ``model/scenarios``): each point is
+corrected along each scenario's thermal world (:mod:`irnuc.reports.studies.scenarios`: the
+housing, the FPA and the shutter as the thermal network moves them, the FPA and housing
+sensors' readings at the full frame rate, FFC policies closed loop) and its figures are the
+worst over the scenarios (``scenarios`` per point: each one's worst, when, FFCs per hour,
+dead time and a trace). The FFC policies: every period of ``ffc_periods_min``, every FPA
+change of ``ffc_changes_K`` and every (period, change) pair of ``ffc_either`` (the Lepton's
+3 min or 1.5 K); a change trigger needs the FPA reading, so a configuration whose build has
+none (ffc14, quadffc14: READING reserved) gets no change-triggered point. The methods: every
+14-bit configuration of the registry (``pipelines.toml``), so a method added there joins the
+sweep. The calibration plan covers FPA ``fpa_K`` (its ends and middle) and
+the housing offsets ``housing_offset_K`` (the methods that read the housing fit over them).
+
+Below: the pre-issue-37 description of the FPA-ramp grid, kept for the functions that
+remain (:func:`ffc_events`, :func:`sawtooth_segments`) and the fields of the spec.
 
 Every method of ``methods`` is calibrated at every fraction width of ``frac_bits`` (every
 coefficient's fraction set to f, integer widths as shipped: :func:`method_bits.with_frac_bits`)
@@ -50,10 +67,28 @@ from irnuc.reports.studies import drift_common as dc
 
 NAME = "signoff"
 TITLE = "Sign-off sweep: method x widths x FFC period over the FPA range"
-#: Every method the sign-off compares (one configuration each; ``drift14`` and the FFC
-#: compositions are stages on a base method).
+#: The methods of the issue-35 sign-off (before the registry was iterated): kept for
+#: reference; the default is :func:`registry_methods`.
 METHODS: tuple[str, ...] = ("onepoint14", "typical14", "piecewise14", "quadratic14", "tcoffset14",
                             "tcgain14", "table14", "drift14", "ffc14", "tcffc14", "quadffc14")
+#: The ADC width of the camera the sign-off compares configurations for.
+SIGNOFF_ADC_BITS = 14
+
+
+def registry_methods(adc_bits: int = SIGNOFF_ADC_BITS) -> tuple[str, ...]:
+    """Every configuration of the registry's ``pipelines.toml`` for an ``adc_bits`` camera,
+    in file order: a method added to the registry with its configuration joins the
+    sign-off without an edit here."""
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed.config import pipeline_names
+
+    return tuple(n for n in pipeline_names(method=None) if load_pipeline(n).adc_bits == adc_bits)
+
+
+def scenario_default() -> tuple[str, ...]:
+    from irnuc.model.sequence import scenario_names
+
+    return tuple(scenario_names())
 
 
 @dataclass(frozen=True)
@@ -68,9 +103,16 @@ class SignoffSpec:
     fpa_step_K: float = 1.0
     scene_K: tuple[float, ...] = (280.0, 330.0, 380.0)
     ramp_K_per_min: float = 2.0
-    methods: tuple[str, ...] = METHODS
+    methods: tuple[str, ...] = field(default_factory=registry_methods)
     frac_bits: tuple[int, ...] = (6, 8, 10, 12, 14)
     ffc_periods_min: tuple[float, ...] = (0.5, 1.0, 2.0, 4.0)
+    ffc_changes_K: tuple[float, ...] = (0.1, 0.5, 1.5)
+    ffc_either: tuple[tuple[float, float], ...] = ((3.0, 1.5),)
+    scenarios: tuple[str, ...] = field(default_factory=scenario_default)
+    node_K: float = 0.5
+    node_max_s: float = 120.0
+    max_peaks: int = 24
+    housing_offset_K: tuple[float, ...] = (-5.0, 0.0, 5.0)
     frame_rate_hz: float = 60.0
     bandwidth_frame: tuple[int, int] = (480, 640)
     noise_frames: int = 16
@@ -89,7 +131,23 @@ class SignoffSpec:
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
-        return {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
+        return {k: ([list(x) if isinstance(x, tuple) else x for x in v]
+                    if isinstance(v, tuple) else v) for k, v in d.items()}
+
+    def plan(self) -> Any:
+        """The calibration plan: the plan scenes, FPA at the ends and middle of ``fpa_K``,
+        the housing offsets."""
+        from irnuc.nuc_fixed.plan import CalibrationPlan
+
+        lo, hi = self.fpa_K
+        return CalibrationPlan(scene=tuple(dc.PLAN["scene"]), fpa=(lo, 0.5 * (lo + hi), hi),
+                               frames=int(dc.PLAN["frames"]),
+                               housing_offset=tuple(self.housing_offset_K))
+
+    def policies(self) -> list[Any]:
+        from irnuc.reports.studies.scenarios import policies
+
+        return policies(self.ffc_periods_min, self.ffc_changes_K, self.ffc_either)
 
 
 def ffc_events(lo: float, hi: float, step_K: float) -> list[float]:
@@ -115,44 +173,27 @@ def sawtooth_segments(grid: Sequence[float], events: Sequence[float], hi: float
 # ---------------------------------------------------------------------------------------
 # One method at every width (a worker task)
 # ---------------------------------------------------------------------------------------
-def _frames(sensor: dc.StudySensor, temps: Sequence[float], scenes: Sequence[float],
-            fpa_sensor: Any) -> dict[float, tuple[np.ndarray, np.ndarray, int]]:
-    """FPA temperature -> (raw frames of every scene and 0.5 K either side, blind codes,
-    the FPA reading): what :func:`metrics.residuals_mK` needs."""
-    out = {}
-    for t in temps:
-        raw, blind = dc.slope_frames(sensor, t, t, scenes)
-        out[float(t)] = (raw, blind, int(fpa_sensor.read(t)[0]))
-    return out
+def method_points(spec_d: Mapping[str, Any], name: str, pts: Any, trajs: Mapping[str, Any],
+                  starts: Mapping[tuple[str, str, int], list[int]]) -> list[dict[str, Any]]:
+    """Every (fraction width[, FFC policy]) point of one method, judged on every scenario
+    (JSON-ready records; :mod:`irnuc.reports.studies.scenarios`).
 
-
-def _worst(y: np.ndarray, good: np.ndarray, scenes: Sequence[float],
-           sc: Any) -> tuple[float, float, float]:
-    """(worst fixed pattern LSB, mK, worst |level error| mK) over the scenes."""
-    res = dc.residuals(y, good, scenes, sc)
-    return (max(r["fpn_lsb"] for r in res), max(r["fpn_mK"] for r in res),
-            max(abs(r["level_error_mK"]) for r in res))
-
-
-def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
-                  frames: Mapping[float, tuple[np.ndarray, np.ndarray, int]],
-                  shutter: Mapping[float, tuple[np.ndarray, np.ndarray, int]]
-                  ) -> list[dict[str, Any]]:
-    """Every (fraction width[, FFC period]) point of one method (JSON-ready records).
-
-    ``frames``: FPA temperature -> (raw scene frames, blind codes, FPA reading);
-    ``shutter``: FPA temperature of a shutter event -> (one shutter frame, blind, reading).
+    ``trajs``: scenario name -> :class:`scenarios.Trajectory`; ``starts``: (scenario, policy
+    tag, shutter frames) -> the FFC start frames of that policy, closed loop.
     """
+    import numba
+
     from irnuc.common.errors import UserError
     from irnuc.nuc_fixed import load_pipeline
     from irnuc.nuc_fixed.fit import calibrate_points
-    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+    from irnuc.reports.studies import scenarios as scn
     from irnuc.reports.studies.method_bits import with_frac_bits
 
+    # One thread per worker: the golden model's kernels on frames this small spend more
+    # on starting threads than on pixels (and the sweep's workers are the parallelism).
+    numba.set_num_threads(1)
     spec = spec_from_dict(spec_d)
     scenes = spec.scene_K
-    grid = [float(t) for t in spec.fpa_grid()]
-    lo, hi = spec.fpa_K
     base = load_pipeline(name)
     out: list[dict[str, Any]] = []
     for f in spec.frac_bits:
@@ -167,117 +208,88 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any,
             out.append({**head, "valid": False, "reason": str(exc).splitlines()[0][:200]})
             continue
         good = ~cal.bad
-        sc = dc.scale(spec.sensor(), cal.targets, pts.scene_K.tolist())
+        sc = dc.scale(spec.sensor(), cal.targets, sorted(set(pts.scene_K.tolist())))
         mem = dc.memory_bits(cfg)
         rec0 = {**head, "valid": True, **mem,
                 "memory_bits": mem["calibration_bits"] + mem["runtime_bits"],
                 "bad_fraction": float(cal.bad.mean()),
                 "gain_bits": cfg.gain_bits, "offset_bits": cfg.offset_bits,
                 "formats": {k: v["format"] for k, v in cal.summary["coefficients"].items()}}
-        if not cfg.has("ffc"):
-            per = []
-            for t in grid:
-                raw, blind, rd = frames[t]
-                y = method_top(raw, cal.coeffs, FrameInputs(
-                    reading=np.full(len(raw), rd), blind_codes=blind)).y
-                per.append([t, *_worst(y, good, scenes, sc)])
-            out.append({**rec0, "ffc_period_min": None, "ffc_events": 0,
-                        "per_fpa": [[p[0], p[2]] for p in per],
-                        "worst_fpn_lsb": max(p[1] for p in per),
-                        "worst_fpn_mK": max(p[2] for p in per),
-                        "worst_level_error_mK": max(p[3] for p in per)})
-            continue
+        pols: list[Any] = [None]
+        if cfg.has("ffc"):
+            reads = "fpa" in cfg.base.readings
+            pols = [p for p in spec.policies() if reads or p.change_K is None]
         n_ffc = int(cfg.ffc_frames or 1)
-        # Shutter events and the frames after them repeat across the periods (every
-        # period's events lie on one grid of temperatures): each computed once.
-        refs: dict[float, np.ndarray] = {}
-        seen: dict[tuple[float, float], tuple[float, float]] = {}
-        for period in spec.ffc_periods_min:
-            events = ffc_events(lo, hi, spec.ramp_K_per_min * period)
-            saw = []  # [time min, FPA K, worst mK]
-            worst_lsb = worst_level = 0.0
-            for k, temps in sawtooth_segments(grid, events, hi):
-                for t in temps:
-                    if (events[k], t) not in seen:
-                        raw, blind, rd = frames[t]
-                        y = method_top(raw, cal.coeffs, FrameInputs(
-                            reading=np.full(len(raw), rd), blind_codes=blind,
-                            shutter=np.zeros(len(raw), bool)),
-                            ffc_offset=_refresh(refs, events[k], shutter, cal, n_ffc)).y
-                        seen[events[k], t] = _worst(y, good, scenes, sc)
-                    w_lsb, w_mk, w_level = seen[events[k], t]
-                    worst_lsb = max(worst_lsb, w_lsb)
-                    worst_level = max(worst_level, w_level)
-                    saw.append([(t - lo) / spec.ramp_K_per_min, t, w_mk])
-            out.append({**rec0, "ffc_period_min": float(period), "ffc_events": len(events),
-                        "sawtooth": saw,
-                        "per_fpa": _per_fpa_worst(saw),
-                        "worst_fpn_lsb": worst_lsb, "worst_fpn_mK": max(s[2] for s in saw),
-                        "worst_level_error_mK": worst_level})
+        for pol in pols:
+            per = {}
+            for sname, tr in trajs.items():
+                st = None if pol is None else starts[sname, pol.tag, n_ffc]
+                per[sname] = scn.evaluate(cal, tr, scenes, sc, good, pol, st, spec.max_peaks)
+            rec = {**rec0, "ffc_policy": None if pol is None else pol.tag,
+                   "ffc_policy_text": "no shutter" if pol is None else pol.describe(),
+                   "ffc_period_min": None if pol is None else pol.period_min,
+                   "ffc_change_K": None if pol is None else pol.change_K,
+                   **scn.worst_over(per)}
+            lost = [k for k, v in per.items()
+                    if not (math.isfinite(v["worst_fpn_mK"])
+                            and math.isfinite(v["worst_level_error_mK"]))]
+            if lost:
+                # The corrected image stops answering the scene (saturated: no local
+                # responsivity, or a level off the temperature scale): no residual in mK.
+                v = per[lost[0]]
+                out.append({**head, "ffc_policy": rec["ffc_policy"], "valid": False,
+                            "ffc_period_min": rec["ffc_period_min"],
+                            "reason": f"the corrected image loses its response on {lost[0]} "
+                                      f"(at {v['worst_at_s']:.0f} s: no finite residual in mK; "
+                                      "saturated output)"})
+                continue
+            rec["traces"] = {k: {"trace": v.pop("trace"), "ffc_s": v.pop("ffc_s")}
+                             for k, v in per.items()}
+            rec["scenarios"] = per
+            out.append(rec)
     return out
-
-
-def _refresh(refs: dict[float, np.ndarray], t0: float, shutter: Mapping[float, tuple], cal: Any,
-             n: int) -> np.ndarray:
-    """The FFC correction after the shutter event at ``t0`` (``n`` shutter frames), kept in
-    ``refs``."""
-    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
-
-    if t0 not in refs:
-        sraw, sblind, srd = shutter[t0]
-        refs[t0] = method_top(np.repeat(sraw, n, axis=0), cal.coeffs, FrameInputs(
-            reading=np.full(n, srd), blind_codes=np.repeat(sblind, n, axis=0),
-            shutter=np.ones(n, bool))).ffc_offset
-    return refs[t0]
-
-
-def _per_fpa_worst(saw: Sequence[Sequence[float]]) -> list[list[float]]:
-    by: dict[float, float] = {}
-    for _, t, mk in saw:
-        by[t] = max(by.get(t, 0.0), mk)
-    return [[t, by[t]] for t in sorted(by)]
 
 
 def spec_from_dict(d: Mapping[str, Any]) -> SignoffSpec:
     keys = SignoffSpec.__dataclass_fields__
-    kw = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items() if k in keys}
+    kw = {k: (tuple(tuple(x) if isinstance(x, list) else x for x in v)
+              if isinstance(v, list) else v) for k, v in d.items() if k in keys}
     return SignoffSpec(**kw)
 
 
 # ---------------------------------------------------------------------------------------
 # The whole study
 # ---------------------------------------------------------------------------------------
-def _task(spec_d: dict[str, Any], name: str, pts: Any, frames: dict, shutter: dict) -> list:
-    return method_points(spec_d, name, pts, frames, shutter)
+def _task(spec_d: dict[str, Any], name: str, pts: Any, trajs: dict, starts: dict) -> list:
+    return method_points(spec_d, name, pts, trajs, starts)
 
 
 def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
         progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
-    """The sweep and the sensor figures of the Temperature section (JSON-ready)."""
+    """The sweep over the scenarios and the sensor figures of the Temperature section
+    (JSON-ready)."""
     from irnuc import model
     from irnuc.common.executor import open_executor
-    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed.plan import run_plan
     from irnuc.reports.studies import camera_temperature
+    from irnuc.reports.studies import scenarios as scn
 
     t0 = time.perf_counter()
     sensor = spec.sensor()
-    plan = CalibrationPlan(scene=tuple(dc.PLAN["scene"]), fpa=tuple(dc.PLAN["fpa"]),
-                           frames=int(dc.PLAN["frames"]))
+    plan = spec.plan()
     pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
-    grid = [float(t) for t in spec.fpa_grid()]
-    lo, hi = spec.fpa_K
-    ev = sorted({t for p in spec.ffc_periods_min
-                 for t in ffc_events(lo, hi, spec.ramp_K_per_min * p)})
-    frames = _frames(sensor, sorted(set(grid) | set(ev)), spec.scene_K, plan.fpa_sensor)
-    shutter = {}
-    for t in ev:
-        raw, blind = dc.frames_at(sensor, t, t, [t])
-        shutter[t] = (raw, blind, int(plan.fpa_sensor.read(t)[0]))
+    trajs = {n: scn.trajectory(n, sensor, spec.scene_K, spec.node_K, spec.node_max_s)
+             for n in spec.scenarios}
+    n_ffcs = {int(load_pipeline(n).ffc_frames or 1) for n in spec.methods
+              if load_pipeline(n).has("ffc")}
+    starts = {(sn, p.tag, nf): scn.ffc_starts(tr, p, nf)
+              for sn, tr in trajs.items() for p in spec.policies() for nf in n_ffcs}
     t_frames = time.perf_counter() - t0
     spec_d = spec.to_dict()
     points: list[dict[str, Any]] = []
     with open_executor(workers, scheduler) as handle:
-        futs = [handle.executor.submit(_task, spec_d, n, pts, frames, shutter)
+        futs = [handle.executor.submit(_task, spec_d, n, pts, trajs, starts)
                 for n in spec.methods]
         for i, fut in enumerate(futs):
             points.extend(fut.result())
@@ -287,9 +299,9 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
         p["index"] = i
         p["key"] = point_key(p)
     t_sweep = time.perf_counter() - t0 - t_frames
+    lo, hi = spec.fpa_K
     mid_fpa = 0.5 * (lo + hi)
-    mid_scene = float(np.median(spec.scene_K))
-    # the sensor's noise where datasheets quote it: a 300 K scene
+    # the sensor's noise where datasheets quote it: a 300 K scene, every noise source on
     from irnuc.model.noise_metrics import NETD_SCENE_K
 
     netd = dc.netd(sensor, mid_fpa)
@@ -298,22 +310,18 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
     n3 = model.noise_3d(cube)
     scale = 1e3 / netd.responsivity_codes_per_K
     cam = camera_temperature.run(quick=True, sensor=sensor)
-    ends = {}
-    for t in (lo, hi):
-        raw, blind, rd = frames[float(t)]
-        k = int(np.argmin(np.abs(np.asarray(spec.scene_K) - mid_scene)))
-        ends[f"{t:g}"] = {"fpa_K": float(t), "scene_K": float(spec.scene_K[k]),
-                          "raw": raw[3 * k].tolist(), "blind": blind[3 * k].tolist(),
-                          "reading": rd}
     return {
         "study": NAME, "title": TITLE, "spec": spec_d,
-        "plan": {"scene": list(plan.scene), "fpa": list(plan.fpa), "frames": plan.frames},
-        "fpa_grid_K": grid, "points": points,
+        "plan": {"scene": list(plan.scene), "fpa": list(plan.fpa), "frames": plan.frames,
+                 "housing_offset": list(plan.housing_offset)},
+        "scenarios": {n: scn.summary(tr) for n, tr in trajs.items()},
+        "policies": [{"tag": p.tag, "text": p.describe()} for p in spec.policies()],
+        "points": points,
         "netd": netd.as_dict(), "netd_mK": float(netd) * 1e3,
         "noise_3d": {"frame": [spec.noise_frames, spec.rows, spec.cols], "fpa_K": mid_fpa,
                      "scene_K": NETD_SCENE_K, "mean_codes": n3.mean,
                      "components": n3.as_dict(scale=scale, unit="mK")},
-        "camera_temperature": cam, "ends": ends,
+        "camera_temperature": cam,
         "seconds": {"frames": round(t_frames, 3), "sweep": round(t_sweep, 3),
                     "total": round(time.perf_counter() - t0, 3)},
     }
@@ -322,7 +330,9 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
 def point_key(p: Mapping[str, Any]) -> str:
     """The point's name in metric keys: ``<config>_f<bits>[_p<period min>]``."""
     k = f"{p['config']}_f{p['frac_bits']}"
-    if p.get("ffc_period_min") is not None:
+    if p.get("ffc_policy"):
+        k += f"_{p['ffc_policy']}"
+    elif p.get("ffc_period_min") is not None:
         k += f"_p{p['ffc_period_min']:g}"
     return k
 
@@ -338,7 +348,9 @@ def code_digest() -> str:
         root = Path(pkg.__file__).parent
         files += [(f"{tag}/{p.relative_to(root).as_posix()}", p)
                   for p in sorted([*root.rglob("*.py"), *root.rglob("*.toml")])]
-    for mod in (dc, camera_temperature, method_bits):
+    from irnuc.reports.studies import scenarios as scn
+
+    for mod in (dc, camera_temperature, method_bits, scn):
         files.append((f"studies/{Path(mod.__file__).name}", Path(mod.__file__)))
     files.append(("studies/signoff.py", Path(__file__)))
     h = hashlib.sha256()
@@ -381,22 +393,23 @@ def cached_signoff(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None
 # ---------------------------------------------------------------------------------------
 def recommend(points: Sequence[Mapping[str, Any]], tolerance_mK: float,
               datapath: Mapping[int, float] | None = None) -> dict[str, Any]:
-    """The cheapest valid point whose worst residual is at most ``tolerance_mK``.
+    """The cheapest valid point whose worst residual (worst over the scenarios) is at most
+    ``tolerance_mK``.
 
     Cheapest: fewest coefficient memory bits per pixel (calibration + runtime: the store
     that dominates a VGA camera's cost), then the lowest read bandwidth bits, then the
-    lowest datapath cost (``datapath``: index -> cost), then the longest FFC period (the
-    shutter interrupts the image least; no shutter counts as infinite), then the lowest
-    residual, then the index. Returns ``{found, index, candidates}`` (candidates: every
-    point meeting the tolerance, cheapest first).
+    lowest datapath cost (``datapath``: index -> cost), then the least dead time (the
+    shutter's frames lost, worst scenario; no shutter: 0), then the fewest FFCs per hour,
+    then the lowest residual, then the index. Returns ``{found, index, candidates}``
+    (candidates: every point meeting the tolerance, cheapest first).
     """
     dp = datapath or {}
     ok = [p for p in points if p.get("valid") and p["worst_fpn_mK"] <= tolerance_mK]
 
     def cost(p: Mapping[str, Any]) -> tuple:
-        period = p.get("ffc_period_min")
         return (p["memory_bits"], p["read_bits_per_frame"], dp.get(p["index"], 0.0),
-                -(math.inf if period is None else period), p["worst_fpn_mK"], p["index"])
+                p.get("dead_time_pct") or 0.0, p.get("ffc_per_hour") or 0.0,
+                p["worst_fpn_mK"], p["index"])
 
     ok.sort(key=cost)
     if not ok:
@@ -470,9 +483,10 @@ def bandwidth_MBps(read_bits: int, frame: Sequence[int], rate_hz: float) -> floa
 
 def figures(result: Mapping[str, Any], rec: Mapping[str, Any] | None,
             images: Mapping[str, Any] | None) -> list[tuple[str, bytes]]:
-    """The Temperature section's figures: residual against FPA temperature per method (each
-    at its cheapest width meeting the tolerance, else its best), the FFC sawtooth, the
-    fronts, the raw / corrected images at both ends of the drift."""
+    """The Temperature section's figures: per scenario, the residual against time of each
+    configuration (its cheapest point meeting the tolerance, else its best) with its FFC
+    events marked, and the housing-FPA difference beside it; the fronts against memory,
+    datapath and dead time; the images at the recommendation's worst frame."""
     from irnuc.reports.studies.figures import png
 
     plt = dc.pyplot()
@@ -480,43 +494,60 @@ def figures(result: Mapping[str, Any], rec: Mapping[str, Any] | None,
     tol = result["tolerance_mK"]
     netd = result["netd_mK"]
     out = []
-    shown = representative(pts, tol)
-    fig, ax = plt.subplots(figsize=(8, 4.2))
-    for i, p in enumerate(shown):
-        xs, ys = zip(*p["per_fpa"], strict=True)
-        ax.plot(xs, ys, marker="o", ms=2.5, color=f"C{i % 10}", ls="-" if i < 10 else "--",
-                label=f"{p['key']} ({p['memory_bits']} b/px)")
-    ax.axhline(tol, color="k", ls="--", lw=1, label=f"tolerance {tol:.3g} mK")
-    ax.axhline(netd, color="k", ls=":", lw=1, label=f"NETD {netd:.3g} mK")
-    ax.set_yscale("log")
-    ax.set_xlabel("FPA temperature, K")
-    ax.set_ylabel("worst residual fixed pattern over the scenes, mK")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=6, ncol=2)
-    out.append(("Residual fixed pattern against FPA temperature, one line per method (its "
-                "cheapest point meeting the tolerance, else its lowest residual); FFC methods "
-                "at their FFC period, worst between shutter events", png(fig)))
-    saw = [p for p in shown if p.get("sawtooth")]
-    if saw:
-        fig, ax = plt.subplots(figsize=(8, 3.8))
-        for i, p in enumerate(saw):
-            ts, _, mk = zip(*p["sawtooth"], strict=True)
-            ax.plot(ts, mk, "-", lw=1.2, color=f"C{i}", label=p["key"])
-        ax.axhline(tol, color="k", ls="--", lw=1, label="tolerance")
-        ax.axhline(netd, color="k", ls=":", lw=1, label="NETD")
-        ax.set_yscale("log")
-        ax.set_xlabel(f"time, min (FPA ramp {result['spec']['ramp_K_per_min']:g} K/min from "
-                      f"{result['spec']['fpa_K'][0]:g} K)")
-        ax.set_ylabel("worst residual over the scenes, mK")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-        out.append(("The FFC sawtooth: residual against time while the FPA ramps; each "
-                    "shutter event refreshes the offsets (the drop), the drift between events "
-                    "raises the residual again", png(fig)))
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    shown = [p for p in representative(pts, tol) if p.get("traces")]
+    scen = result.get("scenarios") or {}
+    if shown and scen:
+        fig, axes = plt.subplots(len(scen), 2, figsize=(12, 3.3 * len(scen)), squeeze=False,
+                                 gridspec_kw={"width_ratios": [2.2, 1]})
+        for row, (name, sc) in zip(axes, scen.items(), strict=True):
+            ax, ax2 = row
+            for i, p in enumerate(shown):
+                tr = p["traces"].get(name)
+                if not tr or not tr["trace"]:
+                    continue
+                ts, mk, _ = zip(*tr["trace"], strict=True)
+                ls = "-" if i < 10 else "--"
+                ax.plot(np.asarray(ts) / 60.0, mk, ls, lw=1.0, color=f"C{i % 10}",
+                        label=f"{p['key']}" + (" (recommended)" if rec and rec["key"] == p["key"]
+                                               else ""))
+                ev = tr.get("ffc_s") or []
+                if ev and len(ev) <= 400:  # the FFC events as ticks at the bottom
+                    ax.plot(np.asarray(ev) / 60.0, np.full(len(ev), 0.0), "|", ms=6,
+                            color=f"C{i % 10}", transform=ax.get_xaxis_transform(), clip_on=False)
+            ax.axhline(tol, color="k", ls="--", lw=1, label=f"tolerance {tol:.3g} mK")
+            ax.axhline(netd, color="k", ls=":", lw=1, label=f"NETD {netd:.3g} mK")
+            ax.set_yscale("log")
+            ax.set_xlabel("time, min (ticks at the bottom: FFC events)")
+            ax.set_ylabel("worst residual, mK")
+            ax.set_title(f"{name}: {sc.get('description', '')}", fontsize=8)
+            ax.grid(alpha=0.3)
+            c = sc["curve"]
+            tm = np.asarray(c["t_s"]) / 60.0
+            ax2.plot(tm, np.asarray(c["housing_K"]) - np.asarray(c["fpa_K"]), "k-", lw=1.2,
+                     label="housing - FPA")
+            ax2.set_ylabel("housing - FPA, K")
+            ax2.set_xlabel("time, min")
+            ax3 = ax2.twinx()
+            ax3.plot(tm, c["fpa_K"], "C3-", lw=0.8, label="FPA")
+            ax3.plot(tm, c["housing_K"], "C0-", lw=0.8, label="housing")
+            ax3.set_ylabel("K", fontsize=7)
+            ax2.grid(alpha=0.3)
+            h1, l1 = ax2.get_legend_handles_labels()
+            h2, l2 = ax3.get_legend_handles_labels()
+            ax2.legend(h1 + h2, l1 + l2, fontsize=6)
+        axes[0][0].legend(fontsize=6, ncol=2)
+        fig.tight_layout()
+        out.append(("Residual fixed pattern against time on each thermal scenario, one line "
+                    "per configuration (its cheapest point meeting the tolerance on every "
+                    "scenario, else its lowest residual), its FFC events as ticks; beside it "
+                    "the housing-FPA difference the scenario drives (and both temperatures)",
+                    png(fig)))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
     fr = result.get("fronts") or {}
     for ax, key, label in ((axes[0], "memory_bits", "coefficient memory, bits per pixel"),
-                           (axes[1], "datapath_cost", "datapath cost, xc7 LUT + DSP equivalent")):
+                           (axes[1], "datapath_cost", "datapath cost, xc7 LUT + DSP equivalent"),
+                           (axes[2], "dead_time_pct", "dead time (shutter), % of frames, "
+                                                      "worst scenario")):
         cfgs = list(dict.fromkeys(p["config"] for p in pts))
         for i, c in enumerate(cfgs):
             ps = [p for p in pts if p["config"] == c and p.get(key) is not None]
@@ -533,29 +564,33 @@ def figures(result: Mapping[str, Any], rec: Mapping[str, Any] | None,
         ax.axhline(tol, color="k", ls="--", lw=0.8)
         ax.set_yscale("log")
         ax.set_xlabel(label)
-        ax.set_ylabel("worst residual, mK")
+        ax.set_ylabel("worst residual over the scenarios, mK")
         ax.grid(alpha=0.3)
     if axes[0].get_legend_handles_labels()[0]:
         axes[0].legend(fontsize=6, ncol=2)
-    out.append(("Pareto fronts of the worst residual against coefficient memory (left) and "
-                "against the datapath cost (right); the star is the recommendation, the "
-                "dashed line the tolerance", png(fig)))
+    fig.tight_layout()
+    out.append(("Pareto fronts of the worst residual over the scenarios against coefficient "
+                "memory (left), the datapath cost (middle) and the shutter's dead time "
+                "(right); the star is the recommendation, the dashed line the tolerance",
+                png(fig)))
     if images:
         keys = list(images)
-        fig, axes = plt.subplots(2, len(keys), figsize=(4.2 * len(keys), 6), squeeze=False)
+        fig, axes = plt.subplots(1, 2 * len(keys), figsize=(12 * len(keys), 4.4), squeeze=False)
         for j, k in enumerate(keys):
             im = images[k]
             for i, (what, arr) in enumerate((("raw", im["raw"]), ("corrected", im["corrected"]))):
                 a = np.asarray(arr, dtype=np.float64)
-                ax = axes[i][j]
+                ax = axes[0][2 * j + i]
                 h = ax.imshow(a, cmap="gray")
                 fig.colorbar(h, ax=ax, fraction=0.04)
-                ax.set_title(f"{what}, FPA {im['fpa_K']:g} K, scene {im['scene_K']:g} K "
-                             f"(std {a[np.asarray(im['good'])].std():.3g} codes)", fontsize=8)
+                ax.set_title(f"{what}: {im.get('scenario', '')} t = {im.get('time_s', 0):.0f} s, "
+                             f"FPA {im['fpa_K']:.2f} K, housing {im.get('housing_K', 0):.2f} K, "
+                             f"scene {im['scene_K']:g} K\n(std "
+                             f"{a[np.asarray(im['good'])].std():.3g} codes)", fontsize=7)
                 ax.set_xticks([])
                 ax.set_yticks([])
-        out.append(("Raw and corrected images of a uniform scene at both ends of the drift "
-                    "(the recommendation; each image on its own grey scale)", png(fig)))
+        out.append(("Raw and corrected images of a uniform scene at the recommendation's worst "
+                    "frame (its worst scenario; each image on its own grey scale)", png(fig)))
     return out
 
 

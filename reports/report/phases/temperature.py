@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 from irnuc.reports.report.base import Report, progress
@@ -31,6 +32,9 @@ DEFAULTS: dict[str, Any] = {
     "preset": "default", "seed": 4, "rows": 24, "cols": 32, "fpa_K": [288.0, 308.0],
     "fpa_step_K": 1.0, "scene_K": [280.0, 330.0, 380.0], "ramp_K_per_min": 2.0,
     "frac_bits": [6, 8, 10, 12, 14], "ffc_periods_min": [0.25, 0.5, 1.0, 2.0],
+    "ffc_changes_K": [0.1, 0.5, 1.5], "ffc_either": [[3.0, 1.5]], "node_K": 0.5,
+    "node_max_s": 120.0, "max_peaks": 24, "housing_offset_K": [-5.0, 0.0, 5.0],
+    "cosim_scenario": "power_on_warmup", "cosim_min_pixels": 1_000_000,
     "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
     "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
     "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
@@ -44,7 +48,7 @@ def setting(t: Mapping[str, Any], key: str) -> Any:
 
 def spec_of(t: Mapping[str, Any]):
     """The study specification of a ``[temperature]`` section."""
-    from irnuc.reports.studies.signoff import METHODS, SignoffSpec
+    from irnuc.reports.studies.signoff import SignoffSpec, registry_methods, scenario_default
 
     return SignoffSpec(
         preset=setting(t, "preset"), seed=int(setting(t, "seed")), rows=int(setting(t, "rows")),
@@ -52,9 +56,15 @@ def spec_of(t: Mapping[str, Any]):
         fpa_step_K=float(setting(t, "fpa_step_K")),
         scene_K=tuple(float(x) for x in setting(t, "scene_K")),
         ramp_K_per_min=float(setting(t, "ramp_K_per_min")),
-        methods=tuple(t.get("methods", METHODS)),
+        methods=tuple(t.get("methods") or registry_methods()),
         frac_bits=tuple(int(x) for x in setting(t, "frac_bits")),
         ffc_periods_min=tuple(float(x) for x in setting(t, "ffc_periods_min")),
+        ffc_changes_K=tuple(float(x) for x in setting(t, "ffc_changes_K")),
+        ffc_either=tuple((float(a), float(b)) for a, b in setting(t, "ffc_either")),
+        scenarios=tuple(t.get("scenarios") or scenario_default()),
+        node_K=float(setting(t, "node_K")), node_max_s=float(setting(t, "node_max_s")),
+        max_peaks=int(setting(t, "max_peaks")),
+        housing_offset_K=tuple(float(x) for x in setting(t, "housing_offset_K")),
         frame_rate_hz=float(setting(t, "frame_rate_hz")),
         bandwidth_frame=tuple(int(x) for x in setting(t, "bandwidth_frame")),
         noise_frames=int(setting(t, "noise_frames")), overrides=dict(t.get("overrides") or {}))
@@ -209,19 +219,40 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     top, why = synth_top(cfg)
     # Placed at `synth_seeds` placer seeds (in parallel, each cached): the best placement's
     # figures, with the worst and the spread beside them.
-    kw = {"seeds": int(setting(t, "synth_seeds")), "workers": int(setting(t, "workers"))}
-    s = synth_seeds(cfg, top=top, **kw)
+    kw: dict[str, Any] = {"seeds": int(setting(t, "synth_seeds")),
+                          "workers": int(setting(t, "workers"))}
+    from irnuc.cosim.synth import SynthError
+
+    try:
+        s = synth_seeds(cfg, top=top, **kw)
+    except SynthError as exc:
+        if "TRELLIS_IO" not in str(exc):
+            r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
+            return
+        # The wrapper's ports do not fit the package's pins (wide coefficient and FFC
+        # words): placed as the IP block it is, its ports meeting on-chip logic
+        # (nextpnr --out-of-context, docs/synthesis.md), and said.
+        kw["out_of_context"] = True
+        why += ("; its ports need more I/O than the package has pins: placed out of context "
+                "(nextpnr --out-of-context, the ports on on-chip logic)")
+        s = synth_seeds(cfg, top=top, **kw)
     fig = _flat(s)
     pred = r.get("hw")
     # The cost model moves bare cores (the anchors): its error is judged on the bare core
     # at these widths, and what the wrapper adds is stated beside it (best against best).
     core_top = default_top(cfg)
-    core = s if core_top == top else synth_seeds(cfg, top=core_top, **kw)
+    try:
+        core = s if core_top == top else synth_seeds(cfg, top=core_top, **kw)
+    except SynthError as exc:
+        if "TRELLIS_IO" not in str(exc):
+            raise
+        core = synth_seeds(cfg, top=core_top, **{**kw, "out_of_context": True})
     core_fig = _flat(core)
     r["synth"] = {"top": top, "why": why, "fmax_mhz": s["fmax_mhz"], "seeds": s.get("seeds"),
                   "xc7": s["xc7"],
                   "ecp5": s["ecp5"], "device": s.get("device"), "speed": s.get("speed"),
                   "target_mhz": s.get("target_mhz"), "cached": bool(s.get("cached")),
+                  "out_of_context": bool(kw.get("out_of_context")),
                   "frame": [cfg.max_height, cfg.max_width],
                   "critical_path": (s.get("critical_path") or [])[:8],
                   "predicted": ({k: pred[k] for k in HW_KEYS} if pred else None),
@@ -233,36 +264,118 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
                                        if pred and pred.get("source") == "model" else None)}
 
 
-def _cosim(t: Mapping[str, Any], r: dict[str, Any], fpa_K: tuple[float, float]) -> dict[str, Any]:
-    """The recommendation on a drifting sequence (``cosim_frames`` frames of ``cosim_rows``
-    x ``cosim_cols``, the FPA ramping over ``fpa_K``) through the bulk harness."""
-    from irnuc.common.errors import UserError
-    from irnuc.cosim.sequence_bulk import cosim_sequence
+def _cosim(t: Mapping[str, Any], r: dict[str, Any], spec: Any) -> dict[str, Any]:
+    """The recommendation co-simulated through ``irnuc_axis_top`` (:mod:`irnuc.cosim.axis_bulk`)
+    on frames of a thermal scenario (``cosim_scenario``): ``cosim_rows`` x ``cosim_cols``
+    frames of the physics model at times spread over the scenario (the FPA and the housing
+    moving, each frame at its own state, the scene sweeping 280-380 K, noise on), the
+    sensors' readings of those times written over AXI4-Lite, FFCs where the recommended
+    policy's trigger asks on those readings (its period counted in these frames:
+    ``ffc_every``), at least ``cosim_min_pixels`` output pixels; cached by digest."""
+    import hashlib
+    import json
 
-    frames = int(setting(t, "cosim_frames"))
+    from irnuc.common.cache import cache_dir
+    from irnuc.common.io import write_text_atomic
+    from irnuc.cosim.axis_bulk import AXIS_HARNESS, unsupported
+    from irnuc.reports.studies.signoff import code_digest
+
     shape = (int(setting(t, "cosim_rows")), int(setting(t, "cosim_cols")))
     seed = int(setting(t, "cosim_seed"))
+    scenario = str(setting(t, "cosim_scenario"))
     cfg = point_config(r, *shape)
-    ffc_every = int(setting(t, "ffc_every")) if cfg.has("ffc") else None
-    head = {"frames": frames, "shape": list(shape), "seed": seed, "ffc_every": ffc_every,
-            "fpa_K": list(fpa_K), "source": "irnuc.cosim.sequence_bulk.cosim_sequence"}
+    head = {"shape": list(shape), "seed": seed, "scenario": scenario, "top": "irnuc_axis_top",
+            "source": "irnuc.cosim.axis_bulk (C++ harness around irnuc_axis_top)"}
+    why = unsupported(cfg)
+    if why:
+        return {**head, "frames": 1, "pixels_compared": 0, "mismatches": None,
+                "ffc_events": None, "passed": None, "seconds": 0.0, "not_run": why}
+    key_d = {"cfg": cfg.digest(), "spec": spec.to_dict(), "shape": shape, "seed": seed,
+             "scenario": scenario, "policy": r.get("ffc_policy"),
+             "every": int(setting(t, "ffc_every")), "min": int(setting(t, "cosim_min_pixels")),
+             "frames": int(setting(t, "cosim_frames")), "code": code_digest(),
+             "harness": hashlib.sha256(AXIS_HARNESS.read_bytes()
+                                       + Path(__file__).read_bytes()).hexdigest()[:16]}
+    key = hashlib.sha256(json.dumps(key_d, sort_keys=True, default=str).encode()).hexdigest()[:20]
+    path = cache_dir("temperature") / f"axis-cosim-{key}.json"
+    if path.is_file():
+        try:
+            return {**json.loads(path.read_text()), "cached": True}
+        except (OSError, json.JSONDecodeError):
+            pass
     t0 = time.perf_counter()
-    try:
-        res = cosim_sequence(cfg, frames=frames, shape=shape, seed=seed, ffc_every=ffc_every,
-                             fpa_K=fpa_K)
-    except UserError as exc:
-        if not cfg.stages:
-            raise
-        # A composition without RTL (piecewise or table_interp with a stage): said, never
-        # a pass.
-        return {**head, "pixels_compared": 0, "mismatches": None, "ffc_events": None,
-                "passed": None, "top": None, "seconds": round(time.perf_counter() - t0, 3),
-                "not_run": str(exc)}
-    return {**head, "pixels_compared": int(res["pixels_compared"]),
-            "mismatches": int(res["mismatches"]), "ffc_events": res.get("ffc_events"),
-            "passed": bool(res["passed"]), "top": res.get("top"),
-            "seconds": round(float(res.get("seconds") or time.perf_counter() - t0), 3),
-            "lines": list(res.get("lines") or [])[:10]}
+    out = _cosim_run(t, r, spec, cfg, shape, seed, scenario)
+    out = {**head, **out, "seconds": round(time.perf_counter() - t0, 3)}
+    if out.get("passed") is not None:
+        write_text_atomic(path, json.dumps(out) + "\n")
+    return {**out, "cached": False}
+
+
+def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
+               shape: tuple[int, int], seed: int, scenario: str) -> dict[str, Any]:
+    import dataclasses
+    import math
+
+    import numpy as np
+
+    from irnuc.cosim.axis_bulk import axis_stimulus, build_axis, run_axis
+    from irnuc.model.sequence import load_sequence
+    from irnuc.nuc_fixed.axis import ffc_framing, ffc_shutter_flags
+    from irnuc.nuc_fixed.ffc_policy import FfcPolicy, closed_loop
+    from irnuc.nuc_fixed.fit import calibrate_points
+    from irnuc.nuc_fixed.methods import READINGS
+    from irnuc.nuc_fixed.plan import run_plan
+    from irnuc.reports.studies import drift_common as dc
+
+    sensor = dc.StudySensor(preset=spec.preset, rows=shape[0], cols=shape[1], seed=spec.seed,
+                            overrides=dict(spec.overrides))
+    plan = spec.plan()
+    if not any(READINGS[n].frame_field == "housing_reading" for n in cfg.base.readings
+               if n in READINGS):
+        plan = dataclasses.replace(plan, housing_offset=())  # the fit uses offset 0 only
+    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    cal = calibrate_points(pts, cfg)
+    seq = load_sequence(scenario)
+    sched = dataclasses.replace(seq, record_every=1).schedule()
+    fields = sched.fields(seq.fpa_sensor, seed, seq.housing_sensor)
+    px = shape[0] * shape[1]
+    nf = int(cfg.ffc_frames or 1)
+    ffc = cfg.has("ffc")
+    thr = 0
+    if ffc and r.get("ffc_change_K"):
+        thr = FfcPolicy.from_physical(None, float(r["ffc_change_K"]), seq.frame_rate,
+                                      seq.fpa_sensor.lsb_K).threshold
+    every = int(setting(t, "ffc_every"))
+    n = max(int(setting(t, "cosim_frames")), math.ceil(int(setting(t, "cosim_min_pixels")) / px))
+    want = int(setting(t, "cosim_min_pixels"))
+    for _ in range(30):  # held shutter frames show nothing: more frames until enough are shown
+        idx = np.round(np.linspace(0, sched.fpa_K.size - 1, n)).astype(np.int64)
+        rd = np.asarray(fields["fpa_reading"])[idx]
+        starts = closed_loop(rd, FfcPolicy(period=every, threshold=thr), nf) if ffc else []
+        # the frames shown: the wrapper's framing of these shutter runs (held frames none)
+        shown = (sum(ffc_framing(cfg, ffc_shutter_flags(n, {s: nf for s in starts})).shown)
+                 if ffc else n)
+        if shown * px >= want:
+            break
+        # the shown share stays about the same as frames are added: scale by it
+        n = max(n + 1, math.ceil(n * want / max(shown * px, 1)))
+    n = int(idx.size)  # the frames made (the last round's, if the rounds ran out)
+    scenes = np.linspace(280.0, 380.0, n)
+    raws = []
+    for k, i in enumerate(idx):
+        raw, _ = dc.frames_at(sensor, float(sched.fpa_K[i]), float(sched.T_cam_K[i]),
+                              [float(scenes[k])], noise=True)
+        raws.append(raw[0])
+    st = axis_stimulus(cal.coeffs, raws, {k: np.asarray(v)[idx] for k, v in fields.items()
+                                          if k.endswith("_reading")}, starts)
+    bld = build_axis(cfg)
+    res = run_axis(bld, st, seed=seed, stall_percent=10, idle_percent=5)
+    return {"frames": n, "min_pixels": int(setting(t, "cosim_min_pixels")),
+            "ffc_events": st.ffc_events, "ffc_starts": [int(s) for s in starts],
+            "registers_written": len(st.writes), "frame_times_s": [
+                float(sched.time_s[i]) for i in idx],
+            "housing_minus_fpa_K": [float(sched.T_cam_K[i] - sched.fpa_K[i]) for i in idx],
+            **res}
 
 
 def tolerance_mK(t: Mapping[str, Any], netd_mK: float) -> tuple[float, str]:
@@ -274,9 +387,11 @@ def tolerance_mK(t: Mapping[str, Any], netd_mK: float) -> tuple[float, str]:
 
 
 def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[str, Any]:
-    """The recommendation: the cheapest point meeting ``tol``; else the lowest residual,
-    flagged ``meets_tolerance: false``."""
-    from irnuc.reports.studies.signoff import grid_edges, recommend
+    """The recommendation: the cheapest point meeting ``tol`` on every scenario; else the
+    lowest residual, flagged ``meets_tolerance: false``, with each configuration's best
+    point and the scenarios that break it (``breaking``)."""
+    from irnuc.reports.studies.scenarios import breaking
+    from irnuc.reports.studies.signoff import grid_edges, recommend, representative
 
     dp = {p["index"]: p["datapath_cost"] for p in pts if p.get("datapath_cost") is not None}
     rec = recommend(pts, tol, dp)
@@ -287,12 +402,21 @@ def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[
         p, meets = min(valid, key=lambda q: (q["worst_fpn_mK"], q["memory_bits"], q["index"])), False
     else:
         return {"found": False, "point": None, "candidates": []}
+    rows = [{"key": q["key"], "worst_fpn_mK": q["worst_fpn_mK"], "breaks": breaking(q, tol)}
+            for q in representative(valid, tol)]
     return {"found": True, "meets": meets, "point": p, "candidates": rec["candidates"],
-            "edges": grid_edges(p, pts, periods, meets)}
+            "edges": grid_edges(p, pts, periods, meets), "breaking": rows}
 
 
 def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -> None:
-    from irnuc.reports.studies.signoff import bandwidth_MBps, cached_signoff, figures, fronts
+    from irnuc.reports.studies.scenarios import breaking
+    from irnuc.reports.studies.signoff import (
+        bandwidth_MBps,
+        cached_signoff,
+        figures,
+        fronts,
+        representative,
+    )
 
     t = rep.config["temperature"]
     t0 = time.perf_counter()
@@ -310,8 +434,10 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 p["bandwidth_MBps"] = bandwidth_MBps(p["read_bits_per_frame"], spec.bandwidth_frame,
                                                      spec.frame_rate_hz)
                 p["meets_tolerance"] = p["worst_fpn_mK"] <= tol
-        d: dict[str, Any] = {k: res[k] for k in ("spec", "plan", "fpa_grid_K", "netd", "netd_mK",
-                                                 "noise_3d", "camera_temperature")}
+                p["breaks"] = breaking(p, tol)
+        d: dict[str, Any] = {k: res[k] for k in ("spec", "plan", "netd", "netd_mK",
+                                                 "noise_3d", "camera_temperature", "scenarios",
+                                                 "policies")}
         d |= {"points": pts, "tolerance_mK": tol, "tolerance": tol_text, "cached": res["cached"],
               "study_seconds": res["seconds"]}
         t1 = time.perf_counter()
@@ -319,7 +445,8 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         times["anchors"] = round(time.perf_counter() - t1, 3)
         d["fronts"] = {"memory_bits": fronts(pts, "memory_bits"),
                        "datapath_cost": fronts(pts, "datapath_cost") if d.get("cost") else None,
-                       "bandwidth_MBps": fronts(pts, "bandwidth_MBps")}
+                       "bandwidth_MBps": fronts(pts, "bandwidth_MBps"),
+                       "dead_time_pct": fronts(pts, "dead_time_pct")}
         ch = choose(pts, tol, list(spec.ffc_periods_min))
         d["recommended"] = None
         if ch["found"]:
@@ -329,28 +456,40 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 rep.notes.append(f"temperature: the recommendation lies on the {e['edge']} edge of "
                                  f"the swept {e['axis']}: {e['widen']}")
             if not r["meets_tolerance"]:
-                rep.notes.append(f"temperature: no swept point meets {tol_text}; the recommendation "
-                                 f"is the lowest residual, {r['worst_fpn_mK']:.3g} mK ({r['key']})")
+                rep.notes.append(f"temperature: no swept point meets {tol_text} on every scenario; "
+                                 f"the recommendation is the lowest residual, "
+                                 f"{r['worst_fpn_mK']:.3g} mK ({r['key']}), broken by "
+                                 f"{', '.join(r['breaks'])}")
             if setting(t, "synth"):
                 t1 = time.perf_counter()
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
                 note = fmax_note(r.get("synth") or {})
+                if (r.get("synth") or {}).get("error"):
+                    note = f"temperature: the recommendation was not placed: {r['synth']['error']}"
                 if note:
                     rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
-                r["cosim"] = _cosim(t, r, spec.fpa_K)
+                r["cosim"] = _cosim(t, r, spec)
                 times["cosim"] = round(time.perf_counter() - t1, 3)
                 if r["cosim"].get("not_run"):
                     rep.notes.append(f"temperature: not co-simulated: {r['cosim']['not_run']}")
         else:
             rep.notes.append("temperature: no valid point in the sweep")
-        d["images"] = _end_images(res, d["recommended"])
         t1 = time.perf_counter()
+        d["images"] = _worst_images(res, d["recommended"])
+        # The traces of the points a figure draws (each configuration's representative and
+        # the recommendation) stay; the others' are in the study's cache only.
+        shown = {p["key"] for p in representative([p for p in pts if p.get("valid")], tol)}
+        if d["recommended"]:
+            shown.add(d["recommended"]["key"])
         res_fig = {**res, "points": pts, "tolerance_mK": tol, "fronts": d["fronts"]}
         for cap, png in figures(res_fig, d["recommended"], d["images"]):
             rep.figure("temperature", cap, png)
+        for p in pts:
+            if p.get("key") not in shown:
+                p.pop("traces", None)
         _camera_figure(rep, res)
         times["figures"] = round(time.perf_counter() - t1, 3)
         d["seconds"] = times
@@ -365,12 +504,16 @@ NOT_RUN = Verdict("not run", "no [temperature] section in the configuration: no 
 def _residual_check(d: Mapping[str, Any], r: Mapping[str, Any]) -> SignoffCheck:
     w, tol = float(r["worst_fpn_mK"]), float(d["tolerance_mK"])
     basis = str(d.get("tolerance", "")).split(" = ")[0]  # "0.5 x NETD" or "15 mK (tolerance_mK)"
+    n = len(r.get("scenarios") or {})
+    over = f" on every one of {n} scenarios" if n else ""
     if r["meets_tolerance"]:
         return SignoffCheck("residual", "met", f"{r['key']}: {w:.3g} mK <= tolerance {tol:.3g} mK "
-                                               f"({basis})")
+                                               f"({basis}){over}")
+    breaks = r.get("breaks") or []
+    by = f", broken by {', '.join(breaks)}" if breaks else ""
     return SignoffCheck("residual", "not met",
                         f"{r['key']}: {w:.3g} mK > tolerance {tol:.3g} mK ({basis}), the lowest "
-                        "residual of the sweep")
+                        f"residual of the sweep{by}")
 
 
 def _fmax_check(sy: Mapping[str, Any] | None) -> SignoffCheck:
@@ -378,6 +521,8 @@ def _fmax_check(sy: Mapping[str, Any] | None) -> SignoffCheck:
         return SignoffCheck("fmax", "not run", "not synthesized ([temperature] synth = false)")
     from irnuc.cosim.synth import TARGET_MHZ
 
+    if sy.get("error"):
+        return SignoffCheck("fmax", "not met", f"{sy['top']}: not placed and routed: {sy['error']}")
     target = float(sy.get("target_mhz") or TARGET_MHZ)
     sd = sy.get("seeds")
     best = float(sd["best_mhz"] if sd else sy["fmax_mhz"])
@@ -394,6 +539,10 @@ def _cosim_check(c: Mapping[str, Any] | None) -> SignoffCheck:
     if c.get("not_run") or c.get("passed") is None:
         return SignoffCheck("cosim", "not run", f"not co-simulated: {c.get('not_run')}")
     top = c.get("top") or "the bulk harness"
+    if c["passed"] and not c["mismatches"] and c["pixels_compared"] < int(c.get("min_pixels") or 0):
+        return SignoffCheck("cosim", "not met",
+                            f"co-simulated through {top}: {c['pixels_compared']} pixels "
+                            f"bit-exact, fewer than the {c['min_pixels']} asked")
     if c["passed"] and not c["mismatches"]:
         return SignoffCheck("cosim", "met", f"co-simulated through {top}: {c['pixels_compared']} "
                                             "pixels bit-exact")
@@ -431,13 +580,16 @@ def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> d
 
     p = ch["point"]
     cfg = point_config(p)
-    keep = ("index", "key", "config", "method", "frac_bits", "ffc_period_min", "ffc_events",
-            "worst_fpn_mK", "worst_fpn_lsb", "memory_bits", "calibration_bits", "runtime_bits",
+    keep = ("index", "key", "config", "method", "frac_bits", "ffc_period_min", "ffc_change_K",
+            "ffc_policy", "ffc_policy_text", "ffc_per_hour", "dead_time_pct",
+            "worst_fpn_mK", "worst_fpn_lsb", "worst_level_error_mK", "worst_scenario",
+            "scenarios", "breaks", "traces", "memory_bits", "calibration_bits", "runtime_bits",
             "read_bits_per_frame", "bandwidth_MBps", "gain_bits", "offset_bits", "formats",
             "hw", "datapath_cost", "bad_fraction")
     r = {k: p.get(k) for k in keep}
     r |= {"meets_tolerance": ch["meets"], "tolerance_mK": tol, "netd_mK": netd,
           "margin_mK": tol - p["worst_fpn_mK"], "candidates": ch["candidates"][:20],
+          "breaking": ch.get("breaking") or [],
           "edges": ch["edges"], "widths": {"gain": f"{cfg.gain_bits} bits", "offset":
                                            f"{cfg.offset_bits} bits", **p["formats"]},
           "memory": coefficient_memory(p["memory_bits"], *spec.bandwidth_frame, spec.frame_rate_hz),
@@ -446,43 +598,57 @@ def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> d
     return r
 
 
-def _end_images(res: Mapping[str, Any], r: Mapping[str, Any] | None) -> dict[str, Any] | None:
-    """Raw and corrected (the recommendation, golden model) images at both ends."""
-    if not r:
+def _worst_images(res: Mapping[str, Any], r: Mapping[str, Any] | None) -> dict[str, Any] | None:
+    """Raw and corrected (the recommendation, golden model) images of the middle scene at
+    the recommendation's worst frame: its worst scenario, at that frame's FPA, housing and
+    readings, with the refresh of the FFC before it (made exactly, not interpolated)."""
+    if not r or not r.get("worst_scenario"):
         return None
+    import dataclasses
+
     import numpy as np
 
+    from irnuc.model.sequence import load_sequence
     from irnuc.nuc_fixed.fit import calibrate_points
     from irnuc.nuc_fixed.method_top import FrameInputs, method_top
-    from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
+    from irnuc.nuc_fixed.plan import run_plan
+    from irnuc.reports.studies import drift_common as dc
     from irnuc.reports.studies.signoff import spec_from_dict
 
     spec = spec_from_dict(res["spec"])
     sensor = spec.sensor()
-    plan = CalibrationPlan(scene=tuple(res["plan"]["scene"]), fpa=tuple(res["plan"]["fpa"]),
-                           frames=int(res["plan"]["frames"]))
-    pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    name = r["worst_scenario"]
+    per = r["scenarios"][name]
+    seq = load_sequence(name)
+    sched = dataclasses.replace(seq, record_every=1).schedule()
+    fields = sched.fields(seq.fpa_sensor, sensor.seed, seq.housing_sensor)
+    pts = run_plan(spec.plan(), sensor.preset, sensor.base_overrides(), seed=sensor.seed)
     cal = calibrate_points(pts, point_config(r))
-    out = {}
-    n = int(cal.cfg.ffc_frames or 1)
-    first = None
-    for key, e in res["ends"].items():
-        raw = np.asarray(e["raw"])[None]
-        blind = np.asarray(e["blind"])[None]
-        ffc = None
-        if cal.cfg.has("ffc"):  # a shutter event at the start of the drift
-            if first is None:
-                first = e
-            ref = method_top(np.repeat(raw, n, axis=0), cal.coeffs, FrameInputs(
-                reading=np.full(n, first["reading"]), blind_codes=np.repeat(blind, n, axis=0),
-                shutter=np.ones(n, bool)))
-            ffc = ref.ffc_offset
-        y = method_top(raw, cal.coeffs, FrameInputs(reading=np.array([e["reading"]]),
-                                                    blind_codes=blind, shutter=np.zeros(1, bool)),
-                       ffc_offset=ffc).y[0]
-        out[key] = {"fpa_K": e["fpa_K"], "scene_K": e["scene_K"], "raw": e["raw"],
-                    "corrected": y.tolist(), "good": (~cal.bad).tolist()}
-    return out
+    ffc = cal.cfg.has("ffc")
+    i = int(per["worst_frame"])
+    scene = float(np.median(spec.scene_K))
+
+    def inputs(idx: list[int], blind: np.ndarray, shutter: bool) -> FrameInputs:
+        return FrameInputs(reading=np.asarray(fields["fpa_reading"])[idx],
+                           housing_reading=np.asarray(fields["housing_reading"])[idx],
+                           blind_codes=blind, shutter=np.full(len(idx), shutter) if ffc else None)
+
+    offset = None
+    sref = per.get("worst_refresh_frame")
+    if ffc and sref is not None:
+        n = int(cal.cfg.ffc_frames or 1)
+        sraw, sblind = dc.frames_at(sensor, float(sched.fpa_K[sref]), float(sched.T_cam_K[sref]),
+                                    [float(sched.T_shutter_K[sref])], repeats=n)
+        idx = [min(sref + k, len(sched.fpa_K) - 1) for k in range(n)]
+        offset = method_top(sraw, cal.coeffs, inputs(idx, sblind, True)).ffc_offset
+    raw, blind = dc.frames_at(sensor, float(sched.fpa_K[i]), float(sched.T_cam_K[i]), [scene])
+    y = method_top(raw, cal.coeffs, inputs([i], blind, False), ffc_offset=offset).y[0]
+    return {"worst": {"scenario": name, "time_s": float(sched.time_s[i]),
+                      "fpa_K": float(sched.fpa_K[i]), "housing_K": float(sched.T_cam_K[i]),
+                      "scene_K": scene, "refresh_s": (None if sref is None
+                                                      else float(sched.time_s[sref])),
+                      "raw": raw[0].tolist(), "corrected": y.tolist(),
+                      "good": (~cal.bad).tolist()}}
 
 
 def _camera_figure(rep: Report, res: Mapping[str, Any]) -> None:
@@ -504,6 +670,9 @@ def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
             rep.metric(f"temperature.point.{p['key']}.worst_fpn_mK", p["worst_fpn_mK"], "lower", "mK")
             rep.metric(f"temperature.point.{p['key']}.worst_fpn_lsb", p["worst_fpn_lsb"], "lower",
                        "LSB")
+            if p.get("worst_level_error_mK") is not None:
+                rep.metric(f"temperature.point.{p['key']}.worst_level_error_mK",
+                           p["worst_level_error_mK"], "info", "mK")
     r = d.get("recommended")
     rep.metric("temperature.recommended.meets_tolerance",
                None if r is None else int(r["meets_tolerance"]), "higher")
@@ -512,7 +681,13 @@ def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
     rep.metric("temperature.recommended.worst_fpn_mK", r["worst_fpn_mK"], "lower", "mK")
     rep.metric("temperature.recommended.memory_bits", r["memory_bits"], "lower", "bit")
     rep.metric("temperature.recommended.bandwidth_MBps", r["bandwidth_MBps"], "lower", "MB/s")
-    if r.get("synth"):
+    if r.get("dead_time_pct") is not None:
+        rep.metric("temperature.recommended.dead_time_pct", r["dead_time_pct"], "lower", "%")
+        rep.metric("temperature.recommended.ffc_per_hour", r["ffc_per_hour"], "lower", "1/h")
+    for name, sc in (r.get("scenarios") or {}).items():
+        rep.metric(f"temperature.recommended.scenario.{name}.worst_fpn_mK", sc["worst_fpn_mK"],
+                   "lower", "mK")
+    if r.get("synth") and not r["synth"].get("error"):
         s = r["synth"]
         rep.metric("temperature.recommended.synth.fmax_mhz", s["fmax_mhz"], "higher", "MHz",
                    rel_tol=0.05)

@@ -1,0 +1,180 @@
+"""The sign-off over thermal scenarios (issue 37): nodes, interpolation, policies, the
+registry's methods, the worst over scenarios and the per-scenario reasons; a tiny sweep of
+one method on the shortest scenario checked against a hand computation with the golden
+model. Fast: tiny sensors, no RTL (the axis harness is in cocotb_tests/test_axis_bulk.py).
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from irnuc.reports.studies import scenarios as scn
+from irnuc.reports.studies import signoff as so
+
+
+def test_nodes_every_half_kelvin_of_any_temperature_and_the_ends() -> None:
+    fpa = 0.1 * np.arange(21)          # 0 .. 2 K in 0.1 K steps
+    housing = np.zeros(21)
+    shutter = np.zeros(21)
+    got = scn.pick_nodes(fpa, housing, shutter, frame_rate=1.0, node_K=0.5, node_max_s=1e6)
+    assert got.tolist() == [0, 5, 10, 15, 20]
+    # the housing alone moving makes nodes too; a time gap makes one without a change
+    got = scn.pick_nodes(np.zeros(21), fpa, shutter, frame_rate=1.0, node_K=0.5, node_max_s=1e6)
+    assert got.tolist() == [0, 5, 10, 15, 20]
+    got = scn.pick_nodes(np.zeros(10), np.zeros(10), np.zeros(10), frame_rate=2.0, node_K=0.5,
+                         node_max_s=2.0)
+    assert got.tolist() == [0, 4, 8, 9]
+
+
+def test_frames_between_nodes_are_interpolated_in_time() -> None:
+    a = np.full((3, 2, 2), 100, np.int64)
+    b = np.full((3, 2, 2), 111, np.int64)
+    tr = scn.Trajectory(
+        name="x", description="", frame_rate=1.0, time_s=np.arange(11.0), fpa_K=np.zeros(11),
+        housing_K=np.zeros(11), fpa_reading=np.zeros(11, np.int64),
+        housing_reading=np.zeros(11, np.int64), lsb_K=0.01, nodes=np.array([0, 10]),
+        raw=np.stack([a, b]), blind=np.zeros((2, 3, 4), np.int64),
+        shutter_raw=np.stack([a[0], b[0]]), shutter_blind=np.zeros((2, 4), np.int64))
+    raw, _ = tr.frames(0)
+    assert (raw == 100).all()
+    raw, _ = tr.frames(5)
+    assert (raw == 106).all()          # 100 + 11 / 2 = 105.5 rounds to even: 106
+    raw, _ = tr.frames(3)
+    assert (raw == 103).all()          # 100 + 3.3
+    raw, _ = tr.frames(10)
+    assert (raw == 111).all()
+
+
+def test_policy_tags_text_and_registers() -> None:
+    ps = scn.policies([0.5], [0.1], [[3.0, 1.5]])
+    assert [p.tag for p in ps] == ["p0.5", "t0.1", "p3t1.5"]
+    assert ps[2].describe() == "every 3 min or on a 1.5 K FPA change"
+    # the Lepton's at 30 Hz with a 0.01 K reading: 3 min = 5400 frames, 1.5 K = 150 codes
+    r = ps[2].registers(30.0, 0.01)
+    assert (r.period, r.threshold) == (5400, 150)
+    r = ps[1].registers(8.7, 0.01)
+    assert (r.period, r.threshold) == (0, 10)
+
+
+def test_registry_methods_are_the_14_bit_configurations() -> None:
+    from irnuc.nuc_fixed.config import PIPELINES_TOML
+
+    tables = tomllib.loads(Path(PIPELINES_TOML).read_text())
+    want = [n for n, t in tables.items() if isinstance(t, dict) and t.get("adc_bits") == 14]
+    got = so.registry_methods()
+    assert list(got) == want
+    assert {"tcffc14", "tcgain14", "ffc14"} <= set(got)
+    assert not {"wide16", "minimal"} & set(got)
+
+
+def test_worst_over_scenarios_and_the_scenarios_that_break_a_point() -> None:
+    per = {"a": {"worst_fpn_mK": 10.0, "worst_fpn_lsb": 1.0, "worst_level_error_mK": 50.0,
+                 "ffc_per_hour": 30.0, "dead_time_pct": 0.3, "worst_at_s": 12.0},
+           "b": {"worst_fpn_mK": 40.0, "worst_fpn_lsb": 0.5, "worst_level_error_mK": 5.0,
+                 "ffc_per_hour": 10.0, "dead_time_pct": 0.1, "worst_at_s": 600.4},
+           "c": {"worst_fpn_mK": 20.0, "worst_fpn_lsb": 0.7, "worst_level_error_mK": 7.0,
+                 "ffc_per_hour": 60.0, "dead_time_pct": 0.5, "worst_at_s": 1.0}}
+    w = scn.worst_over(per)
+    assert w == {"worst_fpn_mK": 40.0, "worst_fpn_lsb": 1.0, "worst_level_error_mK": 50.0,
+                 "worst_scenario": "b", "ffc_per_hour": 60.0, "dead_time_pct": 0.5}
+    assert scn.breaking({"scenarios": per}, 15.0) == ["b (40 mK at 600 s)", "c (20 mK at 1 s)"]
+    assert scn.breaking({"scenarios": per}, 40.0) == []
+
+
+def test_recommend_charges_dead_time_then_ffc_rate() -> None:
+    base = {"valid": True, "memory_bits": 40, "read_bits_per_frame": 30, "worst_fpn_mK": 5.0}
+    pts = [{**base, "index": 0, "dead_time_pct": 2.0, "ffc_per_hour": 200.0},
+           {**base, "index": 1, "dead_time_pct": 0.5, "ffc_per_hour": 60.0},
+           {**base, "index": 2, "dead_time_pct": 0.5, "ffc_per_hour": 30.0},
+           {**base, "index": 3, "dead_time_pct": 0.1, "ffc_per_hour": 10.0, "worst_fpn_mK": 50.0}]
+    r = so.recommend(pts, 10.0)
+    assert r["index"] == 2 and r["candidates"] == [2, 1, 0]
+
+
+@pytest.fixture(scope="module")
+def tiny_sweep():
+    spec = so.SignoffSpec(rows=6, cols=8, frac_bits=(12,), methods=("tcoffset14", "tcffc14"),
+                          scene_K=(300.0, 340.0), ffc_periods_min=(0.25,), ffc_changes_K=(0.2,),
+                          ffc_either=(), scenarios=("fpa_ramp",), noise_frames=2,
+                          housing_offset_K=(0.0,))
+    return spec, so.run(spec, workers=0)
+
+
+def test_tiny_sweep_points_policies_and_costs(tiny_sweep) -> None:
+    _spec, res = tiny_sweep
+    keys = [p["key"] for p in res["points"]]
+    assert keys == ["tcoffset14_f12", "tcffc14_f12_p0.25", "tcffc14_f12_t0.2"]
+    seq = res["scenarios"]["fpa_ramp"]
+    # fpa_ramp: 60 s at 30 Hz, the FPA 293 -> 295 K at 2 K/min, the housing 2 K below
+    assert seq["frames"] == 1800 and seq["fpa_span_K"][0] == 293.0
+    assert seq["fpa_span_K"][1] == pytest.approx(295.0, abs=0.01)
+    p = res["points"][1]
+    s = p["scenarios"]["fpa_ramp"]
+    # every 15 s in 60 s: FFCs at 0, 15, 30, 45 s (closed loop: +1 frame each for the
+    # request), 4 in 1/60 h; dead: 8 shutter + 1 settling frame each
+    assert s["ffc_starts"] == 4 and s["ffc_per_hour"] == pytest.approx(240.0)
+    assert s["dead_time_pct"] == pytest.approx(100.0 * 4 * 9 / 1800, rel=1e-3)
+    q = res["points"][0]
+    assert q["ffc_per_hour"] == 0 and q["dead_time_pct"] == 0
+    for pt in res["points"]:
+        assert pt["worst_fpn_mK"] == max(v["worst_fpn_mK"] for v in pt["scenarios"].values())
+
+
+def test_tiny_sweep_residual_against_the_golden_model_by_hand(tiny_sweep) -> None:
+    """tcoffset14 at the scenario's last frame, recomputed here: the model's frames at that
+    frame's FPA and housing, the golden model with that frame's reading, the spatial std
+    over the good pixels, through the local responsivity (a central difference of the
+    corrected means, written out here)."""
+    import dataclasses
+
+    from irnuc.model.sequence import load_sequence
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed.fit import calibrate_points
+    from irnuc.nuc_fixed.method_top import FrameInputs, method_top
+    from irnuc.nuc_fixed.plan import run_plan
+    from irnuc.reports.studies import drift_common as dc
+
+    spec, res = tiny_sweep
+    sensor = spec.sensor()
+    pts = run_plan(spec.plan(), sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    cal = calibrate_points(pts, load_pipeline("tcoffset14"))
+    seq = load_sequence("fpa_ramp")
+    sched = dataclasses.replace(seq, record_every=1).schedule()
+    fields = sched.fields(seq.fpa_sensor, sensor.seed, seq.housing_sensor)
+    i = sched.fpa_K.size - 1  # the last frame is a node
+    good = ~cal.bad
+    worst = 0.0
+    for scene in spec.scene_K:
+        raw, _ = dc.frames_at(sensor, float(sched.fpa_K[i]), float(sched.T_cam_K[i]),
+                              [scene, scene - 0.5, scene + 0.5])
+        y = method_top(raw, cal.coeffs, FrameInputs(
+            reading=np.full(3, int(fields["fpa_reading"][i])))).y.astype(float)
+        slope = (y[2][good].mean() - y[1][good].mean()) / 1.0
+        worst = max(worst, 1e3 * y[0][good].std() / slope)
+    trace = res["points"][0]["traces"]["fpa_ramp"]["trace"]
+    last = trace[-1]
+    assert last[0] == pytest.approx(float(sched.time_s[i]), abs=0.01)  # 4 digits kept
+    assert last[1] == pytest.approx(worst, rel=1e-3)
+
+
+def test_lepton_shaped_preset_and_its_report_configuration() -> None:
+    """The outside check's camera: the Lepton's published figures (80 x 60, 17 um, f/1.1,
+    27 Hz inside the core), its NETD under the datasheet's 50 mK, and the report
+    configuration that compares policies around the Lepton's own (3 min or 1.5 C)."""
+    from irnuc import model
+    from irnuc.reports.report.config import load_report_config
+    from irnuc.reports.studies import drift_common as dc
+
+    c = model.load_preset("lepton")
+    assert (c["fpa"]["active_cols"], c["fpa"]["active_rows"]) == (80, 60)
+    assert c["fpa"]["pitch"] == 17e-6 and c["optics"]["f_number"] == 1.1
+    assert c["readout"]["frame_rate"] == 27.0
+    netd = dc.netd(dc.StudySensor(preset="lepton", rows=12, cols=16, seed=4), 298.0)
+    assert 20.0 < netd.netd_K * 1e3 < 50.0
+    t = load_report_config("lepton")["temperature"]
+    assert t["preset"] == "lepton" and (t["rows"], t["cols"]) == (60, 80)
+    assert [3.0, 1.5] in t["ffc_either"] and 1.5 in t["ffc_changes_K"]
