@@ -50,7 +50,18 @@ def test_irnuc_axis_top_table(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_table, case)
 
 
-@pytest.mark.parametrize(("config", "case"), case_params(tb_axis_ffc, FFC_CONFIGS))
+# Known failures, open (issue 36, docs/rtl.md "Open defects"): since the housing-aware
+# method's RTL (d22c1fc), tcffc14 through the wrapper mismatches on one-line frames (each
+# output uses the previous pixel's coefficients) and its second run's READING write lands
+# after the frame start. Strict: the day they pass, these marks must go.
+_TCFFC_OPEN = pytest.mark.xfail(strict=True, reason="open defect since d22c1fc: tcffc14 "
+                                "one-line frames and second run through irnuc_axis_top")
+_FFC_OPEN = {("tcffc14", "ffc_one_line"), ("tcffc14", "ffc_second_run")}
+
+
+@pytest.mark.parametrize(("config", "case"), [
+    pytest.param(c, k, marks=_TCFFC_OPEN) if (c, k) in _FFC_OPEN else (c, k)
+    for c, k in case_params(tb_axis_ffc, FFC_CONFIGS)])
 def test_irnuc_axis_top_ffc(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_ffc, case)
 
@@ -100,7 +111,8 @@ def test_irnuc_axis_top_table_coverage(config: str) -> None:
     _assert_axis_closed(config, tb_axis_table, "axis.table.")
 
 
-@pytest.mark.parametrize("config", FFC_CONFIGS)
+@pytest.mark.parametrize("config", [
+    pytest.param(c, marks=_TCFFC_OPEN) if c == "tcffc14" else c for c in FFC_CONFIGS])
 def test_irnuc_axis_top_ffc_coverage(config: str) -> None:
     """Every bin of the FFC sequence through the registers (cosim.axis_coverage's
     axis.ffc points) and of the stream points is hit by the one run of tb_axis_ffc."""

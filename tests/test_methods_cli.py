@@ -11,7 +11,7 @@ import pytest
 
 from irnuc.cli import main
 from irnuc.model.fpa_sensor import FpaSensor, frame_fields
-from irnuc.nuc_fixed import pipeline_names
+from irnuc.nuc_fixed import load_pipeline, pipeline_names
 from irnuc.nuc_fixed.memimage import read_method_image
 from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 
@@ -60,6 +60,10 @@ def seq_frames(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def test_plan_then_correct_every_method(tmp_path: Path, plan_file: Path, seq_frames: Path,
                                         name: str, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "cal"
+    if "housing" in load_pipeline(name).base.readings:
+        # A method that reads the housing is fitted over FPA x housing (3 housing offsets).
+        plan_file = tmp_path / "plan_housing.toml"
+        plan_file.write_text(PLAN.replace("[plan]\n", "[plan]\nhousing_offset = [-5.0, 0.0, 5.0]\n"))
     args = ["calibrate", "--plan", str(plan_file), "--pipeline", name, *SMALL, "--out", str(out)]
     assert main(args) == 0
     text = capsys.readouterr().out
@@ -87,9 +91,9 @@ def test_plan_then_correct_every_method(tmp_path: Path, plan_file: Path, seq_fra
     assert main(["correct", "--frames", str(seq_frames), "--coeffs", str(out), "--out",
                  str(corr)]) == 0
     with np.load(seq_frames) as f, np.load(corr / "corrected.npz") as z:
-        want = method_top(f["codes"], mc, FrameInputs(reading=f["fpa_reading"],
-                                                      blind_codes=f["blind_codes"],
-                                                      shutter=f["shutter"]))
+        want = method_top(f["codes"], mc, FrameInputs(
+            reading=f["fpa_reading"], blind_codes=f["blind_codes"], shutter=f["shutter"],
+            housing_reading=f["housing_reading"] if "housing" in mc.cfg.base.readings else None))
         assert np.array_equal(z["corrected"], want.y)
         assert str(z["method"]) == mc.cfg.method
         if mc.cfg.has("ffc"):
