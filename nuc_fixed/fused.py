@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 _I64 = np.iinfo(np.int64)
 #: The kernels' field arguments: a tuple of this many flat int64 arrays (one numba
 #: signature for every method; the unused ones a one-element pad).
-FIELD_SLOTS = 8
+FIELD_SLOTS = 12
 _PAD = np.zeros(1, np.int64)
 
 

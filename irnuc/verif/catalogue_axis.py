@@ -211,8 +211,8 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "assign wb_last[k] = eol_q[k];",
         "m_axis_acc / m_axis_foff: tlast on every line's last word", **_AXF),
     _ma("ax_ffc_done_not_on_refresh", "irnuc_axis_ffc.sv",
-        "assign done_e = busy_q && !ffc_start_i && (refreshed || short_end || none);",
-        "assign done_e = busy_q && !ffc_start_i && (short_end || none);",
+        "assign done_e = busy_q && !done_q && !ffc_start_i && (refreshed || short_end || none);",
+        "assign done_e = busy_q && !done_q && !ffc_start_i && (short_end || none);",
         "FFC_STATUS.done and IRQ_STATUS.ffc_done not raised by the refresh's write-back",
         **_AXF),
     # The fork's coefficient buffer bypassed (the wrapper before session 31's fix): the same
