@@ -22,6 +22,7 @@ as the latest summary of these sources (:func:`cached_summary`, which the report
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import tempfile
@@ -472,15 +473,17 @@ def _drop(patterns: str) -> str:
     return f"delete t:$check r:FLAVOR=assert %i {sel} %i"
 
 
-def _prepare(proof: Proof, fault: Fault | None, work: Path
+def _prepare(proof: Proof, fault: Fault | None, work: Path, *, links: bool = False
              ) -> tuple[dict[str, int], list[Path], Path]:
     """The parameters, the model's sources (the fault planted in a copy of hdl/ under
-    ``work``, the generated map there) and the result's cache file of a proof or fault."""
+    ``work``, the generated map there) and the result's cache file of a proof or fault
+    (``links``: the copy's unchanged files are links, enough for the key)."""
     params = proof.parameters()
     hdl = None
     if fault is not None:
         hdl = work / "hdl"
-        shutil.copytree(HDL_DIR, hdl, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+        shutil.copytree(HDL_DIR, hdl, ignore=shutil.ignore_patterns("*.py", "__pycache__"),
+                        copy_function=os.symlink if links else shutil.copy2)
         file, changes = fault.change()
         text = (hdl / file).read_text()
         for find, replace in changes:
@@ -490,6 +493,7 @@ def _prepare(proof: Proof, fault: Fault | None, work: Path
                                 f"times in {file} (expected once); update "
                                 f"irnuc/verif/formal.py")
             text = text.replace(find, replace)
+        (hdl / file).unlink()  # a link's target is the RTL itself: never written through
         (hdl / file).write_text(text)
     generated = []
     if proof.regmap:
@@ -670,7 +674,7 @@ def current_results(proofs: Sequence[Proof] = PROOFS, faults: Sequence[Fault] = 
                                             *((by_id[f.proof], f) for f in faults)]):
             work = Path(tmp) / str(k)
             work.mkdir()
-            _, _, cache = _prepare(proof, fault, work)
+            _, _, cache = _prepare(proof, fault, work, links=True)
             res = read_cached_json(cache) if cache.is_file() else None
             if isinstance(res, dict):
                 found.append(res)

@@ -71,7 +71,9 @@ def _suite_digest() -> str:
     return files_digest(files + sorted(SIM_HDL_DIR.glob("*.sv")))
 
 
-def _mutant_key(m: Mutant) -> str:
+def _mutant_key(m: Mutant, digests: tuple[str, str] | None = None) -> str:
+    """The cache key of a mutant's result (``digests``: the RTL's and the suite's, computed
+    once for many mutants)."""
     d = asdict(m)
     if not d["also"]:
         del d["also"]  # keys of one-site mutants as before the field existed
@@ -83,7 +85,8 @@ def _mutant_key(m: Mutant) -> str:
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
         if d["file"] == PKG_FILE:
             d["package_check"] = PKG_SUITE  # the verdict includes the package check
-    return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": d})
+    rtl, suite = digests or (rtl_digest(), _suite_digest())
+    return digest({"rtl": rtl, "suite": suite, "mutant": d})
 
 
 @dataclass
@@ -358,6 +361,32 @@ def cached_summary() -> dict | None:
     return read_cached_json(cache_dir("mutate") / f"summary-{rtl_digest()}.json")
 
 
+def cached_results(mutants: Sequence[Mutant]) -> tuple[list[dict], list[str]]:
+    """The cached result of each mutant on the current RTL and suite sources, nothing
+    run: (the results found, the ids without one)."""
+    digests = (rtl_digest(), _suite_digest())
+    found, missing = [], []
+    for m in mutants:
+        res = read_cached_json(cache_dir("mutate", "mutants")
+                               / f"{m.id}-{_mutant_key(m, digests)}.json")
+        if isinstance(res, dict):
+            found.append(res)
+        else:
+            missing.append(m.id)
+    return found, missing
+
+
+def current_results() -> dict:
+    """The catalogue's campaign as the cache holds it for the current sources: every
+    mutant's result on exactly these sources (however many ``irnuc mutate --only`` runs
+    produced them), ``missing`` the ones without (never counted), ``complete`` when none
+    is; the counts and score of :func:`summarize` over the ones found."""
+    found, missing = cached_results(CATALOGUE)
+    summary = summarize(found)
+    summary |= {"missing": missing, "complete": not missing}
+    return summary
+
+
 # ---- several configurations ---------------------------------------------------------------
 
 def elaborates_differently(m: Mutant, cfg, hdl_root: Path | None = None) -> bool:
@@ -476,6 +505,19 @@ def run_per_configuration(mutants: Sequence[Mutant], configs: Sequence, *,
                         if killed or survived else None}}
 
 
-__all__ = ["CATALOGUE", "SAMPLE", "Mutant", "cached_summary", "catalogue", "configurations",
-           "elaborates_differently", "rtl_digest", "run_mutant", "run_mutants",
-           "run_per_configuration", "summarize"]
+__all__ = [
+    "CATALOGUE",
+    "SAMPLE",
+    "Mutant",
+    "cached_results",
+    "cached_summary",
+    "catalogue",
+    "configurations",
+    "current_results",
+    "elaborates_differently",
+    "rtl_digest",
+    "run_mutant",
+    "run_mutants",
+    "run_per_configuration",
+    "summarize",
+]
