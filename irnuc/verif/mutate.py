@@ -13,11 +13,12 @@ of ``cocotb_tests/tb_top.py``, one simulation) on the mutant's configuration:
   the mutant from the design at the ports of ``nuc_dpc_top``;
 * **invalid**: the mutant did not build (a catalogue error, not a kill; not counted).
 
-Results are cached in the irnuc cache by the digest of the RTL sources, the mutant and
-the testbench sources; :func:`cached_summary` returns the latest campaign of the current
-RTL sources (the report shows it). Mutants run on the sweep's executor (worker processes,
-in-process, or a Dask cluster). Mutation testing runs testbenches, so it sits above them
-(the ``irnuc.verif`` layer, which imports the testbench it runs).
+Results are cached in the irnuc cache by the digest of the RTL sources the mutant's top
+elaborates, the mutant and the testbench sources; :func:`current_results` gathers each
+catalogue mutant's result on the current sources (the report shows it). Mutants run on
+the sweep's executor (worker processes, in-process, or a Dask cluster). Mutation testing
+runs testbenches, so it sits above them (the ``irnuc.verif`` layer, which imports the
+testbench it runs).
 """
 
 from __future__ import annotations
@@ -71,9 +72,18 @@ def _suite_digest() -> str:
     return files_digest(files + sorted(SIM_HDL_DIR.glob("*.sv")))
 
 
-def _mutant_key(m: Mutant, digests: tuple[str, str] | None = None) -> str:
-    """The cache key of a mutant's result (``digests``: the RTL's and the suite's, computed
-    once for many mutants)."""
+def top_digest(top: str) -> str:
+    """Digest of the RTL sources ``top`` elaborates (a mutant's verdict depends on these
+    only: a change elsewhere in hdl/ keeps its cached result)."""
+    from irnuc.cosim.sources import hdl_sources
+
+    return files_digest(hdl_sources(top))
+
+
+def _mutant_key(m: Mutant, suite: str | None = None, tops: dict[str, str] | None = None
+                ) -> str:
+    """The cache key of a mutant's result: the RTL its top elaborates, the suite's sources,
+    the mutant (``suite``, ``tops``: digests computed once for many mutants)."""
     d = asdict(m)
     if not d["also"]:
         del d["also"]  # keys of one-site mutants as before the field existed
@@ -85,8 +95,8 @@ def _mutant_key(m: Mutant, digests: tuple[str, str] | None = None) -> str:
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
         if d["file"] == PKG_FILE:
             d["package_check"] = PKG_SUITE  # the verdict includes the package check
-    rtl, suite = digests or (rtl_digest(), _suite_digest())
-    return digest({"rtl": rtl, "suite": suite, "mutant": d})
+    rtl = (tops or {}).get(m.top) or top_digest(m.top)
+    return digest({"rtl": rtl, "suite": suite or _suite_digest(), "mutant": d})
 
 
 @dataclass
@@ -364,11 +374,12 @@ def cached_summary() -> dict | None:
 def cached_results(mutants: Sequence[Mutant]) -> tuple[list[dict], list[str]]:
     """The cached result of each mutant on the current RTL and suite sources, nothing
     run: (the results found, the ids without one)."""
-    digests = (rtl_digest(), _suite_digest())
+    suite = _suite_digest()
+    tops = {top: top_digest(top) for top in {m.top for m in mutants}}
     found, missing = [], []
     for m in mutants:
         res = read_cached_json(cache_dir("mutate", "mutants")
-                               / f"{m.id}-{_mutant_key(m, digests)}.json")
+                               / f"{m.id}-{_mutant_key(m, suite, tops)}.json")
         if isinstance(res, dict):
             found.append(res)
         else:
@@ -520,4 +531,5 @@ __all__ = [
     "run_mutants",
     "run_per_configuration",
     "summarize",
+    "top_digest",
 ]
