@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -58,6 +59,25 @@ def test_every_configuration_is_proved() -> None:
     assert all(p.parameters()["MaxWidth"] == formal.PROOF_SIZE[0] for p in top.values())
     with pytest.raises(ValueError, match="--only nope: no such proof or planted fault"):
         formal.select(["nope"])
+
+
+def test_harness_takes_every_register_file_parameter() -> None:
+    """fv_axil_regs declares and passes on every parameter the register file takes on any
+    configuration: a parameter the harness lacks is silently left at the design's default
+    (tc_housing's HousingReadingRegBits / HRefRegBits were: H_REF absent from the proved
+    register file while the map had it, found by axil_regmap_tchousing14's a_pending)."""
+    from irnuc.cosim.sources import register_file_parameters
+    from irnuc.nuc_fixed import load_pipeline
+
+    text = (fv.FORMAL_DIR / "fv_axil_regs.sv").read_text()
+    declared = set(re.findall(r"parameter\s+int\s+unsigned\s+(\w+)", text))
+    passed = set(re.findall(r"\.(\w+)\(\1\)", text))
+    for name in formal._configs():
+        cfg = load_pipeline(name).replace(max_width=formal.PROOF_SIZE[0],
+                                          max_height=formal.PROOF_SIZE[1])
+        params = set(register_file_parameters(cfg))
+        assert params <= declared, (name, sorted(params - declared))
+        assert params <= passed, (name, sorted(params - passed))
 
 
 def test_labels_of_an_smtbmc_log() -> None:

@@ -68,7 +68,7 @@ TOP_BUDGET = 300.0
 #: Longer budgets for some configurations: ffc14 and table14, where the top's proofs found
 #: defects, checked past their first pixel out; drift14's and tcffc14's covers, which need
 #: more than 64 steps (their searches stopped by the budget, not by the cap).
-TOP_BUDGETS: dict[str, float] = {"ffc14": 900.0, "table14": 900.0}
+TOP_BUDGETS: dict[str, float] = {}
 TOP_COVER_BUDGETS: dict[str, float] = {"drift14": 300.0, "tcffc14": 300.0}
 #: The register file's assertions inside irnuc_axis_top (its own checks, the top's AXI4-Lite
 #: checker on s_axil and the harness's slave rules): s_axil is the register file's port,
