@@ -275,23 +275,36 @@ CEX = "cex.aiw"
 _PDR_FRAME = re.compile(r"(?:asserted|failed|fails) in frame (\d+)", re.I)
 
 
-def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = TIMEOUT
-        ) -> Check:
-    """ABC's property-directed reachability on the AIGER model: ``proved``, or ``failed``
-    with the frame of the counterexample (no labels and no trace: see :func:`check`)."""
+def _run_abc(aig: str | os.PathLike, commands: str, workdir: str | os.PathLike, name: str,
+             engine: str, depth: int | None, timeout: float
+             ) -> tuple[str, float, int, Path] | Check:
+    """Run the wheel's yosys-abc on the AIGER model ``aig`` (read, folded, strashed) then
+    ``commands``, in ``workdir`` with the log ``<name>.log``: (the log's text, seconds, the
+    exit status, the log), or the ``timeout`` Check of ``engine`` when it ran out first."""
     wd = Path(workdir)
-    log = wd / "pdr.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; pdr; print_status; "
-              f"write_cex -a {CEX}")
+    wd.mkdir(parents=True, exist_ok=True)
+    log = wd / f"{name}.log"
+    script = f"read_aiger {Path(aig).resolve()}; fold; strash; {commands}"
     t0 = time.perf_counter()
     try:
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
                          single_process=True)
     except ChildTimeout:
-        return Check("pdr", "timeout", None, round(time.perf_counter() - t0, 2), log=str(log),
-                     message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+        return Check(engine, "timeout", depth, round(time.perf_counter() - t0, 2),
+                     log=str(log), message=f"no result in {timeout:g} s")
+    return (log.read_text(errors="replace"), round(time.perf_counter() - t0, 2),
+            proc.returncode, log)
+
+
+def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = TIMEOUT
+        ) -> Check:
+    """ABC's property-directed reachability on the AIGER model: ``proved``, or ``failed``
+    with the frame of the counterexample (no labels and no trace: see :func:`check`)."""
+    out = _run_abc(aig, f"pdr; print_status; write_cex -a {CEX}", workdir, "pdr", "pdr",
+                   None, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     if "Property proved" in text or "Problem is UNSATISFIABLE" in text:
         return Check("pdr", "proved", None, seconds, log=str(log))
     m = _PDR_FRAME.search(text)
@@ -299,7 +312,7 @@ def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = 
         return Check("pdr", "failed", None, seconds, step=int(m.group(1)) if m else None,
                      log=str(log))
     return Check("pdr", "error", None, seconds, log=str(log),
-                 message=f"yosys-abc pdr ended without a verdict (exit {proc.returncode}): "
+                 message=f"yosys-abc pdr ended without a verdict (exit {rc}): "
                          + _tail(log, 8))
 
 
@@ -329,20 +342,11 @@ def dprove(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float
     model with :func:`bmc3` to that frame for a trace), ``timeout`` or ``error``. On a
     miter of two copies of irnuc_axis_top (about 5000 flops each) that differ in one bit,
     ``scorr`` merges every flop in about 30 s where PDR gave no verdict in 10 minutes."""
-    wd = Path(workdir)
-    wd.mkdir(parents=True, exist_ok=True)
-    log = wd / "dprove.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; scorr; print_stats; dprove; "
-              f"print_status")
-    t0 = time.perf_counter()
-    try:
-        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
-                         single_process=True)
-    except ChildTimeout:
-        return Check("dprove", "timeout", None, round(time.perf_counter() - t0, 2),
-                     log=str(log), message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+    out = _run_abc(aig, "scorr; print_stats; dprove; print_status", workdir, "dprove",
+                   "dprove", None, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     status = _STATUS.findall(text)
     if status and status[-1] == "1":
         return Check("dprove", "proved", None, seconds, log=str(log))
@@ -350,7 +354,7 @@ def dprove(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float
     if status and status[-1] == "0" and m:
         return Check("dprove", "failed", None, seconds, step=int(m.group(1)), log=str(log))
     return Check("dprove", "error", None, seconds, log=str(log),
-                 message=f"yosys-abc dprove ended without a verdict (exit {proc.returncode}): "
+                 message=f"yosys-abc dprove ended without a verdict (exit {rc}): "
                          + _tail(log, 8))
 
 
@@ -378,19 +382,11 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
     than yosys-smtbmc with yices to the same depth. ``budget`` (seconds, ABC's ``-T``):
     when it runs out first, ``passed`` to the frames finished (``depth`` that bound,
     ``wanted`` the one asked): no counterexample of that length or shorter exists."""
-    wd = Path(workdir)
-    log = wd / "bmc3.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; "
-              f"bmc3 -F {int(depth)}{_budget(budget)}; print_status; write_cex -a {CEX}")
-    t0 = time.perf_counter()
-    try:
-        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
-                         single_process=True)
-    except ChildTimeout:
-        return Check("bmc3", "timeout", depth, round(time.perf_counter() - t0, 2),
-                     log=str(log), message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+    out = _run_abc(aig, f"bmc3 -F {int(depth)}{_budget(budget)}; print_status; "
+                        f"write_cex -a {CEX}", workdir, "bmc3", "bmc3", depth, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     m = _BMC3_FAIL.search(text)
     if m:
         # The failed output by its label (the model's ywmap): no replay needed for it.
@@ -410,7 +406,7 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
                      message=f"bounded to {reached} steps: the {depth}-step bound not "
                              f"reached in the {budget:g}-s budget")
     return Check("bmc3", "error", depth, seconds, log=str(log),
-                 message=f"yosys-abc bmc3 ended without a verdict (exit {proc.returncode}): "
+                 message=f"yosys-abc bmc3 ended without a verdict (exit {rc}): "
                          + _tail(log, 8))
 
 
@@ -422,29 +418,21 @@ def bmc3_covers(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, 
     search stopped there, ``depth`` the frames finished, ``wanted`` the bound asked). One
     run for all covers; minimal's top reaches its five in about a second where yosys-smtbmc
     takes minutes."""
-    wd = Path(workdir)
-    wd.mkdir(parents=True, exist_ok=True)
-    log = wd / "cover3.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; "
-              f"bmc3 -a -F {int(depth)}{_budget(budget)}; print_status")
-    t0 = time.perf_counter()
-    try:
-        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
-                         single_process=True)
-    except ChildTimeout:
-        return Check("cover", "timeout", depth, round(time.perf_counter() - t0, 2),
-                     log=str(log), message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+    out = _run_abc(aig, f"bmc3 -a -F {int(depth)}{_budget(budget)}; print_status", workdir,
+                   "cover3", "cover", depth, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     labels = aiger_labels(aig)
     if not labels:
         return Check("cover", "error", depth, seconds, log=str(log),
-                     message=f"the cover model has no covers (exit {proc.returncode})")
+                     message=f"the cover model has no covers (exit {rc})")
     covers = {labels[int(i)]: int(f) for i, f in _BMC3_OUTPUT.findall(text)
               if int(i) < len(labels)}
     missing = [lb for lb in labels if lb not in covers]
     wanted, reached = None, depth
-    if missing and budget and _BMC3_BUDGET.search(text):
+    if missing and budget and _frames_done(text) < depth:
+        # stopped by the budget (bmc3 -a says only "... after N frames")
         wanted, reached = depth, _frames_done(text)
     return Check("cover", "uncovered" if missing else "covered", reached, seconds,
                  log=str(log), covers=covers, wanted=wanted,

@@ -546,14 +546,6 @@ def run_proof(proof: Proof, fault: Fault | None = None, *, use_cache: bool = Tru
                                       covers=True)
             cover = fv.bmc3_covers(cmodels["aig"], proof.cover, work / "cover",
                                    budget=proof.cover_budget or None)
-            if cover.status == "uncovered" and cover.wanted is None and proof.cover_budget:
-                # bmc3 -a stopped by its budget says only "... after N frames"
-                done = fv._frames_done(Path(cover.log).read_text(errors="replace"))
-                if done < proof.cover:
-                    cover.wanted, cover.depth = proof.cover, done
-                    cover.message = cover.message.replace(
-                        f"in {proof.cover} steps", f"in {done} steps (the "
-                        f"{proof.cover_budget:g}-s budget)")
             if cover.status == "covered":
                 depth = max(cover.covers.values()) + 1
         models = fv.write_models(srcs, proof.formal_top, params, work / "model",
