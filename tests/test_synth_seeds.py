@@ -213,3 +213,44 @@ def test_report_text_of_a_seed_sweep() -> None:
     assert seeds_text(sweep) == (" (best of 3 placer seeds, seed 2; worst 139.2 MHz, 1 of 3 "
                                  "at the target)")
     assert seeds_text(sweep, True).endswith("; seed 1: 148.0, seed 2: 161.5, seed 3: 139.2)")
+
+
+def test_prepare_netlists_makes_the_missing_ones_then_placements_reuse_them(
+        tmp_path, monkeypatch) -> None:
+    """Two designs (the wrapper and the bare core of one configuration): their netlists made
+    first (in-process here), then nothing more to make; a seed sweep of either places on
+    that netlist without synthesizing again; one design alone is left to its placements."""
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    made = []
+
+    def xc7(sources, top, params, workdir):
+        made.append(("xc7", top))
+        return {**{k: 1 for k in synth.XC7_KEYS}, "cells": {"LUT4": 1}, "seconds": 0.1,
+                "log": "x"}
+
+    def ecp5(sources, top, params, workdir):
+        made.append(("ecp5", top))
+        workdir.mkdir(parents=True, exist_ok=True)
+        net = workdir / f"{top}.json"
+        net.write_text('{"modules": {}}')
+        return net, {**{k: 2 for k in synth.ECP5_KEYS}, "cells": {"LUT4": 2},
+                     "seconds": 0.1, "log": "e"}
+
+    def pnr(net, workdir, **kw):
+        return {"fmax_mhz": 150.0, "utilization": {}, "critical_path": [],
+                "timing_weight": 30, "timing_ripup": True, "out_of_context": False,
+                "seconds": 0.1}
+
+    monkeypatch.setattr(synth, "synth_xc7", xc7)
+    monkeypatch.setattr(synth, "synth_ecp5", ecp5)
+    monkeypatch.setattr(synth, "place_route_ecp5", pnr)
+    monkeypatch.setattr(synth, "tool_versions", lambda: {"yosys": "stub"})
+    cfg = load_pipeline("tcgain14")
+    designs = [(cfg, "irnuc_axis_top"), (cfg, synth.default_top(cfg))]
+    assert synth.prepare_netlists(designs, workers=0) == 2
+    assert sorted(made) == sorted([("xc7", t) for _, t in designs] + [("ecp5", t) for _, t in designs])
+    assert synth.prepare_netlists(designs, workers=0) == 0
+    synth.synth_seeds(cfg, top="irnuc_axis_top", seeds=2, workers=0)
+    assert len(made) == 4  # placed on the prepared netlist
+    assert synth.prepare_netlists([(load_pipeline("typical14"), None)], workers=0) == 0
+    assert len(made) == 4
