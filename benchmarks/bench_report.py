@@ -18,8 +18,13 @@ Runs, each in a subprocess with its own output folder:
    ``--no-cosim``: the report's compute-only part (frames, calibration, sweep, cached
    syntheses, paper, temperature, cached precision), to normalize the co-simulation's share.
 
-Each run's exit status, wall time, the phases of its ``summary.json`` and the parts of the
-``temperature`` phase (its sweep, anchors, synthesis, co-simulation, figures) are reported;
+Each run's exit status, wall time, CPU time (``cpu_s``: user + system of the report and
+every process it waited for), the phases of its ``summary.json`` (wall ``phases_s`` and CPU
+``phases_cpu_s``, the report's own count over its live process tree) and the parts of the
+``temperature`` phase (its sweep, anchors, synthesis, co-simulation, figures) are reported.
+On a shared machine the wall times measure the neighbours as much as the report; the CPU
+times do not: ``cpu_bound_2cores_s`` (the phases' CPU / 2) is what the run needs at least
+on a quiet 2-core machine, and what it takes there when every phase keeps both cores busy;
 the last line printed is one JSON object with ``warm_goal_ratio`` (warm total / 90 s),
 ``quick_goal_ratio`` (quick total / 30 s), ``cold_goal_ratio`` (cold total / 10 min: the
 goal holds for a quiet machine, ``--hog 0``), ``quick_cold_goal_ratio`` (quick_cold total /
