@@ -111,14 +111,14 @@ def test_synth_configs_rtl_changed_between_seeds(monkeypatch) -> None:
         synth.synth_configs([load_pipeline("minimal")], workers=0, seeds=2)
 
 
-def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch) -> None:
-    """The cache: the netlist keyed without the seed (synthesized once for every seed, and
-    not again for another speed grade), each placement under its own key with the seed."""
-    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
-    counts = {"xc7": 0, "ecp5": 0, "pnr": []}
+def _stub_flow(monkeypatch) -> dict:
+    """Yosys and nextpnr stubbed: counts of the netlists made (and of which tops), the
+    placements (seed, speed grade), each on the cached netlist; Fmax 140 + seed."""
+    counts: dict = {"xc7": 0, "ecp5": 0, "pnr": [], "tops": []}
 
     def xc7(sources, top, params, workdir):
         counts["xc7"] += 1
+        counts["tops"].append(top)
         return {**{k: 1 for k in synth.XC7_KEYS}, "cells": {"LUT4": 1}, "seconds": 0.1,
                 "log": "x"}
 
@@ -141,6 +141,14 @@ def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch)
     monkeypatch.setattr(synth, "synth_ecp5", ecp5)
     monkeypatch.setattr(synth, "place_route_ecp5", pnr)
     monkeypatch.setattr(synth, "tool_versions", lambda: {"yosys": "stub"})
+    return counts
+
+
+def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch) -> None:
+    """The cache: the netlist keyed without the seed (synthesized once for every seed, and
+    not again for another speed grade), each placement under its own key with the seed."""
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    counts = _stub_flow(monkeypatch)
     cfg = load_pipeline("minimal")
     r = synth.synth_seeds(cfg, seeds=3, workers=0)
     assert (counts["xc7"], counts["ecp5"]) == (1, 1)
@@ -221,36 +229,13 @@ def test_prepare_netlists_makes_the_missing_ones_then_placements_reuse_them(
     first (in-process here), then nothing more to make; a seed sweep of either places on
     that netlist without synthesizing again; one design alone is left to its placements."""
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
-    made = []
-
-    def xc7(sources, top, params, workdir):
-        made.append(("xc7", top))
-        return {**{k: 1 for k in synth.XC7_KEYS}, "cells": {"LUT4": 1}, "seconds": 0.1,
-                "log": "x"}
-
-    def ecp5(sources, top, params, workdir):
-        made.append(("ecp5", top))
-        workdir.mkdir(parents=True, exist_ok=True)
-        net = workdir / f"{top}.json"
-        net.write_text('{"modules": {}}')
-        return net, {**{k: 2 for k in synth.ECP5_KEYS}, "cells": {"LUT4": 2},
-                     "seconds": 0.1, "log": "e"}
-
-    def pnr(net, workdir, **kw):
-        return {"fmax_mhz": 150.0, "utilization": {}, "critical_path": [],
-                "timing_weight": 30, "timing_ripup": True, "out_of_context": False,
-                "seconds": 0.1}
-
-    monkeypatch.setattr(synth, "synth_xc7", xc7)
-    monkeypatch.setattr(synth, "synth_ecp5", ecp5)
-    monkeypatch.setattr(synth, "place_route_ecp5", pnr)
-    monkeypatch.setattr(synth, "tool_versions", lambda: {"yosys": "stub"})
+    counts = _stub_flow(monkeypatch)
     cfg = load_pipeline("tcgain14")
     designs = [(cfg, "irnuc_axis_top"), (cfg, synth.default_top(cfg))]
     assert synth.prepare_netlists(designs, workers=0) == 2
-    assert sorted(made) == sorted([("xc7", t) for _, t in designs] + [("ecp5", t) for _, t in designs])
+    assert sorted(counts["tops"]) == sorted(t for _, t in designs) and counts["ecp5"] == 2
     assert synth.prepare_netlists(designs, workers=0) == 0
     synth.synth_seeds(cfg, top="irnuc_axis_top", seeds=2, workers=0)
-    assert len(made) == 4  # placed on the prepared netlist
+    assert counts["xc7"] == 2 and len(counts["pnr"]) == 2  # placed on the prepared netlist
     assert synth.prepare_netlists([(load_pipeline("typical14"), None)], workers=0) == 0
-    assert len(made) == 4
+    assert counts["xc7"] == 2
