@@ -231,7 +231,7 @@ def test_band_radiance_at_one_temperature_matches_the_checked_api_and_mpmath() -
     half = band_radiance_at((8e-6, 14e-6), emissivity=0.5)
     assert half(300.0) == float(band_radiance(300.0, (8e-6, 14e-6), emissivity=0.5))
     for bad in (0.0, -1.0, float("nan"), 2e9):
-        with pytest.raises(ConfigError, match="T = .* outside the allowed range"):
+        with pytest.raises(ConfigError, match=r"T = .* outside the allowed range"):
             band_radiance_at()(bad)
     with pytest.raises(ConfigError, match="band"):
         band_radiance_at((14e-6, 8e-6))
