@@ -744,6 +744,33 @@ def _netlist_job(cfg_dict: dict, options: dict) -> None:
     synth_netlist(sources, top, params, use_cache=options.get("use_cache", True))
 
 
+def prepare_netlists(designs: Sequence[tuple], *, workers: int = 2,
+                     scheduler: str | None = None, **options) -> int:
+    """The netlists of several (configuration, top) designs synthesized side by side on
+    the executor before their placements, those not cached yet (no executor when all
+    are): without it, the first placer seeds of each design wait on one another for its
+    one netlist, one core idle. ``options``: :func:`synth_config`'s (frame limits). Returns
+    how many were synthesized."""
+    from irnuc.common.cache import cache_dir
+    from irnuc.common.executor import open_executor
+
+    todo = []
+    for cfg, top in designs:
+        o = {**options, "top": top}
+        _, t, params, sources, _ = _synth_design(
+            cfg, top, o.get("max_width"), o.get("max_height"), o.get("speed", ECP5_SPEED_DEFAULT),
+            o.get("freq_mhz", TARGET_MHZ), 1, o.get("out_of_context", False))
+        folder = cache_dir("synth") / f"net-{_netlist_key(sources, t, params)}"
+        if not ((folder / "netlist.json").is_file() and (folder / "ecp5" / f"{t}.json").is_file()):
+            todo.append((cfg, o))
+    if len(todo) < 2:  # one netlist: its first placement job makes it, no wait
+        return 0
+    with open_executor(workers, scheduler) as handle:
+        for fut in [handle.executor.submit(_netlist_job, c.to_dict(), o) for c, o in todo]:
+            fut.result()
+    return len(todo)
+
+
 def synth_configs(cfgs: Sequence, *, workers: int = 2, scheduler: str | None = None,
                   progress=None, seeds: int = 1, **options) -> list[dict]:
     """:func:`synth_config` of several configurations on the sweep's executor (worker

@@ -180,37 +180,58 @@ def seal_manifest(manifest: dict[str, object]) -> dict[str, object]:
 #: the methods that read the FPA sensor.
 SENSOR_CODE_FIELDS = ("bits", "lsb_K", "zero_K", "offset_K")
 
+#: The housing sensor's: the FPA sensor's and the node it sits on (a sensor on the lens
+#: reads another temperature than one on the housing wall).
+HOUSING_SENSOR_CODE_FIELDS = (*SENSOR_CODE_FIELDS, "node")
+
+#: Per sensor kind (the manifest's key is ``<kind>_sensor``): the per-frame field the
+#: method reads, the fields compared and the sensor's name in messages.
+_SENSOR_KINDS = {
+    "fpa": ("fpa_reading", SENSOR_CODE_FIELDS, "FPA sensor"),
+    "housing": ("housing_reading", HOUSING_SENSOR_CODE_FIELDS, "housing sensor"),
+}
+
 
 def sensor_record(sensor: Any) -> dict[str, object] | None:
-    """The manifest's ``fpa_sensor``: every setting of a
-    :class:`~irnuc.model.fpa_sensor.FpaSensor` (None: not known)."""
+    """The manifest's ``fpa_sensor`` / ``housing_sensor``: every setting of a
+    :class:`~irnuc.model.fpa_sensor.FpaSensor` or ``HousingSensor`` (None: not known)."""
     if sensor is None:
         return None
     from dataclasses import asdict
 
-    return {k: (int(v) if k == "bits" else float(v)) for k, v in asdict(sensor).items()}
+    def value(k: str, v: object) -> object:
+        if k == "bits":
+            return int(v)  # type: ignore[call-overload]
+        return v if isinstance(v, str) else float(v)  # type: ignore[arg-type]
+
+    return {k: value(k, v) for k, v in asdict(sensor).items()}
 
 
 def check_sensor(manifest_sensor: object, sensor: Any, cfg: PipelineConfig, where: str,
-                 coeffs: str) -> None:
-    """:class:`MemImageError` when frames read by ``sensor`` would give another FPA reading
-    than the calibration's sensor for the same temperature (``cfg``'s method reads it)."""
+                 coeffs: str, kind: str = "fpa") -> None:
+    """:class:`MemImageError` when frames read by ``sensor`` would give another reading
+    than the calibration's sensor for the same temperature (``cfg``'s method reads it).
+
+    ``kind``: ``"fpa"`` (the on-die sensor, ``fpa_reading``) or ``"housing"`` (the
+    housing sensor, ``housing_reading``; its node is compared too).
+    """
     from irnuc.nuc_fixed.method_top import needs
 
-    if "fpa_reading" not in needs(cfg):
+    field_name, code_fields, label = _SENSOR_KINDS[kind]
+    if field_name not in needs(cfg):
         return
     if not isinstance(manifest_sensor, dict):
-        raise MemImageError(f"{coeffs}: the manifest does not record the FPA sensor of the "
+        raise MemImageError(f"{coeffs}: the manifest does not record the {label} of the "
                             f"calibration, which method {cfg.method!r} reads; calibrate again "
                             "with this irnuc")
     now = sensor_record(sensor) or {}
-    diff = [k for k in SENSOR_CODE_FIELDS if manifest_sensor.get(k) != now.get(k)]
+    diff = [k for k in code_fields if manifest_sensor.get(k) != now.get(k)]
     if diff:
         def show(d: dict) -> str:
             return ", ".join(f"{k} = {d.get(k)!r}" for k in diff)
 
         raise MemImageError(
-            f"{where}: the frames' FPA sensor ({show(now)}) is not the calibration's in "
+            f"{where}: the frames' {label} ({show(now)}) is not the calibration's in "
             f"{coeffs} ({show(manifest_sensor)}): the same temperature reads another code, "
             f"and method {cfg.method!r} would apply the wrong temperature terms; calibrate "
             "with this sensor")
@@ -218,11 +239,12 @@ def check_sensor(manifest_sensor: object, sensor: Any, cfg: PipelineConfig, wher
 
 def write_memimage(directory: str | os.PathLike, words: np.ndarray,
                    cfg: PipelineConfig | str, extra_files: tuple[str, ...] = (),
-                   fpa_sensor: Any = None) -> dict[str, object]:
+                   fpa_sensor: Any = None, housing_sensor: Any = None) -> dict[str, object]:
     """Write ``coeffs.hex``, ``coeffs.bin`` and ``manifest.json`` into ``directory``.
 
-    The manifest records every format field (and their SHA-256), the FPA sensor of the
-    calibration (``fpa_sensor``, a :class:`~irnuc.model.fpa_sensor.FpaSensor`), the
+    The manifest records every format field (and their SHA-256), the FPA and housing
+    sensors of the calibration (``fpa_sensor``, a :class:`~irnuc.model.fpa_sensor.FpaSensor`;
+    ``housing_sensor``, a ``HousingSensor``), the
     SHA-256 of every file it names (the two memory images and ``extra_files``, names of
     files already in ``directory``, e.g. the calibration's ``coeffs.npz``) and the SHA-256
     of all its other fields (:func:`seal_manifest`). Returns the manifest.
@@ -255,6 +277,7 @@ def write_memimage(directory: str | os.PathLike, words: np.ndarray,
         "sha256": files[BIN_NAME],
         "files": files,
         "fpa_sensor": sensor_record(fpa_sensor),
+        "housing_sensor": sensor_record(housing_sensor),
     }
     seal_manifest(manifest)
     write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())
@@ -509,15 +532,16 @@ def _method_fields(cfg: PipelineConfig) -> dict[str, object]:
 
 
 def write_method_image(directory: str | os.PathLike, coeffs: Any,
-                       extra_files: tuple[str, ...] = (), fpa_sensor: Any = None
-                       ) -> dict[str, object]:
+                       extra_files: tuple[str, ...] = (), fpa_sensor: Any = None,
+                       housing_sensor: Any = None) -> dict[str, object]:
     """Write the memory images of a method's coefficients and their manifest.
 
     ``coeffs`` is a :class:`~irnuc.nuc_fixed.method_top.MethodCoefficients`. Plain
     two-point configurations write version 1 (:func:`write_memimage`); every other method
     version 2: ``NAME.hex`` and ``NAME.bin`` per calibration memory and a manifest with
     the method, its formats, every memory's layout and file hashes, the registers' values,
-    width, height, the FPA sensor of the calibration (``fpa_sensor``), the SHA-256 of
+    width, height, the FPA and housing sensors of the calibration (``fpa_sensor``,
+    ``housing_sensor``), the SHA-256 of
     every file (the images and ``extra_files``) and of every other field
     (:func:`seal_manifest`).
     """
@@ -527,7 +551,8 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
     coeffs.check()
     words = coeffs.words()
     if cfg.plain:
-        return write_memimage(directory, words["coeffs"], cfg, extra_files, fpa_sensor)
+        return write_memimage(directory, words["coeffs"], cfg, extra_files, fpa_sensor,
+                              housing_sensor)
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     h, w = coeffs.shape
@@ -568,6 +593,7 @@ def write_method_image(directory: str | os.PathLike, coeffs: Any,
         "sha256": files[f"{first}.bin"],
         "files": files,
         "fpa_sensor": sensor_record(fpa_sensor),
+        "housing_sensor": sensor_record(housing_sensor),
     }
     seal_manifest(manifest)
     write_bytes_atomic(d / MANIFEST_NAME, (json.dumps(manifest, indent=2) + "\n").encode())

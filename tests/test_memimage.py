@@ -243,6 +243,49 @@ def test_the_sensor_fields_that_change_the_codes_are_compared() -> None:
         check_sensor(None, base, load_pipeline("tcoffset14"), "frames", "coeffs")
 
 
+def test_the_housing_sensor_is_recorded_and_compared(tmp_path: Path) -> None:
+    """The housing sensor of the calibration is in the manifest and compared for the
+    methods that read it (tc_housing), on every setting that moves its code and on its
+    node (a sensor on the lens reads another temperature); no other method is refused."""
+    from dataclasses import fields, replace
+
+    from irnuc.cocotb_tests.method_stim import random_coefficients
+    from irnuc.model.fpa_sensor import FpaSensor, HousingSensor
+    from irnuc.nuc_fixed.memimage import (
+        HOUSING_SENSOR_CODE_FIELDS,
+        check_sensor,
+        read_calibration,
+        write_method_image,
+    )
+
+    base = HousingSensor()
+    temps = np.linspace(280.0, 320.0, 41)
+    changes = {"bits": 12, "lsb_K": 0.02, "zero_K": 220.0, "offset_K": 0.5, "noise_K": 0.1,
+               "lag_s": 5.0, "node": "lens"}
+    assert set(changes) == {f.name for f in fields(HousingSensor)}
+    moves_codes = {k for k, v in changes.items() if k not in ("noise_K", "node")
+                   and not np.array_equal(replace(base, **{k: v}).read(temps), base.read(temps))}
+    assert moves_codes | {"node"} == set(HOUSING_SENSOR_CODE_FIELDS)
+
+    cfg = load_pipeline("tchousing14")
+    c = random_coefficients(cfg, 3, 4, np.random.default_rng(5))
+    write_method_image(tmp_path, c, fpa_sensor=FpaSensor(), housing_sensor=base)
+    _, manifest = read_calibration(tmp_path)
+    rec = manifest["housing_sensor"]
+    assert rec["node"] == "housing" and rec["bits"] == base.bits
+    for k, v in changes.items():
+        other = replace(base, **{k: v})
+        if k in HOUSING_SENSOR_CODE_FIELDS:
+            with pytest.raises(MemImageError, match=f"housing sensor.*{k}"):
+                check_sensor(rec, other, cfg, "frames", "coeffs", kind="housing")
+        else:
+            check_sensor(rec, other, cfg, "frames", "coeffs", kind="housing")
+        for name in ("tcoffset14", "tcffc14", "typical14"):  # they do not read it
+            check_sensor(None, other, load_pipeline(name), "frames", "coeffs", kind="housing")
+    with pytest.raises(MemImageError, match="does not record the housing sensor"):
+        check_sensor(None, base, cfg, "frames", "coeffs", kind="housing")
+
+
 def test_coefficients_are_read_only_for_their_whole_configuration(tmp_path: Path) -> None:
     """--pipeline is compared on every field (formats, method and stages, parameters), not
     the formats only: two-point coefficients were taken for ffc14 and its stage silently

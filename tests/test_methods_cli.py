@@ -182,6 +182,34 @@ def test_correct_without_the_fields_a_method_needs(tmp_path: Path, plan_file: Pa
         assert good.any()
 
 
+def test_correct_refuses_another_housing_sensor(tmp_path: Path, plan_file: Path,
+                                                seq_frames: Path,
+                                                capsys: pytest.CaptureFixture[str]) -> None:
+    """tc_housing's coefficients hold for the housing sensor of the calibration: frames of
+    a sensor on another node (or with another LSB) get a one-line error, not a correction
+    with the wrong housing terms; the FPA-only methods do not look at it."""
+    plan = tmp_path / "plan_housing.toml"
+    plan.write_text(PLAN.replace("[plan]\n", "[plan]\nhousing_offset = [-5.0, 0.0, 5.0]\n"))
+    cal = tmp_path / "cal"
+    assert main(["calibrate", "--plan", str(plan), "--pipeline", "tchousing14", *SMALL,
+                 "--out", str(cal), "-q"]) == 0
+    assert json.loads((cal / "manifest.json").read_text())["housing_sensor"]["node"] == "housing"
+    with np.load(seq_frames) as f:
+        data = dict(f)
+    for key, value, what in (("housing_sensor_node", np.array("lens"), "node = 'lens'"),
+                             ("housing_sensor_lsb_K", np.float64(0.02), "lsb_K = 0.02")):
+        p = tmp_path / f"{key}.npz"
+        np.savez(p, **{**data, key: value})
+        assert main(["correct", "--frames", str(p), "--coeffs", str(cal), "--out",
+                     str(tmp_path / key)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1, err
+        assert f"the frames' housing sensor ({what})" in err
+        assert not (tmp_path / key).exists()
+    assert main(["correct", "--frames", str(seq_frames), "--coeffs", str(cal), "--out",
+                 str(tmp_path / "ok"), "-q"]) == 0
+
+
 def test_unknown_method_in_a_pipeline_file(tmp_path: Path, plan_file: Path,
                                            capsys: pytest.CaptureFixture[str]) -> None:
     from irnuc.nuc_fixed import load_pipeline

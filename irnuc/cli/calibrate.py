@@ -209,7 +209,7 @@ def _run_calibrate(args: argparse.Namespace) -> int:
         # Last: the manifest names and hashes every file above.
         write_memimage(tmp, words, cfg, extra_files=("coeffs.npz", "badpix.csv",
                                                      "summary.json", "summary.txt"),
-                       fpa_sensor=data["fpa_sensor"])
+                       fpa_sensor=data["fpa_sensor"], housing_sensor=data["housing_sensor"])
     say(text.rstrip("\n"))
     say(f"wrote {out}/: coeffs.npz, badpix.csv, coeffs.hex, coeffs.bin, manifest.json, "
         "summary.json, summary.txt")
@@ -273,7 +273,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         points = run_plan(plan, scfg, seed=args.seed)
         source = {"plan": str(args.plan), "sensor": args.sensor, "seed": args.seed,
                   "set": sensor_set}
-        fpa_sensor = plan.fpa_sensor
+        fpa_sensor, housing_sensor = plan.fpa_sensor, plan.housing_sensor
     else:
         work = _work_bytes("calibrate")
         data = load_frames(args.frames, work_per_code=work["per_code"],
@@ -282,7 +282,7 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         _check_fields(data, cfg, f"--frames {args.frames}")
         points = points_from_frames(data, f"--frames {args.frames}")
         source = {"frames_file": str(args.frames)}
-        fpa_sensor = data["fpa_sensor"]
+        fpa_sensor, housing_sensor = data["fpa_sensor"], data["housing_sensor"]
     try:
         cal = calibrate_points(points, cfg, thresholds=th, rounding=args.coeff_rounding,
                                max_saturated=args.max_saturated)
@@ -310,7 +310,8 @@ def _calibrate_method(args: argparse.Namespace, cfg: Any, th: Any, sensor_set: d
         pairs = _dma_images(tmp, c)
         manifest = write_method_image(tmp, c, extra_files=("coeffs.npz", "badpix.csv",
                                                            "summary.json", "summary.txt",
-                                                           *pairs), fpa_sensor=fpa_sensor)
+                                                           *pairs), fpa_sensor=fpa_sensor,
+                                       housing_sensor=housing_sensor)
     say(text.rstrip("\n"))
     images = [n for n in manifest["files"] if n.endswith((".hex", ".bin"))]  # type: ignore[union-attr]
     say(f"wrote {out}/: coeffs.npz, badpix.csv, {', '.join(images)}, manifest.json, "
@@ -420,8 +421,9 @@ def _run_correct(args: argparse.Namespace) -> int:
                         f" (H x W) but the coefficients in {args.coeffs} are "
                         f"{mc.shape[0]} x {mc.shape[1]}")
     _check_fields(data, cfg, f"--frames {args.frames}")
-    check_sensor(manifest.get("fpa_sensor"), data["fpa_sensor"], cfg, f"--frames {args.frames}",
-                 f"--coeffs {args.coeffs}")
+    for kind in ("fpa", "housing"):
+        check_sensor(manifest.get(f"{kind}_sensor"), data[f"{kind}_sensor"], cfg,
+                     f"--frames {args.frames}", f"--coeffs {args.coeffs}", kind=kind)
     fields = {name: np.asarray(data[_FRAME_FIELD_KEYS[name]]) for name in needs(cfg)}
     # the housing reading goes to the golden model the way the FPA's does (tc_housing reads
     # it: _check_fields refused a file without one); a file of format 2 has none of its own
