@@ -17,9 +17,11 @@ harness, which plays the external memory) are given to :func:`run_frames` as a
 from __future__ import annotations
 
 import json
+import re
 import resource
 import tempfile
 import time
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -61,7 +63,8 @@ HARNESS_COMMON = BULK_HARNESS.with_name("harness_common.h")
 
 def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, header: str,
                   header_name: str, name: str, assertions: bool = True,
-                  hdl_dir: Path | None = None) -> Build:
+                  hdl_dir: Path | None = None,
+                  check: Callable[[Path, str], None] | None = None) -> Build:
     """Build (cached) a C++ harness (Verilator ``--cc --exe``) around ``top`` for ``cfg``:
     the recipe of both bulk harnesses (this module's and :mod:`irnuc.cosim.axis_bulk`'s).
 
@@ -70,6 +73,7 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
     ``harness_common.h``, the HDL (``hdl_dir`` instead of ``hdl/``), the parameters and the
     options. ``name`` is the build folder's prefix; the executable is
     ``<build_dir>/<exe>``. ``assertions=False`` leaves the protocol assertions out.
+    ``check(build_dir, top)`` runs on Verilator's output before it is compiled.
     """
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
@@ -91,6 +95,8 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
         # harness_common.h next to itself: a ``-I<build_dir>`` flag would make every build's
         # runtime-object key differ, so each build would compile Verilator's runtime again.
         proc = run_child(cmd, env=verilator_env(), log=log)
+        if proc.returncode == 0 and check is not None:
+            check(build_dir, top)
         if proc.returncode == 0:
             _objcache.seed(build_dir)
             proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk",
@@ -106,6 +112,33 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
                               "params": params, "args": list(FAST_ARGS),
                               "assertions": assertions}, make)
     return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
+
+
+def comb_outputs(model_header: str, root_source: str) -> list[str]:
+    """The output ports a Verilated model assigns in its input-combinational ("ico")
+    region, i.e. that follow an input without a register between them.
+
+    ``model_header`` is the text of ``V<top>.h`` (its ``VL_OUT*(&name, ...)`` ports),
+    ``root_source`` that of ``V<top>___024root__0.cpp`` (its ``___ico_sequent``
+    functions). The bulk harness reads the outputs as the previous rising edge left them
+    (bulk_main.cpp "Evals"), which needs this list empty.
+    """
+    outs = set(re.findall(r"VL_OUT\w*\(&(\w+),", model_header))
+    found: set[str] = set()
+    for body in re.findall(r"___ico_sequent\w*\([^)]*\)\s*\{(.*?)\n\}", root_source, re.S):
+        found |= {n for n in re.findall(r"vlSelfRef\.(\w+)\s*(?:\[[^]]*\]\s*)?=[^=]", body)
+                  if n in outs}
+    return sorted(found)
+
+
+def _check_registered_outputs(build_dir: Path, top: str) -> None:
+    root = build_dir / f"V{top}___024root__0.cpp"
+    comb = comb_outputs((build_dir / f"V{top}.h").read_text(),
+                        root.read_text() if root.is_file() else "")
+    if comb:
+        raise RtlError(f"{top}: output port(s) {', '.join(comb)} follow an input "
+                       "combinationally; the bulk harness needs every output registered "
+                       "(bulk_main.cpp \"Evals\")")
 
 
 def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None,
@@ -139,7 +172,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     tag = {"nuc_dpc_top": "", "method_dpc_top": "-method"}.get(top, "-" + top.split("_")[1])
     return harness_build(cfg, top, BULK_HARNESS, BULK_EXE, header=header,
                          header_name="bulk_top.h", name=f"{cfg.name}-bulk{tag}",
-                         assertions=assertions, hdl_dir=hdl_dir)
+                         assertions=assertions, hdl_dir=hdl_dir,
+                         check=_check_registered_outputs)
 
 
 @dataclass(frozen=True)
