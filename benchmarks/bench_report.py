@@ -18,8 +18,13 @@ Runs, each in a subprocess with its own output folder:
    ``--no-cosim``: the report's compute-only part (frames, calibration, sweep, cached
    syntheses, paper, temperature, cached precision), to normalize the co-simulation's share.
 
-Each run's exit status, wall time, the phases of its ``summary.json`` and the parts of the
-``temperature`` phase (its sweep, anchors, synthesis, co-simulation, figures) are reported;
+Each run's exit status, wall time, CPU time (``cpu_s``: user + system of the report and
+every process it waited for), the phases of its ``summary.json`` (wall ``phases_s`` and CPU
+``phases_cpu_s``, the report's own count over its live process tree) and the parts of the
+``temperature`` phase (its sweep, anchors, synthesis, co-simulation, figures) are reported.
+On a shared machine the wall times measure the neighbours as much as the report; the CPU
+times do not: ``cpu_bound_2cores_s`` (the phases' CPU / 2) is what the run needs at least
+on a quiet 2-core machine, and what it takes there when every phase keeps both cores busy;
 the last line printed is one JSON object with ``warm_goal_ratio`` (warm total / 90 s),
 ``quick_goal_ratio`` (quick total / 30 s), ``cold_goal_ratio`` (cold total / 10 min: the
 goal holds for a quiet machine, ``--hog 0``), ``quick_cold_goal_ratio`` (quick_cold total /
@@ -38,6 +43,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import shutil
 import subprocess
 import sys
@@ -57,20 +63,30 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int) -
     hogs = [subprocess.Popen([sys.executable, "-c", HOG]) for _ in range(hog)]
     try:
         t0 = time.perf_counter()
-        proc = subprocess.run([str(Path(sys.executable).with_name("irnuc")), "report", "-q",
-                               "--out", str(out), *args], env=env, capture_output=True, text=True)
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        proc = subprocess.Popen([str(Path(sys.executable).with_name("irnuc")), "report", "-q",
+                                 "--out", str(out), *args], env=env, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        stdout, stderr = proc.communicate()
         wall = time.perf_counter() - t0
+        # the report's process and every process it waited for (not the hogs: reaped after)
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     finally:
         for h in hogs:
             h.kill()
             h.wait()
     rec: dict = {"run": name, "returncode": proc.returncode, "wall_s": round(wall, 1), "hogs": hog}
+    rec["cpu_s"] = round(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime, 1)
     summary = out / "summary.json"
     if summary.is_file():
         s = json.loads(summary.read_text())
         rec["status"] = s["status"]
         rec["phases_s"] = {k: round(v, 1) for k, v in s["phases"].items()}
-        rec["closing_line"] = proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else ""
+        # CPU seconds per phase (the report's own count, the live process tree included):
+        # with the phase's parallelism (2 cores) a bound on its wall time on a quiet machine
+        rec["phases_cpu_s"] = {k: round(v, 1) for k, v in (s.get("phases_cpu") or {}).items()}
+        rec["cpu_bound_2cores_s"] = round(sum(rec["phases_cpu_s"].values()) / 2, 1)
+        rec["closing_line"] = stdout.strip().splitlines()[-1] if stdout.strip() else ""
         c = s["sections"].get("cosim") or {}
         rec["cosim"] = {k: c.get(k) for k in ("tests", "passed", "failed", "timeout", "pixels",
                                                "mismatches", "build_seconds")}
@@ -83,7 +99,7 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int) -
             "cosim_pixels": (r.get("cosim") or {}).get("pixels_compared"),
             "cosim_mismatches": (r.get("cosim") or {}).get("mismatches")} if r else None
     else:
-        rec["stderr"] = proc.stderr[-2000:]
+        rec["stderr"] = stderr[-2000:]
     print(json.dumps(rec), flush=True)
     return rec
 
@@ -155,6 +171,11 @@ def main() -> None:
         "quick_cold_goal_ratio": round(quick_cold / GOAL_QUICK_COLD_S, 3) if quick_cold else None,
         "warm_vs_baseline": round(warm / base, 3) if warm and base else None,
     }
+    # CPU seconds (process tree) and the quiet 2-core bound of each run that ran
+    for name in got:
+        result[f"{name}_cpu_s"] = field(name, "cpu_s")
+        result[f"{name}_phases_cpu_s"] = field(name, "phases_cpu_s")
+        result[f"{name}_cpu_bound_2cores_s"] = field(name, "cpu_bound_2cores_s")
     print(json.dumps(result))
 
 

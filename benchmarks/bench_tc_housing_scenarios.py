@@ -21,8 +21,21 @@ between states (mK through the corrected image's local responsivity,
 a 300 K scene, FPA and housing 300 K, every noise source). The ratio is tchousing14's worst
 over tcoffset14's, per scenario.
 
+Then issue 36's goal, with the sensor's temporal noise on everywhere
+(``reports/studies/goal.py``): the floor of the linear core term by term (noise-free), the
+residual against the frames averaged at calibration and at each FFC, and on each scenario
+every method of ``goal.Setup`` (tc_housing with tc_gain, no FFC; tcffc14; tc_housing + ffc,
+the golden model's composition) under each FFC policy and shutter length N, calibrated with
+``--cal-frames`` frames per point. ``goal`` in the JSON: per method, policy and N the worst
+residual over both scenarios, the dead time, FFCs per hour, memory and bandwidth; which meet
+0.5 x NETD on every scenario (``meeting``: configurations and the golden composition;
+``meeting_float_what_if``: ``goal.CurvatureCore``, a float core with a curvature term, no
+fixed point, no RTL); ``ratio_best_vs_tcffc14_lepton``: the best built point's worst over
+the shipped configuration's (tcffc14, the Lepton policy, N = 8) in the same run.
+
 Usage: ``python benchmarks/bench_tc_housing_scenarios.py [--scenarios a,b] [--states 16]
-[--rows 24 --cols 32] [--seed 3]``. The last line printed is one JSON object.
+[--rows 48 --cols 64] [--seed 3] [--repeats 24] [--cal-frames 32] [--ffc-frames 8,32]
+[--no-goal]``. The last line printed is one JSON object.
 """
 
 from __future__ import annotations
@@ -36,45 +49,19 @@ import numpy as np
 
 from irnuc.model.fpa_sensor import frame_fields
 from irnuc.model.sequence import load_sequence
-from irnuc.nuc_fixed import PipelineConfig, load_pipeline
 from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 from irnuc.reports.studies import drift_common as dc
+from irnuc.reports.studies import goal
 
 SCENES = (290.0, 330.0, 370.0)
-OFFSETS = (-6.0, -3.0, 0.0)
-
-
-def _range_bits(span_codes: float) -> int:
-    """Bits that hold +-span_codes around the reference (the clamp at 2^bits - 1)."""
-    return max(11, int(np.ceil(np.log2(span_codes + 2))))
-
-
-def _configs(ts: int, hs: int) -> dict[str, PipelineConfig]:
-    """The measured configurations with v (and w') widened to ``ts`` (``hs``) bits and
-    their formats as many integer bits wider (a coefficient per 2^Ts codes doubles per
-    bit); tchousing14 also with tc_gain (tcgain14's tg formats)."""
-    out = {}
-    for label, name in (("tchousing14", "tchousing14"), ("tchousing14+tc_gain", "tchousing14"),
-                        ("tcoffset14", "tcoffset14")):
-        cfg = load_pipeline(name)
-        grow = {"tc1": ts - 11, "tc2": 2 * (ts - 11), "th1": hs - 11,
-                "thx": ts - 11 + hs - 11, "th2": 2 * (hs - 11)}
-        ch: dict = {"reading_range_bits": ts,
-                    "formats": {f.name: {"int_bits": f.int_bits + grow[f.name]}
-                                for f in cfg.formats if grow.get(f.name)}}
-        if "housing" in cfg.base.readings:
-            ch["housing_range_bits"] = hs
-        if label.endswith("tc_gain"):
-            g = load_pipeline("tcgain14").to_dict()["formats"]
-            ch["tc_gain"] = True
-            ch["formats"] |= {"tg1": g["tg1"], "tg2": g["tg2"]}
-        out[label] = cfg.replace(**ch)
-    return out
+OFFSETS = goal.OFFSETS
+#: The noise-free table's configurations (:func:`goal.configs` labels).
+LABELS = ("tchousing14", "tchousing14+tc_gain", "tcoffset14")
 
 
 def calibrate(sensor: dc.StudySensor, fpa: tuple[float, ...], ref: float, ts: int, hs: int
               ) -> dict:
-    """Every configuration of :func:`_configs` calibrated on one plan over FPA x housing
+    """Every configuration of :data:`LABELS` (:func:`goal.configs`) calibrated on one plan over FPA x housing
     (tc_offset on its points at housing = FPA)."""
     from irnuc.nuc_fixed.fit import calibrate_points
     from irnuc.nuc_fixed.plan import CalibrationPlan, run_plan
@@ -82,7 +69,8 @@ def calibrate(sensor: dc.StudySensor, fpa: tuple[float, ...], ref: float, ts: in
     p = CalibrationPlan(scene=SCENES, fpa=fpa, frames=2, reference_fpa=ref,
                         housing_offset=OFFSETS)
     pts = run_plan(p, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
-    return {label: calibrate_points(pts, cfg) for label, cfg in _configs(ts, hs).items()}
+    cfgs = goal.configs(LABELS, ts, hs)
+    return {label: calibrate_points(pts, cfg) for label, cfg in cfgs.items()}
 
 
 def scenario(name: str, sensor: dc.StudySensor, states: int, fpa_points: int,
@@ -101,7 +89,7 @@ def scenario(name: str, sensor: dc.StudySensor, states: int, fpa_points: int,
     ref = fpa[len(fpa) // 2]
     span = max(ref - lo, hi - ref) / seq.fpa_sensor.lsb_K
     hspan = (max(ref - (lo + min(OFFSETS)), hi - ref) + 1.0) / seq.housing_sensor.lsb_K
-    ts, hs = _range_bits(span), _range_bits(hspan)
+    ts, hs = goal.range_bits(span), goal.range_bits(hspan)
     cals = {"cal": calibrate(sensor, fpa, ref, ts, hs)}
     good = ~np.logical_or.reduce([c.bad for c in cals["cal"].values()])
     idx = np.unique(np.linspace(0, len(sched.fpa_K) - 1, states).astype(int))
@@ -140,11 +128,19 @@ def main() -> None:
     ap.add_argument("--scenarios", default="power_on_warmup,ambient_ramp")
     ap.add_argument("--states", type=int, default=16)
     ap.add_argument("--fpa-points", type=int, default=5)
-    ap.add_argument("--rows", type=int, default=24)
-    ap.add_argument("--cols", type=int, default=32)
+    ap.add_argument("--rows", type=int, default=48)
+    ap.add_argument("--cols", type=int, default=64)
     ap.add_argument("--seed", type=int, default=3)
     ap.add_argument("--housing-node", choices=("housing", "lens", "shutter"), default=None,
                     help="the housing sensor on this node (default: the scenario's)")
+    ap.add_argument("--repeats", type=int, default=24,
+                    help="goal: noisy frames measured per scene and state")
+    ap.add_argument("--cal-frames", type=int, default=32,
+                    help="goal: frames averaged per calibration point")
+    ap.add_argument("--ffc-frames", default="8,32", help="goal: shutter frames per FFC (N)")
+    ap.add_argument("--goal-states", type=int, default=8,
+                    help="goal: evenly spaced states read per run (and 6 sawtooth peaks)")
+    ap.add_argument("--no-goal", action="store_true", help="only the noise-free table")
     a = ap.parse_args()
     t0 = time.perf_counter()
     sensor = dc.StudySensor(rows=a.rows, cols=a.cols, seed=a.seed)
@@ -163,12 +159,74 @@ def main() -> None:
         r["ratio_worst_tchousing14_vs_tcoffset14"] = (m["tchousing14"]["worst_fpn_mK"]
                                                      / m["tcoffset14"]["worst_fpn_mK"])
         r["goal_met"] = {k: v["worst_fpn_mK"] <= 0.5 * netd_mK for k, v in m.items()}
+    if not a.no_goal:
+        result["goal"] = run_goal(sensor, a.scenarios.split(","), 0.5 * netd_mK, goal.Setup(
+            cal_frames=a.cal_frames, ffc_frames=tuple(int(x) for x in a.ffc_frames.split(",")),
+            repeats=a.repeats, states=a.goal_states))
     result["seconds"] = time.perf_counter() - t0
     slim = json.loads(json.dumps(result))
     for r in slim["scenarios"].values():
         for v in r["methods"].values():
             v.pop("trace")
+    for r in slim.get("goal", {}).get("scenarios", {}).values():
+        for v in r["runs"]:
+            v.pop("trace")
     print(json.dumps(slim))
+
+
+def run_goal(sensor: dc.StudySensor, names: list[str], goal_mK: float, setup: goal.Setup
+             ) -> dict:
+    """Issue 36's goal with noise on (see the module docstring): the floor's terms, the
+    residual against the frames averaged, every method x policy x N on each scenario and
+    which meet ``goal_mK`` on all of them."""
+    out: dict = {"goal_mK": goal_mK, "setup": dataclasses.asdict(setup)}
+    out["floor"] = goal.floor_terms(sensor)
+    out["averaging"] = goal.averaging(sensor)
+    print("floor (noise-free, mK at scenes", out["floor"]["scenes_K"], ")")
+    for k, v in out["floor"]["fpn_mK"].items():
+        print(f"  {k:58s}", " ".join(f"{x:5.1f}" for x in v))
+    print("averaging (noise on; worst of", out["averaging"]["scenes_K"], "K)")
+    for r in out["averaging"]["rows"]:
+        print(f"  {r['method']:10s} calibration {r['cal_frames']:3d} frames, FFC N = "
+              f"{r['ffc_frames']:3d}: worst {r['worst_fpn_mK']:5.1f} mK")
+    out["scenarios"] = {}
+    for name in names:
+        out["scenarios"][name] = goal.scenario(name, sensor, setup)
+        for r in out["scenarios"][name]["runs"]:
+            print(f"{name:16s} {r['method']:20s} {r['policy'] or 'no FFC':24s} N={r['ffc_frames']:2d} "
+                  f"worst {r['worst_fpn_mK']:7.1f} mK (median {r['median_fpn_mK']:5.1f}) level "
+                  f"{r['worst_level_error_mK']:7.0f} mK dead {r['dead_time_pct']:5.2f} % "
+                  f"{r['memory_bits']} bits ({r['kind']})")
+    keyed: dict[tuple, dict] = {}
+    for name, sc in out["scenarios"].items():
+        for r in sc["runs"]:
+            k = (r["method"], r["policy"], r["ffc_frames"])
+            e = keyed.setdefault(k, {"method": r["method"], "kind": r["kind"],
+                                     "policy": r["policy"],
+                                     "ffc_frames": r["ffc_frames"], "worst_fpn_mK": 0.0,
+                                     "worst_scenario": None, "dead_time_pct": 0.0,
+                                     "ffc_per_hour": 0.0, "memory_bits": r["memory_bits"],
+                                     "runtime_bits": r["runtime_bits"],
+                                     "vga60_MB_s": r["vga60_MB_s"], "per_scenario_mK": {}})
+            e["per_scenario_mK"][name] = r["worst_fpn_mK"]
+            if r["worst_fpn_mK"] >= e["worst_fpn_mK"]:
+                e["worst_fpn_mK"], e["worst_scenario"] = r["worst_fpn_mK"], name
+            e["dead_time_pct"] = max(e["dead_time_pct"], r["dead_time_pct"])
+            e["ffc_per_hour"] = max(e["ffc_per_hour"], r["ffc_per_hour"])
+    table = sorted(keyed.values(), key=lambda e: e["worst_fpn_mK"])
+    for e in table:
+        e["meets_goal"] = e["worst_fpn_mK"] <= goal_mK
+    out["table"] = table
+    built = [e for e in table if e["kind"] != "float what-if"]
+    out["meeting"] = [e for e in built if e["meets_goal"]]
+    out["meeting_float_what_if"] = [e for e in table if e["meets_goal"]
+                                    and e["kind"] == "float what-if"]
+    best = built[0]
+    base = keyed.get(("tcffc14", "Lepton: 3 min or 1.5 K", 8))
+    out["best"] = best
+    out["ratio_best_vs_tcffc14_lepton"] = (best["worst_fpn_mK"] / base["worst_fpn_mK"]
+                                           if base else None)
+    return out
 
 
 if __name__ == "__main__":

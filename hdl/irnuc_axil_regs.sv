@@ -471,20 +471,38 @@ module irnuc_axil_regs
     if (SlotBits[k] > 0) begin : gen_on
       localparam int unsigned Bits = SlotBits[k];
       localparam logic [63:0] Mask = (Bits >= 64) ? '1 : ((64'd1 << Bits) - 64'd1);
-      logic [Bits-1:0] value_q;
-      logic [63:0]     view, data, biten;
+      localparam int unsigned LoBits = (Bits > 32) ? 32 : Bits;
+      logic [63:0]     view, data, wbits;
+      logic [Bits-1:0] next;
 
-      assign view  = 64'(value_q);
       assign data  = {slot_wr_data[k][1], slot_wr_data[k][0]};
-      assign biten = {slot_wr_biten[k][1] & {32{wr[1]}}, slot_wr_biten[k][0] & {32{wr[0]}}};
-      assign slot_touch[k] = |(biten & Mask);
+      assign wbits = {slot_wr_biten[k][1], slot_wr_biten[k][0]};
+      assign slot_touch[k] = |({wbits[63:32] & {32{wr[1]}}, wbits[31:0] & {32{wr[0]}}} & Mask);
+      // Each word's bits load on that word's write alone (LO and HI are two addresses, never
+      // written together): the address decode reaches the enables only, not the data
+      // multiplexers, and each strobe drives one word's enables.
+      assign next  = Bits'((view & ~wbits) | (data & wbits));
 
-      always_ff @(posedge clk_i or negedge rst_ni) begin : p_value
+      logic [LoBits-1:0] lo_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin : p_value_lo
         if (!rst_ni) begin
-          value_q <= '0;
-        end else if (|wr) begin
-          value_q <= Bits'((view & ~biten) | (data & biten));
+          lo_q <= '0;
+        end else if (wr[0]) begin
+          lo_q <= next[LoBits-1:0];
         end
+      end
+      if (Bits > 32) begin : gen_hi
+        logic [Bits-33:0] hi_q;
+        always_ff @(posedge clk_i or negedge rst_ni) begin : p_value_hi
+          if (!rst_ni) begin
+            hi_q <= '0;
+          end else if (wr[1]) begin
+            hi_q <= next[Bits-1:32];
+          end
+        end
+        assign view = 64'({hi_q, lo_q});
+      end else begin : gen_lo_only
+        assign view = 64'(lo_q);
       end
       assign slot_o[k]          = view;
       assign slot_rd_data[k][0] = view[31:0];

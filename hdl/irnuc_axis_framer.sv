@@ -34,9 +34,11 @@
 // Every decision comes from registers (the input registers of the top, this module's
 // state, counters and flags); the output is a spill register, so every output is a flop
 // but the word, which is masked behind it (NUC off, DPC off, filler). The decision to send
-// an item (fire) is the deepest logic, and fans out widely: it starts at flops one level
-// from it (the states one-hot, beside their encoded copies; the input buffers' markers from
-// their head registers), and the count of items in flight follows it a cycle late.
+// an item (fire) fans out widely: it is the AND of two flops, go_q (the word and the output
+// allow an item) and item_q (a pixel or a filler is there), each made a cycle ahead with and
+// without an item sent (the input buffers' fill and the video buffer's head after a pop or
+// not, from their input sides), so the input buffers' pops are one gate behind it; the
+// count of items in flight follows it a cycle late.
 module irnuc_axis_framer
   import irnuc_pkg::*;
 #(
@@ -82,6 +84,11 @@ module irnuc_axis_framer
   // its fill a cycle ahead, for the registered half of the decision (go_q).
   input  logic                  coef_in_valid_i,
   input  logic                  coef_in_ready_i,
+  // The video input buffer's input side (u_vid_in's valid_i, ready_o = not full, and the
+  // beat's start of frame): its head a cycle ahead, for the registered item (item_q).
+  input  logic                  vid_in_valid_i,
+  input  logic                  vid_in_ready_i,
+  input  logic                  vid_in_sof_i,
   // Pending settings (the register file); *_m1 = value - 1, *_is1 = value is 1.
   input  logic [WidthBits-1:0]  pend_width_i,
   input  logic [HeightBits-1:0] pend_height_i,
@@ -190,21 +197,31 @@ module irnuc_axis_framer
   // value is made with and without an item sent (the coefficient buffer's fill after a take
   // or not, the output register's ready), `fire` picking one at the end like the states'.
   logic go_q, go_d;
+  // item a cycle ahead (a_item): a pixel or a filler is there to send, from a flop. Its next
+  // value is made with and without an item sent (the video buffer's head after a pop or not:
+  // its input side and in_sof_q), `fire` picking one at the end, so `fire` is one gate of
+  // two flops and the input buffers' pops one level behind it.
+  logic item_q, item_d;
+  // The start of frame of the last beat pushed into the video buffer: when the buffer is
+  // full, its younger entry's, the head after a pop.
+  logic in_sof_q;
 
   // A new frame size waits for the drain (drained_q is at least a cycle after the write,
   // so the position registers are preloaded from the new size).
   // start_ok (registered as wait_ok_q below).
   assign start_ok = !size_dirty_i || drained_q;
   assign starting = s_wait_q;
-  assign pix_item = vid_valid_i && (vid_sof_i ? wait_ok_q : s_frame_q);
+  // A pixel: vid_valid_i && (vid_sof_i ? wait_ok_q : s_frame_q); a filler: s_pad_q. The two
+  // exclude each other (the states are one-hot), so the pixel is the item outside AxisPad.
+  assign item     = item_q;  // pix_item || pad_item, registered (a_item)
   assign pad_item = s_pad_q;
-  assign item     = pix_item || pad_item;
+  assign pix_item = item && !s_pad_q;
   assign word_ok  = (c_normal_q && coef_valid_i) || c_fill_q;
   assign go       = go_q;  // word_ok && out_free_q, registered (a_go)
   assign fire     = go && item;
   // A frame's first item (fire && starting) straight from flops: waiting, only a start of
   // frame is an item (the states are one-hot: a_start_fire).
-  assign start_fire = go && vid_valid_i && vid_sof_i && wait_ok_q;
+  assign start_fire = go && item && s_wait_q;
   assign last     = xl_q && yl_q;
 
   // The start item takes the pending settings; the others the active ones.
@@ -235,6 +252,8 @@ module irnuc_axis_framer
     axis_coef_state_e      cst_f, cst_n;
     logic                  pad_frame_f, pad_frame_n, done_f;
     logic                  coef_push, coef_any_pop, coef_any_keep, pop_f, pop_n, go_f, go_n;
+    logic                  vpop_valid, vpop_sof, vkeep_valid, vkeep_sof, v_f_valid, v_f_sof;
+    logic                  v_n_valid, v_n_sof, wait_free, wait_ok_f, wait_ok_n, item_f, item_n;
 
     if (starting) begin
       {xr_n, xl_n, yr_n, yl_n} = {pend_width_m1_i, pend_width_is1_i, pend_height_m1_i,
@@ -327,6 +346,31 @@ module irnuc_axis_framer
     c_skip_d    = fire ? (cst_f == CoefSkip) : (cst_n == CoefSkip);
     late_d      = starting ? (late_q || drop_beat) && !fire : 1'b0;
 
+    // start_ok of the next cycle (a_wait_ok), where the next state waits: no frame-size write
+    // now (it sets size_dirty_i next; the position registers are loaded from the old size at
+    // this edge) and the size clean, or, waiting, the core empty or a frame's first item sent
+    // (the frame start clears size_dirty_i: a one-pixel frame waits again).
+    wait_free = !size_write_i && !hold_i;  // hold_i: table_interp's weight computed
+    wait_ok_f = (vst_f == AxisWait) && wait_free && (!size_dirty_i || starting);
+    wait_ok_n = (vst_n == AxisWait) && wait_free && (!size_dirty_i || (starting && empty_q));
+    wait_ok_d = fire ? wait_ok_f : wait_ok_n;
+
+    // item of the next cycle: the video buffer's head next cycle, after a pop (a pixel sent, or
+    // a beat dropped) or not. Popped: the younger entry when the buffer is full (the last beat
+    // pushed), else a beat pushed now. Kept: the head held, else a beat pushed now.
+    vpop_valid  = !vid_in_ready_i || vid_in_valid_i;
+    vpop_sof    = vid_in_ready_i ? vid_in_sof_i : in_sof_q;
+    vkeep_valid = vid_valid_i || vid_in_valid_i;
+    vkeep_sof   = vid_valid_i ? vid_sof_i : vid_in_sof_i;
+    // An item sent pops the video buffer unless it is a filler; no beat is dropped then.
+    v_f_valid   = s_pad_q ? vkeep_valid : vpop_valid;
+    v_f_sof     = s_pad_q ? vkeep_sof : vpop_sof;
+    v_n_valid   = drop_beat ? vpop_valid : vkeep_valid;
+    v_n_sof     = drop_beat ? vpop_sof : vkeep_sof;
+    item_f = (v_f_valid && (v_f_sof ? wait_ok_f : (vst_f == AxisFrame))) || (vst_f == AxisPad);
+    item_n = (v_n_valid && (v_n_sof ? wait_ok_n : (vst_n == AxisFrame))) || (vst_n == AxisPad);
+    item_d = fire ? item_f : item_n;
+
     // go of the next cycle. The coefficient buffer holds a word next cycle: after a take,
     // the other entry or one pushed now (pop implies a word held); else the one held or one
     // pushed now. A word is taken with an item in CoefNormal, and in CoefSkip without one.
@@ -366,6 +410,8 @@ module irnuc_axis_framer
       done_q      <= 1'b0;
       late_q      <= 1'b0;
       go_q        <= 1'b0;  // no word held after reset
+      item_q      <= 1'b0;  // no beat held after reset
+      in_sof_q    <= 1'b0;
     end else begin
       vst_q       <= vst_d;
       cst_q       <= cst_d;
@@ -385,6 +431,10 @@ module irnuc_axis_framer
       done_q      <= done_d;
       late_q      <= late_d;
       go_q        <= go_d;
+      item_q      <= item_d;
+      if (vid_in_valid_i && vid_in_ready_i) begin
+        in_sof_q <= vid_in_sof_i;
+      end
     end
   end
 
@@ -461,15 +511,9 @@ module irnuc_axis_framer
     end
   end
 
-  // start_ok of the next cycle (a_wait_ok), where the next state waits: no frame-size write
-  // now (it sets size_dirty_i next; the position registers are loaded from the old size at
-  // this edge) and the size clean, or, waiting, the core empty (drained_d) or a frame's
-  // first item sent (the frame start clears size_dirty_i: a one-pixel frame waits again).
-  // Neither start_fire nor drained_d enters it: `fire` passes the next state's multiplexer
-  // only.
+  // wait_ok_d: in p_next (neither start_fire nor drained_d enters it: `fire` passes the next
+  // state's multiplexer only).
   assign drained_d = empty_q && size_dirty_i && starting && !fire && !size_write_i;
-  assign wait_ok_d = s_wait_d && !size_write_i && !hold_i
-                     && (!size_dirty_i || (starting && (fire || empty_q)));
 
   // ---- the item: pixel or filler, and its word -------------------------------------------
   // The word enters the output register as it comes with two flags, and
@@ -579,6 +623,8 @@ module irnuc_axis_framer
         else $error("irnuc_axis_framer: out_free_q is not u_out's ready");
       a_go: assert (go_q == (word_ok && out_free_q))
         else $error("irnuc_axis_framer: go_q is not 'the word and the output allow an item'");
+      a_item: assert (item_q == ((vid_valid_i && (vid_sof_i ? wait_ok_q : s_frame_q)) || s_pad_q))
+        else $error("irnuc_axis_framer: item_q is not 'a pixel or a filler to send'");
       a_wait_ok: assert (wait_ok_q == (starting && start_ok && !hold_q))
         else $error("irnuc_axis_framer: wait_ok_q is not 'waiting, and the frame size drained'");
       a_start_fire: assert (start_fire == (fire && starting))

@@ -244,6 +244,7 @@ class Pipeline:
                     frame_period: float | None = None, transient: Any = None,
                     chunk_frames: int | None = None,
                     progress: Callable[[int, int], None] | None = None,
+                    first_frame: int = 0,
                     ) -> Iterator[tuple[int, dict[str, Any]]]:
         """Compute ``products`` chunk by chunk: yields (first frame, products of the chunk).
 
@@ -266,7 +267,11 @@ class Pipeline:
             Frames per chunk (default ``run.chunk_frames``).
         progress : callable, optional
             Called as ``progress(done, total)`` after each chunk.
+        first_frame : int
+            Index of the run's first frame in the noise streams (default 0): runs of one
+            sensor given disjoint frame ranges draw independent noise, the same pixels.
         """
+        first_frame = check_int("first_frame", first_frame, 0, 2**62)
         n = len(temps)
         key = self.graph_key(env, thermal)
         period = st.frame_period(self.cfg)
@@ -292,7 +297,7 @@ class Pipeline:
         step = chunk_frames or (self.cfg["run"]["chunk_frames"] if chunked else max(n, 1))
         for start in range(0, n, step):
             ctx.temps = temps[start:start + step]
-            ctx.first_frame = start
+            ctx.first_frame = first_frame + start
             if env is not None:
                 ctx.env = {k: np.asarray(v)[start:start + step] for k, v in env.items()}
             chunk = {k: v for k, v in self._static.items() if k not in chunk_outputs}
@@ -344,7 +349,8 @@ class Pipeline:
     def simulate(self, temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform", *,
                  repeats: int = 1, outputs: Sequence[str] = ("codes",),
                  scene_params: Mapping[str, Any] | None = None,
-                 progress: Callable[[int, int], None] | None = None) -> Frames:
+                 progress: Callable[[int, int], None] | None = None,
+                 first_frame: int = 0) -> Frames:
         """Frames of this sensor; see :func:`simulate` for the parameters."""
         if isinstance(scene, str):
             scene = Scene(scene, dict(scene_params or {}))
@@ -360,7 +366,8 @@ class Pipeline:
             # ground truth, diagnostics and the reference pixels read beside the image
             wanted += ["defects", "status", "dT", "blind_codes", "reference_positions"]
         before = Counter(self.counts)
-        values = self.run(t, list(dict.fromkeys(wanted)), scene, progress)
+        values = self.run(t, list(dict.fromkeys(wanted)), scene, progress,
+                          first_frame=first_frame)
         defects = values.get("defects")
         return Frames(
             codes=values.get("codes"),
@@ -429,7 +436,8 @@ def check_simulation_memory(cfg: Mapping[str, Any], n_frames: int,
 def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene: str | Scene = "uniform",
              *, seed: int = 0, repeats: int = 1, outputs: Sequence[str] = ("codes",),
              scene_params: Mapping[str, Any] | None = None,
-             progress: Callable[[int, int], None] | None = None) -> Frames:
+             progress: Callable[[int, int], None] | None = None,
+             first_frame: int = 0) -> Frames:
     """Sensor frames for a batch of scene temperatures (a one-shot :class:`Pipeline`).
 
     Parameters
@@ -451,9 +459,14 @@ def simulate(cfg: Mapping[str, Any], temps: Sequence[float] | np.ndarray, scene:
         Parameters of the scene kind when ``scene`` is a name.
     progress : callable, optional
         Called as ``progress(done, total)`` after each chunk of frames.
+    first_frame : int
+        Index of the first frame in the noise streams (default 0): calls with the same
+        configuration and seed but disjoint frame ranges image the same pixels with
+        independent noise.
     """
     return Pipeline(cfg, seed).simulate(temps, scene, repeats=repeats, outputs=outputs,
-                                        scene_params=scene_params, progress=progress)
+                                        scene_params=scene_params, progress=progress,
+                                        first_frame=first_frame)
 
 
 def _diagnostics(pipe: Pipeline, values: Mapping[str, Any]) -> dict[str, Any]:

@@ -99,6 +99,40 @@ def band_radiance_detailed(
     return RadianceResult(radiance.reshape(temps.shape), terms.reshape(temps.shape))
 
 
+def band_radiance_at(band: tuple[float, float] = LWIR_BAND, *, emissivity: float = 1.0,
+                     rtol: float = 1e-12, method: str = "hybrid"):
+    """:func:`band_radiance` of one temperature at a time, the band and options checked
+    once: for loops that call it thousands of times (a root finder inverting a radiance,
+    :class:`irnuc.reports.studies.metrics.TemperatureScale`). The same kernel and the same
+    values as ``float(band_radiance(T, band, ...))``.
+
+    Parameters: as :func:`band_radiance` (``band`` in m, ``rtol`` relative), without
+    ``n_terms``. Returns a function of T (K, a float in (0, 1e9]) giving the in-band
+    radiance, W m^-2 sr^-1.
+    """
+    lo, hi = check_band(band)
+    emissivity = check_scalar("emissivity", emissivity, 0.0, 1.0)
+    rtol = check_scalar("rtol", rtol, 1e-15, 0.1, unit="(relative)")
+    code = BAND_RADIANCE_METHODS[check_choice("method", method, BAND_RADIANCE_METHODS)]
+    radiance = np.empty(1)
+    terms = np.empty(1, np.int64)
+    status = np.empty(1, np.int64)
+
+    def at(T: float) -> float:
+        t = float(T)
+        if not 0.0 < t <= T_MAX:  # NaN too
+            check_array("T", t, 0.0, T_MAX, lo_open=True, unit="K")  # its message
+        flat = np.array([t])
+        _k.band_radiance_batch(flat, lo, hi, rtol, _k.BERNOULLI_COEF, code, 0, radiance,
+                               terms, status)
+        if status[0]:
+            raise ConfigError(f"T = {t:g} K: the paper series did not reach rtol = {rtol:g} "
+                              f"within {_k.MAX_TERMS} terms; use method='hybrid'")
+        return float(radiance[0] * emissivity)
+
+    return at
+
+
 def band_radiance(
     T: float | np.ndarray,
     band: tuple[float, float] = LWIR_BAND,

@@ -297,7 +297,9 @@ def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
     temperature (the FPA's plus the offset, ``plan.cam``, or the FPA's); the same ``seed``
     everywhere, so every point images the same pixels. The FPA and housing readings of
     every frame are ``plan.fpa_sensor`` / ``plan.housing_sensor`` of those temperatures
-    (their noise seeded by ``seed`` and the frame's index in the plan).
+    (their noise seeded by ``seed`` and the frame's index in the plan); the frames' own
+    noise (a sensor with ``noise.enabled``) is drawn the same way, each frame of the plan
+    at its own index, so no two points share a draw.
 
     Parameters
     ----------
@@ -323,8 +325,9 @@ def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
         cfg = sensor_config(sensor, {**ov, "environment.T_substrate": t_fpa,
                                       "environment.T_cam": t_cam})
         outputs = ["codes", "blind_codes"] if want_blind else ["codes"]
+        # each point its own frame range: independent noise, as the sensors' readings
         fr = model.simulate(cfg, list(plan.scene), seed=seed, repeats=plan.frames,
-                            outputs=outputs)
+                            outputs=outputs, first_frame=p * n_pt)
         h, w = fr.codes.shape[-2:]
         codes.append(fr.codes.reshape(*shape, h, w))
         readings.append(plan.fpa_sensor.read(np.full(n_pt, t_fpa), seed=seed,
@@ -349,11 +352,12 @@ def run_plan(plan: CalibrationPlan, sensor: str | Mapping[str, Any] = "default",
         t_ref = plan.fpa[plan.reference_index]
         mid = plan.scene[len(plan.scene) // 2]
         dc, db = [], []
-        for t_cam in plan.drift_cam:
+        for d, t_cam in enumerate(plan.drift_cam):
             cfg = sensor_config(sensor, {**ov, "environment.T_substrate": t_ref,
                                           "environment.T_cam": t_cam})
             fr = model.simulate(cfg, [mid], seed=seed, repeats=plan.frames,
-                                outputs=["codes", "blind_codes"])
+                                outputs=["codes", "blind_codes"],
+                                first_frame=len(points) * n_pt + d * plan.frames)
             dc.append(fr.codes)
             db.append(np.asarray(fr.blind_codes))
         out.drift_codes, out.drift_blind = np.stack(dc), np.stack(db)

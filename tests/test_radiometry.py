@@ -215,3 +215,23 @@ def test_study_reference_agrees_with_quadrature_where_polylog_underflows():
         a = band_radiance_mp(T, as_mpf=True)
         b = band_radiance_quad_mp(T)
         assert abs((a - b) / a) < mp.mpf(10) ** -30
+
+
+def test_band_radiance_at_one_temperature_matches_the_checked_api_and_mpmath() -> None:
+    """The root finder's form (band checked once, one T at a time) gives band_radiance's
+    bits, mpmath's polylog value to 1e-12, and the same one-line errors."""
+    from irnuc.model.radiometry import band_radiance_at
+
+    for band in ((8e-6, 14e-6), (3e-6, 5e-6)):
+        at = band_radiance_at(band)
+        for T in (1.0, 77.0, 280.0, 300.5, 1234.5, 6000.0):
+            assert at(T) == float(band_radiance(T, band))
+        ref = reference_radiance(300.0, *band)
+        assert abs((mp.mpf(at(300.0)) - ref) / ref) < 1e-12
+    half = band_radiance_at((8e-6, 14e-6), emissivity=0.5)
+    assert half(300.0) == float(band_radiance(300.0, (8e-6, 14e-6), emissivity=0.5))
+    for bad in (0.0, -1.0, float("nan"), 2e9):
+        with pytest.raises(ConfigError, match=r"T = .* outside the allowed range"):
+            band_radiance_at()(bad)
+    with pytest.raises(ConfigError, match="band"):
+        band_radiance_at((14e-6, 8e-6))

@@ -178,3 +178,34 @@ def test_lepton_shaped_preset_and_its_report_configuration() -> None:
     t = load_report_config("lepton")["temperature"]
     assert t["preset"] == "lepton" and (t["rows"], t["cols"]) == (60, 80)
     assert [3.0, 1.5] in t["ffc_either"] and 1.5 in t["ffc_changes_K"]
+
+
+def test_policies_sharing_corrected_frames_give_the_same_figures() -> None:
+    """The sweep corrects a frame with a given FFC refresh once for all the policies of a
+    calibration (``evaluate``'s ``memo``): each policy's figures equal those it gets alone,
+    and the second policy reuses the first one's frames (the power-on FFC's at least)."""
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.nuc_fixed.fit import calibrate_points
+    from irnuc.nuc_fixed.plan import run_plan
+    from irnuc.reports.studies import drift_common as dc
+
+    spec = so.SignoffSpec(rows=6, cols=8, frac_bits=(12,), methods=("tcffc14",),
+                          scene_K=(300.0, 340.0), housing_offset_K=(0.0,))
+    sensor = spec.sensor()
+    pts = run_plan(spec.plan(), sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    cal = calibrate_points(pts, load_pipeline("tcffc14"))
+    tr = scn.trajectory("fpa_ramp", sensor, spec.scene_K, 0.5, 120.0)
+    sc = dc.scale(sensor, cal.targets, sorted(set(pts.scene_K.tolist())))
+    nf = int(cal.cfg.ffc_frames or 1)
+    pols = [scn.Policy(period_min=0.25), scn.Policy(period_min=0.5), scn.Policy(change_K=0.2)]
+    memo: dict = {}
+    sizes = []
+    for pol in pols:
+        st = scn.ffc_starts(tr, pol, nf)
+        alone = scn.evaluate(cal, tr, spec.scene_K, sc, ~cal.bad, pol, st, 24)
+        before = len(memo.get("rows", {}))
+        shared = scn.evaluate(cal, tr, spec.scene_K, sc, ~cal.bad, pol, st, 24, memo=memo)
+        assert shared == alone
+        sizes.append((before, len(memo["rows"]), alone["evaluated"]))
+    # p0.5's FFCs are a subset of p0.25's: fewer new frames than it evaluates
+    assert sizes[1][1] - sizes[1][0] < sizes[1][2]

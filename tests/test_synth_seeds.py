@@ -111,14 +111,14 @@ def test_synth_configs_rtl_changed_between_seeds(monkeypatch) -> None:
         synth.synth_configs([load_pipeline("minimal")], workers=0, seeds=2)
 
 
-def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch) -> None:
-    """The cache: the netlist keyed without the seed (synthesized once for every seed, and
-    not again for another speed grade), each placement under its own key with the seed."""
-    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
-    counts = {"xc7": 0, "ecp5": 0, "pnr": []}
+def _stub_flow(monkeypatch) -> dict:
+    """Yosys and nextpnr stubbed: counts of the netlists made (and of which tops), the
+    placements (seed, speed grade), each on the cached netlist; Fmax 140 + seed."""
+    counts: dict = {"xc7": 0, "ecp5": 0, "pnr": [], "tops": []}
 
     def xc7(sources, top, params, workdir):
         counts["xc7"] += 1
+        counts["tops"].append(top)
         return {**{k: 1 for k in synth.XC7_KEYS}, "cells": {"LUT4": 1}, "seconds": 0.1,
                 "log": "x"}
 
@@ -141,6 +141,14 @@ def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch)
     monkeypatch.setattr(synth, "synth_ecp5", ecp5)
     monkeypatch.setattr(synth, "place_route_ecp5", pnr)
     monkeypatch.setattr(synth, "tool_versions", lambda: {"yosys": "stub"})
+    return counts
+
+
+def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch) -> None:
+    """The cache: the netlist keyed without the seed (synthesized once for every seed, and
+    not again for another speed grade), each placement under its own key with the seed."""
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    counts = _stub_flow(monkeypatch)
     cfg = load_pipeline("minimal")
     r = synth.synth_seeds(cfg, seeds=3, workers=0)
     assert (counts["xc7"], counts["ecp5"]) == (1, 1)
@@ -150,7 +158,16 @@ def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch)
     again = synth.synth_seeds(cfg, seeds=4, workers=0)  # seeds 1-3 cached, 4 placed
     assert counts["pnr"][3:] == [(4, 6)] and (counts["xc7"], counts["ecp5"]) == (1, 1)
     assert again["seeds"]["best_seed"] == 4 and not again["cached"]
-    assert synth.synth_seeds(cfg, seeds=4, workers=0)["cached"] is True
+    from irnuc.common import executor
+
+    def no_executor(*a, **kw):
+        raise AssertionError("an executor opened for placements that are all cached")
+
+    with monkeypatch.context() as m:  # all cached (a warm report): no worker processes
+        m.setattr(executor, "open_executor", no_executor)
+        assert synth.synth_seeds(cfg, seeds=4, workers=2)["cached"] is True
+        with pytest.raises(AssertionError, match="executor opened"):
+            synth.synth_seeds(cfg, seeds=5, workers=2)  # seed 5 is not: it needs one
     synth.synth_config(cfg, seed=1, speed=8)  # another grade: placed, not synthesized
     assert counts["pnr"][-1] == (1, 8) and (counts["xc7"], counts["ecp5"]) == (1, 1)
     synth.synth_config(cfg, seed=1, max_width=48)  # another design: synthesized
@@ -213,3 +230,21 @@ def test_report_text_of_a_seed_sweep() -> None:
     assert seeds_text(sweep) == (" (best of 3 placer seeds, seed 2; worst 139.2 MHz, 1 of 3 "
                                  "at the target)")
     assert seeds_text(sweep, True).endswith("; seed 1: 148.0, seed 2: 161.5, seed 3: 139.2)")
+
+
+def test_prepare_netlists_makes_the_missing_ones_then_placements_reuse_them(
+        tmp_path, monkeypatch) -> None:
+    """Two designs (the wrapper and the bare core of one configuration): their netlists made
+    first (in-process here), then nothing more to make; a seed sweep of either places on
+    that netlist without synthesizing again; one design alone is left to its placements."""
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    counts = _stub_flow(monkeypatch)
+    cfg = load_pipeline("tcgain14")
+    designs = [(cfg, "irnuc_axis_top"), (cfg, synth.default_top(cfg))]
+    assert synth.prepare_netlists(designs, workers=0) == 2
+    assert sorted(counts["tops"]) == sorted(t for _, t in designs) and counts["ecp5"] == 2
+    assert synth.prepare_netlists(designs, workers=0) == 0
+    synth.synth_seeds(cfg, top="irnuc_axis_top", seeds=2, workers=0)
+    assert counts["xc7"] == 2 and len(counts["pnr"]) == 2  # placed on the prepared netlist
+    assert synth.prepare_netlists([(load_pipeline("typical14"), None)], workers=0) == 0
+    assert counts["xc7"] == 2

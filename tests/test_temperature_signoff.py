@@ -301,6 +301,9 @@ def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch)
         return figs(2000, 3000, 8, 140.0) if top == "irnuc_axis_top" else figs(900, 1700, 8, 160.0)
 
     monkeypatch.setattr(synth, "synth_seeds", fake)
+    prepared = []
+    monkeypatch.setattr(synth, "prepare_netlists",
+                        lambda designs, **kw: prepared.append([t for _, t in designs]) or 0)
     pred = {"source": "model", "xc7.lut": 950.0, "xc7.ff": 1650.0, "xc7.dsp": 8.0,
             "xc7.bram36": 1.0, "ecp5.lut4": 960.0, "ecp5.ff": 1720.0, "ecp5.mult18": 8.0,
             "ecp5.dp16kd": 2.0, "fmax_mhz": 150.0}
@@ -308,6 +311,8 @@ def test_recommendation_synthesis_judges_the_model_on_the_bare_core(monkeypatch)
     tp._synth_recommended({}, r)
     sy = r["synth"]
     assert tops == ["irnuc_axis_top", "method_dpc_top"]
+    # both netlists made side by side before the placements
+    assert prepared[0] == ["irnuc_axis_top", "method_dpc_top"]
     # Both placed at the default seeds on the default workers; {"synth_seeds": 2} asks 2.
     assert asked == [{"seeds": 4, "workers": 2}] * 2
     tp._synth_recommended({"synth_seeds": 2, "workers": 1}, {**r})
@@ -353,3 +358,60 @@ def test_too_few_cosimulated_pixels_do_not_meet_the_sign_off() -> None:
     chk = tp._cosim_check(c)
     assert chk.status == "not met" and "fewer than the 1000000" in chk.detail
     assert tp._cosim_check({**c, "pixels_compared": 1_000_000}).status == "met"
+
+
+def test_a_wrapper_that_does_not_fit_the_pins_is_not_tried_on_them_again(tmp_path,
+                                                                          monkeypatch) -> None:
+    """nextpnr's "no BELs remaining ... TRELLIS_IO" for the wrapper on the package's pins:
+    placed out of context (the bare core too), and remembered for that design, so that a
+    second (warm) report goes out of context at once; another design is tried on pins."""
+    from irnuc.cosim import synth
+
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    calls = []
+
+    def fake(cfg, *, top=None, **kw):
+        calls.append((top, bool(kw.get("out_of_context"))))
+        if top == "irnuc_axis_top" and not kw.get("out_of_context"):
+            raise synth.SynthError("nextpnr-ecp5 failed (exit 255)\nERROR: Unable to place cell "
+                                   "'x$tr_io', no BELs remaining to implement cell type "
+                                   "'TRELLIS_IO'")
+        return {"xc7": {"lut": 1, "ff": 1, "dsp": 0, "bram36": 0, "bram18": 0},
+                "ecp5": {"lut4": 1, "ff": 1, "mult18": 0, "dp16kd": 0}, "fmax_mhz": 160.0,
+                "target_mhz": 150.0}
+
+    monkeypatch.setattr(synth, "synth_seeds", fake)
+    monkeypatch.setattr(synth, "prepare_netlists", lambda designs, **kw: 0)
+    r = {"config": "tcffc14", "frac_bits": 16, "hw": None}
+    tp._synth_recommended({}, r)
+    assert calls == [("irnuc_axis_top", False), ("irnuc_axis_top", True),
+                                      ("method_ffc_top", True)]
+    assert r["synth"]["out_of_context"] and "out of context" in r["synth"]["why"]
+    first = dict(r["synth"])
+    calls.clear()
+    tp._synth_recommended({}, r)  # warm: straight out of context, the same result
+    assert calls == [("irnuc_axis_top", True), ("method_ffc_top", True)]
+    assert r["synth"] == first
+    calls.clear()
+    tp._synth_recommended({}, {"config": "tcffc14", "frac_bits": 12, "hw": None})
+    assert calls[0] == ("irnuc_axis_top", False)  # another design: tried on pins
+
+
+def test_a_netlist_that_fails_is_said_by_its_top_not_raised(monkeypatch) -> None:
+    """Yosys failing on the wrapper while both netlists are prepared: the recommendation's
+    synthesis is "not placed" with the top's own error (the fmax check not met), as when each
+    top made its netlist itself; the report goes on."""
+    from irnuc.cosim import synth
+
+    def prepare(designs, **kw):
+        raise synth.SynthError("yosys failed on irnuc_axis_top")
+
+    def seeds(cfg, *, top=None, **kw):
+        raise synth.SynthError(f"yosys failed on {top}\nlog ...")
+
+    monkeypatch.setattr(synth, "prepare_netlists", prepare)
+    monkeypatch.setattr(synth, "synth_seeds", seeds)
+    r = {"config": "tcgain14", "frac_bits": 12, "hw": None}
+    tp._synth_recommended({}, r)
+    assert r["synth"]["error"] == "yosys failed on irnuc_axis_top"
+    assert tp._fmax_check(r["synth"]).status == "not met"

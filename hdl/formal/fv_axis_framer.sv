@@ -2,10 +2,10 @@
 //
 // Environment: the video and coefficient beats keep the AXI4-Stream rules (assumed; the
 // beats themselves, markers included, are free: the framer must cope with any video); the
-// coefficient words pass the top's input buffer (irnuc_axis_buffer with its head bit, as
-// u_coef_in of irnuc_axis_top: the framer's registered decision reads the buffer's fill a
-// cycle ahead from its input side); the
-// pending settings are free but for the frame size, which changes as the register file
+// video beats and the coefficient words pass the top's input buffers (irnuc_axis_buffer
+// with its head bits, as u_vid_in and u_coef_in of irnuc_axis_top: the framer's registered
+// decision reads each buffer's fill and the video buffer's head a cycle ahead from their
+// input sides); the pending settings are free but for the frame size, which changes as the register file
 // changes it (a write pulses size_write_i, the new size is taken at the next edge and
 // size_dirty_i stays up from the next cycle to a frame start); hold_i and wb_busy_i are free;
 // the core is a spill register draining into a free ready (it reports each item leaving).
@@ -78,8 +78,17 @@ module fv_axis_framer
     .data_i({coef_last_i, coef_data_i}), .valid_o(coef_valid), .ready_i(coef_ready),
     .data_o({coef_last, coef_data}));
 
+  // ---- the video input buffer (irnuc_axis_top's u_vid_in) --------------------------------
+  logic                  vid_in_ready, vid_valid, vid_sof, vid_eol, vid_ready;
+  logic [AdcBits-1:0]    vid_data;
+
+  irnuc_axis_buffer #(.DataBits(AdcBits + 2), .HeadBits(2)) u_vid_in (
+    .clk_i, .rst_ni, .valid_i(vid_valid_i), .ready_o(vid_in_ready),
+    .data_i({vid_sof_i, vid_eol_i, vid_data_i}), .valid_o(vid_valid), .ready_i(vid_ready),
+    .data_o({vid_sof, vid_eol, vid_data}));
+
   // ---- the framer ------------------------------------------------------------------------
-  logic                  vid_ready, m_valid, m_ready, m_sof, m_eol, m_frame;
+  logic                  m_valid, m_ready, m_sof, m_eol, m_frame;
   logic [AdcBits-1:0]    m_raw;
   logic [WordBits-1:0]   m_word;
   logic [WidthBits-1:0]  act_w, act_wm1;
@@ -92,9 +101,11 @@ module fv_axis_framer
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .FrameBits(1)
   ) u_dut (
     .clk_i, .rst_ni,
-    .vid_valid_i, .vid_ready_o(vid_ready), .vid_data_i, .vid_sof_i, .vid_eol_i,
+    .vid_valid_i(vid_valid), .vid_ready_o(vid_ready), .vid_data_i(vid_data),
+    .vid_sof_i(vid_sof), .vid_eol_i(vid_eol),
     .coef_valid_i(coef_valid), .coef_ready_o(coef_ready), .coef_data_i(coef_data),
     .coef_last_i(coef_last), .coef_in_valid_i(coef_valid_i), .coef_in_ready_i(coef_in_ready),
+    .vid_in_valid_i(vid_valid_i), .vid_in_ready_i(vid_in_ready), .vid_in_sof_i(vid_sof_i),
     .pend_width_i(width_q), .pend_height_i(height_q),
     .pend_width_m1_i(width_q - WidthBits'(1)), .pend_height_m1_i(height_q - HeightBits'(1)),
     .pend_width_is1_i(width_q == WidthBits'(1)), .pend_height_is1_i(height_q == HeightBits'(1)),
@@ -121,7 +132,7 @@ module fv_axis_framer
   // ---- environment and properties -------------------------------------------------------
   irnuc_fv_reset u_reset (.clk_i, .rst_ni);
   irnuc_fv_stream #(.DataBits(AdcBits + 2), .Assume(1'b1)) u_vid (
-    .clk_i, .rst_ni, .valid_i(vid_valid_i), .ready_i(vid_ready),
+    .clk_i, .rst_ni, .valid_i(vid_valid_i), .ready_i(vid_in_ready),
     .data_i({vid_data_i, vid_sof_i, vid_eol_i}));
   irnuc_fv_stream #(.DataBits(WordBits + 1), .Assume(1'b1)) u_coef (
     .clk_i, .rst_ni, .valid_i(coef_valid_i), .ready_i(coef_in_ready),

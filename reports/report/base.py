@@ -30,6 +30,8 @@ class Report:
     metrics: dict[str, dict[str, Any]] = field(default_factory=dict)
     figures: dict[str, list[tuple[str, bytes]]] = field(default_factory=dict)
     phases: dict[str, float] = field(default_factory=dict)
+    #: CPU seconds (user + system, this process and all it started) per phase
+    phases_cpu: dict[str, float] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     verbose: bool = True
     #: The typed results of the studies, for the phases after the one that ran them
@@ -60,12 +62,16 @@ class Report:
 
     @contextmanager
     def phase(self, name: str) -> Iterator[None]:
-        t0 = time.perf_counter()
+        from irnuc.common.cputime import tree_cpu_seconds
+
+        t0, c0 = time.perf_counter(), tree_cpu_seconds()
         self.say(f"{name} ...")
         try:
             yield
         finally:
             self.phases[name] = round(self.phases.get(name, 0.0) + time.perf_counter() - t0, 3)
+            self.phases_cpu[name] = round(self.phases_cpu.get(name, 0.0) + max(
+                0.0, tree_cpu_seconds() - c0), 3)
 
 
 def progress(label: str, enabled: bool) -> Callable[[int, int], None] | None:

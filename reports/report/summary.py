@@ -291,6 +291,7 @@ def make_summary(rep: Report, argv: list[str], baseline: Mapping[str, Any] | Non
         "tool": "irnuc report",
         "provenance": provenance(rep.config, argv),
         "phases": dict(rep.phases),
+        "phases_cpu": dict(rep.phases_cpu),
         "sections": rep.sections,
         "metrics": rep.metrics,
         "notes": rep.notes,

@@ -173,10 +173,13 @@ class TemperatureScale:
     """
 
     def __init__(self, targets, scenes, band) -> None:
-        from irnuc.model.radiometry import band_radiance
+        from irnuc.model.radiometry import band_radiance, band_radiance_at
 
         self._L = lambda T: np.asarray(band_radiance(np.atleast_1d(np.asarray(T, float)),
                                                      tuple(band)), dtype=np.float64)
+        # one temperature at a time, the band checked once: the root finder's thousands
+        # of calls (the same values as _L)
+        self._L1 = band_radiance_at(tuple(band))
         self.targets = np.asarray(targets, dtype=np.float64)
         self.scenes = np.asarray(scenes, dtype=np.float64)
         self.radiance = self._L(self.scenes)
@@ -186,7 +189,7 @@ class TemperatureScale:
 
     def level(self, T: float) -> float:
         """Output level of a scene at T (K)."""
-        L = float(self._L(T)[0])
+        L = self._L1(T)
         i = self._segment(L, self.radiance)
         L0, L1 = self.radiance[i], self.radiance[i + 1]
         t0, t1 = self.targets[i], self.targets[i + 1]
@@ -203,7 +206,7 @@ class TemperatureScale:
         if not L > 0:
             return float("nan")
         lo, hi = 1.0, 1e4
-        return float(brentq(lambda T: float(self._L(T)[0]) - L, lo, hi, xtol=1e-9, rtol=1e-13))
+        return float(brentq(lambda T: self._L1(T) - L, lo, hi, xtol=1e-9, rtol=1e-13))
 
 
 def slope_scenes(scenes, step: float = SLOPE_STEP_K) -> list[float]:

@@ -223,9 +223,14 @@ def _sig(x: float) -> float:
 
 def evaluate(cal: Any, traj: Trajectory, scenes: Sequence[float], sc: Any, good: np.ndarray,
              pol: Policy | None, starts: Sequence[int] | None, max_peaks: int,
-             settle_frames: int = SETTLE_FRAMES) -> dict[str, Any]:
+             settle_frames: int = SETTLE_FRAMES, memo: dict[str, Any] | None = None
+             ) -> dict[str, Any]:
     """One calibrated point on one scenario (see the module docstring): worst residual
-    (mK, LSB), worst level error (mK), when, FFC events per hour, dead time, the trace."""
+    (mK, LSB), worst level error (mK), when, FFC events per hour, dead time, the trace.
+
+    ``memo``: a dict shared by the calls of one calibration on one scenario (its FFC
+    policies): a frame corrected with a given refresh, and a refresh, are computed once
+    (the golden model corrects each frame on its own: the same bits either way)."""
     from irnuc.nuc_fixed.method_top import method_top
 
     cfg = cal.cfg
@@ -233,9 +238,22 @@ def evaluate(cal: Any, traj: Trajectory, scenes: Sequence[float], sc: Any, good:
     s3 = 3 * len(scenes)
     hours = n / traj.frame_rate / 3600.0
 
-    def residuals(idx: Sequence[int], ffc_offset: np.ndarray | None
+    memo = {} if memo is None else memo
+    done_rows: dict[tuple[int | None, int], tuple[float, float, float]] = memo.setdefault(
+        "rows", {})
+
+    def residuals(s: int | None, idx: Sequence[int], ffc_offset: np.ndarray | None
                   ) -> list[tuple[float, float, float]]:
-        """(LSB, mK, level mK) at each frame of ``idx``, one golden-model call for all."""
+        """(LSB, mK, level mK) at each frame of ``idx`` shown with refresh ``s``, one
+        golden-model call for the frames not yet corrected with it."""
+        todo = [i for i in idx if (s, i) not in done_rows]
+        if todo:
+            for i, r in zip(todo, _residuals(todo, ffc_offset), strict=True):
+                done_rows[s, i] = r
+        return [done_rows[s, i] for i in idx]
+
+    def _residuals(idx: Sequence[int], ffc_offset: np.ndarray | None
+                   ) -> list[tuple[float, float, float]]:
         fr = [traj.frames(i) for i in idx]
         raw = np.concatenate([f[0] for f in fr])
         blind = np.concatenate([f[1] for f in fr])
@@ -282,7 +300,7 @@ def evaluate(cal: Any, traj: Trajectory, scenes: Sequence[float], sc: Any, good:
         out.update(ffc_per_hour=_sig(len(st) / hours), dead_time_pct=_sig(100.0 * dead.mean()),
                    ffc_starts=len(st))
         ffc_s = [float(traj.time_s[s]) for s in st[:2000]]
-    refs: dict[int, np.ndarray] = {}
+    refs: dict[int, np.ndarray] = memo.setdefault("refs", {})
 
     def refresh(s: int) -> np.ndarray:
         if s not in refs:
@@ -301,8 +319,8 @@ def evaluate(cal: Any, traj: Trajectory, scenes: Sequence[float], sc: Any, good:
             continue  # before the power-on FFC's refresh: dead anyway
         groups.setdefault(s, []).append(i)
     for s, idx in groups.items():
-        rows += [(i, *r) for i, r in zip(idx, residuals(idx, None if s is None else refresh(s)),
-                                           strict=True)]
+        rows += [(i, *r) for i, r in zip(
+            idx, residuals(s, idx, None if s is None else refresh(s)), strict=True)]
     rows.sort()
     wi, _, wm, _ = max(rows, key=lambda r: r[2])
     out.update(worst_fpn_mK=_sig(wm), worst_fpn_lsb=_sig(max(r[1] for r in rows)),

@@ -52,6 +52,7 @@ model, the golden model and these studies' sources).
 
 from __future__ import annotations
 
+import concurrent.futures as cf
 import hashlib
 import json
 import math
@@ -220,11 +221,15 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any, trajs: Mapping
             reads = "fpa" in cfg.base.readings
             pols = [p for p in spec.policies() if reads or p.change_K is None]
         n_ffc = int(cfg.ffc_frames or 1)
+        # per scenario, the frames and refreshes this calibration corrected: the policies
+        # share them (the power-on FFC, a period's multiples)
+        memos: dict[str, dict[str, Any]] = {sname: {} for sname in trajs}
         for pol in pols:
             per = {}
             for sname, tr in trajs.items():
                 st = None if pol is None else starts[sname, pol.tag, n_ffc]
-                per[sname] = scn.evaluate(cal, tr, scenes, sc, good, pol, st, spec.max_peaks)
+                per[sname] = scn.evaluate(cal, tr, scenes, sc, good, pol, st, spec.max_peaks,
+                                          memo=memos[sname])
             rec = {**rec0, "ffc_policy": None if pol is None else pol.tag,
                    "ffc_policy_text": "no shutter" if pol is None else pol.describe(),
                    "ffc_period_min": None if pol is None else pol.period_min,
@@ -288,13 +293,23 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
     t_frames = time.perf_counter() - t0
     spec_d = spec.to_dict()
     points: list[dict[str, Any]] = []
+    # The shutter methods (a point per FFC policy) cost several times the others: started
+    # first, so that no worker is left with one at the end while the other idles; the
+    # points are kept in the methods' order.
+    npol = len(spec.policies())
+    order = sorted(range(len(spec.methods)), key=lambda i: (
+        -(npol if load_pipeline(spec.methods[i]).has("ffc") else 1), i))
     with open_executor(workers, scheduler) as handle:
-        futs = [handle.executor.submit(_task, spec_d, n, pts, trajs, starts)
-                for n in spec.methods]
-        for i, fut in enumerate(futs):
-            points.extend(fut.result())
+        futs = {i: handle.executor.submit(_task, spec_d, spec.methods[i], pts, trajs, starts)
+                for i in order}
+        done = 0
+        for f in cf.as_completed(futs.values()):
+            f.result()  # a failure at once
+            done += 1
             if progress is not None:
-                progress(i + 1, len(futs))
+                progress(done, len(futs))
+        for i in range(len(spec.methods)):
+            points.extend(futs[i].result())
     for i, p in enumerate(points):
         p["index"] = i
         p["key"] = point_key(p)

@@ -17,6 +17,7 @@
 
 from __future__ import annotations
 
+import json
 import time
 from collections.abc import Mapping
 from pathlib import Path
@@ -212,8 +213,42 @@ def _shipped_frac(name: str) -> int | None:
     return fr.pop() if len(fr) == 1 else None
 
 
+#: Why a design is placed out of context (its ports need more pins than the package has).
+OOC_WHY = ("; its ports need more I/O than the package has pins: placed out of context "
+           "(nextpnr --out-of-context, the ports on on-chip logic)")
+
+
+def _misfit_file(cfg: Any, top: str) -> Path:
+    """Where a design's "does not fit the package's I/O" is kept: keyed by the design on pins
+    (sources, parameters, flow, tool versions), so that a warm report does not place it on
+    pins again only to fail the same way."""
+    from irnuc.common.cache import cache_dir
+    from irnuc.cosim.synth import synth_key
+
+    return cache_dir("temperature") / f"io-misfit-{synth_key(cfg, top=top)}.json"
+
+
+def _seeds_fitting(cfg: Any, top: str, kw: dict[str, Any]) -> tuple[dict[str, Any], bool]:
+    """:func:`synth_seeds` of ``top`` on the package's pins, or out of context when its ports
+    do not fit them (nextpnr: no BEL left of type TRELLIS_IO; remembered); (result, placed
+    out of context). Any other failure is raised."""
+    from irnuc.common.io import write_text_atomic
+    from irnuc.cosim import synth
+
+    misfit = _misfit_file(cfg, top)
+    if not misfit.is_file():
+        try:
+            return synth.synth_seeds(cfg, top=top, **kw), False
+        except synth.SynthError as exc:
+            if "TRELLIS_IO" not in str(exc):
+                raise
+            write_text_atomic(misfit, json.dumps({"top": top, "config": cfg.digest(),
+                                                  "error": str(exc)[-2000:]}) + "\n")
+    return synth.synth_seeds(cfg, top=top, **{**kw, "out_of_context": True}), True
+
+
 def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
-    from irnuc.cosim.synth import default_top, synth_seeds
+    from irnuc.cosim import synth
 
     cfg = point_config(r)
     top, why = synth_top(cfg)
@@ -221,32 +256,29 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     # figures, with the worst and the spread beside them.
     kw: dict[str, Any] = {"seeds": int(setting(t, "synth_seeds")),
                           "workers": int(setting(t, "workers"))}
-    from irnuc.cosim.synth import SynthError
-
-    try:
-        s = synth_seeds(cfg, top=top, **kw)
-    except SynthError as exc:
-        if "TRELLIS_IO" not in str(exc):
-            r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
-            return
-        # The wrapper's ports do not fit the package's pins (wide coefficient and FFC
-        # words): placed as the IP block it is, its ports meeting on-chip logic
-        # (nextpnr --out-of-context, docs/synthesis.md), and said.
-        kw["out_of_context"] = True
-        why += ("; its ports need more I/O than the package has pins: placed out of context "
-                "(nextpnr --out-of-context, the ports on on-chip logic)")
-        s = synth_seeds(cfg, top=top, **kw)
-    fig = _flat(s)
-    pred = r.get("hw")
     # The cost model moves bare cores (the anchors): its error is judged on the bare core
     # at these widths, and what the wrapper adds is stated beside it (best against best).
-    core_top = default_top(cfg)
+    core_top = synth.default_top(cfg)
     try:
-        core = s if core_top == top else synth_seeds(cfg, top=core_top, **kw)
-    except SynthError as exc:
-        if "TRELLIS_IO" not in str(exc):
-            raise
-        core = synth_seeds(cfg, top=core_top, **{**kw, "out_of_context": True})
+        # both netlists side by side first (cold), then each one's placements
+        synth.prepare_netlists([(cfg, top), (cfg, core_top)] if core_top != top
+                               else [(cfg, top)], workers=kw["workers"])
+    except synth.SynthError:
+        pass  # said below, by the top that fails, as without the preparation
+    try:
+        # The wrapper's ports may not fit the package's pins (wide coefficient and FFC
+        # words): then placed as the IP block it is, its ports meeting on-chip logic
+        # (nextpnr --out-of-context, docs/synthesis.md), and said.
+        s, ooc = _seeds_fitting(cfg, top, kw)
+    except synth.SynthError as exc:
+        r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
+        return
+    if ooc:
+        why += OOC_WHY
+        kw["out_of_context"] = True
+    fig = _flat(s)
+    pred = r.get("hw")
+    core = s if core_top == top else _seeds_fitting(cfg, core_top, kw)[0]
     core_fig = _flat(core)
     r["synth"] = {"top": top, "why": why, "fmax_mhz": s["fmax_mhz"], "seeds": s.get("seeds"),
                   "xc7": s["xc7"],
