@@ -24,6 +24,12 @@ Three measurements on the model (the study sensor, seeded everywhere):
   at the frame before each FFC (the sawtooth's peaks, those with the largest drift since
   their refresh) and at evenly spaced shown frames.
 
+Beside the configurations, float what-ifs (:class:`CurvatureCore`, :class:`PiecewiseCore`:
+a core with a curvature term, tc_gain's gain and tc_housing's offset terms, one polynomial or
+piecewise over the FPA; no fixed point, no RTL) say what a method that meets the goal would
+need, and ``Setup.housing_lag_s`` replaces the scenario's housing sensor lag (a what-if of a
+sensor without lag).
+
 The calibration plan covers the scenario (FPA at ``fpa_points`` temperatures over its span;
 the housing at ``OFFSETS`` from the FPA for a method that reads it), as
 ``benchmarks/bench_tc_housing_scenarios.py`` has it; ``reading_range_bits`` (and
