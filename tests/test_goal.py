@@ -137,3 +137,39 @@ def test_an_ffc_without_the_housing_does_not_follow_it_on_the_warm_up():
         ffcs = x["ffc_per_hour"] * 1200.0 / 3600.0
         assert ffcs == pytest.approx(round(ffcs)) and ffcs >= 7  # 20 min, 1.5 K / 3 min
         assert x["dead_time_pct"] == pytest.approx(100.0 * ffcs * 5 / 36000)
+
+
+def test_curvature_core_fit_is_the_per_pixel_least_squares():
+    """The float what-if core's batched normal equations against numpy.linalg.lstsq on the
+    design matrix written out by hand, pixel by pixel (random codes, 4 x 3 points x 3
+    scenes), and its correction at a point against the hand-built features."""
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(5)
+    p_n, s_n, m, h, w = 6, 3, 2, 3, 4
+    codes = rng.integers(3000, 12000, (p_n, s_n, m, h, w)).astype(np.uint16)
+    reading = np.repeat(rng.integers(7000, 9000, p_n)[:, None, None], s_n * m, 1).reshape(
+        p_n, s_n, m)
+    hread = np.repeat(rng.integers(7000, 9000, p_n)[:, None, None], s_n * m, 1).reshape(
+        p_n, s_n, m)
+    pts = SimpleNamespace(codes=codes, reading=reading, housing_reading=hread, reference=2)
+    targets = np.array([4000.0, 8000.0, 12000.0])
+    core = goal.CurvatureCore.fit(pts, targets, np.ones((h, w), bool), 0.01, 0.02)
+    t0, h0 = float(reading[2, 0, 0]), float(hread[2, 0, 0])
+    for i, j in ((0, 0), (2, 3)):
+        rows, b = [], []
+        for p in range(p_n):
+            v = (reading[p, 0, 0] - t0) * 0.01 / 10.0
+            u = (hread[p, 0, 0] - h0) * 0.02 / 10.0
+            for s in range(s_n):
+                x = codes[p, s, :, i, j].mean() / 8192.0 - 1.0
+                rows.append([x, x * v, x * v * v, x * x, 1.0, v, v * v, u, v * u, u * u])
+                b.append(targets[s])
+        want = np.linalg.lstsq(np.asarray(rows), np.asarray(b), rcond=None)[0]
+        np.testing.assert_allclose(core.coef[:, i, j], want, rtol=1e-6, atol=1e-6)
+        y = core.correct(codes[4, 1, :1], int(reading[4, 0, 0]), int(hread[4, 0, 0]))
+        v = (reading[4, 0, 0] - t0) * 0.01 / 10.0
+        u = (hread[4, 0, 0] - h0) * 0.02 / 10.0
+        x = codes[4, 1, 0, i, j] / 8192.0 - 1.0
+        f = np.array([x, x * v, x * v * v, x * x, 1.0, v, v * v, u, v * u, u * u])
+        np.testing.assert_allclose(y[0, i, j], f @ want, rtol=1e-9, atol=1e-6)

@@ -191,10 +191,90 @@ def calibrate(sensor: dc.StudySensor, labels: Sequence[str], fpa: Sequence[float
                         housing_offset=tuple(offsets))
     ov = {**sensor.base_overrides(), "noise.enabled": bool(noise)}
     pts = run_plan(p, sensor.preset, ov, seed=sensor.seed)
-    cals = {label: calibrate_points(pts, cfg)
-            for label, cfg in configs(labels, ts, hs, ffc_frames).items()}
-    return {"plan": p, "cal": cals,
-            "good": ~np.logical_or.reduce([c.bad for c in cals.values()])}
+    floats = {CURVATURE: (2, False), CURVATURE3: (3, False), CURVATURE_FFC: (2, True)}
+    fixed = [x for x in labels if x not in floats]
+    cals: dict[str, Any] = {label: calibrate_points(pts, cfg)
+                            for label, cfg in configs(fixed, ts, hs, ffc_frames).items()}
+    good = ~np.logical_or.reduce([c.bad for c in cals.values()])
+    for label, (order, ffc) in floats.items():
+        if label in labels:
+            core = CurvatureCore.fit(pts, next(iter(cals.values())).targets, good,
+                                     p.fpa_sensor.lsb_K, p.housing_sensor.lsb_K, order)
+            cals[label] = dataclasses.replace(core, ffc=ffc)
+    return {"plan": p, "cal": cals, "good": good}
+
+
+#: The labels of :class:`CurvatureCore` in :func:`calibrate` and :class:`Setup`: the FPA
+#: polynomials of order 2 (tc_housing's) and 3.
+CURVATURE = "float: curvature + tc_housing"
+CURVATURE3 = "float: curvature + tc_housing, cubic in the FPA"
+CURVATURE_FFC = "float: curvature + tc_housing + ffc"
+
+
+@dataclasses.dataclass
+class CurvatureCore:
+    """A what-if, not a configuration: the correction a core with a curvature term would
+    make, in float (no fixed point, no RTL), to measure whether such a core could meet the
+    goal. Per pixel,
+
+        y = (g0 + g1 v + g2 v^2) x + q x^2 + c0 + c1 v + c2 v^2 + h1 w + hx v w + h2 w^2
+
+    (``order`` 3: g3 v^3 x and c3 v^3 too),
+    x the raw code scaled to (-1, 1), v and w the FPA and housing readings from their
+    references in units of 10 K: tc_housing's offset, tc_gain's gain, and quadratic's
+    curvature, fitted per pixel by least squares on every (FPA, housing, scene) point of the
+    plan to the calibration's targets."""
+
+    coef: np.ndarray        # (10, H, W)
+    t_ref: float            # codes
+    h_ref: float            # codes
+    lsb_t: float            # K per code
+    lsb_h: float
+    targets: np.ndarray
+    order: int = 2
+    ffc: bool = False
+    cfg: Any = None
+
+    def has(self, stage: str) -> bool:
+        """Whether the core has the stage (``ffc``: an offset refreshed from the shutter's
+        frames, the float twin of the ffc stage: each pixel's mean over the N frames made
+        equal to the array's median)."""
+        return stage == "ffc" and self.ffc
+
+    def _features(self, x: np.ndarray, v: Any, w: Any) -> list[Any]:
+        out = [x, x * v, x * v * v, x * x, 1.0, v, v * v, w, v * w, w * w]
+        return out + ([x * v**3, v**3] if self.order == 3 else [])
+
+    @classmethod
+    def fit(cls, pts: Any, targets: np.ndarray, good: np.ndarray, lsb_t: float,
+            lsb_h: float, order: int = 2) -> CurvatureCore:
+        means = pts.codes.mean(axis=2, dtype=np.float64)           # (P, S, H, W)
+        t_ref = float(np.rint(pts.reading[pts.reference].mean()))
+        h_ref = float(np.rint(pts.housing_reading[pts.reference].mean()))
+        n_p, n_s, h, w = means.shape
+        shape = cls(np.empty(0), t_ref, h_ref, lsb_t, lsb_h, np.empty(0), order)
+        rows, tgt = [], []
+        for p in range(n_p):
+            v = (pts.reading[p].mean() - t_ref) * lsb_t / 10.0
+            u = (pts.housing_reading[p].mean() - h_ref) * lsb_h / 10.0
+            for k in range(n_s):
+                x = means[p, k] / 8192.0 - 1.0
+                rows.append(np.stack(np.broadcast_arrays(*shape._features(x, v, u))))
+                tgt.append(np.full((h, w), float(targets[k])))
+        a = np.stack(rows)                                        # (PS, 10, H, W)
+        b = np.stack(tgt)                                         # (PS, H, W)
+        ata = np.einsum("nihw,njhw->hwij", a, a)
+        atb = np.einsum("nihw,nhw->hwi", a, b)
+        ata += 1e-12 * np.eye(ata.shape[-1])  # the bad pixels' singular systems
+        coef = np.linalg.solve(ata, atb[..., None])[..., 0]       # (H, W, 10)
+        return cls(np.moveaxis(coef, -1, 0), t_ref, h_ref, lsb_t, lsb_h,
+                   np.asarray(targets, np.float64), order)
+
+    def correct(self, raw: np.ndarray, reading: int, housing: int) -> np.ndarray:
+        v = (reading - self.t_ref) * self.lsb_t / 10.0
+        w = (housing - self.h_ref) * self.lsb_h / 10.0
+        x = np.asarray(raw, np.float64) / 8192.0 - 1.0
+        return sum(c * f for c, f in zip(self.coef, self._features(x, v, w), strict=True))
 
 
 def _inputs(cfg: Any, n: int, reading: Any, housing: Any, shutter: bool) -> Any:
@@ -211,6 +291,10 @@ def refresh(cal: Any, shutter_raw: np.ndarray, readings: Any, housing: Any) -> n
     from irnuc.nuc_fixed.method_top import method_top
 
     n = shutter_raw.shape[0]
+    if isinstance(cal, CurvatureCore):
+        y = cal.correct(shutter_raw, int(np.asarray(readings).reshape(-1)[-1]),
+                        int(np.asarray(housing).reshape(-1)[-1])).mean(axis=0)
+        return np.median(y) - y
     return method_top(shutter_raw, cal.coeffs, _inputs(cal.cfg, n, readings, housing,
                                                        True)).ffc_offset
 
@@ -224,11 +308,16 @@ def measure(cal: Any, good: np.ndarray, sc: Any, raw: np.ndarray, slope_raw: np.
     order), the temporal noise beside it, and the level error of the frames' mean."""
     from irnuc.nuc_fixed.method_top import method_top
 
-    kw = {"ffc_offset": ffc_offset} if ffc_offset is not None else {}
-    y = method_top(raw, cal.coeffs, _inputs(cal.cfg, raw.shape[0], reading, housing, False),
-                   **kw).y.astype(np.float64)
-    ys = method_top(slope_raw, cal.coeffs, _inputs(cal.cfg, slope_raw.shape[0], reading,
-                                                   housing, False), **kw).y
+    if isinstance(cal, CurvatureCore):
+        add = 0.0 if ffc_offset is None else ffc_offset
+        y = cal.correct(raw, reading, housing) + add
+        ys = cal.correct(slope_raw, reading, housing) + add
+    else:
+        kw = {"ffc_offset": ffc_offset} if ffc_offset is not None else {}
+        y = method_top(raw, cal.coeffs, _inputs(cal.cfg, raw.shape[0], reading, housing, False),
+                       **kw).y.astype(np.float64)
+        ys = method_top(slope_raw, cal.coeffs, _inputs(cal.cfg, slope_raw.shape[0], reading,
+                                                       housing, False), **kw).y
     ref = dc.residuals(ys, good, scenes, sc)
     out = []
     for k, r in enumerate(ref):
@@ -345,6 +434,8 @@ def averaging(sensor: dc.StudySensor, cal_frames: Sequence[int] = (2, 8, 32),
 def with_ffc_frames(cal: Any, n: int) -> Any:
     """``cal`` with its FFC refreshed from ``n`` shutter frames: the same coefficient codes
     (N sets only the FFC's accumulator and mean, not the calibration)."""
+    if isinstance(cal, CurvatureCore):
+        return cal
     cfg = cal.cfg.replace(ffc_frames=int(n))
     return dataclasses.replace(cal, coeffs=dataclasses.replace(cal.coeffs, cfg=cfg))
 
@@ -357,7 +448,7 @@ class Setup:
     how many sawtooth peaks and evenly spaced states are read."""
 
     labels: tuple[str, ...] = ("tchousing14+tc_gain", "tcffc14", "tchousing14+ffc",
-                               "quadffc14")
+                               "quadffc14", CURVATURE, CURVATURE_FFC)
     policies: tuple[tuple[str, float | None, float | None], ...] = (
         ("Lepton: 3 min or 1.5 K", 180.0, 1.5), ("0.1 K", None, 0.1))
     cal_frames: int = 32
@@ -425,7 +516,7 @@ def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[
         "cal_frames": setup.cal_frames, "repeats": setup.repeats, "runs": []}
     even = np.unique(np.linspace(0, n - 1, setup.states).astype(int))
     for label, c0 in cals["cal"].items():
-        if not c0.cfg.has("ffc"):
+        if not _has_ffc(c0):
             rows = [read(c0, int(i), None) for i in even]
             out["runs"].append(_summary(label, c0.cfg, None, 0, rows, 0, 0.0, n, seq))
             continue
@@ -467,14 +558,29 @@ def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[
     return out
 
 
+def _has_ffc(cal: Any) -> bool:
+    return cal.has("ffc") if isinstance(cal, CurvatureCore) else cal.cfg.has("ffc")
+
+
+def kind(label: str) -> str:
+    """What a label of :func:`configs` is: ``configuration`` (pipelines.toml, golden model
+    and RTL), ``golden composition`` (the registry composes it; no RTL), ``float what-if``
+    (:class:`CurvatureCore`: neither)."""
+    if label.startswith("float:"):
+        return "float what-if"
+    return "golden composition" if label == "tchousing14+ffc" else "configuration"
+
+
 def _summary(label: str, cfg: Any, policy: str | None, nf: int, rows: list[dict[str, Any]],
              ffcs: int, dead_pct: float, n: int, seq: Any) -> dict[str, Any]:
     worst = max(rows, key=lambda r: r["fpn_mK"])
     hours = n / seq.frame_rate / 3600.0
-    return {"method": label, "policy": policy, "ffc_frames": nf,
+    return {"method": label, "kind": kind(label), "policy": policy, "ffc_frames": nf,
             "worst_fpn_mK": worst["fpn_mK"],
             "at": {k: worst[k] for k in ("time_s", "fpa_K", "housing_K")},
             "median_fpn_mK": float(np.median([r["fpn_mK"] for r in rows])),
             "worst_level_error_mK": max(abs(r["level_error_mK"]) for r in rows),
             "ffc_per_hour": ffcs / hours, "dead_time_pct": dead_pct,
-            **cost(cfg), "trace": rows}
+            **(cost(cfg) if cfg is not None else {"memory_bits": None, "runtime_bits": None,
+                                                   "calibration_bits": None, "read_bits": None,
+                                                   "vga60_MB_s": None}), "trace": rows}
