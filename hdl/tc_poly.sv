@@ -148,7 +148,9 @@ module tc_poly
   localparam int unsigned Leaves  = TcGain ? max2(OLeaves, GLeaves) : OLeaves;
   localparam int unsigned CoefBits = ThWordBits + TgWordBits + TcWordBits + OffsetBits
                                      + GainBits;
-  localparam int unsigned InBits  = UserBits + CoefBits + 2 * ReadingBits + 2 * HousingBits;
+  // The input register holds the housing reading and h_ref only with Housing.
+  localparam int unsigned HInBits = Housing ? 2 * HousingBits : 0;
+  localparam int unsigned InBits  = UserBits + CoefBits + 2 * ReadingBits + HInBits;
 
 `ifndef SYNTHESIS
   initial begin : p_param_ranges
@@ -182,16 +184,32 @@ module tc_poly
   logic [CoefBits-1:0]    in_coef;
   logic [UserBits-1:0]    in_user;
 
+  logic [InBits-1:0] in_d, in_q;
+
+  if (Housing) begin : gen_in_housing
+    assign in_d = {s_user_i, s_th_i, s_tg_i, s_tc_i, s_offset_i, s_gain_i, s_h_ref_i,
+                   s_housing_i, s_t_ref_i, s_reading_i};
+    assign {in_user, in_coef, in_h_ref, in_housing, in_t_ref, in_reading} = in_q;
+  end else begin : gen_in_fpa
+    // No housing flops: tc_reading ignores its housing inputs without Housing.
+    assign in_d = {s_user_i, s_th_i, s_tg_i, s_tc_i, s_offset_i, s_gain_i, s_t_ref_i,
+                   s_reading_i};
+    assign {in_user, in_coef, in_t_ref, in_reading} = in_q;
+    assign in_housing = '0;
+    assign in_h_ref   = '0;
+    logic unused_housing_in;
+    assign unused_housing_in = ^{s_h_ref_i, s_housing_i};
+  end
+
   irnuc_spill_register #(.DataBits(InBits)) u_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_valid_i),
     .ready_o(s_ready_o),
-    .data_i ({s_user_i, s_th_i, s_tg_i, s_tc_i, s_offset_i, s_gain_i, s_h_ref_i, s_housing_i,
-              s_t_ref_i, s_reading_i}),
+    .data_i (in_d),
     .valid_o(in_valid),
     .ready_i(en),
-    .data_o ({in_user, in_coef, in_h_ref, in_housing, in_t_ref, in_reading})
+    .data_o (in_q)
   );
 
   // ---- u and u2 --------------------------------------------------------------------------
