@@ -319,6 +319,8 @@ def top_parameters(top: str, cfg: PipelineConfig) -> dict[str, int]:
         if spec is not None and spec.flags and cfg.plain:
             return {k: v for k, v in params.items() if k in names}  # nuc_dpc_top inside
         vals = _values(cfg)
+        if top == cfg.base.rtl_module:  # a front shared by methods: the one cfg has
+            vals |= dict.fromkeys(cfg.base.rtl_front_flags, 1)
         return {k: vals[k] for k in names if k in vals}
     if top == "method_core":
         vals = {**_values(cfg), "Kind": list(methods_rtl.CORE_KINDS).index(cfg.base.core)}

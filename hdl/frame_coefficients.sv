@@ -301,7 +301,7 @@ module frame_coefficients
       .m_user_o    (m_user_o)
     );
   end else begin : gen_tc_housing
-    method_tc_housing #(
+    method_tc_offset #(
       .GainIntBits      (GainIntBits),
       .GainFracBits     (GainFracBits),
       .OffsetIntBits    (OffsetIntBits),
@@ -333,6 +333,7 @@ module frame_coefficients
       .TcGain           (TcGain),
       .ReadingRangeBits (ReadingRangeBits),
       .HousingRangeBits (HousingRangeBits),
+      .Housing          (1'b1),
       .UserBits         (UserBits)
     ) u_front (
       .clk_i       (clk_i),

@@ -1,8 +1,14 @@
-// tc_offset's front (docs/datapath.md "tc_offset", nuc_fixed.methods.tc_offset): the pixel's
-// coefficient word {tg, tc, coef_word} (coeffs: gain, offset c0, bad at bit 0; tc: tc1[, tc2];
-// tg: tg1[, tg2] with TcGain) and the frame's word frame_tc_offset {t_ref, reading} to the
-// frame's gain and offset of the pixel: tc_poly (tc_reading inside), a pipeline of its
-// latency with its own input and output registers. m_user_o = {s_user_i, bad}.
+// The front of tc_offset and tc_housing (docs/datapath.md "tc_offset", docs/methods.md
+// "tc_housing"; nuc_fixed.methods.tc_offset, .tc_housing): the pixel's coefficient word and
+// the frame's word to the frame's gain and offset of the pixel: tc_poly (tc_reading inside),
+// a pipeline of its latency with its own input and output registers. m_user_o = {s_user_i,
+// bad}. Coefficient words (bit 0 up) coeffs: gain, offset c0, bad at bit 0; tc: tc1[, tc2];
+// with Housing th: th1, thx, th2; with TcGain tg: tg1[, tg2]:
+//   tc_offset   {tg, tc, coef_word},      frame_tc_offset  {t_ref, reading}
+//   tc_housing  {tg, th, tc, coef_word},  frame_tc_housing {h_ref, housing_reading, t_ref,
+//                                                            reading}
+// Housing (tc_housing's instance, the registry's rtl_front_flags) switches on tc_poly's and
+// tc_reading's housing terms; without it the hardware is tc_offset's alone.
 module method_tc_offset
   import irnuc_pkg::*;
 #(
@@ -30,6 +36,15 @@ module method_tc_offset
   parameter int unsigned TcOrder          = 2,  // order of the polynomials
   parameter bit          TcGain           = 1'b0,  // the gain is a polynomial too
   parameter int unsigned ReadingRangeBits = 11,  // Ts: v = (t - t_ref) / 2^Ts
+  parameter int unsigned HousingBits      = 14,  // bits of the housing sensor's reading
+  parameter int unsigned Th1IntBits       = 15,
+  parameter int unsigned Th1FracBits      = 3,
+  parameter int unsigned ThxIntBits       = 14,
+  parameter int unsigned ThxFracBits      = 4,
+  parameter int unsigned Th2IntBits       = 12,
+  parameter int unsigned Th2FracBits      = 4,
+  parameter int unsigned HousingRangeBits = 11,  // Hs: w' = (h - h_ref) / 2^Hs
+  parameter bit          Housing          = 1'b0,  // 1: tc_housing
   parameter int unsigned UserBits         = 1,  // side band passed with the pixel
   // Derived, do not override.
   localparam int unsigned GainBits         = GainIntBits + GainFracBits,
@@ -41,9 +56,10 @@ module method_tc_offset
                                              + ((TcOrder == 2) ? Tc2IntBits + Tc2FracBits : 0),
   localparam int unsigned TgWordBits       = (TcGain != 0) ? Tg1IntBits + Tg1FracBits
                                              + ((TcOrder == 2) ? Tg2IntBits + Tg2FracBits : 0) : 0,
-  localparam int unsigned CoefBits         = coef_word_bits(GainBits, OffsetBits) + TcWordBits
-                                             + TgWordBits,
-  localparam int unsigned FrameBits        = frame_tc_offset_bits(ReadingBits)
+  localparam int unsigned ThWordBits       = Th1IntBits + Th1FracBits + ThxIntBits + ThxFracBits
+                                             + Th2IntBits + Th2FracBits,
+  localparam int unsigned CoefBits         = (Housing != 0) ? (coef_word_bits(GainBits, OffsetBits) + TcWordBits + ThWordBits + TgWordBits) : (coef_word_bits(GainBits, OffsetBits) + TcWordBits + TgWordBits),
+  localparam int unsigned FrameBits        = (Housing != 0) ? (frame_tc_housing_bits(ReadingBits, HousingBits)) : (frame_tc_offset_bits(ReadingBits))
   // irnuc-params: end
 ) (
   // irnuc-params: ports (generated from nuc_fixed.methods; do not edit)
@@ -70,15 +86,36 @@ module method_tc_offset
 );
 
   localparam int unsigned TwoPointBits = coef_word_bits(GainBits, OffsetBits);
+  // Where the tg word starts: after th with Housing.
+  localparam int unsigned TgLsb        = TwoPointBits + TcWordBits + (Housing ? ThWordBits : 0);
+  localparam int unsigned ThPortBits   = Housing ? ThWordBits : 1;
 
   coef_word#(GainBits, OffsetBits)::word_t     coeffs;
-  frame_tc_offset#(ReadingBits)::word_t        fw;
+  logic [ReadingBits-1:0]                      reading, t_ref;
+  logic [HousingBits-1:0]                      housing, h_ref;
+  logic [ThPortBits-1:0]                       th;
   logic [((TcGain != 0) ? TgWordBits : 1)-1:0] tg;
 
   assign coeffs = s_coef_i[TwoPointBits-1:0];
-  assign fw     = s_frame_i;
+  if (Housing) begin : gen_housing
+    frame_tc_housing#(ReadingBits, HousingBits)::word_t fw;
+    assign fw      = s_frame_i;
+    assign reading = fw.reading;
+    assign t_ref   = fw.t_ref;
+    assign housing = fw.housing_reading;
+    assign h_ref   = fw.h_ref;
+    assign th      = s_coef_i[TwoPointBits + TcWordBits +: ThPortBits];
+  end else begin : gen_fpa
+    frame_tc_offset#(ReadingBits)::word_t fw;
+    assign fw      = s_frame_i;
+    assign reading = fw.reading;
+    assign t_ref   = fw.t_ref;
+    assign housing = '0;
+    assign h_ref   = '0;
+    assign th      = '0;
+  end
   if (TcGain != 0) begin : gen_tg
-    assign tg = s_coef_i[TwoPointBits + TcWordBits +: TgWordBits];
+    assign tg = s_coef_i[TgLsb +: TgWordBits];
   end else begin : gen_no_tg
     assign tg = 1'b0;
   end
@@ -96,10 +133,19 @@ module method_tc_offset
     .Tg1FracBits     (Tg1FracBits),
     .Tg2IntBits      (Tg2IntBits),
     .Tg2FracBits     (Tg2FracBits),
+    .Th1IntBits      (Th1IntBits),
+    .Th1FracBits     (Th1FracBits),
+    .ThxIntBits      (ThxIntBits),
+    .ThxFracBits     (ThxFracBits),
+    .Th2IntBits      (Th2IntBits),
+    .Th2FracBits     (Th2FracBits),
     .TcOrder         (TcOrder),
     .TcGain          (TcGain),
+    .Housing         (Housing),
     .ReadingBits     (ReadingBits),
     .ReadingRangeBits(ReadingRangeBits),
+    .HousingBits     (HousingBits),
+    .HousingRangeBits(HousingRangeBits),
     .Rounding        (Rounding),
     .UserBits        (UserBits + 1)
   ) u_coef (
@@ -107,15 +153,15 @@ module method_tc_offset
     .rst_ni     (rst_ni),
     .s_valid_i  (s_valid_i),
     .s_ready_o  (s_ready_o),
-    .s_reading_i(fw.reading),
-    .s_t_ref_i  (fw.t_ref),
-    .s_housing_i('0),
-    .s_h_ref_i  ('0),
+    .s_reading_i(reading),
+    .s_t_ref_i  (t_ref),
+    .s_housing_i(housing),
+    .s_h_ref_i  (h_ref),
     .s_gain_i   (coeffs.gain),
     .s_offset_i (coeffs.offset),
     .s_tc_i     (s_coef_i[TwoPointBits +: TcWordBits]),
     .s_tg_i     (tg),
-    .s_th_i     (1'b0),
+    .s_th_i     (th),
     .s_user_i   ({s_user_i, coeffs.bad}),
     .m_valid_o  (m_valid_o),
     .m_ready_i  (m_ready_i),

@@ -386,7 +386,10 @@ class MethodSpec(PartSpec):
     whose outputs are flops: tc_offset's, table_interp's; the others pass through),
     ``corner_registers`` (registers the corner stimulus puts at 0 and their largest code),
     ``plain`` (the configuration without stages is the plain two-point NUC: memory image
-    version 1, ``nuc_dpc_top``). Its memories (the first holds the bad flags) it must give.
+    version 1, ``nuc_dpc_top``), ``rtl_front_flags`` (the 1-bit parameters its instance of
+    a front it shares with another method sets, each to 1: tc_housing is tc_offset's front
+    with ``Housing``; the front declares them, default 0). Its memories (the first holds the
+    bad flags) it must give.
     """
 
     core: str = "lin"
@@ -399,6 +402,7 @@ class MethodSpec(PartSpec):
     rtl_front_registered: bool = False
     corner_registers: tuple[str, ...] = ()
     plain: bool = False
+    rtl_front_flags: tuple[str, ...] = ()
 
     def memories(self, cfg: PipelineConfig) -> list[MemoryLayout]:
         """Its per-pixel memories for ``cfg``, in order (the first holds the bad flags)."""

@@ -13,8 +13,10 @@ MODULES = ("nuc_core", "dpc_core", "nuc_dpc_top", "dpc_ctrl", "irnuc_spill_regis
            "irnuc_stream_assert", "irnuc_frame_assert", "irnuc_add_tree", "irnuc_mul_parts",
            "irnuc_line_buffer", "irnuc_pkg_probe", "nuc_dpc_batch", "irnuc_dsp_mul",
            "irnuc_round", "irnuc_clip", "dpc_tail")
-#: Each method's front (hdl/<MethodSpec.rtl_module>.sv), with the method it serves.
-FRONTS = {m.rtl_module: (m.name,) for m in methods.BASES.values()}
+#: Each method's front (hdl/<MethodSpec.rtl_module>.sv), with the methods it serves
+#: (tc_offset's serves tc_housing too, with its Housing flag).
+FRONTS = {f: tuple(m.name for m in methods.BASES.values() if m.rtl_module == f)
+          for f in dict.fromkeys(m.rtl_module for m in methods.BASES.values())}
 #: The modules of the correction methods, linted with every method configuration.
 METHOD_MODULES = ("method_dpc_top", "frame_coefficients", "method_core", "pwl_core",
                   "quad_core", "tc_poly", "tc_reading", "table_interp", "interp_weight",
@@ -87,7 +89,7 @@ def _method_cases() -> list[tuple[str, str, dict[str, object]]]:
     d["formats"] = {k: v for k, v in d["formats"].items() if k != "tc2"}
     d["formats"]["tg1"] = load_pipeline("tcgain14").to_dict()["formats"]["tg1"]
     h1 = PipelineConfig(**{**d, "tc_order": 1, "tc_gain": True, "name": "tchousing14_order1"})
-    for module in ("method_dpc_top", "tc_poly", "tc_reading", "method_tc_housing"):
+    for module in ("method_dpc_top", "tc_poly", "tc_reading", "method_tc_offset"):
         cases.append((module, h1, {}))  # type: ignore[arg-type]
     for module in ("method_dpc_top", "pwl_core", "quad_core"):
         for r in ("truncate", "half_even"):

@@ -25,7 +25,7 @@ A top's parameters stay scalars (``-G`` sets them); the names are those of
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
 from irnuc.nuc_fixed import methods, regmap
@@ -202,6 +202,33 @@ def front_params(m: MethodSpec) -> list[SvParam]:
     out += [p for p in _part_params(m, ("front",)) if p.name not in reading or p.name in sized]
     out.append(SvParam("UserBits", "int unsigned", "1", "side band passed with the pixel"))
     return _unique(out)
+
+
+def front_methods(module: str) -> list[MethodSpec]:
+    """The base methods whose front is ``module``: one, or several sharing it, told apart
+    by their ``rtl_front_flags`` (tc_offset and tc_housing: ``method_tc_offset``)."""
+    return [m for m in methods.BASES.values() if m.rtl_module == module]
+
+
+def shared_front_params(module: str) -> list[SvParam]:
+    """The parameters of front ``module``: those of every method it serves, the 1-bit
+    flags that tell them apart (default 0: the method without flags), UserBits."""
+    ms = front_methods(module)
+    out = [p for m in ms for p in front_params(m) if p.name != "UserBits"]
+    out += [SvParam(f, "bit", "1'b0", f"1: {m.name}") for m in ms for f in m.rtl_front_flags]
+    out.append(SvParam("UserBits", "int unsigned", "1", "side band passed with the pixel"))
+    return _unique(out)
+
+
+def _front_switch(ms: Sequence[MethodSpec], expr: Callable[[MethodSpec], str]) -> str:
+    """``expr`` of the method a shared front's flags select (the one without flags when
+    none is set)."""
+    default = [m for m in ms if not m.rtl_front_flags]
+    out = expr(default[0]) if default else "32'd1"
+    for m in reversed([m for m in ms if m.rtl_front_flags]):
+        cond = " && ".join(f"{f} != 0" for f in m.rtl_front_flags)
+        out = f"({cond}) ? ({expr(m)}) : ({out})"
+    return out
 
 
 def dispatch_params() -> list[SvParam]:
@@ -515,18 +542,17 @@ def _module_derived(spec: ModuleSpec, params: list[SvParam]) -> list[tuple[str, 
 def header(module: str, last: bool) -> str:
     """The generated header block of ``module`` (a top of :func:`modules` or a method's
     front), markers included; ``last``: nothing follows it in the parameter list."""
-    fronts = {m.rtl_module: m for m in methods.BASES.values()}
-    if module in fronts:
-        m = fronts[module]
-        params = front_params(m)
+    ms = front_methods(module)
+    if ms:
+        params = shared_front_params(module)
         have = {p.name for p in params} | {"GainBits", "OffsetBits"}
         derived = [("GainBits", "GainIntBits + GainFracBits"),
                    ("OffsetBits", "OffsetIntBits + OffsetFracBits")]
         derived += _derived([f"{f.sv}Bits" for f in _kind_formats()], have, {})
-        derived += _derived([*_args([m.stream]), *_args([m.frame_word])], have,
-                            dict(m.rtl_derived))
-        derived += [("CoefBits", stream_bits_expr(m.stream)),
-                    ("FrameBits", stream_bits_expr(m.frame_word))]
+        derived += _derived([*_args(m.stream for m in ms), *_args(m.frame_word for m in ms)],
+                            have, {n: e for m in ms for n, e in m.rtl_derived})
+        derived += [("CoefBits", _front_switch(ms, lambda m: stream_bits_expr(m.stream))),
+                    ("FrameBits", _front_switch(ms, lambda m: stream_bits_expr(m.frame_word)))]
     else:
         spec = modules()[module]
         params = top_params(spec)
@@ -537,9 +563,8 @@ def header(module: str, last: bool) -> str:
 
 def parameters_of(module: str) -> list[str]:
     """The parameter names (not localparams) of a generated header."""
-    fronts = {m.rtl_module: m for m in methods.BASES.values()}
-    if module in fronts:
-        return [p.name for p in front_params(fronts[module])]
+    if front_methods(module):
+        return [p.name for p in shared_front_params(module)]
     if module == "frame_coefficients":
         return [p.name for p in dispatch_params()]
     return [p.name for p in top_params(modules()[module])]
@@ -629,9 +654,10 @@ def frame_coefficients() -> str:
                      f"  end else {cond}" if i < len(bases) - 1 else
                      f"  end else begin : gen_{m.name}")
         names = [p.name for p in front_params(m) if p.name != "UserBits"]
-        width = max(len(n) for n in [*names, "UserBits"])
+        width = max(len(n) for n in [*names, *m.rtl_front_flags, "UserBits"])
         lines.append(f"    {m.rtl_module} #(")
         lines += [f"      .{n.ljust(width)} ({n})," for n in names]
+        lines += [f"      .{f.ljust(width)} (1'b1)," for f in m.rtl_front_flags]
         lines.append(f"      .{'UserBits'.ljust(width)} (UserBits)")
         lines.append("    ) u_front (")
         pw = max(len(p) for p in _FRONT_CONNECT)
