@@ -98,14 +98,18 @@ class Traffic:
         self.causes: set[str] = set()  # error causes the streamed frames have
         self.frames_possible = False
         self.paused = False  # stream_ops waits (a sequence's access that must land in time)
+        self._pauses = 0  # the pauses in force (pause)
 
     # ---- the channels --------------------------------------------------------------------
     def pause(self, on: bool = True) -> None:
         """Hold the random accesses of :meth:`stream_ops` (and BREADY / RREADY high) while
         a sequence makes an access that must land in time (the register file takes one
-        transaction at a time), or resume them."""
-        self.paused = on
-        self.hold_readies(not on)
+        transaction at a time), or resume them. Pauses nest (two sequences may hold the
+        traffic at once): the accesses resume when every pause is resumed."""
+        self._pauses = max(0, self._pauses + (1 if on else -1))
+        if self.paused != (self._pauses > 0):
+            self.paused = self._pauses > 0
+            self.hold_readies(not self.paused)
 
     def hold_readies(self, on: bool = True) -> None:
         """BREADY and RREADY low for random stretches (or always high)."""

@@ -23,6 +23,7 @@ from __future__ import annotations
 import itertools
 import json
 import os
+import re
 from collections.abc import Awaitable, Callable, Iterator, Mapping, Sequence
 
 import numpy as np
@@ -37,9 +38,33 @@ CLK_PERIOD_NS = 10
 
 
 async def start_clock_and_reset(dut: SimHandleBase, cycles: int = 3) -> None:
-    """Start ``clk_i`` and pulse the asynchronous active-low reset ``rst_ni``."""
+    """Start ``clk_i``, idle the input streams (:func:`idle_inputs`) and pulse the
+    asynchronous active-low reset ``rst_ni``."""
     Clock(dut.clk_i, CLK_PERIOD_NS, unit="ns").start()
+    idle_inputs(dut)
     await reset(dut, cycles)
+
+
+#: AXI names of the valid flags a master drives into the DUT (its slave ports).
+_AXI_INPUT_VALIDS = re.compile(r"s_axis_\w+_tvalid|s_axil_(aw|w|ar)valid")
+
+
+def input_valid_names(names: Sequence[str]) -> list[str]:
+    """Of the DUT's signal ``names``, the valid flags of its inputs: ``<prefix>_valid_i``
+    and the slave ports' AXI ``s_axis_*_tvalid``, ``s_axil_awvalid`` / ``wvalid`` /
+    ``arvalid``."""
+    return sorted(n for n in names
+                  if n.endswith("_valid_i") or _AXI_INPUT_VALIDS.fullmatch(n))
+
+
+def idle_inputs(dut: SimHandleBase) -> None:
+    """Drive every input valid flag to 0. A cocotb test starts on the signals the one
+    before it left: a driver that stopped with an item offered (a test that failed
+    mid-stream) leaves its valid high, and at the first edge after the next test's reset
+    the DUT would take that stale item (AXI: a master holds VALID low in reset and raises
+    it only after the first edge after it; ``irnuc_axis_assert`` checks that edge)."""
+    for name in input_valid_names([h._name for h in dut]):
+        getattr(dut, name).value = 0
 
 
 async def reset(dut: SimHandleBase, cycles: int = 3) -> None:

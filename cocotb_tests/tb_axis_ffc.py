@@ -294,9 +294,15 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
 
     def write_reading(k: int):
         """READING of frame k + 1, written while frame k streams (it must land before
-        frame k + 1 starts: the core takes it at that frame start)."""
+        frame k + 1 starts: the core takes it at that frame start). The random traffic is
+        paused for it as for FFC_CTRL: a write waits for the one in flight and, with BREADY
+        held low at random, took up to 37 cycles (the register file answers in 6)."""
         async def write() -> None:
+            if t is not None:
+                t.pause(True)
             await set_reading(int(readings[k + 1]))
+            if t is not None:
+                t.pause(False)
             assert bench.beats_in < starts[k + 1], (
                 f"READING of frame {k + 1} written after that frame started "
                 f"({bench.beats_in} beats taken)")

@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import pytest
 
-from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method, tb_axis_table
+from irnuc import cosim
+from irnuc.cocotb_tests import tb_axis, tb_axis_ffc, tb_axis_method, tb_axis_reset, tb_axis_table
 from irnuc.cocotb_tests.runs import (
     case_params,
     coverage_json,
     module_metrics,
+    results_root,
     run_case,
     run_module,
 )
@@ -50,18 +52,7 @@ def test_irnuc_axis_top_table(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_table, case)
 
 
-# Known failures, open (issue 36, docs/rtl.md "Open defects"): since the housing-aware
-# method's RTL (d22c1fc), tcffc14 through the wrapper mismatches on one-line frames (each
-# output uses the previous pixel's coefficients) and its second run's READING write lands
-# after the frame start. Strict: the day they pass, these marks must go.
-_TCFFC_OPEN = pytest.mark.xfail(strict=True, reason="open defect since d22c1fc: tcffc14 "
-                                "one-line frames and second run through irnuc_axis_top")
-_FFC_OPEN = {("tcffc14", "ffc_one_line"), ("tcffc14", "ffc_second_run")}
-
-
-@pytest.mark.parametrize(("config", "case"), [
-    pytest.param(c, k, marks=_TCFFC_OPEN) if (c, k) in _FFC_OPEN else (c, k)
-    for c, k in case_params(tb_axis_ffc, FFC_CONFIGS)])
+@pytest.mark.parametrize(("config", "case"), case_params(tb_axis_ffc, FFC_CONFIGS))
 def test_irnuc_axis_top_ffc(config: str, case: str) -> None:
     run_case("irnuc_axis_top", load_pipeline(config), tb_axis_ffc, case)
 
@@ -111,8 +102,7 @@ def test_irnuc_axis_top_table_coverage(config: str) -> None:
     _assert_axis_closed(config, tb_axis_table, "axis.table.")
 
 
-@pytest.mark.parametrize("config", [
-    pytest.param(c, marks=_TCFFC_OPEN) if c == "tcffc14" else c for c in FFC_CONFIGS])
+@pytest.mark.parametrize("config", FFC_CONFIGS)
 def test_irnuc_axis_top_ffc_coverage(config: str) -> None:
     """Every bin of the FFC sequence through the registers (cosim.axis_coverage's
     axis.ffc points) and of the stream points is hit by the one run of tb_axis_ffc."""
@@ -132,3 +122,21 @@ def test_irnuc_axis_top_housing_coverage() -> None:
     axis.housing point: HOUSING_READING written between frames and mid frame) and of the
     stream points is hit by the one run of tb_axis_method on tchousing14."""
     _assert_axis_closed("tchousing14", tb_axis_method, "axis.housing.")
+
+
+def test_irnuc_axis_top_reset_idle_fires() -> None:
+    """A valid held high across reset (a stale item the DUT would take at the first edge
+    after it: the bench's idle_inputs left out) stops the simulation through
+    irnuc_axis_assert's a_reset_idle on that port (tb_axis_reset, a simulation of its own;
+    tb_axis.stale_inputs_idled is the legal start with the same junk)."""
+    cfg = load_pipeline("minimal")
+    case = "violation_valid_at_reset"
+    xml = cosim.run(cosim.build("irnuc_axis_top", cfg), tb_axis_reset.__name__, testcase=case,
+                    results_xml=results_root() / f"{cfg.name}-{cfg.digest()[:8]}-"
+                    f"irnuc_axis_top-reset-{case}.xml")
+    res = cosim.read_results(xml)[case]
+    fired = cosim.assertion_failures(xml)
+    assert not res.passed, "the valid held across reset passed"
+    assert tb_axis_reset.NOT_FIRED not in res.message, f"the simulation went on\n{res.message}"
+    assert any("u_assert_coef_in." in ln and ".a_reset_idle:" in ln for ln in fired), (
+        f"expected a_reset_idle in u_assert_coef_in; the simulator log reports {fired}")

@@ -20,6 +20,7 @@ from irnuc.common.errors import UserError
 from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
 from irnuc.cosim.method_drift import calibrate_methods, drift_sequence
 from irnuc.nuc_fixed import InputError, load_pipeline
+from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 
 pytestmark = [pytest.mark.cosim, pytest.mark.slow]
 
@@ -29,8 +30,8 @@ SHAPE = (24, 40)
 
 
 @functools.cache
-def _build(config: str) -> cosim.Build:
-    return cosim.build_bulk(load_pipeline(config), top="method_dpc_top")
+def _build(config: str, assertions: bool = True) -> cosim.Build:
+    return cosim.build_bulk(load_pipeline(config), top="method_dpc_top", assertions=assertions)
 
 
 def _stimulus(config: str, frames: int, seed: int):
@@ -82,7 +83,40 @@ def test_method_bulk_direct_eval_equals_public_eval(config: str) -> None:
     assert np.array_equal(fast.sof, old.sof) and np.array_equal(fast.eol, old.eol)
     assert (fast.cycles, fast.stall_cycles, fast.inputs_taken) == (
         old.cycles, old.stall_cycles, old.inputs_taken)
-    assert fast.cycles > 2 * 4096  # most cycles go through the scheduler call
+    assert fast.cycles > 2 * 4096  # most cycles go through the scheduler call alone
+
+
+@pytest.mark.parametrize("assertions", [True, False], ids=["assertions", "noassert"])
+def test_method_bulk_fast_path_catches_a_planted_mismatch(assertions: bool) -> None:
+    """One raw code changed in what the DUT streams, the golden model given the original
+    frames: the fast path (one scheduler call per cycle; on the assertion build and on the
+    build without assertions, the benchmark's throughput run) reports exactly the outputs
+    the change moves (the golden model on both stimuli says which: the pixel, and the
+    neighbours whose defect replacement reads it), under gaps and backpressure, 2 shards."""
+    cfg = load_pipeline("typical14")
+    c, raw, rd = _stimulus("typical14", 3, seed=16)
+    want = method_top(raw, c, FrameInputs()).y.ravel()
+    # The first pixel of frame 1's middle row whose changed code moves the golden model's
+    # output (random coefficients clip many outputs at either end, which no code moves).
+    f, r = 1, SHAPE[0] // 2
+    for col in range(SHAPE[1]):
+        planted = raw.copy()
+        planted[f, r, col] = ((1 << cfg.adc_bits) - 1) - raw[f, r, col]  # far from it
+        moved = np.flatnonzero(want != method_top(planted, c, FrameInputs()).y.ravel())
+        if moved.size:
+            break
+    assert moved.size >= 1, "no code of the row moves an output of the golden model"
+    res = run_method_bulk(_build("typical14", assertions), c, planted, rd, idle_percent=10,
+                          stall_percent=20, seed=3, shards=2)
+    chk = check_method_bulk(res, c, raw, rd)
+    assert not chk.passed
+    assert (chk.mismatches, chk.missing, chk.extra) == (moved.size, 0, 0), chk.report()
+    assert chk.first_index == moved[0]
+    assert moved[0] // (SHAPE[0] * SHAPE[1]) == f
+    # and the run on the right frames passes (the same build and path)
+    ok = run_method_bulk(_build("typical14", assertions), c, raw, rd, idle_percent=10,
+                         stall_percent=20, seed=3, shards=2)
+    assert check_method_bulk(ok, c, raw, rd).passed
 
 
 @functools.cache

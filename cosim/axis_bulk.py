@@ -38,15 +38,14 @@ from typing import Any
 import numpy as np
 
 from irnuc.common.errors import UserError
-from irnuc.cosim.builds import BUILD_ARGS, FAST_ARGS, Build, build_digest, cached_build
-from irnuc.cosim.sources import hdl_sources, top_parameters, verilator_g
-from irnuc.cosim.verilator import RtlError, verilator_env, verilator_executable
+from irnuc.cosim.builds import Build
+from irnuc.cosim.bulk import harness_build
+from irnuc.cosim.verilator import verilator_env
 from irnuc.nuc_fixed import MethodCoefficients, PipelineConfig
 
 TOP = "irnuc_axis_top"
 AXIS_HARNESS = Path(__file__).resolve().with_name("harness") / "axis_main.cpp"
 AXIS_EXE = "axis_bulk"
-_MAKE_OPT = ("OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O2")
 _SOF, _EOL = 1 << 16, 1 << 17
 _LAST = np.uint64(1 << 63)
 
@@ -67,36 +66,9 @@ def unsupported(cfg: PipelineConfig) -> str | None:
 
 def build_axis(cfg: PipelineConfig) -> Build:
     """Build (cached) the axis harness of ``irnuc_axis_top`` for ``cfg``."""
-    params = top_parameters(TOP, cfg)
-    base = list(BUILD_ARGS)
-    header = f'#include "V{TOP}.h"\nusing AxisTop = V{TOP};\n'
-    key = build_digest(TOP, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header],
-                       [AXIS_HARNESS])
-
-    def make(build_dir: Path) -> None:
-        from irnuc.common.process import run_child
-        from irnuc.cosim import _objcache
-
-        log = build_dir / "build.log"
-        (build_dir / "axis_top.h").write_text(header)
-        cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
-               "--top-module", TOP, "-o", AXIS_EXE, *base, *FAST_ARGS, *verilator_g(params),
-               *[str(p) for p in hdl_sources(TOP)], str(AXIS_HARNESS)]
-        proc = run_child(cmd, env=verilator_env(), log=log)
-        if proc.returncode == 0:
-            _objcache.seed(build_dir)
-            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{TOP}.mk",
-                              *_MAKE_OPT], env=verilator_env(), log=build_dir / "make.log")
-        if proc.returncode == 0:
-            _objcache.store(build_dir)
-        if proc.returncode != 0 or not (build_dir / AXIS_EXE).is_file():
-            raise RtlError(f"Verilator build of the axis harness failed (exit "
-                           f"{proc.returncode}); see {log}")
-
-    build_dir = cached_build(f"{cfg.name}-axisbulk-{key}",
-                             {"top": TOP, "harness": AXIS_HARNESS.name, "config": cfg.to_dict(),
-                              "params": params, "args": list(FAST_ARGS)}, make)
-    return Build(top=TOP, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
+    return harness_build(cfg, TOP, AXIS_HARNESS, AXIS_EXE,
+                         header=f'#include "V{TOP}.h"\nusing AxisTop = V{TOP};\n',
+                         header_name="axis_top.h", name=f"{cfg.name}-axisbulk")
 
 
 @dataclass

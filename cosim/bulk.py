@@ -17,9 +17,11 @@ harness, which plays the external memory) are given to :func:`run_frames` as a
 from __future__ import annotations
 
 import json
+import re
 import resource
 import tempfile
 import time
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -49,8 +51,94 @@ BULK_TOPS = {"nuc_dpc_top": "", "method_dpc_top": "#define BULK_FRAME_WORD 1\n",
 #: wins) but after them for the harness (which was compiled at -Os), and the precompiled
 #: header of ``cosim._objcache`` serves only files compiled alike.
 _MAKE_OPT = ("OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O2")
-#: Output word of the harness: bit 31 sof, bit 30 eol, low bits the corrected code.
-_SOF_BIT, _EOL_BIT = 31, 30
+#: Output word of the harness: bit 31 sof, bit 30 eol, low bits the corrected code; with
+#: codes of at most 14 bits a 16-bit word (out16=1), bit 15 sof, bit 14 eol: half the bytes
+#: the harness writes and numpy reads.
+_OUT16_MAX_BITS = 14
+
+
+#: Port access shared by both harnesses (``harness_common.h``, found next to the .cpp).
+HARNESS_COMMON = BULK_HARNESS.with_name("harness_common.h")
+
+
+def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, header: str,
+                  header_name: str, name: str, assertions: bool = True,
+                  hdl_dir: Path | None = None,
+                  check: Callable[[Path, str], None] | None = None) -> Build:
+    """Build (cached) a C++ harness (Verilator ``--cc --exe``) around ``top`` for ``cfg``:
+    the recipe of both bulk harnesses (this module's and :mod:`irnuc.cosim.axis_bulk`'s).
+
+    ``header`` is written to ``<build_dir>/<header_name>``, which ``harness`` includes (the
+    model's class, what the top has); the cache key covers it, the harness, the shared
+    ``harness_common.h``, the HDL (``hdl_dir`` instead of ``hdl/``), the parameters and the
+    options. ``name`` is the build folder's prefix; the executable is
+    ``<build_dir>/<exe>``. ``assertions=False`` leaves the protocol assertions out.
+    ``check(build_dir, top)`` runs on Verilator's output before it is compiled.
+    """
+    params = top_parameters(top, cfg)
+    base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
+                                                if a not in ("--assert", ASSERT_DEFINE)]
+    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header],
+                       [harness, HARNESS_COMMON], hdl_dir=hdl_dir)
+
+    def make(build_dir: Path) -> None:
+        from irnuc.common.process import run_child
+        from irnuc.cosim import _objcache
+
+        log = build_dir / "build.log"
+        (build_dir / header_name).write_text(header)
+        cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
+               "--top-module", top, "-o", exe, *base, *FAST_ARGS, *verilator_g(params),
+               *[str(p) for p in hdl_sources(top, hdl_dir)], str(harness)]
+        # Verilator, the shared runtime objects, make (as the cocotb builds do). The harness
+        # finds its header through the makefile's own ``-I.`` (make runs in build_dir) and
+        # harness_common.h next to itself: a ``-I<build_dir>`` flag would make every build's
+        # runtime-object key differ, so each build would compile Verilator's runtime again.
+        proc = run_child(cmd, env=verilator_env(), log=log)
+        if proc.returncode == 0 and check is not None:
+            check(build_dir, top)
+        if proc.returncode == 0:
+            _objcache.seed(build_dir)
+            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk",
+                              *_MAKE_OPT], env=verilator_env(), log=build_dir / "make.log")
+        if proc.returncode == 0:
+            _objcache.store(build_dir)
+        if proc.returncode != 0 or not (build_dir / exe).is_file():
+            raise RtlError(f"Verilator build of the {harness.stem} harness failed (exit "
+                           f"{proc.returncode}); see {log}")
+
+    build_dir = cached_build(f"{name}{'' if assertions else '-noassert'}-{key}",
+                             {"top": top, "harness": harness.name, "config": cfg.to_dict(),
+                              "params": params, "args": list(FAST_ARGS),
+                              "assertions": assertions}, make)
+    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
+
+
+def comb_outputs(model_header: str, root_source: str) -> list[str]:
+    """The output ports a Verilated model assigns in its input-combinational ("ico")
+    region, i.e. that follow an input without a register between them.
+
+    ``model_header`` is the text of ``V<top>.h`` (its ``VL_OUT*(&name, ...)`` ports),
+    ``root_source`` that of ``V<top>___024root__0.cpp`` (its ``___ico_sequent``
+    functions). The bulk harness reads the outputs as the previous rising edge left them
+    (bulk_main.cpp "Evals"), which needs this list empty.
+    """
+    outs = set(re.findall(r"VL_OUT\w*\(&(\w+),", model_header))
+    found: set[str] = set()
+    for body in re.findall(r"___ico_sequent\w*\([^)]*\)\s*\{(.*?)\n\}", root_source, re.S):
+        found |= {n for n in re.findall(r"vlSelfRef\.(\w+)\s*(?:\[[^]]*\]\s*)?=[^=]", body)
+                  if n in outs}
+    return sorted(found)
+
+
+def _check_registered_outputs(build_dir: Path, top: str) -> None:
+    root = build_dir / f"V{top}___024root__0.cpp"
+    comb = comb_outputs((build_dir / f"V{top}.h").read_text(),
+                        root.read_text() if root.is_file() else "")
+    if comb:
+        raise RtlError(f"{top}: output port(s) {', '.join(comb)} follow an input "
+                       "combinationally; the bulk harness needs every output registered "
+                       "(bulk_main.cpp \"Evals\")")
 
 
 def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None,
@@ -62,57 +150,30 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     (:func:`irnuc.cosim.synth.default_top`). The executable is
     ``<build_dir>/nuc_dpc_bulk``; the cache key also covers the harness source. A build
     takes about 10-15 s on 2 cores. ``assertions=False`` leaves the protocol assertions
-    out: only for measuring what they cost (benchmarks/bench_cosim.py); every
-    co-simulation keeps them. ``hdl_dir`` replaces ``hdl/`` (a modified copy of the
-    design: a test's method); part of the cache key through the files' contents.
+    out: for measuring what they cost and for the throughput runs of
+    ``benchmarks/bench_methods_cosim.py`` (still compared bit for bit on every output;
+    every other co-simulation keeps them). ``hdl_dir`` replaces ``hdl/`` (a modified copy
+    of the design: a test's method); part of the cache key through the files' contents.
     """
     from irnuc.cosim.synth import default_top
 
     top = top or default_top(cfg)
     if top not in BULK_TOPS:
         raise UserError(f"top {top!r}: the bulk harness drives {', '.join(BULK_TOPS)}")
-    params = top_parameters(top, cfg)
-    base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
-                                                if a not in ("--assert", ASSERT_DEFINE)]
-    # The harness includes bulk_top.h: the model's header, its class and its ports, and the
-    # generated scheduler it calls between the public evals (bulk_main.cpp "Evals").
+    # The harness includes bulk_top.h: the model's header, its class and its ports, the
+    # generated scheduler it calls between the public evals and the clock's previous value
+    # the scheduler compares with (bulk_main.cpp "Evals").
     root = f"V{top}___024root"
     header = (f'#include "V{top}.h"\n#include "{root}.h"\nusing BulkTop = V{top};\n'
               f"void {root}___eval({root}* vlSelf);\n"
-              f"#define BULK_EVAL(model) {root}___eval((model)->rootp)\n" + BULK_TOPS[top])
-    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header],
-                       [BULK_HARNESS], hdl_dir=hdl_dir)
-
-    def make(build_dir: Path) -> None:
-        log = build_dir / "build.log"
-        (build_dir / "bulk_top.h").write_text(header)
-        cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
-               "--top-module", top, "-o", BULK_EXE, *base, *FAST_ARGS,
-               *verilator_g(params),
-               *[str(p) for p in hdl_sources(top, hdl_dir)], str(BULK_HARNESS)]
-        from irnuc.common.process import run_child
-        from irnuc.cosim import _objcache
-
-        # Verilator, the shared runtime objects, make (as the cocotb builds do). The harness
-        # finds bulk_top.h through the makefile's own ``-I.`` (make runs in build_dir): a
-        # ``-I<build_dir>`` flag would make every build's runtime-object key differ, so each
-        # bulk build would compile Verilator's runtime again.
-        proc = run_child(cmd, env=verilator_env(), log=log)
-        if proc.returncode == 0:
-            _objcache.seed(build_dir)
-            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk",
-                              *_MAKE_OPT], env=verilator_env(), log=build_dir / "make.log")
-        if proc.returncode == 0:
-            _objcache.store(build_dir)
-        if proc.returncode != 0 or not (build_dir / BULK_EXE).is_file():
-            raise RtlError(f"Verilator build of the bulk harness failed (exit "
-                           f"{proc.returncode}); see {log}")
-
+              f"#define BULK_EVAL(model) {root}___eval((model)->rootp)\n"
+              "#define BULK_CLOCK_WAS_LOW(model) "
+              "((model)->rootp->__Vtrigprevexpr___TOP__clk_i__0 = 0)\n" + BULK_TOPS[top])
     tag = {"nuc_dpc_top": "", "method_dpc_top": "-method"}.get(top, "-" + top.split("_")[1])
-    build_dir = cached_build(f"{cfg.name}-bulk{tag}{'' if assertions else '-noassert'}-{key}",
-                             {"top": top, "harness": BULK_HARNESS.name, "config": cfg.to_dict(),
-                              "params": params, "args": list(FAST_ARGS)}, make)
-    return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
+    return harness_build(cfg, top, BULK_HARNESS, BULK_EXE, header=header,
+                         header_name="bulk_top.h", name=f"{cfg.name}-bulk{tag}",
+                         assertions=assertions, hdl_dir=hdl_dir,
+                         check=_check_registered_outputs)
 
 
 @dataclass(frozen=True)
@@ -279,6 +340,9 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
     parts = [p for p in np.array_split(np.arange(n_frames), shards) if p.size]
     cols = frame_info.shape[1]
     opts = [] if cols == 2 else [f"cols={cols}"]
+    out16 = cfg.out_bits <= _OUT16_MAX_BITS
+    if out16:
+        opts.append("out16=1")
     if public_eval:
         opts.append("eval=public")
     if stage is not None:
@@ -332,14 +396,16 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
     sim_seconds = time.perf_counter() - t0
     cpu_seconds = _children_cpu() - cpu0
     ffc = stage is not None and stage.ffc
-    out = np.concatenate([np.fromfile(f, dtype="<u4") for f in outs])
-    mask = np.uint32((1 << cfg.out_bits) - 1)
+    word = np.dtype("<u2" if out16 else "<u4")
+    out = np.concatenate([np.fromfile(f, dtype=word) for f in outs])
+    sof_bit = word.itemsize * 8 - 1
+    mask = out.dtype.type((1 << cfg.out_bits) - 1)
     spans = sum(int(i["last_out_cycle"]) - int(i["first_out_cycle"]) for i in infos)
     first = int(infos[0]["first_out_cycle"])
     return BulkResult(
         data=(out & mask).astype(np.int64),
-        sof=(out >> np.uint32(_SOF_BIT)).astype(bool),
-        eol=((out >> np.uint32(_EOL_BIT)) & np.uint32(1)).astype(bool),
+        sof=(out >> out.dtype.type(sof_bit)).astype(bool),
+        eol=((out >> out.dtype.type(sof_bit - 1)) & out.dtype.type(1)).astype(bool),
         frame_shape=(h, w), cycles=sum(int(i["cycles"]) for i in infos),
         first_out_cycle=first, last_out_cycle=first + spans + len(infos) - 1,
         extra=sum(int(i["extra"]) for i in infos),

@@ -58,7 +58,8 @@ class FormalError(ToolError):
 class Check:
     """The result of one check of one model.
 
-    status: ``proved`` (kind, pdr), ``passed`` (bmc: no failure up to ``depth``),
+    status: ``proved`` (kind, pdr), ``passed`` (bmc: no failure up to ``depth``; with a
+    time budget that ran out, ``depth`` is the bound reached and ``wanted`` the one asked),
     ``failed`` (an assertion fails: ``failed`` names it, ``step`` is the cycle, ``vcd`` the
     trace), ``covered`` / ``uncovered`` (cover: every cover reached / not all), ``unknown``
     (kind: the step case did not close at this depth), ``timeout``, ``error``.
@@ -74,6 +75,9 @@ class Check:
     log: str | None = None
     message: str = ""
     covers: dict[str, int] = field(default_factory=dict)
+    #: the bound asked for when a time budget stopped the search earlier (``depth``: the
+    #: bound reached), else None
+    wanted: int | None = None
 
     @property
     def ok(self) -> bool:
@@ -271,23 +275,36 @@ CEX = "cex.aiw"
 _PDR_FRAME = re.compile(r"(?:asserted|failed|fails) in frame (\d+)", re.I)
 
 
-def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = TIMEOUT
-        ) -> Check:
-    """ABC's property-directed reachability on the AIGER model: ``proved``, or ``failed``
-    with the frame of the counterexample (no labels and no trace: see :func:`check`)."""
+def _run_abc(aig: str | os.PathLike, commands: str, workdir: str | os.PathLike, name: str,
+             engine: str, depth: int | None, timeout: float
+             ) -> tuple[str, float, int, Path] | Check:
+    """Run the wheel's yosys-abc on the AIGER model ``aig`` (read, folded, strashed) then
+    ``commands``, in ``workdir`` with the log ``<name>.log``: (the log's text, seconds, the
+    exit status, the log), or the ``timeout`` Check of ``engine`` when it ran out first."""
     wd = Path(workdir)
-    log = wd / "pdr.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; pdr; print_status; "
-              f"write_cex -a {CEX}")
+    wd.mkdir(parents=True, exist_ok=True)
+    log = wd / f"{name}.log"
+    script = f"read_aiger {Path(aig).resolve()}; fold; strash; {commands}"
     t0 = time.perf_counter()
     try:
         proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
                          single_process=True)
     except ChildTimeout:
-        return Check("pdr", "timeout", None, round(time.perf_counter() - t0, 2), log=str(log),
-                     message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+        return Check(engine, "timeout", depth, round(time.perf_counter() - t0, 2),
+                     log=str(log), message=f"no result in {timeout:g} s")
+    return (log.read_text(errors="replace"), round(time.perf_counter() - t0, 2),
+            proc.returncode, log)
+
+
+def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = TIMEOUT
+        ) -> Check:
+    """ABC's property-directed reachability on the AIGER model: ``proved``, or ``failed``
+    with the frame of the counterexample (no labels and no trace: see :func:`check`)."""
+    out = _run_abc(aig, f"pdr; print_status; write_cex -a {CEX}", workdir, "pdr", "pdr",
+                   None, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     if "Property proved" in text or "Problem is UNSATISFIABLE" in text:
         return Check("pdr", "proved", None, seconds, log=str(log))
     m = _PDR_FRAME.search(text)
@@ -295,13 +312,50 @@ def pdr(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = 
         return Check("pdr", "failed", None, seconds, step=int(m.group(1)) if m else None,
                      log=str(log))
     return Check("pdr", "error", None, seconds, log=str(log),
-                 message=f"yosys-abc pdr ended without a verdict (exit {proc.returncode}): "
+                 message=f"yosys-abc pdr ended without a verdict (exit {rc}): "
                          + _tail(log, 8))
 
 
 _BMC3_PASS = re.compile(r"No output asserted in (\d+) frames")
 _BMC3_FAIL = re.compile(r"was asserted in frame (\d+)")
 _BMC3_OUTPUT = re.compile(r"Output (\d+)(?: of miter \"[^\"]*\")? was asserted in frame\s+(\d+)")
+_BMC3_BUDGET = re.compile(r"Resource limit reached|Reached timeout")
+_BMC3_FRAMES = re.compile(r"(?:after|in) (\d+) frames")
+
+
+def _frames_done(text: str) -> int:
+    """The frames bmc3 finished (its closing line: "... after N frames", "... in N
+    frames")."""
+    found = _BMC3_FRAMES.findall(text)
+    return int(found[-1]) if found else 0
+
+
+_STATUS = re.compile(r"Status = (-?\d+)")
+
+
+def dprove(aig: str | os.PathLike, workdir: str | os.PathLike, *, timeout: float = TIMEOUT
+           ) -> Check:
+    """ABC's sequential equivalence flow on a miter (``scorr``: signal correspondence, the
+    two copies' matching signals proved equal by induction from the initial state and
+    merged; then ``dprove`` on what is left): ``proved`` (the miter's output never 1),
+    ``failed`` with the frame of a counterexample (of the reduced miter: replay it on the
+    model with :func:`bmc3` to that frame for a trace), ``timeout`` or ``error``. On a
+    miter of two copies of irnuc_axis_top (about 5000 flops each) that differ in one bit,
+    ``scorr`` merges every flop in about 30 s where PDR gave no verdict in 10 minutes."""
+    out = _run_abc(aig, "scorr; print_stats; dprove; print_status", workdir, "dprove",
+                   "dprove", None, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
+    status = _STATUS.findall(text)
+    if status and status[-1] == "1":
+        return Check("dprove", "proved", None, seconds, log=str(log))
+    m = _BMC3_FAIL.search(text)
+    if status and status[-1] == "0" and m:
+        return Check("dprove", "failed", None, seconds, step=int(m.group(1)), log=str(log))
+    return Check("dprove", "error", None, seconds, log=str(log),
+                 message=f"yosys-abc dprove ended without a verdict (exit {rc}): "
+                         + _tail(log, 8))
 
 
 def aiger_labels(aig: str | os.PathLike) -> list[str]:
@@ -316,25 +370,23 @@ def aiger_labels(aig: str | os.PathLike) -> list[str]:
             for path in json.loads(ywmap.read_text()).get("asserts", [])]
 
 
+def _budget(budget: float | None) -> str:
+    return f" -T {max(1, int(budget))}" if budget else ""
+
+
 def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
-         timeout: float = TIMEOUT) -> Check:
+         timeout: float = TIMEOUT, budget: float | None = None) -> Check:
     """ABC's bounded model checker (``bmc3``, SAT on the AIGER model, frames 0..depth-1):
     ``passed``, or ``failed`` with the frame of the counterexample (no labels and no
     trace: see :func:`check`). On the register file's semantics about ten times faster
-    than yosys-smtbmc with yices to the same depth."""
-    wd = Path(workdir)
-    log = wd / "bmc3.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -F {int(depth)}; "
-              f"print_status; write_cex -a {CEX}")
-    t0 = time.perf_counter()
-    try:
-        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
-                         single_process=True)
-    except ChildTimeout:
-        return Check("bmc3", "timeout", depth, round(time.perf_counter() - t0, 2),
-                     log=str(log), message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+    than yosys-smtbmc with yices to the same depth. ``budget`` (seconds, ABC's ``-T``):
+    when it runs out first, ``passed`` to the frames finished (``depth`` that bound,
+    ``wanted`` the one asked): no counterexample of that length or shorter exists."""
+    out = _run_abc(aig, f"bmc3 -F {int(depth)}{_budget(budget)}; print_status; "
+                        f"write_cex -a {CEX}", workdir, "bmc3", "bmc3", depth, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     m = _BMC3_FAIL.search(text)
     if m:
         # The failed output by its label (the model's ywmap): no replay needed for it.
@@ -347,45 +399,50 @@ def bmc3(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
     m = _BMC3_PASS.search(text)
     if m and int(m.group(1)) >= depth:
         return Check("bmc3", "passed", depth, seconds, log=str(log))
+    if m and budget and _BMC3_BUDGET.search(text):
+        reached = int(m.group(1))
+        return Check("bmc3", "passed" if reached else "timeout", reached, seconds,
+                     log=str(log), wanted=depth,
+                     message=f"bounded to {reached} steps: the {depth}-step bound not "
+                             f"reached in the {budget:g}-s budget")
     return Check("bmc3", "error", depth, seconds, log=str(log),
-                 message=f"yosys-abc bmc3 ended without a verdict (exit {proc.returncode}): "
+                 message=f"yosys-abc bmc3 ended without a verdict (exit {rc}): "
                          + _tail(log, 8))
 
 
 def bmc3_covers(aig: str | os.PathLike, depth: int, workdir: str | os.PathLike, *,
-                timeout: float = TIMEOUT) -> Check:
+                timeout: float = TIMEOUT, budget: float | None = None) -> Check:
     """The covers of a cover model (:func:`write_models` with ``covers=True``) by ABC's
     ``bmc3 -a`` (every output solved, frames 0..depth-1): ``covered`` when each is reached
-    (``covers``: label -> its first step), else ``uncovered``. One run for all covers;
-    minimal's top reaches its five in about a second where yosys-smtbmc takes minutes."""
-    wd = Path(workdir)
-    wd.mkdir(parents=True, exist_ok=True)
-    log = wd / "cover3.log"
-    script = (f"read_aiger {Path(aig).resolve()}; fold; strash; bmc3 -a -F {int(depth)}; "
-              f"print_status")
-    t0 = time.perf_counter()
-    try:
-        proc = run_child([_abc(), "-c", script], timeout=timeout, cwd=wd, log=log,
-                         single_process=True)
-    except ChildTimeout:
-        return Check("cover", "timeout", depth, round(time.perf_counter() - t0, 2),
-                     log=str(log), message=f"no result in {timeout:g} s")
-    seconds = round(time.perf_counter() - t0, 2)
-    text = log.read_text(errors="replace")
+    (``covers``: label -> its first step), else ``uncovered`` (``budget``, seconds: the
+    search stopped there, ``depth`` the frames finished, ``wanted`` the bound asked). One
+    run for all covers; minimal's top reaches its five in about a second where yosys-smtbmc
+    takes minutes."""
+    out = _run_abc(aig, f"bmc3 -a -F {int(depth)}{_budget(budget)}; print_status", workdir,
+                   "cover3", "cover", depth, timeout)
+    if isinstance(out, Check):
+        return out
+    text, seconds, rc, log = out
     labels = aiger_labels(aig)
     if not labels:
         return Check("cover", "error", depth, seconds, log=str(log),
-                     message=f"the cover model has no covers (exit {proc.returncode})")
+                     message=f"the cover model has no covers (exit {rc})")
     covers = {labels[int(i)]: int(f) for i, f in _BMC3_OUTPUT.findall(text)
               if int(i) < len(labels)}
     missing = [lb for lb in labels if lb not in covers]
-    return Check("cover", "uncovered" if missing else "covered", depth, seconds,
-                 log=str(log), covers=covers,
-                 message=f"not reached in {depth} steps: {', '.join(missing)}" if missing else "")
+    wanted, reached = None, depth
+    if missing and budget and _frames_done(text) < depth:
+        # stopped by the budget (bmc3 -a says only "... after N frames")
+        wanted, reached = depth, _frames_done(text)
+    return Check("cover", "uncovered" if missing else "covered", reached, seconds,
+                 log=str(log), covers=covers, wanted=wanted,
+                 message=(f"not reached in {reached} steps"
+                          + (f" (the {budget:g}-s budget)" if wanted else "")
+                          + f": {', '.join(missing)}") if missing else "")
 
 
 def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os.PathLike, *,
-          timeout: float = TIMEOUT) -> Check:
+          timeout: float = TIMEOUT, budget: float | None = None) -> Check:
     """Run ``engine`` on the models of :func:`write_models`: ``bmc`` (depth steps),
     ``kind`` (the base case to depth, then the induction step at depth), ``pdr`` (a failure
     is replayed by bmc to its frame for the labels and the VCD), ``bmc3`` (ABC's bounded
@@ -395,7 +452,7 @@ def check(models: Mapping[str, Path], engine: str, depth: int, workdir: str | os
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r}: one of {', '.join(ENGINES)}")
     if engine == "bmc3":
-        res = bmc3(models["aig"], depth, wd, timeout=timeout)
+        res = bmc3(models["aig"], depth, wd, timeout=timeout, budget=budget)
         if res.status != "failed":
             return res
         named = list(res.failed)
@@ -530,10 +587,13 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     1. ``equiv_make`` / ``equiv_simple`` / ``equiv_induct`` (Yosys): the two netlists'
        matching signals proved equal by induction, assuming equal states (both start at
        0 and reset alike);
-    2. else a miter of the two (the outputs compared at every cycle out of reset) by PDR:
+    2. else a miter of the two (the outputs compared at every cycle out of reset) by ABC's
+       ``scorr`` and ``dprove`` (:func:`dprove`): proved, or a counterexample replayed on
+       the miter by bmc3 to its frame (a distinguishing input sequence, a VCD);
+    3. else the miter by PDR:
        proved (equivalent) or a counterexample (not equivalent: a distinguishing input
        sequence, written as a VCD);
-    3. else (PDR ran out of time) the miter bounded to ``depth`` cycles (ABC's bmc3): a counterexample,
+    4. else (PDR ran out of time) the miter bounded to ``depth`` cycles (ABC's bmc3): a counterexample,
        or undecided.
 
     Returns ``{"verdict": "equivalent" | "different" | "undecided", "engine", "seconds",
@@ -564,6 +624,21 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     # register) and a mutant of a register file looked "different 1 cycle after reset".
     models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",),
                           extra=["setundef -zero -init"])
+    res = dprove(models["aig"], wd / "dprove", timeout=timeout)
+    if res.status == "proved":
+        return {"verdict": "equivalent", "engine": "scorr+dprove",
+                "seconds": round(time.perf_counter() - t0, 2), "step": None, "vcd": None,
+                "message": "the miter's outputs proved equal in every reachable state "
+                           "(signal correspondence, then dprove)"}
+    if res.status == "failed":
+        # The counterexample is the reduced miter's: found again on the miter itself (a
+        # bounded search that short is quick) for the trace.
+        res = check(models, "bmc3", (res.step or 0) + 2, wd / "miter", timeout=timeout)
+        if res.status == "failed":
+            return {"verdict": "different", "engine": "dprove+bmc3",
+                    "seconds": round(time.perf_counter() - t0, 2), "step": res.step,
+                    "vcd": res.vcd,
+                    "message": f"the outputs differ {res.step} cycles after reset"}
     res = check(models, "pdr", depth, wd / "miter", timeout=timeout)
     if res.status == "proved":
         return {"verdict": "equivalent", "engine": "pdr",

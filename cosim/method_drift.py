@@ -143,6 +143,12 @@ class MethodRun:
     #: CPU time of the harness processes, s (this path and the baseline's).
     sim_cpu_seconds: float = 0.0
     baseline_cpu_seconds: float | None = None
+    #: ``noassert=True``: the same fast path on a build without the protocol assertions
+    #: (throughput only; every output still compared): its wall and CPU time, s, and its
+    #: mismatches (missing and extra counted).
+    noassert_seconds: float | None = None
+    noassert_cpu_seconds: float | None = None
+    noassert_mismatches: int | None = None
 
     @property
     def passed(self) -> bool:
@@ -172,7 +178,22 @@ class MethodRun:
                                                    / max(self.sim_cpu_seconds, 1e-9), 3),
                     "ratio_to_baseline": round(self.baseline_seconds
                                                / max(self.sim_seconds, 1e-9), 3)}),
+                **({} if self.noassert_seconds is None else self._noassert_dict()),
                 "reading_range": list(self.readings), "lines": self.lines[:10]}
+
+    def _noassert_dict(self) -> dict[str, Any]:
+        secs, cpu = self.noassert_seconds or 0.0, self.noassert_cpu_seconds or 0.0
+        d: dict[str, Any] = {
+            "noassert_sim_seconds": round(secs, 3),
+            "noassert_pixels_per_s": round(self.pixels / max(secs, 1e-9)),
+            "noassert_cpu_seconds": round(cpu, 3),
+            "noassert_pixels_per_cpu_s": round(self.pixels / max(cpu, 1e-9)),
+            "noassert_mismatches": self.noassert_mismatches}
+        if self.baseline_seconds is not None:
+            d["noassert_ratio_to_baseline"] = round(self.baseline_seconds / max(secs, 1e-9), 3)
+            d["noassert_cpu_ratio_to_baseline"] = round(
+                (self.baseline_cpu_seconds or 0.0) / max(cpu, 1e-9), 3)
+        return d
 
 
 def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
@@ -180,11 +201,12 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
                  idle_percent: int = 0, stall_percent: int = 0, seed: int = 0,
                  sequence: DriftSequence | None = None,
                  coeffs: Mapping[str, MethodCoefficients] | None = None,
-                 baseline: bool = False) -> list[MethodRun]:
+                 baseline: bool = False, noassert: bool = False) -> list[MethodRun]:
     """Calibrate every configuration on the model, make a drift sequence, and co-simulate
     each method on it (bulk harness, bit for bit against ``method_top``). ``baseline``:
     each method run a second time on the harness's previous path (``public_eval``),
-    checked as well, for the benchmark's ratio."""
+    checked as well, for the benchmark's ratio. ``noassert``: once more on a build
+    without the protocol assertions (throughput; every output compared as well)."""
     from irnuc.cosim.bulk import build_bulk
     from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
 
@@ -210,6 +232,13 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
             ochk = check_method_bulk(old, c, seq.codes, rd, expected=expected)
             base_s, base_cpu = old.sim_seconds, old.cpu_seconds
             base_bad = ochk.mismatches + ochk.missing + ochk.extra + int(old.frame_err)
+        na_s = na_cpu = na_bad = None
+        if noassert:
+            fast = run_method_bulk(build_bulk(cfg, top="method_dpc_top", assertions=False),
+                                   c, seq.codes, rd, **kw)
+            nchk = check_method_bulk(fast, c, seq.codes, rd, expected=expected)
+            na_s, na_cpu = fast.sim_seconds, fast.cpu_seconds
+            na_bad = nchk.mismatches + nchk.missing + nchk.extra + int(fast.frame_err)
         out.append(MethodRun(name=cfg.name, method=cfg.method, frames=seq.codes.shape[0],
                              pixels=int(seq.codes.size), compared=chk.compared,
                              mismatches=chk.mismatches, missing=chk.missing, extra=chk.extra,
@@ -218,5 +247,7 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
                              readings=(int(seq.reading.min()), int(seq.reading.max())),
                              lines=list(chk.lines), bulk_seconds=t_bulk,
                              baseline_seconds=base_s, baseline_mismatches=base_bad,
-                             sim_cpu_seconds=res.cpu_seconds, baseline_cpu_seconds=base_cpu))
+                             sim_cpu_seconds=res.cpu_seconds, baseline_cpu_seconds=base_cpu,
+                             noassert_seconds=na_s, noassert_cpu_seconds=na_cpu,
+                             noassert_mismatches=na_bad))
     return out

@@ -789,6 +789,13 @@ def synth_configs(cfgs: Sequence, *, workers: int = 2, scheduler: str | None = N
     else:
         jobs = [(c, {**options, "seed": s}) for c in cfgs for s in chosen]
     no_cache = not options.get("use_cache", True)
+    if not no_cache and all(_is_cached(c, o) for c, o in jobs):
+        # Every placement is in the cache (a warm report): read here, no worker processes
+        # started for it (the same results: synth_config reads the same file).
+        runs = [synth_config(c, **o) for c, o in jobs]
+        if progress is not None:
+            progress(len(runs), len(runs))
+        return runs if seeds == 1 else _fold(runs, len(chosen), len(cfgs))
     with open_executor(workers, scheduler) as handle:
         if seeds > 1 and (no_cache or len(cfgs) > 1):
             # Once per configuration (and, without the cache, not once per seed).
@@ -805,9 +812,21 @@ def synth_configs(cfgs: Sequence, *, workers: int = 2, scheduler: str | None = N
                 progress(i + 1, len(futures))
     if seeds == 1:
         return runs
-    n = len(chosen)
+    return _fold(runs, len(chosen), len(cfgs))
+
+
+def _is_cached(cfg, options: Mapping) -> bool:
+    """Whether :func:`synth_config` of these arguments would read its result from the cache."""
+    from irnuc.common.cache import cache_dir
+
+    o = {k: v for k, v in options.items() if k not in ("use_cache", "netlist_cache")}
+    return (cache_dir("synth") / synth_key(cfg, **o) / "synth.json").is_file()
+
+
+def _fold(runs: Sequence[dict], n: int, count: int) -> list[dict]:
+    """Each configuration's ``n`` placements folded by :func:`best_of_seeds`."""
     try:
-        return [best_of_seeds(runs[i * n:(i + 1) * n]) for i in range(len(cfgs))]
+        return [best_of_seeds(runs[i * n:(i + 1) * n]) for i in range(count)]
     except ValueError as e:
         # Each placement job reads the RTL when it starts: an edit of hdl/ during the run
         # gives one configuration's seeds different netlists.

@@ -6,6 +6,9 @@
 //   a_payload_known  tdata, tlast and tuser are not X/Z while tvalid
 //   a_valid_held     tvalid, once high, stays high until tready (AXI4-Stream rule)
 //   a_payload_stable tdata, tlast and tuser do not change while tvalid && !tready
+//   a_reset_idle     tvalid is low in reset and at the first edge after it (AXI: a master
+//                    raises VALID only after that edge; a stale item left by a stopped
+//                    driver would be taken there)
 module irnuc_axis_assert #(
   parameter int unsigned DataBits = 8,
   parameter int unsigned UserBits = 1
@@ -39,6 +42,14 @@ module irnuc_axis_assert #(
   end
 
   always_ff @(posedge clk_i) begin : p_check
+`ifndef FORMAL  // the formal harness assumes the stream rules from its own first cycle
+    // Until armed: the edges in reset and the first after it (rst_ni itself is not
+    // sampled here: it stays a pure asynchronous reset).
+    if (!armed_q) begin
+      a_reset_idle: assert (!tvalid_i)
+        else $error("irnuc_axis_assert: tvalid high in reset or at the first edge after it");
+    end
+`endif
     if (armed_q) begin
 `ifndef FORMAL  // two-valued in the formal model (irnuc formal)
       a_known: assert (!$isunknown(tvalid_i) && !$isunknown(tready_i))

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -60,6 +61,25 @@ def test_every_configuration_is_proved() -> None:
         formal.select(["nope"])
 
 
+def test_harness_takes_every_register_file_parameter() -> None:
+    """fv_axil_regs declares and passes on every parameter the register file takes on any
+    configuration: a parameter the harness lacks is silently left at the design's default
+    (tc_housing's HousingReadingRegBits / HRefRegBits were: H_REF absent from the proved
+    register file while the map had it, found by axil_regmap_tchousing14's a_pending)."""
+    from irnuc.cosim.sources import register_file_parameters
+    from irnuc.nuc_fixed import load_pipeline
+
+    text = (fv.FORMAL_DIR / "fv_axil_regs.sv").read_text()
+    declared = set(re.findall(r"parameter\s+int\s+unsigned\s+(\w+)", text))
+    passed = set(re.findall(r"\.(\w+)\(\1\)", text))
+    for name in formal._configs():
+        cfg = load_pipeline(name).replace(max_width=formal.PROOF_SIZE[0],
+                                          max_height=formal.PROOF_SIZE[1])
+        params = set(register_file_parameters(cfg))
+        assert params <= declared, (name, sorted(params - declared))
+        assert params <= passed, (name, sorted(params - passed))
+
+
 def test_labels_of_an_smtbmc_log() -> None:
     log = ("##   0:00:00  Checking assertions in step 3..\n"
            "##   0:00:00  BMC failed!\n"
@@ -101,16 +121,23 @@ def test_quick_campaign(tmp_path, monkeypatch) -> None:
     assert not root.findall(".//failure")
     bad = dict(s, faults=[dict(s["faults"][0], detected=False)])
     assert len(ET.fromstring(formal.junit(bad)).findall(".//failure")) == 1
-    # The report reads the campaign from the cache (no run): a row per proof and fault.
+    # The report reads the campaign from the cache (no run): a row per proof and fault of
+    # the whole campaign, those never run on these sources "not run" and named, never
+    # counted as holding.
     from irnuc.reports.report import render
     from irnuc.reports.report.phases.cosim import measured_formal
 
     m = measured_formal()
     assert m is not None and m["proved"] == len(proofs) and m["detected"] == len(faults)
+    ran = {p.id for p in proofs} | {f.id for f in faults}
+    assert set(m["missing"]) == {x.id for x in [*formal.PROOFS, *formal.FAULTS]} - ran
+    assert not m["ok"] and not m["complete"] and not m["not_ok"] and not m["missed"]
     rows = render.formal_rows(m)
-    assert [r[0] for r in rows["proofs"]] == [p.id for p in proofs]
-    assert all(r[4] == "proved" and r[3] == "unbounded" for r in rows["proofs"])
-    assert all(r[3] == "detected" for r in rows["faults"])
+    assert [r[0] for r in rows["proofs"]] == [p.id for p in formal.PROOFS]
+    for r in rows["proofs"]:
+        assert (r[4], r[3]) == (("proved", "unbounded") if r[0] in ran else ("not run", "")), r
+    for r in rows["faults"]:
+        assert r[3] == ("detected" if r[0] in ran else "not run"), r
     # A second run comes from the cache.
     again = formal.run_campaign(proofs[:1], faults[:1], workers=0)
     assert all(r["cached"] for r in [*again["proofs"], *again["faults"]])
@@ -155,6 +182,12 @@ def test_bmc3_bounded_and_replayed(tmp_path) -> None:
         if tag == "good":
             assert res.status == "passed" and res.engine == "bmc3", res
             assert Path(res.log).name == "bmc3.log", res  # ABC's, not yosys-smtbmc
+            assert res.depth == 12 and res.wanted is None, res
+            # A bound out of reach in a 1-s budget: a bounded pass to the frames finished,
+            # the bound asked for beside it (irnuc_axis_top's proofs).
+            far = fv.check(models, "bmc3", 10**7, tmp_path / "far", budget=1)
+            assert far.status == "passed" and far.wanted == 10**7, far
+            assert 12 < far.depth < 10**7 and "budget" in far.message, far
         else:
             assert res.status == "failed" and res.step is not None, res
             assert "u_out.a_valid_held" in res.failed, res

@@ -173,3 +173,33 @@ def test_curvature_core_fit_is_the_per_pixel_least_squares():
         x = codes[4, 1, 0, i, j] / 8192.0 - 1.0
         f = np.array([x, x * v, x * v * v, x * x, 1.0, v, v * v, u, v * u, u * u])
         np.testing.assert_allclose(y[0, i, j], f @ want, rtol=1e-9, atol=1e-6)
+
+
+def test_piecewise_core_corrects_with_the_nearest_window():
+    """Each window's core is the CurvatureCore of its three FPA points (fitted apart here),
+    and a frame is corrected by the window whose middle reading is nearest its own."""
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(8)
+    fpa = np.repeat([280.0, 290.0, 300.0, 310.0], 2)
+    hk = fpa + np.tile([-3.0, 0.0], 4)
+    n_p, s_n, m, h, w = fpa.size, 3, 1, 2, 3
+    codes = rng.integers(3000, 12000, (n_p, s_n, m, h, w)).astype(np.uint16)
+    rd = np.broadcast_to(np.rint(fpa * 100)[:, None, None], (n_p, s_n, m)).astype(np.int64)
+    hr = np.broadcast_to(np.rint(hk * 100)[:, None, None], (n_p, s_n, m)).astype(np.int64)
+    pts = SimpleNamespace(codes=codes, reading=rd, housing_reading=hr, fpa_K=fpa,
+                          housing_K=hk, reference=0)
+    t = np.array([4000.0, 8000.0, 12000.0])
+    good = np.ones((h, w), bool)
+    pw = goal.PiecewiseCore.fit(pts, t, good, 0.01, 0.01)
+    np.testing.assert_array_equal(pw.centres, [29000.0, 30000.0])
+    # the window of FPA 290, 300, 310 K; its reference FPA 300 K at housing = FPA
+    sub = SimpleNamespace(codes=codes[2:8], reading=rd[2:8], housing_reading=hr[2:8],
+                          reference=3)
+    want = goal.CurvatureCore.fit(sub, t, good, 0.01, 0.01)
+    raw = codes[5, :, 0]
+    np.testing.assert_allclose(pw.correct(raw, 30100, 30000),
+                               want.correct(raw, 30100, 30000), rtol=1e-12)
+    with pytest.raises(ValueError, match="at least 3"):
+        goal.PiecewiseCore.fit(SimpleNamespace(**{**vars(pts), "fpa_K": np.full(n_p, 300.0)}),
+                               t, good, 0.01, 0.01)

@@ -174,11 +174,15 @@ def test_coverage_and_mutation_condensed_and_rendered(monkeypatch) -> None:
                 "status": "survived", "killed_by": None},
                {"id": "e", "file": "y.sv", "what": "w", "config": "minimal",
                 "status": "equivalent", "killed_by": None, "equivalent": "same outputs"}]
-    monkeypatch.setattr(mutate, "cached_summary", lambda: mutate.summarize(results, 3))
+    # The report reads each mutant's cached result on these sources: the ones without one
+    # are named, not counted; none at all is "not measured".
+    monkeypatch.setattr(mutate, "cached_results", lambda ms: (results, ["z"]))
+    monkeypatch.setattr(mutate, "CATALOGUE", mutate.CATALOGUE[:4])
     mut = phase.measured_mutation()
     assert (mut["killed"], mut["survived"], mut["equivalent"], mut["score"]) == (1, 1, 1, 0.5)
     assert mut["survivors"] == ["b"] and mut["equivalents"] == {"e": "same outputs"}
-    monkeypatch.setattr(mutate, "cached_summary", lambda: None)
+    assert mut["missing"] == ["z"] and not mut["complete"] and mut["catalogue_size"] == 4
+    monkeypatch.setattr(mutate, "cached_results", lambda ms: ([], [m.id for m in ms]))
     assert phase.measured_mutation() is None
 
     rows = render.coverage_rows(c)

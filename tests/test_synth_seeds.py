@@ -158,7 +158,16 @@ def test_seed_sweep_synthesizes_once_and_places_each_seed(tmp_path, monkeypatch)
     again = synth.synth_seeds(cfg, seeds=4, workers=0)  # seeds 1-3 cached, 4 placed
     assert counts["pnr"][3:] == [(4, 6)] and (counts["xc7"], counts["ecp5"]) == (1, 1)
     assert again["seeds"]["best_seed"] == 4 and not again["cached"]
-    assert synth.synth_seeds(cfg, seeds=4, workers=0)["cached"] is True
+    from irnuc.common import executor
+
+    def no_executor(*a, **kw):
+        raise AssertionError("an executor opened for placements that are all cached")
+
+    with monkeypatch.context() as m:  # all cached (a warm report): no worker processes
+        m.setattr(executor, "open_executor", no_executor)
+        assert synth.synth_seeds(cfg, seeds=4, workers=2)["cached"] is True
+        with pytest.raises(AssertionError, match="executor opened"):
+            synth.synth_seeds(cfg, seeds=5, workers=2)  # seed 5 is not: it needs one
     synth.synth_config(cfg, seed=1, speed=8)  # another grade: placed, not synthesized
     assert counts["pnr"][-1] == (1, 8) and (counts["xc7"], counts["ecp5"]) == (1, 1)
     synth.synth_config(cfg, seed=1, max_width=48)  # another design: synthesized

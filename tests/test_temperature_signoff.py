@@ -395,3 +395,23 @@ def test_a_wrapper_that_does_not_fit_the_pins_is_not_tried_on_them_again(tmp_pat
     calls.clear()
     tp._synth_recommended({}, {"config": "tcffc14", "frac_bits": 12, "hw": None})
     assert calls[0] == ("irnuc_axis_top", False)  # another design: tried on pins
+
+
+def test_a_netlist_that_fails_is_said_by_its_top_not_raised(monkeypatch) -> None:
+    """Yosys failing on the wrapper while both netlists are prepared: the recommendation's
+    synthesis is "not placed" with the top's own error (the fmax check not met), as when each
+    top made its netlist itself; the report goes on."""
+    from irnuc.cosim import synth
+
+    def prepare(designs, **kw):
+        raise synth.SynthError("yosys failed on irnuc_axis_top")
+
+    def seeds(cfg, *, top=None, **kw):
+        raise synth.SynthError(f"yosys failed on {top}\nlog ...")
+
+    monkeypatch.setattr(synth, "prepare_netlists", prepare)
+    monkeypatch.setattr(synth, "synth_seeds", seeds)
+    r = {"config": "tcgain14", "frac_bits": 12, "hw": None}
+    tp._synth_recommended({}, r)
+    assert r["synth"]["error"] == "yosys failed on irnuc_axis_top"
+    assert tp._fmax_check(r["synth"]).status == "not met"

@@ -33,10 +33,10 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "axis_top.h"
+#include "harness_common.h"
 #include "verilated.h"
 
 namespace {
@@ -66,27 +66,8 @@ void save(const std::string& path, const std::vector<T>& v) {
     std::fclose(f);
 }
 
-template <typename T>
-void set_word(T& port, const uint64_t* w, uint32_t limbs) {
-    if constexpr (std::is_integral_v<T>) {
-        port = static_cast<T>(w[0]);
-    } else {
-        constexpr size_t n = sizeof(port.m_storage) / sizeof(port.m_storage[0]);
-        for (size_t i = 0; i < n; ++i) {
-            const size_t k = i / 2;
-            port.m_storage[i] = k < limbs ? static_cast<uint32_t>(w[k] >> (32 * (i % 2))) : 0;
-        }
-    }
-}
-
-template <typename T>
-uint64_t get_word(const T& port) {
-    if constexpr (std::is_integral_v<T>) {
-        return static_cast<uint64_t>(port);
-    } else {
-        return uint64_t(port.m_storage[0]) | (uint64_t(port.m_storage[1]) << 32);
-    }
-}
+using irnuc_harness::get_word;
+using irnuc_harness::set_word;
 
 struct Rng {
     uint64_t s;
@@ -159,15 +140,7 @@ int main(int argc, char** argv) {
     top->clk_i = 0;
     top->rst_ni = 0;
     idle_all();
-    top->eval();
-    for (int i = 0; i < 3; ++i) {
-        top->clk_i = 1;
-        top->eval();
-        top->clk_i = 0;
-        top->eval();
-    }
-    top->rst_ni = 1;
-    top->eval();
+    irnuc_harness::reset_sequence(*top);
 
     std::vector<uint32_t> out_video;
     out_video.reserve(n_out);

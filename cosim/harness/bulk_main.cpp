@@ -17,7 +17,8 @@
 //   COEF     coefficient images: M images of W*H words, each word LIMBS little-endian
 //            uint64 (bit 0 first; docs/datapath.md, docs/rtl.md "Methods")
 //   OUT      written: one little-endian uint32 per output pixel,
-//            bit 31 sof, bit 30 eol, bits [OutBits-1:0] the corrected code
+//            bit 31 sof, bit 30 eol, bits [OutBits-1:0] the corrected code (out16=1: one
+//            uint16, bit 15 sof, bit 14 eol)
 //   N        pixels (a whole number of W x H frames, streamed back to back)
 //   IDLE_PCT percent of cycles each input source stays idle (0 = always valid)
 //   STALL_PCT percent of cycles the output is back-pressured (0 = always ready)
@@ -40,6 +41,7 @@
 //     eval=public   every eval through the model's public eval() (the previous path, kept
 //                   as the baseline of benchmarks/bench_methods_cosim.py); default: see
 //                   "Evals" below
+//     out16=1       16-bit output words (OutBits <= 14; half the bytes written)
 //     outputs=K     m_pix outputs expected (default N; method_ffc_top: held frames have none)
 //     acc=PATH acc_n=K foff=PATH foff_n=K   method_ffc_top: m_acc and m_foff written, one
 //                   uint64 per word, K words expected of each. The harness is the external
@@ -55,17 +57,23 @@
 // Evals: the model's public eval() is eval_step(): Verilator's per-call bookkeeping (the
 // deleter of class objects under a mutex, the end-of-eval message queue of threaded models)
 // around the generated scheduler V<top>___024root___eval. The harness calls the scheduler
-// directly (bulk_top.h declares it) and the public eval() at reset, on every 4096th cycle
-// and at the end, so that bookkeeping still runs; this single-threaded model queues no
-// messages and creates no class objects in its cycles, so the outputs, assertions
-// ($error, $stop) and cycle counts are the same (measured: about a quarter of the run time
-// saved; eval=public selects the previous path).
+// directly (bulk_top.h declares it), once per cycle, on the rising edge: the clock-low
+// eval of the previous path only settled what the inputs drive combinationally inside the
+// DUT (its "ico" region), which the scheduler evaluates again before the edge anyway, and
+// no output port follows an input combinationally (every stream boundary is a register:
+// the outputs read before the edge are those the previous edge left). So that the
+// scheduler still sees a rising edge without the low eval, BULK_CLOCK_WAS_LOW sets its
+// record of the clock's previous value (generated name; the build fails loudly if a
+// Verilator renames it). The public eval() runs at reset, as the clock-low eval on every
+// 4096th cycle and in the idle tail, so that bookkeeping still runs; this single-threaded
+// model queues no messages and creates no class objects in its cycles, so the outputs,
+// assertions ($error, $stop) and cycle counts are the same as with two public evals per
+// cycle (eval=public, the previous path: about 1.35x the CPU per cycle, measured).
 //
-// Timing: inputs are set while the clock is low, one eval settles the combinational
-// readies, the handshakes are decided from the values present before the edge (as the
-// DUT's flops see them), then the rising edge is evaluated. Two evals per cycle (Verilator
-// sees an edge only between two evals). Positions are counters, not divisions: the
-// harness's own work per cycle is small next to the model's.
+// Timing: inputs are set while the clock is low, the handshakes are decided from the
+// values present before the edge (as the DUT's flops see them), then the rising edge is
+// evaluated. Positions are counters, not divisions: the harness's own work per cycle is
+// small next to the model's.
 
 #include <cinttypes>
 #include <cstdint>
@@ -74,39 +82,16 @@
 #include <cstring>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "bulk_top.h"
+#include "harness_common.h"
 #include "verilated.h"
 
 namespace {
 
-// A word of `limbs` uint64 (bit 0 first) onto a port: the port types Verilator uses hold
-// up to 64 bits (CData..QData), wider ports are VlWide (32-bit words); bits above the port
-// are dropped.
-template <typename T>
-void set_word(T& port, const uint64_t* w, uint32_t limbs) {
-    if constexpr (std::is_integral_v<T>) {
-        port = static_cast<T>(w[0]);
-    } else {
-        constexpr size_t n = sizeof(port.m_storage) / sizeof(port.m_storage[0]);
-        for (size_t i = 0; i < n; ++i) {
-            const size_t k = i / 2;
-            port.m_storage[i] = k < limbs ? static_cast<uint32_t>(w[k] >> (32 * (i % 2))) : 0;
-        }
-    }
-}
-
-// A port of up to 64 bits as a uint64 (the stage tops' m_acc and m_foff words).
-template <typename T>
-uint64_t get_word(const T& port) {
-    if constexpr (std::is_integral_v<T>) {
-        return static_cast<uint64_t>(port);
-    } else {
-        return uint64_t(port.m_storage[0]) | (uint64_t(port.m_storage[1]) << 32);
-    }
-}
+using irnuc_harness::get_word;
+using irnuc_harness::set_word;
 
 // The KEY=VALUE options after the positional arguments.
 struct Options {
@@ -119,6 +104,7 @@ struct Options {
     uint64_t acc_n = 0, foff_n = 0;
     uint64_t skip = 0;
     bool public_eval = false;
+    bool out16 = false;
 };
 
 Options parse_options(int argc, char** argv, int first);
@@ -175,6 +161,7 @@ Options parse_options(int argc, char** argv, int first) {
         else if (key == "foff_n") o.foff_n = std::strtoull(v, nullptr, 10);
         else if (key == "skip") o.skip = std::strtoull(v, nullptr, 10);
         else if (key == "eval" && std::strcmp(v, "public") == 0) o.public_eval = true;
+        else if (key == "out16" && std::strcmp(v, "1") == 0) o.out16 = true;
         else die("unknown option", argv[i]);
     }
     return o;
@@ -194,8 +181,10 @@ std::vector<P> read_file(const char* path, uint64_t n, uint64_t skip = 0) {
     return v;
 }
 
-template <typename P>
-int run(int argc, char** argv, VerilatedContext* ctx) {
+// P: a raw code as PIX holds it; O: an output word (uint32 or, out16=1, uint16).
+template <typename P, typename O>
+int run(int argc, char** argv, const Options& opt, VerilatedContext* ctx) {
+    constexpr unsigned sof_bit = 8 * sizeof(O) - 1, eol_bit = 8 * sizeof(O) - 2;
     const uint64_t n = std::strtoull(argv[4], nullptr, 10);
     const uint32_t w = static_cast<uint32_t>(std::strtoul(argv[5], nullptr, 10));
     const uint32_t h = static_cast<uint32_t>(std::strtoul(argv[6], nullptr, 10));
@@ -205,7 +194,6 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     if (w == 0 || h == 0 || n == 0 || n % (uint64_t(w) * h) != 0)
         die("N must be a positive multiple of W*H; got N =", argv[4]);
     if (idle > 99 || stall > 99) die("IDLE_PCT and STALL_PCT must be in 0..99", "");
-    const Options opt = parse_options(argc, argv, 13);
 
     const uint64_t frame = uint64_t(w) * h;
     const std::vector<P> pix = read_file<P>(argv[1], n, opt.skip * frame);
@@ -222,7 +210,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
         if (fwords[cols * f] + 1 > images) images = fwords[cols * f] + 1;
     const std::vector<uint64_t> coef = read_file<uint64_t>(argv[2], images * frame * limbs);
     const uint64_t n_out = opt.outputs == UINT64_MAX ? n : opt.outputs;
-    std::vector<uint32_t> out(n_out);
+    std::vector<O> out(n_out);
 
 #ifdef BULK_BLIND
     if (cols < 3 || !opt.blind) die("method_drift_top needs cols=3 and blind=PATH", "");
@@ -264,15 +252,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
     set_word(top->blind_ref_i, &opt.blind_ref, 1);
     set_word(top->drift_gain_i, &opt.drift_gain, 1);
 #endif
-    top->eval();
-    for (int i = 0; i < 3; ++i) {
-        top->clk_i = 1;
-        top->eval();
-        top->clk_i = 0;
-        top->eval();
-    }
-    top->rst_ni = 1;
-    top->eval();
+    irnuc_harness::reset_sequence(*top);
 
     const uint64_t limit = 20 * (n + 100) + 50000;
     uint64_t pi = 0, ci = 0, oi = 0, cycle = 0, first = 0, last = 0;
@@ -348,9 +328,11 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
         top->m_acc_ready_i = ardy;
         top->m_foff_ready_i = frdy;
 #endif
-        const bool housekeeping = opt.public_eval || (cycle & 4095) == 0;
-        if (housekeeping) top->eval();
-        else BULK_EVAL(top.get());
+        // The clock-low eval: on the previous path every cycle, else only with the
+        // housekeeping public eval (see "Evals": the fast path reads the outputs as the
+        // previous rising edge left them, which is what this eval would give).
+        const bool settle = opt.public_eval || (cycle & 4095) == 0;
+        if (settle) top->eval();
         const bool pfire = pv && top->s_pix_ready_o;
         const bool cfire = cv && top->s_coef_ready_o;
         if (rdy && top->m_pix_valid_o) {
@@ -359,8 +341,9 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
                             "}\n", n_out, cycle);
                 return 1;
             }
-            out[oi++] = (uint32_t(top->m_pix_sof_o) << 31) | (uint32_t(top->m_pix_eol_o) << 30)
-                        | uint32_t(top->m_pix_data_o);
+            out[oi++] = static_cast<O>((uint32_t(top->m_pix_sof_o) << sof_bit)
+                                       | (uint32_t(top->m_pix_eol_o) << eol_bit)
+                                       | uint32_t(top->m_pix_data_o));
             if (oi == 1) first = cycle;
             last = cycle;
             stalls_at_last = stalls;
@@ -391,8 +374,12 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
             return 1;
 #endif
         top->clk_i = 1;
-        if (opt.public_eval) top->eval();
-        else BULK_EVAL(top.get());
+        if (opt.public_eval) {
+            top->eval();
+        } else {
+            if (!settle) BULK_CLOCK_WAS_LOW(top.get());
+            BULK_EVAL(top.get());
+        }
         top->clk_i = 0;
         ++cycle;
         if (pfire) {
@@ -452,7 +439,7 @@ int run(int argc, char** argv, VerilatedContext* ctx) {
 
     FILE* f = std::fopen(argv[3], "wb");
     if (!f) die("cannot write", argv[3]);
-    if (n_out && std::fwrite(out.data(), sizeof(uint32_t), n_out, f) != n_out)
+    if (n_out && std::fwrite(out.data(), sizeof(O), n_out, f) != n_out)
         die("short write of", argv[3]);
     std::fclose(f);
     uint64_t side[2] = {0, 0};  // the stage's input items taken
@@ -493,8 +480,15 @@ int main(int argc, char** argv) {
     }
     auto ctx = std::make_unique<VerilatedContext>();
     ctx->commandArgs(1, argv);  // no plusargs for the design
+    const Options opt = parse_options(argc, argv, 13);
     const int pix_bytes = std::atoi(argv[7]);
-    if (pix_bytes == 2) return run<uint16_t>(argc, argv, ctx.get());
-    if (pix_bytes == 4) return run<uint32_t>(argc, argv, ctx.get());
+    if (pix_bytes == 2) {
+        return opt.out16 ? run<uint16_t, uint16_t>(argc, argv, opt, ctx.get())
+                         : run<uint16_t, uint32_t>(argc, argv, opt, ctx.get());
+    }
+    if (pix_bytes == 4) {
+        return opt.out16 ? run<uint32_t, uint16_t>(argc, argv, opt, ctx.get())
+                         : run<uint32_t, uint32_t>(argc, argv, opt, ctx.get());
+    }
     die("PIXBYTES must be 2 or 4, got", argv[7]);
 }

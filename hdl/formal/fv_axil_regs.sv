@@ -39,6 +39,8 @@ module fv_axil_regs
   parameter int unsigned BlindRefRegBits   = 0,
   parameter int unsigned DriftGainRegBits  = 0,
   parameter int unsigned FfcTargetRegBits  = 0,
+  parameter int unsigned HousingReadingRegBits = 0,
+  parameter int unsigned HRefRegBits       = 0,
   parameter int unsigned TableReadings     = 0,
   parameter int unsigned TableReadingBits  = 1,
   localparam int unsigned AddrBits   = RegAddrBits,
@@ -91,7 +93,8 @@ module fv_axil_regs
     .GainRegBits(GainRegBits), .LevelRegBits(LevelRegBits), .ReadingRegBits(ReadingRegBits),
     .TRefRegBits(TRefRegBits), .BlindSumRegBits(BlindSumRegBits),
     .BlindRefRegBits(BlindRefRegBits), .DriftGainRegBits(DriftGainRegBits),
-    .FfcTargetRegBits(FfcTargetRegBits), .TableReadings(TableReadings),
+    .FfcTargetRegBits(FfcTargetRegBits), .HousingReadingRegBits(HousingReadingRegBits),
+    .HRefRegBits(HRefRegBits), .TableReadings(TableReadings),
     .TableReadingBits(TableReadingBits)
   ) u_dut (
     .*,

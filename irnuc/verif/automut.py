@@ -34,6 +34,8 @@ from irnuc.verif.mutant import Mutant
 
 #: The seed of the campaigns (a fixed seed: the same mutants on the same RTL).
 SEED = 1
+#: The mutants per module of the campaign the report shows (``irnuc mutate --auto 8``).
+CAMPAIGN_N = 8
 
 
 @dataclass(frozen=True)
@@ -93,8 +95,15 @@ def _what(command: str, src: str) -> str:
     return f"{sig}[{bit}] ({opts.get('-port', '?')} of {cell}) {how} at {src}"
 
 
-def draw(target: Target, n: int, seed: int = SEED) -> list[Mutant]:
-    """``n`` automatic mutants of ``target`` (cached per RTL, target, n and seed)."""
+def _draw_cache(target: Target, n: int, seed: int) -> Path:
+    key = digest({"rtl": mutate.rtl_digest(), "target": asdict(target), "n": n, "seed": seed})
+    return cache_dir("mutate", "auto") / f"draw-{target.module}-{key}.json"
+
+
+def draw(target: Target, n: int, seed: int = SEED, *, cached_only: bool = False
+         ) -> list[Mutant] | None:
+    """``n`` automatic mutants of ``target`` (cached per RTL, target, n and seed;
+    ``cached_only``: None when that draw is not in the cache)."""
     import shutil
     import tempfile
 
@@ -103,10 +112,11 @@ def draw(target: Target, n: int, seed: int = SEED) -> list[Mutant]:
     from irnuc.nuc_fixed import load_pipeline
 
     cfg = load_pipeline(target.config)
-    key = digest({"rtl": mutate.rtl_digest(), "target": asdict(target), "n": n, "seed": seed})
-    cache = cache_dir("mutate", "auto") / f"draw-{target.module}-{key}.json"
+    cache = _draw_cache(target, n, seed)
     if cache.is_file():
         drawn = json.loads(cache.read_text())
+    elif cached_only:
+        return None
     else:
         work = Path(tempfile.mkdtemp(prefix="draw.", dir=cache_dir("mutate", "work")))
         try:
@@ -144,7 +154,7 @@ def run_auto(tgts: Sequence[Target], n: int, *, seed: int = SEED, workers: int =
     target ran (:func:`cached_summary`)."""
     from irnuc.common.executor import open_executor
 
-    mutants = [m for t in tgts for m in draw(t, n, seed)]
+    mutants = [m for t in tgts for m in draw(t, n, seed) or ()]
     seen = set()
     for t in tgts:
         if (t.top, t.config, t.suite) not in seen:
@@ -189,5 +199,37 @@ def cached_summary() -> dict | None:
     return read_cached_json(cache_dir("mutate") / f"auto-{mutate.rtl_digest()}.json")
 
 
-__all__ = ["SEED", "TARGETS", "Target", "baseline", "cached_summary", "draw", "run_auto",
-           "summarize", "targets"]
+def current_results(n: int = CAMPAIGN_N, seed: int = SEED) -> dict:
+    """The automatic campaign (``n`` per module, ``seed``) as the cache holds it for the
+    current sources, nothing run or drawn: per module of :data:`TARGETS` whose draw is
+    cached, each mutant's result on these sources; ``missing`` the mutants without one,
+    ``not_drawn`` the modules never drawn on this RTL (neither counted)."""
+    mutants, not_drawn = [], []
+    for t in TARGETS.values():
+        drawn = draw(t, n, seed, cached_only=True)
+        if drawn is None:
+            not_drawn.append(t.module)
+        else:
+            mutants += drawn
+    found, missing = mutate.cached_results(mutants)
+    s = summarize(found)
+    s |= {"n": n, "seed": seed, "modules": sorted({r["file"].removesuffix(".sv")
+                                                   for r in found}),
+          "missing": missing, "not_drawn": not_drawn,
+          "complete": not missing and not not_drawn}
+    return s
+
+
+__all__ = [
+    "CAMPAIGN_N",
+    "SEED",
+    "TARGETS",
+    "Target",
+    "baseline",
+    "cached_summary",
+    "current_results",
+    "draw",
+    "run_auto",
+    "summarize",
+    "targets",
+]

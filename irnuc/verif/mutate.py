@@ -13,11 +13,12 @@ of ``cocotb_tests/tb_top.py``, one simulation) on the mutant's configuration:
   the mutant from the design at the ports of ``nuc_dpc_top``;
 * **invalid**: the mutant did not build (a catalogue error, not a kill; not counted).
 
-Results are cached in the irnuc cache by the digest of the RTL sources, the mutant and
-the testbench sources; :func:`cached_summary` returns the latest campaign of the current
-RTL sources (the report shows it). Mutants run on the sweep's executor (worker processes,
-in-process, or a Dask cluster). Mutation testing runs testbenches, so it sits above them
-(the ``irnuc.verif`` layer, which imports the testbench it runs).
+Results are cached in the irnuc cache by the digest of the RTL sources the mutant's top
+elaborates, the mutant and the testbench sources; :func:`current_results` gathers each
+catalogue mutant's result on the current sources (the report shows it). Mutants run on
+the sweep's executor (worker processes, in-process, or a Dask cluster). Mutation testing
+runs testbenches, so it sits above them (the ``irnuc.verif`` layer, which imports the
+testbench it runs).
 """
 
 from __future__ import annotations
@@ -71,7 +72,18 @@ def _suite_digest() -> str:
     return files_digest(files + sorted(SIM_HDL_DIR.glob("*.sv")))
 
 
-def _mutant_key(m: Mutant) -> str:
+def top_digest(top: str) -> str:
+    """Digest of the RTL sources ``top`` elaborates (a mutant's verdict depends on these
+    only: a change elsewhere in hdl/ keeps its cached result)."""
+    from irnuc.cosim.sources import hdl_sources
+
+    return files_digest(hdl_sources(top))
+
+
+def _mutant_key(m: Mutant, suite: str | None = None, tops: dict[str, str] | None = None
+                ) -> str:
+    """The cache key of a mutant's result: the RTL its top elaborates, the suite's sources,
+    the mutant (``suite``, ``tops``: digests computed once for many mutants)."""
     d = asdict(m)
     if not d["also"]:
         del d["also"]  # keys of one-site mutants as before the field existed
@@ -83,7 +95,8 @@ def _mutant_key(m: Mutant) -> str:
         del d["top"], d["suite"]  # and of the mutants of the two-point suite
         if d["file"] == PKG_FILE:
             d["package_check"] = PKG_SUITE  # the verdict includes the package check
-    return digest({"rtl": rtl_digest(), "suite": _suite_digest(), "mutant": d})
+    rtl = (tops or {}).get(m.top) or top_digest(m.top)
+    return digest({"rtl": rtl, "suite": suite or _suite_digest(), "mutant": d})
 
 
 @dataclass
@@ -358,6 +371,33 @@ def cached_summary() -> dict | None:
     return read_cached_json(cache_dir("mutate") / f"summary-{rtl_digest()}.json")
 
 
+def cached_results(mutants: Sequence[Mutant]) -> tuple[list[dict], list[str]]:
+    """The cached result of each mutant on the current RTL and suite sources, nothing
+    run: (the results found, the ids without one)."""
+    suite = _suite_digest()
+    tops = {top: top_digest(top) for top in {m.top for m in mutants}}
+    found, missing = [], []
+    for m in mutants:
+        res = read_cached_json(cache_dir("mutate", "mutants")
+                               / f"{m.id}-{_mutant_key(m, suite, tops)}.json")
+        if isinstance(res, dict):
+            found.append(res)
+        else:
+            missing.append(m.id)
+    return found, missing
+
+
+def current_results() -> dict:
+    """The catalogue's campaign as the cache holds it for the current sources: every
+    mutant's result on exactly these sources (however many ``irnuc mutate --only`` runs
+    produced them), ``missing`` the ones without (never counted), ``complete`` when none
+    is; the counts and score of :func:`summarize` over the ones found."""
+    found, missing = cached_results(CATALOGUE)
+    summary = summarize(found)
+    summary |= {"missing": missing, "complete": not missing}
+    return summary
+
+
 # ---- several configurations ---------------------------------------------------------------
 
 def elaborates_differently(m: Mutant, cfg, hdl_root: Path | None = None) -> bool:
@@ -476,6 +516,20 @@ def run_per_configuration(mutants: Sequence[Mutant], configs: Sequence, *,
                         if killed or survived else None}}
 
 
-__all__ = ["CATALOGUE", "SAMPLE", "Mutant", "cached_summary", "catalogue", "configurations",
-           "elaborates_differently", "rtl_digest", "run_mutant", "run_mutants",
-           "run_per_configuration", "summarize"]
+__all__ = [
+    "CATALOGUE",
+    "SAMPLE",
+    "Mutant",
+    "cached_results",
+    "cached_summary",
+    "catalogue",
+    "configurations",
+    "current_results",
+    "elaborates_differently",
+    "rtl_digest",
+    "run_mutant",
+    "run_mutants",
+    "run_per_configuration",
+    "summarize",
+    "top_digest",
+]

@@ -167,21 +167,26 @@ def headline(rep: Report, summary: Mapping[str, Any]) -> list[tuple[str, str]]:
                      f"{mut['killed']} of {mut['killed'] + mut['survived']} non-equivalent "
                      f"(score {100 * mut['score']:.1f} %), {mut['equivalent']} equivalent, "
                      f"{mut['survived']} survived"
-                     + ("" if mut.get("complete", True) else " (partial campaign)")))
+                     + ("" if mut.get("complete", True) else
+                        f" (partial: {len(mut.get('missing') or [])} not run on this RTL)")))
     auto = (s.get("cosim") or {}).get("mutation_auto")
     if auto:
         rows.append(("automatic RTL mutants killed (irnuc mutate --auto)",
                      f"{auto['killed']} of {auto['killed'] + auto['survived']} not proved "
                      f"equivalent (score {100 * auto['score']:.1f} %), {auto['equivalent']} "
                      f"proved equivalent, {auto['survived']} survived"
-                     + ("" if auto.get("complete", True) else " (partial campaign)")))
+                     + ("" if auto.get("complete", True) else
+                        f" (partial: {len(auto.get('missing') or [])} drawn not run, "
+                        f"{len(auto.get('not_drawn') or [])} modules not drawn)")))
     fv = (s.get("cosim") or {}).get("formal")
     if fv:
         rows.append(("formal proofs (irnuc formal)",
                      f"{fv['proved']} proved, {fv['bounded']} bounded, {len(fv['not_ok'])} "
                      f"not holding; {fv['detected']} of {fv['detected'] + len(fv['missed'])} "
                      "planted faults detected"
-                     + ("" if fv.get("complete", True) else " (partial campaign)")))
+                     + ("" if fv.get("complete", True) else
+                        f" (partial: {len(fv.get('missing') or [])} proofs and faults "
+                        "without a result on these sources)")))
     if "precision" in s:
         pr = s["precision"]
         rows.append(("work-precision defaults on the Pareto front",
@@ -509,10 +514,19 @@ def formal_rows(fv: Mapping[str, Any] | None) -> dict[str, Any]:
     """The formal campaign: one row per proof and per planted fault."""
     if not fv:
         return {"proofs": [], "faults": []}
-    proofs = [[p["id"], p["what"], p["engine"], "unbounded" if p["depth"] is None
-               else f"{p['depth']} cycles", p["status"], p.get("cover") or "",
+    def depth(p: Mapping[str, Any]) -> str:
+        if p["status"] == "not run":
+            return ""
+        if p["depth"] is None:
+            return "unbounded"
+        return f"{p['depth']} cycles" + (f" (of {p['wanted']}: the time budget)"
+                                         if p.get("wanted") else "")
+
+    proofs = [[p["id"], p["what"], p["engine"], depth(p), p["status"], p.get("cover") or "",
                p.get("asserts"), f"{p['seconds']:.1f}"] for p in fv.get("proofs", [])]
-    faults = [[f["id"], f["what"], f["property"], "detected" if f["detected"] else "MISSED",
+    missing = set(fv.get("missing") or ())
+    faults = [[f["id"], f["what"], f["property"],
+               "not run" if f["id"] in missing else "detected" if f["detected"] else "MISSED",
                "" if f.get("step") is None else f["step"]] for f in fv.get("faults", [])]
     return {"proofs": proofs, "faults": faults}
 

@@ -24,6 +24,12 @@ Three measurements on the model (the study sensor, seeded everywhere):
   at the frame before each FFC (the sawtooth's peaks, those with the largest drift since
   their refresh) and at evenly spaced shown frames.
 
+Beside the configurations, float what-ifs (:class:`CurvatureCore`, :class:`PiecewiseCore`:
+a core with a curvature term, tc_gain's gain and tc_housing's offset terms, one polynomial or
+piecewise over the FPA; no fixed point, no RTL) say what a method that meets the goal would
+need, and ``Setup.housing_lag_s`` replaces the scenario's housing sensor lag (a what-if of a
+sensor without lag).
+
 The calibration plan covers the scenario (FPA at ``fpa_points`` temperatures over its span;
 the housing at ``OFFSETS`` from the FPA for a method that reads it), as
 ``benchmarks/bench_tc_housing_scenarios.py`` has it; ``reading_range_bits`` (and
@@ -192,15 +198,20 @@ def calibrate(sensor: dc.StudySensor, labels: Sequence[str], fpa: Sequence[float
     ov = {**sensor.base_overrides(), "noise.enabled": bool(noise)}
     pts = run_plan(p, sensor.preset, ov, seed=sensor.seed)
     floats = {CURVATURE: (2, False), CURVATURE3: (3, False), CURVATURE_FFC: (2, True)}
-    fixed = [x for x in labels if x not in floats]
+    fixed = [x for x in labels if x not in floats and x != CURVATURE_PW]
     cals: dict[str, Any] = {label: calibrate_points(pts, cfg)
                             for label, cfg in configs(fixed, ts, hs, ffc_frames).items()}
-    good = ~np.logical_or.reduce([c.bad for c in cals.values()])
+    # the float cores' targets and bad pixels: the calibration's (typical14's without one)
+    base = list(cals.values()) or [calibrate_points(pts, configs(("typical14",), ts, hs)
+                                                    ["typical14"])]
+    good = ~np.logical_or.reduce([c.bad for c in base])
+    lsb = (p.fpa_sensor.lsb_K, p.housing_sensor.lsb_K)
     for label, (order, ffc) in floats.items():
         if label in labels:
-            core = CurvatureCore.fit(pts, next(iter(cals.values())).targets, good,
-                                     p.fpa_sensor.lsb_K, p.housing_sensor.lsb_K, order)
+            core = CurvatureCore.fit(pts, base[0].targets, good, *lsb, order)
             cals[label] = dataclasses.replace(core, ffc=ffc)
+    if CURVATURE_PW in labels:
+        cals[CURVATURE_PW] = PiecewiseCore.fit(pts, base[0].targets, good, *lsb)
     return {"plan": p, "cal": cals, "good": good}
 
 
@@ -209,6 +220,7 @@ def calibrate(sensor: dc.StudySensor, labels: Sequence[str], fpa: Sequence[float
 CURVATURE = "float: curvature + tc_housing"
 CURVATURE3 = "float: curvature + tc_housing, cubic in the FPA"
 CURVATURE_FFC = "float: curvature + tc_housing + ffc"
+CURVATURE_PW = "float: curvature + tc_housing, piecewise in the FPA"
 
 
 @dataclasses.dataclass
@@ -277,6 +289,47 @@ class CurvatureCore:
         return sum(c * f for c, f in zip(self.coef, self._features(x, v, w), strict=True))
 
 
+@dataclasses.dataclass
+class PiecewiseCore:
+    """:class:`CurvatureCore` piecewise in the FPA (a what-if too): one core per window of
+    three consecutive FPA points of the plan (each with all its housing offsets), the frame
+    corrected by the core whose middle point's FPA reading is nearest its own (as
+    table_interp picks its tables, without the interpolation)."""
+
+    centres: np.ndarray                 # (K,) FPA readings, codes
+    cores: list[CurvatureCore]
+    targets: np.ndarray
+    cfg: Any = None
+
+    @classmethod
+    def fit(cls, pts: Any, targets: np.ndarray, good: np.ndarray, lsb_t: float,
+            lsb_h: float) -> PiecewiseCore:
+        from types import SimpleNamespace
+
+        fpa = np.asarray(pts.fpa_K, np.float64)
+        temps = np.unique(fpa)
+        if temps.size < 3:
+            raise ValueError(f"PiecewiseCore: {temps.size} FPA temperature(s); at least 3")
+        centres, cores = [], []
+        for k in range(1, temps.size - 1):
+            sel = np.flatnonzero(np.isin(fpa, temps[k - 1:k + 2]))
+            mid = sel[fpa[sel] == temps[k]]
+            ref = int(mid[np.argmin(np.abs(pts.housing_K[mid] - temps[k]))])
+            sub = SimpleNamespace(codes=pts.codes[sel], reading=pts.reading[sel],
+                                  housing_reading=pts.housing_reading[sel],
+                                  reference=int(np.flatnonzero(sel == ref)[0]))
+            cores.append(CurvatureCore.fit(sub, targets, good, lsb_t, lsb_h))
+            centres.append(float(pts.reading[ref].mean()))
+        return cls(np.asarray(centres), cores, np.asarray(targets, np.float64))
+
+    def has(self, stage: str) -> bool:
+        return False
+
+    def correct(self, raw: np.ndarray, reading: int, housing: int) -> np.ndarray:
+        core = self.cores[int(np.argmin(np.abs(self.centres - reading)))]
+        return core.correct(raw, reading, housing)
+
+
 def _inputs(cfg: Any, n: int, reading: Any, housing: Any, shutter: bool) -> Any:
     from irnuc.nuc_fixed.method_top import FrameInputs
 
@@ -308,7 +361,7 @@ def measure(cal: Any, good: np.ndarray, sc: Any, raw: np.ndarray, slope_raw: np.
     order), the temporal noise beside it, and the level error of the frames' mean."""
     from irnuc.nuc_fixed.method_top import method_top
 
-    if isinstance(cal, CurvatureCore):
+    if isinstance(cal, (CurvatureCore, PiecewiseCore)):
         add = 0.0 if ffc_offset is None else ffc_offset
         y = cal.correct(raw, reading, housing) + add
         ys = cal.correct(slope_raw, reading, housing) + add
@@ -448,7 +501,7 @@ class Setup:
     how many sawtooth peaks and evenly spaced states are read."""
 
     labels: tuple[str, ...] = ("tchousing14+tc_gain", "tcffc14", "tchousing14+ffc",
-                               "quadffc14", CURVATURE, CURVATURE_FFC)
+                               "quadffc14", CURVATURE, CURVATURE_FFC, CURVATURE_PW)
     policies: tuple[tuple[str, float | None, float | None], ...] = (
         ("Lepton: 3 min or 1.5 K", 180.0, 1.5), ("0.1 K", None, 0.1))
     cal_frames: int = 32
@@ -458,6 +511,10 @@ class Setup:
     states: int = 8
     fpa_points: int = 5
     noise: bool = True
+    #: FPA points of the plan of the piecewise core (:data:`CURVATURE_PW`)
+    piecewise_fpa_points: int = 9
+    #: the housing sensor's lag, s, instead of the scenario's (None: as shipped): a what-if
+    housing_lag_s: float | None = None
 
 
 def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[str, Any]:
@@ -467,6 +524,9 @@ def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[
     from irnuc.reports.studies.metrics import slope_scenes
 
     seq = load_sequence(name)
+    if setup.housing_lag_s is not None:
+        seq = dataclasses.replace(seq, housing_sensor=dataclasses.replace(
+            seq.housing_sensor, lag_s=float(setup.housing_lag_s)))
     sched = dataclasses.replace(seq, record_every=1).schedule()
     f = sched.fields(seq.fpa_sensor, sensor.seed, seq.housing_sensor)
     fpa_K, cam_K = np.asarray(sched.fpa_K), np.asarray(sched.T_cam_K)
@@ -480,7 +540,16 @@ def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[
     ts = range_bits(max(ref - lo, hi - ref) / seq.fpa_sensor.lsb_K)
     hs = range_bits((max(ref - (lo + min(OFFSETS)), hi - ref) + 1.0)
                      / seq.housing_sensor.lsb_K)
-    cals = calibrate(sensor, setup.labels, fpa, ref, setup.cal_frames, setup.noise, ts, hs)
+    plain = tuple(x for x in setup.labels if x != CURVATURE_PW)
+    cals = calibrate(sensor, plain, fpa, ref, setup.cal_frames, setup.noise, ts, hs) if plain \
+        else {"cal": {}, "good": None}
+    if CURVATURE_PW in setup.labels:
+        fpa_pw = tuple(float(t) for t in np.round(np.linspace(lo, hi,
+                                                              setup.piecewise_fpa_points), 2))
+        pw = calibrate(sensor, (CURVATURE_PW,), fpa_pw, fpa_pw[len(fpa_pw) // 2],
+                       setup.cal_frames, setup.noise, ts, hs)
+        cals["cal"][CURVATURE_PW] = pw["cal"][CURVATURE_PW]
+        cals["good"] = pw["good"] if cals["good"] is None else cals["good"] & pw["good"]
     good = cals["good"]
     cam = Camera(sensor, setup.noise)
     frames_cache: dict[int, tuple[np.ndarray, np.ndarray]] = {}
@@ -511,6 +580,7 @@ def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[
     out: dict[str, Any] = {
         "fpa_span_K": [lo, hi], "plan_fpa_K": list(fpa), "reading_range_bits": ts,
         "housing_range_bits": hs, "housing_sensor_node": seq.housing_sensor.node,
+        "housing_sensor_lag_s": seq.housing_sensor.lag_s,
         "housing_minus_fpa_K": [float((cam_K - fpa_K).min()), float((cam_K - fpa_K).max())],
         "lens_minus_housing_K": [float((lens_K - cam_K).min()), float((lens_K - cam_K).max())],
         "cal_frames": setup.cal_frames, "repeats": setup.repeats, "runs": []}
@@ -559,7 +629,9 @@ def scenario(name: str, sensor: dc.StudySensor, setup: Setup = Setup()) -> dict[
 
 
 def _has_ffc(cal: Any) -> bool:
-    return cal.has("ffc") if isinstance(cal, CurvatureCore) else cal.cfg.has("ffc")
+    if isinstance(cal, (CurvatureCore, PiecewiseCore)):
+        return cal.has("ffc")
+    return cal.cfg.has("ffc")
 
 
 def kind(label: str) -> str:

@@ -110,17 +110,18 @@ def measured_coverage(result: Any) -> dict[str, Any] | None:
 
 
 def measured_mutation() -> dict[str, Any] | None:
-    """The latest ``irnuc mutate`` campaign of the current RTL sources
-    (:func:`irnuc.verif.mutate.cached_summary`), condensed for the report: counts, score,
-    survivors, the equivalent mutants with their arguments, and per mutant its status and
-    killing test. None when no campaign has run on these sources."""
+    """The ``irnuc mutate`` catalogue as the cache holds it for the current RTL and suite
+    sources (:func:`irnuc.verif.mutate.current_results`: every mutant's result however
+    many runs produced it, the ones without a result named), condensed for the report:
+    counts, score, survivors, the equivalent mutants with their arguments, and per mutant
+    its status and killing test. None when no mutant has a result on these sources."""
     from irnuc.verif import mutate
 
-    s = mutate.cached_summary()
-    if not isinstance(s, Mapping) or not s:
+    s = mutate.current_results()
+    if not s.get("total"):
         return None
     keys = ("rtl_digest", "total", "catalogue_size", "killed", "survived", "equivalent",
-            "score", "complete", "survivors", "equivalents")
+            "score", "complete", "survivors", "equivalents", "missing")
     out = {k: s[k] for k in keys if k in s}
     out["invalid"] = len(s.get("invalid") or [])
     out["mutants"] = [{k: m.get(k) for k in ("id", "file", "what", "config", "status",
@@ -130,16 +131,19 @@ def measured_mutation() -> dict[str, Any] | None:
 
 
 def measured_auto_mutation() -> dict[str, Any] | None:
-    """The latest ``irnuc mutate --auto`` campaign of the current RTL sources
-    (:func:`irnuc.verif.automut.cached_summary`), condensed: counts, score, per module, and
-    per mutant its status, killing test or formal verdict. None when none ran."""
+    """The ``irnuc mutate --auto 8`` campaign as the cache holds it for the current sources
+    (:func:`irnuc.verif.automut.current_results`: the modules drawn, each mutant's result,
+    the ones without a result and the modules not drawn named), condensed: counts, score,
+    per module, and per mutant its status, killing test or formal verdict. None when no
+    automatic mutant has a result on these sources."""
     from irnuc.verif import automut
 
-    s = automut.cached_summary()
-    if not isinstance(s, Mapping) or not s:
+    s = automut.current_results()
+    if not s.get("total"):
         return None
     keys = ("rtl_digest", "total", "killed", "survived", "equivalent", "score", "complete",
-            "survivors", "n", "seed", "modules", "per_module", "decided")
+            "survivors", "n", "seed", "modules", "per_module", "decided", "missing",
+            "not_drawn")
     out = {k: s[k] for k in keys if k in s}
     out["mutants"] = [{"id": m.get("id"), "file": m.get("file"), "what": m.get("what"),
                        "config": m.get("config"), "status": m.get("status"),
@@ -151,27 +155,41 @@ def measured_auto_mutation() -> dict[str, Any] | None:
 
 
 def measured_formal() -> dict[str, Any] | None:
-    """The latest ``irnuc formal`` campaign of the current RTL and formal sources
-    (:func:`irnuc.verif.formal.cached_summary`), condensed: proofs (engine, depth, status,
-    time, cover), planted faults (the property each must fail and whether it did). None
-    when none ran."""
+    """The ``irnuc formal`` campaign as the cache holds it for the current RTL and formal
+    sources (:func:`irnuc.verif.formal.current_results`: every proof's and planted
+    fault's result however many runs produced it; the ones without a result are listed
+    as ``missing``, status ``not run``, never counted as holding), condensed: proofs
+    (engine, depth, status, time, cover), planted faults (the property each must fail and
+    whether it did). None when no proof or fault has a result on these sources."""
     from irnuc.verif import formal
 
-    s = formal.cached_summary()
-    if not isinstance(s, Mapping) or not s:
+    s = formal.current_results()
+    if len(s.get("missing", [])) == len(s["proofs"]) + len(s["faults"]):
         return None
     out = {k: s[k] for k in ("digest", "proved", "bounded", "not_ok", "detected", "missed",
-                             "unplanted", "ok", "complete", "seconds") if k in s}
+                             "unplanted", "ok", "complete", "seconds", "missing") if k in s}
     out["proofs"] = [{"id": r["id"], "what": r.get("what", ""), "engine": r["engine"],
-                      "depth": r.get("depth"), "status": r["status"],
+                      "depth": r.get("depth"), "wanted": r.get("wanted"),
+                      "status": r["status"],
                       "seconds": r.get("seconds", 0.0), "asserts": r.get("asserts"),
-                      "cover": (r.get("cover") or {}).get("status"),
+                      "cover": _cover_note(r.get("cover")),
                       "message": r.get("message", "")}
                      for r in s.get("proofs", [])]
     out["faults"] = [{"id": r["id"], "property": r.get("property"), "what": r.get("what", ""),
                       "detected": r.get("detected"), "step": r.get("step")}
                      for r in s.get("faults", [])]
     return out
+
+
+def _cover_note(cover: Mapping[str, Any] | None) -> str | None:
+    """A proof's covers in the report: status, and reached / total when not all were."""
+    if not cover:
+        return None
+    steps = cover.get("steps") or {}
+    total = cover.get("total") or len(steps)
+    if cover.get("status") == "covered" or not total:
+        return cover.get("status")
+    return f"{cover.get('status')} ({len(steps)} / {total})"
 
 
 # ---- running the suite --------------------------------------------------------------------

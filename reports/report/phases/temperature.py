@@ -259,9 +259,12 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     # The cost model moves bare cores (the anchors): its error is judged on the bare core
     # at these widths, and what the wrapper adds is stated beside it (best against best).
     core_top = synth.default_top(cfg)
-    # both netlists side by side first (cold), then each one's placements
-    synth.prepare_netlists([(cfg, top), (cfg, core_top)] if core_top != top else [(cfg, top)],
-                           workers=kw["workers"])
+    try:
+        # both netlists side by side first (cold), then each one's placements
+        synth.prepare_netlists([(cfg, top), (cfg, core_top)] if core_top != top
+                               else [(cfg, top)], workers=kw["workers"])
+    except synth.SynthError:
+        pass  # said below, by the top that fails, as without the preparation
     try:
         # The wrapper's ports may not fit the package's pins (wide coefficient and FFC
         # words): then placed as the IP block it is, its ports meeting on-chip logic

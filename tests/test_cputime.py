@@ -1,0 +1,37 @@
+"""CPU seconds of the report's process tree (irnuc.common.cputime): the phase CPU in
+summary.json must count the executor's workers, which are grandchildren (forkserver)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+
+import pytest
+
+from irnuc.common.cputime import tree_cpu_seconds
+
+BURN = "import time\nt = time.process_time()\nwhile time.process_time() - t < {s}:\n    pass\n"
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_live_grandchild_and_a_reaped_child_are_counted() -> None:
+    before = tree_cpu_seconds()
+    # a child that starts a grandchild burning 0.6 s of CPU, then waits for a signal
+    code = ("import subprocess, sys\n"
+            f"p = subprocess.Popen([sys.executable, '-c', {BURN.format(s=0.6)!r} + "
+            "'import time\\ntime.sleep(30)\\n'])\n"
+            "sys.stdin.readline()\np.kill()\np.wait()\n")
+    child = subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 30
+        while tree_cpu_seconds() - before < 0.6 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        alive = tree_cpu_seconds() - before  # the grandchild still running (sleeping)
+        assert child.poll() is None and alive >= 0.6
+    finally:
+        child.communicate("\n")
+    after = tree_cpu_seconds() - before  # reaped: in this process's children's time
+    assert after >= 0.6
+    # nothing counted twice: the burn plus two interpreters' start-up, not twice the burn
+    assert after < 0.6 + 2 * 1.0 + 0.6
