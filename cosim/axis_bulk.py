@@ -232,7 +232,10 @@ def run_axis(bld: Build, st: AxisStimulus, *, seed: int = 1, stall_percent: int 
                               text=True, env=verilator_env())
         sim_s = time.perf_counter() - t0
         lines = proc.stdout.strip().splitlines()
-        info = json.loads(lines[-1]) if lines else {"error": proc.stderr[-400:]}
+        try:
+            info = json.loads(lines[-1]) if lines else {"error": proc.stderr[-400:]}
+        except json.JSONDecodeError:  # the model stopped ($stop of an assertion): its text
+            info = {"error": " ".join(lines[-3:])[-400:]}
         if proc.returncode != 0 or "error" in info:
             # A run that stops (a timeout: outputs the golden model expects never came)
             # counts every expected word as missing.

@@ -37,7 +37,9 @@ inline uint64_t get_word(const T& port) {
 }
 
 // The reset: the caller has set the clock low, rst_ni low and every input idle; one eval,
-// three rising edges in reset, rst_ni released between edges (with the clock low).
+// three rising edges in reset, rst_ni released between edges (with the clock low), then one
+// more edge with every input still idle: AXI lets a master raise a valid only after the
+// first rising edge that follows the release (irnuc_axis_assert's a_reset_idle).
 template <typename T>
 inline void reset_sequence(T& top) {
     top.eval();
@@ -48,6 +50,10 @@ inline void reset_sequence(T& top) {
         top.eval();
     }
     top.rst_ni = 1;
+    top.eval();
+    top.clk_i = 1;
+    top.eval();
+    top.clk_i = 0;
     top.eval();
 }
 
