@@ -28,7 +28,7 @@ import logging
 
 import cocotb
 import numpy as np
-from cocotb.triggers import ClockCycles, SimTimeoutError, with_timeout
+from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge, SimTimeoutError, with_timeout
 from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
 
 from irnuc.cocotb_tests import tb_lib
@@ -87,8 +87,6 @@ async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
     """Fill ``out`` with the cycles (Bench's count) in which an AXI4-Stream port was idle
     (``<port> idle``: tvalid 0) or stalled (``<port> stall``: tvalid 1, tready 0): triage
     of a throughput check."""
-    from cocotb.triggers import RisingEdge
-
     dut = bench.dut
     edge = RisingEdge(dut.clk_i)
     while True:
@@ -99,6 +97,79 @@ async def _stall_log(bench: Bench, out: dict[str, list[int]]) -> None:
             r = int(getattr(dut, f"{port}_tready").value)
             if not v or not r:
                 out.setdefault(f"{port} {'stall' if v else 'idle'}", []).append(bench.cycle)
+
+
+class WordMonitor:
+    """Monitor of an AXI4-Stream port: the words taken (tvalid and tready at a rising edge)
+    in its current frame (``words``) and the frames ended (tlast taken, ``frames``)."""
+
+    def __init__(self, bench: Bench, port: str) -> None:
+        dut = bench.dut
+        self.valid = getattr(dut, f"{port}_tvalid")
+        self.ready = getattr(dut, f"{port}_tready")
+        self.last = getattr(dut, f"{port}_tlast")
+        self.words = self.frames = 0
+        cocotb.start_soon(self._run(dut.clk_i))
+
+    async def _run(self, clk) -> None:
+        edge = RisingEdge(clk)
+        while True:
+            await edge
+            if int(self.valid.value) and int(self.ready.value):
+                if int(self.last.value):
+                    self.words, self.frames = 0, self.frames + 1
+                else:
+                    self.words += 1
+
+    def waiting(self) -> bool:
+        """A word offered and not taken (tvalid 1, tready 0)."""
+        return bool(int(self.valid.value) and not int(self.ready.value))
+
+
+async def held_refresh_checks(bench: Bench, sink: AxiStreamSink, mon: WordMonitor,
+                              frame: int, words: int, holds: list[int], bp: str,
+                              seen: list[int]) -> None:
+    """FFC_STATUS while the refresh's new offsets are held by backpressure on m_axis_foff.
+    For each k of ``holds`` (0 < k < ``words`` - 2; ``words`` the refresh frame's count,
+    ``frame`` its index among the port's frames): once k of its words were taken (the
+    monitor) the sink (the driver) stops taking them (tready low from the next edge or the
+    one after: k or k + 1 taken, never the frame's last); with the next word waiting
+    (tvalid 1, tready 0) FFC_STATUS is read over AXI4-Lite against the register model
+    (busy 1, done 0: a run ends with the refresh's last new offset, tlast, taken; the
+    scoreboard is :meth:`Bench.check`), irq_o must be 0 (IRQ_ENABLE.ffc_done only), and the
+    word must still wait after the read. Then ``bp`` again. The word counts held at the
+    reads go to ``seen``."""
+    dut = bench.dut
+    fall = FallingEdge(dut.clk_i)
+    m = bench.model
+    for k in holds:
+        assert 0 < k < words - 2, f"hold after {k} of {words} words"
+        while mon.frames < frame or mon.words < k:
+            await fall
+            assert mon.frames <= frame, f"the refresh frame passed before its hold at word {k}"
+        sink.clear_pause_generator()
+        sink.pause = True
+        for _ in range(200):
+            await fall
+            if mon.waiting():
+                break
+        held = mon.words
+        assert mon.frames == frame and k <= held < words, (
+            f"held after {held} words of frame {mon.frames}, wanted {k} of frame {frame}")
+        assert mon.waiting(), f"no refresh word offered in 200 cycles after word {held}"
+        m.set_live("FFC_STATUS", "busy", 1)
+        m.set_live("FFC_STATUS", "done", 0)
+        await bench.check("FFC_STATUS")
+        assert int(dut.irq_o.value) == 0, (
+            f"irq_o 1 with {held} of the refresh's {words} new offsets taken")
+        await fall
+        assert (mon.frames, mon.words) == (frame, held) and mon.waiting(), (
+            "the held refresh word left (or was withdrawn) during the FFC_STATUS read")
+        seen.append(held)
+        if bp == "none":
+            sink.pause = False
+        else:
+            sink.set_pause_generator(pause_pattern(bp, bench.rng))
 
 
 def _tiled(c: MethodCoefficients, h: int, w: int) -> MethodCoefficients:
@@ -144,7 +215,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                            size: tuple[int, int] = (H, W),
                            resize_in_run: tuple[int, int] | None = None,
                            second_run: int | None = None, traffic: bool = False,
-                           firmware: bool = False) -> None:
+                           firmware: bool = False, hold_refresh: bool = False) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
@@ -165,13 +236,17 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     (W1C clears of STATUS, read-only, reserved and unmapped offsets, reads anywhere).
     ``firmware``: the register accesses are the firmware driver's (irnuc.cosim.driver:
     probe, configure, load_calibration, set_reading, enable_irq, ffc_start, ffc_wait,
-    read_status), through the generated register model."""
+    read_status), through the generated register model. ``hold_refresh``: the refresh's
+    new offsets held three times by backpressure on m_axis_foff (after its first word, one
+    at random and all but its last three), FFC_STATUS read over AXI4-Lite during each hold:
+    busy, not done (:func:`held_refresh_checks`)."""
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
     bench = await make_bench(dut, salt)
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
+    foff_mon = WordMonitor(bench, "m_axis_foff") if hold_refresh else None
     t = None
     if traffic:
         from irnuc.cocotb_tests.axil_traffic import Traffic
@@ -353,6 +428,12 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     limit = 40 * (len(video[0]) * 2) + 2000
     want_acc = [[int(v) for v in np.ravel(a)] for a in run.acc_out if a is not None]
     want_foff = [_unsigned(a, cbits) for a in run.foff_out if a is not None]
+    held: list[int] = []
+    if foff_mon is not None:
+        words = len(want_foff[-1])
+        holds = [1, int(rng.integers(2, words - 4)), words - 3]
+        acts.append(cocotb.start_soon(held_refresh_checks(
+            bench, s.foff_out, foff_mon, len(want_foff) - 1, words, holds, ffc_bp, held)))
     acc_task = cocotb.start_soon(_frames_of(s.acc_out, len(want_acc), limit))
     foff_task = cocotb.start_soon(_frames_of(s.foff_out, len(want_foff), limit))
     shown = [f for f, v in zip(run.frames, framing.shown, strict=True) if v]
@@ -360,6 +441,9 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     for act in acts:
         await act
     got_acc, got_foff = await acc_task, await foff_task
+    if foff_mon is not None:
+        assert len(held) == 3, f"FFC_STATUS read in {len(held)} of 3 refresh holds"
+        tb_lib.record(label=label, refresh_holds=held)
     stall_task.cancel()
     if t is not None:  # the counters are the sequence's to check (held frames not out)
         stop[0] = True
@@ -497,6 +581,17 @@ async def ffc_second_run(dut) -> None:
     random register traffic before the sequence and while it streams."""
     await refresh_sequence(dut, 46, None, "random", "random", "ffc second run",
                            second_run=1, traffic=True)
+
+
+@cocotb.test()
+async def ffc_refresh_held(dut) -> None:
+    """FFC_STATUS read mid-refresh: the refresh frame's new offsets held by backpressure on
+    m_axis_foff after its first word, after a random one and before its last three; during
+    each hold FFC_STATUS reads busy, not done, and irq_o is 0 (done only with the refresh's
+    last word, tlast: the catalogue's ax_ffc_refresh_any_word raises it with the first);
+    random idle cycles on the inputs, alternate backpressure on the FFC streams between."""
+    await refresh_sequence(dut, 47, None, "random", "none", "ffc refresh held",
+                           ffc_idle="none", ffc_bp="alternate", hold_refresh=True)
 
 
 @cocotb.test()
