@@ -180,11 +180,37 @@ _RD_MUX_HELD = """\
 `endif"""
 
 
+#: The second: the request's stall mask. irnuc's CPU interface issues a request only after
+#: the last one's response was taken, so neither stall (a write in the cycle after a read;
+#: an external register's acknowledge still owed) is ever up with a request.
+_REQ_MASK = """\
+    assign cpuif_req_masked = cpuif_req
+                            & !(!cpuif_req_is_wr & cpuif_req_stall_rd)
+                            & !(cpuif_req_is_wr & cpuif_req_stall_wr);"""
+_REQ_MASK_NONE = """\
+    // irnuc: its CPU interface issues a request only after the last one's response was
+    // taken (one transaction at a time), so neither stall is up with a request and the mask
+    // is not built: it sat in front of every address decode, the write strobes' and the
+    // write response's (on ECP5 the wrapper's longest paths; docs/regmap.md).
+    assign cpuif_req_masked = cpuif_req;
+`ifndef SYNTHESIS
+    always_ff @(posedge clk) begin
+        if(cpuif_req) begin
+            assert_req_not_stalled: assert(cpuif_req_is_wr ? !cpuif_req_stall_wr : !cpuif_req_stall_rd)
+                else $error("irnuc: a request reached the register block while it stalls");
+        end
+    end
+`endif"""
+#: The lines of the generated module irnuc replaces, each found exactly once.
+_REPLACED = ((_RD_MUX, _RD_MUX_HELD), (_REQ_MASK, _REQ_MASK_NONE))
+
+
 def regblock_texts() -> dict[Path, str]:
     """The register block and its package, as peakrdl-regblock writes them with irnuc's
-    CPU interface (:func:`_regblock_cpuif`), one line changed (the read address
-    multiplexer, :data:`_RD_MUX`), a header naming the source and the generator's
-    Verilator warnings switched off in the file."""
+    CPU interface (:func:`_regblock_cpuif`), two places changed (the read address
+    multiplexer, :data:`_RD_MUX`, and the request's stall mask, :data:`_REQ_MASK`), a
+    header naming the source and the generator's Verilator warnings switched off in the
+    file."""
     from peakrdl_regblock import RegblockExporter, exporter
 
     root = _regblock_root()
@@ -205,10 +231,11 @@ def regblock_texts() -> dict[Path, str]:
             body = (Path(tmp) / path.name).read_text()
             body = "\n".join(line.rstrip() for line in body.splitlines())
             if path == REGBLOCK:
-                if body.count(_RD_MUX) != 1:
-                    raise ToolError("peakrdl-regblock's read address multiplexer is not the "
-                                    "line irnuc.cosim.regfiles replaces: update it")
-                body = body.replace(_RD_MUX, _RD_MUX_HELD)
+                for find, replace in _REPLACED:
+                    if body.count(find) != 1:
+                        raise ToolError("peakrdl-regblock's text is not the one "
+                                        "irnuc.cosim.regfiles replaces: update it:\n" + find)
+                    body = body.replace(find, replace)
             tail = "/* verilator lint_on " + " */\n/* verilator lint_on ".join(_LINT_OFF) + " */"
             out[path] = "\n".join([*_sv_head(what), body.strip("\n"), tail]) + "\n"
     return out

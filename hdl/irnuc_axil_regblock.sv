@@ -230,9 +230,19 @@ module irnuc_axil_regblock (
     end
     assign cpuif_req_stall_rd = external_pending;
     assign cpuif_req_stall_wr = cpuif_req_stall_sr[0] | external_pending;
-    assign cpuif_req_masked = cpuif_req
-                            & !(!cpuif_req_is_wr & cpuif_req_stall_rd)
-                            & !(cpuif_req_is_wr & cpuif_req_stall_wr);
+    // irnuc: its CPU interface issues a request only after the last one's response was
+    // taken (one transaction at a time), so neither stall is up with a request and the mask
+    // is not built: it sat in front of every address decode, the write strobes' and the
+    // write response's (on ECP5 the wrapper's longest paths; docs/regmap.md).
+    assign cpuif_req_masked = cpuif_req;
+`ifndef SYNTHESIS
+    always_ff @(posedge clk) begin
+        if(cpuif_req) begin
+            assert_req_not_stalled: assert(cpuif_req_is_wr ? !cpuif_req_stall_wr : !cpuif_req_stall_rd)
+                else $error("irnuc: a request reached the register block while it stalls");
+        end
+    end
+`endif
 
     //--------------------------------------------------------------------------
     // Address Decode

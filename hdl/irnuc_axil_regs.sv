@@ -209,10 +209,16 @@ module irnuc_axil_regs
   logic                  size_new_q;        // cycle 2: the size it would make
   logic [FieldW-1:0]     new_w_q;  // the fields as written, compared at their own width
   logic [FieldH-1:0]     new_h_q;
-  logic                  size_wr_q, w_legal_q, h_legal_q, size_touch_q;  // cycle 3
+  logic                  size_wr_q, w_legal_q, h_legal_q;  // cycle 3
+  // Cycle 3 too: a legal write that changes the size, one flop for the framer's start
+  // decision (it reaches the framer's next-state logic, across the die).
+  logic                  size_write_q;
   logic [WidthBits-1:0]  set_w_q;
   logic [HeightBits-1:0] set_h_q;
-  logic                  size_legal;
+  logic                  size_legal, w_legal_d, h_legal_d;
+
+  assign w_legal_d = (new_w_q != '0) && (new_w_q <= FieldW'(MaxWidth));
+  assign h_legal_d = (new_h_q != '0) && (new_h_q <= FieldH'(MaxHeight));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_size_steps
     if (!rst_ni) begin
@@ -221,14 +227,14 @@ module irnuc_axil_regs
       size_wr_q    <= 1'b0;
       w_legal_q    <= 1'b0;
       h_legal_q    <= 1'b0;
-      size_touch_q <= 1'b0;
+      size_write_q <= 1'b0;
     end else begin
       size_req_q   <= hwif_out.FRAME_SIZE.req && hwif_out.FRAME_SIZE.req_is_wr;
       size_new_q   <= size_req_q;
       size_wr_q    <= size_new_q;
-      w_legal_q    <= (new_w_q != '0) && (new_w_q <= FieldW'(MaxWidth));
-      h_legal_q    <= (new_h_q != '0) && (new_h_q <= FieldH'(MaxHeight));
-      size_touch_q <= size_new_q && |{size_bw_q, size_bh_q};
+      w_legal_q    <= w_legal_d;
+      h_legal_q    <= h_legal_d;
+      size_write_q <= size_new_q && w_legal_d && h_legal_d && |{size_bw_q, size_bh_q};
     end
   end
 
@@ -250,8 +256,9 @@ module irnuc_axil_regs
   end
 
   assign size_legal = w_legal_q && h_legal_q;
-  // From flops in one LUT (the framer's start decision reads it).
-  assign size_write_o = size_wr_q && size_legal && size_touch_q;
+  // A flop (size_wr_q && size_legal and a byte lane of a field written): the framer's start
+  // decision reads it.
+  assign size_write_o = size_write_q;
   assign wr_err       = size_wr_q && !size_legal;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_size
@@ -477,7 +484,10 @@ module irnuc_axil_regs
 
       assign data  = {slot_wr_data[k][1], slot_wr_data[k][0]};
       assign wbits = {slot_wr_biten[k][1], slot_wr_biten[k][0]};
-      assign slot_touch[k] = |({wbits[63:32] & {32{wr[1]}}, wbits[31:0] & {32{wr[0]}}} & Mask);
+      // A word's written bits within the width come from the request's flops: the touch is
+      // one gate behind the word's write strobe.
+      assign slot_touch[k] = (wr[0] && |(wbits[31:0] & Mask[31:0]))
+                             || (wr[1] && |(wbits[63:32] & Mask[63:32]));
       // Each word's bits load on that word's write alone (LO and HI are two addresses, never
       // written together): the address decode reaches the enables only, not the data
       // multiplexers, and each strobe drives one word's enables.
@@ -557,15 +567,25 @@ module irnuc_axil_regs
   // ---- STATUS.pending and the size change ---------------------------------------------------
   // A write that changes a shadowed register: pending until the next frame start (a write
   // in the start cycle stays pending: the framer took the value before it).
-  logic pending_q;
+  // The writes' touches (CTRL, each method-register slot, each table reading) are flops of
+  // their own, so the block's address decode ends one LUT behind its write strobes; STATUS
+  // reads `pending` = pending_q || a touch of the last cycle, which is 1 in the same cycles as
+  // a single flop fed by the touches directly would be (docs/regmap.md):
+  //   pending(t+1) = touch(t) || size_write(t) || (pending(t) && !start(t)).
+  localparam int unsigned NumTouch = 1 + NumSlots + NumTable;
+  logic [NumTouch-1:0] touch_q;
+  logic                pending_q, pending;
+
+  assign pending = pending_q || |touch_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_pending
     if (!rst_ni) begin
+      touch_q      <= '0;
       pending_q    <= 1'b0;
       size_dirty_q <= 1'b0;
     end else begin
-      pending_q    <= ctrl_touch || size_write_o || |slot_touch || |table_touch
-                      || (pending_q && !start_i);
+      touch_q      <= {ctrl_touch, slot_touch, table_touch};
+      pending_q    <= size_write_o || (pending && !start_i);
       size_dirty_q <= size_write_o || (size_dirty_q && !start_i);
     end
   end
@@ -581,7 +601,7 @@ module irnuc_axil_regs
   assign hwif_in.STATUS.coef_late.hwset  = coef_late_i;
   assign hwif_in.STATUS.core_err.next    = core_err_i;
   assign hwif_in.STATUS.in_frame.next    = in_frame_i;
-  assign hwif_in.STATUS.pending.next     = pending_q;
+  assign hwif_in.STATUS.pending.next     = pending;
 
   assign hwif_in.IRQ_STATUS.error.next      = sof_early_i || sof_late_i || eol_early_i
                                               || eol_late_i || coef_early_i || coef_late_i;

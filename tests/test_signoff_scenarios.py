@@ -190,7 +190,8 @@ def test_policies_sharing_corrected_frames_give_the_same_figures() -> None:
     from irnuc.reports.studies import drift_common as dc
 
     spec = so.SignoffSpec(rows=6, cols=8, frac_bits=(12,), methods=("tcffc14",),
-                          scene_K=(300.0, 340.0), housing_offset_K=(0.0,))
+                          scene_K=(300.0, 340.0), housing_offset_K=(0.0,),
+                          scenarios=("fpa_ramp",))
     sensor = spec.sensor()
     pts = run_plan(spec.plan(), sensor.preset, sensor.base_overrides(), seed=sensor.seed)
     cal = calibrate_points(pts, load_pipeline("tcffc14"))
@@ -209,3 +210,119 @@ def test_policies_sharing_corrected_frames_give_the_same_figures() -> None:
         sizes.append((before, len(memo["rows"]), alone["evaluated"]))
     # p0.5's FFCs are a subset of p0.25's: fewer new frames than it evaluates
     assert sizes[1][1] - sizes[1][0] < sizes[1][2]
+
+
+# ---- the calibration plan covers the scenarios it judges -----------------------------------
+def _span_by_hand(name: str) -> tuple[float, float, float, float, np.ndarray, np.ndarray]:
+    """A scenario's FPA and housing - FPA extremes and its sensors' readings at the full
+    frame rate, from its schedule (not through the sign-off)."""
+    import dataclasses
+
+    from irnuc.model.sequence import load_sequence
+
+    seq = load_sequence(name)
+    sched = dataclasses.replace(seq, record_every=1).schedule()
+    fields = sched.fields(seq.fpa_sensor, 4, seq.housing_sensor)
+    fpa, cam = np.asarray(sched.fpa_K), np.asarray(sched.T_cam_K)
+    return (float(fpa.min()), float(fpa.max()), float((cam - fpa).min()),
+            float((cam - fpa).max()), np.asarray(fields["fpa_reading"]),
+            np.asarray(fields["housing_reading"]))
+
+
+@pytest.mark.parametrize("quick", [False, True])
+def test_the_signoff_plan_covers_every_scenarios_fpa_and_housing(quick) -> None:
+    """A camera is calibrated over its operating range: the report's sign-off plan holds
+    every shipped scenario's FPA and housing - FPA span (the ambient ramp's FPA at 263 K
+    left the old fixed 288-308 K plan), and the reading ranges the sweep gives the methods
+    hold every plan point's and every scenario frame's reading around the reference
+    reading (none clamped). Fails if a scenario's FPA leaves the plan."""
+    from irnuc.model.sequence import scenario_names
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.reports.report.config import load_report_config
+    from irnuc.reports.report.phases.temperature import spec_of
+    from irnuc.reports.studies.method_bits import with_range_bits
+
+    spec = spec_of(load_report_config("default", quick=quick)["temperature"])
+    assert set(spec.scenarios) == set(scenario_names())
+    plan = spec.plan()
+    ref = len(plan.fpa) // 2
+    ranges = spec.range_bits()
+    t_ref = int(plan.fpa_sensor.read(plan.fpa[ref])[0])
+    h_ref = int(plan.housing_sensor.read(plan.fpa[ref])[0])
+    for name in spec.scenarios:
+        lo, hi, dlo, dhi, rd, hrd = _span_by_hand(name)
+        assert plan.fpa[0] <= lo and hi <= plan.fpa[-1], (name, lo, hi, plan.fpa)
+        assert plan.housing_offset[0] <= dlo and dhi <= plan.housing_offset[-1], name
+        for cname in ("tcffc14", "tcgain14", "tchousing14"):
+            cfg = with_range_bits(load_pipeline(cname), **ranges)
+            lim = (1 << cfg.reading_range_bits) - 1
+            assert np.abs(rd - t_ref).max() <= lim, (name, cname)
+            if cfg.housing_range_bits:
+                assert np.abs(hrd - h_ref).max() <= (1 << cfg.housing_range_bits) - 1
+    # and the plan's own points (every FPA at every housing offset) within the ranges
+    reads = plan.fpa_sensor.read(np.asarray(plan.fpa))
+    assert np.abs(reads - t_ref).max() <= (1 << ranges["reading_range_bits"]) - 1
+    # the middle point is the plan's reference and the points are evenly spaced
+    assert plan.fpa[ref] == pytest.approx(0.5 * (plan.fpa[0] + plan.fpa[-1]))
+    assert np.allclose(np.diff(plan.fpa), np.diff(plan.fpa)[0])
+
+
+def test_a_plan_inside_its_fpa_k_when_the_scenarios_are() -> None:
+    """fpa_ramp (293-295 K) lies inside 288-308 K: the plan is today's three points; the
+    housing offsets widened to its housing - FPA (-3.8 .. -2 K) only where needed."""
+    spec = so.SignoffSpec(rows=6, cols=8, scenarios=("fpa_ramp",), housing_offset_K=(-2.0, 0.0))
+    plan = spec.plan()
+    assert plan.fpa == (288.0, 298.0, 308.0)
+    assert plan.housing_offset == (-4.0, 0.0)
+    # +-10 K at 0.01 K (1000 codes) needs 10 bits: the shipped 11-bit ranges are kept
+    assert spec.range_bits()["reading_range_bits"] == 10
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.reports.studies.method_bits import with_range_bits
+
+    cfg = load_pipeline("tcffc14")
+    assert with_range_bits(cfg, **spec.range_bits()) is cfg
+
+
+def test_widening_a_reading_range_grows_the_polynomial_and_never_narrows() -> None:
+    """One bit more of range halves v = u / 2^Ts: the linear coefficients gain one integer
+    bit, the squared ones two; a narrower request or a method without the reading is left
+    as shipped."""
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.reports.studies.method_bits import with_range_bits
+
+    base = load_pipeline("tcgain14")
+    wide = with_range_bits(base, reading_range_bits=13)
+    ib = {f.name: f.int_bits for f in base.formats}
+    iw = {f.name: f.int_bits for f in wide.formats}
+    assert wide.reading_range_bits == 13 and base.reading_range_bits == 11
+    assert (iw["tc1"] - ib["tc1"], iw["tc2"] - ib["tc2"]) == (2, 4)
+    assert (iw["tg1"] - ib["tg1"], iw["tg2"] - ib["tg2"]) == (2, 4)
+    assert {k: v for k, v in iw.items() if k not in ("tc1", "tc2", "tg1", "tg2")} == \
+        {k: v for k, v in ib.items() if k not in ("tc1", "tc2", "tg1", "tg2")}
+    assert with_range_bits(base, reading_range_bits=10) is base
+    typ = load_pipeline("typical14")
+    assert with_range_bits(typ, reading_range_bits=13, housing_range_bits=13) is typ
+    h = with_range_bits(load_pipeline("tchousing14"), housing_range_bits=12)
+    hb = {f.name: f.int_bits for f in load_pipeline("tchousing14").formats}
+    hw = {f.name: f.int_bits for f in h.formats}
+    assert (hw["th1"] - hb["th1"], hw["thx"] - hb["thx"], hw["th2"] - hb["th2"],
+            hw["tc1"] - hb["tc1"]) == (1, 1, 2, 0)
+
+
+def test_a_ramp_point_calibrated_on_the_covering_plan_is_read_inside_it() -> None:
+    """tcffc14 on the ambient ramp (FPA from 263 K) with the sign-off's plan and ranges:
+    a valid point whose record names the widened reading range; its ambient_ramp residual
+    stays within a few NETD (1.13 K on the old 288-308 K plan, the reading clamped)."""
+    from irnuc.nuc_fixed.plan import run_plan
+
+    spec = so.SignoffSpec(rows=6, cols=8, methods=("tcffc14",), frac_bits=(14,),
+                          ffc_periods_min=(), ffc_changes_K=(0.1,), ffc_either=(),
+                          scenarios=("ambient_ramp",), node_K=1.0)
+    sensor = spec.sensor()
+    pts = run_plan(spec.plan(), sensor.preset, sensor.base_overrides(), seed=sensor.seed)
+    tr = {"ambient_ramp": scn.trajectory("ambient_ramp", sensor, spec.scene_K, 1.0, 120.0)}
+    starts = {("ambient_ramp", "t0.1", 8): scn.ffc_starts(tr["ambient_ramp"], spec.policies()[0],
+                                                          8)}
+    (p,) = so.method_points(spec.to_dict(), "tcffc14", pts, tr, starts, spec.range_bits())
+    assert p["valid"] and p["range_bits"] == {"reading_range_bits": 12}
+    assert p["worst_fpn_mK"] < 200.0

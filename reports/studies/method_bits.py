@@ -43,6 +43,46 @@ def with_frac_bits(cfg: Any, f: int) -> Any:
         return None
 
 
+#: Per coefficient of a temperature polynomial: the reading whose range it spans (``ts``:
+#: the FPA reading's ``reading_range_bits``, ``hs``: the housing's ``housing_range_bits``)
+#: and the power of it (the integer bits it gains per bit of range: v = u / 2^Ts halves as
+#: Ts grows by one, so a coefficient per unit v doubles, its square term quadruples).
+RANGE_GROWTH = {"tc1": {"ts": 1}, "tc2": {"ts": 2}, "tg1": {"ts": 1}, "tg2": {"ts": 2},
+                "th1": {"hs": 1}, "thx": {"ts": 1, "hs": 1}, "th2": {"hs": 2}}
+
+
+def range_bits_for(span_codes: float) -> int:
+    """Bits of a reading's range that hold +-``span_codes`` around its reference (the clamp
+    at 2^bits - 1 codes)."""
+    return int(np.ceil(np.log2(float(span_codes) + 2.0)))
+
+
+def with_range_bits(cfg: Any, reading_range_bits: int | None = None,
+                    housing_range_bits: int | None = None) -> Any:
+    """``cfg`` with its FPA (housing) reading's range widened to at least
+    ``reading_range_bits`` (``housing_range_bits``) and each temperature-polynomial
+    coefficient's integer bits grown with it (:data:`RANGE_GROWTH`); a range already as
+    wide, or a method that does not read that sensor, is left as shipped (never
+    narrowed)."""
+    grow = {}
+    ch: dict[str, Any] = {}
+    for key, tag, want in (("reading_range_bits", "ts", reading_range_bits),
+                           ("housing_range_bits", "hs", housing_range_bits)):
+        have = getattr(cfg, key)
+        if want is None or have is None or int(want) <= int(have):
+            continue
+        grow[tag] = int(want) - int(have)
+        ch[key] = int(want)
+    if not ch:
+        return cfg
+    fm = {}
+    for f in cfg.formats:
+        extra = sum(k * grow.get(tag, 0) for tag, k in RANGE_GROWTH.get(f.name, {}).items())
+        if extra:
+            fm[f.name] = {"int_bits": f.int_bits + extra}
+    return cfg.replace(**ch, formats=fm)
+
+
 def run(quick: bool = False, sensor: StudySensor | None = None,
         frac_bits: tuple[int, ...] | None = None, names: tuple[str, ...] = METHODS,
         progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:

@@ -12,8 +12,15 @@ change of ``ffc_changes_K`` and every (period, change) pair of ``ffc_either`` (t
 3 min or 1.5 K); a change trigger needs the FPA reading, so a configuration whose build has
 none (ffc14, quadffc14: READING reserved) gets no change-triggered point. The methods: every
 14-bit configuration of the registry (``pipelines.toml``), so a method added there joins the
-sweep. The calibration plan covers FPA ``fpa_K`` (its ends and middle) and
-the housing offsets ``housing_offset_K`` (the methods that read the housing fit over them).
+sweep. The calibration plan covers the FPA and housing span of the scenarios it judges
+(a camera is calibrated over its operating range): its FPA points run evenly from the
+coldest to the warmest FPA of ``fpa_K`` and every scenario (rounded out to 0.5 K, spaced
+at most half of ``fpa_K``'s span apart, the middle one the reference), its housing
+offsets from ``housing_offset_K`` widened to every scenario's housing - FPA difference
+(:func:`scenario_envelope`, :meth:`SignoffSpec.plan`); the methods that read the FPA
+(housing) sensor get the reading range that holds the plan's span around its reference
+(:meth:`SignoffSpec.range_bits`, the coefficients' integer bits grown with it:
+:func:`method_bits.with_range_bits`), so no scenario's FPA is read past the calibration.
 
 Below: the pre-issue-37 description of the FPA-ramp grid, kept for the functions that
 remain (:func:`ffc_events`, :func:`sawtooth_segments`) and the fields of the spec.
@@ -53,6 +60,8 @@ model, the golden model and these studies' sources).
 from __future__ import annotations
 
 import concurrent.futures as cf
+import dataclasses
+import functools
 import hashlib
 import json
 import math
@@ -90,6 +99,27 @@ def scenario_default() -> tuple[str, ...]:
     from irnuc.model.sequence import scenario_names
 
     return tuple(scenario_names())
+
+
+@functools.cache
+def scenario_envelope(name: str) -> dict[str, float]:
+    """A shipped scenario's span at the full frame rate: the FPA's coldest and warmest
+    (``fpa_lo``, ``fpa_hi``, K) and the housing's least and greatest difference to the FPA
+    (``dh_lo``, ``dh_hi``, K), and its sensors' LSBs (K per code)."""
+    from irnuc.model.sequence import load_sequence
+
+    seq = load_sequence(name)
+    sched = dataclasses.replace(seq, record_every=1).schedule()
+    fpa, dh = np.asarray(sched.fpa_K), np.asarray(sched.T_cam_K) - np.asarray(sched.fpa_K)
+    return {"fpa_lo": float(fpa.min()), "fpa_hi": float(fpa.max()),
+            "dh_lo": float(dh.min()), "dh_hi": float(dh.max()),
+            "fpa_lsb_K": float(seq.fpa_sensor.lsb_K),
+            "housing_lsb_K": float(seq.housing_sensor.lsb_K)}
+
+
+def _out(x: float, up: bool, step: float = 0.5) -> float:
+    """``x`` rounded outward to a multiple of ``step``."""
+    return (math.ceil if up else math.floor)(x / step - 1e-9 * (1 if up else -1)) * step
 
 
 @dataclass(frozen=True)
@@ -135,15 +165,48 @@ class SignoffSpec:
         return {k: ([list(x) if isinstance(x, tuple) else x for x in v]
                     if isinstance(v, tuple) else v) for k, v in d.items()}
 
+    def plan_span(self) -> dict[str, Any]:
+        """The span the calibration plan covers: ``fpa_K`` and every scenario's FPA (K,
+        rounded out to 0.5 K), ``housing_offset_K`` and every scenario's housing - FPA
+        difference; the FPA points evenly over it, at most half of ``fpa_K``'s span apart,
+        an odd number of them (the middle one the reference)."""
+        env = [scenario_envelope(n) for n in self.scenarios]
+        lo = _out(min([self.fpa_K[0], *(e["fpa_lo"] for e in env)]), up=False)
+        hi = _out(max([self.fpa_K[1], *(e["fpa_hi"] for e in env)]), up=True)
+        step = max((self.fpa_K[1] - self.fpa_K[0]) / 2.0, 1.0)
+        n = 2 * max(1, math.ceil((hi - lo) / (2.0 * step) - 1e-9)) + 1
+        fpa = tuple(round(float(x), 3) for x in np.linspace(lo, hi, n))
+        off = sorted(set(self.housing_offset_K))
+        if env:
+            off[0] = min(off[0], _out(min(e["dh_lo"] for e in env), up=False))
+            off[-1] = max(off[-1], _out(max(e["dh_hi"] for e in env), up=True))
+        return {"fpa_K": fpa, "housing_offset_K": tuple(float(x) for x in off),
+                "scenarios": {n: dict(e) for n, e in zip(self.scenarios, env, strict=True)}}
+
     def plan(self) -> Any:
-        """The calibration plan: the plan scenes, FPA at the ends and middle of ``fpa_K``,
-        the housing offsets."""
+        """The calibration plan: the plan scenes, the FPA points and housing offsets of
+        :meth:`plan_span` (the scenarios' FPA and housing span)."""
         from irnuc.nuc_fixed.plan import CalibrationPlan
 
-        lo, hi = self.fpa_K
-        return CalibrationPlan(scene=tuple(dc.PLAN["scene"]), fpa=(lo, 0.5 * (lo + hi), hi),
+        span = self.plan_span()
+        return CalibrationPlan(scene=tuple(dc.PLAN["scene"]), fpa=span["fpa_K"],
                                frames=int(dc.PLAN["frames"]),
-                               housing_offset=tuple(self.housing_offset_K))
+                               housing_offset=span["housing_offset_K"])
+
+    def range_bits(self) -> dict[str, int]:
+        """The reading ranges (bits, ``reading_range_bits`` / ``housing_range_bits``) that
+        hold the plan's FPA and housing span around its reference point, with the plan's
+        sensors' LSBs (the methods' readings clamp beyond them)."""
+        from irnuc.reports.studies.method_bits import range_bits_for
+
+        plan = self.plan()
+        fpa, off = plan.fpa, plan.housing_offset or (0.0,)
+        ref = fpa[len(fpa) // 2]
+        t_span = max(ref - fpa[0], fpa[-1] - ref) / plan.fpa_sensor.lsb_K
+        h_span = max(ref - (fpa[0] + min(off)), fpa[-1] + max(off) - ref) \
+            / plan.housing_sensor.lsb_K
+        return {"reading_range_bits": range_bits_for(t_span),
+                "housing_range_bits": range_bits_for(h_span)}
 
     def policies(self) -> list[Any]:
         from irnuc.reports.studies.scenarios import policies
@@ -175,12 +238,15 @@ def sawtooth_segments(grid: Sequence[float], events: Sequence[float], hi: float
 # One method at every width (a worker task)
 # ---------------------------------------------------------------------------------------
 def method_points(spec_d: Mapping[str, Any], name: str, pts: Any, trajs: Mapping[str, Any],
-                  starts: Mapping[tuple[str, str, int], list[int]]) -> list[dict[str, Any]]:
+                  starts: Mapping[tuple[str, str, int], list[int]],
+                  ranges: Mapping[str, int] | None = None) -> list[dict[str, Any]]:
     """Every (fraction width[, FFC policy]) point of one method, judged on every scenario
     (JSON-ready records; :mod:`irnuc.reports.studies.scenarios`).
 
     ``trajs``: scenario name -> :class:`scenarios.Trajectory`; ``starts``: (scenario, policy
-    tag, shutter frames) -> the FFC start frames of that policy, closed loop.
+    tag, shutter frames) -> the FFC start frames of that policy, closed loop; ``ranges``:
+    the reading ranges the plan needs (:meth:`SignoffSpec.range_bits`), given to the
+    methods that read those sensors (the point's ``range_bits`` says so when widened).
     """
     import numba
 
@@ -188,7 +254,7 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any, trajs: Mapping
     from irnuc.nuc_fixed import load_pipeline
     from irnuc.nuc_fixed.fit import calibrate_points
     from irnuc.reports.studies import scenarios as scn
-    from irnuc.reports.studies.method_bits import with_frac_bits
+    from irnuc.reports.studies.method_bits import with_frac_bits, with_range_bits
 
     # One thread per worker: the golden model's kernels on frames this small spend more
     # on starting threads than on pixels (and the sweep's workers are the parallelism).
@@ -199,10 +265,20 @@ def method_points(spec_d: Mapping[str, Any], name: str, pts: Any, trajs: Mapping
     out: list[dict[str, Any]] = []
     for f in spec.frac_bits:
         cfg = with_frac_bits(base, f)
-        head = {"config": name, "method": base.method, "frac_bits": int(f)}
+        head: dict[str, Any] = {"config": name, "method": base.method, "frac_bits": int(f)}
         if cfg is None:
             out.append({**head, "valid": False, "reason": "illegal fraction width"})
             continue
+        try:
+            wide = with_range_bits(cfg, **dict(ranges or {}))
+        except UserError as exc:
+            out.append({**head, "valid": False, "reason": str(exc).splitlines()[0][:200]})
+            continue
+        if wide is not cfg:
+            head["range_bits"] = {k: int(getattr(wide, k)) for k in
+                                  ("reading_range_bits", "housing_range_bits")
+                                  if getattr(wide, k) != getattr(cfg, k)}
+            cfg = wide
         try:
             cal = calibrate_points(pts, cfg)
         except UserError as exc:
@@ -265,8 +341,9 @@ def spec_from_dict(d: Mapping[str, Any]) -> SignoffSpec:
 # ---------------------------------------------------------------------------------------
 # The whole study
 # ---------------------------------------------------------------------------------------
-def _task(spec_d: dict[str, Any], name: str, pts: Any, trajs: dict, starts: dict) -> list:
-    return method_points(spec_d, name, pts, trajs, starts)
+def _task(spec_d: dict[str, Any], name: str, pts: Any, trajs: dict, starts: dict,
+          ranges: dict[str, int]) -> list:
+    return method_points(spec_d, name, pts, trajs, starts, ranges)
 
 
 def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
@@ -283,6 +360,7 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
     t0 = time.perf_counter()
     sensor = spec.sensor()
     plan = spec.plan()
+    ranges = spec.range_bits()
     pts = run_plan(plan, sensor.preset, sensor.base_overrides(), seed=sensor.seed)
     trajs = {n: scn.trajectory(n, sensor, spec.scene_K, spec.node_K, spec.node_max_s)
              for n in spec.scenarios}
@@ -300,7 +378,8 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
     order = sorted(range(len(spec.methods)), key=lambda i: (
         -(npol if load_pipeline(spec.methods[i]).has("ffc") else 1), i))
     with open_executor(workers, scheduler) as handle:
-        futs = {i: handle.executor.submit(_task, spec_d, spec.methods[i], pts, trajs, starts)
+        futs = {i: handle.executor.submit(_task, spec_d, spec.methods[i], pts, trajs, starts,
+                                       ranges)
                 for i in order}
         done = 0
         for f in cf.as_completed(futs.values()):
@@ -328,7 +407,8 @@ def run(spec: SignoffSpec, *, workers: int = 2, scheduler: str | None = None,
     return {
         "study": NAME, "title": TITLE, "spec": spec_d,
         "plan": {"scene": list(plan.scene), "fpa": list(plan.fpa), "frames": plan.frames,
-                 "housing_offset": list(plan.housing_offset)},
+                 "housing_offset": list(plan.housing_offset), "range_bits": ranges,
+                 "scenarios": spec.plan_span()["scenarios"]},
         "scenarios": {n: scn.summary(tr) for n, tr in trajs.items()},
         "policies": [{"tag": p.tag, "text": p.describe()} for p in spec.policies()],
         "points": points,

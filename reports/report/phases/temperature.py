@@ -75,12 +75,15 @@ def point_config(p: Mapping[str, Any], rows: int | None = None, cols: int | None
     """The pipeline configuration of a sweep point (its method's shipped configuration with
     every fraction width set to the point's), optionally for a ``rows`` x ``cols`` frame."""
     from irnuc.nuc_fixed import load_pipeline
-    from irnuc.reports.studies.method_bits import with_frac_bits
+    from irnuc.reports.studies.method_bits import with_frac_bits, with_range_bits
 
-    cfg = with_frac_bits(load_pipeline(p["config"]), int(p["frac_bits"]))
+    cfg = with_range_bits(with_frac_bits(load_pipeline(p["config"]), int(p["frac_bits"])),
+                          **dict(p.get("range_bits") or {}))
+    wide = "".join(f", {k} = {v}" for k, v in (p.get("range_bits") or {}).items())
     ch: dict[str, Any] = {"name": "recommended_temperature",
                           "description": f"{p['config']} with {p['frac_bits']} fraction bits "
-                                         "everywhere, from the sign-off sweep of irnuc report"}
+                                         f"everywhere{wide}, from the sign-off sweep of irnuc "
+                                         "report"}
     if rows and cols:
         ch |= {"max_width": int(cols), "max_height": int(rows)}
     return cfg.replace(**ch)
