@@ -18,7 +18,7 @@ from irnuc import cosim
 from irnuc.cocotb_tests.method_stim import random_coefficients, random_raw, random_reading
 from irnuc.common.errors import UserError
 from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
-from irnuc.cosim.method_drift import calibrate_methods, drift_sequence
+from irnuc.cosim.method_drift import calibrate_methods, drift_sequence, pgo_build
 from irnuc.nuc_fixed import InputError, load_pipeline
 from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 
@@ -137,6 +137,31 @@ def test_method_bulk_model_drift(config: str) -> None:
     assert chk.passed, chk.report()
     assert chk.compared == seq.codes.size
     assert seq.fpa_K[0] < 290.0 and seq.fpa_K[-1] > 306.0
+
+
+def test_method_bulk_pgo_build_equals_plain_build() -> None:
+    """The profile-guided build (gcc PGO, the benchmark's ``pgo_*`` run) is trained (a
+    profile of the model and of the harness beside their objects, the final compile from
+    it), cached apart from the plain build, and streams the same outputs, markers and
+    cycles as the plain build under gaps and backpressure over two shards, bit exact."""
+    seq, cals = _drift()
+    cfg, c = load_pipeline("tcoffset14"), cals["tcoffset14"]
+    pgo = pgo_build(cfg, c, seq, seq.reading)
+    plain = _build("tcoffset14")
+    assert pgo.build_dir != plain.build_dir and "-pgo-" in pgo.build_dir.name
+    profiles = {p.stem for p in pgo.build_dir.glob("*.gcda")}
+    assert {"bulk_main", "Vmethod_dpc_top__ALL"} <= profiles, profiles
+    assert "-fprofile-use" in (pgo.build_dir / "make.log").read_text()
+    runs = [run_method_bulk(b, c, seq.codes, seq.reading, idle_percent=15, stall_percent=25,
+                            seed=4, shards=2) for b in (pgo, plain)]
+    for res in runs:
+        chk = check_method_bulk(res, c, seq.codes, seq.reading)
+        assert chk.passed, chk.report()
+    a, b = runs
+    assert np.array_equal(a.data, b.data) and np.array_equal(a.sof, b.sof)
+    assert np.array_equal(a.eol, b.eol)
+    assert (a.cycles, a.stall_cycles, a.inputs_taken) == (b.cycles, b.stall_cycles,
+                                                         b.inputs_taken)
 
 
 def test_method_bulk_detects_wrong_golden() -> None:

@@ -21,7 +21,7 @@ import re
 import resource
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -57,6 +57,13 @@ _MAKE_OPT = ("OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O2")
 _OUT16_MAX_BITS = 14
 
 
+#: gcc's profile-guided optimisation of a ``train`` build (:func:`harness_build`): the
+#: instrumented compile (counters updated by the one thread), then the compile from the
+#: profile; the runtime objects and any function the workload never ran have none
+#: (``-fprofile-partial-training`` keeps those optimised as without a profile).
+PGO_GENERATE = ("-fprofile-generate", "-fprofile-update=single")
+PGO_USE = ("-fprofile-use", "-fprofile-partial-training", "-Wno-missing-profile")
+
 #: Port access shared by both harnesses (``harness_common.h``, found next to the .cpp).
 HARNESS_COMMON = BULK_HARNESS.with_name("harness_common.h")
 
@@ -64,7 +71,8 @@ HARNESS_COMMON = BULK_HARNESS.with_name("harness_common.h")
 def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, header: str,
                   header_name: str, name: str, assertions: bool = True,
                   hdl_dir: Path | None = None,
-                  check: Callable[[Path, str], None] | None = None) -> Build:
+                  check: Callable[[Path, str], None] | None = None,
+                  train: Callable[[Build], object] | None = None, train_key: str = "") -> Build:
     """Build (cached) a C++ harness (Verilator ``--cc --exe``) around ``top`` for ``cfg``:
     the recipe of both bulk harnesses (this module's and :mod:`irnuc.cosim.axis_bulk`'s).
 
@@ -74,11 +82,19 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
     options. ``name`` is the build folder's prefix; the executable is
     ``<build_dir>/<exe>``. ``assertions=False`` leaves the protocol assertions out.
     ``check(build_dir, top)`` runs on Verilator's output before it is compiled.
+
+    ``train``: a profile-guided build (gcc PGO, :data:`PGO_GENERATE` / :data:`PGO_USE`):
+    the harness and the model are compiled instrumented, ``train`` runs that build once (a
+    short workload; ``train_key`` names it in the cache key: a digest of its stimulus),
+    then both are compiled again with the profile it left. Verilator's output, the
+    options and the code's meaning are those of the plain build; only gcc's layout,
+    inlining and branch decisions follow the profile. Its folder is ``<name>-pgo-<key>``.
     """
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
-    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header],
+    pgo = [f"pgo={train_key}", *PGO_GENERATE, *PGO_USE] if train is not None else []
+    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header, *pgo],
                        [harness, HARNESS_COMMON], hdl_dir=hdl_dir)
 
     def make(build_dir: Path) -> None:
@@ -97,20 +113,42 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
         proc = run_child(cmd, env=verilator_env(), log=log)
         if proc.returncode == 0 and check is not None:
             check(build_dir, top)
-        if proc.returncode == 0:
+        def compile_(flags: Sequence[str], log_name: str) -> int:
             _objcache.seed(build_dir)
-            proc = run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk",
-                              *_MAKE_OPT], env=verilator_env(), log=build_dir / "make.log")
-        if proc.returncode == 0:
-            _objcache.store(build_dir)
-        if proc.returncode != 0 or not (build_dir / exe).is_file():
-            raise RtlError(f"Verilator build of the {harness.stem} harness failed (exit "
-                           f"{proc.returncode}); see {log}")
+            extra = [f"USER_CPPFLAGS={' '.join(flags)}", f"USER_LDFLAGS={' '.join(flags)}"]
+            return run_child(["make", "-j", "2", "-C", str(build_dir), "-f", f"V{top}.mk",
+                              *_MAKE_OPT, *(extra if flags else [])], env=verilator_env(),
+                             log=build_dir / log_name).returncode
 
-    build_dir = cached_build(f"{name}{'' if assertions else '-noassert'}-{key}",
+        rc = proc.returncode
+        if rc == 0 and train is None:
+            rc = compile_((), "make.log")
+            if rc == 0:
+                _objcache.store(build_dir)
+        elif rc == 0 and train is not None:
+            # Instrumented build, the workload (its counts land in <object>.gcda beside
+            # each object), then every object compiled again from the profile. The
+            # runtime objects seeded from the cache stay plain (no profile: not hot) and
+            # neither build's objects go back to the cache.
+            rc = compile_(PGO_GENERATE, "make-pgo-generate.log")
+            if rc == 0 and (build_dir / exe).is_file():
+                train(Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params,
+                            waves=False))
+                if not list(build_dir.glob("*.gcda")):
+                    raise RtlError(f"the PGO training run of {build_dir} left no profile")
+                for f in [*build_dir.glob("*.o"), *build_dir.glob("*.a"), build_dir / exe]:
+                    f.unlink(missing_ok=True)
+                rc = compile_(PGO_USE, "make.log")
+        if rc != 0 or not (build_dir / exe).is_file():
+            raise RtlError(f"Verilator build of the {harness.stem} harness failed (exit "
+                           f"{rc}); see {log}")
+
+    tag = ("" if assertions else "-noassert") + ("-pgo" if train is not None else "")
+    build_dir = cached_build(f"{name}{tag}-{key}",
                              {"top": top, "harness": harness.name, "config": cfg.to_dict(),
                               "params": params, "args": list(FAST_ARGS),
-                              "assertions": assertions}, make)
+                              "assertions": assertions,
+                              "pgo": train_key if train is not None else None}, make)
     return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
 
 
@@ -142,7 +180,8 @@ def _check_registered_outputs(build_dir: Path, top: str) -> None:
 
 
 def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None,
-               hdl_dir: Path | None = None) -> Build:
+               hdl_dir: Path | None = None, train: Callable[[Build], object] | None = None,
+               train_key: str = "") -> Build:
     """Build (cached) the bulk harness of ``top`` for ``cfg``.
 
     ``top`` defaults to ``nuc_dpc_top`` for the two-point method, ``method_dpc_top``
@@ -154,6 +193,9 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     ``benchmarks/bench_methods_cosim.py`` (still compared bit for bit on every output;
     every other co-simulation keeps them). ``hdl_dir`` replaces ``hdl/`` (a modified copy
     of the design: a test's method); part of the cache key through the files' contents.
+    ``train`` / ``train_key``: a profile-guided build trained by ``train(build)`` (see
+    :func:`harness_build`; :func:`irnuc.cosim.method_drift.pgo_build` for the methods);
+    the default is the plain build every test uses.
     """
     from irnuc.cosim.synth import default_top
 
@@ -173,7 +215,7 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     return harness_build(cfg, top, BULK_HARNESS, BULK_EXE, header=header,
                          header_name="bulk_top.h", name=f"{cfg.name}-bulk{tag}",
                          assertions=assertions, hdl_dir=hdl_dir,
-                         check=_check_registered_outputs)
+                         check=_check_registered_outputs, train=train, train_key=train_key)
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ golden model, and every output pixel is compared.
 
 from __future__ import annotations
 
+import hashlib
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -24,7 +25,7 @@ import numpy as np
 from irnuc.nuc_fixed.config import PipelineConfig
 from irnuc.nuc_fixed.method_top import FrameInputs, MethodCoefficients, method_top
 
-__all__ = ["DriftSequence", "calibrate_methods", "drift_sequence", "run_campaign"]
+__all__ = ["DriftSequence", "calibrate_methods", "drift_sequence", "pgo_build", "run_campaign"]
 
 #: The calibration plan of the campaign: scenes and FPA points, K (the plan of
 #: tests/test_methods_calibrate.py), two frames per point.
@@ -115,6 +116,48 @@ def calibrate_methods(cfgs: Sequence[PipelineConfig], shape: tuple[int, int], *,
     return {c.name: calibrate_points(pts, c).coeffs for c in cfgs}
 
 
+#: The PGO training workload of :func:`pgo_build`: this many rows of the first and the last
+#: frame of the sequence (with the calibration cut alike), once at full rate and once with
+#: idle gaps and backpressure of this many percent.
+PGO_TRAIN_ROWS = 32
+PGO_TRAIN_GAPS = 10
+
+
+def pgo_build(cfg: PipelineConfig, coeffs: MethodCoefficients, seq: DriftSequence,
+              readings: np.ndarray | None, *, assertions: bool = True):
+    """The bulk harness of ``method_dpc_top`` for ``cfg`` built with gcc's profile-guided
+    optimisation (:func:`irnuc.cosim.bulk.harness_build`), trained on a strip of the
+    sequence: the first :data:`PGO_TRAIN_ROWS` rows of its first and last frame with their
+    readings, at full rate and with idle gaps and backpressure. Cached under a digest of
+    that workload; the same RTL, options and outputs as the plain build."""
+    from irnuc.common.digest import digest
+    from irnuc.cosim.bulk import build_bulk
+    from irnuc.cosim.method_bulk import run_method_bulk
+
+    rows = min(PGO_TRAIN_ROWS, seq.codes.shape[1])
+    pick = sorted({0, seq.codes.shape[0] - 1})
+    raw = np.ascontiguousarray(seq.codes[pick, :rows])
+    strip = MethodCoefficients(cfg=coeffs.cfg, registers=dict(coeffs.registers),
+                               fields={m: {k: np.ascontiguousarray(v[:rows])
+                                           for k, v in f.items()}
+                                       for m, f in coeffs.fields.items()})
+    rd = None if readings is None else np.asarray(readings)[pick]
+
+    def train(bld) -> None:
+        for gaps in (0, PGO_TRAIN_GAPS):
+            run_method_bulk(bld, strip, raw, rd, idle_percent=gaps, stall_percent=gaps)
+
+    def sha(a: np.ndarray) -> str:
+        return hashlib.sha256(np.ascontiguousarray(a).tobytes()).hexdigest()
+
+    key = digest({"raw": sha(raw), "words": {k: sha(v) for k, v in strip.words().items()},
+                  "registers": repr(sorted(strip.registers.items())),
+                  "readings": None if rd is None else np.asarray(rd).tolist(),
+                  "gaps": PGO_TRAIN_GAPS})
+    return build_bulk(cfg, top="method_dpc_top", assertions=assertions, train=train,
+                      train_key=key)
+
+
 @dataclass
 class MethodRun:
     """One method's campaign result."""
@@ -149,6 +192,19 @@ class MethodRun:
     noassert_seconds: float | None = None
     noassert_cpu_seconds: float | None = None
     noassert_mismatches: int | None = None
+    #: ``pgo=True``: the fast path on the profile-guided build of the same RTL with the
+    #: assertions (:func:`pgo_build`), every output compared: wall and CPU time, s,
+    #: mismatches (missing and extra counted).
+    pgo_seconds: float | None = None
+    pgo_cpu_seconds: float | None = None
+    pgo_mismatches: int | None = None
+    #: ``single=True``: the plain assertion build in one harness process (no shards):
+    #: wall and CPU time, s, mismatches.
+    single_seconds: float | None = None
+    single_cpu_seconds: float | None = None
+    single_mismatches: int | None = None
+    #: Harness processes of the main, baseline, no-assertion and PGO runs.
+    shards: int = 1
 
     @property
     def passed(self) -> bool:
@@ -178,22 +234,43 @@ class MethodRun:
                                                    / max(self.sim_cpu_seconds, 1e-9), 3),
                     "ratio_to_baseline": round(self.baseline_seconds
                                                / max(self.sim_seconds, 1e-9), 3)}),
-                **({} if self.noassert_seconds is None else self._noassert_dict()),
+                "shards": self.shards,
+                **self._variant("noassert", self.noassert_seconds, self.noassert_cpu_seconds,
+                                self.noassert_mismatches),
+                **self._variant("pgo", self.pgo_seconds, self.pgo_cpu_seconds,
+                                self.pgo_mismatches),
+                **self._variant("single", self.single_seconds, self.single_cpu_seconds,
+                                self.single_mismatches),
                 "reading_range": list(self.readings), "lines": self.lines[:10]}
 
-    def _noassert_dict(self) -> dict[str, Any]:
-        secs, cpu = self.noassert_seconds or 0.0, self.noassert_cpu_seconds or 0.0
+    def _variant(self, name: str, secs: float | None, cpu: float | None,
+                 bad: int | None) -> dict[str, Any]:
+        """``<name>_*`` figures of one more run of the same frames (none if not run)."""
+        if secs is None:
+            return {}
+        cpu = cpu or 0.0
         d: dict[str, Any] = {
-            "noassert_sim_seconds": round(secs, 3),
-            "noassert_pixels_per_s": round(self.pixels / max(secs, 1e-9)),
-            "noassert_cpu_seconds": round(cpu, 3),
-            "noassert_pixels_per_cpu_s": round(self.pixels / max(cpu, 1e-9)),
-            "noassert_mismatches": self.noassert_mismatches}
+            f"{name}_sim_seconds": round(secs, 3),
+            f"{name}_pixels_per_s": round(self.pixels / max(secs, 1e-9)),
+            f"{name}_cpu_seconds": round(cpu, 3),
+            f"{name}_pixels_per_cpu_s": round(self.pixels / max(cpu, 1e-9)),
+            f"{name}_mismatches": bad}
         if self.baseline_seconds is not None:
-            d["noassert_ratio_to_baseline"] = round(self.baseline_seconds / max(secs, 1e-9), 3)
-            d["noassert_cpu_ratio_to_baseline"] = round(
+            d[f"{name}_ratio_to_baseline"] = round(self.baseline_seconds / max(secs, 1e-9), 3)
+            d[f"{name}_cpu_ratio_to_baseline"] = round(
                 (self.baseline_cpu_seconds or 0.0) / max(cpu, 1e-9), 3)
         return d
+
+
+def _again(bld, c: MethodCoefficients, codes: np.ndarray, rd: np.ndarray | None,
+           expected: np.ndarray, kw: dict[str, Any]) -> tuple[float, float, int]:
+    """One more checked run of the campaign's frames: wall, CPU seconds, mismatches
+    (missing, extra and a framing error counted)."""
+    from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
+
+    r = run_method_bulk(bld, c, codes, rd, **kw)
+    k = check_method_bulk(r, c, codes, rd, expected=expected)
+    return r.sim_seconds, r.cpu_seconds, k.mismatches + k.missing + k.extra + int(r.frame_err)
 
 
 def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
@@ -201,12 +278,15 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
                  idle_percent: int = 0, stall_percent: int = 0, seed: int = 0,
                  sequence: DriftSequence | None = None,
                  coeffs: Mapping[str, MethodCoefficients] | None = None,
-                 baseline: bool = False, noassert: bool = False) -> list[MethodRun]:
+                 baseline: bool = False, noassert: bool = False, pgo: bool = False,
+                 single: bool = False) -> list[MethodRun]:
     """Calibrate every configuration on the model, make a drift sequence, and co-simulate
-    each method on it (bulk harness, bit for bit against ``method_top``). ``baseline``:
-    each method run a second time on the harness's previous path (``public_eval``),
-    checked as well, for the benchmark's ratio. ``noassert``: once more on a build
-    without the protocol assertions (throughput; every output compared as well)."""
+    each method on it (bulk harness in ``shards`` processes, bit for bit against
+    ``method_top``). More runs of the same frames, each checked as well: ``baseline``,
+    the harness's previous path (``public_eval``), for the benchmark's ratio;
+    ``noassert``, a build without the protocol assertions (throughput); ``pgo``, the
+    profile-guided build with the assertions (:func:`pgo_build`); ``single``, the plain
+    build in one process."""
     from irnuc.cosim.bulk import build_bulk
     from irnuc.cosim.method_bulk import check_method_bulk, run_method_bulk
 
@@ -226,19 +306,14 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
         res = run_method_bulk(bld, c, seq.codes, rd, **kw)
         chk = check_method_bulk(res, c, seq.codes, rd, expected=expected)
         t_bulk = time.perf_counter() - t0
-        base_s = base_bad = base_cpu = None
-        if baseline:
-            old = run_method_bulk(bld, c, seq.codes, rd, public_eval=True, **kw)
-            ochk = check_method_bulk(old, c, seq.codes, rd, expected=expected)
-            base_s, base_cpu = old.sim_seconds, old.cpu_seconds
-            base_bad = ochk.mismatches + ochk.missing + ochk.extra + int(old.frame_err)
-        na_s = na_cpu = na_bad = None
-        if noassert:
-            fast = run_method_bulk(build_bulk(cfg, top="method_dpc_top", assertions=False),
-                                   c, seq.codes, rd, **kw)
-            nchk = check_method_bulk(fast, c, seq.codes, rd, expected=expected)
-            na_s, na_cpu = fast.sim_seconds, fast.cpu_seconds
-            na_bad = nchk.mismatches + nchk.missing + nchk.extra + int(fast.frame_err)
+
+        run = (c, seq.codes, rd, expected)
+        none = (None, None, None)
+        base = _again(bld, *run, {**kw, "public_eval": True}) if baseline else none
+        na = (_again(build_bulk(cfg, top="method_dpc_top", assertions=False), *run, kw)
+              if noassert else none)
+        pg = _again(pgo_build(cfg, c, seq, rd), *run, kw) if pgo else none
+        one = _again(bld, *run, {**kw, "shards": 1}) if single else none
         out.append(MethodRun(name=cfg.name, method=cfg.method, frames=seq.codes.shape[0],
                              pixels=int(seq.codes.size), compared=chk.compared,
                              mismatches=chk.mismatches, missing=chk.missing, extra=chk.extra,
@@ -246,8 +321,11 @@ def run_campaign(cfgs: Sequence[PipelineConfig], frames: int = 20,
                              sim_seconds=res.sim_seconds, golden_seconds=t_golden,
                              readings=(int(seq.reading.min()), int(seq.reading.max())),
                              lines=list(chk.lines), bulk_seconds=t_bulk,
-                             baseline_seconds=base_s, baseline_mismatches=base_bad,
-                             sim_cpu_seconds=res.cpu_seconds, baseline_cpu_seconds=base_cpu,
-                             noassert_seconds=na_s, noassert_cpu_seconds=na_cpu,
-                             noassert_mismatches=na_bad))
+                             baseline_seconds=base[0], baseline_cpu_seconds=base[1],
+                             baseline_mismatches=base[2], sim_cpu_seconds=res.cpu_seconds,
+                             noassert_seconds=na[0], noassert_cpu_seconds=na[1],
+                             noassert_mismatches=na[2], pgo_seconds=pg[0],
+                             pgo_cpu_seconds=pg[1], pgo_mismatches=pg[2],
+                             single_seconds=one[0], single_cpu_seconds=one[1],
+                             single_mismatches=one[2], shards=res.shards))
     return out
