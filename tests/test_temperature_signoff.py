@@ -415,3 +415,86 @@ def test_a_netlist_that_fails_is_said_by_its_top_not_raised(monkeypatch) -> None
     tp._synth_recommended({}, r)
     assert r["synth"]["error"] == "yosys failed on irnuc_axis_top"
     assert tp._fmax_check(r["synth"]).status == "not met"
+
+
+# ---- time: what --quick leaves out, work started beside the phases (issue 37 item 6) --------
+def test_quick_leaves_out_the_anchors_and_seeds_and_says_so(monkeypatch) -> None:
+    """--quick synthesizes no anchor and places the recommendation at one seed; the default
+    keeps both (anchors on, 4 seeds). Left out is named "not run in --quick" in the notes,
+    and no anchor synthesis is asked for."""
+    from irnuc.cosim import synth
+    from irnuc.reports.report.config import load_report_config
+
+    full = load_report_config("default")["temperature"]
+    quick = load_report_config("default", quick=True)["temperature"]
+    assert tp.setting(full, "anchors") is True and tp.setting(full, "synth_seeds") == 4
+    assert quick["anchors"] is False and quick["synth_seeds"] == 1
+    assert tp.anchor_configs(quick) == []
+    assert [c.name for c in tp.anchor_configs(full)] == list(tp.spec_of(full).methods)
+
+    def no_synth(*a, **k):
+        raise AssertionError("an anchor was synthesized in --quick")
+
+    monkeypatch.setattr(synth, "synth_configs", no_synth)
+    rep = Report(config={"quick": True, "temperature": quick})
+    d = {"points": [_pt(0, "typical14", 10, 10, 5.0)]}
+    tp._cost_points(rep, quick, d, None, False)
+    assert d["cost"] is None
+    assert rep.notes and rep.notes[0].startswith("temperature: not run in --quick: the methods' "
+                                                  "anchor syntheses")
+    # the same key outside --quick names the key instead
+    rep2 = Report(config={"temperature": {"anchors": False}})
+    tp._cost_points(rep2, {"anchors": False}, {"points": []}, None, False)
+    assert "not run (temperature.anchors = false)" in rep2.notes[0]
+
+
+def test_background_job_runs_beside_and_is_joined_before_use() -> None:
+    """start_background runs the work in a thread (the caller goes on), join waits for it
+    and records when it ran; a failure is recorded, not raised (the phase redoes the work
+    and reports its own error); close waits for every job."""
+    import threading
+
+    rep = Report(config={}, verbose=False)
+    gate, done = threading.Event(), []
+    rep.start_background("a", lambda: (gate.wait(10), done.append(1)))
+    assert done == []                     # the caller was not held
+    gate.set()
+    rec = rep.join_background("a")
+    assert done == [1] and rec["end_s"] >= rec["start_s"] and "error" not in rec
+    assert rep.join_background("a") is None and rep.join_background("never") is None
+
+    def boom() -> None:
+        raise RuntimeError("no yosys\nmore")
+
+    rep.start_background("b", boom)
+    rep.start_background("c", lambda: done.append(2))
+    rep.close_background()
+    assert rep.background["b"]["error"] == "RuntimeError: no yosys"
+    assert done == [1, 2] and rep._jobs == {}
+
+
+def test_anchors_prefetched_in_the_background_then_read_by_the_phase(monkeypatch) -> None:
+    """The report starts the anchors' syntheses (one worker) before its first phase; the
+    Temperature phase joins that job before asking for the anchors, so it reads them (the
+    same configurations) instead of racing the background for them."""
+    from irnuc.cosim import synth
+
+    calls = []
+
+    def fake(cfgs, *, workers=2, scheduler=None, progress=None):
+        calls.append(([c.name for c in cfgs], workers))
+        return [{"xc7": {"lut": 1, "ff": 1, "dsp": 0, "bram36": 0, "bram18": 0},
+                 "ecp5": {"lut4": 1, "ff": 1, "mult18": 0, "dp16kd": 0}, "fmax_mhz": 200.0,
+                 "cached": len(calls) > 1} for _ in cfgs]
+
+    monkeypatch.setattr(synth, "synth_configs", fake)
+    t = {"methods": ["typical14", "ffc14"]}
+    rep = Report(config={"temperature": t}, verbose=False)
+    rep.start_background("anchors", tp.prefetch_anchors, t, None)
+    d = {"points": [_pt(0, "typical14", 10, 10, 5.0), _pt(1, "ffc14", 12, 10, 4.0)]}
+    for p in d["points"]:
+        p.update(gain_bits=16, offset_bits=16)
+    tp._cost_points(rep, t, d, None, False)
+    assert calls == [(["typical14", "ffc14"], 1), (["typical14", "ffc14"], 2)]
+    assert "end_s" in rep.background["anchors"] and "anchors" not in rep._jobs
+    assert all(a["cached"] for a in d["cost"]["anchors"].values())

@@ -39,8 +39,37 @@ DEFAULTS: dict[str, Any] = {
     "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
     "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
     "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
-    "dsp_lut_equivalent": 200.0, "synth_seeds": 4,
+    "dsp_lut_equivalent": 200.0, "synth_seeds": 4, "anchors": True,
 }
+
+
+def left_out(rep: Report, what: str, key: str) -> str:
+    """A note naming what this run left out (``--quick``'s ``[quick]`` table, or the
+    configuration's ``key``): never counted as passing."""
+    how = "not run in --quick" if rep.config.get("quick") else f"not run ({key})"
+    return f"temperature: {how}: {what}"
+
+
+def anchor_configs(t: Mapping[str, Any]) -> list[Any]:
+    """The shipped configurations whose own tops are the cost model's anchors (every method
+    of the sweep), or none when the section synthesizes nothing."""
+    from irnuc.nuc_fixed import load_pipeline
+
+    if not (setting(t, "synth") and setting(t, "anchors")):
+        return []
+    return [load_pipeline(n) for n in dict.fromkeys(spec_of(t).methods)]
+
+
+def prefetch_anchors(t: Mapping[str, Any], scheduler: str | None) -> None:
+    """Synthesize the anchors into the cache on one worker (:func:`Report.background`: the
+    report starts this while its single-threaded phases use the other core); the phase
+    then reads them (:func:`_cost_points`)."""
+    from irnuc.cosim.synth import synth_configs
+
+    cfgs = anchor_configs(t)
+    if cfgs:
+        synth_configs(cfgs, workers=1, scheduler=scheduler)
+
 
 
 def setting(t: Mapping[str, Any], key: str) -> Any:
@@ -178,6 +207,15 @@ def _cost_points(rep: Report, t: Mapping[str, Any], d: dict[str, Any], scheduler
     if not setting(t, "synth"):
         d["cost"] = None
         return
+    if not setting(t, "anchors"):
+        d["cost"] = None
+        d["left_out"] = [*d.get("left_out", []), "the methods' anchor syntheses (each shipped "
+                         "configuration's own top): no synthesized or modelled datapath per "
+                         "point; the recommendation is chosen on memory and bandwidth and is "
+                         "still synthesized"]
+        rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.anchors = false"))
+        return
+    rep.join_background("anchors")  # the anchors prefetched beside the earlier phases
     names = list(dict.fromkeys(p["config"] for p in pts))
     cfgs = [load_pipeline(n) for n in names]
     res = synth_configs(cfgs, workers=int(setting(t, "workers")), scheduler=scheduler,
@@ -346,6 +384,15 @@ def _cosim(t: Mapping[str, Any], r: dict[str, Any], spec: Any) -> dict[str, Any]
     return {**out, "cached": False}
 
 
+def _prefetch_axis_build(t: Mapping[str, Any], r: Mapping[str, Any]) -> None:
+    """The Verilator build :func:`_cosim_run` will use (cached), made in the background."""
+    from irnuc.cosim.axis_bulk import build_axis, unsupported
+
+    cfg = point_config(r, int(setting(t, "cosim_rows")), int(setting(t, "cosim_cols")))
+    if not unsupported(cfg):
+        build_axis(cfg)
+
+
 def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
                shape: tuple[int, int], seed: int, scenario: str) -> dict[str, Any]:
     import dataclasses
@@ -495,8 +542,17 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                                  f"the recommendation is the lowest residual, "
                                  f"{r['worst_fpn_mK']:.3g} mK ({r['key']}), broken by "
                                  f"{', '.join(r['breaks'])}")
+            if setting(t, "cosim"):
+                # the axis harness's Verilator build beside the placements (cached)
+                rep.start_background("axis build", _prefetch_axis_build, t, r)
             if setting(t, "synth"):
                 t1 = time.perf_counter()
+                if int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
+                    d["left_out"] = [*d.get("left_out", []), (
+                        f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
+                        f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
+                        "no best/worst spread")]
+                    rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
                 note = fmax_note(r.get("synth") or {})
@@ -506,6 +562,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                     rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
+                rep.join_background("axis build")
                 r["cosim"] = _cosim(t, r, spec)
                 times["cosim"] = round(time.perf_counter() - t1, 3)
                 if r["cosim"].get("not_run"):
@@ -513,6 +570,8 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         else:
             rep.notes.append("temperature: no valid point in the sweep")
         t1 = time.perf_counter()
+        d["background"] = {k: dict(v) for k, v in rep.background.items()
+                           if k in ("anchors", "axis build")}
         d["images"] = _worst_images(res, d["recommended"])
         # The traces of the points a figure draws (each configuration's representative and
         # the recommendation) stay; the others' are in the study's cache only.
