@@ -30,12 +30,15 @@ the last line printed is one JSON object with ``warm_goal_ratio`` (warm total / 
 goal holds for a quiet machine, ``--hog 0``), ``quick_cold_goal_ratio`` (quick_cold total /
 3 min) and ``warm_vs_baseline`` (warm total / baseline total).
 
+``--timeout S`` stops a run after S seconds with everything it started (its own session)
+and records ``timed_out_s`` and the phases that had begun (the report's progress lines).
+
 ``--runs`` picks the runs (default all: ``cold,warm,warm_hog,quick,baseline``);
 ``--shared-cache`` uses the user's irnuc cache instead of a fresh one (no cold run then:
 for timing the warm runs on a machine that already built everything).
 
 Usage: ``python benchmarks/bench_report.py [--config default] [--hog 1] [--runs ...]
-[--shared-cache] [--keep]``
+[--shared-cache] [--keep] [--timeout S]``
 """
 
 from __future__ import annotations

@@ -498,3 +498,26 @@ def test_anchors_prefetched_in_the_background_then_read_by_the_phase(monkeypatch
     assert calls == [(["typical14", "ffc14"], 1), (["typical14", "ffc14"], 2)]
     assert "end_s" in rep.background["anchors"] and "anchors" not in rep._jobs
     assert all(a["cached"] for a in d["cost"]["anchors"].values())
+
+
+def test_the_recommendation_keeps_the_reading_range_the_plan_needed() -> None:
+    """A point calibrated with a widened reading range (the plan covering the scenarios) is
+    synthesized and co-simulated with that range: the recommendation record keeps
+    ``range_bits`` and point_config rebuilds the same configuration (the report stopped at
+    the axis co-simulation's calibration when it did not)."""
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.reports.studies.method_bits import with_frac_bits, with_range_bits
+
+    p = {**_pt(0, "tcffc14", 500, 100, 30.0, frac=12), "range_bits": {"reading_range_bits": 12},
+         "formats": {}, "gain_bits": 16, "offset_bits": 16}
+    r = tp._recommended({"point": p, "meets": False, "candidates": [], "edges": []}, 15.0, 31.0,
+                        so.SignoffSpec(rows=6, cols=8, scenarios=("fpa_ramp",)))
+    cfg = tp.point_config(r, 12, 16)
+    want = with_range_bits(with_frac_bits(load_pipeline("tcffc14"), 12), reading_range_bits=12)
+    assert cfg.reading_range_bits == 12
+    assert {f.name: (f.int_bits, f.frac_bits) for f in cfg.formats} == \
+        {f.name: (f.int_bits, f.frac_bits) for f in want.formats}
+    assert r["pipeline"]["reading_range_bits"] == 12
+    # a point that needed none keeps the shipped range
+    q = {k: v for k, v in p.items() if k != "range_bits"}
+    assert tp.point_config(q).reading_range_bits == 11

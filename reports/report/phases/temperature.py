@@ -681,6 +681,8 @@ def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> d
             "read_bits_per_frame", "bandwidth_MBps", "gain_bits", "offset_bits", "formats",
             "hw", "datapath_cost", "bad_fraction")
     r = {k: p.get(k) for k in keep}
+    if p.get("range_bits"):  # the reading ranges the plan needed (point_config rebuilds them)
+        r["range_bits"] = dict(p["range_bits"])
     r |= {"meets_tolerance": ch["meets"], "tolerance_mK": tol, "netd_mK": netd,
           "margin_mK": tol - p["worst_fpn_mK"], "candidates": ch["candidates"][:20],
           "breaking": ch.get("breaking") or [],
