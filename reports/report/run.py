@@ -33,7 +33,7 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
     from irnuc.reports.report.phases.cosim import phase_cosim, prefetch_cosim_builds
     from irnuc.reports.report.phases.paper import phase_paper
     from irnuc.reports.report.phases.precision import phase_precision
-    from irnuc.reports.report.phases.sweep import phase_sweep, phase_synth
+    from irnuc.reports.report.phases.sweep import phase_sweep, phase_synth, prefetch_synth
     from irnuc.reports.report.phases.temperature import (
         anchor_configs,
         phase_temperature,
@@ -51,13 +51,17 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
             phase_frames_and_calibration(rep)
         if "sweep" in config:
             phase_sweep(rep, scheduler, progress)
+            if "synth" in config:
+                # its syntheses beside the single-threaded paper phase, read after it
+                rep.start_background("sweep syntheses", prefetch_synth, rep, scheduler)
+        if "paper" in config:
+            phase_paper(rep, progress)
+        if "sweep" in config:
+            if "synth" in config:
+                phase_synth(rep, scheduler, progress)
             if junit is None and not no_cosim and "cosim" in config:
                 # the co-simulation's Verilator builds are known once the sweep recommends
                 rep.start_background("cosim builds", prefetch_cosim_builds, rep)
-            if "synth" in config:
-                phase_synth(rep, scheduler, progress)
-        if "paper" in config:
-            phase_paper(rep, progress)
         if "temperature" in config:
             phase_temperature(rep, scheduler, progress)
         phase_cosim(rep, out, junit, no_cosim)
