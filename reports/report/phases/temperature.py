@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -269,23 +269,74 @@ def _misfit_file(cfg: Any, top: str) -> Path:
     return cache_dir("temperature") / f"io-misfit-{synth_key(cfg, top=top)}.json"
 
 
-def _seeds_fitting(cfg: Any, top: str, kw: dict[str, Any]) -> tuple[dict[str, Any], bool]:
+def _seeds_fitting(cfg: Any, top: str, kw: dict[str, Any],
+                   decided: Callable[[bool], None] | None = None) -> tuple[dict[str, Any], bool]:
     """:func:`synth_seeds` of ``top`` on the package's pins, or out of context when its ports
     do not fit them (nextpnr: no BEL left of type TRELLIS_IO; remembered); (result, placed
-    out of context). Any other failure is raised."""
+    out of context). Any other failure is raised. ``decided(out_of_context)`` is called as
+    soon as that is known (a remembered misfit: at once; a misfit found: when the first
+    placement on pins fails, seconds in; fitting: when placed)."""
     from irnuc.common.io import write_text_atomic
     from irnuc.cosim import synth
 
+    say = decided or (lambda ooc: None)
     misfit = _misfit_file(cfg, top)
     if not misfit.is_file():
         try:
-            return synth.synth_seeds(cfg, top=top, **kw), False
+            out = synth.synth_seeds(cfg, top=top, **kw)
         except synth.SynthError as exc:
             if "TRELLIS_IO" not in str(exc):
+                say(False)
                 raise
             write_text_atomic(misfit, json.dumps({"top": top, "config": cfg.digest(),
                                                   "error": str(exc)[-2000:]}) + "\n")
+        else:
+            say(False)
+            return out, False
+    say(True)
     return synth.synth_seeds(cfg, top=top, **{**kw, "out_of_context": True}), True
+
+
+def _place_both(cfg: Any, top: str, core_top: str, kw: dict[str, Any]
+                ) -> tuple[dict[str, Any], bool, dict[str, Any]]:
+    """The wrapper (``top``, on pins or out of context) and the bare core placed side by
+    side: the core starts as soon as the wrapper's pin question is answered (it is placed
+    the same way, for a like-for-like comparison), each on ``workers`` processes, so a
+    core is not left idle when the seeds are fewer than the workers (``--quick``: one
+    each). (wrapper result, out of context, core result)."""
+    import concurrent.futures as cf
+    import threading
+
+    from irnuc.cosim import synth
+
+    if core_top == top:
+        s, ooc = _seeds_fitting(cfg, top, kw)
+        return s, ooc, s
+    mode: dict[str, bool] = {}
+    ready = threading.Event()
+
+    def decided(ooc: bool) -> None:
+        mode["ooc"] = ooc
+        ready.set()
+
+    def core() -> dict[str, Any] | None:
+        ready.wait()
+        if "ooc" not in mode:
+            return None
+        return synth.synth_seeds(cfg, top=core_top,
+                                 **{**kw, **({"out_of_context": True} if mode["ooc"] else {})})
+
+    with cf.ThreadPoolExecutor(max_workers=2, thread_name_prefix="irnuc-place") as pool:
+        fut_core = pool.submit(core)
+        try:
+            s, ooc = _seeds_fitting(cfg, top, kw, decided)
+        finally:
+            ready.set()  # a wrapper that failed otherwise: the core thread ends
+        c = fut_core.result()
+    if c is None:  # (not reached: decided() runs before any return)
+        c = synth.synth_seeds(cfg, top=core_top,
+                              **{**kw, **({"out_of_context": True} if ooc else {})})
+    return s, ooc, c
 
 
 def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
@@ -309,8 +360,9 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     try:
         # The wrapper's ports may not fit the package's pins (wide coefficient and FFC
         # words): then placed as the IP block it is, its ports meeting on-chip logic
-        # (nextpnr --out-of-context, docs/synthesis.md), and said.
-        s, ooc = _seeds_fitting(cfg, top, kw)
+        # (nextpnr --out-of-context, docs/synthesis.md), and said; the bare core the same
+        # way, side by side with it.
+        s, ooc, core = _place_both(cfg, top, core_top, kw)
     except synth.SynthError as exc:
         r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
         return
@@ -319,7 +371,6 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
         kw["out_of_context"] = True
     fig = _flat(s)
     pred = r.get("hw")
-    core = s if core_top == top else _seeds_fitting(cfg, core_top, kw)[0]
     core_fig = _flat(core)
     r["synth"] = {"top": top, "why": why, "fmax_mhz": s["fmax_mhz"], "seeds": s.get("seeds"),
                   "xc7": s["xc7"],
