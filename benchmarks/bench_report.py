@@ -31,7 +31,8 @@ goal holds for a quiet machine, ``--hog 0``), ``quick_cold_goal_ratio`` (quick_c
 3 min) and ``warm_vs_baseline`` (warm total / baseline total).
 
 ``--timeout S`` stops a run after S seconds with everything it started (its own session)
-and records ``timed_out_s`` and the phases that had begun (the report's progress lines).
+and records ``timed_out_s``; every run records ``timeline_s``, the report's progress lines
+(phases and background jobs started) with the seconds since its start.
 
 ``--runs`` picks the runs (default all: ``cold,warm,warm_hog,quick,baseline``);
 ``--shared-cache`` uses the user's irnuc cache instead of a fresh one (no cold run then:
@@ -52,6 +53,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -73,14 +75,35 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int,
         proc = subprocess.Popen([str(Path(sys.executable).with_name("irnuc")), "report",
                                  "--out", str(out), *args], env=env, stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, text=True, start_new_session=True)
+        # the phases' start lines, each with the seconds since the start (a timeline,
+        # also of a run stopped by --timeout)
+        marks: list[list] = []
+        err_lines: list[str] = []
+
+        def read_err() -> None:
+            for line in proc.stderr:
+                err_lines.append(line)
+                if line.startswith("irnuc report: "):
+                    marks.append([round(time.perf_counter() - t0, 1),
+                                  line.split(": ", 1)[1].strip()])
+
+        out_parts: list[str] = []
+        readers = [threading.Thread(target=read_err, daemon=True),
+                   threading.Thread(target=lambda: out_parts.append(proc.stdout.read()),
+                                    daemon=True)]
+        for th in readers:
+            th.start()
         timed_out = False
         try:
-            stdout, stderr = proc.communicate(timeout=timeout)
+            proc.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
             # the report and everything it started (its own session): none left running
             timed_out = True
             os.killpg(proc.pid, signal.SIGKILL)
-            stdout, stderr = proc.communicate()
+            proc.wait()
+        for th in readers:
+            th.join(10)
+        stdout, stderr = "".join(out_parts), "".join(err_lines)
         wall = time.perf_counter() - t0
         # the report's process and every process it waited for (not the hogs: reaped after)
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -89,10 +112,9 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int,
             h.kill()
             h.wait()
     rec: dict = {"run": name, "returncode": proc.returncode, "wall_s": round(wall, 1), "hogs": hog}
+    rec["timeline_s"] = marks
     if timed_out:
         rec["timed_out_s"] = timeout
-        rec["phases_started"] = [ln.split(": ", 1)[1] for ln in stderr.splitlines()
-                                 if ln.startswith("irnuc report: ")][-12:]
     rec["cpu_s"] = round(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime, 1)
     summary = out / "summary.json"
     if summary.is_file():

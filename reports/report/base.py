@@ -66,6 +66,7 @@ class Report:
                     if str(exc) else type(exc).__name__
             finally:
                 rec["end_s"] = round(time.perf_counter() - self._t0, 3)
+                self.say(f"{name} finished in the background")
 
         self._jobs[name] = self._pool.submit(run)
         self.say(f"{name} started in the background")
