@@ -476,8 +476,9 @@ def test_background_job_runs_beside_and_is_joined_before_use() -> None:
 
 def test_anchors_prefetched_in_the_background_then_read_by_the_phase(monkeypatch) -> None:
     """The report starts the anchors' syntheses (one worker) before its first phase; the
-    Temperature phase joins that job before asking for the anchors, so it reads them (the
-    same configurations) instead of racing the background for them."""
+    Temperature phase asks for the same configurations on its own workers (the designs
+    the background has not made yet are shared out: each cache entry is locked while
+    made) and joins the job before it goes on."""
     from irnuc.cosim import synth
 
     calls = []
@@ -496,9 +497,10 @@ def test_anchors_prefetched_in_the_background_then_read_by_the_phase(monkeypatch
     for p in d["points"]:
         p.update(gain_bits=16, offset_bits=16)
     tp._cost_points(rep, t, d, None, False)
-    assert calls == [(["typical14", "ffc14"], 1), (["typical14", "ffc14"], 2)]
+    assert sorted(calls, key=lambda c: c[1]) == [(["typical14", "ffc14"], 1),
+                                                 (["typical14", "ffc14"], 2)]
     assert "end_s" in rep.background["anchors"] and "anchors" not in rep._jobs
-    assert all(a["cached"] for a in d["cost"]["anchors"].values())
+    assert set(d["cost"]["anchors"]) == {"typical14", "ffc14"}
 
 
 def test_the_recommendation_keeps_the_reading_range_the_plan_needed() -> None:

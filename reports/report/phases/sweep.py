@@ -199,7 +199,9 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     rows, cols = sweep["frame"]
     dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
     with rep.phase("synth"):
-        rep.join_background("sweep syntheses")  # started beside the paper phase
+        # Started beside the paper phase on one worker: not waited for, the designs it has
+        # not finished are shared out on this phase's workers (each design's cache entry
+        # is locked while made: none is made twice), then the job is joined.
         fit, cand, synth_kw = _first_syntheses(rep, scheduler)
         typed = rep.studies["sweep"].sweep_points
 
@@ -209,6 +211,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
                                                    **synth_kw), strict=True))
 
         synthesized = synthesize(sorted(set(fit) | set(cand)), "synth")
+        rep.join_background("sweep syntheses")
         model = CostModel.fit([widths(pts[i]) for i in fit],
                               [synth_figures(synthesized[i]) for i in fit])
 

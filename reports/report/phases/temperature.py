@@ -215,11 +215,14 @@ def _cost_points(rep: Report, t: Mapping[str, Any], d: dict[str, Any], scheduler
                          "still synthesized"]
         rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.anchors = false"))
         return
-    rep.join_background("anchors")  # the anchors prefetched beside the earlier phases
     names = list(dict.fromkeys(p["config"] for p in pts))
     cfgs = [load_pipeline(n) for n in names]
+    # The anchors started beside the earlier phases on one worker: the ones it has not
+    # finished are shared out on this phase's workers (each design's cache entry is locked
+    # while made: none is made twice), then the job is joined.
     res = synth_configs(cfgs, workers=int(setting(t, "workers")), scheduler=scheduler,
                         progress=progress("temperature synth", show))
+    rep.join_background("anchors")
     anchors = {}
     for n, c, r in zip(names, cfgs, res, strict=True):
         anchors[n] = {"top": default_top(c), "widths": [c.gain_bits, c.offset_bits],
