@@ -32,7 +32,9 @@ goal holds for a quiet machine, ``--hog 0``), ``quick_cold_goal_ratio`` (quick_c
 
 ``--timeout S`` stops a run after S seconds with everything it started (its own session)
 and records ``timed_out_s``; every run records ``timeline_s``, the report's progress lines
-(phases and background jobs started) with the seconds since its start.
+(phases and background jobs started and finished), each as [seconds since its start, CPU
+seconds of its process tree so far, line], so a stopped run still shows where the time and
+the CPU went.
 
 ``--runs`` picks the runs (default all: ``cold,warm,warm_hog,quick,baseline``);
 ``--shared-cache`` uses the user's irnuc cache instead of a fresh one (no cold run then:
@@ -56,6 +58,8 @@ import tempfile
 import threading
 import time
 from pathlib import Path
+
+from irnuc.common.cputime import tree_cpu_seconds
 
 GOAL_WARM_S = 90.0
 GOAL_QUICK_S = 30.0
@@ -84,7 +88,9 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int,
             for line in proc.stderr:
                 err_lines.append(line)
                 if line.startswith("irnuc report: "):
+                    # [wall s, CPU s of the report's process tree so far, the line]
                     marks.append([round(time.perf_counter() - t0, 1),
+                                  round(tree_cpu_seconds(proc.pid), 1),
                                   line.split(": ", 1)[1].strip()])
 
         out_parts: list[str] = []
@@ -99,6 +105,8 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int,
         except subprocess.TimeoutExpired:
             # the report and everything it started (its own session): none left running
             timed_out = True
+            marks.append([round(time.perf_counter() - t0, 1),
+                          round(tree_cpu_seconds(proc.pid), 1), "stopped (--timeout)"])
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
         for th in readers:
