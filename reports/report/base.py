@@ -49,18 +49,28 @@ class Report:
         early and whose results land in the cache (syntheses, Verilator builds), started
         while a single-threaded phase leaves a core idle. The phase that needs it calls
         :meth:`join_background` first; a failure there is only recorded (the phase does
-        the work again and reports its own error). A phase's CPU (``phases_cpu``) counts
-        the whole process tree, so it includes the background work running beside it."""
+        the work again and reports its own error). It runs niced
+        (:func:`irnuc.common.executor.background_priority`: its tools and pool workers
+        too), so it takes the cores the phases leave idle rather than slowing them. A
+        phase's CPU (``phases_cpu``) counts the whole process tree, so it includes the
+        background work running beside it."""
         import concurrent.futures as cf
+
+        from irnuc.common.executor import start_forkserver
 
         if self._pool is None:
             self._pool = cf.ThreadPoolExecutor(max_workers=3, thread_name_prefix="irnuc-bg")
+        start_forkserver()  # from this thread, at its priority (the background's are lower)
         rec: dict[str, Any] = {"start_s": round(time.perf_counter() - self._t0, 3)}
         self.background[name] = rec
 
         def run() -> None:
+            from irnuc.common.executor import background_priority
+
             try:
-                fn(*args)
+                # at a lower priority: it takes the cores the phases leave idle
+                with background_priority():
+                    fn(*args)
             except Exception as exc:  # the phase that needs it does it again
                 rec["error"] = f"{type(exc).__name__}: {str(exc).splitlines()[0][:300]}" \
                     if str(exc) else type(exc).__name__
