@@ -30,12 +30,18 @@ the last line printed is one JSON object with ``warm_goal_ratio`` (warm total / 
 goal holds for a quiet machine, ``--hog 0``), ``quick_cold_goal_ratio`` (quick_cold total /
 3 min) and ``warm_vs_baseline`` (warm total / baseline total).
 
+``--timeout S`` stops a run after S seconds with everything it started (its own session)
+and records ``timed_out_s``; every run records ``timeline_s``, the report's progress lines
+(phases and background jobs started and finished), each as [seconds since its start, CPU
+seconds of its process tree so far, line], so a stopped run still shows where the time and
+the CPU went.
+
 ``--runs`` picks the runs (default all: ``cold,warm,warm_hog,quick,baseline``);
 ``--shared-cache`` uses the user's irnuc cache instead of a fresh one (no cold run then:
 for timing the warm runs on a machine that already built everything).
 
 Usage: ``python benchmarks/bench_report.py [--config default] [--hog 1] [--runs ...]
-[--shared-cache] [--keep]``
+[--shared-cache] [--keep] [--timeout S]``
 """
 
 from __future__ import annotations
@@ -45,11 +51,15 @@ import json
 import os
 import resource
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
+
+from irnuc.common.cputime import tree_cpu_seconds
 
 GOAL_WARM_S = 90.0
 GOAL_QUICK_S = 30.0
@@ -59,15 +69,49 @@ RUNS = ("cold", "warm", "warm_hog", "quick_first", "quick", "quick_cold", "basel
 HOG = "import time\nt = time.time()\nwhile time.time() - t < 3600:\n    sum(i * i for i in range(10000))\n"
 
 
-def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int) -> dict:
+def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int,
+         timeout: float | None = None) -> dict:
     hogs = [subprocess.Popen([sys.executable, "-c", HOG]) for _ in range(hog)]
     try:
         t0 = time.perf_counter()
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        proc = subprocess.Popen([str(Path(sys.executable).with_name("irnuc")), "report", "-q",
+        # not -q: the phases' start lines (stderr) say where a run stopped past --timeout
+        proc = subprocess.Popen([str(Path(sys.executable).with_name("irnuc")), "report",
                                  "--out", str(out), *args], env=env, stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, text=True)
-        stdout, stderr = proc.communicate()
+                                stderr=subprocess.PIPE, text=True, start_new_session=True)
+        # the phases' start lines, each with the seconds since the start (a timeline,
+        # also of a run stopped by --timeout)
+        marks: list[list] = []
+        err_lines: list[str] = []
+
+        def read_err() -> None:
+            for line in proc.stderr:
+                err_lines.append(line)
+                if line.startswith("irnuc report: "):
+                    # [wall s, CPU s of the report's process tree so far, the line]
+                    marks.append([round(time.perf_counter() - t0, 1),
+                                  round(tree_cpu_seconds(proc.pid), 1),
+                                  line.split(": ", 1)[1].strip()])
+
+        out_parts: list[str] = []
+        readers = [threading.Thread(target=read_err, daemon=True),
+                   threading.Thread(target=lambda: out_parts.append(proc.stdout.read()),
+                                    daemon=True)]
+        for th in readers:
+            th.start()
+        timed_out = False
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            # the report and everything it started (its own session): none left running
+            timed_out = True
+            marks.append([round(time.perf_counter() - t0, 1),
+                          round(tree_cpu_seconds(proc.pid), 1), "stopped (--timeout)"])
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+        for th in readers:
+            th.join(10)
+        stdout, stderr = "".join(out_parts), "".join(err_lines)
         wall = time.perf_counter() - t0
         # the report's process and every process it waited for (not the hogs: reaped after)
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -76,6 +120,9 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int) -
             h.kill()
             h.wait()
     rec: dict = {"run": name, "returncode": proc.returncode, "wall_s": round(wall, 1), "hogs": hog}
+    rec["timeline_s"] = marks
+    if timed_out:
+        rec["timed_out_s"] = timeout
     rec["cpu_s"] = round(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime, 1)
     summary = out / "summary.json"
     if summary.is_file():
@@ -94,6 +141,8 @@ def _run(name: str, args: list[str], env: dict[str, str], out: Path, hog: int) -
         r = t.get("recommended") or {}
         rec["temperature_parts_s"] = t.get("seconds")
         rec["temperature_cached_study"] = t.get("cached")
+        # work started beside the phases: when (s since the start) and how long waited for
+        rec["temperature_background"] = t.get("background")
         rec["temperature_recommended"] = {k: r.get(k) for k in (
             "key", "worst_fpn_mK", "meets_tolerance", "memory_bits", "bandwidth_MBps")} | {
             "cosim_pixels": (r.get("cosim") or {}).get("pixels_compared"),
@@ -111,6 +160,9 @@ def main() -> None:
     ap.add_argument("--keep", action="store_true", help="keep the cache and output folders")
     ap.add_argument("--runs", default=",".join(RUNS),
                     help=f"comma-separated runs among {', '.join(RUNS)}")
+    ap.add_argument("--timeout", type=float, default=None,
+                    help="seconds after which a run is stopped (with everything it started) "
+                         "and recorded as timed out")
     ap.add_argument("--shared-cache", action="store_true",
                     help="use the user's irnuc cache (no fresh one: the cold run is skipped)")
     args = ap.parse_args()
@@ -136,7 +188,7 @@ def main() -> None:
             if name in runs:
                 a, hog = plan[name]
                 got[name] = _run(name, a, env_cold_quick if name == "quick_cold" else env,
-                                 root / name, hog)
+                                 root / name, hog, args.timeout)
     finally:
         if not args.keep:
             shutil.rmtree(root, ignore_errors=True)
@@ -176,6 +228,8 @@ def main() -> None:
         result[f"{name}_cpu_s"] = field(name, "cpu_s")
         result[f"{name}_phases_cpu_s"] = field(name, "phases_cpu_s")
         result[f"{name}_cpu_bound_2cores_s"] = field(name, "cpu_bound_2cores_s")
+        if field(name, "timed_out_s"):
+            result[f"{name}_timed_out_s"] = field(name, "timed_out_s")
     print(json.dumps(result))
 
 

@@ -262,3 +262,40 @@ def test_report_imports_no_dev_only_package() -> None:
             "if m in sys.modules]; print(bad); sys.exit(1 if bad else 0)")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr
+
+
+def test_background_work_runs_niced_with_its_pool_workers() -> None:
+    """Work started beside the phases runs at a lower priority: its thread, the processes
+    it starts and the workers of the pools it opens (so a phase keeps its core); the
+    report's own thread keeps its priority."""
+    import os
+    import subprocess
+    import sys
+    import threading
+
+    from irnuc.common.executor import open_executor
+    from irnuc.reports.report.base import Report
+
+    def nice_of(pid: int) -> int:
+        return os.getpriority(os.PRIO_PROCESS, pid)
+
+    main_nice = nice_of(threading.get_native_id())
+    seen = {}
+
+    def job() -> None:
+        seen["thread"] = nice_of(threading.get_native_id())
+        seen["child"] = int(subprocess.run(
+            [sys.executable, "-c", "import os; print(os.nice(0))"], capture_output=True,
+            text=True, check=True).stdout)
+        with open_executor(1) as h:
+            seen["worker"] = h.executor.submit(os.nice, 0).result()
+
+    rep = Report(config={}, verbose=False)
+    rep.start_background("job", job)
+    rep.close_background()
+    assert "error" not in rep.background["job"], rep.background["job"]
+    want = min(19, main_nice + 10)
+    assert seen == {"thread": want, "child": want, "worker": min(19, want)}
+    assert nice_of(threading.get_native_id()) == main_nice
+    with open_executor(1) as h:  # a pool opened by the report's thread: not niced
+        assert h.executor.submit(os.nice, 0).result() == os.nice(0)

@@ -384,13 +384,14 @@ def test_a_wrapper_that_does_not_fit_the_pins_is_not_tried_on_them_again(tmp_pat
     monkeypatch.setattr(synth, "prepare_netlists", lambda designs, **kw: 0)
     r = {"config": "tcffc14", "frac_bits": 16, "hw": None}
     tp._synth_recommended({}, r)
-    assert calls == [("irnuc_axis_top", False), ("irnuc_axis_top", True),
-                                      ("method_ffc_top", True)]
+    # the wrapper on pins first; then the wrapper and the core out of context, side by side
+    assert calls[0] == ("irnuc_axis_top", False)
+    assert sorted(calls[1:]) == [("irnuc_axis_top", True), ("method_ffc_top", True)]
     assert r["synth"]["out_of_context"] and "out of context" in r["synth"]["why"]
     first = dict(r["synth"])
     calls.clear()
     tp._synth_recommended({}, r)  # warm: straight out of context, the same result
-    assert calls == [("irnuc_axis_top", True), ("method_ffc_top", True)]
+    assert sorted(calls) == [("irnuc_axis_top", True), ("method_ffc_top", True)]
     assert r["synth"] == first
     calls.clear()
     tp._synth_recommended({}, {"config": "tcffc14", "frac_bits": 12, "hw": None})
@@ -415,3 +416,148 @@ def test_a_netlist_that_fails_is_said_by_its_top_not_raised(monkeypatch) -> None
     tp._synth_recommended({}, r)
     assert r["synth"]["error"] == "yosys failed on irnuc_axis_top"
     assert tp._fmax_check(r["synth"]).status == "not met"
+
+
+# ---- time: what --quick leaves out, work started beside the phases (issue 37 item 6) --------
+def test_quick_leaves_out_the_anchors_and_seeds_and_says_so(monkeypatch) -> None:
+    """--quick synthesizes no anchor and places the recommendation at one seed; the default
+    keeps both (anchors on, 4 seeds). Left out is named "not run in --quick" in the notes,
+    and no anchor synthesis is asked for."""
+    from irnuc.cosim import synth
+    from irnuc.reports.report.config import load_report_config
+
+    full = load_report_config("default")["temperature"]
+    quick = load_report_config("default", quick=True)["temperature"]
+    assert tp.setting(full, "anchors") is True and tp.setting(full, "synth_seeds") == 4
+    assert quick["anchors"] is False and quick["synth_seeds"] == 1
+    assert tp.anchor_configs(quick) == []
+    assert [c.name for c in tp.anchor_configs(full)] == list(tp.spec_of(full).methods)
+
+    def no_synth(*a, **k):
+        raise AssertionError("an anchor was synthesized in --quick")
+
+    monkeypatch.setattr(synth, "synth_configs", no_synth)
+    rep = Report(config={"quick": True, "temperature": quick})
+    d = {"points": [_pt(0, "typical14", 10, 10, 5.0)]}
+    tp._cost_points(rep, quick, d, None, False)
+    assert d["cost"] is None
+    assert rep.notes and rep.notes[0].startswith("temperature: not run in --quick: the methods' "
+                                                  "anchor syntheses")
+    # the same key outside --quick names the key instead
+    rep2 = Report(config={"temperature": {"anchors": False}})
+    tp._cost_points(rep2, {"anchors": False}, {"points": []}, None, False)
+    assert "not run (temperature.anchors = false)" in rep2.notes[0]
+
+
+def test_background_job_runs_beside_and_is_joined_before_use() -> None:
+    """start_background runs the work in a thread (the caller goes on), join waits for it
+    and records when it ran; a failure is recorded, not raised (the phase redoes the work
+    and reports its own error); close waits for every job."""
+    import threading
+
+    rep = Report(config={}, verbose=False)
+    gate, done = threading.Event(), []
+    rep.start_background("a", lambda: (gate.wait(10), done.append(1)))
+    assert done == []                     # the caller was not held
+    gate.set()
+    rec = rep.join_background("a")
+    assert done == [1] and rec["end_s"] >= rec["start_s"] and "error" not in rec
+    assert rep.join_background("a") is None and rep.join_background("never") is None
+
+    def boom() -> None:
+        raise RuntimeError("no yosys\nmore")
+
+    rep.start_background("b", boom)
+    rep.start_background("c", lambda: done.append(2))
+    rep.close_background()
+    assert rep.background["b"]["error"] == "RuntimeError: no yosys"
+    assert done == [1, 2] and rep._jobs == {}
+
+
+def test_anchors_prefetched_in_the_background_then_read_by_the_phase(monkeypatch) -> None:
+    """The report starts the anchors' syntheses (one worker) before its first phase; the
+    Temperature phase asks for the same configurations on its own workers (the designs
+    the background has not made yet are shared out: each cache entry is locked while
+    made) and joins the job before it goes on."""
+    from irnuc.cosim import synth
+
+    calls = []
+
+    def fake(cfgs, *, workers=2, scheduler=None, progress=None):
+        calls.append(([c.name for c in cfgs], workers))
+        return [{"xc7": {"lut": 1, "ff": 1, "dsp": 0, "bram36": 0, "bram18": 0},
+                 "ecp5": {"lut4": 1, "ff": 1, "mult18": 0, "dp16kd": 0}, "fmax_mhz": 200.0,
+                 "cached": len(calls) > 1} for _ in cfgs]
+
+    monkeypatch.setattr(synth, "synth_configs", fake)
+    t = {"methods": ["typical14", "ffc14"]}
+    rep = Report(config={"temperature": t}, verbose=False)
+    rep.start_background("anchors", tp.prefetch_anchors, t, None)
+    d = {"points": [_pt(0, "typical14", 10, 10, 5.0), _pt(1, "ffc14", 12, 10, 4.0)]}
+    for p in d["points"]:
+        p.update(gain_bits=16, offset_bits=16)
+    tp._cost_points(rep, t, d, None, False)
+    assert sorted(calls, key=lambda c: c[1]) == [(["typical14", "ffc14"], 1),
+                                                 (["typical14", "ffc14"], 2)]
+    assert "end_s" in rep.background["anchors"] and "anchors" not in rep._jobs
+    assert set(d["cost"]["anchors"]) == {"typical14", "ffc14"}
+
+
+def test_the_recommendation_keeps_the_reading_range_the_plan_needed() -> None:
+    """A point calibrated with a widened reading range (the plan covering the scenarios) is
+    synthesized and co-simulated with that range: the recommendation record keeps
+    ``range_bits`` and point_config rebuilds the same configuration (the report stopped at
+    the axis co-simulation's calibration when it did not)."""
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.reports.studies.method_bits import with_frac_bits, with_range_bits
+
+    p = {**_pt(0, "tcffc14", 500, 100, 30.0, frac=12), "range_bits": {"reading_range_bits": 12},
+         "formats": {}, "gain_bits": 16, "offset_bits": 16}
+    r = tp._recommended({"point": p, "meets": False, "candidates": [], "edges": []}, 15.0, 31.0,
+                        so.SignoffSpec(rows=6, cols=8, scenarios=("fpa_ramp",)))
+    cfg = tp.point_config(r, 12, 16)
+    want = with_range_bits(with_frac_bits(load_pipeline("tcffc14"), 12), reading_range_bits=12)
+    assert cfg.reading_range_bits == 12
+    assert {f.name: (f.int_bits, f.frac_bits) for f in cfg.formats} == \
+        {f.name: (f.int_bits, f.frac_bits) for f in want.formats}
+    assert r["pipeline"]["reading_range_bits"] == 12
+    # a point that needed none keeps the shipped range
+    q = {k: v for k, v in p.items() if k != "range_bits"}
+    assert tp.point_config(q).reading_range_bits == 11
+
+
+def test_the_core_is_placed_beside_the_wrapper_once_its_pins_are_known(tmp_path,
+                                                                      monkeypatch) -> None:
+    """At one seed (--quick) a wrapper placement alone leaves a core idle: the bare core's
+    placement starts as soon as the wrapper's pin question is answered (here: it does not
+    fit, found at its first placement on pins), while the wrapper is still being placed
+    out of context. Sequential placements would deadlock below (the wrapper's placement
+    waits for the core's to start) and fail on the timeout."""
+    import threading
+
+    from irnuc.cosim import synth
+
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    core_started = threading.Event()
+    order = []
+
+    def fake(cfg, *, top=None, **kw):
+        ooc = bool(kw.get("out_of_context"))
+        if top == "irnuc_axis_top" and not ooc:
+            raise synth.SynthError("ERROR: no BELs remaining to implement cell type 'TRELLIS_IO'")
+        if top == "irnuc_axis_top":
+            assert core_started.wait(20), "the core was not placed beside the wrapper"
+        else:
+            core_started.set()
+        order.append((top, ooc))
+        return {"xc7": {"lut": 1, "ff": 1, "dsp": 0, "bram36": 0, "bram18": 0},
+                "ecp5": {"lut4": 1, "ff": 1, "mult18": 0, "dp16kd": 0},
+                "fmax_mhz": 150.0 if top == "irnuc_axis_top" else 170.0, "target_mhz": 150.0}
+
+    monkeypatch.setattr(synth, "synth_seeds", fake)
+    monkeypatch.setattr(synth, "prepare_netlists", lambda designs, **kw: 0)
+    r = {"config": "tcffc14", "frac_bits": 16, "hw": None}
+    tp._synth_recommended({"synth_seeds": 1}, r)
+    assert order == [("method_ffc_top", True), ("irnuc_axis_top", True)]
+    assert r["synth"]["fmax_mhz"] == 150.0 and r["synth"]["core"]["fmax_mhz"] == 170.0
+    assert r["synth"]["out_of_context"]

@@ -27,15 +27,22 @@ def _stat(pid: str) -> tuple[int, float] | None:
     return int(rest[1]), sum(int(x) for x in rest[11:15]) / _TICK
 
 
-def tree_cpu_seconds() -> float:
-    """CPU seconds of this process, its reaped children and every live descendant (with
-    the children those reaped): monotone over a run as long as no live descendant exits
-    unreaped by this tree (a reaped one moves into its parent's children's time)."""
-    t = os.times()
-    own = t.user + t.system + t.children_user + t.children_system
+def tree_cpu_seconds(root: int | None = None) -> float:
+    """CPU seconds of this process (or of process ``root``), its reaped children and every
+    live descendant (with the children those reaped): monotone over a run as long as no
+    live descendant exits unreaped by this tree (a reaped one moves into its parent's
+    children's time). Another process gone: 0."""
+    if root is None or root == os.getpid():
+        t = os.times()
+        own = t.user + t.system + t.children_user + t.children_system
+        me = os.getpid()
+    else:
+        st = _stat(str(root))
+        if st is None:
+            return 0.0
+        own, me = st[1], int(root)
     if not Path("/proc/self/stat").is_file():
         return own
-    me = os.getpid()
     parent: dict[int, int] = {}
     cpu: dict[int, float] = {}
     for d in os.listdir("/proc"):

@@ -8,6 +8,7 @@ from __future__ import annotations
 import concurrent.futures as cf
 import contextlib
 import multiprocessing
+import threading
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
@@ -79,14 +80,62 @@ def _probe(scheduler: str) -> None:
                             ) from None
 
 
-def _die_with(pid: int) -> None:
+#: Per thread: the niceness the process pools it opens give their workers (and so the tools
+#: those run): :func:`background_priority`.
+_PRIORITY = threading.local()
+
+
+@contextlib.contextmanager
+def background_priority(nice: int = 10) -> Iterator[None]:
+    """Run this thread's work at a lower CPU priority (Linux: the thread's own niceness,
+    which the processes it starts inherit, and the workers of the process pools it opens):
+    work started beside a phase takes the cores the phase leaves idle, not the phase's."""
+    import os
+
+    tid = threading.get_native_id()
+    try:
+        before = os.getpriority(os.PRIO_PROCESS, tid)
+        os.setpriority(os.PRIO_PROCESS, tid, min(19, before + int(nice)))
+    except (OSError, AttributeError):  # no per-thread priority here: run as is
+        before = None
+    _PRIORITY.nice = int(nice)
+    try:
+        yield
+    finally:
+        _PRIORITY.nice = 0
+        if before is not None:
+            try:  # lowering it back may need privileges: the thread then stays nice
+                os.setpriority(os.PRIO_PROCESS, tid, before)
+            except OSError:
+                pass
+
+
+def start_forkserver() -> None:
+    """Start the forkserver that forks every pool's workers, if not running, from the
+    calling thread: called by the thread that starts background work before it does, so
+    that the server (and every later worker, the phases' too) has that thread's priority,
+    not the background's (:func:`background_priority`)."""
+    if _mp_context().get_start_method() == "forkserver":
+        from multiprocessing import forkserver
+
+        forkserver.ensure_running()
+
+
+def _die_with(pid: int, nice: int = 0) -> None:
     """Worker initializer: end this worker as soon as the process that opened the pool is
     gone (even killed with SIGKILL). Workers are children of the forkserver, not of that
     process, so its death is not signalled to them; their own children (a Yosys or
-    nextpnr run through ``run_child``) then die with them (``PR_SET_PDEATHSIG``)."""
+    nextpnr run through ``run_child``) then die with them (``PR_SET_PDEATHSIG``). ``nice``:
+    this worker's niceness set to it (the opening thread's, :func:`background_priority`)."""
     import os
     import threading
     import time
+
+    if nice:
+        try:  # absolute: the opener's thread's niceness (inherited or not by the forkserver)
+            os.setpriority(os.PRIO_PROCESS, 0, int(nice))
+        except OSError:
+            pass
 
     def watch() -> None:
         while True:
@@ -144,8 +193,10 @@ def open_executor(workers: int = 2, scheduler: str | None = None) -> Iterator[Ex
         return
     import os
 
+    nice = (os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
+            if getattr(_PRIORITY, "nice", 0) else 0)
     with cf.ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(),
-                                initializer=_die_with, initargs=(os.getpid(),)) as ex:
+                                initializer=_die_with, initargs=(os.getpid(), nice)) as ex:
         yield ExecutorHandle(ex, "process", lambda obj: obj, 1, f"{workers} process(es)")
 
 

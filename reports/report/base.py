@@ -37,6 +37,68 @@ class Report:
     #: The typed results of the studies, for the phases after the one that ran them
     #: (``sweep``: :class:`irnuc.reports.studies.sweep.SweepResult`); not serialised.
     studies: dict[str, Any] = field(default_factory=dict)
+    #: Work started beside the phases (:meth:`start_background`): name -> its start and end
+    #: (s since the report started) and its error, if any.
+    background: dict[str, dict[str, Any]] = field(default_factory=dict)
+    _jobs: dict[str, Any] = field(default_factory=dict, repr=False)
+    _pool: Any = field(default=None, repr=False)
+    _t0: float = field(default_factory=time.perf_counter, repr=False)
+
+    def start_background(self, name: str, fn: Callable[..., Any], *args: Any) -> None:
+        """Run ``fn(*args)`` in a thread beside the phases: work whose inputs are known
+        early and whose results land in the cache (syntheses, Verilator builds), started
+        while a single-threaded phase leaves a core idle. The phase that needs it calls
+        :meth:`join_background` first; a failure there is only recorded (the phase does
+        the work again and reports its own error). It runs niced
+        (:func:`irnuc.common.executor.background_priority`: its tools and pool workers
+        too), so it takes the cores the phases leave idle rather than slowing them. A
+        phase's CPU (``phases_cpu``) counts the whole process tree, so it includes the
+        background work running beside it."""
+        import concurrent.futures as cf
+
+        from irnuc.common.executor import start_forkserver
+
+        if self._pool is None:
+            self._pool = cf.ThreadPoolExecutor(max_workers=3, thread_name_prefix="irnuc-bg")
+        start_forkserver()  # from this thread, at its priority (the background's are lower)
+        rec: dict[str, Any] = {"start_s": round(time.perf_counter() - self._t0, 3)}
+        self.background[name] = rec
+
+        def run() -> None:
+            from irnuc.common.executor import background_priority
+
+            try:
+                # at a lower priority: it takes the cores the phases leave idle
+                with background_priority():
+                    fn(*args)
+            except Exception as exc:  # the phase that needs it does it again
+                rec["error"] = f"{type(exc).__name__}: {str(exc).splitlines()[0][:300]}" \
+                    if str(exc) else type(exc).__name__
+            finally:
+                rec["end_s"] = round(time.perf_counter() - self._t0, 3)
+                self.say(f"{name} finished in the background")
+
+        self._jobs[name] = self._pool.submit(run)
+        self.say(f"{name} started in the background")
+
+    def join_background(self, name: str) -> dict[str, Any] | None:
+        """Wait for the background job ``name`` (none started: None); its record."""
+        job = self._jobs.pop(name, None)
+        if job is None:
+            return None
+        t0 = time.perf_counter()
+        job.result()
+        rec = self.background[name]
+        rec["waited_s"] = round(time.perf_counter() - t0, 3)
+        return rec
+
+    def close_background(self) -> None:
+        """Wait for every background job (the report ends with none running)."""
+        for name in list(self._jobs):
+            self.join_background(name)
+        if self._pool is not None:
+            self._pool.shutdown(wait=True)
+            self._pool = None
 
     def metric(self, name: str, value: float | int | None, better: str, unit: str = "",
                abs_tol: float | None = None, rel_tol: float | None = None) -> None:

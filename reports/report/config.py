@@ -159,6 +159,7 @@ SCHEMA: dict[str, Any] = table({
         "ffc_every": number(2, 10_000, integer=True),
         "dsp_lut_equivalent": number(0, 100_000),
         "synth_seeds": number(1, 64, integer=True),
+        "anchors": {"type": "boolean"},
     }),
     "precision": table({
         "quick": {"type": "boolean"},

@@ -30,26 +30,45 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
                  progress: bool = True) -> Report:
     """Run every phase the configuration asks for, writing logs and results under ``out``."""
     from irnuc.reports.report.phases.calibration import phase_frames_and_calibration
-    from irnuc.reports.report.phases.cosim import phase_cosim
+    from irnuc.reports.report.phases.cosim import phase_cosim, prefetch_cosim_builds
     from irnuc.reports.report.phases.paper import phase_paper
     from irnuc.reports.report.phases.precision import phase_precision
-    from irnuc.reports.report.phases.sweep import phase_sweep, phase_synth
-    from irnuc.reports.report.phases.temperature import phase_temperature
+    from irnuc.reports.report.phases.sweep import phase_sweep, phase_synth, prefetch_synth
+    from irnuc.reports.report.phases.temperature import (
+        anchor_configs,
+        phase_temperature,
+        prefetch_anchors,
+    )
 
     rep = Report(config=copy.deepcopy(dict(config)), verbose=progress)
-    if "sensor" in config:
-        phase_frames_and_calibration(rep)
-    if "sweep" in config:
-        phase_sweep(rep, scheduler, progress)
-        if "synth" in config:
-            phase_synth(rep, scheduler, progress)
-    if "paper" in config:
-        phase_paper(rep, progress)
-    if "temperature" in config:
-        phase_temperature(rep, scheduler, progress)
-    phase_cosim(rep, out, junit, no_cosim)
-    if "precision" in config:
-        phase_precision(rep, progress)
+    try:
+        # The long syntheses whose inputs the configuration already gives (the sign-off's
+        # anchors: each method's shipped configuration) start on one core now, while the
+        # single-threaded phases (frames, calibration, the paper) use the other.
+        if "temperature" in config and anchor_configs(config["temperature"]):
+            rep.start_background("anchors", prefetch_anchors, config["temperature"], scheduler)
+        if "sensor" in config:
+            phase_frames_and_calibration(rep)
+        if "sweep" in config:
+            phase_sweep(rep, scheduler, progress)
+            if "synth" in config:
+                # its syntheses beside the single-threaded paper phase, read after it
+                rep.start_background("sweep syntheses", prefetch_synth, rep, scheduler)
+        if "paper" in config:
+            phase_paper(rep, progress)
+        if "sweep" in config:
+            if "synth" in config:
+                phase_synth(rep, scheduler, progress)
+            if junit is None and not no_cosim and "cosim" in config:
+                # the co-simulation's Verilator builds are known once the sweep recommends
+                rep.start_background("cosim builds", prefetch_cosim_builds, rep)
+        if "temperature" in config:
+            phase_temperature(rep, scheduler, progress)
+        phase_cosim(rep, out, junit, no_cosim)
+        if "precision" in config:
+            phase_precision(rep, progress)
+    finally:
+        rep.close_background()
     _recommended_metrics(rep)
     return rep
 

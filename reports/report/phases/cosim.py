@@ -286,7 +286,19 @@ def run_cosim(rep: Report, configs: list[Any], c: Mapping[str, Any], out: Path) 
     return section
 
 
-def _configs(rep: Report, names: list[str]) -> list[Any]:
+def prefetch_cosim_builds(rep: Report) -> None:
+    """Make the co-simulation phase's Verilator builds (cached) in the background, as soon
+    as the sweep has recommended (:meth:`Report.start_background`); the phase joins it
+    before its own builds, which then come from the cache."""
+    from irnuc import cosim
+
+    c = rep.config["cosim"]
+    for cfg in _configs(rep, list(c["pipelines"]), say=False):
+        cosim.build("nuc_dpc_top", cfg, waves=bool(c.get("waves", False)),
+                    coverage=bool(c.get("coverage", True)))
+
+
+def _configs(rep: Report, names: list[str], say: bool = True) -> list[Any]:
     from irnuc.nuc_fixed import load_pipeline
 
     out = []
@@ -294,8 +306,9 @@ def _configs(rep: Report, names: list[str]) -> list[Any]:
         if name == "recommended":
             r = (rep.sections.get("sweep") or {}).get("recommended")
             if r is None:
-                rep.notes.append("co-simulation of the recommended widths skipped: the sweep "
-                                 "recommends none")
+                if say:
+                    rep.notes.append("co-simulation of the recommended widths skipped: the "
+                                     "sweep recommends none")
                 continue
             from irnuc.nuc_fixed import PipelineConfig
 
@@ -320,6 +333,7 @@ def phase_cosim(rep: Report, out: Path, junit: dict[str, Any] | None, no_cosim: 
     elif not no_cosim and "cosim" in rep.config:
         c = rep.config["cosim"]
         with rep.phase("cosim"):
+            rep.join_background("cosim builds")
             configs = _configs(rep, list(c["pipelines"]))
             if configs:
                 try:

@@ -145,6 +145,36 @@ def phase_sweep(rep: Report, scheduler: str | None, show_progress: bool) -> None
                    figures.pareto(pts, res.pareto(metric), metric, sm))
 
 
+def _first_syntheses(rep: Report, scheduler: str | None) -> tuple[list[int], list[int],
+                                                                 dict[str, Any]]:
+    """What :func:`phase_synth` synthesizes first (the cost model's fit points and the
+    cheapest candidates: their indices) and its synthesis options."""
+    from irnuc.reports.studies.hwcost import fit_indices, recommend
+
+    sy = rep.config["synth"]
+    sweep = rep.sections["sweep"]
+    pts = [thaw(p) for p in sweep.points]
+    fit = fit_indices(pts, int(sy.get("fit_points", 4)))
+    cand = recommend(pts, sweep.tolerance["max_error"], sweep.tolerance["metric"])[
+        "candidates"][:int(sy.get("candidates", 3))]  # in order of error
+    kw = {"workers": int(sy.get("workers", 2)), "scheduler": scheduler,
+          "speed": int(sy.get("speed", 6)), "freq_mhz": float(sy.get("freq_mhz", 150.0)),
+          "seed": int(sy.get("seed", 1))}
+    return fit, cand, kw
+
+
+def prefetch_synth(rep: Report, scheduler: str | None) -> None:
+    """:func:`phase_synth`'s first syntheses into the cache on one worker, started in the
+    background once the sweep has its points (:meth:`Report.start_background`)."""
+    from irnuc.cosim.synth import synth_configs
+
+    fit, cand, kw = _first_syntheses(rep, scheduler)
+    rows, cols = rep.sections["sweep"]["frame"]
+    typed = rep.studies["sweep"].sweep_points
+    synth_configs([recommended_config(typed[i], rows, cols) for i in sorted(set(fit) | set(cand))],
+                  **{**kw, "workers": 1})
+
+
 def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None:
     """Synthesize a few points, fit the cost model, cost every point, recommend."""
     from irnuc.cosim.synth import synth_configs
@@ -152,8 +182,6 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     from irnuc.reports.studies.hwcost import (
         CostModel,
         datapath_cost,
-        fit_indices,
-        recommend,
         recommend_synthesized,
         synth_figures,
         widths,
@@ -171,13 +199,11 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     rows, cols = sweep["frame"]
     dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
     with rep.phase("synth"):
-        fit = fit_indices(pts, int(sy.get("fit_points", 4)))
-        n_cand = int(sy.get("candidates", 3))
-        cand = recommend(pts, max_error, metric)["candidates"][:n_cand]  # in order of error
+        # Started beside the paper phase on one worker: not waited for, the designs it has
+        # not finished are shared out on this phase's workers (each design's cache entry
+        # is locked while made: none is made twice), then the job is joined.
+        fit, cand, synth_kw = _first_syntheses(rep, scheduler)
         typed = rep.studies["sweep"].sweep_points
-        synth_kw = {"workers": int(sy.get("workers", 2)), "scheduler": scheduler,
-                    "speed": int(sy.get("speed", 6)), "freq_mhz": float(sy.get("freq_mhz", 150.0)),
-                    "seed": int(sy.get("seed", 1))}
 
         def synthesize(indices: list[int], label: str) -> dict[int, dict[str, Any]]:
             cfgs = [recommended_config(typed[i], rows, cols) for i in indices]
@@ -185,6 +211,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
                                                    **synth_kw), strict=True))
 
         synthesized = synthesize(sorted(set(fit) | set(cand)), "synth")
+        rep.join_background("sweep syntheses")
         model = CostModel.fit([widths(pts[i]) for i in fit],
                               [synth_figures(synthesized[i]) for i in fit])
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -39,8 +39,37 @@ DEFAULTS: dict[str, Any] = {
     "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
     "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
     "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
-    "dsp_lut_equivalent": 200.0, "synth_seeds": 4,
+    "dsp_lut_equivalent": 200.0, "synth_seeds": 4, "anchors": True,
 }
+
+
+def left_out(rep: Report, what: str, key: str) -> str:
+    """A note naming what this run left out (``--quick``'s ``[quick]`` table, or the
+    configuration's ``key``): never counted as passing."""
+    how = "not run in --quick" if rep.config.get("quick") else f"not run ({key})"
+    return f"temperature: {how}: {what}"
+
+
+def anchor_configs(t: Mapping[str, Any]) -> list[Any]:
+    """The shipped configurations whose own tops are the cost model's anchors (every method
+    of the sweep), or none when the section synthesizes nothing."""
+    from irnuc.nuc_fixed import load_pipeline
+
+    if not (setting(t, "synth") and setting(t, "anchors")):
+        return []
+    return [load_pipeline(n) for n in dict.fromkeys(spec_of(t).methods)]
+
+
+def prefetch_anchors(t: Mapping[str, Any], scheduler: str | None) -> None:
+    """Synthesize the anchors into the cache on one worker (:func:`Report.background`: the
+    report starts this while its single-threaded phases use the other core); the phase
+    then reads them (:func:`_cost_points`)."""
+    from irnuc.cosim.synth import synth_configs
+
+    cfgs = anchor_configs(t)
+    if cfgs:
+        synth_configs(cfgs, workers=1, scheduler=scheduler)
+
 
 
 def setting(t: Mapping[str, Any], key: str) -> Any:
@@ -178,10 +207,22 @@ def _cost_points(rep: Report, t: Mapping[str, Any], d: dict[str, Any], scheduler
     if not setting(t, "synth"):
         d["cost"] = None
         return
+    if not setting(t, "anchors"):
+        d["cost"] = None
+        d["left_out"] = [*d.get("left_out", []), "the methods' anchor syntheses (each shipped "
+                         "configuration's own top): no synthesized or modelled datapath per "
+                         "point; the recommendation is chosen on memory and bandwidth and is "
+                         "still synthesized"]
+        rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.anchors = false"))
+        return
     names = list(dict.fromkeys(p["config"] for p in pts))
     cfgs = [load_pipeline(n) for n in names]
+    # The anchors started beside the earlier phases on one worker: the ones it has not
+    # finished are shared out on this phase's workers (each design's cache entry is locked
+    # while made: none is made twice), then the job is joined.
     res = synth_configs(cfgs, workers=int(setting(t, "workers")), scheduler=scheduler,
                         progress=progress("temperature synth", show))
+    rep.join_background("anchors")
     anchors = {}
     for n, c, r in zip(names, cfgs, res, strict=True):
         anchors[n] = {"top": default_top(c), "widths": [c.gain_bits, c.offset_bits],
@@ -231,23 +272,74 @@ def _misfit_file(cfg: Any, top: str) -> Path:
     return cache_dir("temperature") / f"io-misfit-{synth_key(cfg, top=top)}.json"
 
 
-def _seeds_fitting(cfg: Any, top: str, kw: dict[str, Any]) -> tuple[dict[str, Any], bool]:
+def _seeds_fitting(cfg: Any, top: str, kw: dict[str, Any],
+                   decided: Callable[[bool], None] | None = None) -> tuple[dict[str, Any], bool]:
     """:func:`synth_seeds` of ``top`` on the package's pins, or out of context when its ports
     do not fit them (nextpnr: no BEL left of type TRELLIS_IO; remembered); (result, placed
-    out of context). Any other failure is raised."""
+    out of context). Any other failure is raised. ``decided(out_of_context)`` is called as
+    soon as that is known (a remembered misfit: at once; a misfit found: when the first
+    placement on pins fails, seconds in; fitting: when placed)."""
     from irnuc.common.io import write_text_atomic
     from irnuc.cosim import synth
 
+    say = decided or (lambda ooc: None)
     misfit = _misfit_file(cfg, top)
     if not misfit.is_file():
         try:
-            return synth.synth_seeds(cfg, top=top, **kw), False
+            out = synth.synth_seeds(cfg, top=top, **kw)
         except synth.SynthError as exc:
             if "TRELLIS_IO" not in str(exc):
+                say(False)
                 raise
             write_text_atomic(misfit, json.dumps({"top": top, "config": cfg.digest(),
                                                   "error": str(exc)[-2000:]}) + "\n")
+        else:
+            say(False)
+            return out, False
+    say(True)
     return synth.synth_seeds(cfg, top=top, **{**kw, "out_of_context": True}), True
+
+
+def _place_both(cfg: Any, top: str, core_top: str, kw: dict[str, Any]
+                ) -> tuple[dict[str, Any], bool, dict[str, Any]]:
+    """The wrapper (``top``, on pins or out of context) and the bare core placed side by
+    side: the core starts as soon as the wrapper's pin question is answered (it is placed
+    the same way, for a like-for-like comparison), each on ``workers`` processes, so a
+    core is not left idle when the seeds are fewer than the workers (``--quick``: one
+    each). (wrapper result, out of context, core result)."""
+    import concurrent.futures as cf
+    import threading
+
+    from irnuc.cosim import synth
+
+    if core_top == top:
+        s, ooc = _seeds_fitting(cfg, top, kw)
+        return s, ooc, s
+    mode: dict[str, bool] = {}
+    ready = threading.Event()
+
+    def decided(ooc: bool) -> None:
+        mode["ooc"] = ooc
+        ready.set()
+
+    def core() -> dict[str, Any] | None:
+        ready.wait()
+        if "ooc" not in mode:
+            return None
+        return synth.synth_seeds(cfg, top=core_top,
+                                 **{**kw, **({"out_of_context": True} if mode["ooc"] else {})})
+
+    with cf.ThreadPoolExecutor(max_workers=2, thread_name_prefix="irnuc-place") as pool:
+        fut_core = pool.submit(core)
+        try:
+            s, ooc = _seeds_fitting(cfg, top, kw, decided)
+        finally:
+            ready.set()  # a wrapper that failed otherwise: the core thread ends
+        c = fut_core.result()
+    if c is None:  # (not reached: decided() runs before any return)
+        c = synth.synth_seeds(cfg, top=core_top,
+                              **{**kw, **({"out_of_context": True} if ooc else {})})
+    return s, ooc, c
 
 
 def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
@@ -271,8 +363,9 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     try:
         # The wrapper's ports may not fit the package's pins (wide coefficient and FFC
         # words): then placed as the IP block it is, its ports meeting on-chip logic
-        # (nextpnr --out-of-context, docs/synthesis.md), and said.
-        s, ooc = _seeds_fitting(cfg, top, kw)
+        # (nextpnr --out-of-context, docs/synthesis.md), and said; the bare core the same
+        # way, side by side with it.
+        s, ooc, core = _place_both(cfg, top, core_top, kw)
     except synth.SynthError as exc:
         r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
         return
@@ -281,7 +374,6 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
         kw["out_of_context"] = True
     fig = _flat(s)
     pred = r.get("hw")
-    core = s if core_top == top else _seeds_fitting(cfg, core_top, kw)[0]
     core_fig = _flat(core)
     r["synth"] = {"top": top, "why": why, "fmax_mhz": s["fmax_mhz"], "seeds": s.get("seeds"),
                   "xc7": s["xc7"],
@@ -344,6 +436,15 @@ def _cosim(t: Mapping[str, Any], r: dict[str, Any], spec: Any) -> dict[str, Any]
     if out.get("passed") is not None:
         write_text_atomic(path, json.dumps(out) + "\n")
     return {**out, "cached": False}
+
+
+def _prefetch_axis_build(t: Mapping[str, Any], r: Mapping[str, Any]) -> None:
+    """The Verilator build :func:`_cosim_run` will use (cached), made in the background."""
+    from irnuc.cosim.axis_bulk import build_axis, unsupported
+
+    cfg = point_config(r, int(setting(t, "cosim_rows")), int(setting(t, "cosim_cols")))
+    if not unsupported(cfg):
+        build_axis(cfg)
 
 
 def _cosim_run(t: Mapping[str, Any], r: Mapping[str, Any], spec: Any, cfg: Any,
@@ -495,8 +596,17 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                                  f"the recommendation is the lowest residual, "
                                  f"{r['worst_fpn_mK']:.3g} mK ({r['key']}), broken by "
                                  f"{', '.join(r['breaks'])}")
+            if setting(t, "cosim"):
+                # the axis harness's Verilator build beside the placements (cached)
+                rep.start_background("axis build", _prefetch_axis_build, t, r)
             if setting(t, "synth"):
                 t1 = time.perf_counter()
+                if int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
+                    d["left_out"] = [*d.get("left_out", []), (
+                        f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
+                        f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
+                        "no best/worst spread")]
+                    rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
                 note = fmax_note(r.get("synth") or {})
@@ -506,6 +616,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                     rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
+                rep.join_background("axis build")
                 r["cosim"] = _cosim(t, r, spec)
                 times["cosim"] = round(time.perf_counter() - t1, 3)
                 if r["cosim"].get("not_run"):
@@ -513,6 +624,8 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         else:
             rep.notes.append("temperature: no valid point in the sweep")
         t1 = time.perf_counter()
+        d["background"] = {k: dict(v) for k, v in rep.background.items()
+                           if k in ("anchors", "axis build")}
         d["images"] = _worst_images(res, d["recommended"])
         # The traces of the points a figure draws (each configuration's representative and
         # the recommendation) stay; the others' are in the study's cache only.
@@ -622,6 +735,8 @@ def _recommended(ch: Mapping[str, Any], tol: float, netd: float, spec: Any) -> d
             "read_bits_per_frame", "bandwidth_MBps", "gain_bits", "offset_bits", "formats",
             "hw", "datapath_cost", "bad_fraction")
     r = {k: p.get(k) for k in keep}
+    if p.get("range_bits"):  # the reading ranges the plan needed (point_config rebuilds them)
+        r["range_bits"] = dict(p["range_bits"])
     r |= {"meets_tolerance": ch["meets"], "tolerance_mK": tol, "netd_mK": netd,
           "margin_mK": tol - p["worst_fpn_mK"], "candidates": ch["candidates"][:20],
           "breaking": ch.get("breaking") or [],
