@@ -3,9 +3,11 @@ implementation's numbers and the ablations that explain the difference."""
 
 from __future__ import annotations
 
+import base64
 import json
 import math
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -42,81 +44,66 @@ def _paper_sets(p: Mapping[str, Any], overrides: Mapping[str, Any], seed_offset:
     return sensor, simulate_set(sensor, None, None)
 
 
+def paper_cache_file(p: Mapping[str, Any]) -> Path:
+    """Where the phase's results for the paper settings ``p`` are kept: keyed by ``p``, the
+    ablations and the sources that make them (the model, the golden model, the studies and
+    this file, presets included) and the numpy/matplotlib versions that draw the figures."""
+    import matplotlib
+
+    from irnuc import model, nuc_fixed
+    from irnuc.common.cache import cache_dir
+    from irnuc.common.digest import files_digest
+    from irnuc.reports import studies
+
+    files: list[Path] = []
+    for pkg in (model, nuc_fixed, studies):
+        root = Path(pkg.__file__).parent
+        files += sorted([*root.rglob("*.py"), *root.rglob("*.toml")])
+    files.append(Path(__file__))
+    key = files_digest(files, extra={"paper": p, "variants": PAPER_VARIANTS,
+                                     "numpy": np.__version__, "matplotlib": matplotlib.__version__})
+    return cache_dir("paper") / f"{key}.json"
+
+
+def _json_default(o: Any) -> Any:
+    if isinstance(o, np.generic):
+        return o.item()
+    raise TypeError(f"not JSON: {type(o).__name__}")
+
+
+def _stored(path: Path) -> dict[str, Any] | None:
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None  # absent or damaged: measured again
+    return data if isinstance(data, dict) and data.get("format") == 1 else None
+
+
 def phase_paper(rep: Report, progress: bool) -> None:
-    from irnuc.reports.studies import figures
-    from irnuc.reports.studies.sweep import (
-        SweepAxes,
-        open_executor,
-        quantized_nuc,
-        resolve_points,
-        run_points,
-    )
+    """The paper's tables, from the cache when this code made them with these settings
+    (a warm report), else computed and kept (:func:`paper_cache_file`). A fresh run goes
+    through the same JSON as a stored one, so both give the same section, metrics and
+    figures."""
+    from irnuc.common.io import write_text_atomic
 
     p = rep.config["paper"]
     bits = [int(b) for b in p["frac_bits"]]
     ref_nu = [float(v) for v in p["reference_nu"]]
     with rep.phase("paper"):
-        # The paper preset as shipped, then one change at a time (ablations) to show what
-        # moves irnuc's numbers.
-        variants = PAPER_VARIANTS
-        rows = []
-        main_set = None
-        main_points = None
-        # A variant that changes only the coefficients' rounding reuses the frames of the
-        # one before it (the same model, overrides and seed: the same bits).
-        last: tuple[str, Any] = ("", None)
-        with open_executor(0) as handle:
-            for key, label, over, crnd, dseed in variants:
-                same = json.dumps([over, dseed], sort_keys=True)
-                try:
-                    if last[0] != same:
-                        last = ("", None)  # the previous set's memory goes first
-                        last = (same, _paper_sets(p, over, dseed))
-                    sensor, cs = last[1]
-                except ValueError as exc:  # a model that does not offer this option
-                    rep.notes.append(f"paper ablation {label!r} skipped: {exc}")
-                    continue
-                axes = SweepAxes(gain_frac_bits=tuple(bits), offset_frac_bits=("same",),
-                                 coeff_rounding=(crnd,), pipeline="typical14")
-                tasks = resolve_points(axes, {(None, None): cs})
-                pts = run_points(handle, tasks, {(None, None): cs})
-                mid = [i for i, c in enumerate(cs.is_cal) if not c]
-                k = mid[0] if mid else 0
-                nu = [q["per_temp"][k]["residual_nu"] for q in pts]
-                rows.append({"key": key, "variant": label, "overrides": over, "seed": p["seed"] + dseed,
-                             "coeff_rounding": crnd,
-                             "t_eval": float(cs.t_eval[k]), "residual_nu": nu,
-                             "float_nu": pts[0]["per_temp"][k]["float_nu"],
-                             "raw_nu": pts[0]["per_temp"][k]["raw_nu"],
-                             "err_max_lsb": [q["per_temp"][k]["err_max_lsb"] for q in pts],
-                             "radial_fraction": [q["per_temp"][k]["radial_fraction"] for q in pts],
-                             "gain_range": list(cs.coefficient_range()["gain"]),
-                             "int_bits": [[q["gain_int_bits"], q["offset_int_bits"]] for q in pts],
-                             "labels": [q["label"] for q in pts]})
-                if main_set is None:
-                    main_set, main_points, main_sensor = cs, tasks, sensor
-        # Table 2 images: uncorrected and each fraction width at every grid temperature.
-        cs = main_set
-        ys = [quantized_nuc(cs, pt)[0] for pt, _ in main_points]
-        good = cs.good
-        from irnuc.reports.studies.metrics import nonuniformity
-
-        imgs, notes = [], []
-        for i in range(len(cs.t_eval)):
-            row = [cs.raw_eval[i]] + [y[i] for y in ys]
-            imgs.append(row)
-            notes.append([f"NU {nonuniformity(im, good):.4f}" for im in row])
-        rep.figure("paper", "The paper's Table 2 regenerated: uncorrected and corrected frames with "
-                   f"{', '.join(map(str, bits))} fraction bits in gain and offset, calibrated at "
-                   f"{main_sensor.t_low:g}/{main_sensor.t_high:g} K (each image stretched to its own "
-                   "0.5-99.5 % range; NU = std/mean)",
-                   figures.image_grid(imgs, [f"{t:g} K" for t in cs.t_eval],
-                                      ["uncorrected"] + [f"{b} bits" for b in bits], notes))
-        main = rows[0]
-        rep.figure("paper", "Residual non-uniformity at the evaluation temperature against "
-                   "fraction bits: irnuc and the paper's reference implementation",
-                   figures.paper_comparison(bits, main["residual_nu"], ref_nu, main["float_nu"]))
-        table1 = _paper_table1(rep, p)
+        path = paper_cache_file(p)
+        out = _stored(path)
+        if out is None:
+            made = _compute_paper(p, bits)
+            text = json.dumps({"format": 1, **made}, default=_json_default)
+            write_text_atomic(path, text + "\n")
+            out = json.loads(text)
+        else:
+            rep.say(f"paper: read from the cache ({path.name})")
+        for caption, png in out["figures"]:
+            rep.figure("paper", caption, base64.b64decode(png))
+        rep.notes.extend(out["notes"])
+    rows, table1 = out["rows"], out["table1"]
+    main = rows[0]
     ratio = [a / b for a, b in zip(main["residual_nu"], ref_nu, strict=True)]
     slope = [main["residual_nu"][i] / main["residual_nu"][i + 1] for i in range(len(bits) - 1)]
     rep.sections["paper"] = Section.of({
@@ -131,7 +118,87 @@ def phase_paper(rep: Report, progress: bool) -> None:
     rep.metric("paper.float_nu", main["float_nu"], "lower")
 
 
-def _paper_table1(rep: Report, p: Mapping[str, Any]) -> dict[str, Any] | None:
+def _compute_paper(p: Mapping[str, Any], bits: list[int]) -> dict[str, Any]:
+    """The phase's work: rows of the variants, Table 1, the figures (base64 PNG) and the
+    notes, as plain data."""
+    from irnuc.reports.studies import figures
+    from irnuc.reports.studies.sweep import (
+        SweepAxes,
+        open_executor,
+        quantized_nuc,
+        resolve_points,
+        run_points,
+    )
+
+    ref_nu = [float(v) for v in p["reference_nu"]]
+    figs: list[tuple[str, bytes]] = []
+    notes: list[str] = []
+    # The paper preset as shipped, then one change at a time (ablations) to show what
+    # moves irnuc's numbers.
+    variants = PAPER_VARIANTS
+    rows = []
+    main_set = None
+    main_points = None
+    # A variant that changes only the coefficients' rounding reuses the frames of the
+    # one before it (the same model, overrides and seed: the same bits).
+    last: tuple[str, Any] = ("", None)
+    with open_executor(0) as handle:
+        for key, label, over, crnd, dseed in variants:
+            same = json.dumps([over, dseed], sort_keys=True)
+            try:
+                if last[0] != same:
+                    last = ("", None)  # the previous set's memory goes first
+                    last = (same, _paper_sets(p, over, dseed))
+                sensor, cs = last[1]
+            except ValueError as exc:  # a model that does not offer this option
+                notes.append(f"paper ablation {label!r} skipped: {exc}")
+                continue
+            axes = SweepAxes(gain_frac_bits=tuple(bits), offset_frac_bits=("same",),
+                             coeff_rounding=(crnd,), pipeline="typical14")
+            tasks = resolve_points(axes, {(None, None): cs})
+            pts = run_points(handle, tasks, {(None, None): cs})
+            mid = [i for i, c in enumerate(cs.is_cal) if not c]
+            k = mid[0] if mid else 0
+            nu = [q["per_temp"][k]["residual_nu"] for q in pts]
+            rows.append({"key": key, "variant": label, "overrides": over, "seed": p["seed"] + dseed,
+                         "coeff_rounding": crnd,
+                         "t_eval": float(cs.t_eval[k]), "residual_nu": nu,
+                         "float_nu": pts[0]["per_temp"][k]["float_nu"],
+                         "raw_nu": pts[0]["per_temp"][k]["raw_nu"],
+                         "err_max_lsb": [q["per_temp"][k]["err_max_lsb"] for q in pts],
+                         "radial_fraction": [q["per_temp"][k]["radial_fraction"] for q in pts],
+                         "gain_range": list(cs.coefficient_range()["gain"]),
+                         "int_bits": [[q["gain_int_bits"], q["offset_int_bits"]] for q in pts],
+                         "labels": [q["label"] for q in pts]})
+            if main_set is None:
+                main_set, main_points, main_sensor = cs, tasks, sensor
+    # Table 2 images: uncorrected and each fraction width at every grid temperature.
+    cs = main_set
+    ys = [quantized_nuc(cs, pt)[0] for pt, _ in main_points]
+    good = cs.good
+    from irnuc.reports.studies.metrics import nonuniformity
+
+    imgs, cell_notes = [], []
+    for i in range(len(cs.t_eval)):
+        row = [cs.raw_eval[i]] + [y[i] for y in ys]
+        imgs.append(row)
+        cell_notes.append([f"NU {nonuniformity(im, good):.4f}" for im in row])
+    figs.append(("The paper's Table 2 regenerated: uncorrected and corrected frames with "
+               f"{', '.join(map(str, bits))} fraction bits in gain and offset, calibrated at "
+               f"{main_sensor.t_low:g}/{main_sensor.t_high:g} K (each image stretched to its own "
+               "0.5-99.5 % range; NU = std/mean)",
+               figures.image_grid(imgs, [f"{t:g} K" for t in cs.t_eval],
+                                  ["uncorrected"] + [f"{b} bits" for b in bits], cell_notes)))
+    main = rows[0]
+    figs.append(("Residual non-uniformity at the evaluation temperature against "
+               "fraction bits: irnuc and the paper's reference implementation",
+               figures.paper_comparison(bits, main["residual_nu"], ref_nu, main["float_nu"])))
+    table1 = _paper_table1(figs, p)
+    return {"rows": rows, "table1": table1, "notes": notes,
+            "figures": [[c, base64.b64encode(png).decode("ascii")] for c, png in figs]}
+
+
+def _paper_table1(figs: list[tuple[str, bytes]], p: Mapping[str, Any]) -> dict[str, Any] | None:
     from irnuc import model
     from irnuc.reports.studies import figures
     from irnuc.reports.studies.metrics import nonuniformity
@@ -162,10 +229,10 @@ def _paper_table1(rep: Report, p: Mapping[str, Any]) -> dict[str, Any] | None:
             ones = np.ones(row[0].shape, bool)
             notes.append([f"NU {nonuniformity(im, ones):.3g}" for im in row])
             nu.setdefault(sk, []).append([nonuniformity(im, ones) for im in row])
-    rep.figure("paper", "The paper's Table 1 regenerated: raw frames of the paper preset at "
+    figs.append(("The paper's Table 1 regenerated: raw frames of the paper preset at "
                "blackbody temperatures (rows) and tolerances of R, g and C (columns), with row and "
                "column skimming (each image stretched to its own range)",
                figures.image_grid(images, labels, [f"tol {t:g}" for t in tols], notes, cell=1.5,
-                                  dpi=60))
+                                  dpi=60)))
     return {"temps": temps, "tolerances": tols, "skimming": list(t1["skimming"]),
             "frame": [t1["rows"], t1["cols"]], "raw_nu": nu}
