@@ -36,3 +36,25 @@ def files_digest(paths: Iterable[str | Path], extra: Any = None) -> str:
         h.update(p.read_bytes())
     h.update(json.dumps(extra, sort_keys=True, default=str).encode())
     return h.hexdigest()[:DIGEST_CHARS]
+
+
+def package_files(module: Any, tag: str = "", patterns: tuple[str, ...] = ("*.py",),
+                  recursive: bool = True) -> list[tuple[str, Path]]:
+    """The source files of the package holding ``module`` (its folder; sub-folders too when
+    ``recursive``) matching ``patterns``, sorted, each named by its path under the folder
+    (``<tag>/<path>`` with a ``tag``): the inputs of :func:`named_files_digest`."""
+    root = Path(module.__file__).parent
+    find = root.rglob if recursive else root.glob
+    paths = sorted({p for pat in patterns for p in find(pat)})
+    return [(f"{tag}/{p.relative_to(root).as_posix()}" if tag else p.relative_to(root).as_posix(),
+             p) for p in paths]
+
+
+def named_files_digest(files: Iterable[tuple[str, str | Path]]) -> str:
+    """Short digest of (name, file) pairs, names and bytes in order: what a stored result of
+    a study measured (the code it ran)."""
+    h = hashlib.sha256()
+    for name, path in files:
+        h.update(name.encode())
+        h.update(Path(path).read_bytes())
+    return h.hexdigest()[:DIGEST_CHARS]

@@ -20,17 +20,11 @@ def code_digest() -> str:
     """Hash of what a stored precision run measured: the model's sources and the study's own
     code (its problems, references, sample sizes and budgets); valid for this code only."""
     from irnuc import model
+    from irnuc.common.digest import named_files_digest, package_files
     from irnuc.reports.studies import precision
 
-    root = Path(model.__file__).parent
-    files = [(p.relative_to(root).as_posix(), p) for p in sorted(root.rglob("*.py"))]
-    study = Path(precision.__file__).parent
-    files += [(f"study/{p.relative_to(study).as_posix()}", p) for p in sorted(study.glob("*.py"))]
-    h = hashlib.sha256()
-    for name, path in files:
-        h.update(name.encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()[:16]
+    return named_files_digest([*package_files(model),
+                               *package_files(precision, "study", recursive=False)])
 
 
 def _key(quick: bool, components: Sequence[str] | None, digest: str) -> str:

@@ -436,23 +436,18 @@ def code_digest() -> str:
     """Hash of the code a stored result measured: the physics model, the golden model and
     the studies this module runs."""
     from irnuc import model, nuc_fixed
+    from irnuc.common.digest import named_files_digest, package_files
     from irnuc.reports.studies import camera_temperature, method_bits
 
     files: list[tuple[str, Path]] = []
     for pkg, tag in ((model, "model"), (nuc_fixed, "nuc_fixed")):
-        root = Path(pkg.__file__).parent
-        files += [(f"{tag}/{p.relative_to(root).as_posix()}", p)
-                  for p in sorted([*root.rglob("*.py"), *root.rglob("*.toml")])]
+        files += package_files(pkg, tag, ("*.py", "*.toml"))
     from irnuc.reports.studies import scenarios as scn
 
     for mod in (dc, camera_temperature, method_bits, scn):
         files.append((f"studies/{Path(mod.__file__).name}", Path(mod.__file__)))
     files.append(("studies/signoff.py", Path(__file__)))
-    h = hashlib.sha256()
-    for name, path in files:
-        h.update(name.encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()[:16]
+    return named_files_digest(files)
 
 
 def cache_file(spec: SignoffSpec, digest: str | None = None) -> Path:

@@ -52,16 +52,14 @@ def paper_cache_file(p: Mapping[str, Any]) -> Path:
 
     from irnuc import model, nuc_fixed
     from irnuc.common.cache import cache_dir
-    from irnuc.common.digest import files_digest
+    from irnuc.common.digest import digest, named_files_digest, package_files
     from irnuc.reports import studies
 
-    files: list[Path] = []
-    for pkg in (model, nuc_fixed, studies):
-        root = Path(pkg.__file__).parent
-        files += sorted([*root.rglob("*.py"), *root.rglob("*.toml")])
-    files.append(Path(__file__))
-    key = files_digest(files, extra={"paper": p, "variants": PAPER_VARIANTS,
-                                     "numpy": np.__version__, "matplotlib": matplotlib.__version__})
+    files = [f for pkg, tag in ((model, "model"), (nuc_fixed, "nuc_fixed"), (studies, "studies"))
+             for f in package_files(pkg, tag, ("*.py", "*.toml"))]
+    code = named_files_digest([*files, ("paper.py", Path(__file__))])
+    key = digest({"code": code, "paper": p, "variants": PAPER_VARIANTS,
+                  "numpy": np.__version__, "matplotlib": matplotlib.__version__})
     return cache_dir("paper") / f"{key}.json"
 
 
