@@ -257,6 +257,7 @@ class Traffic:
             await self.write(off, self._value(off), strb)
             _, data = await self.read(off)
             self.check_read(off, data)
+        await self.size_strobes()
         await self.overlapped(4)
         for _ in range(n):
             off = int(self.rng.choice(self.offsets + self.holes))
@@ -267,6 +268,59 @@ class Traffic:
             if self.rng.integers(4) == 0:
                 _, data = await self.read(self.model.map["STATUS"].offset)
                 self.check_read(self.model.map["STATUS"].offset, data)
+
+    async def size_strobes(self) -> None:
+        """FRAME_SIZE's byte lanes one by one: for each of the sixteen strobes, a write whose
+        written lanes carry a legal size (each field's unwritten lanes those it holds) and
+        whose unwritten lanes carry poison (each byte with its top bit set: taken, it would
+        put a field above FRAME_MAX), which must be answered OKAY and read back as the
+        merged size; then a write whose written lanes carry the top bit of a field's high
+        byte (or a zero field), which the value check must refuse (SLVERR, size kept). The
+        random traffic's FRAME_SIZE data is a legal size (no bit in a field's high byte) or
+        a random word (refused whatever the strobes): neither tells a strobe bit that is
+        taken from an unwritten lane, or dropped from a written one (the generated block's
+        bit enables). Every read exact (no pixel streams); a random draw of its own (a
+        spawned generator: the rest of the traffic draws as before)."""
+        m = self.model
+        r = m.map["FRAME_SIZE"]
+        off = r.offset
+        rng = self.rng.spawn(1)[0]
+        fields = [(r.field("width"), self.bench.cfg.max_width),
+                  (r.field("height"), self.bench.cfg.max_height)]
+        for strb in range(16):
+            lanes = sum(0xFF << (8 * i) for i in range(4) if strb >> i & 1)
+            old = m.get("FRAME_SIZE")
+            data = 0
+            for f, top in fields:
+                # A legal value of the field equal to the held one in its unwritten lanes.
+                keep = (lanes & f.mask) ^ f.mask
+                vals = np.arange(1, top + 1, dtype=np.int64) << f.lsb
+                vals = vals[(vals & keep) == (old & keep)]
+                data |= int(rng.choice(vals))
+            poison = sum((0x80 | int(rng.integers(0, 0x80))) << (8 * i)
+                         for i in range(4) if not strb >> i & 1)
+            data = (data & lanes) | poison
+            resp = await self.write(off, data, strb)
+            if resp == regmap.OKAY:
+                for i in range(4):
+                    if not strb >> i & 1 and (data ^ old) >> (8 * i) & 0xFF:
+                        _sample(self.bench, "axil.traffic.size_strobe", f"ignored_lane{i}")
+            _, got = await self.read(off)
+            self.check_read(off, got)
+            if strb == 0:
+                continue
+            # Refused: the top bit of each written high lane set, low lanes 0.
+            bad = 0
+            for f, _ in fields:
+                high = 8 * ((f.lsb + f.bits) // 8 - 1)
+                if lanes >> high & 0xFF:
+                    bad |= (0x80 | int(rng.integers(0, 0x80))) << high
+            data = bad | int(rng.integers(0, 2**32, dtype=np.uint64)) & ~lanes
+            resp = await self.write(off, data, strb)
+            if resp != regmap.OKAY:
+                _sample(self.bench, "axil.traffic.size_strobe", "refused")
+            _, got = await self.read(off)
+            self.check_read(off, got)
 
     async def overlapped(self, n: int) -> None:
         """``n`` times a write and a read issued in the same cycle: the write to IRQ_ENABLE

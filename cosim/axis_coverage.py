@@ -125,7 +125,9 @@ RESET_SIZE_PIXELS = 4096
 #: a reserved read-only one written: SLVERR on every build), BREADY and RREADY held low
 #: under a waiting response, a write and a read issued at once (the slave takes one
 #: transaction at a time), reads, writes and W1C clears while pixels stream, a frame at the
-#: reset size.
+#: reset size, and FRAME_SIZE's byte lanes (each unwritten lane carrying another byte than
+#: the register holds, the write taken; a written lane putting a field out of range,
+#: refused).
 TRAFFIC_POINTS: dict[str, tuple[str, ...]] = {
     "axil.traffic.strobe": ("full", "partial", "noncontiguous", "none"),
     "axil.traffic.address": ("write", "read", "ro_write", "wo_read", "reserved_write",
@@ -135,6 +137,8 @@ TRAFFIC_POINTS: dict[str, tuple[str, ...]] = {
     "axil.traffic.ready_held": ("bready", "rready"),
     "axil.traffic.streaming": ("read", "write", "w1c_clear"),
     "axil.traffic.reset_size": ("frame",),
+    "axil.traffic.size_strobe": ("ignored_lane0", "ignored_lane1", "ignored_lane2",
+                                 "ignored_lane3", "refused"),
 }
 
 #: Coverpoint -> bins of the FFC sequence through the registers (a configuration with ffc).
