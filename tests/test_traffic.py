@@ -70,6 +70,8 @@ def test_command_line_runs_the_traffic_and_closes_its_bins(tmp_path) -> None:
         "axil.traffic.streaming": {"read", "write", "w1c_clear"},
         "axil.traffic.overlap": {"write_and_read"},
         "axil.traffic.reset_size": {"frame"},
+        "axil.traffic.size_strobe": {"ignored_lane0", "ignored_lane1", "ignored_lane2",
+                                     "ignored_lane3", "refused"},
     }
     for point, bins in want.items():
         hit = {b for b, n in pts[point]["bins"].items() if n > 0}
