@@ -152,6 +152,13 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h84) & !cpuif_req_is_wr;",
         "is_valid_rw |= cpuif_req_masked & (cpuif_addr == 12'h84);",
         "a write to FFC_STATUS (read-only) answered OKAY", **_AXF),
+    # The automatic mutant auto_irnuc_axil_regblock_s1_5 by hand (that draw changes with the
+    # RTL): killed by the traffic's FRAME_SIZE lanes (Traffic.size_strobes).
+    _ma("ax_size_biten15", "irnuc_axil_regblock.sv",
+        "assign hwif_out.FRAME_SIZE.wr_biten = decoded_wr_biten;",
+        "assign hwif_out.FRAME_SIZE.wr_biten = decoded_wr_biten ^ 32'h0000_8000;",
+        "FRAME_SIZE's bit enable 15 inverted: the width's top bit taken from an unwritten "
+        "byte lane, dropped from a written one"),
     _ma("ax_ffc_frames_strobes", "irnuc_axil_regs.sv",
         "ffc_frames_q <= (ffc_frames_q & ~hwif_out.FFC_CTRL.wr_biten.frames)\n"
         "                          | (hwif_out.FFC_CTRL.wr_data.frames & "
