@@ -83,10 +83,18 @@ def phase_paper(rep: Report, progress: bool) -> None:
     through the same JSON as a stored one, so both give the same section, metrics and
     figures."""
     from irnuc.common.io import write_text_atomic
+    from irnuc.reports.report.base import left_out
+    from irnuc.reports.report.config import quick_replaced
 
     p = rep.config["paper"]
     bits = [int(b) for b in p["frac_bits"]]
     ref_nu = [float(v) for v in p["reference_nu"]]
+    cut = [quick_replaced(rep.config, f"paper.{k}") for k in ("rows", "cols")]
+    if any(c for c, _ in cut):
+        full = [v if c else p[k] for (c, v), k in zip(cut, ("rows", "cols"), strict=True)]
+        left_out(rep, "paper", f"Table 2 and its ablations at the full run's {full[0]} x "
+                 f"{full[1]} frame; run at {p['rows']} x {p['cols']} (residuals of this "
+                 "frame, compared with quick runs only)", "paper.rows, paper.cols")
     with rep.phase("paper"):
         path = paper_cache_file(p)
         out = _stored(path)
