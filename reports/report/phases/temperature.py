@@ -561,6 +561,20 @@ def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[
             "edges": grid_edges(p, pts, periods, meets), "breaking": rows}
 
 
+def _synth_left_out(rep: Report, t: Mapping[str, Any], d: dict[str, Any]) -> None:
+    """Name what the recommendation's synthesis leaves out: its placement
+    (``place = false``), else the placer seeds past ``synth_seeds``."""
+    if not setting(t, "place"):
+        d["left_out"] = [*d.get("left_out", []), NOT_PLACED]
+        rep.notes.append(left_out(rep, NOT_PLACED, "temperature.place = false"))
+    elif int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
+        d["left_out"] = [*d.get("left_out", []), (
+            f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
+            f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
+            "no best/worst spread")]
+        rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
+
+
 def _judged(res: Mapping[str, Any], spec: Any, tol: float) -> list[dict[str, Any]]:
     """The study's points, each valid one with its bandwidth, whether it meets ``tol`` and
     the scenarios that break it."""
@@ -664,15 +678,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 rep.start_background("axis build", _prefetch_axis_build, t, r)
             if setting(t, "synth"):
                 t1 = time.perf_counter()
-                if not setting(t, "place"):
-                    d["left_out"] = [*d.get("left_out", []), NOT_PLACED]
-                    rep.notes.append(left_out(rep, NOT_PLACED, "temperature.place = false"))
-                elif int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
-                    d["left_out"] = [*d.get("left_out", []), (
-                        f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
-                        f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
-                        "no best/worst spread")]
-                    rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
+                _synth_left_out(rep, t, d)
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
                 note = fmax_note(r.get("synth") or {})
