@@ -182,17 +182,21 @@ def test_the_signoff_is_made_in_the_background_when_no_anchor_runs_there(tmp_pat
                         lambda cfg, *, top=None, **kw: made.append(("area", top, cfg.name))
                         or _area(top))
     monkeypatch.setattr(tp, "_prefetch_axis_build", lambda t, r: made.append(("axis", r["key"])))
+    monkeypatch.setattr(tp, "_cosim", lambda t, r, spec: made.append(("cosim", r["key"]))
+                        or {"cached": False})
     t = dict(TINY_T)
-    assert tp.prefetch_signoff(t, None) is True
+    assert tp.prefetch_signoff(t, None) == {"study": True, "cosim": True}
     assert so.cache_file(tp.spec_of(t)).is_file()
     keys = [m[1] for m in made if m[0] == "axis"]
     assert len(keys) == 1 and ("area", "irnuc_axis_top", "recommended_temperature") in made
-    assert tp.prefetch_signoff(t, None) is False    # the study was in the cache
+    assert ("cosim", keys[0]) in made                # after its build, the same point
+    assert made.index(("cosim", keys[0])) > made.index(("axis", keys[0]))
+    assert tp.prefetch_signoff(t, None)["study"] is False    # the study was in the cache
 
     # the phase reads it; made by this run's background job, it is not "cached"
     for made_here in (True, False):
         rep = Report(config={"temperature": {**t, "cosim": False}}, verbose=False)
-        rep.start_background("sign-off", lambda v=made_here: v)
+        rep.start_background("sign-off", lambda v=made_here: {"study": v, "cosim": False})
         tp.phase_temperature(rep, None, False)
         sec = rep.sections["temperature"]
         assert sec["cached"] is (not made_here)

@@ -591,18 +591,19 @@ def _judged(res: Mapping[str, Any], spec: Any, tol: float) -> list[dict[str, Any
     return pts
 
 
-def prefetch_signoff(t: Mapping[str, Any], scheduler: str | None) -> bool:
+def prefetch_signoff(t: Mapping[str, Any], scheduler: str | None) -> dict[str, bool]:
     """The sign-off's study and, when its choice needs nothing of the earlier phases (no
-    anchors: chosen on memory and bandwidth), the recommendation's synthesis and axis
-    harness build, side by side, all into the cache, on one worker
+    anchors: chosen on memory and bandwidth), the recommendation's synthesis beside its
+    axis harness build and co-simulation, all into the cache, on one worker
     (:meth:`Report.start_background`, started at the report's start when no anchor is
-    synthesized there); the phase then reads them. True when the study was made here."""
+    synthesized there); the phase then reads them. Which of the study and the
+    co-simulation were made here (not read from the cache): ``{"study", "cosim"}``."""
     import concurrent.futures as cf
 
     from irnuc.reports.studies.signoff import cache_file, cached_signoff
 
     spec = spec_of(t)
-    made = not cache_file(spec).is_file()
+    made = {"study": not cache_file(spec).is_file(), "cosim": False}
     res = cached_signoff(spec, workers=min(1, int(setting(t, "workers"))), scheduler=scheduler)
     if setting(t, "synth") and setting(t, "anchors"):
         return made  # the choice weighs the datapath: the anchors first (the phase)
@@ -612,10 +613,15 @@ def prefetch_signoff(t: Mapping[str, Any], scheduler: str | None) -> bool:
     if not ch["found"]:
         return made
     r = _recommended(ch, tol, float(res["netd_mK"]), spec)
+
+    def cosim() -> None:
+        _prefetch_axis_build(t, r)
+        made["cosim"] = _cosim(t, r, spec).get("cached") is False
+
     jobs = []
     with cf.ThreadPoolExecutor(max_workers=2, thread_name_prefix="irnuc-bg-rec") as pool:
         if setting(t, "cosim"):
-            jobs.append(pool.submit(_prefetch_axis_build, t, r))
+            jobs.append(pool.submit(cosim))
         if setting(t, "synth"):
             jobs.append(pool.submit(_synth_recommended, t, dict(r)))
         for j in jobs:
@@ -639,10 +645,10 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
         # made in the background when nothing else ran there (prefetch_signoff): read
         # from the cache, still this run's own study
         rep.join_background("sign-off")
-        made_here = bool(rep.background_value("sign-off"))
+        made_here = rep.background_value("sign-off") or {}
         res = cached_signoff(spec, workers=int(setting(t, "workers")), scheduler=scheduler,
                              progress=progress("temperature", show_progress))
-        if made_here:
+        if made_here.get("study"):
             res = {**res, "cached": False}
         times["sweep"] = round(time.perf_counter() - t0, 3)
         netd = float(res["netd_mK"])
@@ -690,6 +696,8 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 t1 = time.perf_counter()
                 rep.join_background("axis build")
                 r["cosim"] = _cosim(t, r, spec)
+                if made_here.get("cosim") and r["cosim"].get("cached"):
+                    r["cosim"]["cached"] = False  # run by this report, in the background
                 times["cosim"] = round(time.perf_counter() - t1, 3)
                 if r["cosim"].get("not_run"):
                     rep.notes.append(f"temperature: not co-simulated: {r['cosim']['not_run']}")
