@@ -6,6 +6,7 @@ synthesis runs there."""
 from __future__ import annotations
 
 import json
+from html import unescape
 from pathlib import Path
 
 import jsonschema
@@ -202,6 +203,15 @@ def test_the_signoff_is_made_in_the_background_when_no_anchor_runs_there(tmp_pat
         assert sec["cached"] is (not made_here)
         assert sec["recommended"]["synth"]["placed"] is False
         assert sec["recommended"]["key"] in keys
+    # an unplaced recommendation is a valid summary and renders ("not run" Fmax)
+    from irnuc.reports.report.render import render_report
+    from irnuc.reports.report.summary import make_summary, validate_summary
+
+    summary = make_summary(rep, [], None, None)
+    validate_summary(summary)
+    assert {c["name"]: c["status"] for c in summary["signoff"]["checks"]}["fmax"] == "not run"
+    html = unescape(render_report(rep, summary))
+    assert "synthesized for area, not placed" in html and f"not run: {tp.NOT_PLACED}" in html
 
     # the report: which job it starts at once (the phases themselves stubbed)
     started = []
