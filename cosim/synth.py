@@ -670,24 +670,6 @@ def synth_config(cfg, *, top: str | None = None, max_width: int | None = None,
     return {**result, "cached": False}
 
 
-def synth_area(cfg, *, top: str | None = None, max_width: int | None = None,
-               max_height: int | None = None) -> dict:
-    """Area of ``top`` for a configuration without placing it: :func:`synth_netlist`'s xc7
-    and ECP5 cell counts (the same netlists, cached, that :func:`synth_config` places; no
-    Fmax). Returns ``top``, ``xc7``, ``ecp5``, ``device``, ``config_digest`` and ``cached``."""
-    from irnuc.common.cache import cache_dir
-
-    cfg, top, params, sources, _ = _synth_design(cfg, top, max_width, max_height,
-                                                 ECP5_SPEED_DEFAULT, TARGET_MHZ, 1)
-    folder = cache_dir("synth") / f"net-{_netlist_key(sources, top, params)}"
-    cached = (folder / "netlist.json").is_file()
-    _, xc7, ecp5 = synth_netlist(sources, top, params)
-    return {"top": top, "xc7": {k: xc7[k] for k in XC7_KEYS},
-            "ecp5": {k: ecp5[k] for k in ECP5_KEYS},
-            "device": f"LFE5U-{ECP5_DEVICE.removesuffix('k')}F", "config_digest": cfg.digest(),
-            "cached": cached}
-
-
 #: Placer seeds ``irnuc synth --seeds`` accepts at most (each is a place and route).
 MAX_SEEDS = 64
 

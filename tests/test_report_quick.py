@@ -116,14 +116,14 @@ def test_place_false_synthesizes_the_wrapper_for_area_only_and_fmax_is_not_check
 
     asked = []
 
-    def area(cfg, *, top=None, **kw):
+    def area(cfg, top):
         asked.append(top)
         return _area(top)
 
     def no_place(*a, **k):
         raise AssertionError("placed although place = false")
 
-    monkeypatch.setattr(synth, "synth_area", area)
+    monkeypatch.setattr(tp, "synth_area", area)
     monkeypatch.setattr(synth, "synth_seeds", no_place)
     monkeypatch.setattr(synth, "prepare_netlists", no_place)
     r = {"config": "tcffc14", "frac_bits": 12, "hw": None}
@@ -152,7 +152,7 @@ def test_place_false_synthesizes_the_wrapper_for_area_only_and_fmax_is_not_check
 
     monkeypatch.setattr(synth, "synth_seeds", seeds)
     monkeypatch.setattr(synth, "prepare_netlists", lambda designs, **kw: 0)
-    monkeypatch.setattr(synth, "synth_area", no_place)
+    monkeypatch.setattr(tp, "synth_area", no_place)
     r = {"config": "tcffc14", "frac_bits": 12, "hw": None}
     tp._synth_recommended({}, r)
     assert sorted(placed) == ["irnuc_axis_top", "method_ffc_top"]
@@ -173,15 +173,13 @@ def test_the_signoff_is_made_in_the_background_when_no_anchor_runs_there(tmp_pat
     then its recommendation's synthesis and axis build (cached); the phase reads the study
     and says it was made by this run (not cached). With anchors the background holds
     them, not the sign-off."""
-    from irnuc.cosim import synth
     from irnuc.reports.report.run import build_report
     from irnuc.reports.studies import signoff as so
 
     monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
     made: list = []
-    monkeypatch.setattr(synth, "synth_area",
-                        lambda cfg, *, top=None, **kw: made.append(("area", top, cfg.name))
-                        or _area(top))
+    monkeypatch.setattr(tp, "synth_area",
+                        lambda cfg, top: made.append(("area", top, cfg.name)) or _area(top))
     monkeypatch.setattr(tp, "_prefetch_axis_build", lambda t, r: made.append(("axis", r["key"])))
     monkeypatch.setattr(tp, "_cosim", lambda t, r, spec: made.append(("cosim", r["key"]))
                         or {"cached": False})

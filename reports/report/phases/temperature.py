@@ -347,6 +347,19 @@ def _place_both(cfg: Any, top: str, core_top: str, kw: dict[str, Any]
     return s, ooc, c
 
 
+def synth_area(cfg: Any, top: str) -> dict[str, Any]:
+    """Area of ``top`` for a configuration without placing it: the xc7 and ECP5 cell
+    counts of :func:`irnuc.cosim.synth.synth_netlist` (the same cached netlists that
+    ``irnuc synth`` places; no Fmax). ``top``, ``xc7``, ``ecp5``, ``device``."""
+    from irnuc.cosim import synth
+    from irnuc.cosim.sources import hdl_sources, top_parameters
+
+    _, xc7, ecp5 = synth.synth_netlist(hdl_sources(top), top, top_parameters(top, cfg))
+    return {"top": top, "xc7": {k: xc7[k] for k in synth.XC7_KEYS},
+            "ecp5": {k: ecp5[k] for k in synth.ECP5_KEYS},
+            "device": f"LFE5U-{synth.ECP5_DEVICE.removesuffix('k')}F"}
+
+
 def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     from irnuc.cosim import synth
 
@@ -355,14 +368,13 @@ def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     if not setting(t, "place"):
         # area only (--quick): the wrapper's netlists, not placed; the fmax check not run
         try:
-            a = synth.synth_area(cfg, top=top)
+            a = synth_area(cfg, top)
         except synth.SynthError as exc:
             r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
             return
         r["synth"] = {"top": top, "why": why, "placed": False, "fmax_mhz": None,
                       "xc7": a["xc7"], "ecp5": a["ecp5"], "device": a["device"],
-                      "cached": a["cached"], "frame": [cfg.max_height, cfg.max_width],
-                      "not_placed": NOT_PLACED}
+                      "frame": [cfg.max_height, cfg.max_width], "not_placed": NOT_PLACED}
         return
     # Placed at `synth_seeds` placer seeds (in parallel, each cached): the best placement's
     # figures, with the worst and the spread beside them.
@@ -630,6 +642,7 @@ def prefetch_signoff(t: Mapping[str, Any], scheduler: str | None) -> dict[str, b
 
 
 def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -> None:
+    from irnuc.reports.report.config import quick_replaced
     from irnuc.reports.studies.signoff import (
         cached_signoff,
         figures,
@@ -694,6 +707,14 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                     rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
+                cut, full = quick_replaced(rep.config, "temperature.cosim_min_pixels")
+                if cut:
+                    was = int(DEFAULTS["cosim_min_pixels"] if full is None else full)
+                    d["left_out"] = [*d.get("left_out", []), (
+                        f"the axis co-simulation's {was:,} pixels: at least "
+                        f"{int(setting(t, 'cosim_min_pixels')):,} compared")]
+                    rep.notes.append(left_out(rep, d["left_out"][-1],
+                                              "temperature.cosim_min_pixels"))
                 rep.join_background("axis build")
                 r["cosim"] = _cosim(t, r, spec)
                 if made_here.get("cosim") and r["cosim"].get("cached"):
