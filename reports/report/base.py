@@ -41,6 +41,8 @@ class Report:
     #: (s since the report started) and its error, if any.
     background: dict[str, dict[str, Any]] = field(default_factory=dict)
     _jobs: dict[str, Any] = field(default_factory=dict, repr=False)
+    #: What each background job returned (:meth:`background_value`)
+    _values: dict[str, Any] = field(default_factory=dict, repr=False)
     _pool: Any = field(default=None, repr=False)
     _t0: float = field(default_factory=time.perf_counter, repr=False)
 
@@ -70,7 +72,7 @@ class Report:
             try:
                 # at a lower priority: it takes the cores the phases leave idle
                 with background_priority():
-                    fn(*args)
+                    self._values[name] = fn(*args)
             except Exception as exc:  # the phase that needs it does it again
                 rec["error"] = f"{type(exc).__name__}: {str(exc).splitlines()[0][:300]}" \
                     if str(exc) else type(exc).__name__
@@ -91,6 +93,11 @@ class Report:
         rec = self.background[name]
         rec["waited_s"] = round(time.perf_counter() - t0, 3)
         return rec
+
+    def background_value(self, name: str) -> Any:
+        """What the background job ``name`` returned (None: not run, not finished or
+        failed)."""
+        return self._values.get(name)
 
     def close_background(self) -> None:
         """Wait for every background job (the report ends with none running)."""
@@ -134,6 +141,17 @@ class Report:
             self.phases[name] = round(self.phases.get(name, 0.0) + time.perf_counter() - t0, 3)
             self.phases_cpu[name] = round(self.phases_cpu.get(name, 0.0) + max(
                 0.0, tree_cpu_seconds() - c0), 3)
+
+
+def left_out(rep: Report, section: str, what: str, key: str) -> str:
+    """Name in the report's notes what this run left out, and return the note:
+    ``<section>: not run in --quick: <what>`` (``--quick``'s ``[quick]`` table), else
+    ``<section>: not run (<key>)`` (the configuration's ``key``). A cut is named, never
+    counted as a check."""
+    how = "not run in --quick" if rep.config.get("quick") else f"not run ({key})"
+    note = f"{section}: {how}: {what}"
+    rep.notes.append(note)
+    return note
 
 
 def progress(label: str, enabled: bool) -> Callable[[int, int], None] | None:

@@ -160,6 +160,7 @@ SCHEMA: dict[str, Any] = table({
         "dsp_lut_equivalent": number(0, 100_000),
         "synth_seeds": number(1, 64, integer=True),
         "anchors": {"type": "boolean"},
+        "place": {"type": "boolean"},
     }),
     "precision": table({
         "quick": {"type": "boolean"},
@@ -393,7 +394,29 @@ def load_report_config(name_or_path: str = "default", quick: bool = False) -> di
     out = quick_cfg if quick else cfg
     out.setdefault("name", path.stem.removeprefix("report_"))
     out["quick"] = bool(quick)
+    if quick:
+        # what each override replaced (None: a key the full run leaves at its default), so
+        # that a phase can name what --quick left out (quick_replaced)
+        out["quick_overrides"] = {k: _get_dotted(cfg, k) for k in over}
     return out
+
+
+def _get_dotted(d: Mapping[str, Any], dotted: str) -> Any:
+    cur: Any = d
+    for k in dotted.split("."):
+        if not isinstance(cur, Mapping) or k not in cur:
+            return None
+        cur = cur[k]
+    return copy.deepcopy(cur)
+
+
+def quick_replaced(cfg: Mapping[str, Any], dotted: str) -> tuple[bool, Any]:
+    """Whether ``--quick`` changed the field ``dotted`` of this run's configuration, and
+    the value the full run has there (None: the phase's default)."""
+    over = cfg.get("quick_overrides") or {}
+    if not cfg.get("quick") or dotted not in over:
+        return False, None
+    return _get_dotted(cfg, dotted) != over[dotted], over[dotted]
 
 
 def config_hash(cfg: Mapping[str, Any]) -> str:

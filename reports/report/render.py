@@ -252,6 +252,8 @@ def temperature_headline(t: Mapping[str, Any]) -> tuple[str, str]:
         text += f"; broken by {', '.join(r['breaks'])})" if r.get("breaks") else ")"
     if r.get("synth") and r["synth"].get("error"):
         text += f"; {r['synth']['top']} not placed and routed"
+    elif r.get("synth") and r["synth"].get("fmax_mhz") is None:
+        text += f"; {r['synth']['top']} synthesized for area, not placed"
     elif r.get("synth"):
         text += f"; {r['synth']['top']} Fmax {r['synth']['fmax_mhz']:.1f} MHz{seeds_text(r['synth'])}"
     c = r.get("cosim")
@@ -328,6 +330,8 @@ def temperature_rows(t: Mapping[str, Any]) -> dict[str, Any]:
             cost += [["synthesized top", f"{sy['top']}: {sy['why']}"],
                      ["xc7", f"{x['lut']} LUT, {x['ff']} FF, {x['dsp']} DSP48E1, {x['bram36']} RAMB36"],
                      ["ECP5", f"{e['lut4']} LUT4, {e['ff']} FF, {e['mult18']} MULT18, {e['dp16kd']} DP16KD"],
+                     ["Fmax (nextpnr-ecp5)", f"not run: {sy['not_placed']}"]
+                     if sy.get("fmax_mhz") is None else
                      ["Fmax (nextpnr-ecp5)", f"{sy['fmax_mhz']:.1f} MHz on {sy['device']} speed "
                       f"{sy['speed']} (aiming at {sy['target_mhz']:g} MHz){seeds_text(sy, True)}"]]
             if sy.get("wrapper_overhead"):

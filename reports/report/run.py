@@ -38,6 +38,7 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
         anchor_configs,
         phase_temperature,
         prefetch_anchors,
+        prefetch_signoff,
     )
 
     rep = Report(config=copy.deepcopy(dict(config)), verbose=progress)
@@ -47,6 +48,10 @@ def build_report(config: Mapping[str, Any], *, out: Path, junit: dict[str, Any] 
         # single-threaded phases (frames, calibration, the paper) use the other.
         if "temperature" in config and anchor_configs(config["temperature"]):
             rep.start_background("anchors", prefetch_anchors, config["temperature"], scheduler)
+        elif "temperature" in config:
+            # no anchor to synthesize (--quick): the sign-off's study, then its
+            # recommendation's synthesis and axis harness build, take that core instead
+            rep.start_background("sign-off", prefetch_signoff, config["temperature"], scheduler)
         if "sensor" in config:
             phase_frames_and_calibration(rep)
         if "sweep" in config:

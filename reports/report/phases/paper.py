@@ -77,6 +77,20 @@ def _stored(path: Path) -> dict[str, Any] | None:
     return data if isinstance(data, dict) and data.get("format") == 1 else None
 
 
+def quick_notes(rep: Report) -> None:
+    """Name the paper's frame ``--quick`` made smaller (its residuals are of that frame)."""
+    from irnuc.reports.report.base import left_out
+    from irnuc.reports.report.config import quick_replaced
+
+    p = rep.config["paper"]
+    cut = [quick_replaced(rep.config, f"paper.{k}") for k in ("rows", "cols")]
+    if any(c for c, _ in cut):
+        full = [v if c else p[k] for (c, v), k in zip(cut, ("rows", "cols"), strict=True)]
+        left_out(rep, "paper", f"Table 2 and its ablations at the full run's {full[0]} x "
+                 f"{full[1]} frame; run at {p['rows']} x {p['cols']} (residuals of this "
+                 "frame, compared with quick runs only)", "paper.rows, paper.cols")
+
+
 def phase_paper(rep: Report, progress: bool) -> None:
     """The paper's tables, from the cache when this code made them with these settings
     (a warm report), else computed and kept (:func:`paper_cache_file`). A fresh run goes
@@ -87,6 +101,7 @@ def phase_paper(rep: Report, progress: bool) -> None:
     p = rep.config["paper"]
     bits = [int(b) for b in p["frac_bits"]]
     ref_nu = [float(v) for v in p["reference_nu"]]
+    quick_notes(rep)
     with rep.phase("paper"):
         path = paper_cache_file(p)
         out = _stored(path)

@@ -27,11 +27,27 @@ def _flatten(prefix: str, obj: Any, out: dict[str, float | int]) -> None:
         out[prefix] = obj
 
 
+def quick_notes(rep: Report) -> None:
+    """Name the study's components ``--quick`` leaves out."""
+    from irnuc.reports.report.base import left_out
+    from irnuc.reports.report.config import quick_replaced
+    from irnuc.reports.studies.precision import component_names
+
+    c = rep.config["precision"]
+    cut, full = quick_replaced(rep.config, "precision.components")
+    if cut:
+        ran = component_names(c.get("components"))
+        skipped = [n for n in component_names(full) if n not in ran]
+        left_out(rep, "precision", f"{len(skipped)} of the study's components "
+                 f"({', '.join(skipped)}); run: {', '.join(ran)}", "precision.components")
+
+
 def phase_precision(rep: Report, show_progress: bool) -> None:
     from irnuc.reports.studies.precision import failure_label, figures, summarize
     from irnuc.reports.studies.precision_cache import cached_precision
 
     c = rep.config["precision"]
+    quick_notes(rep)
     with rep.phase("precision"):
         result = cached_precision(quick=bool(c.get("quick", True)), components=c.get("components"),
                                   progress=progress("precision", show_progress))

@@ -175,6 +175,28 @@ def prefetch_synth(rep: Report, scheduler: str | None) -> None:
                   **{**kw, "workers": 1})
 
 
+def _quick_synth_notes(rep: Report) -> None:
+    """Name the syntheses ``--quick`` leaves out (fewer fit points: the cost model fitted
+    exactly, no held-out check of it; fewer candidates synthesized before the model picks)."""
+    from irnuc.reports.report.base import left_out
+    from irnuc.reports.report.config import quick_replaced
+
+    sy = rep.config["synth"]
+    cut, full = quick_replaced(rep.config, "synth.fit_points")
+    if cut:
+        n, was = int(sy.get("fit_points", 4)), int(4 if full is None else full)
+        left_out(rep, "synth", f"{was - n} of the cost model's {was} fit syntheses: fitted on "
+                 f"{n} points" + (" (its 3 coefficients exactly: its error is measured on the "
+                                  "other synthesized points only)" if n == 3 else ""),
+                 "synth.fit_points")
+    cut, full = quick_replaced(rep.config, "synth.candidates")
+    if cut:
+        n, was = int(sy.get("candidates", 3)), int(3 if full is None else full)
+        left_out(rep, "synth", f"the syntheses of the cheapest candidates past the first {n} "
+                 f"(the full run synthesizes {was}); the recommendation is still synthesized",
+                 "synth.candidates")
+
+
 def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None:
     """Synthesize a few points, fit the cost model, cost every point, recommend."""
     from irnuc.cosim.synth import synth_configs
@@ -198,6 +220,7 @@ def phase_synth(rep: Report, scheduler: str | None, show_progress: bool) -> None
     max_error = sweep.tolerance["max_error"]
     rows, cols = sweep["frame"]
     dsp_w = float(sy.get("dsp_lut_equivalent", DSP_LUT_EQUIVALENT))
+    _quick_synth_notes(rep)
     with rep.phase("synth"):
         # Started beside the paper phase on one worker: not waited for, the designs it has
         # not finished are shared out on this phase's workers (each design's cache entry

@@ -39,8 +39,13 @@ DEFAULTS: dict[str, Any] = {
     "tolerance_netd": 0.5, "frame_rate_hz": 60.0, "bandwidth_frame": [480, 640],
     "noise_frames": 16, "workers": 2, "synth": True, "cosim": True, "cosim_frames": 20,
     "cosim_rows": 480, "cosim_cols": 640, "cosim_seed": 5, "ffc_every": 10,
-    "dsp_lut_equivalent": 200.0, "synth_seeds": 4, "anchors": True,
+    "dsp_lut_equivalent": 200.0, "synth_seeds": 4, "anchors": True, "place": True,
 }
+
+#: What ``place = false`` (``--quick``) leaves out of the recommendation's synthesis.
+NOT_PLACED = ("the recommendation's placement and routing (nextpnr) and its bare core's "
+              "synthesis: the wrapper synthesized for area only, no Fmax, no wrapper "
+              "overhead")
 
 
 def left_out(rep: Report, what: str, key: str) -> str:
@@ -164,7 +169,7 @@ def fmax_note(sy: Mapping[str, Any]) -> str | None:
     placement misses, and when only some placements meet the target (closure that hangs
     on the placer's seed)."""
     target = sy.get("target_mhz")
-    if not target or "fmax_mhz" not in sy:
+    if not target or sy.get("fmax_mhz") is None:
         return None
     sd = sy.get("seeds")
     head = f"temperature: the recommendation's {sy['top']} reaches"
@@ -342,11 +347,35 @@ def _place_both(cfg: Any, top: str, core_top: str, kw: dict[str, Any]
     return s, ooc, c
 
 
+def synth_area(cfg: Any, top: str) -> dict[str, Any]:
+    """Area of ``top`` for a configuration without placing it: the xc7 and ECP5 cell
+    counts of :func:`irnuc.cosim.synth.synth_netlist` (the same cached netlists that
+    ``irnuc synth`` places; no Fmax). ``top``, ``xc7``, ``ecp5``, ``device``."""
+    from irnuc.cosim import synth
+    from irnuc.cosim.sources import hdl_sources, top_parameters
+
+    _, xc7, ecp5 = synth.synth_netlist(hdl_sources(top), top, top_parameters(top, cfg))
+    return {"top": top, "xc7": {k: xc7[k] for k in synth.XC7_KEYS},
+            "ecp5": {k: ecp5[k] for k in synth.ECP5_KEYS},
+            "device": f"LFE5U-{synth.ECP5_DEVICE.removesuffix('k')}F"}
+
+
 def _synth_recommended(t: Mapping[str, Any], r: dict[str, Any]) -> None:
     from irnuc.cosim import synth
 
     cfg = point_config(r)
     top, why = synth_top(cfg)
+    if not setting(t, "place"):
+        # area only (--quick): the wrapper's netlists, not placed; the fmax check not run
+        try:
+            a = synth_area(cfg, top)
+        except synth.SynthError as exc:
+            r["synth"] = {"top": top, "why": why, "error": str(exc).splitlines()[0][:300]}
+            return
+        r["synth"] = {"top": top, "why": why, "placed": False, "fmax_mhz": None,
+                      "xc7": a["xc7"], "ecp5": a["ecp5"], "device": a["device"],
+                      "frame": [cfg.max_height, cfg.max_width], "not_placed": NOT_PLACED}
+        return
     # Placed at `synth_seeds` placer seeds (in parallel, each cached): the best placement's
     # figures, with the worst and the spread beside them.
     kw: dict[str, Any] = {"seeds": int(setting(t, "synth_seeds")),
@@ -544,10 +573,77 @@ def choose(pts: list[dict[str, Any]], tol: float, periods: list[float]) -> dict[
             "edges": grid_edges(p, pts, periods, meets), "breaking": rows}
 
 
-def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -> None:
+def _synth_left_out(rep: Report, t: Mapping[str, Any], d: dict[str, Any]) -> None:
+    """Name what the recommendation's synthesis leaves out: its placement
+    (``place = false``), else the placer seeds past ``synth_seeds``."""
+    if not setting(t, "place"):
+        d["left_out"] = [*d.get("left_out", []), NOT_PLACED]
+        rep.notes.append(left_out(rep, NOT_PLACED, "temperature.place = false"))
+    elif int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
+        d["left_out"] = [*d.get("left_out", []), (
+            f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
+            f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
+            "no best/worst spread")]
+        rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
+
+
+def _judged(res: Mapping[str, Any], spec: Any, tol: float) -> list[dict[str, Any]]:
+    """The study's points, each valid one with its bandwidth, whether it meets ``tol`` and
+    the scenarios that break it."""
     from irnuc.reports.studies.scenarios import breaking
+    from irnuc.reports.studies.signoff import bandwidth_MBps
+
+    pts = res["points"]
+    for p in pts:
+        if p.get("valid"):
+            p["bandwidth_MBps"] = bandwidth_MBps(p["read_bits_per_frame"], spec.bandwidth_frame,
+                                                 spec.frame_rate_hz)
+            p["meets_tolerance"] = p["worst_fpn_mK"] <= tol
+            p["breaks"] = breaking(p, tol)
+    return pts
+
+
+def prefetch_signoff(t: Mapping[str, Any], scheduler: str | None) -> dict[str, bool]:
+    """The sign-off's study and, when its choice needs nothing of the earlier phases (no
+    anchors: chosen on memory and bandwidth), the recommendation's synthesis beside its
+    axis harness build and co-simulation, all into the cache, on one worker
+    (:meth:`Report.start_background`, started at the report's start when no anchor is
+    synthesized there); the phase then reads them. Which of the study and the
+    co-simulation were made here (not read from the cache): ``{"study", "cosim"}``."""
+    import concurrent.futures as cf
+
+    from irnuc.reports.studies.signoff import cache_file, cached_signoff
+
+    spec = spec_of(t)
+    made = {"study": not cache_file(spec).is_file(), "cosim": False}
+    res = cached_signoff(spec, workers=min(1, int(setting(t, "workers"))), scheduler=scheduler)
+    if setting(t, "synth") and setting(t, "anchors"):
+        return made  # the choice weighs the datapath: the anchors first (the phase)
+    tol, _ = tolerance_mK(t, float(res["netd_mK"]))
+    pts = [dict(p) for p in res["points"]]
+    ch = choose(_judged({"points": pts}, spec, tol), tol, list(spec.ffc_periods_min))
+    if not ch["found"]:
+        return made
+    r = _recommended(ch, tol, float(res["netd_mK"]), spec)
+
+    def cosim() -> None:
+        _prefetch_axis_build(t, r)
+        made["cosim"] = _cosim(t, r, spec).get("cached") is False
+
+    jobs = []
+    with cf.ThreadPoolExecutor(max_workers=2, thread_name_prefix="irnuc-bg-rec") as pool:
+        if setting(t, "cosim"):
+            jobs.append(pool.submit(cosim))
+        if setting(t, "synth"):
+            jobs.append(pool.submit(_synth_recommended, t, dict(r)))
+        for j in jobs:
+            j.result()
+    return made
+
+
+def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -> None:
+    from irnuc.reports.report.config import quick_replaced
     from irnuc.reports.studies.signoff import (
-        bandwidth_MBps,
         cached_signoff,
         figures,
         fronts,
@@ -559,18 +655,18 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
     times: dict[str, float] = {}
     with rep.phase("temperature"):
         spec = spec_of(t)
+        # made in the background when nothing else ran there (prefetch_signoff): read
+        # from the cache, still this run's own study
+        rep.join_background("sign-off")
+        made_here = rep.background_value("sign-off") or {}
         res = cached_signoff(spec, workers=int(setting(t, "workers")), scheduler=scheduler,
                              progress=progress("temperature", show_progress))
+        if made_here.get("study"):
+            res = {**res, "cached": False}
         times["sweep"] = round(time.perf_counter() - t0, 3)
         netd = float(res["netd_mK"])
         tol, tol_text = tolerance_mK(t, netd)
-        pts = res["points"]
-        for p in pts:
-            if p.get("valid"):
-                p["bandwidth_MBps"] = bandwidth_MBps(p["read_bits_per_frame"], spec.bandwidth_frame,
-                                                     spec.frame_rate_hz)
-                p["meets_tolerance"] = p["worst_fpn_mK"] <= tol
-                p["breaks"] = breaking(p, tol)
+        pts = _judged(res, spec, tol)
         d: dict[str, Any] = {k: res[k] for k in ("spec", "plan", "netd", "netd_mK",
                                                  "noise_3d", "camera_temperature", "scenarios",
                                                  "policies")}
@@ -601,12 +697,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                 rep.start_background("axis build", _prefetch_axis_build, t, r)
             if setting(t, "synth"):
                 t1 = time.perf_counter()
-                if int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
-                    d["left_out"] = [*d.get("left_out", []), (
-                        f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
-                        f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
-                        "no best/worst spread")]
-                    rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
+                _synth_left_out(rep, t, d)
                 _synth_recommended(t, r)
                 times["synth"] = round(time.perf_counter() - t1, 3)
                 note = fmax_note(r.get("synth") or {})
@@ -616,8 +707,18 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                     rep.notes.append(note)
             if setting(t, "cosim"):
                 t1 = time.perf_counter()
+                cut, full = quick_replaced(rep.config, "temperature.cosim_min_pixels")
+                if cut:
+                    was = int(DEFAULTS["cosim_min_pixels"] if full is None else full)
+                    d["left_out"] = [*d.get("left_out", []), (
+                        f"the axis co-simulation's {was:,} pixels: at least "
+                        f"{int(setting(t, 'cosim_min_pixels')):,} compared")]
+                    rep.notes.append(left_out(rep, d["left_out"][-1],
+                                              "temperature.cosim_min_pixels"))
                 rep.join_background("axis build")
                 r["cosim"] = _cosim(t, r, spec)
+                if made_here.get("cosim") and r["cosim"].get("cached"):
+                    r["cosim"]["cached"] = False  # run by this report, in the background
                 times["cosim"] = round(time.perf_counter() - t1, 3)
                 if r["cosim"].get("not_run"):
                     rep.notes.append(f"temperature: not co-simulated: {r['cosim']['not_run']}")
@@ -625,7 +726,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
             rep.notes.append("temperature: no valid point in the sweep")
         t1 = time.perf_counter()
         d["background"] = {k: dict(v) for k, v in rep.background.items()
-                           if k in ("anchors", "axis build")}
+                           if k in ("anchors", "sign-off", "axis build")}
         d["images"] = _worst_images(res, d["recommended"])
         # The traces of the points a figure draws (each configuration's representative and
         # the recommendation) stay; the others' are in the study's cache only.
@@ -671,6 +772,9 @@ def _fmax_check(sy: Mapping[str, Any] | None) -> SignoffCheck:
 
     if sy.get("error"):
         return SignoffCheck("fmax", "not met", f"{sy['top']}: not placed and routed: {sy['error']}")
+    if sy.get("placed") is False:
+        return SignoffCheck("fmax", "not run", f"{sy['top']} synthesized for area only, not "
+                                               "placed and routed (temperature.place = false)")
     target = float(sy.get("target_mhz") or TARGET_MHZ)
     sd = sy.get("seeds")
     best = float(sd["best_mhz"] if sd else sy["fmax_mhz"])
@@ -839,8 +943,9 @@ def temperature_metrics(rep: Report, d: Mapping[str, Any]) -> None:
                    "lower", "mK")
     if r.get("synth") and not r["synth"].get("error"):
         s = r["synth"]
-        rep.metric("temperature.recommended.synth.fmax_mhz", s["fmax_mhz"], "higher", "MHz",
-                   rel_tol=0.05)
+        if s.get("fmax_mhz") is not None:
+            rep.metric("temperature.recommended.synth.fmax_mhz", s["fmax_mhz"], "higher", "MHz",
+                       rel_tol=0.05)
         if s.get("seeds"):  # the worst placement moves more with the seeds: shown, not judged
             rep.metric("temperature.recommended.synth.fmax_worst_mhz",
                        s["seeds"]["worst_mhz"], "info", "MHz")
