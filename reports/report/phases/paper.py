@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from irnuc.reports.report.base import Report
+from irnuc.reports.report.base import Report, left_out
 from irnuc.reports.report.sections import Section
 
 # (key, label, model overrides, coefficient rounding, seed offset): the paper preset as
@@ -79,7 +79,6 @@ def _stored(path: Path) -> dict[str, Any] | None:
 
 def quick_notes(rep: Report) -> None:
     """Name the paper's frame ``--quick`` made smaller (its residuals are of that frame)."""
-    from irnuc.reports.report.base import left_out
     from irnuc.reports.report.config import quick_replaced
 
     p = rep.config["paper"]

@@ -13,7 +13,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from irnuc.reports.report.base import Report, progress
+from irnuc.reports.report.base import Report, left_out, progress
 from irnuc.reports.report.sections import Section
 
 
@@ -29,7 +29,6 @@ def _flatten(prefix: str, obj: Any, out: dict[str, float | int]) -> None:
 
 def quick_notes(rep: Report) -> None:
     """Name the study's components ``--quick`` leaves out."""
-    from irnuc.reports.report.base import left_out
     from irnuc.reports.report.config import quick_replaced
     from irnuc.reports.studies.precision import component_names
 

@@ -17,12 +17,16 @@ import dataclasses
 from collections.abc import Mapping
 from typing import Any
 
-from irnuc.reports.report.base import Report, progress
+from irnuc.reports.report.base import Report, left_out, progress
 from irnuc.reports.report.phases.calibration import sensor_overrides
 from irnuc.reports.report.sections import Recommendation, SweepSection, SynthCheck, thaw
 
 #: LUTs one DSP48E1 counts for on the datapath axis (an 18 x 25 multiplier in fabric).
 DSP_LUT_EQUIVALENT = 200.0
+#: Synthesized points the cost model is fitted on, and cheapest candidates synthesized
+#: before it picks (the full run's defaults; ``synth.fit_points``, ``synth.candidates``).
+FIT_POINTS = 4
+CANDIDATES = 3
 SWEPT_AXES = ("gain_frac_bits", "offset_frac_bits", "gain_int_bits", "offset_int_bits")
 
 
@@ -154,9 +158,9 @@ def _first_syntheses(rep: Report, scheduler: str | None) -> tuple[list[int], lis
     sy = rep.config["synth"]
     sweep = rep.sections["sweep"]
     pts = [thaw(p) for p in sweep.points]
-    fit = fit_indices(pts, int(sy.get("fit_points", 4)))
+    fit = fit_indices(pts, int(sy.get("fit_points", FIT_POINTS)))
     cand = recommend(pts, sweep.tolerance["max_error"], sweep.tolerance["metric"])[
-        "candidates"][:int(sy.get("candidates", 3))]  # in order of error
+        "candidates"][:int(sy.get("candidates", CANDIDATES))]  # in order of error
     kw = {"workers": int(sy.get("workers", 2)), "scheduler": scheduler,
           "speed": int(sy.get("speed", 6)), "freq_mhz": float(sy.get("freq_mhz", 150.0)),
           "seed": int(sy.get("seed", 1))}
@@ -178,20 +182,19 @@ def prefetch_synth(rep: Report, scheduler: str | None) -> None:
 def _quick_synth_notes(rep: Report) -> None:
     """Name the syntheses ``--quick`` leaves out (fewer fit points: the cost model fitted
     exactly, no held-out check of it; fewer candidates synthesized before the model picks)."""
-    from irnuc.reports.report.base import left_out
     from irnuc.reports.report.config import quick_replaced
 
     sy = rep.config["synth"]
     cut, full = quick_replaced(rep.config, "synth.fit_points")
     if cut:
-        n, was = int(sy.get("fit_points", 4)), int(4 if full is None else full)
+        n, was = int(sy.get("fit_points", FIT_POINTS)), int(FIT_POINTS if full is None else full)
         left_out(rep, "synth", f"{was - n} of the cost model's {was} fit syntheses: fitted on "
                  f"{n} points" + (" (its 3 coefficients exactly: its error is measured on the "
                                   "other synthesized points only)" if n == 3 else ""),
                  "synth.fit_points")
     cut, full = quick_replaced(rep.config, "synth.candidates")
     if cut:
-        n, was = int(sy.get("candidates", 3)), int(3 if full is None else full)
+        n, was = int(sy.get("candidates", CANDIDATES)), int(CANDIDATES if full is None else full)
         left_out(rep, "synth", f"the syntheses of the cheapest candidates past the first {n} "
                  f"(the full run synthesizes {was}); the recommendation is still synthesized",
                  "synth.candidates")

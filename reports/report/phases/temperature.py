@@ -23,7 +23,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
-from irnuc.reports.report.base import Report, progress
+from irnuc.reports.report.base import Report, left_out, progress
 from irnuc.reports.report.sections import SignoffCheck, TemperatureSection, Verdict
 
 #: The figures of a synthesis the sign-off keeps per point (dotted: family.resource).
@@ -46,13 +46,6 @@ DEFAULTS: dict[str, Any] = {
 NOT_PLACED = ("the recommendation's placement and routing (nextpnr) and its bare core's "
               "synthesis: the wrapper synthesized for area only, no Fmax, no wrapper "
               "overhead")
-
-
-def left_out(rep: Report, what: str, key: str) -> str:
-    """A note naming what this run left out (``--quick``'s ``[quick]`` table, or the
-    configuration's ``key``): never counted as passing."""
-    how = "not run in --quick" if rep.config.get("quick") else f"not run ({key})"
-    return f"temperature: {how}: {what}"
 
 
 def anchor_configs(t: Mapping[str, Any]) -> list[Any]:
@@ -218,7 +211,7 @@ def _cost_points(rep: Report, t: Mapping[str, Any], d: dict[str, Any], scheduler
                          "configuration's own top): no synthesized or modelled datapath per "
                          "point; the recommendation is chosen on memory and bandwidth and is "
                          "still synthesized"]
-        rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.anchors = false"))
+        left_out(rep, "temperature", d["left_out"][-1], "temperature.anchors = false")
         return
     names = list(dict.fromkeys(p["config"] for p in pts))
     cfgs = [load_pipeline(n) for n in names]
@@ -578,13 +571,13 @@ def _synth_left_out(rep: Report, t: Mapping[str, Any], d: dict[str, Any]) -> Non
     (``place = false``), else the placer seeds past ``synth_seeds``."""
     if not setting(t, "place"):
         d["left_out"] = [*d.get("left_out", []), NOT_PLACED]
-        rep.notes.append(left_out(rep, NOT_PLACED, "temperature.place = false"))
+        left_out(rep, "temperature", NOT_PLACED, "temperature.place = false")
     elif int(setting(t, "synth_seeds")) < int(DEFAULTS["synth_seeds"]):
         d["left_out"] = [*d.get("left_out", []), (
             f"the recommendation placed at {int(setting(t, 'synth_seeds'))} placer "
             f"seed(s), not {DEFAULTS['synth_seeds']}: its Fmax is one placement's, "
             "no best/worst spread")]
-        rep.notes.append(left_out(rep, d["left_out"][-1], "temperature.synth_seeds"))
+        left_out(rep, "temperature", d["left_out"][-1], "temperature.synth_seeds")
 
 
 def _judged(res: Mapping[str, Any], spec: Any, tol: float) -> list[dict[str, Any]]:
@@ -713,8 +706,7 @@ def phase_temperature(rep: Report, scheduler: str | None, show_progress: bool) -
                     d["left_out"] = [*d.get("left_out", []), (
                         f"the axis co-simulation's {was:,} pixels: at least "
                         f"{int(setting(t, 'cosim_min_pixels')):,} compared")]
-                    rep.notes.append(left_out(rep, d["left_out"][-1],
-                                              "temperature.cosim_min_pixels"))
+                    left_out(rep, "temperature", d["left_out"][-1], "temperature.cosim_min_pixels")
                 rep.join_background("axis build")
                 r["cosim"] = _cosim(t, r, spec)
                 if made_here.get("cosim") and r["cosim"].get("cached"):
