@@ -356,12 +356,15 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
 def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: np.ndarray, *,
                idle_percent: int = 0, stall_percent: int = 0, seed: int = 1,
                work_dir: Path | None = None, shards: int = 1,
-               stage: StageStreams | None = None, public_eval: bool = False) -> BulkResult:
+               stage: StageStreams | None = None, public_eval: bool = False,
+               wrapper: Sequence[str] = ()) -> BulkResult:
     """The harness on checked stimulus: ``frames`` (N, H, W) raw codes, ``images``
     (M, H, W, L) coefficient words as L uint64 limbs (bit 0 first), ``frame_info`` (N, C):
     the image each frame streams, its frame word and (stage tops) the stage's columns;
     ``stage``: the stage top's streams. Other arguments as :func:`run_bulk`; the FFC
-    top runs in one process (its state crosses frames)."""
+    top runs in one process (its state crosses frames). ``wrapper``: a command the harness
+    runs under (a profiler: :mod:`irnuc.cosim.bulk_profile`); it must start no process of
+    its own."""
     cfg = bld.cfg
     _check_percent("idle_percent", idle_percent)
     _check_percent("stall_percent", stall_percent)
@@ -373,7 +376,8 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
         with tempfile.TemporaryDirectory(dir=cache_dir("bulk")) as tmp:
             return run_frames(bld, frames, images, frame_info, idle_percent=idle_percent,
                               stall_percent=stall_percent, seed=seed, work_dir=Path(tmp),
-                              shards=shards, stage=stage, public_eval=public_eval)
+                              shards=shards, stage=stage, public_eval=public_eval,
+                              wrapper=wrapper)
     if stage is not None and stage.ffc and shards != 1:
         raise UserError(f"shards = {shards}: the FFC top's state crosses frames; use shards = 1")
     n_frames, h, w = frames.shape
@@ -438,7 +442,8 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
             if i == 0:
                 t0 = time.perf_counter()
             jobs.append(pool.submit(one, [
-                str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
+                *[str(a) for a in wrapper], str(bld.build_dir / BULK_EXE), str(pix_file),
+                str(coef_file), str(out_file),
                 str(part.size * h * w), str(w), str(h), str(np.dtype(pix_dtype).itemsize),
                 str(idle_percent), str(stall_percent), str((seed + i) % (1 << 64)),
                 str(info_file), str(limbs), *extra]))
