@@ -72,7 +72,7 @@ def main() -> None:
                                 ("outside the model", prof.shares(prof.outside, args.top)),
                                 ("instance", prof.shares(prof.instances, args.top))):
                 print(f"-- per {title}")
-                for r in rows:
+                for r in (r for r in rows if r["percent"] >= 0.1):
                     print(f"{r['percent']:6.2f} %  {r['per_cycle']:7.1f}/cycle  {r['name']}")
             entry[label] = {
                 "instructions": prof.total, "cycles": prof.cycles,
