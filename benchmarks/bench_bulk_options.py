@@ -41,6 +41,9 @@ from irnuc.nuc_fixed import load_pipeline
 from irnuc.nuc_fixed.method_top import FrameInputs, method_top
 
 METHODS = ("tcgain14", "table14", "typical14")
+#: The base methods' configurations (those of bench_methods_cosim.py): method_dpc_top.
+CHOICES = ("onepoint14", "typical14", "piecewise14", "quadratic14", "tcoffset14", "tcgain14",
+           "table14")
 #: Verilator options tried by default (name -> options): passes off, or more inlining.
 VARIANTS = {
     "inline-cfuncs": ("--inline-cfuncs", "1000"),
@@ -65,7 +68,7 @@ def _code(build_dir: Path) -> str:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--only", action="append", default=[],
+    ap.add_argument("--only", action="append", default=[], choices=CHOICES,
                     help="method configuration (repeatable; default: "
                          + ", ".join(METHODS) + ")")
     ap.add_argument("--frames", type=int, default=6)

@@ -24,11 +24,14 @@ from irnuc.cosim.method_drift import calibrate_methods, drift_sequence
 from irnuc.nuc_fixed import load_pipeline
 
 METHODS = ("tcgain14", "table14", "typical14")
+#: The base methods' configurations (those of bench_methods_cosim.py): method_dpc_top.
+CHOICES = ("onepoint14", "typical14", "piecewise14", "quadratic14", "tcoffset14", "tcgain14",
+           "table14")
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--only", action="append", default=[],
+    ap.add_argument("--only", action="append", default=[], choices=CHOICES,
                     help="method configuration (repeatable; default: " + ", ".join(METHODS)
                     + ")")
     ap.add_argument("--frames", type=int, default=1)
