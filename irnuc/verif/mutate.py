@@ -10,7 +10,9 @@ of ``cocotb_tests/tb_top.py``, one simulation) on the mutant's configuration:
   the first failing test is the killing test;
 * **survived**: every test passed;
 * **equivalent**: survived, and the catalogue carries the argument why no test can tell
-  the mutant from the design at the ports of ``nuc_dpc_top``;
+  the mutant from the design at the ports of ``nuc_dpc_top`` (argued; proved where
+  ``irnuc mutate --decide`` decided it by a miter, :mod:`irnuc.verif.miter`, and
+  :func:`with_decisions` reads that decision: a mutant found different counts as survived);
 * **invalid**: the mutant did not build (a catalogue error, not a kill; not counted).
 
 Results are cached in the irnuc cache by the digest of the RTL sources the mutant's top
@@ -425,7 +427,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
             results.append(fut.result())
             if progress is not None:
                 progress(i + 1, len(futures))
-    summary = summarize(results)
+    summary = summarize(with_decisions(results))
     summary["complete"] = {m.id for m in mutants} == {m.id for m in CATALOGUE}
     path = cache_dir("mutate") / f"summary-{rtl_digest()}.json"
     if summary["complete"] or not path.is_file():
@@ -455,13 +457,43 @@ def cached_results(mutants: Sequence[Mutant]) -> tuple[list[dict], list[str]]:
     return found, missing
 
 
+def with_decisions(results: Sequence[dict]) -> list[dict]:
+    """The results with each catalogue equivalent's formal decision where the cache holds
+    one (``irnuc mutate --decide``, :mod:`irnuc.verif.miter`): proved equivalent (the
+    reason says so, the argument after it), different on legal inputs (the mutant counts
+    as survived: its argument is wrong), undecided or never decided (the reason starts
+    "argued"). Nothing is run."""
+    from irnuc.verif import miter
+
+    by_id = {m.id: m for m in CATALOGUE}
+    out = []
+    for r in results:
+        m = by_id.get(r["id"])
+        if r["status"] != "equivalent" or m is None or m.yosys is not None:
+            out.append(r)
+            continue
+        dec = miter.cached(m) if m.top in miter.FRAME_TOPS else None
+        r = dict(r)
+        if dec is not None:
+            r["decided"] = dec
+        if dec is not None and dec.get("verdict") == "equivalent":
+            r["equivalent"] = f"{miter.label(dec)}; argument: {r['equivalent']}"
+        elif dec is not None and dec.get("verdict") == "different":
+            r["status"], r["message"] = "survived", miter.label(dec)
+        else:
+            r["equivalent"] = f"argued: {r['equivalent']}" + (
+                f" ({miter.label(dec)})" if dec is not None else "")
+        out.append(r)
+    return out
+
+
 def current_results() -> dict:
     """The catalogue's campaign as the cache holds it for the current sources: every
     mutant's result on exactly these sources (however many ``irnuc mutate --only`` runs
     produced them), ``missing`` the ones without (never counted), ``complete`` when none
     is; the counts and score of :func:`summarize` over the ones found."""
     found, missing = cached_results(CATALOGUE)
-    summary = summarize(found)
+    summary = summarize(with_decisions(found))
     summary |= {"missing": missing, "complete": not missing}
     return summary
 
@@ -600,4 +632,5 @@ __all__ = [
     "run_per_configuration",
     "summarize",
     "top_digest",
+    "with_decisions",
 ]
