@@ -717,6 +717,17 @@ async def ffc_one_line(dut) -> None:
 
 
 @cocotb.test()
+async def ffc_one_column(dut) -> None:
+    """The refresh on frames of one column (24 x 1) at valid = ready = 1: every write-back
+    word ends its line, so the last-line flag is only ever stepped from the row before it
+    (height - 2; with two pixels or more per line a word inside the last line sets it
+    again, and an idle cycle refreshes it): tlast on exactly the frame's last word of
+    m_axis_acc and m_axis_foff (issue 39: the automatic mutant auto_irnuc_axis_ffc_s1_2,
+    bit 7 of height - 2 tied to 1, left tlast off)."""
+    await refresh_sequence(dut, 56, None, "none", "none", "ffc one column", size=(24, 1))
+
+
+@cocotb.test()
 async def ffc_first_run_all_bad(dut) -> None:
     """FFC_CTRL written before the first frame, on a calibration whose every pixel is bad,
     over nonzero corrections in the host's memory: the run's shutter frames come before any
