@@ -93,3 +93,28 @@ def test_draw_reads_a_typed_enum_parameter_as_its_literal() -> None:
     read = netlist._read([], "irnuc_axis_top", params)[0]
     assert "-G Method=irnuc_pkg::Method" in read and f"-G Method={params['Method']} " not in read
     assert f"-G AdcBits={params['AdcBits']} " in read
+
+
+def test_miter_decision_cached_apart_from_the_suite(tmp_path, monkeypatch) -> None:
+    # A survivor's miter (up to 20 minutes) depends on the netlists only: a testbench change
+    # re-keys the mutant's verdict but must not run the same miter again; --no-cache does.
+    from irnuc.cosim import formal
+    from irnuc.nuc_fixed import load_pipeline
+    from irnuc.verif import mutate
+    from irnuc.verif.mutant import Mutant
+
+    monkeypatch.setenv("IRNUC_CACHE_DIR", str(tmp_path / "cache"))
+    calls = []
+    monkeypatch.setattr(mutate, "_netlists", lambda m, cfg, work: ("g", "m", {}))
+    monkeypatch.setattr(formal, "equivalence",
+                        lambda *a: calls.append(a) or {"verdict": "undecided", "n": len(calls)})
+    m = Mutant("auto_interp_weight_s9_0", "interp_weight.sv", "", "", "x", config="table14",
+               top="interp_weight", suite="irnuc.cocotb_tests.tb_interp_weight",
+               yosys="mutate -mode inv -cell $1")
+    cfg = load_pipeline("table14")
+    first = mutate._decide(m, cfg, tmp_path)
+    assert mutate._decide(m, cfg, tmp_path) == first and len(calls) == 1
+    other = Mutant(**{**m.__dict__, "yosys": "mutate -mode inv -cell $2"})
+    mutate._decide(other, cfg, tmp_path)
+    mutate._decide(m, cfg, tmp_path, use_cache=False)
+    assert len(calls) == 3

@@ -250,7 +250,7 @@ def run_mutant(m: Mutant, *, use_cache: bool = True, timeout: float = RUN_TIMEOU
         decided = None
         if status == "survived" and m.yosys:
             # A survivor of the automatic mutants: equivalent or not, decided by a miter.
-            decided = _decide(m, cfg, work)
+            decided = _decide(m, cfg, work, use_cache)
             if decided["verdict"] == "equivalent":
                 status, why = "equivalent", f"proved ({decided['engine']}): {decided['message']}"
             else:
@@ -301,17 +301,35 @@ def _install_netlist(m: Mutant, cfg, hdl: Path, work: Path) -> None:
     netlist.install(hdl, m.top, mut, "mut")
 
 
-def _decide(m: Mutant, cfg, work: Path) -> dict:
+def decision_cache(m: Mutant, cfg) -> Path:
+    """Where the miter's decision on an automatic mutant is cached: keyed by what the
+    decision depends on (the RTL its top elaborates, the mutation, the configuration, the
+    netlist and miter code), not by the suite, so a testbench change that leaves the mutant
+    surviving does not run the miter (up to 20 minutes) again."""
+    from irnuc.cosim import formal, netlist
+
+    key = digest({"rtl": top_digest(m.top), "file": m.file, "yosys": m.yosys,
+                  "config": cfg.digest(),
+                  "code": files_digest([Path(formal.__file__), Path(netlist.__file__)])})
+    return cache_dir("mutate", "decisions") / f"{m.id}-{key}.json"
+
+
+def _decide(m: Mutant, cfg, work: Path, use_cache: bool = True) -> dict:
     """Whether a surviving automatic mutant is equivalent to the design (a miter of the
-    two netlists: irnuc.cosim.formal.equivalence); its trace kept in the cache."""
+    two netlists: irnuc.cosim.formal.equivalence; cached, :func:`decision_cache`); its
+    trace kept in the cache."""
     from irnuc.cosim import formal
 
+    cache = decision_cache(m, cfg)
+    if use_cache and (res := read_cached_json(cache)) is not None:
+        return res
     gold, mut, ports = _netlists(m, cfg, work)
     res = formal.equivalence(gold, mut, m.top, ports, work / "equiv")
     if res.get("vcd") and Path(res["vcd"]).is_file():
         dest = cache_dir("mutate", "traces") / f"{m.id}-{_mutant_key(m)[:16]}.vcd"
         shutil.copyfile(res["vcd"], dest)
         res["vcd"] = str(dest)
+    write_text_atomic(cache, json.dumps(res, indent=1))
     return res
 
 
