@@ -761,6 +761,19 @@ async def ffc_mean_word_late(dut) -> None:
                            ffc_idle="none", ffc_bp="none", late_mean_word=True)
 
 
+@cocotb.test()
+async def ffc_shutter_past_count(dut) -> None:
+    """A run whose FFC_CTRL.frames passes the sequencer's count range: 2^CountBits + N + 1
+    shutter frames (CountBits = clog2(N + 1), ffc_ctrl's counter) on 4 x 6 frames. The
+    frames after the N-th accumulate nothing and the one mean and refresh follow the
+    golden model; a count that kept moving past N would wrap and start a second mean
+    (issue 39: the automatic mutant auto_ffc_ctrl_s1_6, its accumulate flag tied to 1)."""
+    n = int(tb_lib.config_from_env().ffc_frames or 1)
+    frames = 2 ** n.bit_length() + n + 1  # clog2(N + 1) = bit_length(N)
+    await refresh_sequence(dut, 57, frames, "none", "none", "ffc shutter past count",
+                           size=(4, 6))
+
+
 # ---- the FFC request (FFC_PERIOD, FFC_THRESHOLD; irnuc_ffc_trigger) ------------------------
 
 #: Frame size of the request sequences: the trigger acts once per frame start, so frames are
