@@ -72,7 +72,8 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
                   header_name: str, name: str, assertions: bool = True,
                   hdl_dir: Path | None = None,
                   check: Callable[[Path, str], None] | None = None,
-                  train: Callable[[Build], object] | None = None, train_key: str = "") -> Build:
+                  train: Callable[[Build], object] | None = None, train_key: str = "",
+                  verilator_args: Sequence[str] = ()) -> Build:
     """Build (cached) a C++ harness (Verilator ``--cc --exe``) around ``top`` for ``cfg``:
     the recipe of both bulk harnesses (this module's and :mod:`irnuc.cosim.axis_bulk`'s).
 
@@ -89,12 +90,18 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
     then both are compiled again with the profile it left. Verilator's output, the
     options and the code's meaning are those of the plain build; only gcc's layout,
     inlining and branch decisions follow the profile. Its folder is ``<name>-pgo-<key>``.
+
+    ``verilator_args``: more Verilator options, after :data:`FAST_ARGS` (in the cache key
+    and the folder's stamp): how ``benchmarks/bench_bulk_options.py`` measures Verilator's
+    own options; every test and campaign builds without them.
     """
     params = top_parameters(top, cfg)
     base = list(BUILD_ARGS) if assertions else [a for a in BUILD_ARGS
                                                 if a not in ("--assert", ASSERT_DEFINE)]
     pgo = [f"pgo={train_key}", *PGO_GENERATE, *PGO_USE] if train is not None else []
-    key = build_digest(top, params, [*base, *FAST_ARGS, "--exe", *_MAKE_OPT, header, *pgo],
+    vargs = [str(a) for a in verilator_args]
+    key = build_digest(top, params, [*base, *FAST_ARGS, *vargs, "--exe", *_MAKE_OPT, header,
+                                     *pgo],
                        [harness, HARNESS_COMMON], hdl_dir=hdl_dir)
 
     def make(build_dir: Path) -> None:
@@ -104,7 +111,7 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
         log = build_dir / "build.log"
         (build_dir / header_name).write_text(header)
         cmd = [str(verilator_executable()), "--cc", "--exe", "-Mdir", str(build_dir),
-               "--top-module", top, "-o", exe, *base, *FAST_ARGS, *verilator_g(params),
+               "--top-module", top, "-o", exe, *base, *FAST_ARGS, *vargs, *verilator_g(params),
                *[str(p) for p in hdl_sources(top, hdl_dir)], str(harness)]
         # Verilator, the shared runtime objects, make (as the cocotb builds do). The harness
         # finds its header through the makefile's own ``-I.`` (make runs in build_dir) and
@@ -146,7 +153,7 @@ def harness_build(cfg: PipelineConfig, top: str, harness: Path, exe: str, *, hea
     tag = ("" if assertions else "-noassert") + ("-pgo" if train is not None else "")
     build_dir = cached_build(f"{name}{tag}-{key}",
                              {"top": top, "harness": harness.name, "config": cfg.to_dict(),
-                              "params": params, "args": list(FAST_ARGS),
+                              "params": params, "args": [*FAST_ARGS, *vargs],
                               "assertions": assertions,
                               "pgo": train_key if train is not None else None}, make)
     return Build(top=top, cfg=cfg, build_dir=build_dir, parameters=params, waves=False)
@@ -181,7 +188,7 @@ def _check_registered_outputs(build_dir: Path, top: str) -> None:
 
 def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None = None,
                hdl_dir: Path | None = None, train: Callable[[Build], object] | None = None,
-               train_key: str = "") -> Build:
+               train_key: str = "", verilator_args: Sequence[str] = ()) -> Build:
     """Build (cached) the bulk harness of ``top`` for ``cfg``.
 
     ``top`` defaults to ``nuc_dpc_top`` for the two-point method, ``method_dpc_top``
@@ -195,7 +202,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     of the design: a test's method); part of the cache key through the files' contents.
     ``train`` / ``train_key``: a profile-guided build trained by ``train(build)`` (see
     :func:`harness_build`; :func:`irnuc.cosim.method_drift.pgo_build` for the methods);
-    the default is the plain build every test uses.
+    the default is the plain build every test uses. ``verilator_args``: more Verilator
+    options (see :func:`harness_build`).
     """
     from irnuc.cosim.synth import default_top
 
@@ -215,7 +223,8 @@ def build_bulk(cfg: PipelineConfig, *, assertions: bool = True, top: str | None 
     return harness_build(cfg, top, BULK_HARNESS, BULK_EXE, header=header,
                          header_name="bulk_top.h", name=f"{cfg.name}-bulk{tag}",
                          assertions=assertions, hdl_dir=hdl_dir,
-                         check=_check_registered_outputs, train=train, train_key=train_key)
+                         check=_check_registered_outputs, train=train, train_key=train_key,
+                         verilator_args=verilator_args)
 
 
 @dataclass(frozen=True)
@@ -347,12 +356,15 @@ def run_bulk(bld: Build, raw: np.ndarray, words: np.ndarray, *, idle_percent: in
 def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: np.ndarray, *,
                idle_percent: int = 0, stall_percent: int = 0, seed: int = 1,
                work_dir: Path | None = None, shards: int = 1,
-               stage: StageStreams | None = None, public_eval: bool = False) -> BulkResult:
+               stage: StageStreams | None = None, public_eval: bool = False,
+               wrapper: Sequence[str] = ()) -> BulkResult:
     """The harness on checked stimulus: ``frames`` (N, H, W) raw codes, ``images``
     (M, H, W, L) coefficient words as L uint64 limbs (bit 0 first), ``frame_info`` (N, C):
     the image each frame streams, its frame word and (stage tops) the stage's columns;
     ``stage``: the stage top's streams. Other arguments as :func:`run_bulk`; the FFC
-    top runs in one process (its state crosses frames)."""
+    top runs in one process (its state crosses frames). ``wrapper``: a command the harness
+    runs under (a profiler: :mod:`irnuc.cosim.bulk_profile`); it must start no process of
+    its own."""
     cfg = bld.cfg
     _check_percent("idle_percent", idle_percent)
     _check_percent("stall_percent", stall_percent)
@@ -364,7 +376,8 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
         with tempfile.TemporaryDirectory(dir=cache_dir("bulk")) as tmp:
             return run_frames(bld, frames, images, frame_info, idle_percent=idle_percent,
                               stall_percent=stall_percent, seed=seed, work_dir=Path(tmp),
-                              shards=shards, stage=stage, public_eval=public_eval)
+                              shards=shards, stage=stage, public_eval=public_eval,
+                              wrapper=wrapper)
     if stage is not None and stage.ffc and shards != 1:
         raise UserError(f"shards = {shards}: the FFC top's state crosses frames; use shards = 1")
     n_frames, h, w = frames.shape
@@ -429,7 +442,8 @@ def run_frames(bld: Build, frames: np.ndarray, images: np.ndarray, frame_info: n
             if i == 0:
                 t0 = time.perf_counter()
             jobs.append(pool.submit(one, [
-                str(bld.build_dir / BULK_EXE), str(pix_file), str(coef_file), str(out_file),
+                *[str(a) for a in wrapper], str(bld.build_dir / BULK_EXE), str(pix_file),
+                str(coef_file), str(out_file),
                 str(part.size * h * w), str(w), str(h), str(np.dtype(pix_dtype).itemsize),
                 str(idle_percent), str(stall_percent), str((seed + i) % (1 << 64)),
                 str(info_file), str(limbs), *extra]))

@@ -18,7 +18,7 @@ back and reads them in, as the camera's external memory would).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -93,12 +93,13 @@ def method_stimulus(coeffs: MethodCoefficients, readings: list[int | None]
 def run_method_bulk(bld: Build, coeffs: MethodCoefficients, raw: object,
                     readings: object | None = None, *, idle_percent: int = 0,
                     stall_percent: int = 0, seed: int = 1, work_dir: Path | None = None,
-                    shards: int = 1, public_eval: bool = False) -> BulkResult:
+                    shards: int = 1, public_eval: bool = False,
+                    wrapper: Sequence[str] = ()) -> BulkResult:
     """Stream frames (N, H, W) corrected with ``coeffs`` (and one FPA reading per frame
     for tc_offset and table_interp) through the bulk harness of ``method_dpc_top``.
 
-    Other arguments as :func:`irnuc.cosim.bulk.run_bulk`; check with
-    :func:`check_method_bulk`.
+    Other arguments as :func:`irnuc.cosim.bulk.run_bulk` (``wrapper``: see
+    :func:`irnuc.cosim.bulk.run_frames`); check with :func:`check_method_bulk`.
     """
     if bld.top != "method_dpc_top":
         raise UserError(f"{bld.top} is not method_dpc_top; use cosim.build_bulk(cfg) of a "
@@ -115,7 +116,7 @@ def run_method_bulk(bld: Build, coeffs: MethodCoefficients, raw: object,
     images, info = method_stimulus(coeffs, rds)
     return run_frames(bld, frames, images, info, idle_percent=idle_percent,
                       stall_percent=stall_percent, seed=seed, work_dir=work_dir, shards=shards,
-                      public_eval=public_eval)
+                      public_eval=public_eval, wrapper=wrapper)
 
 
 def check_method_bulk(res: BulkResult, coeffs: MethodCoefficients, raw: object,

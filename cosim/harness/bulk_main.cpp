@@ -282,7 +282,9 @@ int run(int argc, char** argv, const Options& opt, VerilatedContext* ctx) {
             top->s_pix_sof_i = ppos == 0;
             top->s_pix_eol_i = px == w - 1;
 #ifdef BULK_FRAME_WORD
-            set_word(top->s_pix_frame_i, &fwords[cols * pf + 1], 1);
+            // The frame word is the same for every pixel of a frame and a port keeps what
+            // was written: set at each frame's first pixel.
+            if (ppos == 0) set_word(top->s_pix_frame_i, &fwords[cols * pf + 1], 1);
 #endif
 #ifdef BULK_FFC
             top->s_pix_shutter_i = fwords[cols * pf + 2] != 0;
