@@ -193,7 +193,7 @@ module dpc_core
   // The mask stage registers the 8 masked values and the 8 good flags; the count n, floor(n/2)
   // and R[n] are taken from the registered flags beside the sum's first levels (a popcount
   // and a table of the count would otherwise sit between the window and one register).
-  logic [7:0][NumBits-1:0] nb_leaves;  // the 8 masked neighbours
+  logic [NumBits-1:0]      nb_leaves [8];  // the 8 masked neighbours (unpacked)
   logic [7:0]              nb_good;
 
   always_comb begin : p_neighbours
@@ -214,7 +214,7 @@ module dpc_core
   end
 
   logic                    mask_valid_q;
-  logic [7:0][NumBits-1:0] mask_leaves_q;
+  logic [NumBits-1:0]      mask_leaves_q [8];
   logic [7:0]              mask_good_q;
   logic [CtrBits-2:0]      mask_ctr_q;  // {sof, eol, centre bad, centre value}
 
@@ -289,7 +289,8 @@ module dpc_core
     .rst_ni  (rst_ni),
     .en_i    (en),
     .valid_i (mask_valid_q),
-    .leaves_i(mask_leaves_q),
+    .leaves_i({mask_leaves_q[7], mask_leaves_q[6], mask_leaves_q[5], mask_leaves_q[4],
+               mask_leaves_q[3], mask_leaves_q[2], mask_leaves_q[1], mask_leaves_q[0]}),
     .side_i  (mask_ctr_q),
     .valid_o (s8_valid),
     .sum_o   (s8_sum),

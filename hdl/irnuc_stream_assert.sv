@@ -38,7 +38,7 @@ module irnuc_stream_assert #(
 
   always_ff @(posedge clk_i) begin : p_sample
     stall_q <= valid_i && !ready_i;
-    data_q  <= data_i;
+    if (valid_i && !ready_i) data_q <= data_i;  // read only after a stall
   end
 
   // Checked at every edge from the second one after reset (the first one samples). The
