@@ -250,9 +250,9 @@ CATALOGUE: tuple[Mutant, ...] = (
     _m("dpc_recip_early", "dpc_core.sv", "sum_recip <= rec3_q;", "sum_recip <= rec2_q;",
        "R[n] taken one stage early, beside the next item's sum"),
     # ---- irnuc_dsp_mul, the multipliers' registers (behaviour of the DSP blocks) ----------
-    _m("dsp_no_input_reg", "irnuc_dsp_mul.sv", "      p_q <= a_q * b_q;",
-       "      p_q <= a_i * b_i;", "the product skips the DSP's input register (one stage "
-       "early against its valid and side band)"),
+    _m("dsp_no_input_reg", "irnuc_dsp_mul.sv", "      p_q <= 36'(64'(a_q) * 64'(b_q));",
+       "      p_q <= 36'(64'(a_i) * 64'(b_i));", "the product skips the DSP's input register (one "
+       "stage early against its valid and side band)"),
     _m("dsp_no_enable", "irnuc_dsp_mul.sv", "    if (en_i) begin\n      a_q <= a_i;",
        "    if (1'b1) begin\n      a_q <= a_i;", "the DSP registers move while stalled"),
     _m("mul_valid_one_stage", "irnuc_mul_parts.sv", "assign valid_o = valid_q[1];",
