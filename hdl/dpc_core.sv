@@ -194,7 +194,8 @@ module dpc_core
   // and R[n] are taken from the registered flags beside the sum's first levels (a popcount
   // and a table of the count would otherwise sit between the window and one register).
   logic [NumBits-1:0]      nb_leaves [8];  // the 8 masked neighbours (unpacked)
-  logic [7:0]              nb_good;
+  logic                    nb_good [8];    // their good flags (unpacked: a packed byte
+                                           // costs the simulator a read-modify-write per bit)
 
   always_comb begin : p_neighbours
     logic in_frame;
@@ -215,7 +216,7 @@ module dpc_core
 
   logic                    mask_valid_q;
   logic [NumBits-1:0]      mask_leaves_q [8];
-  logic [7:0]              mask_good_q;
+  logic                    mask_good_q [8];
   logic [CtrBits-2:0]      mask_ctr_q;  // {sof, eol, centre bad, centre value}
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_mask_valid
