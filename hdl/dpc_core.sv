@@ -31,6 +31,9 @@ module dpc_core
   parameter int unsigned OutBits    = 14,
   parameter int unsigned MaxWidth   = 1024,
   parameter int unsigned MaxHeight  = 1024,
+  // s_* and the frame size at its frame starts are checked here (0: by the caller, whose
+  // driver of s_* is a checked spill register and which checks the frame size).
+  parameter bit          CheckIn    = 1'b1,
   // Derived, do not override.
   localparam int unsigned WidthBits  = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits = $clog2(MaxHeight + 1)
@@ -91,7 +94,7 @@ module dpc_core
   logic               in_valid, in_ready, in_bad, in_sof, in_eol;
   logic [OutBits-1:0] in_pix;
 
-  irnuc_spill_register #(.DataBits(InBits)) u_in (
+  irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_valid_i),
@@ -386,18 +389,20 @@ module dpc_core
   );
 
 `ifdef IRNUC_ASSERT
-  // Protocol assertions of s_* and m_*: in u_in and u_out (irnuc_spill_register), whose
-  // ports these are; the frame size at a frame start:
-  irnuc_frame_assert #(
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_assert_frame (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .start_i (s_valid_i && s_ready_o && s_sof_i),
-    .width_i (frame_width_i),
-    .height_i(frame_height_i)
-  );
+  // Protocol assertions of s_* and m_*: in u_in (unless CheckIn = 0) and u_out
+  // (irnuc_spill_register), whose ports these are; the frame size at a frame start:
+  if (CheckIn) begin : gen_assert_frame
+    irnuc_frame_assert #(
+      .MaxWidth (MaxWidth),
+      .MaxHeight(MaxHeight)
+    ) u_assert_frame (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .start_i (s_valid_i && s_ready_o && s_sof_i),
+      .width_i (frame_width_i),
+      .height_i(frame_height_i)
+    );
+  end
 `endif
 
 endmodule
