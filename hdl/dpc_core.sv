@@ -245,12 +245,10 @@ module dpc_core
   logic [RecBits-1:0] nb_recip, rec2_q, rec3_q;
   logic               nz2_q, nz3_q;
 
-  always_comb begin : p_count
-    cnt_d = '0;
-    for (int k = 0; k < 8; k++) begin
-      cnt_d = cnt_d + 4'(mask_good_q[k]);
-    end
-  end
+  // One sum (a loop of 8 partial sums costs the simulator a store per step).
+  assign cnt_d = 4'(mask_good_q[0]) + 4'(mask_good_q[1]) + 4'(mask_good_q[2])
+                 + 4'(mask_good_q[3]) + 4'(mask_good_q[4]) + 4'(mask_good_q[5])
+                 + 4'(mask_good_q[6]) + 4'(mask_good_q[7]);
 
   // R[n] from irnuc_pkg::dpc_recip (constant calls: a 9-entry table).
   always_comb begin : p_recip
