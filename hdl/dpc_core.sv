@@ -12,7 +12,9 @@
 //
 // Pipeline (every register moves with one enable, en = "the output register can take an
 // item", a flop: no path runs from m_ready_i, s_valid_i or the frame size to s_ready_o):
-//   u_in     input register (irnuc_spill_register)
+//   u_in     input register (irnuc_spill_register); with InReg = 0 none: the caller's
+//            driver of s_* is a register output (the NUC core's output register in
+//            method_dpc_top), which then is the input register (one cycle less latency)
 //   window   the item enters: line buffer word read two items ahead, written one item late
 //   mask     the masked in-frame good neighbours and their good flags, registered
 //   u_sum    the 8 masked values summed, 3 stages (irnuc_add_tree), beside them the count
@@ -34,6 +36,11 @@ module dpc_core
   // s_* and the frame size at its frame starts are checked here (0: by the caller, whose
   // driver of s_* is a checked spill register and which checks the frame size).
   parameter bit          CheckIn    = 1'b1,
+  // s_* enters through an input register of its own (0: s_* comes straight from a
+  // register of the caller, an irnuc_spill_register's output whose ready input may then
+  // depend combinationally on this core's control flops; no path from s_valid_i or
+  // m_ready_i reaches s_ready_o either way).
+  parameter bit          InReg      = 1'b1,
   // Derived, do not override.
   localparam int unsigned WidthBits  = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits = $clog2(MaxHeight + 1)
@@ -94,16 +101,22 @@ module dpc_core
   logic               in_valid, in_ready, in_bad, in_sof, in_eol;
   logic [OutBits-1:0] in_pix;
 
-  irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(s_valid_i),
-    .ready_o(s_ready_o),
-    .data_i ({s_eol_i, s_sof_i, s_bad_i, s_pix_data_i}),
-    .valid_o(in_valid),
-    .ready_i(in_ready),
-    .data_o ({in_eol, in_sof, in_bad, in_pix})
-  );
+  if (InReg) begin : gen_in_reg
+    irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .valid_i(s_valid_i),
+      .ready_o(s_ready_o),
+      .data_i ({s_eol_i, s_sof_i, s_bad_i, s_pix_data_i}),
+      .valid_o(in_valid),
+      .ready_i(in_ready),
+      .data_o ({in_eol, in_sof, in_bad, in_pix})
+    );
+  end else begin : gen_in_direct
+    assign in_valid  = s_valid_i;
+    assign s_ready_o = in_ready;
+    assign {in_eol, in_sof, in_bad, in_pix} = {s_eol_i, s_sof_i, s_bad_i, s_pix_data_i};
+  end
 
   // ---- control ---------------------------------------------------------------------------
   logic                take, phantom, lb_w1, lb_w2, lb_w3;
@@ -387,7 +400,7 @@ module dpc_core
   );
 
 `ifdef IRNUC_ASSERT
-  // Protocol assertions of s_* and m_*: in u_in (unless CheckIn = 0) and u_out
+  // Protocol assertions of s_* and m_*: in u_in (unless CheckIn = 0 or InReg = 0) and u_out
   // (irnuc_spill_register), whose ports these are; the frame size at a frame start:
   if (CheckIn) begin : gen_assert_frame
     irnuc_frame_assert #(

@@ -10,6 +10,8 @@ module dpc_tail #(
   // s_* is checked by dpc_core's input register (0: by the top, whose driver of s_* is a
   // checked register; the frame size is checked here either way).
   parameter bit          CheckIn    = 1'b1,
+  // dpc_core's own input register (0: s_* comes straight from the caller's register).
+  parameter bit          InReg      = 1'b1,
   // Derived, do not override.
   localparam int unsigned WidthBits  = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits = $clog2(MaxHeight + 1)
@@ -37,7 +39,8 @@ module dpc_tail #(
     .OutBits  (OutBits),
     .MaxWidth (MaxWidth),
     .MaxHeight(MaxHeight),
-    .CheckIn  (CheckIn)
+    .CheckIn  (CheckIn),
+    .InReg    (InReg)
   ) u_dpc (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),

@@ -292,7 +292,10 @@ module method_dpc_top
 
   // ---- DPC ---------------------------------------------------------------------------
   dpc_tail #(
-    .CheckIn   (1'b0),  // its s_* is the NUC core's output register, checked there
+    // Its s_* is the NUC core's output register (checked there), which is also dpc_core's
+    // input register: no second register back to back (one cycle less latency).
+    .CheckIn   (1'b0),
+    .InReg     (1'b0),
     // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
     .OutBits   (OutBits),
     .MaxWidth  (MaxWidth),
