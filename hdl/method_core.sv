@@ -27,8 +27,6 @@ module method_core
   // s_* is checked by the core's input register (0: by the caller, whose driver is a
   // checked spill register).
   parameter bit          CheckIn        = 1'b1,
-  // The core's own input register (0: s_* comes straight from the caller's register).
-  parameter bit          InReg          = 1'b1,
   // Derived, do not override.
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
@@ -67,8 +65,7 @@ module method_core
       .Rounding     (Rounding),
       .Overflow     (Overflow),
       .UserBits     (UserBits),
-      .CheckIn      (CheckIn),
-      .InReg        (InReg)
+      .CheckIn      (CheckIn)
     ) u_nuc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),
@@ -101,8 +98,7 @@ module method_core
       .Rounding      (Rounding),
       .Overflow      (Overflow),
       .UserBits      (UserBits),
-      .CheckIn       (CheckIn),
-      .InReg         (InReg)
+      .CheckIn       (CheckIn)
     ) u_nuc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),
@@ -131,8 +127,7 @@ module method_core
       .Rounding      (Rounding),
       .Overflow      (Overflow),
       .UserBits      (UserBits),
-      .CheckIn       (CheckIn),
-      .InReg         (InReg)
+      .CheckIn       (CheckIn)
     ) u_nuc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),

@@ -269,9 +269,8 @@ module method_dpc_top
     .SquareBits     (SquareBits),
     // irnuc-params: end
     .UserBits(3),
-    // A registered front's output register is the core's input register (checked there).
-    .CheckIn(!front_registered(Method)),
-    .InReg  (!front_registered(Method))
+    // A registered front's output register checks the core's input stream.
+    .CheckIn(!front_registered(Method))
   ) u_nuc (
     .clk_i       (clk_i),
     .rst_ni      (rst_ni),

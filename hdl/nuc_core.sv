@@ -26,9 +26,6 @@ module nuc_core
   parameter int unsigned UserBits       = 1,
   // s_* is checked by u_in (0: by the caller, whose driver is a checked spill register).
   parameter bit          CheckIn        = 1'b1,
-  // s_* enters through an input register of its own (0: s_* comes straight from a register
-  // of the caller, a front's output register; s_ready_o is then en, a flop as well).
-  parameter bit          InReg          = 1'b1,
   // Derived, do not override.
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits
@@ -108,23 +105,16 @@ module nuc_core
   logic [OffsetBits-1:0] in_offset;
   logic [UserBits-1:0]   in_user;
 
-  if (InReg) begin : gen_in_reg
-    irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
-      .clk_i  (clk_i),
-      .rst_ni (rst_ni),
-      .valid_i(s_valid_i),
-      .ready_o(s_ready_o),
-      .data_i ({s_user_i, s_offset_i, s_gain_i, s_pix_data_i}),
-      .valid_o(in_valid),
-      .ready_i(en),
-      .data_o ({in_user, in_offset, in_gain, in_pix})
-    );
-  end else begin : gen_in_direct
-    // s_* straight from the caller's register: taken when the pipeline moves.
-    assign in_valid  = s_valid_i;
-    assign s_ready_o = en;
-    assign {in_user, in_offset, in_gain, in_pix} = {s_user_i, s_offset_i, s_gain_i, s_pix_data_i};
-  end
+  irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .valid_i(s_valid_i),
+    .ready_o(s_ready_o),
+    .data_i ({s_user_i, s_offset_i, s_gain_i, s_pix_data_i}),
+    .valid_o(in_valid),
+    .ready_i(en),
+    .data_o ({in_user, in_offset, in_gain, in_pix})
+  );
 
   // ---- product: registered partial products ------------------------------------------
   logic                               mul_valid;
