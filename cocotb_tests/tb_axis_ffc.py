@@ -192,6 +192,82 @@ def _joined(a: FfcRun, b: FfcRun) -> FfcRun:
                   foff_out=a.foff_out + b.foff_out, targets=a.targets + b.targets)
 
 
+async def hold_word(src: AxiStreamSource, mon: WordMonitor, frame: int, word: int,
+                    cycles: int) -> None:
+    """Hold word ``word`` (> 0) of frame ``frame`` of the source ``src`` (without a pause
+    pattern) back for ``cycles`` cycles after the word before it was taken (``mon``: the
+    source's port): ``src.pause`` set while that word is offered, so the source drives tvalid
+    low after its handshake, and cleared after the wait."""
+    assert word > 0
+    fall = FallingEdge(src.clock)
+    while not (mon.frames == frame and mon.words == word - 1 and int(mon.valid.value)):
+        assert (mon.frames, mon.words) <= (frame, word - 1), (
+            f"word {word - 1} of frame {frame} taken before its hold")
+        await fall
+    src.pause = True
+    while mon.words < word:
+        await fall
+    await ClockCycles(src.clock, cycles)
+    assert (mon.frames, mon.words) == (frame, word) and not int(mon.valid.value), (
+        f"word {word} of frame {frame} not held: {mon.words} words of frame {mon.frames} taken")
+    src.pause = False
+
+
+def _all_bad(c: MethodCoefficients, rng: np.random.Generator
+             ) -> tuple[MethodCoefficients, np.ndarray]:
+    """The calibration ``c`` with every pixel bad, and random corrections over the ffc
+    format's range for the host's memory at the start."""
+    cfg = c.cfg
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    fields["coeffs"]["bad"] = np.ones_like(fields["coeffs"]["bad"], dtype=bool)
+    lo = -(1 << (cfg.format("ffc").bits - 1))
+    return (MethodCoefficients(cfg, fields, c.registers),
+            rng.integers(lo, -lo, size=fields["coeffs"]["bad"].shape))
+
+
+def _gains_at_least_one(c: MethodCoefficients) -> MethodCoefficients:
+    """The calibration ``c`` with its gains (near 1) mirrored above 1: a shutter frame at
+    full scale then corrects above the output's range on average."""
+    fields = {m: dict(v) for m, v in c.fields.items()}
+    co = fields["coeffs"]
+    if "gain" in co:
+        one = 1 << c.cfg.gain_frac_bits
+        co["gain"] = one + np.abs(np.asarray(co["gain"], np.int64) - one)
+    return MethodCoefficients(c.cfg, fields, c.registers)
+
+
+def _check_conditions(run: FfcRun, c: MethodCoefficients, scene: list[np.ndarray],
+                      shutter: list[bool], readings: list, golden, start_frame: int,
+                      all_bad: bool, bright_second: bool, late_mean_word: bool,
+                      start_offset: np.ndarray | None) -> None:
+    """The golden model's view of a sequence makes the condition its options ask for
+    (:func:`refresh_sequence`), so that a test of them can fail."""
+    if start_frame == 0:
+        first = shutter.index(False)
+        assert first > 0 and not run.held[:first].any(), (
+            "the shutter frames before the first open frame are not all shown")
+    if all_bad:
+        refreshed = [f for f in run.foff_out if f is not None]
+        assert run.kept and refreshed and all(np.array_equal(f, start_offset)
+                                              for f in refreshed), (
+            "the all-bad refresh does not keep the host's corrections")
+    if bright_second:
+        cfg = c.cfg
+        tmax = (1 << (cfg.out_bits + cfg.format("ffc").frac_bits)) - 1
+        assert len(run.targets) == 2 and run.targets[1] == tmax > run.targets[0], (
+            f"targets {run.targets}: the second not clamped to {tmax}, or the first too")
+    if late_mean_word:
+        bad = np.asarray(c.fields["coeffs"]["bad"], bool)
+        assert not bad[-1, -1], "the mean frame's last pixel is bad"
+        fields = {m: dict(v) for m, v in c.fields.items()}
+        fields["coeffs"]["bad"] = bad.copy()
+        fields["coeffs"]["bad"][-1, -1] = True
+        without = ffc_run(MethodCoefficients(c.cfg, fields, c.registers), scene, shutter,
+                          readings=readings, golden=golden, offset=start_offset)
+        assert without.targets[0] != run.targets[0], (
+            f"target {run.targets[0]} with or without the mean frame's last pixel")
+
+
 def _unsigned(a: np.ndarray, bits: int) -> list[int]:
     return [int(v) & ((1 << bits) - 1) for v in np.asarray(a, np.int64).ravel()]
 
@@ -215,7 +291,9 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                            size: tuple[int, int] = (H, W),
                            resize_in_run: tuple[int, int] | None = None,
                            second_run: int | None = None, traffic: bool = False,
-                           firmware: bool = False, hold_refresh: bool = False) -> None:
+                           firmware: bool = False, hold_refresh: bool = False,
+                           start_frame: int = 2, all_bad: bool = False,
+                           bright_second: bool = False, late_mean_word: bool = False) -> None:
     """Two open frames, FFC_CTRL written in the middle of the second (start, ``frames``
     shutter frames; None: the configured N), the shutter frames from the third on, then
     three open frames: every stream and the status registers checked. ``idle`` / ``bp``:
@@ -239,7 +317,21 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     read_status), through the generated register model. ``hold_refresh``: the refresh's
     new offsets held three times by backpressure on m_axis_foff (after its first word, one
     at random and all but its last three), FFC_STATUS read over AXI4-Lite during each hold:
-    busy, not done (:func:`held_refresh_checks`)."""
+    busy, not done (:func:`held_refresh_checks`). ``start_frame``: the frame the first run
+    starts with (2: FFC_CTRL written in the middle of the second open frame; 0: written
+    before any frame, so the run's shutter frames come before any open frame was output:
+    passed, not held). ``all_bad``: every pixel of the calibration bad and nonzero
+    corrections in the host's memory at the start: the mean frame has no good pixel, so
+    there is no target and the refresh writes the corrections back unchanged.
+    ``bright_second``: the gains at least 1 and the second run's shutter frames at the
+    ADC's full scale: its target is clamped to the top of its range, the first run's is
+    not (the second refresh needs a new division). ``late_mean_word``: the mean frame's
+    last s_axis_acc word held back (:func:`hold_word`) until the frame's other pixels have
+    left the pipeline, then the refresh frame's first pixel right behind its last: the
+    division must wait for that pixel (the golden targets with and without it differ)."""
+    assert not (resize_in_run and (all_bad or bright_second or late_mean_word))
+    assert start_frame in (0, 2) and not (start_frame == 0 and traffic)
+    assert not bright_second or second_run
     fh, fw = size
     ffc_idle = idle if ffc_idle is None else ffc_idle
     ffc_bp = bp if ffc_bp is None else ffc_bp
@@ -247,6 +339,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     cfg, rng = bench.cfg, bench.rng
     s = FfcStreams(bench)
     foff_mon = WordMonitor(bench, "m_axis_foff") if hold_refresh else None
+    acc_mon = WordMonitor(bench, "s_axis_acc") if late_mean_word else None
     t = None
     if traffic:
         from irnuc.cocotb_tests.axil_traffic import Traffic
@@ -268,7 +361,6 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         await bench.check(reg)
     n = int(cfg.ffc_frames or 1)
     count = n if frames is None else frames
-    start_frame = 2
     runs = {start_frame: count}
     # The first frame after the run (after its refresh frame with N shutter frames).
     after = start_frame + count + int(count == n)
@@ -278,6 +370,11 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     shutter = ffc_shutter_flags(last_start + last_count + 3, runs)
     framing = ffc_framing(cfg, shutter, start=last_start)
     c = ffc_calibration(cfg, fh, fw, rng, "camera")
+    start_offset = None
+    if all_bad:
+        c, start_offset = _all_bad(c, rng)
+    if bright_second:
+        c = _gains_at_least_one(c)
     if regs is not None:
         await driver.load_calibration(regs, driver.Calibration(**{
             name: int(value) for name, value in c.registers.items()}))
@@ -288,8 +385,15 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
     sizes = [(fh, fw)] * after + [resize_in_run or (fh, fw)] * (len(shutter) - after)
     golden = bench.env.golden
     if resize_in_run is None:
-        run = ffc_run(c, ffc_raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera"),
-                      shutter, readings=readings, golden=golden)
+        scene = ffc_raws(cfg, [int(v) for v in shutter], fh, fw, rng, "camera")
+        if bright_second:  # the second run's shutter frames at full scale
+            top = (1 << cfg.adc_bits) - 1
+            scene = [np.full_like(r, top) if sh and k > after else r
+                     for k, (r, sh) in enumerate(zip(scene, shutter, strict=True))]
+        run = ffc_run(c, scene, shutter, readings=readings, golden=golden,
+                      offset=start_offset)
+        _check_conditions(run, c, scene, shutter, readings, golden, start_frame, all_bad,
+                          bright_second, late_mean_word, start_offset)
     else:
         run = _joined(*(ffc_run(cc, ffc_raws(cfg, [int(v) for v in sh], *shape, rng, "camera"),
                                 sh, readings=rd, golden=golden)
@@ -323,16 +427,6 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
         else:
             await bench.write_method_register("reading", value)
 
-    if readings[0] is not None:
-        await set_reading(readings[0])
-    bench.send(*video, *coef)
-    for k, f in enumerate(run.foff_in):
-        assert framing.foff_in[k]
-        s.foff.send_nowait(AxiStreamFrame(_unsigned(f, cbits)))
-    for a in run.acc_in:
-        if a is not None:
-            s.acc.send_nowait(AxiStreamFrame([int(v) for v in np.ravel(a)]))
-
     ctrl = bench.model.map["FFC_CTRL"]
     m = bench.model
     seen: dict[str, int] = {}
@@ -354,7 +448,7 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
             t.pause(False)
         seen["write_beat" if not again else "second_beat"] = bench.beats_in
         begin = start_frame if not again else after + 1
-        assert bench.beats_in < starts[begin], (
+        assert bench.beats_in < starts[begin] or bench.beats_in == begin == 0, (
             f"FFC_CTRL written after frame {begin} started ({bench.beats_in} beats taken)")
         await bench.check("FFC_CTRL")
         m.set_live("FFC_STATUS", "busy", 1)
@@ -383,9 +477,30 @@ async def refresh_sequence(dut, salt: int, frames: int | None, idle: str, bp: st
                 f"({bench.beats_in} beats taken)")
         return write
 
+    if readings[0] is not None:
+        await set_reading(readings[0])
+    acts = []
+    if start_frame == 0:  # before any frame
+        await write_ffc()
+    bench.send(*video, *coef)
+    for k, f in enumerate(run.foff_in):
+        assert framing.foff_in[k]
+        s.foff.send_nowait(AxiStreamFrame(_unsigned(f, cbits)))
+    for a in run.acc_in:
+        if a is not None:
+            s.acc.send_nowait(AxiStreamFrame([int(v) for v in np.ravel(a)]))
     stalls: dict[str, list[int]] = {}
     stall_task = cocotb.start_soon(_stall_log(bench, stalls))
-    acts = [cocotb.start_soon(bench._act(fh * fw + fh * fw // 2, write_ffc))]
+    if start_frame > 0:  # in the middle of the frame before
+        acts.append(cocotb.start_soon(bench._act(starts[start_frame - 1] + fh * fw // 2,
+                                                 write_ffc)))
+    if late_mean_word:
+        assert ffc_idle == "none", "the hold needs the FFC sources without a pause pattern"
+        mean = start_frame + count - 1
+        assert count == n and run.acc_in[mean] is not None
+        acc_frame = sum(a is not None for a in run.acc_in[:mean])
+        acts.append(cocotb.start_soon(hold_word(s.acc, acc_mon, acc_frame,
+                                                run.acc_in[mean].size - 1, 200)))
     if second_run is not None:
         acts.append(cocotb.start_soon(bench._act(starts[after] + fh * fw // 4,
                                                  write_ffc_again)))
@@ -599,6 +714,40 @@ async def ffc_one_line(dut) -> None:
     """The refresh on frames of one line: the write-back streams' last-line flag holds
     from the frame's first word (tlast on every line's last word, the line is the frame)."""
     await refresh_sequence(dut, 43, None, "random", "random", "ffc one line", size=(1, 16))
+
+
+@cocotb.test()
+async def ffc_first_run_all_bad(dut) -> None:
+    """FFC_CTRL written before the first frame, on a calibration whose every pixel is bad,
+    over nonzero corrections in the host's memory: the run's shutter frames come before any
+    open frame was output, so they are shown even where the build holds shutter frames;
+    the mean frame has no good pixel, so there is no target and the refresh writes the
+    corrections back unchanged (m_axis_foff; a target of 0 would move them); idle cycles
+    and backpressure on every stream."""
+    await refresh_sequence(dut, 53, None, "random", "random", "ffc first run all bad",
+                           start_frame=0, all_bad=True)
+
+
+@cocotb.test()
+async def ffc_bright_second_refresh(dut) -> None:
+    """Two full refreshes, the second over a shutter at the ADC's full scale with the gains
+    at least 1: its mean lies above the target's range and is clamped to its top, the
+    first's is not, so the second refresh needs a division of its own (its refreshed
+    offsets and the frames after it against the golden model); random idle cycles on the
+    inputs (the second start is written in the open frame between), bursty backpressure."""
+    n = int(tb_lib.config_from_env().ffc_frames or 1)
+    await refresh_sequence(dut, 54, None, "random", "bursty", "ffc bright second refresh",
+                           second_run=n, bright_second=True)
+
+
+@cocotb.test()
+async def ffc_mean_word_late(dut) -> None:
+    """The mean frame's last accumulator word held back on s_axis_acc for 200 cycles: the
+    frame's other pixels leave the pipeline, then its last pixel enters with the refresh
+    frame's first pixel waiting right behind it; the target's division must wait for that
+    last pixel (with it and without it the golden targets differ)."""
+    await refresh_sequence(dut, 55, None, "none", "alternate", "ffc mean word late",
+                           ffc_idle="none", ffc_bp="none", late_mean_word=True)
 
 
 # ---- the FFC request (FFC_PERIOD, FFC_THRESHOLD; irnuc_ffc_trigger) ------------------------

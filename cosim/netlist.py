@@ -21,12 +21,14 @@ import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from irnuc.cosim.sources import tool_parameters
 from irnuc.cosim.synth import _run_yosys
 
 
 def _read(sources: Sequence[Path], top: str, params: Mapping[str, int]) -> list[str]:
     files = " ".join(str(Path(s).resolve()) for s in sources)
-    gens = " ".join(f"-G {k}={int(v)}" for k, v in params.items())
+    # slang converts no integer to a typed enum parameter (a top's Method): its literal.
+    gens = " ".join(f"-G {k}={v}" for k, v in tool_parameters(params, "slang").items())
     return [f"read_slang -D SYNTHESIS --top {top} {gens} {files}", f"prep -top {top}"]
 
 

@@ -80,3 +80,16 @@ def test_small_automatic_campaign(tmp_path, own_cache) -> None:
     bad = subprocess.run([str(irnuc), "mutate", "--auto", "2", "--only", "x", "--out",
                           str(tmp_path / "o2")], env=env, capture_output=True, text=True)
     assert bad.returncode == 2 and "--auto draws its own mutants" in bad.stderr
+
+
+def test_draw_reads_a_typed_enum_parameter_as_its_literal() -> None:
+    # slang refuses `-G Method=5` (no implicit int -> method_e): every configuration but the
+    # two-point ones failed to draw. The literal named by the package, the rest as integers.
+    from irnuc.cosim import netlist
+    from irnuc.cosim.sources import top_parameters
+    from irnuc.nuc_fixed import load_pipeline
+
+    params = top_parameters("irnuc_axis_top", load_pipeline("table14"))
+    read = netlist._read([], "irnuc_axis_top", params)[0]
+    assert "-G Method=irnuc_pkg::Method" in read and f"-G Method={params['Method']} " not in read
+    assert f"-G AdcBits={params['AdcBits']} " in read

@@ -181,3 +181,44 @@ def test_equivalence_on_some_configurations_only() -> None:
         assert (m.equivalence(wide1) is not None) == (mid in on_wide1), mid
         assert m.equivalence(pixel1) is not None, mid
     assert pixel1.max_frame_pixels == 1 and wide1.max_frame_pixels == wide1.max_height
+
+
+def test_suite_closure_follows_imports_only() -> None:
+    # A mutant's cached verdict is keyed by the files its suite runs: the wrapper's FFC suite
+    # runs its own testbench, the shared bench and the build layer, not the other suites.
+    def names(suite: str) -> set[str]:
+        return {p.relative_to(mutate.IRNUC_DIR).as_posix()
+                for p in mutate.suite_closure(f"irnuc.cocotb_tests.{suite}")}
+
+    ffc, top = names("tb_axis_ffc"), names("tb_top")
+    assert {"cocotb_tests/tb_axis_ffc.py", "cocotb_tests/axis_bench.py",
+            "cocotb_tests/axil_traffic.py", "cosim/builds.py", "cosim/_cocotb_adapter.py",
+            "nuc_fixed/axis.py", "cocotb_tests/__init__.py", "__init__.py"} <= ffc
+    assert "cocotb_tests/tb_axis_method.py" not in ffc
+    assert "cocotb_tests/tb_top.py" in top and "cocotb_tests/tb_axis_ffc.py" not in top
+    assert not any(n.startswith(("verif/", "reports/", "cli")) or n.startswith("test_")
+                   or "/test_" in n for n in ffc | top)
+
+
+def test_imported_names_reads_what_runs(tmp_path: Path) -> None:
+    src = tmp_path / "m.py"
+    src.write_text(
+        "from typing import TYPE_CHECKING\n"
+        "import irnuc.a\n"
+        "from . import sib\n"
+        "from .pkg import thing\n"
+        "if TYPE_CHECKING:\n"
+        "    import irnuc.only_for_types\n"
+        "else:\n"
+        "    import irnuc.at_run_time\n"
+        "def f():\n"
+        "    try:\n"
+        "        from irnuc.lazy import x\n"
+        "    except ImportError:\n"
+        "        import irnuc.fallback\n"
+        "    return [1 for _ in ()]\n")
+    got = mutate._imported_names(src, "irnuc.cosim")
+    assert {"irnuc.a", "irnuc.cosim", "irnuc.cosim.sib", "irnuc.cosim.pkg",
+            "irnuc.cosim.pkg.thing", "irnuc.at_run_time", "irnuc.lazy", "irnuc.lazy.x",
+            "irnuc.fallback"} <= got
+    assert "irnuc.only_for_types" not in got

@@ -25,11 +25,25 @@ def add_mutate_arguments(p: argparse.ArgumentParser) -> None:
                         "run); see --modules")
     p.add_argument("--seed", type=int, default=1,
                    help="the seed of --auto's draw (default: %(default)s)")
+    p.add_argument("--decide", action="append", default=[], metavar="ID",
+                   help="decide catalogue mutant ID equivalent or not formally, without a "
+                        "simulation: a miter of the original and mutated netlists that "
+                        "compares each output stream's payload only while its valid is 1 and "
+                        "assumes the top's input contract (legal frame sizes, the AXI4-Stream "
+                        "rules on the inputs); proved equivalent, different (with a VCD) or "
+                        "undecided within --budget (repeatable; nuc_dpc_top and method_dpc_top)")
+    p.add_argument("--budget", type=float, default=1200.0, metavar="SECONDS",
+                   help="--decide: wall-time budget per mutant (default: %(default)s)")
+    p.add_argument("--frame-max", metavar="WxH",
+                   help="--decide on the mutant's configuration with max_width x max_height "
+                        "replaced by W x H (a smaller model of the same design; default: the "
+                        "configuration's own)")
     p.add_argument("--modules", metavar="LIST",
                    help="--auto: these modules only (comma-separated; default: every module "
                         "of irnuc.verif.automut.TARGETS)")
-    p.epilog = ("exit status: 0 when every non-equivalent mutant was killed, 1 when one "
-                "survived, 2 for bad input, 3 when a tool failed")
+    p.epilog = ("exit status: 0 when every non-equivalent mutant was killed (--decide: "
+                "every mutant proved equivalent), 1 when one survived (--decide: one "
+                "different or undecided), 2 for bad input, 3 when a tool failed")
     add_executor(p, "run the mutants", workers=1, cache="a mutant's result")
     p.add_argument("--no-coverage", action="store_true",
                    help="skip the coverage run of the unmutated design (coverage.json)")
@@ -50,6 +64,8 @@ def run_mutate(args: argparse.Namespace) -> int:
         return 0
     if not 0 <= args.workers <= 256:
         raise UserError(f"--workers {args.workers} is outside the allowed range 0..256")
+    if args.decide or args.frame_max is not None:
+        return _run_decide(args)
     if args.auto is not None or args.modules is not None:
         return _run_auto(args)
     mutants = mutate.catalogue(args.only)  # an unknown id is a one-line error, before work
@@ -123,6 +139,56 @@ def _run_auto(args: argparse.Namespace) -> int:
         + (f"; survivors: {', '.join(s['survivors'])}" if s["survivors"] else ""))
     say(f"wrote {out / 'mutate.json'}")
     return 1 if s["survived"] else 0
+
+
+def _run_decide(args: argparse.Namespace) -> int:
+    """``--decide ID``: each mutant decided by the contract miter (irnuc.verif.miter);
+    mutate.json holds the decisions, the counterexamples' VCDs are copied beside it."""
+    import json
+    import shutil
+    from pathlib import Path
+
+    from irnuc.common.errors import UserError
+    from irnuc.common.io import claim_output_folder, output_folder, write_text_atomic
+    from irnuc.verif import miter
+
+    if not args.decide:
+        raise UserError("--frame-max needs --decide ID")
+    if args.auto is not None or args.modules is not None or args.only or args.configs:
+        raise UserError("--decide runs no simulation: it takes none of --auto, --modules, "
+                        "--only, --configs")
+    if not 10.0 <= args.budget <= 86400.0:
+        raise UserError(f"--budget {args.budget:g} is outside the allowed range 10..86400 s")
+    if len(set(args.decide)) < len(args.decide):
+        raise UserError("--decide: a mutant given twice")
+    frame_max = None
+    if args.frame_max is not None:
+        import re
+
+        from irnuc.nuc_fixed.rtl_spec import FRAME_DIM_MAX
+
+        fm = re.fullmatch(r"(\d+)x(\d+)", args.frame_max.strip())
+        if not fm or not all(1 <= int(v) <= FRAME_DIM_MAX for v in fm.groups()):
+            raise UserError(f"--frame-max {args.frame_max}: expected WxH with W, H in "
+                            f"1..{FRAME_DIM_MAX} (e.g. 8x8)")
+        frame_max = (int(fm.group(1)), int(fm.group(2)))
+    mutants = [miter.mutant(i) for i in args.decide]  # a bad id: one line, before work
+    out = claim_output_folder(args.out, kind="mutate")
+    decided = {}
+    for m in mutants:
+        decided[m.id] = miter.decide_mutant(m, budget=args.budget, frame_max=frame_max,
+                                            use_cache=not args.no_cache)
+        say(f"{m.id:28s} {miter.label(decided[m.id])}")
+    with output_folder(out, kind="mutate") as tmp:
+        for mid, r in decided.items():
+            if r.get("vcd") and Path(r["vcd"]).is_file():
+                shutil.copyfile(r["vcd"], tmp / f"{mid}.vcd")
+                r = r | {"vcd": str(out / f"{mid}.vcd"), "cached_vcd": r["vcd"]}
+                decided[mid] = r
+        write_text_atomic(tmp / "mutate.json", json.dumps({"decided": decided}, indent=1)
+                          + "\n")
+    say(f"wrote {out / 'mutate.json'}")
+    return 0 if all(r["verdict"] == "equivalent" for r in decided.values()) else 1
 
 
 def _run_per_configuration(args: argparse.Namespace, mutants: list) -> int:

@@ -10,7 +10,9 @@ of ``cocotb_tests/tb_top.py``, one simulation) on the mutant's configuration:
   the first failing test is the killing test;
 * **survived**: every test passed;
 * **equivalent**: survived, and the catalogue carries the argument why no test can tell
-  the mutant from the design at the ports of ``nuc_dpc_top``;
+  the mutant from the design at the ports of ``nuc_dpc_top`` (argued; proved where
+  ``irnuc mutate --decide`` decided it by a miter, :mod:`irnuc.verif.miter`, and
+  :func:`with_decisions` reads that decision: a mutant found different counts as survived);
 * **invalid**: the mutant did not build (a catalogue error, not a kill; not counted).
 
 Results are cached in the irnuc cache by the digest of the RTL sources the mutant's top
@@ -23,6 +25,9 @@ testbench it runs).
 
 from __future__ import annotations
 
+import ast
+import functools
+import importlib.util
 import json
 import shutil
 import tempfile
@@ -32,9 +37,6 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-import irnuc.cocotb_tests
-import irnuc.cosim
-import irnuc.nuc_fixed
 from irnuc.cocotb_tests import tb_top
 from irnuc.common.cache import cache_dir, read_cached_json
 from irnuc.common.digest import digest, files_digest
@@ -61,15 +63,79 @@ def rtl_digest() -> str:
     return files_digest(sorted(HDL_DIR.glob("*.sv")))
 
 
-def _suite_digest() -> str:
-    """What a mutant's verdict depends on besides the RTL: the Python of the testbenches and
-    their helpers, the golden model and the co-simulation layer (not the pytest files), and
-    the simulation-only HDL."""
-    dirs = [Path(pkg.__file__).resolve().parent
-            for pkg in (irnuc.cocotb_tests, irnuc.cosim, irnuc.nuc_fixed)]
-    files = [p for d in dirs for p in sorted(d.glob("*.py"))
-             if not p.name.startswith(("test_", "conftest"))]
-    return files_digest(files + sorted(SIM_HDL_DIR.glob("*.sv")))
+#: What runs a suite besides its own imports: the build and run layer and the cocotb
+#: child's adapter (a broken build or run is a verdict too).
+RUNNER_MODULES = ("irnuc.cosim.builds", "irnuc.cosim._cocotb_adapter")
+IRNUC_DIR = Path(__file__).resolve().parents[1]
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+@functools.cache
+def _imported_names(path: Path, package: str) -> frozenset[str]:
+    """Every module name a file may import when it runs (function-level imports too; the
+    bodies of ``if TYPE_CHECKING:`` never run): for ``from X import a``, X and X.a."""
+    out: set[str] = set()
+    todo: list[ast.stmt] = list(ast.parse(path.read_text()).body)
+    while todo:  # statements only: an import is never inside an expression
+        node = todo.pop()
+        if isinstance(node, ast.Import):
+            out.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                base = importlib.util.resolve_name("." * node.level + base, package)
+            out.add(base)
+            out.update(f"{base}.{a.name}" for a in node.names)
+        elif isinstance(node, ast.If) and _is_type_checking(node.test):
+            todo.extend(node.orelse)
+        else:
+            for field in ("body", "orelse", "finalbody", "handlers", "cases"):
+                for child in getattr(node, field, ()):
+                    todo.extend(child.body if isinstance(child, ast.excepthandler | ast.match_case)
+                                else [child])
+    return frozenset(out)
+
+
+def _module_file(name: str) -> Path | None:
+    """The source file of module ``irnuc...`` (found on disk: importing it to ask would load
+    numba and the model), or None for a name that is not a module."""
+    base = IRNUC_DIR.joinpath(*name.split(".")[1:])
+    for path in (base / "__init__.py", base.with_suffix(".py")):
+        if path.is_file():
+            return path
+    return None
+
+
+@functools.cache
+def suite_closure(module: str) -> tuple[Path, ...]:
+    """The irnuc source files a cocotb suite runs: the suite module, every ``irnuc`` module it
+    imports, transitively (parent packages included), and :data:`RUNNER_MODULES`'."""
+    seen: dict[str, Path | None] = {}
+    todo = [module, *RUNNER_MODULES]
+    while todo:
+        name = todo.pop()
+        if name in seen or not (name == "irnuc" or name.startswith("irnuc.")):
+            continue
+        path = _module_file(name)
+        seen[name] = path
+        if path is None:
+            continue  # a name imported from a module, not a module
+        todo.extend(name.rsplit(".", k)[0] for k in range(1, name.count(".") + 1))
+        is_pkg = path.name == "__init__.py"
+        todo.extend(_imported_names(path, name if is_pkg else name.rpartition(".")[0]))
+    return tuple(sorted({p for p in seen.values() if p is not None}))
+
+
+def _suite_digest(module: str = SUITE_MODULE) -> str:
+    """What a mutant's verdict depends on besides the RTL: the Python its suite runs
+    (:func:`suite_closure`: the testbench, its helpers, the golden model and co-simulation
+    modules it imports, not the pytest files) and the simulation-only HDL. A change to
+    another suite's testbench keeps this suite's cached verdicts."""
+    return files_digest([*suite_closure(module), *sorted(SIM_HDL_DIR.glob("*.sv"))])
 
 
 def top_digest(top: str) -> str:
@@ -80,10 +146,11 @@ def top_digest(top: str) -> str:
     return files_digest(hdl_sources(top))
 
 
-def _mutant_key(m: Mutant, suite: str | None = None, tops: dict[str, str] | None = None
-                ) -> str:
-    """The cache key of a mutant's result: the RTL its top elaborates, the suite's sources,
-    the mutant (``suite``, ``tops``: digests computed once for many mutants)."""
+def _mutant_key(m: Mutant, suites: dict[str, str] | None = None,
+                tops: dict[str, str] | None = None) -> str:
+    """The cache key of a mutant's result: the RTL its top elaborates, its suite's sources
+    (the package check's too for the package's mutants), the mutant (``suites``, ``tops``:
+    digests computed once for many mutants)."""
     d = asdict(m)
     if not d["also"]:
         del d["also"]  # keys of one-site mutants as before the field existed
@@ -96,7 +163,10 @@ def _mutant_key(m: Mutant, suite: str | None = None, tops: dict[str, str] | None
         if d["file"] == PKG_FILE:
             d["package_check"] = PKG_SUITE  # the verdict includes the package check
     rtl = (tops or {}).get(m.top) or top_digest(m.top)
-    return digest({"rtl": rtl, "suite": suite or _suite_digest(), "mutant": d})
+    suite = (suites or {}).get(m.suite) or _suite_digest(m.suite)
+    if "package_check" in d:
+        suite = digest([suite, _suite_digest(PKG_SUITE)])
+    return digest({"rtl": rtl, "suite": suite, "mutant": d})
 
 
 @dataclass
@@ -275,7 +345,7 @@ def baseline_check(mutants: Sequence[Mutant], use_cache: bool = True) -> None:
         if (cfg.digest(), m.top, m.suite) in seen:
             continue
         seen.add((cfg.digest(), m.top, m.suite))
-        key = digest({"rtl": rtl_digest(), "suite": _suite_digest(), "config": cfg.digest(),
+        key = digest({"rtl": rtl_digest(), "suite": _suite_digest(m.suite), "config": cfg.digest(),
                       "top": m.top, "module": m.suite})
         passed = cache_dir("mutate", "baseline") / f"{cfg.name}-{key}.passed"
         if use_cache and passed.is_file():
@@ -357,7 +427,7 @@ def run_mutants(mutants: Sequence[Mutant] | None = None, *, workers: int = 1,
             results.append(fut.result())
             if progress is not None:
                 progress(i + 1, len(futures))
-    summary = summarize(results)
+    summary = summarize(with_decisions(results))
     summary["complete"] = {m.id for m in mutants} == {m.id for m in CATALOGUE}
     path = cache_dir("mutate") / f"summary-{rtl_digest()}.json"
     if summary["complete"] or not path.is_file():
@@ -374,17 +444,47 @@ def cached_summary() -> dict | None:
 def cached_results(mutants: Sequence[Mutant]) -> tuple[list[dict], list[str]]:
     """The cached result of each mutant on the current RTL and suite sources, nothing
     run: (the results found, the ids without one)."""
-    suite = _suite_digest()
+    suites = {s: _suite_digest(s) for s in {m.suite for m in mutants}}
     tops = {top: top_digest(top) for top in {m.top for m in mutants}}
     found, missing = [], []
     for m in mutants:
         res = read_cached_json(cache_dir("mutate", "mutants")
-                               / f"{m.id}-{_mutant_key(m, suite, tops)}.json")
+                               / f"{m.id}-{_mutant_key(m, suites, tops)}.json")
         if isinstance(res, dict):
             found.append(res)
         else:
             missing.append(m.id)
     return found, missing
+
+
+def with_decisions(results: Sequence[dict]) -> list[dict]:
+    """The results with each catalogue equivalent's formal decision where the cache holds
+    one (``irnuc mutate --decide``, :mod:`irnuc.verif.miter`): proved equivalent (the
+    reason says so, the argument after it), different on legal inputs (the mutant counts
+    as survived: its argument is wrong), undecided or never decided (the reason starts
+    "argued"). Nothing is run."""
+    from irnuc.verif import miter
+
+    by_id = {m.id: m for m in CATALOGUE}
+    out = []
+    for r in results:
+        m = by_id.get(r["id"])
+        if r["status"] != "equivalent" or m is None or m.yosys is not None:
+            out.append(r)
+            continue
+        dec = miter.cached(m) if m.top in miter.FRAME_TOPS else None
+        r = dict(r)
+        if dec is not None:
+            r["decided"] = dec
+        if dec is not None and dec.get("verdict") == "equivalent":
+            r["equivalent"] = f"{miter.label(dec)}; argument: {r['equivalent']}"
+        elif dec is not None and dec.get("verdict") == "different":
+            r["status"], r["message"] = "survived", miter.label(dec)
+        else:
+            r["equivalent"] = f"argued: {r['equivalent']}" + (
+                f" ({miter.label(dec)})" if dec is not None else "")
+        out.append(r)
+    return out
 
 
 def current_results() -> dict:
@@ -393,7 +493,7 @@ def current_results() -> dict:
     produced them), ``missing`` the ones without (never counted), ``complete`` when none
     is; the counts and score of :func:`summarize` over the ones found."""
     found, missing = cached_results(CATALOGUE)
-    summary = summarize(found)
+    summary = summarize(with_decisions(found))
     summary |= {"missing": missing, "complete": not missing}
     return summary
 
@@ -532,4 +632,5 @@ __all__ = [
     "run_per_configuration",
     "summarize",
     "top_digest",
+    "with_decisions",
 ]
