@@ -204,6 +204,74 @@ _REQ_MASK_NONE = """\
 #: The lines of the generated module irnuc replaces, each found exactly once.
 _REPLACED = ((_RD_MUX, _RD_MUX_HELD), (_REQ_MASK, _REQ_MASK_NONE))
 
+#: The third: the address decode's error and external flags. peakrdl-regblock decodes them
+#: from the request's flops in the cycle of the request, through the compare of every
+#: register's address (on ECP5 the wrapper's longest paths: the write response's error
+#: flag, external_pending). irnuc decodes them a cycle ahead, from the next values of the
+#: request's address and direction (irnuc's CPU interface loads them from its holding
+#: registers when a request issues), into flops the request's flag then gates: the same
+#: values in the same cycles. The per-register strobes stay as generated.
+_DECODE_HEAD = """\
+    always_comb begin
+        automatic logic is_valid_addr;
+        automatic logic is_valid_rw;
+        automatic logic is_external;
+        is_external = '0;
+        is_valid_addr = '0;
+        is_valid_rw = '0;
+"""
+_DECODE_TAIL = """\
+        decoded_err = (~is_valid_addr | (is_valid_addr & ~is_valid_rw)) & decoded_req;
+        decoded_req_is_external = is_external;
+    end
+"""
+_PREDECODE_HEAD = """\
+    // irnuc: the decode's error and external flags a cycle ahead, from the request's next
+    // address and direction (the CPU interface's request registers' inputs), registered:
+    // decoded_err and decoded_req_is_external are these flops gated by the request, the
+    // values the decode below would give from the request's flops (docs/regmap.md).
+    logic [11:0] predecode_addr;
+    logic        predecode_is_wr, predecode_err_d, predecode_err_q;
+    logic        predecode_ext_d, predecode_ext_q;
+    assign predecode_addr  = axil_take_rd ? {axil_araddr[11:2], 2'b0}
+                           : axil_take_wr ? {axil_awaddr[11:2], 2'b0} : axil_req_addr;
+    assign predecode_is_wr = (axil_take_rd || axil_take_wr) ? axil_take_wr : axil_req_is_wr;
+"""
+_PREDECODE_TAIL = """\
+        predecode_err_d = ~is_valid_addr | ~is_valid_rw;
+        predecode_ext_d = is_external;
+    end
+    always_ff @(posedge clk) begin
+        predecode_err_q <= predecode_err_d;
+        predecode_ext_q <= predecode_ext_d;
+    end
+"""
+_DECODE_FLAGS = ("is_valid_addr |=", "is_valid_rw |=", "is_external |=")
+
+
+def _predecode(body: str) -> str:
+    """The generated decode block split (:data:`_DECODE_HEAD`): the per-register strobes
+    from the request's flops as generated, the error and external flags from flops decoded a
+    cycle ahead (:data:`_PREDECODE_HEAD`)."""
+    start = body.find(_DECODE_HEAD)
+    end = body.find(_DECODE_TAIL, start)
+    if start < 0 or body.count(_DECODE_HEAD) != 1 or end < 0 or body.count(_DECODE_TAIL) != 1:
+        raise ToolError("peakrdl-regblock's address decode is not the one irnuc.cosim.regfiles "
+                        "splits: update it")
+    inner = body[start + len(_DECODE_HEAD):end].splitlines(keepends=True)
+    strobes = [ln for ln in inner if not ln.strip().startswith(_DECODE_FLAGS)]
+    flags = [ln.replace("cpuif_req_masked & ", "").replace("cpuif_addr", "predecode_addr")
+             .replace("cpuif_req_is_wr", "predecode_is_wr")
+             for ln in inner if "decoded_reg_strb" not in ln]
+    if any("cpuif_" in ln for ln in flags):
+        raise ToolError("peakrdl-regblock's address decode reads a signal irnuc.cosim.regfiles "
+                        "does not decode ahead: update it")
+    decode = ("    always_comb begin\n" + "".join(strobes)
+              + "        decoded_err = predecode_err_q & decoded_req;\n"
+              + "        decoded_req_is_external = predecode_ext_q & decoded_req;\n    end\n")
+    return (body[:start] + _PREDECODE_HEAD + _DECODE_HEAD + "".join(flags) + _PREDECODE_TAIL
+            + decode + body[end + len(_DECODE_TAIL):])
+
 
 def regblock_texts() -> dict[Path, str]:
     """The register block and its package, as peakrdl-regblock writes them with irnuc's
@@ -236,6 +304,7 @@ def regblock_texts() -> dict[Path, str]:
                         raise ToolError("peakrdl-regblock's text is not the one "
                                         "irnuc.cosim.regfiles replaces: update it:\n" + find)
                     body = body.replace(find, replace)
+                body = _predecode(body)
             tail = "/* verilator lint_on " + " */\n/* verilator lint_on ".join(_LINT_OFF) + " */"
             out[path] = "\n".join([*_sv_head(what), body.strip("\n"), tail]) + "\n"
     return out

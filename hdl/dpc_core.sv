@@ -12,7 +12,9 @@
 //
 // Pipeline (every register moves with one enable, en = "the output register can take an
 // item", a flop: no path runs from m_ready_i, s_valid_i or the frame size to s_ready_o):
-//   u_in     input register (irnuc_spill_register)
+//   u_in     input register (irnuc_spill_register); with InReg = 0 none: the caller's
+//            driver of s_* is a register output (the NUC core's output register in
+//            method_dpc_top), which then is the input register (one cycle less latency)
 //   window   the item enters: line buffer word read two items ahead, written one item late
 //   mask     the masked in-frame good neighbours and their good flags, registered
 //   u_sum    the 8 masked values summed, 3 stages (irnuc_add_tree), beside them the count
@@ -31,6 +33,14 @@ module dpc_core
   parameter int unsigned OutBits    = 14,
   parameter int unsigned MaxWidth   = 1024,
   parameter int unsigned MaxHeight  = 1024,
+  // s_* and the frame size at its frame starts are checked here (0: by the caller, whose
+  // driver of s_* is a checked spill register and which checks the frame size).
+  parameter bit          CheckIn    = 1'b1,
+  // s_* enters through an input register of its own (0: s_* comes straight from a
+  // register of the caller, an irnuc_spill_register's output whose ready input may then
+  // depend combinationally on this core's control flops; no path from s_valid_i or
+  // m_ready_i reaches s_ready_o either way).
+  parameter bit          InReg      = 1'b1,
   // Derived, do not override.
   localparam int unsigned WidthBits  = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits = $clog2(MaxHeight + 1)
@@ -91,16 +101,22 @@ module dpc_core
   logic               in_valid, in_ready, in_bad, in_sof, in_eol;
   logic [OutBits-1:0] in_pix;
 
-  irnuc_spill_register #(.DataBits(InBits)) u_in (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .valid_i(s_valid_i),
-    .ready_o(s_ready_o),
-    .data_i ({s_eol_i, s_sof_i, s_bad_i, s_pix_data_i}),
-    .valid_o(in_valid),
-    .ready_i(in_ready),
-    .data_o ({in_eol, in_sof, in_bad, in_pix})
-  );
+  if (InReg) begin : gen_in_reg
+    irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .valid_i(s_valid_i),
+      .ready_o(s_ready_o),
+      .data_i ({s_eol_i, s_sof_i, s_bad_i, s_pix_data_i}),
+      .valid_o(in_valid),
+      .ready_i(in_ready),
+      .data_o ({in_eol, in_sof, in_bad, in_pix})
+    );
+  end else begin : gen_in_direct
+    assign in_valid  = s_valid_i;
+    assign s_ready_o = in_ready;
+    assign {in_eol, in_sof, in_bad, in_pix} = {s_eol_i, s_sof_i, s_bad_i, s_pix_data_i};
+  end
 
   // ---- control ---------------------------------------------------------------------------
   logic                take, phantom, lb_w1, lb_w2, lb_w3;
@@ -193,8 +209,9 @@ module dpc_core
   // The mask stage registers the 8 masked values and the 8 good flags; the count n, floor(n/2)
   // and R[n] are taken from the registered flags beside the sum's first levels (a popcount
   // and a table of the count would otherwise sit between the window and one register).
-  logic [7:0][NumBits-1:0] nb_leaves;  // the 8 masked neighbours
-  logic [7:0]              nb_good;
+  logic [NumBits-1:0]      nb_leaves [8];  // the 8 masked neighbours (unpacked)
+  logic                    nb_good [8];    // their good flags (unpacked: a packed byte
+                                           // costs the simulator a read-modify-write per bit)
 
   always_comb begin : p_neighbours
     logic in_frame;
@@ -214,8 +231,8 @@ module dpc_core
   end
 
   logic                    mask_valid_q;
-  logic [7:0][NumBits-1:0] mask_leaves_q;
-  logic [7:0]              mask_good_q;
+  logic [NumBits-1:0]      mask_leaves_q [8];
+  logic                    mask_good_q [8];
   logic [CtrBits-2:0]      mask_ctr_q;  // {sof, eol, centre bad, centre value}
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_mask_valid
@@ -241,12 +258,10 @@ module dpc_core
   logic [RecBits-1:0] nb_recip, rec2_q, rec3_q;
   logic               nz2_q, nz3_q;
 
-  always_comb begin : p_count
-    cnt_d = '0;
-    for (int k = 0; k < 8; k++) begin
-      cnt_d = cnt_d + 4'(mask_good_q[k]);
-    end
-  end
+  // One sum (a loop of 8 partial sums costs the simulator a store per step).
+  assign cnt_d = 4'(mask_good_q[0]) + 4'(mask_good_q[1]) + 4'(mask_good_q[2])
+                 + 4'(mask_good_q[3]) + 4'(mask_good_q[4]) + 4'(mask_good_q[5])
+                 + 4'(mask_good_q[6]) + 4'(mask_good_q[7]);
 
   // R[n] from irnuc_pkg::dpc_recip (constant calls: a 9-entry table).
   always_comb begin : p_recip
@@ -289,7 +304,8 @@ module dpc_core
     .rst_ni  (rst_ni),
     .en_i    (en),
     .valid_i (mask_valid_q),
-    .leaves_i(mask_leaves_q),
+    .leaves_i({mask_leaves_q[7], mask_leaves_q[6], mask_leaves_q[5], mask_leaves_q[4],
+               mask_leaves_q[3], mask_leaves_q[2], mask_leaves_q[1], mask_leaves_q[0]}),
     .side_i  (mask_ctr_q),
     .valid_o (s8_valid),
     .sum_o   (s8_sum),
@@ -384,18 +400,20 @@ module dpc_core
   );
 
 `ifdef IRNUC_ASSERT
-  // Protocol assertions of s_* and m_*: in u_in and u_out (irnuc_spill_register), whose
-  // ports these are; the frame size at a frame start:
-  irnuc_frame_assert #(
-    .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
-  ) u_assert_frame (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .start_i (s_valid_i && s_ready_o && s_sof_i),
-    .width_i (frame_width_i),
-    .height_i(frame_height_i)
-  );
+  // Protocol assertions of s_* and m_*: in u_in (unless CheckIn = 0 or InReg = 0) and u_out
+  // (irnuc_spill_register), whose ports these are; the frame size at a frame start:
+  if (CheckIn) begin : gen_assert_frame
+    irnuc_frame_assert #(
+      .MaxWidth (MaxWidth),
+      .MaxHeight(MaxHeight)
+    ) u_assert_frame (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .start_i (s_valid_i && s_ready_o && s_sof_i),
+      .width_i (frame_width_i),
+      .height_i(frame_height_i)
+    );
+  end
 `endif
 
 endmodule

@@ -135,8 +135,8 @@ module dpc_ctrl
   logic [WidthBits-1:0]  geo_w_q, geo_wm2_q;
   logic [HeightBits-1:0] geo_h_q, geo_hm2_q;
   logic                  geo_w_is1_q, geo_w_is2_q, geo_w_is3_q, geo_h_is1_q;
-  // The registered size equals the latched one (compared one cycle ahead).
-  logic                  same_q;
+  // The registered size equals the latched one: same, made from three flops (below).
+  logic                  same;
 
   // Input position: column of the next item (pixels and phantoms), row of the next pixel.
   logic [WidthBits-1:0]  col_q;
@@ -163,8 +163,8 @@ module dpc_ctrl
   logic cur_col_last, cur_row_last, frame_last, sample;
 
   // A pixel is accepted in Idle and Frame, and in Tail when the frame size is unchanged.
-  assign accept       = !flush && !(tail && !same_q);
-  assign phantom_req  = flush || (tail && !(pix_valid_i && same_q));
+  assign accept       = !flush && !(tail && !same);
+  assign phantom_req  = flush || (tail && !(pix_valid_i && same));
   assign pix_ready_o  = en_i && accept;
   assign take_pix     = pix_valid_i && pix_ready_o;
   assign take_phantom = en_i && phantom_req;
@@ -212,6 +212,17 @@ module dpc_ctrl
   end
 
   // ---- frame size ------------------------------------------------------------------------
+  // same = "the registered size equals the latched one". Both of its candidates are
+  // compared one cycle ahead, each against its own register, and kept apart: the size
+  // inputs against the registered size (what the latched size becomes when this cycle
+  // samples) and against the latched size (when it does not); the sample decision (behind
+  // en_i, the core's output register) only loads a flop of its own, and the three flops
+  // pick same in one level. Selecting the compared size by sample before one compare made
+  // en_i -> sample -> compare -> same one path of 6-7 LUT levels (docs/rtl.md).
+  logic same_new_q, same_geo_q, sampled_q;
+
+  assign same = sampled_q ? same_new_q : same_geo_q;
+
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_geometry
     if (!rst_ni) begin
       geo_w_q     <= WidthBits'(1);
@@ -222,7 +233,9 @@ module dpc_ctrl
       geo_h_q     <= HeightBits'(1);
       geo_hm2_q   <= '1;
       geo_h_is1_q <= 1'b1;
-      same_q      <= 1'b0;
+      same_new_q  <= 1'b0;
+      same_geo_q  <= 1'b0;
+      sampled_q   <= 1'b0;
     end else begin
       if (sample) begin
         geo_w_q     <= fw_q;
@@ -234,9 +247,11 @@ module dpc_ctrl
         geo_hm2_q   <= fh_m2_q;
         geo_h_is1_q <= fh_is1_q;
       end
-      // same_q of the next cycle: next registered size == next latched size.
-      same_q <= sample ? (frame_width_i == fw_q) && (frame_height_i == fh_q)
-                       : (frame_width_i == geo_w_q) && (frame_height_i == geo_h_q);
+      // same of the next cycle: next registered size == next latched size (fw_q after a
+      // sample, geo_w_q otherwise).
+      same_new_q <= (frame_width_i == fw_q) && (frame_height_i == fh_q);
+      same_geo_q <= (frame_width_i == geo_w_q) && (frame_height_i == geo_h_q);
+      sampled_q  <= sample;
     end
   end
 
@@ -439,12 +454,15 @@ module dpc_ctrl
   assign frame_err_o   = err_q;
 
 `ifdef IRNUC_ASSERT
-  // a_wrapped_in_flush: the invariant last_phantom and idle_d rely on.
+  // a_wrapped_in_flush: the invariant last_phantom and idle_d rely on (ph_wrapped_q implies
+  // Flush). Its antecedent guards the assertion, so it executes only while ph_wrapped_q
+  // is set: at full rate the simulator skips it (Verilator queries its assertion enable
+  // once per executed assertion).
   logic armed_q;  // from the second edge after reset
   irnuc_assert_armed u_armed (.clk_i, .rst_ni, .armed_o(armed_q));
   always_ff @(posedge clk_i) begin : p_check
-    if (armed_q) begin
-      a_wrapped_in_flush: assert (!ph_wrapped_q || flush)
+    if (armed_q && ph_wrapped_q) begin
+      a_wrapped_in_flush: assert (flush)
         else $error("dpc_ctrl: the phantom row wrapped outside Flush");
     end
   end

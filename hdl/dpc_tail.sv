@@ -7,6 +7,11 @@ module dpc_tail #(
   parameter int unsigned OutBits    = 14,
   parameter int unsigned MaxWidth   = 1024,
   parameter int unsigned MaxHeight  = 1024,
+  // s_* is checked by dpc_core's input register (0: by the top, whose driver of s_* is a
+  // checked register; the frame size is checked here either way).
+  parameter bit          CheckIn    = 1'b1,
+  // dpc_core's own input register (0: s_* comes straight from the caller's register).
+  parameter bit          InReg      = 1'b1,
   // Derived, do not override.
   localparam int unsigned WidthBits  = $clog2(MaxWidth + 1),
   localparam int unsigned HeightBits = $clog2(MaxHeight + 1)
@@ -33,7 +38,9 @@ module dpc_tail #(
   dpc_core #(
     .OutBits  (OutBits),
     .MaxWidth (MaxWidth),
-    .MaxHeight(MaxHeight)
+    .MaxHeight(MaxHeight),
+    .CheckIn  (CheckIn),
+    .InReg    (InReg)
   ) u_dpc (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),

@@ -51,13 +51,17 @@ module irnuc_add_tree #(
       localparam int unsigned NumIn  = nodes(l - 1);
       localparam int unsigned NumOut = nodes(l);
 
-      logic [NumIn-1:0][Width-1:0]  node_in;
-      logic [NumOut-1:0][Width-1:0] node_q;
+      // Unpacked: one simulator variable per node (a packed array wider than 64 bits is
+      // one wide word that every node access shifts and masks).
+      logic [Width-1:0]             node_in [NumIn];
+      logic [Width-1:0]             node_q  [NumOut];
       logic [SideBits-1:0]          side_in, side_q;
       logic                         valid_in, valid_q;
 
       if (l == 1) begin : gen_from_leaves
-        assign node_in  = leaves_i;
+        for (genvar k = 0; k < NumIn; k++) begin : gen_leaf
+          assign node_in[k] = leaves_i[k];
+        end
         assign side_in  = side_i;
         assign valid_in = valid_i;
       end else begin : gen_from_level

@@ -3,9 +3,12 @@
 // cycles of irnuc_spill_register (ready_o = "fewer than two items held", a flop; an item
 // taken is at the output the next cycle; one item per clock at valid = ready = 1), built so
 // that the consumer's ready_i reaches only a read pointer and the fill flags, never the
-// enables of the data registers: each entry is written only from the input side (its
-// enable is valid_i and a flop), and the output is the older entry, picked by the read
-// pointer (a multiplexer on the data path). The consumer is the framer, or method_ffc_top's
+// enables of the data registers: each entry is written only from the input side, and the
+// output is the older entry, picked by the read pointer (a multiplexer on the data path).
+// An entry's enable is two flops: the free entry (the write pointer's, while not full)
+// loads the input every cycle, valid or not, and the write pointer moves on a push; so
+// valid_i, which reaches the enables of every data bit of a wide word, is not on them
+// (data_o while valid_o is low is then the input's last word instead of a stale item). The consumer is the framer, or method_ffc_top's
 // join, whose decision to take an item is the deepest logic; with a spill register that
 // decision fanned out to the enables of every data bit (the critical path). The input side
 // is checked by the user (irnuc_axis_assert, method_ffc_top's stream checkers).
@@ -69,9 +72,11 @@ module irnuc_axis_buffer #(
     end
   end
 
-  // Only the fill flags reset; the entries are qualified by them.
+  // Only the fill flags reset; the entries are qualified by them. While not full, the
+  // entry the write pointer names holds no item (the older one, if any, is the other), so
+  // loading it without a push changes no item; a push then leaves it as loaded.
   always_ff @(posedge clk_i) begin : p_mem
-    if (push) begin
+    if (!full_q) begin
       mem_q[wr_q] <= data_i;
     end
   end

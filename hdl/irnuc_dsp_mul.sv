@@ -65,7 +65,10 @@ module irnuc_dsp_mul (
     if (en_i) begin
       a_q <= a_i;
       b_q <= b_i;
-      p_q <= a_q * b_q;
+      // The product's 36 bits from a 64-bit signed multiply of the sign-extended operands:
+      // the same value (it fits 36 bits), which Verilator computes as one native multiply
+      // (a 36-bit signed product costs it two sign extensions per operand per cycle).
+      p_q <= 36'(64'(a_q) * 64'(b_q));
     end
   end
 

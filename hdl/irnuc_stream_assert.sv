@@ -3,7 +3,8 @@
 // irnuc_spill_register instantiates one on each of its two sides under `ifdef IRNUC_ASSERT
 // (the co-simulation builds define it, synthesis does not); every stream port of
 // nuc_core, dpc_core and nuc_dpc_top is a port of such a register, so every one is
-// checked, and so is every internal register boundary. Immediate assertions in a clocked
+// checked, and so is every internal register boundary, once: a register whose input is
+// another register's output leaves its input checker out (CheckIn = 0). Immediate assertions in a clocked
 // block on the values sampled at the rising edge and the previous edge (stall_q, data_q:
 // the same properties as the concurrent form at less than half its simulation cost),
 // checked from the second edge after reset (armed_q):
@@ -38,7 +39,7 @@ module irnuc_stream_assert #(
 
   always_ff @(posedge clk_i) begin : p_sample
     stall_q <= valid_i && !ready_i;
-    data_q  <= data_i;
+    if (valid_i && !ready_i) data_q <= data_i;  // read only after a stall
   end
 
   // Checked at every edge from the second one after reset (the first one samples). The

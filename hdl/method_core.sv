@@ -24,6 +24,9 @@ module method_core
   parameter int unsigned QuadFracBits   = 6,
   parameter int unsigned SquareBits     = 18,
   parameter int unsigned UserBits       = 1,
+  // s_* is checked by the core's input register (0: by the caller, whose driver is a
+  // checked spill register).
+  parameter bit          CheckIn        = 1'b1,
   // Derived, do not override.
   localparam int unsigned GainBits      = GainIntBits + GainFracBits,
   localparam int unsigned OffsetBits    = OffsetIntBits + OffsetFracBits,
@@ -61,7 +64,8 @@ module method_core
       .OutBits      (OutBits),
       .Rounding     (Rounding),
       .Overflow     (Overflow),
-      .UserBits     (UserBits)
+      .UserBits     (UserBits),
+      .CheckIn      (CheckIn)
     ) u_nuc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),
@@ -93,7 +97,8 @@ module method_core
       .OutBits       (OutBits),
       .Rounding      (Rounding),
       .Overflow      (Overflow),
-      .UserBits      (UserBits)
+      .UserBits      (UserBits),
+      .CheckIn       (CheckIn)
     ) u_nuc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),
@@ -121,7 +126,8 @@ module method_core
       .OutBits       (OutBits),
       .Rounding      (Rounding),
       .Overflow      (Overflow),
-      .UserBits      (UserBits)
+      .UserBits      (UserBits),
+      .CheckIn       (CheckIn)
     ) u_nuc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),

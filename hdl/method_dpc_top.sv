@@ -268,7 +268,9 @@ module method_dpc_top
     .QuadFracBits   (QuadFracBits),
     .SquareBits     (SquareBits),
     // irnuc-params: end
-    .UserBits(3)
+    .UserBits(3),
+    // A registered front's output register checks the core's input stream.
+    .CheckIn(!front_registered(Method))
   ) u_nuc (
     .clk_i       (clk_i),
     .rst_ni      (rst_ni),
@@ -290,6 +292,10 @@ module method_dpc_top
 
   // ---- DPC ---------------------------------------------------------------------------
   dpc_tail #(
+    // Its s_* is the NUC core's output register (checked there), which is also dpc_core's
+    // input register: no second register back to back (one cycle less latency).
+    .CheckIn   (1'b0),
+    .InReg     (1'b0),
     // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
     .OutBits   (OutBits),
     .MaxWidth  (MaxWidth),

@@ -343,6 +343,7 @@ module method_drift_top
 
   // ---- DPC ---------------------------------------------------------------------------------
   dpc_tail #(
+    .CheckIn   (1'b0),  // its s_* is core_out's output register, checked there
     // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
     .OutBits   (OutBits),
     .MaxWidth  (MaxWidth),

@@ -140,6 +140,7 @@ module nuc_dpc_top
 
   // ---- DPC ---------------------------------------------------------------------------
   dpc_tail #(
+    .CheckIn   (1'b0),  // its s_* is nuc_core's output register, checked there
     // irnuc-params: forward dpc_tail (generated from nuc_fixed.methods; do not edit)
     .OutBits   (OutBits),
     .MaxWidth  (MaxWidth),

@@ -29,6 +29,8 @@ module pwl_core
   parameter int unsigned Rounding      = 1,  // irnuc_pkg::rounding_e
   parameter int unsigned Overflow      = 0,  // irnuc_pkg::overflow_e
   parameter int unsigned UserBits      = 1,
+  // s_* is checked by u_in (0: by the caller, whose driver is a checked spill register).
+  parameter bit          CheckIn       = 1'b1,
   // Derived, do not override.
   localparam int unsigned GainBits     = GainIntBits + GainFracBits,
   localparam int unsigned KneeBits     = KneeIntBits + KneeFracBits,
@@ -100,7 +102,7 @@ module pwl_core
   logic [LevelBits-1:0] in_level;
   logic [UserBits-1:0]  in_user;
 
-  irnuc_spill_register #(.DataBits(InBits)) u_in (
+  irnuc_spill_register #(.DataBits(InBits), .CheckIn(CheckIn)) u_in (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .valid_i(s_valid_i),
@@ -216,6 +218,6 @@ module pwl_core
   );
 
   // Protocol assertions of s_* and m_* (irnuc_stream_assert, `ifdef IRNUC_ASSERT): in u_in
-  // and core_out's output register, whose ports these are.
+  // (unless CheckIn = 0) and core_out's output register, whose ports these are.
 
 endmodule
