@@ -363,6 +363,22 @@ async def frame_done_interrupt(dut) -> None:
 
 
 @cocotb.test()
+async def tallest_frames(dut) -> None:
+    """Frames of FRAME_MAX's height, one pixel wide, back to back: FRAMES_OUT counts each
+    once and IRQ_STATUS.frame_done rises (the output-row count reaches its largest legal
+    value, the height's top bit; the other tests' frames are at most 8 lines tall)."""
+    bench = await make_bench(dut, 11)
+    h, w = bench.cfg.max_height, 1
+    await bench.frame_size(h, w)
+    raws, words = _frames(bench, 2, h, w)
+    res = await bench.run(video_beats(raws), coef_beats(words), [bench.settings()],
+                          label=f"tallest {h}x{w}")
+    assert len(res.frames) == 2
+    await bench.check_counts([res])
+    export()
+
+
+@cocotb.test()
 async def reset_mid_frame(dut) -> None:
     """Reset while a frame streams: the registers are back at their reset values, the
     output is idle, and the next frames are exact."""

@@ -27,8 +27,9 @@ from it is not a counterexample to a written equivalence argument. The miter her
   - every other input free: the markers (only checked, ``frame_err_o``), ``m_*_ready_i``,
     every payload bit.
 
-Both netlists (:func:`write_netlist`, flat, ``SYNTHESIS``: no checkers) start with every
-flop at 0, as :func:`irnuc.cosim.formal.equivalence` does. The decision (:func:`decide`):
+Both netlists (:func:`irnuc.cosim.netlist.write_netlist`, flat, ``SYNTHESIS``: no
+checkers; the same passes as the automatic mutants') start with every flop at 0, as
+:func:`irnuc.cosim.formal.equivalence` does. The decision (:func:`decide`):
 ABC's ``scorr`` + ``dprove`` (signal correspondence by induction, then the rest), else
 property-directed reachability (ABC ``pdr``, unbounded), else a bounded search (``bmc3``)
 to say how far no difference exists; a failure is replayed by yosys-smtbmc on the same
@@ -193,23 +194,6 @@ def _frame_rule(ports: Sequence[Port], frame: Mapping[str, int]) -> str:
         f"  end\n")
 
 
-def write_netlist(sources: Sequence[Path], top: str, params: Mapping[str, int], out: Path,
-                  tag: str) -> Path:
-    """The flat netlist of ``top`` (module ``<top>__<tag>``, every flop initialised to 0,
-    ``SYNTHESIS`` defined) as Verilog at ``out``, with its JSON beside it. Like
-    :func:`irnuc.cosim.netlist.write_netlist` without a mutation, but with the parameters
-    in slang's syntax (``method_dpc_top``'s typed ``Method`` by its literal)."""
-    from irnuc.cosim.synth import _read_slang, _run_yosys
-
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    _run_yosys(out.parent, out.stem, [
-        _read_slang(sources, top, params), f"prep -top {top}", "flatten", "opt_clean",
-        "bwmuxmap", "setundef -zero -init", f"rename {top} {top}__{tag}",
-        f"write_verilog -noattr -norename {out}", f"write_json {out.with_suffix('.json')}"])
-    return out
-
-
 def _check(res, verdict: str, engine: str, t0: float, message: str) -> dict:
     return {"verdict": verdict, "engine": engine,
             "seconds": round(time.perf_counter() - t0, 2), "step": res.step,
@@ -361,9 +345,10 @@ def decide_mutant(m: Mutant, *, budget: float = BUDGET, use_cache: bool = True,
         f = hdl / m.file
         f.write_text(m.apply(f.read_text()))
         t0 = time.perf_counter()
-        gold = write_netlist(hdl_sources(m.top), m.top, params, work / "gold" / "gold.v", "gold")
-        gate = write_netlist(hdl_sources(m.top, hdl), m.top, params, work / "mut" / "mut.v",
-                             "mut")
+        gold = netlist.write_netlist(hdl_sources(m.top), m.top, params,
+                                     work / "gold" / "gold.v", "gold")
+        gate = netlist.write_netlist(hdl_sources(m.top, hdl), m.top, params,
+                                     work / "mut" / "mut.v", "mut")
         build = round(time.perf_counter() - t0, 2)
         res = decide(gold, gate, m.top, netlist.ports(gold), work / "decide",
                      frame={k: params[k] for k in ("MaxWidth", "MaxHeight")},
@@ -398,5 +383,4 @@ def label(res: Mapping) -> str:
 
 
 __all__ = ["BUDGET", "DEPTH", "FRAME_TOPS", "HARNESS", "Stream", "cached", "decide",
-           "decide_mutant", "harness", "label", "mutant", "parameters", "streams",
-           "write_netlist"]
+           "decide_mutant", "harness", "label", "mutant", "parameters", "streams"]
