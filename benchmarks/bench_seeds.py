@@ -33,8 +33,9 @@ BEST_GOAL_MHZ, WORST_GOAL_MHZ = 150.0, 140.0
 
 
 def default_configs() -> list[str]:
-    """typical14 and every ``*14`` configuration."""
-    names = [n for n in pipeline_names() if n.endswith("14")]
+    """typical14 and every ``*14`` configuration of every method (``pipeline_names()``
+    alone lists only the two-point ones)."""
+    names = [n for n in pipeline_names(method=None) if n.endswith("14")]
     return ["typical14", *[n for n in names if n != "typical14"]]
 
 
