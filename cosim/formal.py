@@ -113,6 +113,14 @@ def _read(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, i
     return f"read_slang --no-synthesis-define {defs} --top {top} {gens} {files}"
 
 
+#: The passes after ``memory_map`` of a miter of two Yosys-written netlists. A netlist keeps
+#: an unpacked array of one element (an adder tree's level of one node) as a one-word
+#: memory, whose zero-bit address ``memory_map`` decodes with a zero-width ``$eq`` that
+#: ``write_smt2`` cannot export (an assertion in Yosys): ``opt_expr`` folds it to 1 first.
+#: Then every flop at 0, as an ECP5 flop after configuration.
+NETLIST_MITER_PASSES = ("opt_expr", "setundef -zero -init")
+
+
 def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
                  workdir: str | os.PathLike, *, aiger: bool = True,
                  defines: Sequence[str] = DEFINES, extra: Sequence[str] = (),
@@ -544,7 +552,7 @@ def tool_versions() -> dict[str, str]:
 
 __all__ = ["COVER_DEFINE", "DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError",
            "aiger_labels", "bmc3", "bmc3_covers", "check", "formal_sources", "pdr", "smtbmc",
-           "tool_versions", "write_models"]
+           "NETLIST_MITER_PASSES", "tool_versions", "write_models"]
 
 
 # ---- equivalence of two netlists (a mutant and its original) -------------------------------
@@ -623,7 +631,7 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     # configuration). With the unreset flops free the two copies started apart (RDATA's
     # register) and a mutant of a register file looked "different 1 cycle after reset".
     models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",),
-                          extra=["setundef -zero -init"])
+                          extra=NETLIST_MITER_PASSES)
     res = dprove(models["aig"], wd / "dprove", timeout=timeout)
     if res.status == "proved":
         return {"verdict": "equivalent", "engine": "scorr+dprove",

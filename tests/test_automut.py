@@ -118,3 +118,39 @@ def test_miter_decision_cached_apart_from_the_suite(tmp_path, monkeypatch) -> No
     mutate._decide(other, cfg, tmp_path)
     mutate._decide(m, cfg, tmp_path, use_cache=False)
     assert len(calls) == 3
+
+
+_ONE_WORD = """module one_word (
+  input  logic       clk_i,
+  input  logic       rst_ni,
+  input  logic [3:0] d_i,
+  output logic       v_o,
+  output logic [3:0] q_o
+);
+  logic [3:0] node_q [1];
+  always_ff @(posedge clk_i or negedge rst_ni) if (!rst_ni) v_o <= 1'b0; else v_o <= 1'b1;
+  always_ff @(posedge clk_i) node_q[0] <= d_i;
+  assign q_o = node_q[0]{tail};
+endmodule
+"""
+
+
+def test_miter_of_netlists_with_a_one_word_array(tmp_path) -> None:
+    """An unreset unpacked array of one element (an adder tree's level of one node) is a
+    one-word memory in a Yosys-written netlist; the miter's model still builds (Yosys's
+    write_smt2 asserted on the zero-width address decode of memory_map) and the decision
+    finds the changed output, one cycle after reset."""
+    from irnuc.cosim import formal
+
+    nets = {}
+    for tag, tail in (("gold", ""), ("mut", " ^ 4'd1")):
+        (tmp_path / tag).mkdir()
+        src = tmp_path / tag / "one_word.sv"
+        src.write_text(_ONE_WORD.replace("{tail}", tail))
+        nets[tag] = netlist.write_netlist([src], "one_word", {}, tmp_path / f"n_{tag}" / "n.v",
+                                          tag)
+    assert "node_q [0:0]" in nets["gold"].read_text()  # the netlist keeps the one-word memory
+    ports = netlist.ports(nets["gold"])
+    res = formal.equivalence(nets["gold"], nets["mut"], "one_word", ports, tmp_path / "eq",
+                             timeout=60)
+    assert res["verdict"] == "different" and res["step"] == 1, res
