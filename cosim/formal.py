@@ -113,14 +113,6 @@ def _read(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, i
     return f"read_slang --no-synthesis-define {defs} --top {top} {gens} {files}"
 
 
-#: The passes after ``memory_map`` of a miter of two Yosys-written netlists. A netlist keeps
-#: an unpacked array of one element (an adder tree's level of one node) as a one-word
-#: memory, whose zero-bit address ``memory_map`` decodes with a zero-width ``$eq`` that
-#: ``write_smt2`` cannot export (an assertion in Yosys): ``opt_expr`` folds it to 1 first.
-#: Then every flop at 0, as an ECP5 flop after configuration.
-NETLIST_MITER_PASSES = ("opt_expr", "setundef -zero -init")
-
-
 def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping[str, int],
                  workdir: str | os.PathLike, *, aiger: bool = True,
                  defines: Sequence[str] = DEFINES, extra: Sequence[str] = (),
@@ -139,7 +131,11 @@ def write_models(sources: Sequence[str | os.PathLike], top: str, params: Mapping
     # memory_map and the undriven wires' free values for both models: the AIGER model's
     # flops and inputs and the SMT-LIB model's then have the same names, so ABC's
     # counterexample replays on the SMT-LIB model (_witness).
-    passes = [_read(sources, top, params, defines), f"prep -top {top}", "memory_map", *extra,
+    # opt_expr after memory_map: an unreset unpacked array of one element (an adder tree's
+    # level of one node) is a one-word memory, whose zero-bit address memory_map decodes
+    # with a zero-width $eq that write_smt2 cannot export (an assertion in Yosys).
+    passes = [_read(sources, top, params, defines), f"prep -top {top}", "memory_map",
+              "opt_expr", *extra,
               "setundef -undriven -anyseq", "async2sync", "dffunmap",
               "write_smt2 -wires model.smt2"]
     if aiger:
@@ -552,7 +548,7 @@ def tool_versions() -> dict[str, str]:
 
 __all__ = ["COVER_DEFINE", "DEFINES", "ENGINES", "FORMAL_DIR", "TIMEOUT", "Check", "FormalError",
            "aiger_labels", "bmc3", "bmc3_covers", "check", "formal_sources", "pdr", "smtbmc",
-           "NETLIST_MITER_PASSES", "tool_versions", "write_models"]
+           "tool_versions", "write_models"]
 
 
 # ---- equivalence of two netlists (a mutant and its original) -------------------------------
@@ -631,7 +627,7 @@ def equivalence(gold: Path, gate: Path, top: str, ports: Sequence[tuple[str, str
     # configuration). With the unreset flops free the two copies started apart (RDATA's
     # register) and a mutant of a register file looked "different 1 cycle after reset".
     models = write_models(srcs, "eq_miter", {}, wd / "miter", defines=("FORMAL",),
-                          extra=NETLIST_MITER_PASSES)
+                          extra=["setundef -zero -init"])
     res = dprove(models["aig"], wd / "dprove", timeout=timeout)
     if res.status == "proved":
         return {"verdict": "equivalent", "engine": "scorr+dprove",

@@ -138,8 +138,9 @@ endmodule
 def test_miter_of_netlists_with_a_one_word_array(tmp_path) -> None:
     """An unreset unpacked array of one element (an adder tree's level of one node) is a
     one-word memory in a Yosys-written netlist; the miter's model still builds (Yosys's
-    write_smt2 asserted on the zero-width address decode of memory_map) and the decision
-    finds the changed output, one cycle after reset."""
+    write_smt2 asserted on the zero-width address decode of memory_map;
+    formal.write_models folds it) and the decision finds the changed output, one cycle
+    after reset."""
     from irnuc.cosim import formal
 
     nets = {}

@@ -219,7 +219,7 @@ def decide(gold: Path, gate: Path, top: str, ports: Sequence[Port], workdir: Pat
     srcs = [Path(gold), Path(gate), formal.FORMAL_DIR / "irnuc_fv_reset.sv",
             formal.FORMAL_DIR / "irnuc_fv_stream.sv", wd / f"{HARNESS}.sv"]
     models = formal.write_models(srcs, HARNESS, {}, wd / "miter", defines=("FORMAL",),
-                                 extra=formal.NETLIST_MITER_PASSES)
+                                 extra=["setundef -zero -init"])
 
     def left() -> float:
         return max(10.0, budget - (time.perf_counter() - t0))
