@@ -196,6 +196,7 @@ BRANCHES: tuple[Branch, ...] = (
     _gen("irnuc_add_tree", "gen_tree", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_from_leaves", _ALWAYS),
+    _gen("irnuc_add_tree", "gen_tree/gen_level/gen_from_leaves/gen_leaf", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_from_level", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node", _ALWAYS),
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node/gen_add", _ALWAYS),
@@ -204,6 +205,15 @@ BRANCHES: tuple[Branch, ...] = (
     _gen("irnuc_add_tree", "gen_tree/gen_level/gen_node/gen_pass",
          lambda c: _tree_passes(rtl_spec.mul_parts(c.adc_bits, c.gain_bits) + 1)
          or _tree_passes(_dpc_parts(c))),
+    # ---- dpc_core's input register (method_dpc_top feeds it from the NUC core's output
+    # register: InReg = 0 there) and the checkers (inside `ifdef IRNUC_ASSERT`: this
+    # elaboration is the synthesized design's; nuc_dpc_top's dpc_core has CheckIn = 0) ----
+    _gen("dpc_core", "gen_in_reg", _ALWAYS),
+    _not_here("dpc_core", "gen_in_direct", "InReg = 0: method_dpc_top only"),
+    _not_here("dpc_core", "gen_assert_frame",
+              "a checker (IRNUC_ASSERT, simulation only); CheckIn = 0 in nuc_dpc_top"),
+    _not_here("irnuc_spill_register", "gen_assert_in",
+              "a checker (IRNUC_ASSERT, simulation only): not in the synthesized design"),
     # ---- dpc_ctrl: upper frame-size check unless the port is all ones at the maximum -----
     _gen("dpc_ctrl", "gen_w_full", lambda c: _full_port(c.max_width)),
     _gen("dpc_ctrl", "gen_w_check", lambda c: not _full_port(c.max_width)),
