@@ -718,13 +718,15 @@ async def ffc_one_line(dut) -> None:
 
 @cocotb.test()
 async def ffc_one_column(dut) -> None:
-    """The refresh on frames of one column (24 x 1) at valid = ready = 1: every write-back
+    """The refresh on frames of one column (23 x 1) at valid = ready = 1: every write-back
     word ends its line, so the last-line flag is only ever stepped from the row before it
     (height - 2; with two pixels or more per line a word inside the last line sets it
     again, and an idle cycle refreshes it): tlast on exactly the frame's last word of
-    m_axis_acc and m_axis_foff (issue 39: the automatic mutant auto_irnuc_axis_ffc_s1_2,
-    bit 7 of height - 2 tied to 1, left tlast off)."""
-    await refresh_sequence(dut, 56, None, "none", "none", "ffc one column", size=(24, 1))
+    m_axis_acc and m_axis_foff. Issue 39: the automatic mutant auto_irnuc_axis_ffc_s1_2,
+    bit 7 of height - 2 tied to 1, left tlast off; session 50's draw, bit 2 of height - 1
+    flipped where its bit 0 is 0 before height - 2 is taken from it, survived 24 lines
+    (23 - 1 is odd), so the height is odd: 22 has bit 0 clear and bit 2 set."""
+    await refresh_sequence(dut, 56, None, "none", "none", "ffc one column", size=(23, 1))
 
 
 @cocotb.test()
