@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -204,13 +205,13 @@ _REQ_MASK_NONE = """\
 #: The lines of the generated module irnuc replaces, each found exactly once.
 _REPLACED = ((_RD_MUX, _RD_MUX_HELD), (_REQ_MASK, _REQ_MASK_NONE))
 
-#: The third: the address decode's error and external flags. peakrdl-regblock decodes them
-#: from the request's flops in the cycle of the request, through the compare of every
-#: register's address (on ECP5 the wrapper's longest paths: the write response's error
-#: flag, external_pending). irnuc decodes them a cycle ahead, from the next values of the
-#: request's address and direction (irnuc's CPU interface loads them from its holding
-#: registers when a request issues), into flops the request's flag then gates: the same
-#: values in the same cycles. The per-register strobes stay as generated.
+#: The third: the address decode. peakrdl-regblock decodes the request's address in the
+#: cycle of the request: the error and external flags and every register's strobe, each
+#: through the compare of the address with a register's (on ECP5 the wrapper's longest
+#: paths: the write response's error flag, external_pending, the fields' write enables).
+#: irnuc decodes them a cycle ahead, from the next values of the request's address and
+#: direction (irnuc's CPU interface loads them from its holding registers when a request
+#: issues), into flops the request's flag then gates: the same values in the same cycles.
 _DECODE_HEAD = """\
     always_comb begin
         automatic logic is_valid_addr;
@@ -226,13 +227,15 @@ _DECODE_TAIL = """\
     end
 """
 _PREDECODE_HEAD = """\
-    // irnuc: the decode's error and external flags a cycle ahead, from the request's next
-    // address and direction (the CPU interface's request registers' inputs), registered:
-    // decoded_err and decoded_req_is_external are these flops gated by the request, the
-    // values the decode below would give from the request's flops (docs/regmap.md).
+    // irnuc: the decode's strobes and its error and external flags a cycle ahead, from the
+    // request's next address and direction (the CPU interface's request registers' inputs),
+    // registered: decoded_reg_strb, decoded_err and decoded_req_is_external are these flops
+    // gated by the request, the values the decode below would give from the request's flops
+    // (docs/regmap.md).
     logic [11:0] predecode_addr;
     logic        predecode_is_wr, predecode_err_d, predecode_err_q;
     logic        predecode_ext_d, predecode_ext_q;
+    decoded_reg_strb_t predecode_strb_d, predecode_strb_q;
     assign predecode_addr  = axil_take_rd ? {axil_araddr[11:2], 2'b0}
                            : axil_take_wr ? {axil_awaddr[11:2], 2'b0} : axil_req_addr;
     assign predecode_is_wr = (axil_take_rd || axil_take_wr) ? axil_take_wr : axil_req_is_wr;
@@ -244,32 +247,56 @@ _PREDECODE_TAIL = """\
     always_ff @(posedge clk) begin
         predecode_err_q <= predecode_err_d;
         predecode_ext_q <= predecode_ext_d;
+        predecode_strb_q <= predecode_strb_d;
     end
 """
 _DECODE_FLAGS = ("is_valid_addr |=", "is_valid_rw |=", "is_external |=")
 
 
+#: A generated strobe line: indent, the strobe's path, the decode of the request's flops.
+_STROBE = re.compile(r"^( *)decoded_reg_strb\.([\w.\[\]]+) = cpuif_req_masked & (.+);$")
+
+
+def _ahead(line: str) -> str:
+    """A decode line on the request's next address and direction instead of its flops."""
+    return line.replace("cpuif_addr", "predecode_addr").replace("cpuif_req_is_wr",
+                                                               "predecode_is_wr")
+
+
 def _predecode(body: str) -> str:
-    """The generated decode block split (:data:`_DECODE_HEAD`): the per-register strobes
-    from the request's flops as generated, the error and external flags from flops decoded a
-    cycle ahead (:data:`_PREDECODE_HEAD`)."""
+    """The generated decode block (:data:`_DECODE_HEAD`) made a cycle ahead: every line of
+    it decodes the request's next address and direction (:data:`_PREDECODE_HEAD`) into
+    flops, the strobes into ``predecode_strb_q`` (``decoded_reg_strb``'s type) and the
+    error and external flags into theirs; the block left is the request's flag ANDed with
+    those flops. Raises :class:`ToolError` if the generated block is not of that shape."""
     start = body.find(_DECODE_HEAD)
     end = body.find(_DECODE_TAIL, start)
     if start < 0 or body.count(_DECODE_HEAD) != 1 or end < 0 or body.count(_DECODE_TAIL) != 1:
         raise ToolError("peakrdl-regblock's address decode is not the one irnuc.cosim.regfiles "
                         "splits: update it")
-    inner = body[start + len(_DECODE_HEAD):end].splitlines(keepends=True)
-    strobes = [ln for ln in inner if not ln.strip().startswith(_DECODE_FLAGS)]
-    flags = [ln.replace("cpuif_req_masked & ", "").replace("cpuif_addr", "predecode_addr")
-             .replace("cpuif_req_is_wr", "predecode_is_wr")
-             for ln in inner if "decoded_reg_strb" not in ln]
-    if any("cpuif_" in ln for ln in flags):
+    ahead, gated = [], []
+    for ln in body[start + len(_DECODE_HEAD):end].splitlines(keepends=True):
+        strobe = _STROBE.match(ln.rstrip("\n"))
+        if strobe:
+            indent, path, decode = strobe.groups()
+            ahead.append(f"{indent}predecode_strb_d.{path} = {_ahead(decode)};\n")
+            gated.append(f"{indent}decoded_reg_strb.{path} = cpuif_req_masked"
+                         f" & predecode_strb_q.{path};\n")
+        elif "decoded_reg_strb" in ln:
+            raise ToolError("peakrdl-regblock's address decode has a strobe line "
+                            "irnuc.cosim.regfiles does not decode ahead: update it:\n" + ln)
+        elif ln.strip().startswith(_DECODE_FLAGS):
+            ahead.append(_ahead(ln.replace("cpuif_req_masked & ", "")))
+        else:  # a loop's head or end: in both blocks
+            ahead.append(ln)
+            gated.append(ln)
+    if any("cpuif_" in ln for ln in ahead):
         raise ToolError("peakrdl-regblock's address decode reads a signal irnuc.cosim.regfiles "
                         "does not decode ahead: update it")
-    decode = ("    always_comb begin\n" + "".join(strobes)
+    decode = ("    always_comb begin\n" + "".join(gated)
               + "        decoded_err = predecode_err_q & decoded_req;\n"
               + "        decoded_req_is_external = predecode_ext_q & decoded_req;\n    end\n")
-    return (body[:start] + _PREDECODE_HEAD + _DECODE_HEAD + "".join(flags) + _PREDECODE_TAIL
+    return (body[:start] + _PREDECODE_HEAD + _DECODE_HEAD + "".join(ahead) + _PREDECODE_TAIL
             + decode + body[end + len(_DECODE_TAIL):])
 
 
