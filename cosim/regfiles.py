@@ -136,9 +136,52 @@ def _regblock_readback() -> type:
                 "get_resetsignal": self.exp.dereferencer.get_resetsignal,
             }
             template = self.exp.jj_env.get_template("readback/templates/readback_with_rt.sv")
-            return template.render(context)
+            return _readback_ahead(template.render(context), low)
 
     return IrnucReadback
+
+
+#: A compare of the first read-back stage: the request's low address with a register's.
+_RD_LOW = "ad_low(rd_mux_addr) == ad_low("
+_RD_STAGE1 = "// readback stage 1\n"  # unindented: regblock indents the block
+
+
+def _readback_ahead(text: str, low: int) -> str:
+    """The retimed read-back (:func:`_regblock_readback`) with its first stage's address
+    compares a cycle ahead: ``rd_mux_addr`` is the request's address (:data:`_RD_MUX_HELD`),
+    whose next value is the decode's ``predecode_addr`` (:func:`_predecode`), so a one-hot
+    flop per low address (``readback_low_q``) replaces each ``ad_low(rd_mux_addr) ==
+    ad_low(X)`` by ``readback_low_q[ad_low(X)]``: the same select in every cycle. Raises
+    :class:`ToolError` if the generated text is not of that shape."""
+    if text.count(_RD_STAGE1) != 1 or _RD_LOW not in text:
+        raise ToolError("peakrdl-regblock's read-back is not the one irnuc.cosim.regfiles "
+                        "decodes ahead: update it")
+    lines = text.split("\n")
+    for i, ln in enumerate(lines):
+        if _RD_LOW in ln:
+            head, _, rest = ln.partition(_RD_LOW)
+            # The register's address runs to the parenthesis closing ad_low(.
+            depth, end = 1, 0
+            while depth and end < len(rest):
+                depth += {"(": 1, ")": -1}.get(rest[end], 0)
+                end += 1
+            if depth or not head.rstrip().endswith("if(") or rest[end:] != ") begin":
+                raise ToolError("peakrdl-regblock's read-back compares the address in a form "
+                                "irnuc.cosim.regfiles does not decode ahead: update it:\n" + ln)
+            lines[i] = f"{head}readback_low_q[ad_low({rest[:end]}]{rest[end:]}"
+    text = "\n".join(lines)
+    if "rd_mux_addr" in text.split(_RD_STAGE1)[1].split("readback_data_rt_c = ")[0]:
+        raise ToolError("peakrdl-regblock's read-back reads rd_mux_addr in its first stage "
+                        "where irnuc.cosim.regfiles does not decode it ahead: update it")
+    ahead = (
+        "// irnuc: the first stage's address compares a cycle ahead: rd_mux_addr is the\n"
+        "// request's address, whose next value is predecode_addr, so one flop per low\n"
+        "// address (one-hot) selects each register's word in the cycle the compare of\n"
+        "// rd_mux_addr would (docs/regmap.md).\n"
+        f"logic [{(1 << low) - 1}:0] readback_low_d, readback_low_q;\n"
+        f"assign readback_low_d = {1 << low}'(1) << ad_low(predecode_addr);\n"
+        "always_ff @(posedge clk) readback_low_q <= readback_low_d;\n\n")
+    return text.replace(_RD_STAGE1, ahead + _RD_STAGE1)
 
 
 def _regblock_root() -> RootNode:

@@ -1916,20 +1916,28 @@ module irnuc_axil_regblock (
         return addr[11:5];
     endfunction
 
+    // irnuc: the first stage's address compares a cycle ahead: rd_mux_addr is the
+    // request's address, whose next value is predecode_addr, so one flop per low
+    // address (one-hot) selects each register's word in the cycle the compare of
+    // rd_mux_addr would (docs/regmap.md).
+    logic [31:0] readback_low_d, readback_low_q;
+    assign readback_low_d = 32'(1) << ad_low(predecode_addr);
+    always_ff @(posedge clk) readback_low_q <= readback_low_d;
+
     // readback stage 1
     logic [31:0] readback_data_rt_c[128];
     always_comb begin
         automatic logic [31:0] readback_data_var[128];
         for(int i=0; i<128; i++) readback_data_var[i] = '0;
-        if(ad_low(rd_mux_addr) == ad_low(12'h0)) begin
+        if(readback_low_q[ad_low(12'h0)]) begin
             readback_data_var[ad_hi(12'h0)][31:0] = 32'h49524e43;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h4)) begin
+        if(readback_low_q[ad_low(12'h4)]) begin
             readback_data_var[ad_hi(12'h4)][7:0] = 8'h2;
             readback_data_var[ad_hi(12'h4)][15:8] = 8'h1;
             readback_data_var[ad_hi(12'h4)][23:16] = hwif_in.VERSION.coef_layout.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h8)) begin
+        if(readback_low_q[ad_low(12'h8)]) begin
             readback_data_var[ad_hi(12'h8)][7:0] = hwif_in.CONFIG.adc_bits.next;
             readback_data_var[ad_hi(12'h8)][15:8] = hwif_in.CONFIG.out_bits.next;
             readback_data_var[ad_hi(12'h8)][23:16] = hwif_in.CONFIG.word_bits.next;
@@ -1939,25 +1947,25 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h8)][30:29] = hwif_in.CONFIG.rounding.next;
             readback_data_var[ad_hi(12'h8)][31] = hwif_in.CONFIG.overflow.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'hc)) begin
+        if(readback_low_q[ad_low(12'hc)]) begin
             readback_data_var[ad_hi(12'hc)][7:0] = hwif_in.FORMAT.gain_int_bits.next;
             readback_data_var[ad_hi(12'hc)][15:8] = hwif_in.FORMAT.gain_frac_bits.next;
             readback_data_var[ad_hi(12'hc)][23:16] = hwif_in.FORMAT.offset_int_bits.next;
             readback_data_var[ad_hi(12'hc)][31:24] = hwif_in.FORMAT.offset_frac_bits.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h10)) begin
+        if(readback_low_q[ad_low(12'h10)]) begin
             readback_data_var[ad_hi(12'h10)][15:0] = hwif_in.FRAME_MAX.width.next;
             readback_data_var[ad_hi(12'h10)][31:16] = hwif_in.FRAME_MAX.height.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h20)) begin
+        if(readback_low_q[ad_low(12'h20)]) begin
             readback_data_var[ad_hi(12'h20)][0] = field_storage.CTRL.nuc_en.value;
             readback_data_var[ad_hi(12'h20)][1] = field_storage.CTRL.dpc_en.value;
             readback_data_var[ad_hi(12'h20)][8] = field_storage.CTRL.coef_sync.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h24)) begin
+        if(readback_low_q[ad_low(12'h24)]) begin
             readback_data_var[ad_hi(12'h24)] = hwif_in.FRAME_SIZE.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h30)) begin
+        if(readback_low_q[ad_low(12'h30)]) begin
             readback_data_var[ad_hi(12'h30)][0] = field_storage.STATUS.sof_early.value;
             readback_data_var[ad_hi(12'h30)][1] = field_storage.STATUS.sof_late.value;
             readback_data_var[ad_hi(12'h30)][2] = field_storage.STATUS.eol_early.value;
@@ -1968,135 +1976,135 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h30)][16] = hwif_in.STATUS.in_frame.next;
             readback_data_var[ad_hi(12'h30)][17] = hwif_in.STATUS.pending.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h34)) begin
+        if(readback_low_q[ad_low(12'h34)]) begin
             readback_data_var[ad_hi(12'h34)][0] = field_storage.IRQ_ENABLE.error.value;
             readback_data_var[ad_hi(12'h34)][1] = field_storage.IRQ_ENABLE.frame_done.value;
             readback_data_var[ad_hi(12'h34)][2] = field_storage.IRQ_ENABLE.ffc_done.value;
             readback_data_var[ad_hi(12'h34)][3] = field_storage.IRQ_ENABLE.ffc_request.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h38)) begin
+        if(readback_low_q[ad_low(12'h38)]) begin
             readback_data_var[ad_hi(12'h38)][0] = field_storage.IRQ_STATUS.error.value;
             readback_data_var[ad_hi(12'h38)][1] = field_storage.IRQ_STATUS.frame_done.value;
             readback_data_var[ad_hi(12'h38)][2] = field_storage.IRQ_STATUS.ffc_done.value;
             readback_data_var[ad_hi(12'h38)][3] = field_storage.IRQ_STATUS.ffc_request.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h40)) begin
+        if(readback_low_q[ad_low(12'h40)]) begin
             readback_data_var[ad_hi(12'h40)][31:0] = field_storage.FRAMES_IN.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h44)) begin
+        if(readback_low_q[ad_low(12'h44)]) begin
             readback_data_var[ad_hi(12'h44)][31:0] = field_storage.FRAMES_OUT.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h48)) begin
+        if(readback_low_q[ad_low(12'h48)]) begin
             readback_data_var[ad_hi(12'h48)][31:0] = field_storage.PIXELS_IN.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h4c)) begin
+        if(readback_low_q[ad_low(12'h4c)]) begin
             readback_data_var[ad_hi(12'h4c)][31:0] = field_storage.PIXELS_OUT.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h50)) begin
+        if(readback_low_q[ad_low(12'h50)]) begin
             readback_data_var[ad_hi(12'h50)][31:0] = field_storage.DROPPED.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h54)) begin
+        if(readback_low_q[ad_low(12'h54)]) begin
             readback_data_var[ad_hi(12'h54)][31:0] = field_storage.PADDED.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h58)) begin
+        if(readback_low_q[ad_low(12'h58)]) begin
             readback_data_var[ad_hi(12'h58)][15:0] = field_storage.SOF_ERRORS.early.value;
             readback_data_var[ad_hi(12'h58)][31:16] = field_storage.SOF_ERRORS.late.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h5c)) begin
+        if(readback_low_q[ad_low(12'h5c)]) begin
             readback_data_var[ad_hi(12'h5c)][15:0] = field_storage.EOL_ERRORS.early.value;
             readback_data_var[ad_hi(12'h5c)][31:16] = field_storage.EOL_ERRORS.late.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h60)) begin
+        if(readback_low_q[ad_low(12'h60)]) begin
             readback_data_var[ad_hi(12'h60)][15:0] = field_storage.COEF_ERRORS.early.value;
             readback_data_var[ad_hi(12'h60)][31:16] = field_storage.COEF_ERRORS.late.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h80)) begin
+        if(readback_low_q[ad_low(12'h80)]) begin
             readback_data_var[ad_hi(12'h80)] = hwif_in.FFC_CTRL.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h84)) begin
+        if(readback_low_q[ad_low(12'h84)]) begin
             readback_data_var[ad_hi(12'h84)][0] = hwif_in.FFC_STATUS.busy.next;
             readback_data_var[ad_hi(12'h84)][1] = hwif_in.FFC_STATUS.done.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h88)) begin
+        if(readback_low_q[ad_low(12'h88)]) begin
             readback_data_var[ad_hi(12'h88)] = hwif_in.FFC_PERIOD.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h8c)) begin
+        if(readback_low_q[ad_low(12'h8c)]) begin
             readback_data_var[ad_hi(12'h8c)] = hwif_in.FFC_THRESHOLD.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h90)) begin
+        if(readback_low_q[ad_low(12'h90)]) begin
             readback_data_var[ad_hi(12'h90)][23:0] = hwif_in.FFC_TRIGGER.since.next;
             readback_data_var[ad_hi(12'h90)][24] = hwif_in.FFC_TRIGGER.period.next;
             readback_data_var[ad_hi(12'h90)][25] = hwif_in.FFC_TRIGGER.threshold.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h94)) begin
+        if(readback_low_q[ad_low(12'h94)]) begin
             readback_data_var[ad_hi(12'h94)][23:0] = hwif_in.FFC_REF.reading.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h100)) begin
+        if(readback_low_q[ad_low(12'h100)]) begin
             readback_data_var[ad_hi(12'h100)] = hwif_in.GAIN.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h104)) begin
+        if(readback_low_q[ad_low(12'h104)]) begin
             readback_data_var[ad_hi(12'h104)] = hwif_in.GAIN.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h108)) begin
+        if(readback_low_q[ad_low(12'h108)]) begin
             readback_data_var[ad_hi(12'h108)] = hwif_in.LEVEL.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h10c)) begin
+        if(readback_low_q[ad_low(12'h10c)]) begin
             readback_data_var[ad_hi(12'h10c)] = hwif_in.LEVEL.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h110)) begin
+        if(readback_low_q[ad_low(12'h110)]) begin
             readback_data_var[ad_hi(12'h110)] = hwif_in.READING.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h114)) begin
+        if(readback_low_q[ad_low(12'h114)]) begin
             readback_data_var[ad_hi(12'h114)] = hwif_in.READING.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h118)) begin
+        if(readback_low_q[ad_low(12'h118)]) begin
             readback_data_var[ad_hi(12'h118)] = hwif_in.T_REF.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h11c)) begin
+        if(readback_low_q[ad_low(12'h11c)]) begin
             readback_data_var[ad_hi(12'h11c)] = hwif_in.T_REF.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h120)) begin
+        if(readback_low_q[ad_low(12'h120)]) begin
             readback_data_var[ad_hi(12'h120)] = hwif_in.BLIND_SUM.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h124)) begin
+        if(readback_low_q[ad_low(12'h124)]) begin
             readback_data_var[ad_hi(12'h124)] = hwif_in.BLIND_SUM.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h128)) begin
+        if(readback_low_q[ad_low(12'h128)]) begin
             readback_data_var[ad_hi(12'h128)] = hwif_in.BLIND_REF.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h12c)) begin
+        if(readback_low_q[ad_low(12'h12c)]) begin
             readback_data_var[ad_hi(12'h12c)] = hwif_in.BLIND_REF.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h130)) begin
+        if(readback_low_q[ad_low(12'h130)]) begin
             readback_data_var[ad_hi(12'h130)] = hwif_in.DRIFT_GAIN.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h134)) begin
+        if(readback_low_q[ad_low(12'h134)]) begin
             readback_data_var[ad_hi(12'h134)] = hwif_in.DRIFT_GAIN.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h138)) begin
+        if(readback_low_q[ad_low(12'h138)]) begin
             readback_data_var[ad_hi(12'h138)] = hwif_in.FFC_TARGET.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h13c)) begin
+        if(readback_low_q[ad_low(12'h13c)]) begin
             readback_data_var[ad_hi(12'h13c)] = hwif_in.FFC_TARGET.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h140)) begin
+        if(readback_low_q[ad_low(12'h140)]) begin
             readback_data_var[ad_hi(12'h140)] = hwif_in.HOUSING_READING.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h144)) begin
+        if(readback_low_q[ad_low(12'h144)]) begin
             readback_data_var[ad_hi(12'h144)] = hwif_in.HOUSING_READING.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h148)) begin
+        if(readback_low_q[ad_low(12'h148)]) begin
             readback_data_var[ad_hi(12'h148)] = hwif_in.H_REF.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h14c)) begin
+        if(readback_low_q[ad_low(12'h14c)]) begin
             readback_data_var[ad_hi(12'h14c)] = hwif_in.H_REF.HI.rd_data;
         end
         for(int i0=0; i0<16; i0++) begin
-            if(ad_low(rd_mux_addr) == ad_low(12'h180 + (12)'(i0) * 12'h4)) begin
+            if(readback_low_q[ad_low(12'h180 + (12)'(i0) * 12'h4)]) begin
                 readback_data_var[ad_hi(12'h180 + (12)'(i0) * 12'h4)] = hwif_in.TABLE_READING[i0].rd_data;
             end
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h1c0)) begin
+        if(readback_low_q[ad_low(12'h1c0)]) begin
             readback_data_var[ad_hi(12'h1c0)][23:0] = hwif_in.TABLE_SEL.weight.next;
             readback_data_var[ad_hi(12'h1c0)][27:24] = hwif_in.TABLE_SEL.j.next;
             readback_data_var[ad_hi(12'h1c0)][28] = hwif_in.TABLE_SEL.valid.next;
