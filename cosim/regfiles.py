@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -135,9 +136,55 @@ def _regblock_readback() -> type:
                 "get_resetsignal": self.exp.dereferencer.get_resetsignal,
             }
             template = self.exp.jj_env.get_template("readback/templates/readback_with_rt.sv")
-            return template.render(context)
+            return _readback_ahead(template.render(context), low)
 
     return IrnucReadback
+
+
+#: A compare of the first read-back stage: the request's low address with a register's.
+_RD_LOW = "ad_low(rd_mux_addr) == ad_low("
+_RD_STAGE1 = "// readback stage 1\n"  # unindented: regblock indents the block
+
+
+def _readback_ahead(text: str, low: int) -> str:
+    """The retimed read-back (:func:`_regblock_readback`) with its first stage's address
+    compares a cycle ahead: ``rd_mux_addr`` is the request's address (:data:`_RD_MUX_HELD`),
+    loaded from the taken holding register (``ahead_rd_addr``, ``ahead_wr_addr``:
+    :func:`_predecode`), so a one-hot flop of its low address loaded in the same cycle
+    (``readback_low_q``) replaces each ``ad_low(rd_mux_addr) == ad_low(X)`` by
+    ``readback_low_q[ad_low(X)]``: the same select in every cycle. Raises
+    :class:`ToolError` if the generated text is not of that shape."""
+    if text.count(_RD_STAGE1) != 1 or _RD_LOW not in text:
+        raise ToolError("peakrdl-regblock's read-back is not the one irnuc.cosim.regfiles "
+                        "decodes ahead: update it")
+    lines = text.split("\n")
+    for i, ln in enumerate(lines):
+        if _RD_LOW in ln:
+            head, _, rest = ln.partition(_RD_LOW)
+            # The register's address runs to the parenthesis closing ad_low(.
+            depth, end = 1, 0
+            while depth and end < len(rest):
+                depth += {"(": 1, ")": -1}.get(rest[end], 0)
+                end += 1
+            if depth or not head.rstrip().endswith("if(") or rest[end:] != ") begin":
+                raise ToolError("peakrdl-regblock's read-back compares the address in a form "
+                                "irnuc.cosim.regfiles does not decode ahead: update it:\n" + ln)
+            lines[i] = f"{head}readback_low_q[ad_low({rest[:end]}]{rest[end:]}"
+    text = "\n".join(lines)
+    if "rd_mux_addr" in text.split(_RD_STAGE1)[1].split("readback_data_rt_c = ")[0]:
+        raise ToolError("peakrdl-regblock's read-back reads rd_mux_addr in its first stage "
+                        "where irnuc.cosim.regfiles does not decode it ahead: update it")
+    ahead = (
+        "// irnuc: the first stage's address compares ahead: rd_mux_addr is the request's\n"
+        "// address, loaded from the taken holding register, so a one-hot flop of its low\n"
+        "// address loads from the same register in the same cycle and selects each\n"
+        "// register's word where the compare of rd_mux_addr would (docs/regmap.md).\n"
+        f"logic [{(1 << low) - 1}:0] readback_low_q;\n"
+        "always_ff @(posedge clk) begin\n"
+        f"    if(axil_take_rd) readback_low_q <= {1 << low}'(1) << ad_low(ahead_rd_addr);\n"
+        f"    else if(axil_take_wr) readback_low_q <= {1 << low}'(1) << ad_low(ahead_wr_addr);\n"
+        "end\n\n")
+    return text.replace(_RD_STAGE1, ahead + _RD_STAGE1)
 
 
 def _regblock_root() -> RootNode:
@@ -204,13 +251,16 @@ _REQ_MASK_NONE = """\
 #: The lines of the generated module irnuc replaces, each found exactly once.
 _REPLACED = ((_RD_MUX, _RD_MUX_HELD), (_REQ_MASK, _REQ_MASK_NONE))
 
-#: The third: the address decode's error and external flags. peakrdl-regblock decodes them
-#: from the request's flops in the cycle of the request, through the compare of every
-#: register's address (on ECP5 the wrapper's longest paths: the write response's error
-#: flag, external_pending). irnuc decodes them a cycle ahead, from the next values of the
-#: request's address and direction (irnuc's CPU interface loads them from its holding
-#: registers when a request issues), into flops the request's flag then gates: the same
-#: values in the same cycles. The per-register strobes stay as generated.
+#: The third: the address decode. peakrdl-regblock decodes the request's address in the
+#: cycle of the request: the error and external flags and every register's strobe, each
+#: through the compare of the address with a register's (on ECP5 the wrapper's longest
+#: paths: the write response's error flag, external_pending, the fields' write enables).
+#: irnuc's CPU interface loads the request's address and direction from a holding register
+#: (axil_araddr or axil_awaddr), which holds it from the cycle before the request issues
+#: until it is taken (axil_take_rd/axil_take_wr). irnuc decodes each holding register
+#: every cycle into flops (:data:`_PREDECODE_HEAD`), loads the taken one's into the
+#: request's decode flops when the request's address loads, and gates those by the
+#: request's flag: the same values in the same cycles, no compare after a flop.
 _DECODE_HEAD = """\
     always_comb begin
         automatic logic is_valid_addr;
@@ -226,51 +276,101 @@ _DECODE_TAIL = """\
     end
 """
 _PREDECODE_HEAD = """\
-    // irnuc: the decode's error and external flags a cycle ahead, from the request's next
-    // address and direction (the CPU interface's request registers' inputs), registered:
-    // decoded_err and decoded_req_is_external are these flops gated by the request, the
-    // values the decode below would give from the request's flops (docs/regmap.md).
-    logic [11:0] predecode_addr;
-    logic        predecode_is_wr, predecode_err_d, predecode_err_q;
-    logic        predecode_ext_d, predecode_ext_q;
-    assign predecode_addr  = axil_take_rd ? {axil_araddr[11:2], 2'b0}
-                           : axil_take_wr ? {axil_awaddr[11:2], 2'b0} : axil_req_addr;
-    assign predecode_is_wr = (axil_take_rd || axil_take_wr) ? axil_take_wr : axil_req_is_wr;
+    // irnuc: the decode two steps ahead. A request's address waits in its holding register
+    // (axil_araddr, axil_awaddr) from the cycle before it issues until it is taken into the
+    // request's flops (axil_take_rd, axil_take_wr): each holding register's decode (with the
+    // request's direction, 0 and 1) is registered every cycle (ahead_rd_*, ahead_wr_*) and
+    // the taken one's loads with the request's address (predecode_*_q, the decode of the
+    // request's flops); the strobes, decoded_err and decoded_req_is_external are these flops
+    // gated by the request, the values the decode would give from the request's flops
+    // (docs/regmap.md).
+    logic [11:0] ahead_rd_addr, ahead_wr_addr;
+    logic        ahead_rd_err_d, ahead_rd_err_q, ahead_rd_ext_d, ahead_rd_ext_q;
+    logic        ahead_wr_err_d, ahead_wr_err_q, ahead_wr_ext_d, ahead_wr_ext_q;
+    logic        predecode_err_q, predecode_ext_q;
+    decoded_reg_strb_t ahead_rd_strb_d, ahead_rd_strb_q, ahead_wr_strb_d, ahead_wr_strb_q;
+    decoded_reg_strb_t predecode_strb_q;
+    assign ahead_rd_addr = {axil_araddr[11:2], 2'b0};
+    assign ahead_wr_addr = {axil_awaddr[11:2], 2'b0};
 """
 _PREDECODE_TAIL = """\
-        predecode_err_d = ~is_valid_addr | ~is_valid_rw;
-        predecode_ext_d = is_external;
-    end
     always_ff @(posedge clk) begin
-        predecode_err_q <= predecode_err_d;
-        predecode_ext_q <= predecode_ext_d;
+        ahead_rd_strb_q <= ahead_rd_strb_d;
+        ahead_rd_err_q  <= ahead_rd_err_d;
+        ahead_rd_ext_q  <= ahead_rd_ext_d;
+        ahead_wr_strb_q <= ahead_wr_strb_d;
+        ahead_wr_err_q  <= ahead_wr_err_d;
+        ahead_wr_ext_q  <= ahead_wr_ext_d;
+        if(axil_take_rd) begin
+            predecode_strb_q <= ahead_rd_strb_q;
+            predecode_err_q  <= ahead_rd_err_q;
+            predecode_ext_q  <= ahead_rd_ext_q;
+        end else if(axil_take_wr) begin
+            predecode_strb_q <= ahead_wr_strb_q;
+            predecode_err_q  <= ahead_wr_err_q;
+            predecode_ext_q  <= ahead_wr_ext_q;
+        end
     end
 """
 _DECODE_FLAGS = ("is_valid_addr |=", "is_valid_rw |=", "is_external |=")
 
 
+#: A generated strobe line: indent, the strobe's path, the decode of the request's flops.
+_STROBE = re.compile(r"^( *)decoded_reg_strb\.([\w.\[\]]+) = cpuif_req_masked & (.+);$")
+
+
+def _ahead(line: str, side: str) -> str:
+    """A decode line on a holding register (``side`` ``rd`` or ``wr``) and its direction
+    instead of the request's flops."""
+    return (line.replace("cpuif_req_masked & ", "")
+            .replace("cpuif_addr", f"ahead_{side}_addr")
+            .replace("cpuif_req_is_wr", "1'b1" if side == "wr" else "1'b0"))
+
+
 def _predecode(body: str) -> str:
-    """The generated decode block split (:data:`_DECODE_HEAD`): the per-register strobes
-    from the request's flops as generated, the error and external flags from flops decoded a
-    cycle ahead (:data:`_PREDECODE_HEAD`)."""
+    """The generated decode block (:data:`_DECODE_HEAD`) made ahead: every line of it,
+    once per holding register (:data:`_PREDECODE_HEAD`), decodes that register's address
+    and direction into flops, the strobes into a struct of ``decoded_reg_strb``'s type and
+    the error and external flags into theirs; the taken one's load the request's flops
+    (:data:`_PREDECODE_TAIL`); the block left is the request's flag ANDed with those.
+    Raises :class:`ToolError` if the generated block is not of that shape."""
     start = body.find(_DECODE_HEAD)
     end = body.find(_DECODE_TAIL, start)
     if start < 0 or body.count(_DECODE_HEAD) != 1 or end < 0 or body.count(_DECODE_TAIL) != 1:
         raise ToolError("peakrdl-regblock's address decode is not the one irnuc.cosim.regfiles "
                         "splits: update it")
-    inner = body[start + len(_DECODE_HEAD):end].splitlines(keepends=True)
-    strobes = [ln for ln in inner if not ln.strip().startswith(_DECODE_FLAGS)]
-    flags = [ln.replace("cpuif_req_masked & ", "").replace("cpuif_addr", "predecode_addr")
-             .replace("cpuif_req_is_wr", "predecode_is_wr")
-             for ln in inner if "decoded_reg_strb" not in ln]
-    if any("cpuif_" in ln for ln in flags):
+    ahead: dict[str, list[str]] = {"rd": [], "wr": []}
+    gated = []
+    for ln in body[start + len(_DECODE_HEAD):end].splitlines(keepends=True):
+        strobe = _STROBE.match(ln.rstrip("\n"))
+        if strobe:
+            indent, path, decode = strobe.groups()
+            for side, lines in ahead.items():
+                lines.append(f"{indent}ahead_{side}_strb_d.{path} = {_ahead(decode, side)};\n")
+            gated.append(f"{indent}decoded_reg_strb.{path} = cpuif_req_masked"
+                         f" & predecode_strb_q.{path};\n")
+        elif "decoded_reg_strb" in ln:
+            raise ToolError("peakrdl-regblock's address decode has a strobe line "
+                            "irnuc.cosim.regfiles does not decode ahead: update it:\n" + ln)
+        elif ln.strip().startswith(_DECODE_FLAGS):
+            for side, lines in ahead.items():
+                lines.append(_ahead(ln, side))
+        else:  # a loop's head or end: in every block
+            for lines in (*ahead.values(), gated):
+                lines.append(ln)
+    if any("cpuif_" in ln for lines in ahead.values() for ln in lines):
         raise ToolError("peakrdl-regblock's address decode reads a signal irnuc.cosim.regfiles "
                         "does not decode ahead: update it")
-    decode = ("    always_comb begin\n" + "".join(strobes)
+    blocks = "".join(
+        _DECODE_HEAD + "".join(lines)
+        + f"        ahead_{side}_err_d = ~is_valid_addr | ~is_valid_rw;\n"
+        + f"        ahead_{side}_ext_d = is_external;\n    end\n"
+        for side, lines in ahead.items())
+    decode = ("    always_comb begin\n" + "".join(gated)
               + "        decoded_err = predecode_err_q & decoded_req;\n"
               + "        decoded_req_is_external = predecode_ext_q & decoded_req;\n    end\n")
-    return (body[:start] + _PREDECODE_HEAD + _DECODE_HEAD + "".join(flags) + _PREDECODE_TAIL
-            + decode + body[end + len(_DECODE_TAIL):])
+    return (body[:start] + _PREDECODE_HEAD + blocks + _PREDECODE_TAIL + decode
+            + body[end + len(_DECODE_TAIL):])
 
 
 def regblock_texts() -> dict[Path, str]:

@@ -327,16 +327,22 @@ module irnuc_axil_regblock (
     logic [31:0] decoded_wr_data;
     logic [31:0] decoded_wr_biten;
 
-    // irnuc: the decode's error and external flags a cycle ahead, from the request's next
-    // address and direction (the CPU interface's request registers' inputs), registered:
-    // decoded_err and decoded_req_is_external are these flops gated by the request, the
-    // values the decode below would give from the request's flops (docs/regmap.md).
-    logic [11:0] predecode_addr;
-    logic        predecode_is_wr, predecode_err_d, predecode_err_q;
-    logic        predecode_ext_d, predecode_ext_q;
-    assign predecode_addr  = axil_take_rd ? {axil_araddr[11:2], 2'b0}
-                           : axil_take_wr ? {axil_awaddr[11:2], 2'b0} : axil_req_addr;
-    assign predecode_is_wr = (axil_take_rd || axil_take_wr) ? axil_take_wr : axil_req_is_wr;
+    // irnuc: the decode two steps ahead. A request's address waits in its holding register
+    // (axil_araddr, axil_awaddr) from the cycle before it issues until it is taken into the
+    // request's flops (axil_take_rd, axil_take_wr): each holding register's decode (with the
+    // request's direction, 0 and 1) is registered every cycle (ahead_rd_*, ahead_wr_*) and
+    // the taken one's loads with the request's address (predecode_*_q, the decode of the
+    // request's flops); the strobes, decoded_err and decoded_req_is_external are these flops
+    // gated by the request, the values the decode would give from the request's flops
+    // (docs/regmap.md).
+    logic [11:0] ahead_rd_addr, ahead_wr_addr;
+    logic        ahead_rd_err_d, ahead_rd_err_q, ahead_rd_ext_d, ahead_rd_ext_q;
+    logic        ahead_wr_err_d, ahead_wr_err_q, ahead_wr_ext_d, ahead_wr_ext_q;
+    logic        predecode_err_q, predecode_ext_q;
+    decoded_reg_strb_t ahead_rd_strb_d, ahead_rd_strb_q, ahead_wr_strb_d, ahead_wr_strb_q;
+    decoded_reg_strb_t predecode_strb_q;
+    assign ahead_rd_addr = {axil_araddr[11:2], 2'b0};
+    assign ahead_wr_addr = {axil_awaddr[11:2], 2'b0};
     always_comb begin
         automatic logic is_valid_addr;
         automatic logic is_valid_rw;
@@ -344,187 +350,429 @@ module irnuc_axil_regblock (
         is_external = '0;
         is_valid_addr = '0;
         is_valid_rw = '0;
-        is_valid_addr |= (predecode_addr == 12'h0);
-        is_valid_rw |= (predecode_addr == 12'h0) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h4);
-        is_valid_rw |= (predecode_addr == 12'h4) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h8);
-        is_valid_rw |= (predecode_addr == 12'h8) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'hc);
-        is_valid_rw |= (predecode_addr == 12'hc) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h10);
-        is_valid_rw |= (predecode_addr == 12'h10) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h20);
-        is_valid_rw |= (predecode_addr == 12'h20);
-        is_external |= (predecode_addr == 12'h24);
-        is_valid_addr |= (predecode_addr == 12'h24);
-        is_valid_rw |= (predecode_addr == 12'h24);
-        is_valid_addr |= (predecode_addr == 12'h28);
-        is_valid_rw |= (predecode_addr == 12'h28) & predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h30);
-        is_valid_rw |= (predecode_addr == 12'h30);
-        is_valid_addr |= (predecode_addr == 12'h34);
-        is_valid_rw |= (predecode_addr == 12'h34);
-        is_valid_addr |= (predecode_addr == 12'h38);
-        is_valid_rw |= (predecode_addr == 12'h38);
-        is_valid_addr |= (predecode_addr == 12'h40);
-        is_valid_rw |= (predecode_addr == 12'h40) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h44);
-        is_valid_rw |= (predecode_addr == 12'h44) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h48);
-        is_valid_rw |= (predecode_addr == 12'h48) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h4c);
-        is_valid_rw |= (predecode_addr == 12'h4c) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h50);
-        is_valid_rw |= (predecode_addr == 12'h50) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h54);
-        is_valid_rw |= (predecode_addr == 12'h54) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h58);
-        is_valid_rw |= (predecode_addr == 12'h58) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h5c);
-        is_valid_rw |= (predecode_addr == 12'h5c) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h60);
-        is_valid_rw |= (predecode_addr == 12'h60) & !predecode_is_wr;
-        is_external |= (predecode_addr == 12'h80);
-        is_valid_addr |= (predecode_addr == 12'h80);
-        is_valid_rw |= (predecode_addr == 12'h80);
-        is_valid_addr |= (predecode_addr == 12'h84);
-        is_valid_rw |= (predecode_addr == 12'h84) & !predecode_is_wr;
-        is_external |= (predecode_addr == 12'h88);
-        is_valid_addr |= (predecode_addr == 12'h88);
-        is_valid_rw |= (predecode_addr == 12'h88);
-        is_external |= (predecode_addr == 12'h8c);
-        is_valid_addr |= (predecode_addr == 12'h8c);
-        is_valid_rw |= (predecode_addr == 12'h8c);
-        is_valid_addr |= (predecode_addr == 12'h90);
-        is_valid_rw |= (predecode_addr == 12'h90) & !predecode_is_wr;
-        is_valid_addr |= (predecode_addr == 12'h94);
-        is_valid_rw |= (predecode_addr == 12'h94) & !predecode_is_wr;
-        is_external |= (predecode_addr == 12'h100);
-        is_valid_addr |= (predecode_addr == 12'h100);
-        is_valid_rw |= (predecode_addr == 12'h100);
-        is_external |= (predecode_addr == 12'h104);
-        is_valid_addr |= (predecode_addr == 12'h104);
-        is_valid_rw |= (predecode_addr == 12'h104);
-        is_external |= (predecode_addr == 12'h108);
-        is_valid_addr |= (predecode_addr == 12'h108);
-        is_valid_rw |= (predecode_addr == 12'h108);
-        is_external |= (predecode_addr == 12'h10c);
-        is_valid_addr |= (predecode_addr == 12'h10c);
-        is_valid_rw |= (predecode_addr == 12'h10c);
-        is_external |= (predecode_addr == 12'h110);
-        is_valid_addr |= (predecode_addr == 12'h110);
-        is_valid_rw |= (predecode_addr == 12'h110);
-        is_external |= (predecode_addr == 12'h114);
-        is_valid_addr |= (predecode_addr == 12'h114);
-        is_valid_rw |= (predecode_addr == 12'h114);
-        is_external |= (predecode_addr == 12'h118);
-        is_valid_addr |= (predecode_addr == 12'h118);
-        is_valid_rw |= (predecode_addr == 12'h118);
-        is_external |= (predecode_addr == 12'h11c);
-        is_valid_addr |= (predecode_addr == 12'h11c);
-        is_valid_rw |= (predecode_addr == 12'h11c);
-        is_external |= (predecode_addr == 12'h120);
-        is_valid_addr |= (predecode_addr == 12'h120);
-        is_valid_rw |= (predecode_addr == 12'h120);
-        is_external |= (predecode_addr == 12'h124);
-        is_valid_addr |= (predecode_addr == 12'h124);
-        is_valid_rw |= (predecode_addr == 12'h124);
-        is_external |= (predecode_addr == 12'h128);
-        is_valid_addr |= (predecode_addr == 12'h128);
-        is_valid_rw |= (predecode_addr == 12'h128);
-        is_external |= (predecode_addr == 12'h12c);
-        is_valid_addr |= (predecode_addr == 12'h12c);
-        is_valid_rw |= (predecode_addr == 12'h12c);
-        is_external |= (predecode_addr == 12'h130);
-        is_valid_addr |= (predecode_addr == 12'h130);
-        is_valid_rw |= (predecode_addr == 12'h130);
-        is_external |= (predecode_addr == 12'h134);
-        is_valid_addr |= (predecode_addr == 12'h134);
-        is_valid_rw |= (predecode_addr == 12'h134);
-        is_external |= (predecode_addr == 12'h138);
-        is_valid_addr |= (predecode_addr == 12'h138);
-        is_valid_rw |= (predecode_addr == 12'h138);
-        is_external |= (predecode_addr == 12'h13c);
-        is_valid_addr |= (predecode_addr == 12'h13c);
-        is_valid_rw |= (predecode_addr == 12'h13c);
-        is_external |= (predecode_addr == 12'h140);
-        is_valid_addr |= (predecode_addr == 12'h140);
-        is_valid_rw |= (predecode_addr == 12'h140);
-        is_external |= (predecode_addr == 12'h144);
-        is_valid_addr |= (predecode_addr == 12'h144);
-        is_valid_rw |= (predecode_addr == 12'h144);
-        is_external |= (predecode_addr == 12'h148);
-        is_valid_addr |= (predecode_addr == 12'h148);
-        is_valid_rw |= (predecode_addr == 12'h148);
-        is_external |= (predecode_addr == 12'h14c);
-        is_valid_addr |= (predecode_addr == 12'h14c);
-        is_valid_rw |= (predecode_addr == 12'h14c);
+        ahead_rd_strb_d.ID = (ahead_rd_addr == 12'h0) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h0);
+        is_valid_rw |= (ahead_rd_addr == 12'h0) & !1'b0;
+        ahead_rd_strb_d.VERSION = (ahead_rd_addr == 12'h4) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h4);
+        is_valid_rw |= (ahead_rd_addr == 12'h4) & !1'b0;
+        ahead_rd_strb_d.CONFIG = (ahead_rd_addr == 12'h8) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h8);
+        is_valid_rw |= (ahead_rd_addr == 12'h8) & !1'b0;
+        ahead_rd_strb_d.FORMAT = (ahead_rd_addr == 12'hc) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'hc);
+        is_valid_rw |= (ahead_rd_addr == 12'hc) & !1'b0;
+        ahead_rd_strb_d.FRAME_MAX = (ahead_rd_addr == 12'h10) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h10);
+        is_valid_rw |= (ahead_rd_addr == 12'h10) & !1'b0;
+        ahead_rd_strb_d.CTRL = (ahead_rd_addr == 12'h20);
+        is_valid_addr |= (ahead_rd_addr == 12'h20);
+        is_valid_rw |= (ahead_rd_addr == 12'h20);
+        ahead_rd_strb_d.FRAME_SIZE = (ahead_rd_addr == 12'h24);
+        is_external |= (ahead_rd_addr == 12'h24);
+        is_valid_addr |= (ahead_rd_addr == 12'h24);
+        is_valid_rw |= (ahead_rd_addr == 12'h24);
+        ahead_rd_strb_d.COMMAND = (ahead_rd_addr == 12'h28) & 1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h28);
+        is_valid_rw |= (ahead_rd_addr == 12'h28) & 1'b0;
+        ahead_rd_strb_d.STATUS = (ahead_rd_addr == 12'h30);
+        is_valid_addr |= (ahead_rd_addr == 12'h30);
+        is_valid_rw |= (ahead_rd_addr == 12'h30);
+        ahead_rd_strb_d.IRQ_ENABLE = (ahead_rd_addr == 12'h34);
+        is_valid_addr |= (ahead_rd_addr == 12'h34);
+        is_valid_rw |= (ahead_rd_addr == 12'h34);
+        ahead_rd_strb_d.IRQ_STATUS = (ahead_rd_addr == 12'h38);
+        is_valid_addr |= (ahead_rd_addr == 12'h38);
+        is_valid_rw |= (ahead_rd_addr == 12'h38);
+        ahead_rd_strb_d.FRAMES_IN = (ahead_rd_addr == 12'h40) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h40);
+        is_valid_rw |= (ahead_rd_addr == 12'h40) & !1'b0;
+        ahead_rd_strb_d.FRAMES_OUT = (ahead_rd_addr == 12'h44) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h44);
+        is_valid_rw |= (ahead_rd_addr == 12'h44) & !1'b0;
+        ahead_rd_strb_d.PIXELS_IN = (ahead_rd_addr == 12'h48) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h48);
+        is_valid_rw |= (ahead_rd_addr == 12'h48) & !1'b0;
+        ahead_rd_strb_d.PIXELS_OUT = (ahead_rd_addr == 12'h4c) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h4c);
+        is_valid_rw |= (ahead_rd_addr == 12'h4c) & !1'b0;
+        ahead_rd_strb_d.DROPPED = (ahead_rd_addr == 12'h50) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h50);
+        is_valid_rw |= (ahead_rd_addr == 12'h50) & !1'b0;
+        ahead_rd_strb_d.PADDED = (ahead_rd_addr == 12'h54) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h54);
+        is_valid_rw |= (ahead_rd_addr == 12'h54) & !1'b0;
+        ahead_rd_strb_d.SOF_ERRORS = (ahead_rd_addr == 12'h58) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h58);
+        is_valid_rw |= (ahead_rd_addr == 12'h58) & !1'b0;
+        ahead_rd_strb_d.EOL_ERRORS = (ahead_rd_addr == 12'h5c) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h5c);
+        is_valid_rw |= (ahead_rd_addr == 12'h5c) & !1'b0;
+        ahead_rd_strb_d.COEF_ERRORS = (ahead_rd_addr == 12'h60) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h60);
+        is_valid_rw |= (ahead_rd_addr == 12'h60) & !1'b0;
+        ahead_rd_strb_d.FFC_CTRL = (ahead_rd_addr == 12'h80);
+        is_external |= (ahead_rd_addr == 12'h80);
+        is_valid_addr |= (ahead_rd_addr == 12'h80);
+        is_valid_rw |= (ahead_rd_addr == 12'h80);
+        ahead_rd_strb_d.FFC_STATUS = (ahead_rd_addr == 12'h84) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h84);
+        is_valid_rw |= (ahead_rd_addr == 12'h84) & !1'b0;
+        ahead_rd_strb_d.FFC_PERIOD = (ahead_rd_addr == 12'h88);
+        is_external |= (ahead_rd_addr == 12'h88);
+        is_valid_addr |= (ahead_rd_addr == 12'h88);
+        is_valid_rw |= (ahead_rd_addr == 12'h88);
+        ahead_rd_strb_d.FFC_THRESHOLD = (ahead_rd_addr == 12'h8c);
+        is_external |= (ahead_rd_addr == 12'h8c);
+        is_valid_addr |= (ahead_rd_addr == 12'h8c);
+        is_valid_rw |= (ahead_rd_addr == 12'h8c);
+        ahead_rd_strb_d.FFC_TRIGGER = (ahead_rd_addr == 12'h90) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h90);
+        is_valid_rw |= (ahead_rd_addr == 12'h90) & !1'b0;
+        ahead_rd_strb_d.FFC_REF = (ahead_rd_addr == 12'h94) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h94);
+        is_valid_rw |= (ahead_rd_addr == 12'h94) & !1'b0;
+        ahead_rd_strb_d.GAIN.LO = (ahead_rd_addr == 12'h100);
+        is_external |= (ahead_rd_addr == 12'h100);
+        is_valid_addr |= (ahead_rd_addr == 12'h100);
+        is_valid_rw |= (ahead_rd_addr == 12'h100);
+        ahead_rd_strb_d.GAIN.HI = (ahead_rd_addr == 12'h104);
+        is_external |= (ahead_rd_addr == 12'h104);
+        is_valid_addr |= (ahead_rd_addr == 12'h104);
+        is_valid_rw |= (ahead_rd_addr == 12'h104);
+        ahead_rd_strb_d.LEVEL.LO = (ahead_rd_addr == 12'h108);
+        is_external |= (ahead_rd_addr == 12'h108);
+        is_valid_addr |= (ahead_rd_addr == 12'h108);
+        is_valid_rw |= (ahead_rd_addr == 12'h108);
+        ahead_rd_strb_d.LEVEL.HI = (ahead_rd_addr == 12'h10c);
+        is_external |= (ahead_rd_addr == 12'h10c);
+        is_valid_addr |= (ahead_rd_addr == 12'h10c);
+        is_valid_rw |= (ahead_rd_addr == 12'h10c);
+        ahead_rd_strb_d.READING.LO = (ahead_rd_addr == 12'h110);
+        is_external |= (ahead_rd_addr == 12'h110);
+        is_valid_addr |= (ahead_rd_addr == 12'h110);
+        is_valid_rw |= (ahead_rd_addr == 12'h110);
+        ahead_rd_strb_d.READING.HI = (ahead_rd_addr == 12'h114);
+        is_external |= (ahead_rd_addr == 12'h114);
+        is_valid_addr |= (ahead_rd_addr == 12'h114);
+        is_valid_rw |= (ahead_rd_addr == 12'h114);
+        ahead_rd_strb_d.T_REF.LO = (ahead_rd_addr == 12'h118);
+        is_external |= (ahead_rd_addr == 12'h118);
+        is_valid_addr |= (ahead_rd_addr == 12'h118);
+        is_valid_rw |= (ahead_rd_addr == 12'h118);
+        ahead_rd_strb_d.T_REF.HI = (ahead_rd_addr == 12'h11c);
+        is_external |= (ahead_rd_addr == 12'h11c);
+        is_valid_addr |= (ahead_rd_addr == 12'h11c);
+        is_valid_rw |= (ahead_rd_addr == 12'h11c);
+        ahead_rd_strb_d.BLIND_SUM.LO = (ahead_rd_addr == 12'h120);
+        is_external |= (ahead_rd_addr == 12'h120);
+        is_valid_addr |= (ahead_rd_addr == 12'h120);
+        is_valid_rw |= (ahead_rd_addr == 12'h120);
+        ahead_rd_strb_d.BLIND_SUM.HI = (ahead_rd_addr == 12'h124);
+        is_external |= (ahead_rd_addr == 12'h124);
+        is_valid_addr |= (ahead_rd_addr == 12'h124);
+        is_valid_rw |= (ahead_rd_addr == 12'h124);
+        ahead_rd_strb_d.BLIND_REF.LO = (ahead_rd_addr == 12'h128);
+        is_external |= (ahead_rd_addr == 12'h128);
+        is_valid_addr |= (ahead_rd_addr == 12'h128);
+        is_valid_rw |= (ahead_rd_addr == 12'h128);
+        ahead_rd_strb_d.BLIND_REF.HI = (ahead_rd_addr == 12'h12c);
+        is_external |= (ahead_rd_addr == 12'h12c);
+        is_valid_addr |= (ahead_rd_addr == 12'h12c);
+        is_valid_rw |= (ahead_rd_addr == 12'h12c);
+        ahead_rd_strb_d.DRIFT_GAIN.LO = (ahead_rd_addr == 12'h130);
+        is_external |= (ahead_rd_addr == 12'h130);
+        is_valid_addr |= (ahead_rd_addr == 12'h130);
+        is_valid_rw |= (ahead_rd_addr == 12'h130);
+        ahead_rd_strb_d.DRIFT_GAIN.HI = (ahead_rd_addr == 12'h134);
+        is_external |= (ahead_rd_addr == 12'h134);
+        is_valid_addr |= (ahead_rd_addr == 12'h134);
+        is_valid_rw |= (ahead_rd_addr == 12'h134);
+        ahead_rd_strb_d.FFC_TARGET.LO = (ahead_rd_addr == 12'h138);
+        is_external |= (ahead_rd_addr == 12'h138);
+        is_valid_addr |= (ahead_rd_addr == 12'h138);
+        is_valid_rw |= (ahead_rd_addr == 12'h138);
+        ahead_rd_strb_d.FFC_TARGET.HI = (ahead_rd_addr == 12'h13c);
+        is_external |= (ahead_rd_addr == 12'h13c);
+        is_valid_addr |= (ahead_rd_addr == 12'h13c);
+        is_valid_rw |= (ahead_rd_addr == 12'h13c);
+        ahead_rd_strb_d.HOUSING_READING.LO = (ahead_rd_addr == 12'h140);
+        is_external |= (ahead_rd_addr == 12'h140);
+        is_valid_addr |= (ahead_rd_addr == 12'h140);
+        is_valid_rw |= (ahead_rd_addr == 12'h140);
+        ahead_rd_strb_d.HOUSING_READING.HI = (ahead_rd_addr == 12'h144);
+        is_external |= (ahead_rd_addr == 12'h144);
+        is_valid_addr |= (ahead_rd_addr == 12'h144);
+        is_valid_rw |= (ahead_rd_addr == 12'h144);
+        ahead_rd_strb_d.H_REF.LO = (ahead_rd_addr == 12'h148);
+        is_external |= (ahead_rd_addr == 12'h148);
+        is_valid_addr |= (ahead_rd_addr == 12'h148);
+        is_valid_rw |= (ahead_rd_addr == 12'h148);
+        ahead_rd_strb_d.H_REF.HI = (ahead_rd_addr == 12'h14c);
+        is_external |= (ahead_rd_addr == 12'h14c);
+        is_valid_addr |= (ahead_rd_addr == 12'h14c);
+        is_valid_rw |= (ahead_rd_addr == 12'h14c);
         for(int i0=0; i0<16; i0++) begin
-            is_external |= (predecode_addr == 12'h180 + (12)'(i0) * 12'h4);
-            is_valid_addr |= (predecode_addr == 12'h180 + (12)'(i0) * 12'h4);
-            is_valid_rw |= (predecode_addr == 12'h180 + (12)'(i0) * 12'h4);
+            ahead_rd_strb_d.TABLE_READING[i0] = (ahead_rd_addr == 12'h180 + (12)'(i0) * 12'h4);
+            is_external |= (ahead_rd_addr == 12'h180 + (12)'(i0) * 12'h4);
+            is_valid_addr |= (ahead_rd_addr == 12'h180 + (12)'(i0) * 12'h4);
+            is_valid_rw |= (ahead_rd_addr == 12'h180 + (12)'(i0) * 12'h4);
         end
-        is_valid_addr |= (predecode_addr == 12'h1c0);
-        is_valid_rw |= (predecode_addr == 12'h1c0) & !predecode_is_wr;
-        predecode_err_d = ~is_valid_addr | ~is_valid_rw;
-        predecode_ext_d = is_external;
-    end
-    always_ff @(posedge clk) begin
-        predecode_err_q <= predecode_err_d;
-        predecode_ext_q <= predecode_ext_d;
+        ahead_rd_strb_d.TABLE_SEL = (ahead_rd_addr == 12'h1c0) & !1'b0;
+        is_valid_addr |= (ahead_rd_addr == 12'h1c0);
+        is_valid_rw |= (ahead_rd_addr == 12'h1c0) & !1'b0;
+        ahead_rd_err_d = ~is_valid_addr | ~is_valid_rw;
+        ahead_rd_ext_d = is_external;
     end
     always_comb begin
-        decoded_reg_strb.ID = cpuif_req_masked & (cpuif_addr == 12'h0) & !cpuif_req_is_wr;
-        decoded_reg_strb.VERSION = cpuif_req_masked & (cpuif_addr == 12'h4) & !cpuif_req_is_wr;
-        decoded_reg_strb.CONFIG = cpuif_req_masked & (cpuif_addr == 12'h8) & !cpuif_req_is_wr;
-        decoded_reg_strb.FORMAT = cpuif_req_masked & (cpuif_addr == 12'hc) & !cpuif_req_is_wr;
-        decoded_reg_strb.FRAME_MAX = cpuif_req_masked & (cpuif_addr == 12'h10) & !cpuif_req_is_wr;
-        decoded_reg_strb.CTRL = cpuif_req_masked & (cpuif_addr == 12'h20);
-        decoded_reg_strb.FRAME_SIZE = cpuif_req_masked & (cpuif_addr == 12'h24);
-        decoded_reg_strb.COMMAND = cpuif_req_masked & (cpuif_addr == 12'h28) & cpuif_req_is_wr;
-        decoded_reg_strb.STATUS = cpuif_req_masked & (cpuif_addr == 12'h30);
-        decoded_reg_strb.IRQ_ENABLE = cpuif_req_masked & (cpuif_addr == 12'h34);
-        decoded_reg_strb.IRQ_STATUS = cpuif_req_masked & (cpuif_addr == 12'h38);
-        decoded_reg_strb.FRAMES_IN = cpuif_req_masked & (cpuif_addr == 12'h40) & !cpuif_req_is_wr;
-        decoded_reg_strb.FRAMES_OUT = cpuif_req_masked & (cpuif_addr == 12'h44) & !cpuif_req_is_wr;
-        decoded_reg_strb.PIXELS_IN = cpuif_req_masked & (cpuif_addr == 12'h48) & !cpuif_req_is_wr;
-        decoded_reg_strb.PIXELS_OUT = cpuif_req_masked & (cpuif_addr == 12'h4c) & !cpuif_req_is_wr;
-        decoded_reg_strb.DROPPED = cpuif_req_masked & (cpuif_addr == 12'h50) & !cpuif_req_is_wr;
-        decoded_reg_strb.PADDED = cpuif_req_masked & (cpuif_addr == 12'h54) & !cpuif_req_is_wr;
-        decoded_reg_strb.SOF_ERRORS = cpuif_req_masked & (cpuif_addr == 12'h58) & !cpuif_req_is_wr;
-        decoded_reg_strb.EOL_ERRORS = cpuif_req_masked & (cpuif_addr == 12'h5c) & !cpuif_req_is_wr;
-        decoded_reg_strb.COEF_ERRORS = cpuif_req_masked & (cpuif_addr == 12'h60) & !cpuif_req_is_wr;
-        decoded_reg_strb.FFC_CTRL = cpuif_req_masked & (cpuif_addr == 12'h80);
-        decoded_reg_strb.FFC_STATUS = cpuif_req_masked & (cpuif_addr == 12'h84) & !cpuif_req_is_wr;
-        decoded_reg_strb.FFC_PERIOD = cpuif_req_masked & (cpuif_addr == 12'h88);
-        decoded_reg_strb.FFC_THRESHOLD = cpuif_req_masked & (cpuif_addr == 12'h8c);
-        decoded_reg_strb.FFC_TRIGGER = cpuif_req_masked & (cpuif_addr == 12'h90) & !cpuif_req_is_wr;
-        decoded_reg_strb.FFC_REF = cpuif_req_masked & (cpuif_addr == 12'h94) & !cpuif_req_is_wr;
-        decoded_reg_strb.GAIN.LO = cpuif_req_masked & (cpuif_addr == 12'h100);
-        decoded_reg_strb.GAIN.HI = cpuif_req_masked & (cpuif_addr == 12'h104);
-        decoded_reg_strb.LEVEL.LO = cpuif_req_masked & (cpuif_addr == 12'h108);
-        decoded_reg_strb.LEVEL.HI = cpuif_req_masked & (cpuif_addr == 12'h10c);
-        decoded_reg_strb.READING.LO = cpuif_req_masked & (cpuif_addr == 12'h110);
-        decoded_reg_strb.READING.HI = cpuif_req_masked & (cpuif_addr == 12'h114);
-        decoded_reg_strb.T_REF.LO = cpuif_req_masked & (cpuif_addr == 12'h118);
-        decoded_reg_strb.T_REF.HI = cpuif_req_masked & (cpuif_addr == 12'h11c);
-        decoded_reg_strb.BLIND_SUM.LO = cpuif_req_masked & (cpuif_addr == 12'h120);
-        decoded_reg_strb.BLIND_SUM.HI = cpuif_req_masked & (cpuif_addr == 12'h124);
-        decoded_reg_strb.BLIND_REF.LO = cpuif_req_masked & (cpuif_addr == 12'h128);
-        decoded_reg_strb.BLIND_REF.HI = cpuif_req_masked & (cpuif_addr == 12'h12c);
-        decoded_reg_strb.DRIFT_GAIN.LO = cpuif_req_masked & (cpuif_addr == 12'h130);
-        decoded_reg_strb.DRIFT_GAIN.HI = cpuif_req_masked & (cpuif_addr == 12'h134);
-        decoded_reg_strb.FFC_TARGET.LO = cpuif_req_masked & (cpuif_addr == 12'h138);
-        decoded_reg_strb.FFC_TARGET.HI = cpuif_req_masked & (cpuif_addr == 12'h13c);
-        decoded_reg_strb.HOUSING_READING.LO = cpuif_req_masked & (cpuif_addr == 12'h140);
-        decoded_reg_strb.HOUSING_READING.HI = cpuif_req_masked & (cpuif_addr == 12'h144);
-        decoded_reg_strb.H_REF.LO = cpuif_req_masked & (cpuif_addr == 12'h148);
-        decoded_reg_strb.H_REF.HI = cpuif_req_masked & (cpuif_addr == 12'h14c);
+        automatic logic is_valid_addr;
+        automatic logic is_valid_rw;
+        automatic logic is_external;
+        is_external = '0;
+        is_valid_addr = '0;
+        is_valid_rw = '0;
+        ahead_wr_strb_d.ID = (ahead_wr_addr == 12'h0) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h0);
+        is_valid_rw |= (ahead_wr_addr == 12'h0) & !1'b1;
+        ahead_wr_strb_d.VERSION = (ahead_wr_addr == 12'h4) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h4);
+        is_valid_rw |= (ahead_wr_addr == 12'h4) & !1'b1;
+        ahead_wr_strb_d.CONFIG = (ahead_wr_addr == 12'h8) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h8);
+        is_valid_rw |= (ahead_wr_addr == 12'h8) & !1'b1;
+        ahead_wr_strb_d.FORMAT = (ahead_wr_addr == 12'hc) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'hc);
+        is_valid_rw |= (ahead_wr_addr == 12'hc) & !1'b1;
+        ahead_wr_strb_d.FRAME_MAX = (ahead_wr_addr == 12'h10) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h10);
+        is_valid_rw |= (ahead_wr_addr == 12'h10) & !1'b1;
+        ahead_wr_strb_d.CTRL = (ahead_wr_addr == 12'h20);
+        is_valid_addr |= (ahead_wr_addr == 12'h20);
+        is_valid_rw |= (ahead_wr_addr == 12'h20);
+        ahead_wr_strb_d.FRAME_SIZE = (ahead_wr_addr == 12'h24);
+        is_external |= (ahead_wr_addr == 12'h24);
+        is_valid_addr |= (ahead_wr_addr == 12'h24);
+        is_valid_rw |= (ahead_wr_addr == 12'h24);
+        ahead_wr_strb_d.COMMAND = (ahead_wr_addr == 12'h28) & 1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h28);
+        is_valid_rw |= (ahead_wr_addr == 12'h28) & 1'b1;
+        ahead_wr_strb_d.STATUS = (ahead_wr_addr == 12'h30);
+        is_valid_addr |= (ahead_wr_addr == 12'h30);
+        is_valid_rw |= (ahead_wr_addr == 12'h30);
+        ahead_wr_strb_d.IRQ_ENABLE = (ahead_wr_addr == 12'h34);
+        is_valid_addr |= (ahead_wr_addr == 12'h34);
+        is_valid_rw |= (ahead_wr_addr == 12'h34);
+        ahead_wr_strb_d.IRQ_STATUS = (ahead_wr_addr == 12'h38);
+        is_valid_addr |= (ahead_wr_addr == 12'h38);
+        is_valid_rw |= (ahead_wr_addr == 12'h38);
+        ahead_wr_strb_d.FRAMES_IN = (ahead_wr_addr == 12'h40) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h40);
+        is_valid_rw |= (ahead_wr_addr == 12'h40) & !1'b1;
+        ahead_wr_strb_d.FRAMES_OUT = (ahead_wr_addr == 12'h44) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h44);
+        is_valid_rw |= (ahead_wr_addr == 12'h44) & !1'b1;
+        ahead_wr_strb_d.PIXELS_IN = (ahead_wr_addr == 12'h48) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h48);
+        is_valid_rw |= (ahead_wr_addr == 12'h48) & !1'b1;
+        ahead_wr_strb_d.PIXELS_OUT = (ahead_wr_addr == 12'h4c) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h4c);
+        is_valid_rw |= (ahead_wr_addr == 12'h4c) & !1'b1;
+        ahead_wr_strb_d.DROPPED = (ahead_wr_addr == 12'h50) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h50);
+        is_valid_rw |= (ahead_wr_addr == 12'h50) & !1'b1;
+        ahead_wr_strb_d.PADDED = (ahead_wr_addr == 12'h54) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h54);
+        is_valid_rw |= (ahead_wr_addr == 12'h54) & !1'b1;
+        ahead_wr_strb_d.SOF_ERRORS = (ahead_wr_addr == 12'h58) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h58);
+        is_valid_rw |= (ahead_wr_addr == 12'h58) & !1'b1;
+        ahead_wr_strb_d.EOL_ERRORS = (ahead_wr_addr == 12'h5c) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h5c);
+        is_valid_rw |= (ahead_wr_addr == 12'h5c) & !1'b1;
+        ahead_wr_strb_d.COEF_ERRORS = (ahead_wr_addr == 12'h60) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h60);
+        is_valid_rw |= (ahead_wr_addr == 12'h60) & !1'b1;
+        ahead_wr_strb_d.FFC_CTRL = (ahead_wr_addr == 12'h80);
+        is_external |= (ahead_wr_addr == 12'h80);
+        is_valid_addr |= (ahead_wr_addr == 12'h80);
+        is_valid_rw |= (ahead_wr_addr == 12'h80);
+        ahead_wr_strb_d.FFC_STATUS = (ahead_wr_addr == 12'h84) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h84);
+        is_valid_rw |= (ahead_wr_addr == 12'h84) & !1'b1;
+        ahead_wr_strb_d.FFC_PERIOD = (ahead_wr_addr == 12'h88);
+        is_external |= (ahead_wr_addr == 12'h88);
+        is_valid_addr |= (ahead_wr_addr == 12'h88);
+        is_valid_rw |= (ahead_wr_addr == 12'h88);
+        ahead_wr_strb_d.FFC_THRESHOLD = (ahead_wr_addr == 12'h8c);
+        is_external |= (ahead_wr_addr == 12'h8c);
+        is_valid_addr |= (ahead_wr_addr == 12'h8c);
+        is_valid_rw |= (ahead_wr_addr == 12'h8c);
+        ahead_wr_strb_d.FFC_TRIGGER = (ahead_wr_addr == 12'h90) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h90);
+        is_valid_rw |= (ahead_wr_addr == 12'h90) & !1'b1;
+        ahead_wr_strb_d.FFC_REF = (ahead_wr_addr == 12'h94) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h94);
+        is_valid_rw |= (ahead_wr_addr == 12'h94) & !1'b1;
+        ahead_wr_strb_d.GAIN.LO = (ahead_wr_addr == 12'h100);
+        is_external |= (ahead_wr_addr == 12'h100);
+        is_valid_addr |= (ahead_wr_addr == 12'h100);
+        is_valid_rw |= (ahead_wr_addr == 12'h100);
+        ahead_wr_strb_d.GAIN.HI = (ahead_wr_addr == 12'h104);
+        is_external |= (ahead_wr_addr == 12'h104);
+        is_valid_addr |= (ahead_wr_addr == 12'h104);
+        is_valid_rw |= (ahead_wr_addr == 12'h104);
+        ahead_wr_strb_d.LEVEL.LO = (ahead_wr_addr == 12'h108);
+        is_external |= (ahead_wr_addr == 12'h108);
+        is_valid_addr |= (ahead_wr_addr == 12'h108);
+        is_valid_rw |= (ahead_wr_addr == 12'h108);
+        ahead_wr_strb_d.LEVEL.HI = (ahead_wr_addr == 12'h10c);
+        is_external |= (ahead_wr_addr == 12'h10c);
+        is_valid_addr |= (ahead_wr_addr == 12'h10c);
+        is_valid_rw |= (ahead_wr_addr == 12'h10c);
+        ahead_wr_strb_d.READING.LO = (ahead_wr_addr == 12'h110);
+        is_external |= (ahead_wr_addr == 12'h110);
+        is_valid_addr |= (ahead_wr_addr == 12'h110);
+        is_valid_rw |= (ahead_wr_addr == 12'h110);
+        ahead_wr_strb_d.READING.HI = (ahead_wr_addr == 12'h114);
+        is_external |= (ahead_wr_addr == 12'h114);
+        is_valid_addr |= (ahead_wr_addr == 12'h114);
+        is_valid_rw |= (ahead_wr_addr == 12'h114);
+        ahead_wr_strb_d.T_REF.LO = (ahead_wr_addr == 12'h118);
+        is_external |= (ahead_wr_addr == 12'h118);
+        is_valid_addr |= (ahead_wr_addr == 12'h118);
+        is_valid_rw |= (ahead_wr_addr == 12'h118);
+        ahead_wr_strb_d.T_REF.HI = (ahead_wr_addr == 12'h11c);
+        is_external |= (ahead_wr_addr == 12'h11c);
+        is_valid_addr |= (ahead_wr_addr == 12'h11c);
+        is_valid_rw |= (ahead_wr_addr == 12'h11c);
+        ahead_wr_strb_d.BLIND_SUM.LO = (ahead_wr_addr == 12'h120);
+        is_external |= (ahead_wr_addr == 12'h120);
+        is_valid_addr |= (ahead_wr_addr == 12'h120);
+        is_valid_rw |= (ahead_wr_addr == 12'h120);
+        ahead_wr_strb_d.BLIND_SUM.HI = (ahead_wr_addr == 12'h124);
+        is_external |= (ahead_wr_addr == 12'h124);
+        is_valid_addr |= (ahead_wr_addr == 12'h124);
+        is_valid_rw |= (ahead_wr_addr == 12'h124);
+        ahead_wr_strb_d.BLIND_REF.LO = (ahead_wr_addr == 12'h128);
+        is_external |= (ahead_wr_addr == 12'h128);
+        is_valid_addr |= (ahead_wr_addr == 12'h128);
+        is_valid_rw |= (ahead_wr_addr == 12'h128);
+        ahead_wr_strb_d.BLIND_REF.HI = (ahead_wr_addr == 12'h12c);
+        is_external |= (ahead_wr_addr == 12'h12c);
+        is_valid_addr |= (ahead_wr_addr == 12'h12c);
+        is_valid_rw |= (ahead_wr_addr == 12'h12c);
+        ahead_wr_strb_d.DRIFT_GAIN.LO = (ahead_wr_addr == 12'h130);
+        is_external |= (ahead_wr_addr == 12'h130);
+        is_valid_addr |= (ahead_wr_addr == 12'h130);
+        is_valid_rw |= (ahead_wr_addr == 12'h130);
+        ahead_wr_strb_d.DRIFT_GAIN.HI = (ahead_wr_addr == 12'h134);
+        is_external |= (ahead_wr_addr == 12'h134);
+        is_valid_addr |= (ahead_wr_addr == 12'h134);
+        is_valid_rw |= (ahead_wr_addr == 12'h134);
+        ahead_wr_strb_d.FFC_TARGET.LO = (ahead_wr_addr == 12'h138);
+        is_external |= (ahead_wr_addr == 12'h138);
+        is_valid_addr |= (ahead_wr_addr == 12'h138);
+        is_valid_rw |= (ahead_wr_addr == 12'h138);
+        ahead_wr_strb_d.FFC_TARGET.HI = (ahead_wr_addr == 12'h13c);
+        is_external |= (ahead_wr_addr == 12'h13c);
+        is_valid_addr |= (ahead_wr_addr == 12'h13c);
+        is_valid_rw |= (ahead_wr_addr == 12'h13c);
+        ahead_wr_strb_d.HOUSING_READING.LO = (ahead_wr_addr == 12'h140);
+        is_external |= (ahead_wr_addr == 12'h140);
+        is_valid_addr |= (ahead_wr_addr == 12'h140);
+        is_valid_rw |= (ahead_wr_addr == 12'h140);
+        ahead_wr_strb_d.HOUSING_READING.HI = (ahead_wr_addr == 12'h144);
+        is_external |= (ahead_wr_addr == 12'h144);
+        is_valid_addr |= (ahead_wr_addr == 12'h144);
+        is_valid_rw |= (ahead_wr_addr == 12'h144);
+        ahead_wr_strb_d.H_REF.LO = (ahead_wr_addr == 12'h148);
+        is_external |= (ahead_wr_addr == 12'h148);
+        is_valid_addr |= (ahead_wr_addr == 12'h148);
+        is_valid_rw |= (ahead_wr_addr == 12'h148);
+        ahead_wr_strb_d.H_REF.HI = (ahead_wr_addr == 12'h14c);
+        is_external |= (ahead_wr_addr == 12'h14c);
+        is_valid_addr |= (ahead_wr_addr == 12'h14c);
+        is_valid_rw |= (ahead_wr_addr == 12'h14c);
         for(int i0=0; i0<16; i0++) begin
-            decoded_reg_strb.TABLE_READING[i0] = cpuif_req_masked & (cpuif_addr == 12'h180 + (12)'(i0) * 12'h4);
+            ahead_wr_strb_d.TABLE_READING[i0] = (ahead_wr_addr == 12'h180 + (12)'(i0) * 12'h4);
+            is_external |= (ahead_wr_addr == 12'h180 + (12)'(i0) * 12'h4);
+            is_valid_addr |= (ahead_wr_addr == 12'h180 + (12)'(i0) * 12'h4);
+            is_valid_rw |= (ahead_wr_addr == 12'h180 + (12)'(i0) * 12'h4);
         end
-        decoded_reg_strb.TABLE_SEL = cpuif_req_masked & (cpuif_addr == 12'h1c0) & !cpuif_req_is_wr;
+        ahead_wr_strb_d.TABLE_SEL = (ahead_wr_addr == 12'h1c0) & !1'b1;
+        is_valid_addr |= (ahead_wr_addr == 12'h1c0);
+        is_valid_rw |= (ahead_wr_addr == 12'h1c0) & !1'b1;
+        ahead_wr_err_d = ~is_valid_addr | ~is_valid_rw;
+        ahead_wr_ext_d = is_external;
+    end
+    always_ff @(posedge clk) begin
+        ahead_rd_strb_q <= ahead_rd_strb_d;
+        ahead_rd_err_q  <= ahead_rd_err_d;
+        ahead_rd_ext_q  <= ahead_rd_ext_d;
+        ahead_wr_strb_q <= ahead_wr_strb_d;
+        ahead_wr_err_q  <= ahead_wr_err_d;
+        ahead_wr_ext_q  <= ahead_wr_ext_d;
+        if(axil_take_rd) begin
+            predecode_strb_q <= ahead_rd_strb_q;
+            predecode_err_q  <= ahead_rd_err_q;
+            predecode_ext_q  <= ahead_rd_ext_q;
+        end else if(axil_take_wr) begin
+            predecode_strb_q <= ahead_wr_strb_q;
+            predecode_err_q  <= ahead_wr_err_q;
+            predecode_ext_q  <= ahead_wr_ext_q;
+        end
+    end
+    always_comb begin
+        decoded_reg_strb.ID = cpuif_req_masked & predecode_strb_q.ID;
+        decoded_reg_strb.VERSION = cpuif_req_masked & predecode_strb_q.VERSION;
+        decoded_reg_strb.CONFIG = cpuif_req_masked & predecode_strb_q.CONFIG;
+        decoded_reg_strb.FORMAT = cpuif_req_masked & predecode_strb_q.FORMAT;
+        decoded_reg_strb.FRAME_MAX = cpuif_req_masked & predecode_strb_q.FRAME_MAX;
+        decoded_reg_strb.CTRL = cpuif_req_masked & predecode_strb_q.CTRL;
+        decoded_reg_strb.FRAME_SIZE = cpuif_req_masked & predecode_strb_q.FRAME_SIZE;
+        decoded_reg_strb.COMMAND = cpuif_req_masked & predecode_strb_q.COMMAND;
+        decoded_reg_strb.STATUS = cpuif_req_masked & predecode_strb_q.STATUS;
+        decoded_reg_strb.IRQ_ENABLE = cpuif_req_masked & predecode_strb_q.IRQ_ENABLE;
+        decoded_reg_strb.IRQ_STATUS = cpuif_req_masked & predecode_strb_q.IRQ_STATUS;
+        decoded_reg_strb.FRAMES_IN = cpuif_req_masked & predecode_strb_q.FRAMES_IN;
+        decoded_reg_strb.FRAMES_OUT = cpuif_req_masked & predecode_strb_q.FRAMES_OUT;
+        decoded_reg_strb.PIXELS_IN = cpuif_req_masked & predecode_strb_q.PIXELS_IN;
+        decoded_reg_strb.PIXELS_OUT = cpuif_req_masked & predecode_strb_q.PIXELS_OUT;
+        decoded_reg_strb.DROPPED = cpuif_req_masked & predecode_strb_q.DROPPED;
+        decoded_reg_strb.PADDED = cpuif_req_masked & predecode_strb_q.PADDED;
+        decoded_reg_strb.SOF_ERRORS = cpuif_req_masked & predecode_strb_q.SOF_ERRORS;
+        decoded_reg_strb.EOL_ERRORS = cpuif_req_masked & predecode_strb_q.EOL_ERRORS;
+        decoded_reg_strb.COEF_ERRORS = cpuif_req_masked & predecode_strb_q.COEF_ERRORS;
+        decoded_reg_strb.FFC_CTRL = cpuif_req_masked & predecode_strb_q.FFC_CTRL;
+        decoded_reg_strb.FFC_STATUS = cpuif_req_masked & predecode_strb_q.FFC_STATUS;
+        decoded_reg_strb.FFC_PERIOD = cpuif_req_masked & predecode_strb_q.FFC_PERIOD;
+        decoded_reg_strb.FFC_THRESHOLD = cpuif_req_masked & predecode_strb_q.FFC_THRESHOLD;
+        decoded_reg_strb.FFC_TRIGGER = cpuif_req_masked & predecode_strb_q.FFC_TRIGGER;
+        decoded_reg_strb.FFC_REF = cpuif_req_masked & predecode_strb_q.FFC_REF;
+        decoded_reg_strb.GAIN.LO = cpuif_req_masked & predecode_strb_q.GAIN.LO;
+        decoded_reg_strb.GAIN.HI = cpuif_req_masked & predecode_strb_q.GAIN.HI;
+        decoded_reg_strb.LEVEL.LO = cpuif_req_masked & predecode_strb_q.LEVEL.LO;
+        decoded_reg_strb.LEVEL.HI = cpuif_req_masked & predecode_strb_q.LEVEL.HI;
+        decoded_reg_strb.READING.LO = cpuif_req_masked & predecode_strb_q.READING.LO;
+        decoded_reg_strb.READING.HI = cpuif_req_masked & predecode_strb_q.READING.HI;
+        decoded_reg_strb.T_REF.LO = cpuif_req_masked & predecode_strb_q.T_REF.LO;
+        decoded_reg_strb.T_REF.HI = cpuif_req_masked & predecode_strb_q.T_REF.HI;
+        decoded_reg_strb.BLIND_SUM.LO = cpuif_req_masked & predecode_strb_q.BLIND_SUM.LO;
+        decoded_reg_strb.BLIND_SUM.HI = cpuif_req_masked & predecode_strb_q.BLIND_SUM.HI;
+        decoded_reg_strb.BLIND_REF.LO = cpuif_req_masked & predecode_strb_q.BLIND_REF.LO;
+        decoded_reg_strb.BLIND_REF.HI = cpuif_req_masked & predecode_strb_q.BLIND_REF.HI;
+        decoded_reg_strb.DRIFT_GAIN.LO = cpuif_req_masked & predecode_strb_q.DRIFT_GAIN.LO;
+        decoded_reg_strb.DRIFT_GAIN.HI = cpuif_req_masked & predecode_strb_q.DRIFT_GAIN.HI;
+        decoded_reg_strb.FFC_TARGET.LO = cpuif_req_masked & predecode_strb_q.FFC_TARGET.LO;
+        decoded_reg_strb.FFC_TARGET.HI = cpuif_req_masked & predecode_strb_q.FFC_TARGET.HI;
+        decoded_reg_strb.HOUSING_READING.LO = cpuif_req_masked & predecode_strb_q.HOUSING_READING.LO;
+        decoded_reg_strb.HOUSING_READING.HI = cpuif_req_masked & predecode_strb_q.HOUSING_READING.HI;
+        decoded_reg_strb.H_REF.LO = cpuif_req_masked & predecode_strb_q.H_REF.LO;
+        decoded_reg_strb.H_REF.HI = cpuif_req_masked & predecode_strb_q.H_REF.HI;
+        for(int i0=0; i0<16; i0++) begin
+            decoded_reg_strb.TABLE_READING[i0] = cpuif_req_masked & predecode_strb_q.TABLE_READING[i0];
+        end
+        decoded_reg_strb.TABLE_SEL = cpuif_req_masked & predecode_strb_q.TABLE_SEL;
         decoded_err = predecode_err_q & decoded_req;
         decoded_req_is_external = predecode_ext_q & decoded_req;
     end
@@ -1865,20 +2113,30 @@ module irnuc_axil_regblock (
         return addr[11:5];
     endfunction
 
+    // irnuc: the first stage's address compares ahead: rd_mux_addr is the request's
+    // address, loaded from the taken holding register, so a one-hot flop of its low
+    // address loads from the same register in the same cycle and selects each
+    // register's word where the compare of rd_mux_addr would (docs/regmap.md).
+    logic [31:0] readback_low_q;
+    always_ff @(posedge clk) begin
+        if(axil_take_rd) readback_low_q <= 32'(1) << ad_low(ahead_rd_addr);
+        else if(axil_take_wr) readback_low_q <= 32'(1) << ad_low(ahead_wr_addr);
+    end
+
     // readback stage 1
     logic [31:0] readback_data_rt_c[128];
     always_comb begin
         automatic logic [31:0] readback_data_var[128];
         for(int i=0; i<128; i++) readback_data_var[i] = '0;
-        if(ad_low(rd_mux_addr) == ad_low(12'h0)) begin
+        if(readback_low_q[ad_low(12'h0)]) begin
             readback_data_var[ad_hi(12'h0)][31:0] = 32'h49524e43;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h4)) begin
+        if(readback_low_q[ad_low(12'h4)]) begin
             readback_data_var[ad_hi(12'h4)][7:0] = 8'h2;
             readback_data_var[ad_hi(12'h4)][15:8] = 8'h1;
             readback_data_var[ad_hi(12'h4)][23:16] = hwif_in.VERSION.coef_layout.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h8)) begin
+        if(readback_low_q[ad_low(12'h8)]) begin
             readback_data_var[ad_hi(12'h8)][7:0] = hwif_in.CONFIG.adc_bits.next;
             readback_data_var[ad_hi(12'h8)][15:8] = hwif_in.CONFIG.out_bits.next;
             readback_data_var[ad_hi(12'h8)][23:16] = hwif_in.CONFIG.word_bits.next;
@@ -1888,25 +2146,25 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h8)][30:29] = hwif_in.CONFIG.rounding.next;
             readback_data_var[ad_hi(12'h8)][31] = hwif_in.CONFIG.overflow.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'hc)) begin
+        if(readback_low_q[ad_low(12'hc)]) begin
             readback_data_var[ad_hi(12'hc)][7:0] = hwif_in.FORMAT.gain_int_bits.next;
             readback_data_var[ad_hi(12'hc)][15:8] = hwif_in.FORMAT.gain_frac_bits.next;
             readback_data_var[ad_hi(12'hc)][23:16] = hwif_in.FORMAT.offset_int_bits.next;
             readback_data_var[ad_hi(12'hc)][31:24] = hwif_in.FORMAT.offset_frac_bits.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h10)) begin
+        if(readback_low_q[ad_low(12'h10)]) begin
             readback_data_var[ad_hi(12'h10)][15:0] = hwif_in.FRAME_MAX.width.next;
             readback_data_var[ad_hi(12'h10)][31:16] = hwif_in.FRAME_MAX.height.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h20)) begin
+        if(readback_low_q[ad_low(12'h20)]) begin
             readback_data_var[ad_hi(12'h20)][0] = field_storage.CTRL.nuc_en.value;
             readback_data_var[ad_hi(12'h20)][1] = field_storage.CTRL.dpc_en.value;
             readback_data_var[ad_hi(12'h20)][8] = field_storage.CTRL.coef_sync.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h24)) begin
+        if(readback_low_q[ad_low(12'h24)]) begin
             readback_data_var[ad_hi(12'h24)] = hwif_in.FRAME_SIZE.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h30)) begin
+        if(readback_low_q[ad_low(12'h30)]) begin
             readback_data_var[ad_hi(12'h30)][0] = field_storage.STATUS.sof_early.value;
             readback_data_var[ad_hi(12'h30)][1] = field_storage.STATUS.sof_late.value;
             readback_data_var[ad_hi(12'h30)][2] = field_storage.STATUS.eol_early.value;
@@ -1917,135 +2175,135 @@ module irnuc_axil_regblock (
             readback_data_var[ad_hi(12'h30)][16] = hwif_in.STATUS.in_frame.next;
             readback_data_var[ad_hi(12'h30)][17] = hwif_in.STATUS.pending.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h34)) begin
+        if(readback_low_q[ad_low(12'h34)]) begin
             readback_data_var[ad_hi(12'h34)][0] = field_storage.IRQ_ENABLE.error.value;
             readback_data_var[ad_hi(12'h34)][1] = field_storage.IRQ_ENABLE.frame_done.value;
             readback_data_var[ad_hi(12'h34)][2] = field_storage.IRQ_ENABLE.ffc_done.value;
             readback_data_var[ad_hi(12'h34)][3] = field_storage.IRQ_ENABLE.ffc_request.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h38)) begin
+        if(readback_low_q[ad_low(12'h38)]) begin
             readback_data_var[ad_hi(12'h38)][0] = field_storage.IRQ_STATUS.error.value;
             readback_data_var[ad_hi(12'h38)][1] = field_storage.IRQ_STATUS.frame_done.value;
             readback_data_var[ad_hi(12'h38)][2] = field_storage.IRQ_STATUS.ffc_done.value;
             readback_data_var[ad_hi(12'h38)][3] = field_storage.IRQ_STATUS.ffc_request.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h40)) begin
+        if(readback_low_q[ad_low(12'h40)]) begin
             readback_data_var[ad_hi(12'h40)][31:0] = field_storage.FRAMES_IN.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h44)) begin
+        if(readback_low_q[ad_low(12'h44)]) begin
             readback_data_var[ad_hi(12'h44)][31:0] = field_storage.FRAMES_OUT.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h48)) begin
+        if(readback_low_q[ad_low(12'h48)]) begin
             readback_data_var[ad_hi(12'h48)][31:0] = field_storage.PIXELS_IN.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h4c)) begin
+        if(readback_low_q[ad_low(12'h4c)]) begin
             readback_data_var[ad_hi(12'h4c)][31:0] = field_storage.PIXELS_OUT.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h50)) begin
+        if(readback_low_q[ad_low(12'h50)]) begin
             readback_data_var[ad_hi(12'h50)][31:0] = field_storage.DROPPED.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h54)) begin
+        if(readback_low_q[ad_low(12'h54)]) begin
             readback_data_var[ad_hi(12'h54)][31:0] = field_storage.PADDED.count.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h58)) begin
+        if(readback_low_q[ad_low(12'h58)]) begin
             readback_data_var[ad_hi(12'h58)][15:0] = field_storage.SOF_ERRORS.early.value;
             readback_data_var[ad_hi(12'h58)][31:16] = field_storage.SOF_ERRORS.late.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h5c)) begin
+        if(readback_low_q[ad_low(12'h5c)]) begin
             readback_data_var[ad_hi(12'h5c)][15:0] = field_storage.EOL_ERRORS.early.value;
             readback_data_var[ad_hi(12'h5c)][31:16] = field_storage.EOL_ERRORS.late.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h60)) begin
+        if(readback_low_q[ad_low(12'h60)]) begin
             readback_data_var[ad_hi(12'h60)][15:0] = field_storage.COEF_ERRORS.early.value;
             readback_data_var[ad_hi(12'h60)][31:16] = field_storage.COEF_ERRORS.late.value;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h80)) begin
+        if(readback_low_q[ad_low(12'h80)]) begin
             readback_data_var[ad_hi(12'h80)] = hwif_in.FFC_CTRL.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h84)) begin
+        if(readback_low_q[ad_low(12'h84)]) begin
             readback_data_var[ad_hi(12'h84)][0] = hwif_in.FFC_STATUS.busy.next;
             readback_data_var[ad_hi(12'h84)][1] = hwif_in.FFC_STATUS.done.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h88)) begin
+        if(readback_low_q[ad_low(12'h88)]) begin
             readback_data_var[ad_hi(12'h88)] = hwif_in.FFC_PERIOD.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h8c)) begin
+        if(readback_low_q[ad_low(12'h8c)]) begin
             readback_data_var[ad_hi(12'h8c)] = hwif_in.FFC_THRESHOLD.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h90)) begin
+        if(readback_low_q[ad_low(12'h90)]) begin
             readback_data_var[ad_hi(12'h90)][23:0] = hwif_in.FFC_TRIGGER.since.next;
             readback_data_var[ad_hi(12'h90)][24] = hwif_in.FFC_TRIGGER.period.next;
             readback_data_var[ad_hi(12'h90)][25] = hwif_in.FFC_TRIGGER.threshold.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h94)) begin
+        if(readback_low_q[ad_low(12'h94)]) begin
             readback_data_var[ad_hi(12'h94)][23:0] = hwif_in.FFC_REF.reading.next;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h100)) begin
+        if(readback_low_q[ad_low(12'h100)]) begin
             readback_data_var[ad_hi(12'h100)] = hwif_in.GAIN.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h104)) begin
+        if(readback_low_q[ad_low(12'h104)]) begin
             readback_data_var[ad_hi(12'h104)] = hwif_in.GAIN.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h108)) begin
+        if(readback_low_q[ad_low(12'h108)]) begin
             readback_data_var[ad_hi(12'h108)] = hwif_in.LEVEL.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h10c)) begin
+        if(readback_low_q[ad_low(12'h10c)]) begin
             readback_data_var[ad_hi(12'h10c)] = hwif_in.LEVEL.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h110)) begin
+        if(readback_low_q[ad_low(12'h110)]) begin
             readback_data_var[ad_hi(12'h110)] = hwif_in.READING.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h114)) begin
+        if(readback_low_q[ad_low(12'h114)]) begin
             readback_data_var[ad_hi(12'h114)] = hwif_in.READING.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h118)) begin
+        if(readback_low_q[ad_low(12'h118)]) begin
             readback_data_var[ad_hi(12'h118)] = hwif_in.T_REF.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h11c)) begin
+        if(readback_low_q[ad_low(12'h11c)]) begin
             readback_data_var[ad_hi(12'h11c)] = hwif_in.T_REF.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h120)) begin
+        if(readback_low_q[ad_low(12'h120)]) begin
             readback_data_var[ad_hi(12'h120)] = hwif_in.BLIND_SUM.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h124)) begin
+        if(readback_low_q[ad_low(12'h124)]) begin
             readback_data_var[ad_hi(12'h124)] = hwif_in.BLIND_SUM.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h128)) begin
+        if(readback_low_q[ad_low(12'h128)]) begin
             readback_data_var[ad_hi(12'h128)] = hwif_in.BLIND_REF.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h12c)) begin
+        if(readback_low_q[ad_low(12'h12c)]) begin
             readback_data_var[ad_hi(12'h12c)] = hwif_in.BLIND_REF.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h130)) begin
+        if(readback_low_q[ad_low(12'h130)]) begin
             readback_data_var[ad_hi(12'h130)] = hwif_in.DRIFT_GAIN.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h134)) begin
+        if(readback_low_q[ad_low(12'h134)]) begin
             readback_data_var[ad_hi(12'h134)] = hwif_in.DRIFT_GAIN.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h138)) begin
+        if(readback_low_q[ad_low(12'h138)]) begin
             readback_data_var[ad_hi(12'h138)] = hwif_in.FFC_TARGET.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h13c)) begin
+        if(readback_low_q[ad_low(12'h13c)]) begin
             readback_data_var[ad_hi(12'h13c)] = hwif_in.FFC_TARGET.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h140)) begin
+        if(readback_low_q[ad_low(12'h140)]) begin
             readback_data_var[ad_hi(12'h140)] = hwif_in.HOUSING_READING.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h144)) begin
+        if(readback_low_q[ad_low(12'h144)]) begin
             readback_data_var[ad_hi(12'h144)] = hwif_in.HOUSING_READING.HI.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h148)) begin
+        if(readback_low_q[ad_low(12'h148)]) begin
             readback_data_var[ad_hi(12'h148)] = hwif_in.H_REF.LO.rd_data;
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h14c)) begin
+        if(readback_low_q[ad_low(12'h14c)]) begin
             readback_data_var[ad_hi(12'h14c)] = hwif_in.H_REF.HI.rd_data;
         end
         for(int i0=0; i0<16; i0++) begin
-            if(ad_low(rd_mux_addr) == ad_low(12'h180 + (12)'(i0) * 12'h4)) begin
+            if(readback_low_q[ad_low(12'h180 + (12)'(i0) * 12'h4)]) begin
                 readback_data_var[ad_hi(12'h180 + (12)'(i0) * 12'h4)] = hwif_in.TABLE_READING[i0].rd_data;
             end
         end
-        if(ad_low(rd_mux_addr) == ad_low(12'h1c0)) begin
+        if(readback_low_q[ad_low(12'h1c0)]) begin
             readback_data_var[ad_hi(12'h1c0)][23:0] = hwif_in.TABLE_SEL.weight.next;
             readback_data_var[ad_hi(12'h1c0)][27:24] = hwif_in.TABLE_SEL.j.next;
             readback_data_var[ad_hi(12'h1c0)][28] = hwif_in.TABLE_SEL.valid.next;

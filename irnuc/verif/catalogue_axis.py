@@ -149,8 +149,8 @@ AXIS_MUTANTS: tuple[Mutant, ...] = (
         "the reset frame size's width - 1 one short: a frame at the reset size (no FRAME_SIZE "
         "written) has lines a pixel short"),
     _ma("ax_ffc_status_ro_okay", "irnuc_axil_regblock.sv",
-        "is_valid_rw |= (predecode_addr == 12'h84) & !predecode_is_wr;",
-        "is_valid_rw |= (predecode_addr == 12'h84);",
+        "is_valid_rw |= (ahead_wr_addr == 12'h84) & !1'b1;",
+        "is_valid_rw |= (ahead_wr_addr == 12'h84);",
         "a write to FFC_STATUS (read-only) answered OKAY", **_AXF),
     # The automatic mutant auto_irnuc_axil_regblock_s1_5 by hand (that draw changes with the
     # RTL): killed by the traffic's FRAME_SIZE lanes (Traffic.size_strobes).
