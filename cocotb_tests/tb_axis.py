@@ -113,6 +113,63 @@ async def register_read_write(dut) -> None:
 
 
 @cocotb.test()
+async def reads_and_writes_alternate(dut) -> None:
+    """A read and a write that wait together are taken in turn (docs/regmap.md): the read
+    unless the last request was a read. Their addresses and data are offered in one cycle
+    after reset, after a read and after a write; the first response must be the predicted
+    direction's, both as the register model says."""
+    from cocotbext.axi.axil_channels import (
+        AxiLiteARTransaction,
+        AxiLiteAWTransaction,
+        AxiLiteWTransaction,
+    )
+
+    bench = await make_bench(dut, 14)
+    m = bench.model
+    wif, rif = bench.axil.write_if, bench.axil.read_if
+    enable, ident = m.map["IRQ_ENABLE"].offset, m.map["ID"].offset
+    last = None  # the direction of the last request the register file took
+    for before in (None, "read", "write", "write", "read"):
+        if before == "read":
+            await bench.check("ID")
+            last = "read"
+        elif before == "write":
+            await bench.write("IRQ_ENABLE", int(bench.rng.integers(0, 2**32, dtype=np.uint64)))
+            last = "write"
+        want = "write" if last == "read" else "read"
+        value = int(bench.rng.integers(0, 2**32, dtype=np.uint64))
+        first: list[str] = []
+
+        async def watch(first: list[str]) -> None:
+            while not first:
+                await RisingEdge(dut.clk_i)
+                for name, valid in (("read", dut.s_axil_rvalid), ("write", dut.s_axil_bvalid)):
+                    if int(valid.value):
+                        first.append(name)
+
+        async with bench.wlock, bench.rlock:
+            await RisingEdge(dut.clk_i)
+            seen = cocotb.start_soon(watch(first))
+            await rif.ar_channel.send(AxiLiteARTransaction(araddr=ident, arprot=0))
+            await wif.aw_channel.send(AxiLiteAWTransaction(awaddr=enable, awprot=0))
+            await wif.w_channel.send(AxiLiteWTransaction(wdata=value, wstrb=0xF))
+            b = await wif.b_channel.recv()
+            r = await rif.r_channel.recv()
+            await seen
+        assert first[:1] == [want], (
+            f"after {before or 'reset'}: a read and a write waiting together, the "
+            f"{first[0] if first else 'no'} response came first, expected the {want}'s")
+        assert len(first) == 1, f"after {before or 'reset'}: both responses in one cycle"
+        assert int(b.bresp) == m.write(enable, value, 0xF)
+        want_resp, want_data = m.read(ident)
+        assert (int(r.rresp), int(r.rdata)) == (want_resp, want_data), (
+            f"ID read with a write waiting: {int(r.rresp)}, 0x{int(r.rdata):08x}")
+        await bench.check("IRQ_ENABLE")
+        last = "read"
+    export()
+
+
+@cocotb.test()
 async def register_traffic(dut) -> None:
     """Constrained-random register traffic (cocotb_tests.axil_traffic): random strobes,
     BREADY / RREADY held low, read-only, reserved and unmapped offsets, reads and writes
