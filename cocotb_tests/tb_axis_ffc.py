@@ -744,6 +744,19 @@ async def ffc_tall_frames(dut) -> None:
 
 
 @cocotb.test()
+async def ffc_wide_frames(dut) -> None:
+    """The refresh on frames of 2 x 778 (or the build's largest width) at valid = ready =
+    1: the write-back's column count through the width's bit 9. Session 51's automatic
+    mutant auto_irnuc_axis_ffc_s1_2 (the m_axis_foff column count's next value, bit 8
+    flipped where bit 9 is set) counts 511 -> 768 -> 513 -> 770 ...: right on odd words, 256
+    high on even ones, so the line's end, stepped from width - 2, is found only where
+    width - 2 is odd (777 pixels leave it alive; 778 end the line at word 522)."""
+    cfg = tb_lib.config_from_env()
+    await refresh_sequence(dut, 58, None, "none", "none", "ffc wide frames",
+                           size=(min(cfg.max_height, 2), min(cfg.max_width, 778)))
+
+
+@cocotb.test()
 async def ffc_first_run_all_bad(dut) -> None:
     """FFC_CTRL written before the first frame, on a calibration whose every pixel is bad,
     over nonzero corrections in the host's memory: the run's shutter frames come before any
